@@ -1,0 +1,250 @@
+//! The hex-in-hex lattice (thesis sections 5.3-5.4).
+//!
+//! Each hexagonal tile is cut into six triangles (centre and two corners) and each of those into
+//! `n * n` small triangles, where `n = inner_rings + 1`. The vertices at lattice distance `k`
+//! from a tile's centre form its ring `k`: ring 0 is the centre, rings `1..n` the inner
+//! hexagons, ring `n` the border (corners and edge vertices) shared with the neighbours. The
+//! thesis' layout, one inner hexagon, is `n = 2`.
+//!
+//! Together the tiles form one regular triangular lattice over the whole plane, so every vertex
+//! has an integer lattice coordinate, stored as a [`Hex`] of the *fine* lattice (its six lattice
+//! neighbours are exactly hexx's six axial neighbours). A vertex shared by two or three tiles is
+//! one lattice point, so it exists once per mesh, and two chunks computing it get the same bits.
+//!
+//! # Counts
+//!
+//! With `n = inner_rings + 1`, a tile holds `1 + 3n(n+1)` lattice points and `6n²` triangles.
+//! In a tiling each edge vertex is shared by two tiles and each corner by three, so a map of
+//! `T` tiles has `3n²` vertices per tile plus its outline: for a set of tiles whose union is
+//! simply connected, `V = 3n²·T + n·E_b/2 + 1 + ...`; exactly, `V = 3n²·T + n·B / 2 + 1` where
+//! `B` is the number of tile edges on the outline of the set (Euler's formula on the planar
+//! lattice graph). [`Lattice::mesh_vertex_count`] evaluates it; the thesis layout (`n = 2`) has
+//! 12 vertices and 24 triangles per tile in the limit, `n = 4` has 48 and 96.
+
+use hexx::{EdgeDirection, Hex};
+
+use crate::config::Orientation;
+
+const SQRT_3: f64 = 1.732_050_807_568_877_2;
+
+/// A point of a tile's template: its offset from the tile centre in lattice steps and its ring.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct TemplatePoint {
+    /// Offset from the centre, as a fine-lattice coordinate.
+    pub offset: Hex,
+    /// Ring index: 0 at the centre, `n` on the border.
+    pub ring: u32,
+}
+
+/// Geometry of the fine triangular lattice for one subdivision count and orientation.
+#[derive(Debug, Clone)]
+pub struct Lattice {
+    n: i32,
+    orientation: Orientation,
+    hex_size: f64,
+    /// World vector of one step along the lattice's first axis.
+    step_a: [f64; 2],
+    /// World vector of one step along the lattice's second axis.
+    step_b: [f64; 2],
+    points: Vec<TemplatePoint>,
+    triangles: Vec<[Hex; 3]>,
+}
+
+impl Lattice {
+    /// A lattice with `subdivisions` steps from a tile's centre to its corners (at least 1).
+    #[must_use]
+    pub fn new(subdivisions: u32, orientation: Orientation, hex_size: f32) -> Self {
+        let n = subdivisions.max(1) as i32;
+        let e = f64::from(hex_size) / f64::from(n);
+        let (step_a, step_b) = match orientation {
+            // Corners at 0° and 60°.
+            Orientation::Flat => ([e, 0.0], [e * 0.5, e * SQRT_3 * 0.5]),
+            // Corners at 30° and 90°.
+            Orientation::Pointy => ([e * SQRT_3 * 0.5, e * 0.5], [0.0, e]),
+        };
+        let mut points = Vec::with_capacity(1 + 3 * (n * (n + 1)) as usize);
+        points.push(TemplatePoint { offset: Hex::ZERO, ring: 0 });
+        for k in 1..=n as u32 {
+            points.extend(Hex::ZERO.ring(k).map(|offset| TemplatePoint { offset, ring: k }));
+        }
+        let mut triangles = Vec::with_capacity(6 * (n * n) as usize);
+        let inside = |h: Hex| h.ulength() <= n as u32;
+        // A triangle's lowest corner may lie just outside the tile, so scan one ring further.
+        for o in Hex::ZERO.range(n as u32 + 1) {
+            let (a, b, ab) = (o + Hex::new(1, 0), o + Hex::new(0, 1), o + Hex::new(1, 1));
+            // Wound so that the face normal points up (+y) with world z = lattice y.
+            if inside(o) && inside(a) && inside(b) {
+                triangles.push([o, b, a]);
+            }
+            if inside(a) && inside(b) && inside(ab) {
+                triangles.push([a, b, ab]);
+            }
+        }
+        Self { n, orientation, hex_size: f64::from(hex_size), step_a, step_b, points, triangles }
+    }
+
+    /// Steps from centre to corner, `inner_rings + 1`.
+    #[must_use]
+    pub fn subdivisions(&self) -> u32 {
+        self.n as u32
+    }
+
+    /// Hexagon orientation.
+    #[must_use]
+    pub fn orientation(&self) -> Orientation {
+        self.orientation
+    }
+
+    /// The tile template: every lattice point of one tile, centre first, ring by ring.
+    #[must_use]
+    pub fn template(&self) -> &[TemplatePoint] {
+        &self.points
+    }
+
+    /// The `6n²` triangles of one tile, as lattice offsets from its centre.
+    #[must_use]
+    pub fn template_triangles(&self) -> &[[Hex; 3]] {
+        &self.triangles
+    }
+
+    /// Lattice coordinate of a tile's centre.
+    #[must_use]
+    pub fn tile_centre(&self, tile: Hex) -> Hex {
+        let n = self.n;
+        match self.orientation {
+            Orientation::Flat => Hex::new(n * (tile.x - tile.y), n * (tile.x + 2 * tile.y)),
+            Orientation::Pointy => Hex::new(n * (2 * tile.x + tile.y), n * (tile.y - tile.x)),
+        }
+    }
+
+    /// Lattice offset between the centres of two neighbouring tiles.
+    #[must_use]
+    pub fn neighbour_offset(&self, direction: EdgeDirection) -> Hex {
+        self.tile_centre(Hex::ZERO.neighbor(direction))
+    }
+
+    /// Fractional axial tile coordinates of a lattice point.
+    fn fract_tile(&self, p: Hex) -> [f64; 2] {
+        let (i, j) = (f64::from(p.x), f64::from(p.y));
+        let d = 3.0 * f64::from(self.n);
+        match self.orientation {
+            Orientation::Flat => [(2.0 * i + j) / d, (j - i) / d],
+            Orientation::Pointy => [(i - j) / d, (i + 2.0 * j) / d],
+        }
+    }
+
+    /// The tiles containing a lattice point (1 inside a tile, 2 on an edge, 3 on a corner), and
+    /// the point's ring in the first of them.
+    #[must_use]
+    pub fn tiles_at(&self, p: Hex) -> TileSet {
+        // Cube rounding in f64: hexx's `Hex::round` takes f32, which loses whole lattice steps
+        // beyond ~10^7 and would misplace far-away points of an unbounded world.
+        let [q, r] = self.fract_tile(p);
+        let s = -q - r;
+        let (mut rq, mut rr, rs) = (q.round(), r.round(), s.round());
+        let (dq, dr, ds) = ((rq - q).abs(), (rr - r).abs(), (rs - s).abs());
+        if dq > dr && dq > ds {
+            rq = -rr - rs;
+        } else if dr > ds {
+            rr = -rq - rs;
+        }
+        let first = Hex::new(rq as i32, rr as i32);
+        let ring = p.distance_to(self.tile_centre(first)) as u32;
+        let mut set = TileSet { tiles: [first; 3], len: 1, ring };
+        if ring >= self.n as u32 {
+            for neighbour in first.all_neighbors() {
+                if p.distance_to(self.tile_centre(neighbour)) <= self.n && set.len < 3 {
+                    set.tiles[set.len] = neighbour;
+                    set.len += 1;
+                }
+            }
+        }
+        set
+    }
+
+    /// World `(x, z)` of a lattice point.
+    #[must_use]
+    pub fn world(&self, p: Hex) -> [f64; 2] {
+        let (i, j) = (f64::from(p.x), f64::from(p.y));
+        [i * self.step_a[0] + j * self.step_b[0], i * self.step_a[1] + j * self.step_b[1]]
+    }
+
+    /// Position of a lattice point in hex radii (world divided by the hex size), for sampling
+    /// noise independently of the world scale.
+    #[must_use]
+    pub fn unit(&self, p: Hex) -> [f64; 2] {
+        let [x, z] = self.world(p);
+        [x / self.hex_size, z / self.hex_size]
+    }
+
+    /// The lattice triangle containing world `(x, z)`: its three vertices and barycentric
+    /// weights.
+    #[must_use]
+    pub fn triangle_at(&self, x: f64, z: f64) -> ([Hex; 3], [f64; 3]) {
+        let [ax, az] = self.step_a;
+        let [bx, bz] = self.step_b;
+        let det = ax * bz - bx * az;
+        let fi = (x * bz - z * bx) / det;
+        let fj = (ax * z - az * x) / det;
+        let (i0, j0) = (fi.floor(), fj.floor());
+        let (u, v) = (fi - i0, fj - j0);
+        let p = Hex::new(i0 as i32, j0 as i32);
+        if u + v <= 1.0 {
+            ([p, p + Hex::new(1, 0), p + Hex::new(0, 1)], [1.0 - u - v, u, v])
+        } else {
+            let w = Hex::new(1, 1);
+            ([p + w, p + Hex::new(0, 1), p + Hex::new(1, 0)], [u + v - 1.0, 1.0 - u, 1.0 - v])
+        }
+    }
+
+    /// World vectors of the two lattice axes, one step each.
+    #[must_use]
+    pub fn steps(&self) -> ([f64; 2], [f64; 2]) {
+        (self.step_a, self.step_b)
+    }
+
+    /// Lattice points of one tile: `1 + 3n(n+1)`.
+    #[must_use]
+    pub fn points_per_tile(&self) -> usize {
+        (1 + 3 * self.n * (self.n + 1)) as usize
+    }
+
+    /// Triangles of one tile: `6n²`.
+    #[must_use]
+    pub fn triangles_per_tile(&self) -> usize {
+        (6 * self.n * self.n) as usize
+    }
+
+    /// Vertex count of the mesh of a set of `tiles` tiles whose outline (union) is simply
+    /// connected and has `boundary_edges` tile edges: `3n²·T + n·B/2 + 1`.
+    ///
+    /// Each tile owns `3n² - 3n + 1` interior points; edge points (`n - 1` per edge) and corners
+    /// are shared. By Euler's formula on the tile graph (`V - E + F = 1` for one simply connected
+    /// patch, with `F = T`, `6T = 2E - B`), corners number `2T + B/2 + 1` and edges `3T + B/2`,
+    /// which sums to the formula. For the thesis layout (`n = 2`) that is `12T + B + 1`.
+    #[must_use]
+    pub fn mesh_vertex_count(&self, tiles: usize, boundary_edges: usize) -> usize {
+        let n = self.n as usize;
+        3 * n * n * tiles + n * boundary_edges / 2 + 1
+    }
+}
+
+/// Up to three tiles sharing a lattice point.
+#[derive(Debug, Clone, Copy)]
+pub struct TileSet {
+    tiles: [Hex; 3],
+    len: usize,
+    /// Ring of the point in the first tile (equal to the subdivision count on a border).
+    pub ring: u32,
+}
+
+impl TileSet {
+    /// The tiles.
+    #[must_use]
+    pub fn tiles(&self) -> &[Hex] {
+        &self.tiles[..self.len]
+    }
+}
+
+#[cfg(test)]
+mod tests;

@@ -1,0 +1,104 @@
+use hexx::{HexLayout, Vec2};
+
+use super::*;
+use crate::terrain::hex_orientation;
+
+fn lattices() -> Vec<Lattice> {
+    let mut out = Vec::new();
+    for n in 1..=6 {
+        for o in [Orientation::Flat, Orientation::Pointy] {
+            out.push(Lattice::new(n, o, 1.5));
+        }
+    }
+    out
+}
+
+#[test]
+fn template_counts_follow_formula() {
+    for l in lattices() {
+        let n = l.subdivisions() as usize;
+        assert_eq!(l.template().len(), 1 + 3 * n * (n + 1));
+        assert_eq!(l.points_per_tile(), l.template().len());
+        assert_eq!(l.template_triangles().len(), 6 * n * n);
+        assert_eq!(l.triangles_per_tile(), 6 * n * n);
+        for k in 0..=n as u32 {
+            let count = l.template().iter().filter(|p| p.ring == k).count();
+            assert_eq!(count, if k == 0 { 1 } else { 6 * k as usize });
+        }
+    }
+}
+
+#[test]
+fn tile_centres_match_hexx_layout() {
+    for l in lattices() {
+        let layout =
+            HexLayout { orientation: hex_orientation(l.orientation()), origin: Vec2::ZERO, scale: Vec2::splat(1.5) };
+        for q in -7..7 {
+            for r in -7..7 {
+                let tile = Hex::new(q, r);
+                let [x, z] = l.world(l.tile_centre(tile));
+                let expected = layout.hex_to_world_pos(tile);
+                assert!((x as f32 - expected.x).abs() < 1e-4 && (z as f32 - expected.y).abs() < 1e-4, "{tile:?}");
+                // and back: the centre's tile is the tile itself
+                let set = l.tiles_at(l.tile_centre(tile));
+                assert_eq!(set.tiles(), &[tile]);
+                assert_eq!(set.ring, 0);
+            }
+        }
+    }
+}
+
+#[test]
+fn points_belong_to_one_two_or_three_tiles() {
+    for l in lattices() {
+        let n = l.subdivisions();
+        let tile = Hex::new(3, -2);
+        let c = l.tile_centre(tile);
+        for tp in l.template() {
+            let set = l.tiles_at(c + tp.offset);
+            assert!(set.tiles().contains(&tile));
+            assert_eq!(set.ring, tp.ring);
+            let corner = tp.ring == n && tp.offset.x % n as i32 == 0 && tp.offset.y % n as i32 == 0;
+            let expected = if tp.ring < n {
+                1
+            } else if corner {
+                3
+            } else {
+                2
+            };
+            assert_eq!(set.tiles().len(), expected, "{tp:?} n={n}");
+            for &t in set.tiles() {
+                assert!((c + tp.offset).distance_to(l.tile_centre(t)) <= n as i32);
+            }
+        }
+    }
+}
+
+#[test]
+fn triangles_face_up_and_stay_in_the_tile() {
+    for l in lattices() {
+        for tri in l.template_triangles() {
+            let p = tri.map(|h| l.world(h));
+            let u = [p[1][0] - p[0][0], p[1][1] - p[0][1]];
+            let v = [p[2][0] - p[0][0], p[2][1] - p[0][1]];
+            // y of (u.x, 0, u.z) x (v.x, 0, v.z)
+            let up = u[1] * v[0] - u[0] * v[1];
+            assert!(up > 0.0, "triangle {tri:?} faces down");
+            assert!(tri.iter().all(|h| h.ulength() <= l.subdivisions()));
+        }
+    }
+}
+
+#[test]
+fn triangle_at_reproduces_the_point() {
+    let l = Lattice::new(3, Orientation::Pointy, 2.0);
+    for k in 0..200 {
+        let (x, z) = (f64::from(k) * 0.731 - 70.0, f64::from(k) * -0.377 + 20.0);
+        let (tri, w) = l.triangle_at(x, z);
+        assert!((w.iter().sum::<f64>() - 1.0).abs() < 1e-9);
+        assert!(w.iter().all(|&w| (-1e-9..=1.0 + 1e-9).contains(&w)));
+        let px: f64 = tri.iter().zip(w).map(|(&h, w)| l.world(h)[0] * w).sum();
+        let pz: f64 = tri.iter().zip(w).map(|(&h, w)| l.world(h)[1] * w).sum();
+        assert!((px - x).abs() < 1e-9 && (pz - z).abs() < 1e-9);
+    }
+}

@@ -1,0 +1,58 @@
+use std::collections::HashSet;
+
+use super::*;
+use crate::config::{MapConfig, MapSize, Orientation};
+
+fn boundary_edges(t: &Terrain, rect: TileRect) -> usize {
+    let tiles: HashSet<Hex> = rect.iter().map(|oc| t.tile_from_offset(oc)).collect();
+    tiles.iter().map(|h| h.all_neighbors().iter().filter(|n| !tiles.contains(n)).count()).sum()
+}
+
+#[test]
+fn counts_follow_the_formula() {
+    for rings in [1, 2, 3] {
+        for (x, z) in [(1, 1), (2, 2), (6, 6), (10, 6), (7, 3)] {
+            for o in [Orientation::Flat, Orientation::Pointy] {
+                let mut c = MapConfig::default();
+                c.size = MapSize::Bounded { x, z };
+                c.terrain.inner_rings = rings;
+                c.layout.orientation = o;
+                let t = Terrain::new(c).unwrap();
+                let m = t.generate_map().unwrap();
+                let rect = t.bounds().unwrap();
+                let tiles = (x * z) as usize;
+                let expected = t.lattice().mesh_vertex_count(tiles, boundary_edges(&t, rect));
+                assert_eq!(m.buffers.vertex_count(), expected, "{x}x{z} rings {rings} {o:?}");
+                assert_eq!(m.buffers.triangle_count(), tiles * t.lattice().triangles_per_tile());
+                assert_eq!(m.tiles.len(), tiles);
+            }
+        }
+    }
+}
+
+#[test]
+fn buffers_are_consistent() {
+    let t = Terrain::new(MapConfig::default()).unwrap();
+    let m = t.generate_map().unwrap();
+    let b = &m.buffers;
+    let v = b.vertex_count();
+    assert_eq!(b.normals.len(), v);
+    assert_eq!(b.uvs.len(), v);
+    assert_eq!(b.tile_kinds.len(), v);
+    assert_eq!(b.centre_distances.len(), v);
+    assert!(b.indices.iter().all(|&i| (i as usize) < v));
+    for n in &b.normals {
+        let len = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
+        assert!((len - 1.0).abs() < 1e-5 && n[1] > 0.0);
+    }
+    for tri in b.indices.chunks(3) {
+        let p = [b.positions[tri[0] as usize], b.positions[tri[1] as usize], b.positions[tri[2] as usize]];
+        let u = [p[1][0] - p[0][0], p[1][2] - p[0][2]];
+        let w = [p[2][0] - p[0][0], p[2][2] - p[0][2]];
+        assert!(u[1] * w[0] - u[0] * w[1] > 0.0, "every face is wound counter-clockwise seen from above");
+    }
+    let used: HashSet<u32> = b.indices.iter().copied().collect();
+    assert_eq!(used.len(), v, "no vertex is left out of the triangles");
+    let unique: HashSet<Hex> = m.lattice.iter().copied().collect();
+    assert_eq!(unique.len(), v, "shared vertices exist once");
+}

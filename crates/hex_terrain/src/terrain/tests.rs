@@ -1,0 +1,83 @@
+use super::*;
+use crate::config::Shape;
+
+fn terrain() -> Terrain {
+    Terrain::new(MapConfig::default()).unwrap()
+}
+
+#[test]
+fn tile_at_inverts_tile_centre() {
+    for o in [Orientation::Flat, Orientation::Pointy] {
+        let mut c = MapConfig::default();
+        c.layout.orientation = o;
+        c.layout.hex_size = 2.5;
+        let t = Terrain::new(c).unwrap();
+        for tile in t.tiles() {
+            let [x, _, z] = t.tile_centre(tile);
+            assert_eq!(t.tile_at(x, z), tile);
+            assert_eq!(t.tile_at(x + 1.0, z - 0.5), tile, "within the hex radius");
+        }
+    }
+}
+
+#[test]
+fn offset_shifts_the_window_over_one_world() {
+    let map0 = terrain();
+    let mut c = MapConfig::default();
+    c.offset = (30, 0);
+    let map1 = Terrain::new(c).unwrap();
+    // Map1's first column is the world's column 30, which Map0 computes too.
+    for row in 0..30 {
+        let a = map0.tile_kind(map0.tile_from_offset([30, row]));
+        let b = map1.tile_kind(map1.tile_from_offset([0, row]));
+        assert_eq!(a, b);
+    }
+}
+
+#[test]
+fn bounds_and_chunks() {
+    let t = terrain();
+    assert!(t.contains(t.tile_from_offset([0, 0])));
+    assert!(t.contains(t.tile_from_offset([29, 29])));
+    assert!(!t.contains(t.tile_from_offset([30, 0])));
+    assert!(!t.contains(t.tile_from_offset([0, -1])));
+    assert_eq!(t.tiles().count(), 900);
+    let chunks = t.chunks();
+    assert_eq!(chunks.len(), 4); // 16x16 chunks over 30x30
+    let total: usize = chunks.iter().map(|&c| t.chunk_rect(c).unwrap().len()).sum();
+    assert_eq!(total, 900);
+    assert!(t.chunk_rect(ChunkCoord::new(5, 0)).is_none());
+    for tile in t.tiles() {
+        assert!(t.chunk_rect(t.chunk_of(tile)).unwrap().contains(t.offset_of(tile)));
+    }
+}
+
+#[test]
+fn island_has_sea_all_around() {
+    let mut c = MapConfig::default();
+    c.offset = (30, 0);
+    c.shape = Shape::Island { a: 3.0, b: 6.0 };
+    let t = Terrain::new(c).unwrap();
+    let b = t.bounds().unwrap();
+    for oc in b.iter() {
+        let edge = oc[0] == 0 || oc[1] == 0 || oc[0] == b.max[0] - 1 || oc[1] == b.max[1] - 1;
+        if edge {
+            assert_eq!(t.tile_kind(t.tile_from_offset(oc)), TileKind::Sea, "{oc:?}");
+        }
+    }
+}
+
+#[test]
+fn surface_height_matches_vertices_and_raycast_hits_it() {
+    let t = terrain();
+    for tile in t.tiles().step_by(37) {
+        let [x, y, z] = t.tile_centre(tile);
+        assert!((t.surface_height(x, z) - y).abs() < 1e-3);
+        let hit = t.raycast([x + 3.0, 50.0, z - 2.0], [-3.0, -(50.0 - y), 2.0], 200.0).unwrap();
+        assert_eq!(hit.tile, tile, "ray aimed at the centre of {tile:?}");
+        assert!((hit.point[1] - y).abs() < 0.05);
+    }
+    assert!(t.raycast([0.0, 50.0, 0.0], [0.0, 1.0, 0.0], 100.0).is_none());
+    assert!(t.raycast([0.0, 50.0, 0.0], [0.0, 0.0, 0.0], 100.0).is_none());
+    assert!(t.raycast([f32::NAN, 50.0, 0.0], [0.0, -1.0, 0.0], 100.0).is_none());
+}
