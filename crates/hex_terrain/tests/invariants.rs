@@ -1,0 +1,224 @@
+//! DESIGN.md invariants 1-6, property-based over random valid configs.
+
+use std::collections::HashMap;
+
+use hex_terrain::hexx::Hex;
+use hex_terrain::{
+    ChunkCoord, ChunkMesh, ManipulationConfig, MapConfig, MapSize, NoiseConfig, Orientation, PullMode, Shape, Terrain,
+    TerrainConfig, TileKind, TileRect,
+};
+use proptest::prelude::*;
+
+fn terrain_config() -> impl Strategy<Value = TerrainConfig> {
+    (0.05f32..0.45, 0.1f32..0.5, 0.0f32..1.0, 1u32..4, prop_oneof![Just(0.0f32), 0.1f32..50.0]).prop_map(
+        |(sea, gap, tol_frac, inner_rings, max_elevation)| {
+            let mountain = (sea + gap).min(0.95);
+            let max_tol = sea.min(1.0 - mountain).min((mountain - sea) / 2.0);
+            TerrainConfig {
+                max_elevation,
+                sea_threshold: sea,
+                mountain_threshold: mountain,
+                interpolation_tolerance: max_tol * tol_frac * 0.99,
+                inner_rings,
+            }
+        },
+    )
+}
+
+fn noise_config() -> impl Strategy<Value = NoiseConfig> {
+    (1u32..7, 0.1f64..=1.0, 1.0f64..4.0, 2.0f64..120.0)
+        .prop_map(|(octaves, persistence, lacunarity, scale)| NoiseConfig { octaves, persistence, lacunarity, scale })
+}
+
+fn shape() -> impl Strategy<Value = Shape> {
+    prop_oneof![
+        Just(Shape::None),
+        (0.5f32..5.0, 0.5f32..8.0).prop_map(|(a, b)| Shape::Island { a, b }),
+        (0.5f32..5.0, 0.5f32..8.0).prop_map(|(a, b)| Shape::Mediterranean { a, b }),
+        (0.0f32..0.5, 0.6f32..1.0).prop_map(|(min, max)| Shape::Inland { min, max }),
+        Just(Shape::Gradient),
+    ]
+}
+
+fn manipulation() -> impl Strategy<Value = ManipulationConfig> {
+    (any::<bool>(), any::<bool>(), any::<bool>(), prop_oneof![Just(PullMode::Clamp), Just(PullMode::Thesis)])
+        .prop_map(|(hex_unity, interpolation, edge_correction, pull)| ManipulationConfig {
+            hex_unity,
+            interpolation,
+            edge_correction,
+            pull,
+        })
+}
+
+prop_compose! {
+    fn config()(
+        seed in any::<u32>(),
+        bounded in prop::option::weighted(0.8, (1u32..13, 1u32..13)),
+        offset in (-50i32..50, -50i32..50),
+        noise in noise_config(),
+        terrain in terrain_config(),
+        shape in shape(),
+        manipulation in manipulation(),
+        pointy in any::<bool>(),
+        hex_size in 0.25f32..4.0,
+        chunk_size in (1u32..7, 1u32..7),
+    ) -> MapConfig {
+        let mut c = MapConfig {
+            seed,
+            size: bounded.map_or(MapSize::Unbounded, |(x, z)| MapSize::Bounded { x, z }),
+            offset,
+            noise,
+            terrain,
+            shape,
+            manipulation,
+            chunk_size,
+            ..MapConfig::default()
+        };
+        if c.size == MapSize::Unbounded {
+            c.shape = Shape::None;
+        }
+        c.layout.orientation = if pointy { Orientation::Pointy } else { Orientation::Flat };
+        c.layout.hex_size = hex_size;
+        c
+    }
+}
+
+/// The area compared: the whole bounded map, or a 3x3-chunk window of an unbounded world.
+fn area(t: &Terrain) -> TileRect {
+    t.bounds().unwrap_or_else(|| {
+        let (w, h) = t.chunk_size();
+        TileRect::new([-(w as i32), -(h as i32)], [3 * w, 3 * h])
+    })
+}
+
+fn chunks_of(t: &Terrain, rect: TileRect) -> Vec<ChunkCoord> {
+    let first = ChunkCoord::of(rect.min, t.chunk_size());
+    let last = ChunkCoord::of([rect.max[0] - 1, rect.max[1] - 1], t.chunk_size());
+    (first.z..=last.z).flat_map(|z| (first.x..=last.x).map(move |x| ChunkCoord::new(x, z))).collect()
+}
+
+fn index(m: &ChunkMesh) -> HashMap<Hex, usize> {
+    m.lattice.iter().enumerate().map(|(i, &p)| (p, i)).collect()
+}
+
+/// Everything a renderer receives for one vertex, as bits.
+fn vertex_bits(m: &ChunkMesh, i: usize) -> ([u32; 3], [u32; 3], [u32; 2], u32, u32) {
+    let b = &m.buffers;
+    (
+        b.positions[i].map(f32::to_bits),
+        b.normals[i].map(f32::to_bits),
+        b.uvs[i].map(f32::to_bits),
+        b.tile_kinds[i],
+        b.centre_distances[i].to_bits(),
+    )
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 48, ..ProptestConfig::default() })]
+
+    /// Invariants 1-3: same bytes whatever the thread count and chunk order; chunks generated
+    /// alone equal the whole; neighbours share bit-identical border vertices and normals.
+    #[test]
+    fn chunks_are_deterministic_seamless_and_equal_the_whole(config in config(), order_seed in any::<u64>()) {
+        let t = Terrain::new(config).unwrap();
+        let rect = area(&t);
+        let whole = t.generate_rect(rect);
+        let single = rayon::ThreadPoolBuilder::new().num_threads(1).build().unwrap();
+        let again = single.install(|| t.generate_rect(rect));
+        prop_assert_eq!(&whole, &again);
+
+        let whole_index = index(&whole);
+        let mut chunks = chunks_of(&t, rect);
+        // A pseudo-random order.
+        let mut s = order_seed | 1;
+        for i in (1..chunks.len()).rev() {
+            s ^= s << 13; s ^= s >> 7; s ^= s << 17;
+            chunks.swap(i, (s % (i as u64 + 1)) as usize);
+        }
+        let mut seen: HashMap<Hex, ([u32; 3], [u32; 3], [u32; 2], u32, u32)> = HashMap::new();
+        let mut tiles = 0;
+        for chunk in chunks {
+            let Some(rect_c) = t.chunk_rect(chunk) else { continue };
+            let m = t.generate_rect(rect_c.intersect(&rect));
+            tiles += m.tiles.len();
+            for (i, p) in m.lattice.iter().enumerate() {
+                let bits = vertex_bits(&m, i);
+                let w = whole_index[p];
+                prop_assert_eq!(bits, vertex_bits(&whole, w), "chunk {:?} vertex {:?} differs from the whole", chunk, p);
+                if let Some(prev) = seen.insert(*p, bits) {
+                    prop_assert_eq!(prev, bits, "seam vertex {:?} differs between chunks", p);
+                }
+            }
+            for info in &m.tiles {
+                let w = whole.tiles.iter().find(|x| x.hex == info.hex).unwrap();
+                prop_assert_eq!(w, info);
+            }
+        }
+        prop_assert_eq!(tiles, whole.tiles.len());
+        prop_assert_eq!(seen.len(), whole.lattice.len());
+    }
+
+    /// Invariants 4-6: every non-border vertex lies in its tile type's range; counts follow the
+    /// formula; nothing is NaN or infinite.
+    #[test]
+    fn tiles_are_recognisable_counts_match_and_buffers_are_finite(config in config()) {
+        let t = Terrain::new(config.clone()).unwrap();
+        let rect = area(&t);
+        let m = t.generate_rect(rect);
+        let b = &m.buffers;
+        let n = t.lattice().subdivisions();
+
+        let finite = b.positions.iter().flatten().chain(b.normals.iter().flatten()).chain(b.uvs.iter().flatten())
+            .chain(b.centre_distances.iter()).all(|v| v.is_finite());
+        prop_assert!(finite);
+        prop_assert_eq!(b.triangle_count(), rect.len() * t.lattice().triangles_per_tile());
+        let tiles: std::collections::HashSet<Hex> = m.tiles.iter().map(|i| i.hex).collect();
+        let boundary: usize = tiles.iter().map(|h| h.all_neighbors().iter().filter(|x| !tiles.contains(x)).count()).sum();
+        prop_assert_eq!(b.vertex_count(), t.lattice().mesh_vertex_count(tiles.len(), boundary));
+
+        let unity = config.manipulation.hex_unity && config.manipulation.pull == PullMode::Clamp;
+        let max = config.terrain.max_elevation;
+        let eps = 1e-4 * max.max(1.0);
+        let th = t.thresholds();
+        let kinds: HashMap<Hex, TileKind> = m.tiles.iter().map(|i| (i.hex, i.kind)).collect();
+        for (i, &p) in m.lattice.iter().enumerate() {
+            let y = b.positions[i][1];
+            let ring = m.rings[i];
+            let set = t.lattice().tiles_at(p);
+            let owners: Vec<TileKind> = set.tiles().iter().filter_map(|h| kinds.get(h).copied()).collect();
+            let check = if ring < n {
+                unity || ring == 0
+            } else {
+                // Border vertices shared only by tiles of one type are corrected into its range.
+                config.manipulation.edge_correction
+                    && owners.len() == set.tiles().len()
+                    && owners.iter().all(|&k| k == owners[0])
+            };
+            if check {
+                let (lo, hi) = th.range(owners[0]);
+                prop_assert!(y >= lo * max - eps && y <= hi * max + eps,
+                    "vertex {:?} ring {} of a {:?} tile at {} outside [{}, {}]", p, ring, owners[0], y, lo * max, hi * max);
+            }
+        }
+    }
+
+    /// Invariant 6: every invalid value is refused with the field named, never a panic.
+    #[test]
+    fn invalid_configs_are_refused_with_the_field(config in config(), which in 0usize..9, bad in prop_oneof![
+        Just(f64::NAN), Just(f64::INFINITY), Just(f64::NEG_INFINITY), Just(-1.0), Just(0.0), Just(1e12)]) {
+        let mut c = config;
+        let field = match which {
+            0 => { c.noise.persistence = if bad > 0.0 && bad <= 1.0 { 2.0 } else { bad }; "noise.persistence" }
+            1 => { c.noise.lacunarity = if bad >= 1.0 && bad <= 64.0 { 0.5 } else { bad }; "noise.lacunarity" }
+            2 => { c.noise.scale = if bad > 0.0 && bad <= 1e9 { -bad } else { bad }; "noise.scale" }
+            3 => { c.terrain.max_elevation = if bad >= 0.0 && bad <= 1e6 { -1.0 } else { bad as f32 }; "terrain.max_elevation" }
+            4 => { c.terrain.sea_threshold = if (0.0..=1.0).contains(&bad) { 2.0 } else { bad as f32 }; "terrain.sea_threshold" }
+            5 => { c.layout.hex_size = if bad > 0.0 && bad <= 1e4 { -1.0 } else { bad as f32 }; "layout.hex_size" }
+            6 => { c.noise.octaves = 0; "noise.octaves" }
+            7 => { c.terrain.inner_rings = 0; "terrain.inner_rings" }
+            _ => { c.appearance.blend = if (0.0..=1.0).contains(&bad) { 1.5 } else { bad as f32 }; "appearance.blend" }
+        };
+        let err = Terrain::new(c).expect_err("invalid config accepted");
+        prop_assert_eq!(err.field.as_str(), field);
+    }
+}
