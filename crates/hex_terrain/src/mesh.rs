@@ -271,13 +271,20 @@ impl Terrain {
         }
     }
 
-    /// Bare fBm at exactly the vertices (and halo) [`Terrain::generate_rect`] evaluates: the
-    /// noise floor of generation. Returns the sum of the samples so the work cannot be elided.
+    /// The lattice points [`Terrain::generate_rect`] evaluates for `rect`: its vertices, then
+    /// the one-step halo that normals need.
     #[must_use]
-    pub fn noise_floor(&self, rect: TileRect) -> f64 {
+    pub fn mesh_points(&self, rect: TileRect) -> Vec<Hex> {
         let rect = self.bounds().map_or(rect, |b| rect.intersect(&b));
         let tiles: Vec<Hex> = rect.iter().map(|oc| self.tile_from_offset(oc)).collect();
-        let (_, points, _, _) = self.collect_points(&tiles);
+        self.collect_points(&tiles).1
+    }
+
+    /// Bare fBm at exactly the points [`Terrain::generate_rect`] evaluates: the noise floor of
+    /// generation. Returns the sum of the samples so the work cannot be elided.
+    #[must_use]
+    pub fn noise_floor(&self, rect: TileRect) -> f64 {
+        let points = self.mesh_points(rect);
         let samples: Vec<f64> = par_map(&points, |&p| self.noise_height(p));
         samples.iter().sum()
     }

@@ -205,8 +205,16 @@ impl Terrain {
     #[must_use]
     #[inline]
     pub fn noise_height(&self, p: Hex) -> f64 {
-        let [ux, uz] = self.lattice.unit(p + self.origin_lattice);
+        let [ux, uz] = self.noise_position(p);
         self.fbm.sample(ux, uz)
+    }
+
+    /// Where a lattice point samples the noise: its world position in hex radii, shifted by the
+    /// map's offset.
+    #[must_use]
+    #[inline]
+    pub fn noise_position(&self, p: Hex) -> [f64; 2] {
+        self.lattice.unit(p + self.origin_lattice)
     }
 
     /// Type of a tile (by its centre), whether or not it is in the map.

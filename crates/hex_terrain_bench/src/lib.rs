@@ -1,0 +1,101 @@
+//! Workloads shared by the `hexterrain-bench` binary and the criterion benchmarks.
+//!
+//! Each function does one whole piece of work on all cores and returns a count that depends on
+//! all of it, so nothing can be optimised away.
+
+use std::collections::HashMap;
+
+use hex_terrain::hexx::{Hex, HeightMapMeshBuilder};
+use hex_terrain::{ManipulationConfig, MapConfig, MapSize, Terrain, TileRect};
+use rayon::prelude::*;
+
+/// The sizes of thesis table 7 (small maps).
+pub const TABLE_7: [(u32, u32); 11] =
+    [(2, 2), (6, 6), (10, 6), (16, 8), (20, 10), (24, 12), (30, 16), (36, 20), (40, 20), (48, 24), (60, 30)];
+/// The sizes of thesis table 8 (larger maps).
+pub const TABLE_8: [(u32, u32); 8] =
+    [(80, 40), (100, 50), (200, 100), (400, 200), (500, 250), (600, 300), (800, 400), (1000, 500)];
+/// Civilization 6 map sizes (thesis table 9).
+pub const TABLE_9: [(&str, u32, u32); 6] = [
+    ("Duel", 44, 26),
+    ("Tiny", 60, 38),
+    ("Small", 74, 46),
+    ("Standard", 84, 54),
+    ("Large", 96, 60),
+    ("Huge", 106, 66),
+];
+
+/// Map0's parameters at a size and ring count: the full pipeline and the basic PTG baseline
+/// (same noise, same lattice, no manipulation).
+#[must_use]
+pub fn terrains(x: u32, z: u32, inner_rings: u32) -> (Terrain, Terrain) {
+    let mut config = MapConfig { size: MapSize::Bounded { x, z }, ..MapConfig::default() };
+    config.terrain.inner_rings = inner_rings;
+    let full = Terrain::new(config.clone()).expect("benchmark config is valid");
+    config.manipulation = ManipulationConfig::raw();
+    let basic = Terrain::new(config).expect("benchmark config is valid");
+    (full, basic)
+}
+
+/// Generates the whole map; returns its vertex count.
+#[must_use]
+pub fn generate(terrain: &Terrain) -> usize {
+    terrain.generate_map().map_or(0, |m| m.buffers.vertex_count())
+}
+
+/// Bare fBm (our Perlin) at the points generation evaluates; returns their sum.
+#[must_use]
+pub fn noise_floor(terrain: &Terrain) -> f64 {
+    terrain.bounds().map_or(0.0, |rect| terrain.noise_floor(rect))
+}
+
+/// Bare fBm with `noise::Perlin` at the same points; returns their sum.
+#[must_use]
+pub fn noise_floor_reference(terrain: &Terrain, reference: &noise::Perlin) -> f64 {
+    let Some(rect) = terrain.bounds() else { return 0.0 };
+    let points = terrain.mesh_points(rect);
+    points
+        .par_iter()
+        .with_min_len(256)
+        .map(|&p| {
+            let [x, z] = terrain.noise_position(p);
+            terrain.fbm().sample_reference(reference, x, z)
+        })
+        .sum()
+}
+
+/// hexx's `HeightMapMeshBuilder` (flat-topped hexagonal columns) fed by the same fBm, one
+/// sample per hex, built in row bands small enough for its u16 indices; returns the vertices.
+#[must_use]
+pub fn hexx_columns(terrain: &Terrain) -> usize {
+    let Some(rect) = terrain.bounds() else { return 0 };
+    let width = (rect.max[0] - rect.min[0]).max(1) as usize;
+    // A column has at most 7 top and 24 side vertices.
+    let rows_per_band = (65_535 / 31 / width).max(1) as i32;
+    let mut bands = Vec::new();
+    let mut row = rect.min[1];
+    while row < rect.max[1] {
+        let end = (row + rows_per_band).min(rect.max[1]);
+        for col in (rect.min[0]..rect.max[0]).step_by(2000) {
+            bands.push(TileRect { min: [col, row], max: [(col + 2000).min(rect.max[0]), end] });
+        }
+        row = end;
+    }
+    let max_elevation = terrain.config().terrain.max_elevation;
+    bands
+        .par_iter()
+        .map(|band| {
+            let heights: HashMap<Hex, f32> = band
+                .iter()
+                .map(|oc| {
+                    let hex = terrain.tile_from_offset(oc);
+                    let centre = terrain.lattice().tile_centre(hex);
+                    (hex, terrain.noise_height(centre) as f32 * max_elevation)
+                })
+                .collect();
+            let mesh = HeightMapMeshBuilder::new(terrain.layout(), &heights).build();
+            assert!(mesh.vertices.len() <= 65_536, "band too large for u16 indices");
+            mesh.vertices.len()
+        })
+        .sum()
+}

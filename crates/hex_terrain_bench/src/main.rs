@@ -1,0 +1,123 @@
+//! `hexterrain-bench`: the thesis' run-time tables (7, 8, 9) measured here, with the basic PTG
+//! baseline, the full pipeline, the bare noise floor (ours and `noise`'s Perlin) and hexx's
+//! column mesh builder run side by side in one process.
+//!
+//! ```text
+//! cargo run --release -p hex_terrain_bench -- [--rings N] [--runs K] [--tables 7,8,9] [--max-hexes H]
+//! ```
+
+use std::hint::black_box;
+use std::time::Instant;
+
+use hex_terrain_bench::{TABLE_7, TABLE_8, TABLE_9, generate, hexx_columns, noise_floor, noise_floor_reference, terrains};
+
+struct Args {
+    rings: u32,
+    runs: usize,
+    tables: Vec<u32>,
+    max_hexes: u64,
+}
+
+fn parse() -> Result<Args, String> {
+    let mut args = Args { rings: 3, runs: 5, tables: vec![7, 8, 9], max_hexes: u64::MAX };
+    let mut it = std::env::args().skip(1);
+    while let Some(flag) = it.next() {
+        let mut value = || it.next().ok_or_else(|| format!("{flag} needs a value"));
+        match flag.as_str() {
+            "--rings" => args.rings = value()?.parse().map_err(|e| format!("--rings: {e}"))?,
+            "--runs" => args.runs = value()?.parse::<usize>().map_err(|e| format!("--runs: {e}"))?.max(1),
+            "--max-hexes" => args.max_hexes = value()?.parse().map_err(|e| format!("--max-hexes: {e}"))?,
+            "--tables" => {
+                args.tables = value()?
+                    .split(',')
+                    .map(|t| t.trim().parse().map_err(|e| format!("--tables: {e}")))
+                    .collect::<Result<_, _>>()?;
+            }
+            "-h" | "--help" => {
+                println!(
+                    "hexterrain-bench [--rings N (inner rings, default 3: 48 vertices/hex, the thesis has ~32)] \
+                     [--runs K (median of K, default 5)] [--tables 7,8,9] [--max-hexes H]"
+                );
+                std::process::exit(0);
+            }
+            other => return Err(format!("unknown argument {other}; see --help")),
+        }
+    }
+    Ok(args)
+}
+
+/// Median wall time of `runs` calls, in milliseconds.
+fn time<T>(runs: usize, mut f: impl FnMut() -> T) -> f64 {
+    let mut samples: Vec<f64> = (0..runs)
+        .map(|_| {
+            let start = Instant::now();
+            black_box(f());
+            start.elapsed().as_secs_f64() * 1e3
+        })
+        .collect();
+    samples.sort_by(f64::total_cmp);
+    samples[samples.len() / 2]
+}
+
+fn row(label: &str, x: u32, z: u32, args: &Args) {
+    let (full, basic) = terrains(x, z, args.rings);
+    let hexes = u64::from(x) * u64::from(z);
+    // Fewer runs for the largest maps, which take seconds each.
+    let runs = if hexes > 100_000 { args.runs.min(3) } else { args.runs };
+    let mesh = full.generate_map().expect("bounded");
+    let (v, t) = (mesh.buffers.vertex_count(), mesh.buffers.triangle_count());
+    drop(mesh);
+    let reference = noise::Perlin::new(full.config().seed);
+    let basic_ms = time(runs, || generate(&basic));
+    let full_ms = time(runs, || generate(&full));
+    let floor_ms = time(runs, || noise_floor(&full));
+    let floor_ref_ms = time(runs, || noise_floor_reference(&full, &reference));
+    let mut peer_vertices = 0;
+    let peer_ms = time(runs, || peer_vertices = hexx_columns(&full));
+    println!(
+        "| {label} | {x}x{z} | {hexes} | {v} | {t} | {:.1} | {basic_ms:.2} | {full_ms:.2} | {:.2} | {:.0} | {:+.1} | {floor_ms:.2} | {:.2} | {floor_ref_ms:.2} | {:.2} | {peer_ms:.2} | {peer_vertices} |",
+        v as f64 / hexes as f64,
+        full_ms * 1e3 / hexes as f64,
+        full_ms * 1e6 / v as f64,
+        (full_ms - basic_ms) / basic_ms * 100.0,
+        full_ms / floor_ms,
+        floor_ref_ms / floor_ms,
+    );
+}
+
+fn main() {
+    let args = match parse() {
+        Ok(a) => a,
+        Err(e) => {
+            eprintln!("error: {e}");
+            std::process::exit(2);
+        }
+    };
+    println!(
+        "hex_terrain generation, Map0 parameters, {} inner ring(s), {} threads, median of {} runs",
+        args.rings,
+        rayon::current_num_threads(),
+        args.runs
+    );
+    println!();
+    println!(
+        "| map | size | hexes | vertices | triangles | v/hex | basic ms | full ms | full us/hex | full ns/vertex | overhead % | noise floor ms | full/floor | noise-crate floor ms | floor speed-up | hexx columns ms | hexx vertices |"
+    );
+    println!("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|");
+    for table in &args.tables {
+        let sizes: Vec<(String, u32, u32)> = match table {
+            7 => TABLE_7.iter().map(|&(x, z)| ("table 7".to_string(), x, z)).collect(),
+            8 => TABLE_8.iter().map(|&(x, z)| ("table 8".to_string(), x, z)).collect(),
+            9 => TABLE_9.iter().map(|&(n, x, z)| (format!("Civ6 {n}"), x, z)).collect(),
+            other => {
+                eprintln!("error: no table {other}; tables are 7, 8 and 9");
+                std::process::exit(2);
+            }
+        };
+        for (label, x, z) in sizes {
+            if u64::from(x) * u64::from(z) <= args.max_hexes {
+                row(&label, x, z, &args);
+            }
+        }
+    }
+}
