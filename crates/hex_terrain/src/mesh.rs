@@ -74,6 +74,17 @@ fn par_map<I, O>(items: &[I], f: impl Fn(&I) -> O) -> Vec<O> {
     items.iter().map(f).collect()
 }
 
+#[cfg(feature = "rayon")]
+fn par_chunks<I: Sync, O: Send>(input: &[I], output: &mut [O], size: usize, f: impl Fn(&[I], &mut [O]) + Sync + Send) {
+    use rayon::prelude::*;
+    input.par_chunks(size).zip(output.par_chunks_mut(size)).for_each(|(i, o)| f(i, o));
+}
+
+#[cfg(not(feature = "rayon"))]
+fn par_chunks<I, O>(input: &[I], output: &mut [O], size: usize, f: impl Fn(&[I], &mut [O])) {
+    input.chunks(size).zip(output.chunks_mut(size)).for_each(|(i, o)| f(i, o));
+}
+
 /// Dense lookup from lattice coordinates to vertex indices over a bounding box.
 struct Grid {
     min: Hex,
@@ -285,7 +296,9 @@ impl Terrain {
     #[must_use]
     pub fn noise_floor(&self, rect: TileRect) -> f64 {
         let points = self.mesh_points(rect);
-        let samples: Vec<f64> = par_map(&points, |&p| self.noise_height(p));
+        let positions: Vec<[f64; 2]> = points.iter().map(|&p| self.noise_position(p)).collect();
+        let mut samples = vec![0.0; positions.len()];
+        par_chunks(&positions, &mut samples, 1024, |pos, out| self.fbm().sample_many(pos, out));
         samples.iter().sum()
     }
 }
