@@ -1,10 +1,11 @@
 //! Mesh buffers of a chunk: positions, smooth normals, UVs, per-vertex tile data, u32 indices.
 
 use hexx::Hex;
+use rayon::prelude::*;
 
 use crate::chunk::{ChunkCoord, TileRect};
 use crate::classify::TileKind;
-use crate::terrain::{Terrain, TileInfo, VertexSample};
+use crate::terrain::{Terrain, TileInfo};
 
 /// Plain vertex and index buffers, ready for any renderer.
 ///
@@ -58,31 +59,31 @@ pub struct ChunkMesh {
     /// Whether hex unity or edge/corner correction moved each vertex.
     pub moved: Vec<bool>,
     /// Ring of each vertex in its tile (`n` on borders).
-    pub rings: Vec<u32>,
+    pub rings: Vec<u8>,
     /// Type and centre elevation of each tile, row by row.
     pub tiles: Vec<TileInfo>,
 }
 
-#[cfg(feature = "rayon")]
-fn par_map<I: Sync, O: Send>(items: &[I], f: impl Fn(&I) -> O + Sync + Send) -> Vec<O> {
-    use rayon::prelude::*;
-    items.par_iter().with_min_len(256).map(f).collect()
+/// `f(i)` for `i` in `0..len`, on all cores, in order.
+fn par_map<O: Send>(len: usize, f: impl Fn(usize) -> O + Sync + Send) -> Vec<O> {
+    (0..len).into_par_iter().with_min_len(512).map(f).collect()
 }
 
-#[cfg(not(feature = "rayon"))]
-fn par_map<I, O>(items: &[I], f: impl Fn(&I) -> O) -> Vec<O> {
-    items.iter().map(f).collect()
-}
+/// Points processed together by one task.
+const BATCH: usize = 1024;
 
-#[cfg(feature = "rayon")]
-fn par_chunks<I: Sync, O: Send>(input: &[I], output: &mut [O], size: usize, f: impl Fn(&[I], &mut [O]) + Sync + Send) {
-    use rayon::prelude::*;
-    input.par_chunks(size).zip(output.par_chunks_mut(size)).for_each(|(i, o)| f(i, o));
-}
-
-#[cfg(not(feature = "rayon"))]
-fn par_chunks<I, O>(input: &[I], output: &mut [O], size: usize, f: impl Fn(&[I], &mut [O])) {
-    input.chunks(size).zip(output.chunks_mut(size)).for_each(|(i, o)| f(i, o));
+/// Lattice points of a rectangle of tiles, as [`Terrain::collect_points`] enumerates them.
+struct Points {
+    grid: Grid,
+    /// Every point: the tiles' own first, then the halo.
+    lattice: Vec<Hex>,
+    /// How many points belong to the tiles (the rest is halo).
+    owned: usize,
+    /// For each owned point, its ring and the index of its tile when the point is inside one
+    /// tile (`u32::MAX` on borders, whose tiles are looked up).
+    owner: Vec<(u32, u32)>,
+    /// Index of each tile's centre point.
+    centres: Vec<u32>,
 }
 
 /// Dense lookup from lattice coordinates to vertex indices over a bounding box.
@@ -114,6 +115,46 @@ impl Grid {
     }
 }
 
+/// Per-vertex bits kept between passes: moved (bit 0), kind (bits 1-2), ring (bits 3-7).
+struct Flags;
+
+impl Flags {
+    #[inline]
+    fn pack(moved: bool, kind: TileKind, ring: u32) -> u8 {
+        u8::from(moved) | (kind as u8) << 1 | (ring.min(31) as u8) << 3
+    }
+    #[inline]
+    fn moved(f: u8) -> bool {
+        f & 1 != 0
+    }
+    #[inline]
+    fn kind(f: u8) -> u8 {
+        (f >> 1) & 3
+    }
+    #[inline]
+    fn ring(f: u8) -> u8 {
+        f >> 3
+    }
+}
+
+/// Unit normal at a vertex of height `h0`: the sum of the six lattice triangles' face normals
+/// (area-weighted), from the relative positions of its neighbours, so every chunk computes the
+/// same bits for a shared vertex.
+#[inline]
+fn normal(around: &[[f32; 2]; 6], h0: f32, height: impl Fn(usize) -> f32) -> [f32; 3] {
+    let e: [[f32; 3]; 6] = std::array::from_fn(|k| [around[k][0], height(k) - h0, around[k][1]]);
+    let mut sum = [0.0_f32; 3];
+    for k in 0..6 {
+        let (u, v) = (e[(k + 1) % 6], e[k]);
+        // u x v: upward for a counter-clockwise pair in (x, z).
+        sum[0] += u[1] * v[2] - u[2] * v[1];
+        sum[1] += u[2] * v[0] - u[0] * v[2];
+        sum[2] += u[0] * v[1] - u[1] * v[0];
+    }
+    let len = (sum[0] * sum[0] + sum[1] * sum[1] + sum[2] * sum[2]).sqrt();
+    if len > 0.0 && len.is_finite() { sum.map(|c| c / len) } else { [0.0, 1.0, 0.0] }
+}
+
 /// Lattice directions around a vertex, counter-clockwise in lattice space.
 const AROUND: [Hex; 6] =
     [Hex::new(1, 0), Hex::new(0, 1), Hex::new(-1, 1), Hex::new(-1, 0), Hex::new(0, -1), Hex::new(1, -1)];
@@ -131,23 +172,25 @@ impl Terrain {
         self.bounds().map(|rect| self.generate_rect(rect))
     }
 
-    /// Lattice points of the tiles of `rect` (each once, tile by tile in template order) and of
-    /// the one-step halo around them that smooth normals need, with the grid indexing both.
-    fn collect_points(&self, tiles: &[Hex]) -> (Grid, Vec<Hex>, usize, Vec<u32>) {
+    /// Lattice points of `tiles` (each once, tile by tile in template order) and of the
+    /// one-step halo around them that smooth normals need, with the grid indexing both.
+    fn collect_points(&self, tiles: &[Hex]) -> Points {
         let lattice = self.lattice();
-        let n = lattice.subdivisions() as i32;
+        let n = lattice.subdivisions();
         let (mut min, mut max) = (Hex::new(i32::MAX, i32::MAX), Hex::new(i32::MIN, i32::MIN));
         for &tile in tiles {
             let c = lattice.tile_centre(tile);
             min = Hex::new(min.x.min(c.x), min.y.min(c.y));
             max = Hex::new(max.x.max(c.x), max.y.max(c.y));
         }
-        let margin = Hex::new(n + 1, n + 1);
+        let margin = Hex::new(n as i32 + 1, n as i32 + 1);
         let mut grid = Grid::new(min - margin, max + margin);
-        let mut points = Vec::with_capacity(tiles.len() * 3 * (n * n) as usize + 4 * n as usize * 64);
+        let estimate = tiles.len() * 3 * (n * n) as usize + 64;
+        let mut points = Vec::with_capacity(estimate + estimate / 8);
+        let mut owner = Vec::with_capacity(estimate);
         let mut centres = Vec::with_capacity(tiles.len());
         let mut border = Vec::new();
-        for &tile in tiles {
+        for (t, &tile) in tiles.iter().enumerate() {
             let c = lattice.tile_centre(tile);
             for tp in lattice.template() {
                 let p = c + tp.offset;
@@ -156,8 +199,12 @@ impl Terrain {
                     grid.slots[slot] = points.len() as u32;
                     if tp.ring == 0 {
                         centres.push(points.len() as u32);
-                    } else if tp.ring == n as u32 {
+                    }
+                    if tp.ring == n {
                         border.push(points.len());
+                        owner.push((n, u32::MAX));
+                    } else {
+                        owner.push((tp.ring, t as u32));
                     }
                     points.push(p);
                 }
@@ -175,7 +222,18 @@ impl Terrain {
                 }
             }
         }
-        (grid, points, owned, centres)
+        Points { grid, lattice: points, owned, owner, centres }
+    }
+
+    /// Bare fBm at every point, batched and on all cores.
+    fn noise_at(&self, points: &[Hex]) -> Vec<f64> {
+        let mut out = vec![0.0; points.len()];
+        out.par_chunks_mut(BATCH).enumerate().for_each(|(k, chunk)| {
+            let positions: Vec<[f64; 2]> =
+                points[k * BATCH..k * BATCH + chunk.len()].iter().map(|&p| self.noise_position(p)).collect();
+            self.fbm().sample_many(&positions, chunk);
+        });
+        out
     }
 
     /// Generates the mesh of any rectangle of tiles (clipped to the map) with the halo it needs:
@@ -185,99 +243,116 @@ impl Terrain {
         let rect = self.bounds().map_or(rect, |b| rect.intersect(&b));
         let tiles: Vec<Hex> = rect.iter().map(|oc| self.tile_from_offset(oc)).collect();
         let lattice = self.lattice();
+        let n = lattice.subdivisions();
+        let Points { grid, lattice: mut points, owned, owner, centres } = self.collect_points(&tiles);
 
-        // Kinds of the tiles and their neighbours: every vertex evaluated below lies in one of them.
+        // Kinds of the tiles and of the ring around them: every vertex evaluated below lies in
+        // one of those.
         let halo = rect.grow(1);
-        let halo_offsets: Vec<[i32; 2]> = halo.iter().collect();
-        let kinds: Vec<Option<TileKind>> = par_map(&halo_offsets, |&oc| {
-            let tile = self.tile_from_offset(oc);
-            self.map_tile_kind(tile)
-        });
         let halo_width = (halo.max[0] - halo.min[0]) as usize;
+        let halo_index = |[c, r]: [i32; 2]| (r - halo.min[1]) as usize * halo_width + (c - halo.min[0]) as usize;
+        let kinds: Vec<Option<TileKind>> = par_map(halo.len(), |k| {
+            let oc = [halo.min[0] + (k % halo_width) as i32, halo.min[1] + (k / halo_width) as i32];
+            self.map_tile_kind(self.tile_from_offset(oc))
+        });
+        let tile_kinds: Vec<TileKind> =
+            rect.iter().map(|oc| kinds[halo_index(oc)].unwrap_or(TileKind::Sea)).collect();
         let kind_of = |tile: Hex| {
-            let [c, r] = self.offset_of(tile);
-            if halo.contains([c, r]) {
-                kinds[(r - halo.min[1]) as usize * halo_width + (c - halo.min[0]) as usize]
-            } else {
-                self.map_tile_kind(tile)
-            }
+            let oc = self.offset_of(tile);
+            if halo.contains(oc) { kinds[halo_index(oc)] } else { self.map_tile_kind(tile) }
         };
 
-        let (grid, points, owned, centres) = self.collect_points(&tiles);
-        let samples: Vec<VertexSample> = par_map(&points, |&p| self.vertex_with(p, kind_of));
-
+        // Noise, shaping and manipulation, one batch of points per task.
         let max_elevation = self.config().terrain.max_elevation;
-        let heights: Vec<f32> = samples.iter().map(|s| s.height * max_elevation).collect();
+        let total = points.len();
+        let mut heights = vec![0.0_f32; total];
+        let mut raws = vec![0.0_f32; total];
+        let mut flags = vec![0_u8; total];
+        heights
+            .par_chunks_mut(BATCH)
+            .zip(raws.par_chunks_mut(BATCH))
+            .zip(flags.par_chunks_mut(BATCH))
+            .enumerate()
+            .for_each(|(k, ((heights, raws), flags))| {
+                let start = k * BATCH;
+                let pts = &points[start..start + heights.len()];
+                let positions: Vec<[f64; 2]> = pts.iter().map(|&p| self.noise_position(p)).collect();
+                let mut noise = [0.0; BATCH];
+                self.fbm().sample_many(&positions, &mut noise[..pts.len()]);
+                for (j, &p) in pts.iter().enumerate() {
+                    let raw = self.shaped(noise[j], p);
+                    let s = match owner.get(start + j) {
+                        Some(&(ring, tile)) if tile != u32::MAX => {
+                            self.finish_vertex(raw, ring, &[tile_kinds[tile as usize]])
+                        }
+                        _ => self.border_vertex(raw, p, kind_of),
+                    };
+                    heights[j] = s.height * max_elevation;
+                    raws[j] = raw;
+                    flags[j] = Flags::pack(s.moved, s.kind, s.ring);
+                }
+            });
+
         let (step_a, step_b) = lattice.steps();
         let around: [[f32; 2]; 6] = AROUND.map(|d| {
             let (i, j) = (f64::from(d.x), f64::from(d.y));
             [(i * step_a[0] + j * step_b[0]) as f32, (i * step_a[1] + j * step_b[1]) as f32]
         });
-        let owned_points = &points[..owned];
-        let normals: Vec<[f32; 3]> = par_map(owned_points, |&p| {
-            let h0 = heights[grid.get(p) as usize];
-            let e: [[f32; 3]; 6] = std::array::from_fn(|k| {
-                let h = heights[grid.get(p + AROUND[k]) as usize];
-                [around[k][0], h - h0, around[k][1]]
-            });
-            let mut sum = [0.0_f32; 3];
-            for k in 0..6 {
-                let (u, v) = (e[(k + 1) % 6], e[k]);
-                // u x v: upward for a counter-clockwise pair in (x, z).
-                sum[0] += u[1] * v[2] - u[2] * v[1];
-                sum[1] += u[2] * v[0] - u[0] * v[2];
-                sum[2] += u[0] * v[1] - u[1] * v[0];
-            }
-            let len = (sum[0] * sum[0] + sum[1] * sum[1] + sum[2] * sum[2]).sqrt();
-            if len > 0.0 && len.is_finite() { sum.map(|c| c / len) } else { [0.0, 1.0, 0.0] }
-        });
-
         let uv_scale = 0.5 / self.config().layout.hex_size;
-        let mut buffers = MeshBuffers {
-            positions: Vec::with_capacity(owned),
-            normals,
-            uvs: Vec::with_capacity(owned),
-            tile_kinds: Vec::with_capacity(owned),
-            centre_distances: Vec::with_capacity(owned),
-            indices: Vec::new(),
+        let inv_n = 1.0 / n as f32;
+        let mut b = MeshBuffers {
+            positions: vec![[0.0; 3]; owned],
+            normals: vec![[0.0; 3]; owned],
+            uvs: vec![[0.0; 2]; owned],
+            tile_kinds: vec![0; owned],
+            centre_distances: vec![0.0; owned],
+            indices: vec![0; tiles.len() * lattice.triangles_per_tile() * 3],
         };
-        let inv_n = 1.0 / lattice.subdivisions() as f32;
-        for (i, &p) in owned_points.iter().enumerate() {
-            let [x, z] = lattice.world(p);
-            let (x, z) = (x as f32, z as f32);
-            buffers.positions.push([x, heights[i], z]);
-            buffers.uvs.push([x * uv_scale, z * uv_scale]);
-            buffers.tile_kinds.push(samples[i].kind as u32);
-            buffers.centre_distances.push(samples[i].ring as f32 * inv_n);
-        }
-
+        b.positions
+            .par_chunks_mut(BATCH)
+            .zip(b.normals.par_chunks_mut(BATCH))
+            .zip(b.uvs.par_chunks_mut(BATCH))
+            .zip(b.tile_kinds.par_chunks_mut(BATCH))
+            .zip(b.centre_distances.par_chunks_mut(BATCH))
+            .enumerate()
+            .for_each(|(k, ((((positions, normals), uvs), kinds), distances))| {
+                for j in 0..positions.len() {
+                    let i = k * BATCH + j;
+                    let p = points[i];
+                    let [x, z] = lattice.world(p);
+                    let (x, z) = (x as f32, z as f32);
+                    positions[j] = [x, heights[i], z];
+                    uvs[j] = [x * uv_scale, z * uv_scale];
+                    kinds[j] = u32::from(Flags::kind(flags[i]));
+                    distances[j] = f32::from(Flags::ring(flags[i])) * inv_n;
+                    normals[j] = normal(&around, heights[i], |k| heights[grid.get(p + AROUND[k]) as usize]);
+                }
+            });
         let per_tile = lattice.triangles_per_tile() * 3;
-        let tile_indices: Vec<Vec<u32>> = par_map(&tiles, |&tile| {
+        b.indices.par_chunks_mut(per_tile).zip(&tiles).for_each(|(out, &tile)| {
             let c = lattice.tile_centre(tile);
-            let mut out = Vec::with_capacity(per_tile);
-            for tri in lattice.template_triangles() {
-                out.extend(tri.iter().map(|&o| grid.get(c + o)));
+            for (tri, dst) in lattice.template_triangles().iter().zip(out.chunks_exact_mut(3)) {
+                for (o, d) in tri.iter().zip(dst) {
+                    *d = grid.get(c + *o);
+                }
             }
-            out
         });
-        buffers.indices = tile_indices.concat();
 
         let tiles_info = tiles
             .iter()
             .zip(&centres)
-            .map(|(&hex, &ci)| {
-                let s = &samples[ci as usize];
-                TileInfo { hex, kind: self.thresholds().classify(s.raw), elevation: heights[ci as usize], in_map: true }
-            })
+            .zip(&tile_kinds)
+            .map(|((&hex, &ci), &kind)| TileInfo { hex, kind, elevation: heights[ci as usize], in_map: true })
             .collect();
-
+        points.truncate(owned);
+        raws.truncate(owned);
         ChunkMesh {
             rect,
-            buffers,
-            raw_heights: samples[..owned].iter().map(|s| s.raw).collect(),
-            moved: samples[..owned].iter().map(|s| s.moved).collect(),
-            rings: samples[..owned].iter().map(|s| s.ring).collect(),
-            lattice: points[..owned].to_vec(),
+            buffers: b,
+            lattice: points,
+            raw_heights: raws,
+            moved: par_map(owned, |i| Flags::moved(flags[i])),
+            rings: par_map(owned, |i| Flags::ring(flags[i])),
             tiles: tiles_info,
         }
     }
@@ -288,18 +363,15 @@ impl Terrain {
     pub fn mesh_points(&self, rect: TileRect) -> Vec<Hex> {
         let rect = self.bounds().map_or(rect, |b| rect.intersect(&b));
         let tiles: Vec<Hex> = rect.iter().map(|oc| self.tile_from_offset(oc)).collect();
-        self.collect_points(&tiles).1
+        self.collect_points(&tiles).lattice
     }
 
-    /// Bare fBm at exactly the points [`Terrain::generate_rect`] evaluates: the noise floor of
-    /// generation. Returns the sum of the samples so the work cannot be elided.
+    /// Bare fBm at exactly the points [`Terrain::generate_rect`] evaluates, enumerated the same
+    /// way: the noise floor of generation. Returns the sum of the samples so the work cannot be
+    /// elided.
     #[must_use]
     pub fn noise_floor(&self, rect: TileRect) -> f64 {
-        let points = self.mesh_points(rect);
-        let positions: Vec<[f64; 2]> = points.iter().map(|&p| self.noise_position(p)).collect();
-        let mut samples = vec![0.0; positions.len()];
-        par_chunks(&positions, &mut samples, 1024, |pos, out| self.fbm().sample_many(pos, out));
-        samples.iter().sum()
+        self.noise_at(&self.mesh_points(rect)).iter().sum()
     }
 }
 

@@ -192,12 +192,17 @@ impl Terrain {
     #[must_use]
     #[inline]
     pub fn raw_height(&self, p: Hex) -> f32 {
-        let h = self.noise_height(p);
+        self.shaped(self.noise_height(p), p)
+    }
+
+    /// Applies the shaping filter to a bare noise height at lattice point `p`.
+    #[inline]
+    pub(crate) fn shaped(&self, noise: f64, p: Hex) -> f32 {
         if self.shape_bounds.is_some() {
             let [x, z] = self.lattice.world(p);
-            shape::apply(&self.config.shape, self.shape_bounds.as_ref(), h, x, z) as f32
+            shape::apply(&self.config.shape, self.shape_bounds.as_ref(), noise, x, z) as f32
         } else {
-            h as f32
+            noise as f32
         }
     }
 
@@ -251,7 +256,12 @@ impl Terrain {
     #[must_use]
     #[inline]
     pub fn vertex_with(&self, p: Hex, kind_of: impl Fn(Hex) -> Option<TileKind>) -> VertexSample {
-        let raw = self.raw_height(p);
+        self.border_vertex(self.raw_height(p), p, kind_of)
+    }
+
+    /// Finishes a vertex whose raw height is known, finding the tiles around it.
+    #[inline]
+    pub(crate) fn border_vertex(&self, raw: f32, p: Hex, kind_of: impl Fn(Hex) -> Option<TileKind>) -> VertexSample {
         let set = self.lattice.tiles_at(p);
         let mut kinds = [TileKind::Sea; 3];
         let mut len = 0;
@@ -261,15 +271,21 @@ impl Terrain {
                 len += 1;
             }
         }
-        let kinds = &kinds[..len];
+        self.finish_vertex(raw, set.ring, &kinds[..len])
+    }
+
+    /// Applies manipulation to a vertex of raw height `raw` at `ring`, shared by the in-map
+    /// tiles of `kinds`.
+    #[inline]
+    pub(crate) fn finish_vertex(&self, raw: f32, ring: u32, kinds: &[TileKind]) -> VertexSample {
         let n = self.lattice.subdivisions();
         let Manipulated { height, moved } = if self.config.manipulation.any() {
-            manipulate(&self.thresholds, &self.config.manipulation, raw, set.ring, n, kinds)
+            manipulate(&self.thresholds, &self.config.manipulation, raw, ring, n, kinds)
         } else {
             Manipulated { height: raw, moved: false }
         };
         let kind = kinds.iter().copied().max().unwrap_or_else(|| self.thresholds.classify(raw));
-        VertexSample { raw, height, moved, ring: set.ring, kind }
+        VertexSample { raw, height, moved, ring, kind }
     }
 
     /// World height of the manipulated surface at a lattice point.

@@ -183,7 +183,7 @@ proptest! {
         let kinds: HashMap<Hex, TileKind> = m.tiles.iter().map(|i| (i.hex, i.kind)).collect();
         for (i, &p) in m.lattice.iter().enumerate() {
             let y = b.positions[i][1];
-            let ring = m.rings[i];
+            let ring = u32::from(m.rings[i]);
             let set = t.lattice().tiles_at(p);
             let owners: Vec<TileKind> = set.tiles().iter().filter_map(|h| kinds.get(h).copied()).collect();
             let check = if ring < n {
