@@ -48,7 +48,16 @@ pub struct Lattice {
     step_b: [f64; 2],
     points: Vec<TemplatePoint>,
     triangles: Vec<[Hex; 3]>,
+    /// `triangles` as indices into `points`.
+    triangle_indices: Vec<[u16; 3]>,
+    /// For each point of `points` inside the tile (ring below `n`), the indices of its six
+    /// lattice neighbours in [`NEIGHBOURS`] order, all within the tile.
+    neighbour_indices: Vec<[u16; 6]>,
 }
+
+/// The six lattice directions around a point, counter-clockwise in lattice space.
+pub const NEIGHBOURS: [Hex; 6] =
+    [Hex::new(1, 0), Hex::new(0, 1), Hex::new(-1, 1), Hex::new(-1, 0), Hex::new(0, -1), Hex::new(1, -1)];
 
 impl Lattice {
     /// A lattice with `subdivisions` steps from a tile's centre to its corners (at least 1).
@@ -80,7 +89,36 @@ impl Lattice {
                 triangles.push([a, b, ab]);
             }
         }
-        Self { n, orientation, hex_size: f64::from(hex_size), step_a, step_b, points, triangles }
+        let index_of = |h: Hex| points.iter().position(|p| p.offset == h).map_or(u16::MAX, |i| i as u16);
+        let triangle_indices = triangles.iter().map(|t| t.map(index_of)).collect();
+        let neighbour_indices = points
+            .iter()
+            .map(|p| if p.ring < n as u32 { NEIGHBOURS.map(|d| index_of(p.offset + d)) } else { [u16::MAX; 6] })
+            .collect();
+        Self {
+            n,
+            orientation,
+            hex_size: f64::from(hex_size),
+            step_a,
+            step_b,
+            points,
+            triangles,
+            triangle_indices,
+            neighbour_indices,
+        }
+    }
+
+    /// [`Lattice::template_triangles`] as indices into [`Lattice::template`].
+    #[must_use]
+    pub fn template_triangle_indices(&self) -> &[[u16; 3]] {
+        &self.triangle_indices
+    }
+
+    /// For template point `i` inside the tile (ring below `n`), the template indices of its six
+    /// lattice neighbours in [`NEIGHBOURS`] order.
+    #[must_use]
+    pub fn template_neighbours(&self, i: usize) -> [u16; 6] {
+        self.neighbour_indices[i]
     }
 
     /// Steps from centre to corner, `inner_rings + 1`.

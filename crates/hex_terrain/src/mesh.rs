@@ -80,8 +80,10 @@ struct Points {
     /// How many points belong to the tiles (the rest is halo).
     owned: usize,
     /// For each owned point, its ring and the index of its tile when the point is inside one
-    /// tile (`u32::MAX` on borders, whose tiles are looked up).
-    owner: Vec<(u32, u32)>,
+    /// tile (`u32::MAX` on borders, whose tiles are looked up), and its template index.
+    owner: Vec<(u32, u32, u16)>,
+    /// For each tile, the point index of each of its template points.
+    tile_points: Vec<u32>,
     /// Index of each tile's centre point.
     centres: Vec<u32>,
 }
@@ -156,8 +158,7 @@ fn normal(around: &[[f32; 2]; 6], h0: f32, height: impl Fn(usize) -> f32) -> [f3
 }
 
 /// Lattice directions around a vertex, counter-clockwise in lattice space.
-const AROUND: [Hex; 6] =
-    [Hex::new(1, 0), Hex::new(0, 1), Hex::new(-1, 1), Hex::new(-1, 0), Hex::new(0, -1), Hex::new(1, -1)];
+const AROUND: [Hex; 6] = crate::lattice::NEIGHBOURS;
 
 impl Terrain {
     /// Generates a chunk, `None` when it lies outside a bounded map.
@@ -190,9 +191,10 @@ impl Terrain {
         let mut owner = Vec::with_capacity(estimate);
         let mut centres = Vec::with_capacity(tiles.len());
         let mut border = Vec::new();
+        let mut tile_points = Vec::with_capacity(tiles.len() * lattice.points_per_tile());
         for (t, &tile) in tiles.iter().enumerate() {
             let c = lattice.tile_centre(tile);
-            for tp in lattice.template() {
+            for (k, tp) in lattice.template().iter().enumerate() {
                 let p = c + tp.offset;
                 let slot = grid.slot(p);
                 if grid.slots[slot] == Grid::EMPTY {
@@ -202,12 +204,13 @@ impl Terrain {
                     }
                     if tp.ring == n {
                         border.push(points.len());
-                        owner.push((n, u32::MAX));
+                        owner.push((n, u32::MAX, k as u16));
                     } else {
-                        owner.push((tp.ring, t as u32));
+                        owner.push((tp.ring, t as u32, k as u16));
                     }
                     points.push(p);
                 }
+                tile_points.push(grid.slots[slot]);
             }
         }
         let owned = points.len();
@@ -222,7 +225,7 @@ impl Terrain {
                 }
             }
         }
-        Points { grid, lattice: points, owned, owner, centres }
+        Points { grid, lattice: points, owned, owner, centres, tile_points }
     }
 
     /// Bare fBm at every point, batched and on all cores.
@@ -244,7 +247,8 @@ impl Terrain {
         let tiles: Vec<Hex> = rect.iter().map(|oc| self.tile_from_offset(oc)).collect();
         let lattice = self.lattice();
         let n = lattice.subdivisions();
-        let Points { grid, lattice: mut points, owned, owner, centres } = self.collect_points(&tiles);
+        let Points { grid, lattice: mut points, owned, owner, centres, tile_points } = self.collect_points(&tiles);
+        let ppt = lattice.points_per_tile();
 
         // Kinds of the tiles and of the ring around them: every vertex evaluated below lies in
         // one of those.
@@ -282,7 +286,7 @@ impl Terrain {
                 for (j, &p) in pts.iter().enumerate() {
                     let raw = self.shaped(noise[j], p);
                     let s = match owner.get(start + j) {
-                        Some(&(ring, tile)) if tile != u32::MAX => {
+                        Some(&(ring, tile, _)) if tile != u32::MAX => {
                             self.finish_vertex(raw, ring, &[tile_kinds[tile as usize]])
                         }
                         _ => self.border_vertex(raw, p, kind_of),
@@ -325,15 +329,24 @@ impl Terrain {
                     uvs[j] = [x * uv_scale, z * uv_scale];
                     kinds[j] = u32::from(Flags::kind(flags[i]));
                     distances[j] = f32::from(Flags::ring(flags[i])) * inv_n;
-                    normals[j] = normal(&around, heights[i], |k| heights[grid.get(p + AROUND[k]) as usize]);
+                    normals[j] = match owner[i] {
+                        // Inside a tile: the neighbours are the tile's own points.
+                        (_, tile, k) if tile != u32::MAX => {
+                            let around_idx = lattice.template_neighbours(usize::from(k));
+                            let base = tile as usize * ppt;
+                            normal(&around, heights[i], |d| {
+                                heights[tile_points[base + usize::from(around_idx[d])] as usize]
+                            })
+                        }
+                        _ => normal(&around, heights[i], |d| heights[grid.get(p + AROUND[d]) as usize]),
+                    };
                 }
             });
         let per_tile = lattice.triangles_per_tile() * 3;
-        b.indices.par_chunks_mut(per_tile).zip(&tiles).for_each(|(out, &tile)| {
-            let c = lattice.tile_centre(tile);
-            for (tri, dst) in lattice.template_triangles().iter().zip(out.chunks_exact_mut(3)) {
-                for (o, d) in tri.iter().zip(dst) {
-                    *d = grid.get(c + *o);
+        b.indices.par_chunks_mut(per_tile).zip(tile_points.par_chunks(ppt)).for_each(|(out, own)| {
+            for (tri, dst) in lattice.template_triangle_indices().iter().zip(out.chunks_exact_mut(3)) {
+                for (&k, d) in tri.iter().zip(dst) {
+                    *d = own[usize::from(k)];
                 }
             }
         });
