@@ -70,6 +70,14 @@ pub enum HeightSourceConfig {
     /// Perlin fBm (thesis section 5.1).
     #[default]
     Noise,
+    /// A greyscale PNG heightmap stretched over the (bounded) map: the thesis' filter use.
+    Image {
+        /// Path of the PNG; relative paths are resolved against the RON file's folder by
+        /// [`MapConfig::load`].
+        path: String,
+        /// Image value (in `[0, 1]`) of sea level: darker pixels become sea.
+        sea_level: f32,
+    },
 }
 
 /// Map extent.
@@ -306,7 +314,13 @@ impl MapConfig {
         let path = path.as_ref();
         let text = std::fs::read_to_string(path)
             .map_err(|source| LoadError::Io { path: path.display().to_string(), source })?;
-        Self::from_ron(&text)
+        let mut config = Self::from_ron(&text)?;
+        if let (HeightSourceConfig::Image { path: image, .. }, Some(dir)) = (&mut config.source, path.parent()) {
+            if std::path::Path::new(image.as_str()).is_relative() {
+                *image = dir.join(&*image).display().to_string();
+            }
+        }
+        Ok(config)
     }
 
     /// Serialises to pretty RON.
@@ -396,6 +410,17 @@ impl MapConfig {
             self.appearance.blend,
             "[0, 1]",
         )?;
+
+        if let HeightSourceConfig::Image { sea_level, path } = &self.source {
+            check(finite_in(f64::from(*sea_level), 0.0, 1.0), "source.sea_level", sea_level, "[0, 1]")?;
+            check(!path.is_empty(), "source.path", "\"\"", "the path of a PNG heightmap")?;
+            check(
+                self.size != MapSize::Unbounded,
+                "source",
+                "Image on an Unbounded map",
+                "Noise for an Unbounded map (an image covers a bounded map)",
+            )?;
+        }
 
         match self.size {
             MapSize::Bounded { x, z } => {

@@ -17,10 +17,13 @@
 //! assert_eq!(map.buffers.triangle_count(), 30 * 30 * 24); // 6n² triangles a tile, n = 2
 //! ```
 
+#![cfg_attr(not(test), warn(clippy::unwrap_used))]
+
 pub mod chunk;
 pub mod classify;
 pub mod config;
 pub mod error;
+pub mod image_source;
 pub mod lattice;
 pub mod mesh;
 pub mod metrics;
@@ -36,6 +39,7 @@ pub use config::{
 };
 pub use error::{ConfigError, LoadError};
 pub use hexx;
+pub use image_source::{HeightImage, ImageError};
 pub use mesh::{ChunkMesh, MeshBuffers};
 pub use metrics::Sharpness;
 pub use terrain::{RayHit, Terrain, TileInfo, VertexSample};

@@ -232,9 +232,7 @@ impl Terrain {
     fn noise_at(&self, points: &[Hex]) -> Vec<f64> {
         let mut out = vec![0.0; points.len()];
         out.par_chunks_mut(BATCH).enumerate().for_each(|(k, chunk)| {
-            let positions: Vec<[f64; 2]> =
-                points[k * BATCH..k * BATCH + chunk.len()].iter().map(|&p| self.noise_position(p)).collect();
-            self.fbm().sample_many(&positions, chunk);
+            self.base_heights(&points[k * BATCH..k * BATCH + chunk.len()], chunk);
         });
         out
     }
@@ -259,8 +257,7 @@ impl Terrain {
             let oc = [halo.min[0] + (k % halo_width) as i32, halo.min[1] + (k / halo_width) as i32];
             self.map_tile_kind(self.tile_from_offset(oc))
         });
-        let tile_kinds: Vec<TileKind> =
-            rect.iter().map(|oc| kinds[halo_index(oc)].unwrap_or(TileKind::Sea)).collect();
+        let tile_kinds: Vec<TileKind> = rect.iter().map(|oc| kinds[halo_index(oc)].unwrap_or(TileKind::Sea)).collect();
         let kind_of = |tile: Hex| {
             let oc = self.offset_of(tile);
             if halo.contains(oc) { kinds[halo_index(oc)] } else { self.map_tile_kind(tile) }
@@ -280,9 +277,8 @@ impl Terrain {
             .for_each(|(k, ((heights, raws), flags))| {
                 let start = k * BATCH;
                 let pts = &points[start..start + heights.len()];
-                let positions: Vec<[f64; 2]> = pts.iter().map(|&p| self.noise_position(p)).collect();
                 let mut noise = [0.0; BATCH];
-                self.fbm().sample_many(&positions, &mut noise[..pts.len()]);
+                self.base_heights(pts, &mut noise[..pts.len()]);
                 for (j, &p) in pts.iter().enumerate() {
                     let raw = self.shaped(noise[j], p);
                     let s = match owner.get(start + j) {

@@ -6,8 +6,11 @@ use serde::{Deserialize, Serialize};
 
 use crate::chunk::{ChunkCoord, TileRect};
 use crate::classify::{Manipulated, Thresholds, TileKind, manipulate};
-use crate::config::{MapConfig, MapSize, Orientation};
+use std::sync::Arc;
+
+use crate::config::{HeightSourceConfig, MapConfig, MapSize, Orientation};
 use crate::error::ConfigError;
+use crate::image_source::{HeightImage, remap_sea_level};
 use crate::lattice::Lattice;
 use crate::noise::Fbm;
 use crate::shape::{self, ShapeBounds};
@@ -76,6 +79,7 @@ pub struct Terrain {
     bounds: Option<TileRect>,
     shape_bounds: Option<ShapeBounds>,
     thresholds: Thresholds,
+    image: Option<(Arc<HeightImage>, f64)>,
 }
 
 impl Terrain {
@@ -85,6 +89,34 @@ impl Terrain {
     /// The first invalid field of the config.
     pub fn new(config: MapConfig) -> Result<Self, ConfigError> {
         config.validate()?;
+        let image = match &config.source {
+            HeightSourceConfig::Noise => None,
+            HeightSourceConfig::Image { path, .. } => {
+                Some(Arc::new(HeightImage::load(std::path::Path::new(path)).map_err(|e| {
+                    ConfigError::new("source.path", format!("{path:?}"), format!("a readable 8 or 16 bit PNG ({e})"))
+                })?))
+            }
+        };
+        Self::with_image(config, image)
+    }
+
+    /// Like [`Terrain::new`], with the heightmap of an `Image` source already decoded (from an
+    /// asset, say); `image` is ignored for a `Noise` source.
+    ///
+    /// # Errors
+    /// The first invalid field of the config, or `source.path` when an `Image` source has no
+    /// image.
+    pub fn with_image(config: MapConfig, image: Option<Arc<HeightImage>>) -> Result<Self, ConfigError> {
+        config.validate()?;
+        let image = match &config.source {
+            HeightSourceConfig::Noise => None,
+            HeightSourceConfig::Image { path, sea_level } => Some((
+                image.ok_or_else(|| {
+                    ConfigError::new("source.path", format!("{path:?}"), "a decoded heightmap image".into())
+                })?,
+                f64::from(*sea_level),
+            )),
+        };
         let lattice = Lattice::new(config.subdivisions(), config.layout.orientation, config.layout.hex_size);
         let orientation = hex_orientation(config.layout.orientation);
         let layout = HexLayout { orientation, origin: Vec2::ZERO, scale: Vec2::splat(config.layout.hex_size) };
@@ -100,6 +132,7 @@ impl Terrain {
             origin_lattice,
             bounds,
             shape_bounds: None,
+            image,
         };
         terrain.shape_bounds = bounds.map(|rect| {
             let (mut min_x, mut max_x, mut min_z, mut max_z) = (f64::MAX, f64::MIN, f64::MAX, f64::MIN);
@@ -210,8 +243,29 @@ impl Terrain {
     #[must_use]
     #[inline]
     pub fn noise_height(&self, p: Hex) -> f64 {
+        if let Some((image, sea_level)) = &self.image {
+            return self.image_height(image, *sea_level, p);
+        }
         let [ux, uz] = self.noise_position(p);
         self.fbm.sample(ux, uz)
+    }
+
+    /// Heights of many lattice points from the height source (batched for the noise).
+    pub(crate) fn base_heights(&self, points: &[Hex], out: &mut [f64]) {
+        if let Some((image, sea_level)) = &self.image {
+            for (p, o) in points.iter().zip(out) {
+                *o = self.image_height(image, *sea_level, *p);
+            }
+        } else {
+            let positions: Vec<[f64; 2]> = points.iter().map(|&p| self.noise_position(p)).collect();
+            self.fbm.sample_many(&positions, out);
+        }
+    }
+
+    fn image_height(&self, image: &HeightImage, sea_level: f64, p: Hex) -> f64 {
+        let [x, z] = self.lattice.world(p);
+        let (u, v) = self.shape_bounds.map_or((0.5, 0.5), |b| b.normalise(x, z));
+        remap_sea_level(image.sample(u, v), sea_level, f64::from(self.config.terrain.sea_threshold))
     }
 
     /// Where a lattice point samples the noise: its world position in hex radii, shifted by the
@@ -321,7 +375,7 @@ impl Terrain {
     #[must_use]
     pub fn raycast(&self, origin: [f32; 3], direction: [f32; 3], max_distance: f32) -> Option<RayHit> {
         let len = (direction[0].powi(2) + direction[1].powi(2) + direction[2].powi(2)).sqrt();
-        if !(len > 0.0) || !max_distance.is_finite() || origin.iter().any(|v| !v.is_finite()) {
+        if len.is_nan() || len <= 0.0 || !max_distance.is_finite() || origin.iter().any(|v| !v.is_finite()) {
             return None;
         }
         let d = direction.map(|v| v / len);

@@ -41,13 +41,14 @@ fn shape() -> impl Strategy<Value = Shape> {
 }
 
 fn manipulation() -> impl Strategy<Value = ManipulationConfig> {
-    (any::<bool>(), any::<bool>(), any::<bool>(), prop_oneof![Just(PullMode::Clamp), Just(PullMode::Thesis)])
-        .prop_map(|(hex_unity, interpolation, edge_correction, pull)| ManipulationConfig {
+    (any::<bool>(), any::<bool>(), any::<bool>(), prop_oneof![Just(PullMode::Clamp), Just(PullMode::Thesis)]).prop_map(
+        |(hex_unity, interpolation, edge_correction, pull)| ManipulationConfig {
             hex_unity,
             interpolation,
             edge_correction,
             pull,
-        })
+        },
+    )
 }
 
 prop_compose! {
@@ -102,7 +103,9 @@ fn index(m: &ChunkMesh) -> HashMap<Hex, usize> {
 }
 
 /// Everything a renderer receives for one vertex, as bits.
-fn vertex_bits(m: &ChunkMesh, i: usize) -> ([u32; 3], [u32; 3], [u32; 2], u32, u32) {
+type VertexBits = ([u32; 3], [u32; 3], [u32; 2], u32, u32);
+
+fn vertex_bits(m: &ChunkMesh, i: usize) -> VertexBits {
     let b = &m.buffers;
     (
         b.positions[i].map(f32::to_bits),
@@ -135,7 +138,7 @@ proptest! {
             s ^= s << 13; s ^= s >> 7; s ^= s << 17;
             chunks.swap(i, (s % (i as u64 + 1)) as usize);
         }
-        let mut seen: HashMap<Hex, ([u32; 3], [u32; 3], [u32; 2], u32, u32)> = HashMap::new();
+        let mut seen: HashMap<Hex, VertexBits> = HashMap::new();
         let mut tiles = 0;
         for chunk in chunks {
             let Some(rect_c) = t.chunk_rect(chunk) else { continue };
@@ -209,9 +212,9 @@ proptest! {
         let mut c = config;
         let field = match which {
             0 => { c.noise.persistence = if bad > 0.0 && bad <= 1.0 { 2.0 } else { bad }; "noise.persistence" }
-            1 => { c.noise.lacunarity = if bad >= 1.0 && bad <= 64.0 { 0.5 } else { bad }; "noise.lacunarity" }
+            1 => { c.noise.lacunarity = if (1.0..=64.0).contains(&bad) { 0.5 } else { bad }; "noise.lacunarity" }
             2 => { c.noise.scale = if bad > 0.0 && bad <= 1e9 { -bad } else { bad }; "noise.scale" }
-            3 => { c.terrain.max_elevation = if bad >= 0.0 && bad <= 1e6 { -1.0 } else { bad as f32 }; "terrain.max_elevation" }
+            3 => { c.terrain.max_elevation = if (0.0..=1e6).contains(&bad) { -1.0 } else { bad as f32 }; "terrain.max_elevation" }
             4 => { c.terrain.sea_threshold = if (0.0..=1.0).contains(&bad) { 2.0 } else { bad as f32 }; "terrain.sea_threshold" }
             5 => { c.layout.hex_size = if bad > 0.0 && bad <= 1e4 { -1.0 } else { bad as f32 }; "layout.hex_size" }
             6 => { c.noise.octaves = 0; "noise.octaves" }

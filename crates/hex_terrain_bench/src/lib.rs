@@ -5,7 +5,7 @@
 
 use std::collections::HashMap;
 
-use hex_terrain::hexx::{Hex, HeightMapMeshBuilder};
+use hex_terrain::hexx::{HeightMapMeshBuilder, Hex};
 use hex_terrain::{ManipulationConfig, MapConfig, MapSize, Terrain, TileRect};
 use rayon::prelude::*;
 
@@ -16,14 +16,8 @@ pub const TABLE_7: [(u32, u32); 11] =
 pub const TABLE_8: [(u32, u32); 8] =
     [(80, 40), (100, 50), (200, 100), (400, 200), (500, 250), (600, 300), (800, 400), (1000, 500)];
 /// Civilization 6 map sizes (thesis table 9).
-pub const TABLE_9: [(&str, u32, u32); 6] = [
-    ("Duel", 44, 26),
-    ("Tiny", 60, 38),
-    ("Small", 74, 46),
-    ("Standard", 84, 54),
-    ("Large", 96, 60),
-    ("Huge", 106, 66),
-];
+pub const TABLE_9: [(&str, u32, u32); 6] =
+    [("Duel", 44, 26), ("Tiny", 60, 38), ("Small", 74, 46), ("Standard", 84, 54), ("Large", 96, 60), ("Huge", 106, 66)];
 
 /// Map0's parameters at a size and ring count: the full pipeline and the basic PTG baseline
 /// (same noise, same lattice, no manipulation).

@@ -9,7 +9,9 @@
 use std::hint::black_box;
 use std::time::Instant;
 
-use hex_terrain_bench::{TABLE_7, TABLE_8, TABLE_9, generate, hexx_columns, noise_floor, noise_floor_reference, terrains};
+use hex_terrain_bench::{
+    TABLE_7, TABLE_8, TABLE_9, generate, hexx_columns, noise_floor, noise_floor_reference, terrains,
+};
 
 struct Args {
     rings: u32,

@@ -72,8 +72,7 @@ fn malformed_ron_reports_line_and_column() {
 
 #[test]
 fn ron_round_trips() {
-    let mut c = MapConfig::default();
-    c.shape = Shape::Island { a: 3.0, b: 6.0 };
+    let mut c = MapConfig { shape: Shape::Island { a: 3.0, b: 6.0 }, ..MapConfig::default() };
     c.manipulation.pull = PullMode::Thesis;
     c.layout.orientation = Orientation::Pointy;
     let back = MapConfig::from_ron(&c.to_ron()).unwrap();

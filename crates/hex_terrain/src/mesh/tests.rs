@@ -13,8 +13,7 @@ fn counts_follow_the_formula() {
     for rings in [1, 2, 3] {
         for (x, z) in [(1, 1), (2, 2), (6, 6), (10, 6), (7, 3)] {
             for o in [Orientation::Flat, Orientation::Pointy] {
-                let mut c = MapConfig::default();
-                c.size = MapSize::Bounded { x, z };
+                let mut c = MapConfig { size: MapSize::Bounded { x, z }, ..MapConfig::default() };
                 c.terrain.inner_rings = rings;
                 c.layout.orientation = o;
                 let t = Terrain::new(c).unwrap();

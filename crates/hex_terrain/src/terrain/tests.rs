@@ -23,8 +23,7 @@ fn tile_at_inverts_tile_centre() {
 #[test]
 fn offset_shifts_the_window_over_one_world() {
     let map0 = terrain();
-    let mut c = MapConfig::default();
-    c.offset = (30, 0);
+    let c = MapConfig { offset: (30, 0), ..MapConfig::default() };
     let map1 = Terrain::new(c).unwrap();
     // Map1's first column is the world's column 30, which Map0 computes too.
     for row in 0..30 {
@@ -54,9 +53,7 @@ fn bounds_and_chunks() {
 
 #[test]
 fn island_has_sea_all_around() {
-    let mut c = MapConfig::default();
-    c.offset = (30, 0);
-    c.shape = Shape::Island { a: 3.0, b: 6.0 };
+    let c = MapConfig { offset: (30, 0), shape: Shape::Island { a: 3.0, b: 6.0 }, ..MapConfig::default() };
     let t = Terrain::new(c).unwrap();
     let b = t.bounds().unwrap();
     for oc in b.iter() {
