@@ -315,10 +315,10 @@ impl MapConfig {
         let text = std::fs::read_to_string(path)
             .map_err(|source| LoadError::Io { path: path.display().to_string(), source })?;
         let mut config = Self::from_ron(&text)?;
-        if let (HeightSourceConfig::Image { path: image, .. }, Some(dir)) = (&mut config.source, path.parent()) {
-            if std::path::Path::new(image.as_str()).is_relative() {
-                *image = dir.join(&*image).display().to_string();
-            }
+        if let (HeightSourceConfig::Image { path: image, .. }, Some(dir)) = (&mut config.source, path.parent())
+            && std::path::Path::new(image.as_str()).is_relative()
+        {
+            *image = dir.join(&*image).display().to_string();
         }
         Ok(config)
     }

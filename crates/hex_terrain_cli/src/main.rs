@@ -1,0 +1,258 @@
+//! `hexterrain`: previews, heightmap tiling, export, statistics and the thesis' experiments for
+//! `hex_terrain` maps, without writing code or opening a window.
+
+mod experiments;
+mod export;
+mod render;
+
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+use std::time::Instant;
+
+use clap::{Parser, Subcommand};
+use hex_terrain::{
+    ChunkMesh, HeightSourceConfig, ManipulationConfig, MapConfig, MapSize, Sharpness, Terrain, TileKind,
+};
+
+/// Generate, preview, export and measure 3D hexagonal tiled terrain.
+#[derive(Parser)]
+#[command(name = "hexterrain", version, about, long_about = None)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Render a top-down picture of a map as a player would see it (PNG).
+    Render {
+        /// Map config (RON), e.g. assets/maps/thesis/map00.ron.
+        map: PathBuf,
+        /// Output PNG.
+        #[arg(short, long)]
+        output: PathBuf,
+        /// Render the raw noise map (every manipulation off), for before/after pairs.
+        #[arg(long)]
+        raw: bool,
+        /// Draw tile outlines (thesis figure 47).
+        #[arg(long)]
+        outlines: bool,
+        /// Image width in pixels; the height follows the map's aspect ratio.
+        #[arg(long, default_value_t = 1024)]
+        width: u32,
+        /// Override the config's blend value of Algorithm 5, in [0, 1].
+        #[arg(long)]
+        blend: Option<f32>,
+    },
+    /// Tile an existing greyscale heightmap (8 or 16 bit PNG) onto the hex lattice, with the same
+    /// classification and manipulation as noise maps (the thesis' filter use).
+    TileImage {
+        /// The heightmap PNG.
+        heightmap: PathBuf,
+        /// Image value in [0, 1] of sea level: darker pixels become sea.
+        #[arg(long)]
+        sea_level: f32,
+        /// Output: a map config (.ron) using the image as its height source, or a rendered
+        /// preview (.png).
+        #[arg(short, long)]
+        output: PathBuf,
+        /// Map size in hexes, `XxZ` (e.g. `60x40`); defaults to one hex per 8 by 8 pixels.
+        #[arg(long, value_parser = parse_size)]
+        size: Option<(u32, u32)>,
+        /// Mountain threshold in [0, 1] (normalised height, after the sea level remap).
+        #[arg(long)]
+        mountain_threshold: Option<f32>,
+        /// Maximum elevation in world units.
+        #[arg(long)]
+        max_elevation: Option<f32>,
+        /// Width of the preview when the output is a PNG.
+        #[arg(long, default_value_t = 1024)]
+        width: u32,
+        /// Draw tile outlines in the preview.
+        #[arg(long)]
+        outlines: bool,
+    },
+    /// Export the map's mesh as glTF binary (.glb, with normals, UVs and a `_TILE` attribute:
+    /// tile kind and distance to the tile centre) or Wavefront OBJ (.obj).
+    Export {
+        /// Map config (RON).
+        map: PathBuf,
+        /// Output file: .glb or .obj.
+        #[arg(short, long)]
+        output: PathBuf,
+        /// Export the raw map (every manipulation off).
+        #[arg(long)]
+        raw: bool,
+    },
+    /// Print tile counts per type, mesh size, sharpness raw vs manipulated, generation time.
+    Stats {
+        /// Map config (RON).
+        map: PathBuf,
+    },
+    /// Rerun the thesis' chapter 7 (Map0-Map15, table 7/8/9 sizes) and write markdown tables
+    /// with the thesis' numbers beside ours, plus before/after PNGs.
+    Experiments {
+        /// Output folder.
+        #[arg(long, default_value = "docs/experiments")]
+        out: PathBuf,
+        /// Folder holding map00.ron ... map15.ron.
+        #[arg(long, default_value = "assets/maps/thesis")]
+        maps: PathBuf,
+        /// Inner rings for the timing tables (3 gives 48 vertices a hex, the thesis has ~32).
+        #[arg(long, default_value_t = 3)]
+        rings: u32,
+        /// Timing runs per measurement (the median is reported).
+        #[arg(long, default_value_t = 5)]
+        runs: usize,
+        /// Skip the maps above this many hexes in the timing tables.
+        #[arg(long, default_value_t = 500_000)]
+        max_hexes: u64,
+        /// Width of the before/after PNGs.
+        #[arg(long, default_value_t = 400)]
+        width: u32,
+    },
+}
+
+fn parse_size(s: &str) -> Result<(u32, u32), String> {
+    let (x, z) = s.split_once(['x', 'X']).ok_or_else(|| format!("expected XxZ, e.g. 60x40, got {s:?}"))?;
+    let x: u32 = x.trim().parse().map_err(|e| format!("size x {x:?}: {e}"))?;
+    let z: u32 = z.trim().parse().map_err(|e| format!("size z {z:?}: {e}"))?;
+    if x == 0 || z == 0 {
+        return Err(format!("size must be at least 1x1, got {x}x{z}"));
+    }
+    Ok((x, z))
+}
+
+/// An error for the user: printed after `error:`, exit code 1.
+pub(crate) type CliResult<T> = Result<T, String>;
+
+fn load(path: &Path) -> CliResult<MapConfig> {
+    MapConfig::load(path).map_err(|e| format!("{}: {e}", path.display()))
+}
+
+fn terrain(config: MapConfig, raw: bool) -> CliResult<Terrain> {
+    let config = if raw { MapConfig { manipulation: ManipulationConfig::raw(), ..config } } else { config };
+    Terrain::new(config).map_err(|e| e.to_string())
+}
+
+fn whole_map(terrain: &Terrain) -> CliResult<ChunkMesh> {
+    terrain.generate_map().ok_or_else(|| {
+        "this command needs a bounded map; the config is Unbounded (set size: Bounded(x: .., z: ..))".to_string()
+    })
+}
+
+fn check_width(width: u32) -> CliResult<()> {
+    if (1..=16384).contains(&width) { Ok(()) } else { Err(format!("--width {width}: allowed 1..=16384")) }
+}
+
+fn run(cli: Cli) -> CliResult<()> {
+    match cli.command {
+        Command::Render { map, output, raw, outlines, width, blend } => {
+            check_width(width)?;
+            let mut config = load(&map)?;
+            if let Some(b) = blend {
+                config.appearance.blend = b;
+            }
+            let t = terrain(config, raw)?;
+            let mesh = whole_map(&t)?;
+            let img = render::render(&t, &mesh, &render::Options { width, outlines })?;
+            render::save(&img, &output)
+        }
+        Command::TileImage {
+            heightmap,
+            sea_level,
+            output,
+            size,
+            mountain_threshold,
+            max_elevation,
+            width,
+            outlines,
+        } => {
+            check_width(width)?;
+            if !(0.0..=1.0).contains(&sea_level) {
+                return Err(format!("--sea-level {sea_level}: allowed [0, 1]"));
+            }
+            let image =
+                hex_terrain::HeightImage::load(&heightmap).map_err(|e| format!("{}: {e}", heightmap.display()))?;
+            let (w, h) = image.size();
+            let (x, z) = size.unwrap_or(((w as u32 / 8).max(1), (h as u32 / 8).max(1)));
+            let path = std::fs::canonicalize(&heightmap).unwrap_or(heightmap.clone());
+            let mut config = MapConfig {
+                name: heightmap.file_stem().map_or("heightmap".into(), |s| s.to_string_lossy().into_owned()),
+                source: HeightSourceConfig::Image { path: path.display().to_string(), sea_level },
+                size: MapSize::Bounded { x, z },
+                ..MapConfig::default()
+            };
+            if let Some(m) = mountain_threshold {
+                config.terrain.mountain_threshold = m;
+            }
+            if let Some(e) = max_elevation {
+                config.terrain.max_elevation = e;
+            }
+            let t = Terrain::with_image(config.clone(), Some(std::sync::Arc::new(image))).map_err(|e| e.to_string())?;
+            match output.extension().and_then(|e| e.to_str()) {
+                Some("ron") => {
+                    std::fs::write(&output, format!("// Tiled from {}\n{}\n", heightmap.display(), config.to_ron()))
+                        .map_err(|e| format!("{}: {e}", output.display()))
+                }
+                Some("png") => {
+                    let mesh = whole_map(&t)?;
+                    let img = render::render(&t, &mesh, &render::Options { width, outlines })?;
+                    render::save(&img, &output)
+                }
+                _ => Err(format!("{}: the output must end in .ron or .png", output.display())),
+            }
+        }
+        Command::Export { map, output, raw } => {
+            let t = terrain(load(&map)?, raw)?;
+            let mesh = whole_map(&t)?;
+            match output.extension().and_then(|e| e.to_str()) {
+                Some("glb") => export::write_glb(&mesh, &output),
+                Some("obj") => export::write_obj(&mesh, &output),
+                _ => Err(format!("{}: the output must end in .glb or .obj", output.display())),
+            }
+        }
+        Command::Stats { map } => stats(&map),
+        Command::Experiments { out, maps, rings, runs, max_hexes, width } => {
+            check_width(width)?;
+            experiments::run(&experiments::Options { out, maps, rings, runs: runs.max(1), max_hexes, width })
+        }
+    }
+}
+
+fn stats(path: &Path) -> CliResult<()> {
+    let config = load(path)?;
+    let t = terrain(config.clone(), false)?;
+    let start = Instant::now();
+    let mesh = whole_map(&t)?;
+    let elapsed = start.elapsed();
+    let raw = whole_map(&terrain(config.clone(), true)?)?;
+    let s = Sharpness::measure(&raw, &mesh, config.terrain.max_elevation);
+    println!("{} ({})", config.name, path.display());
+    println!("tiles:");
+    for kind in TileKind::ALL {
+        let count = mesh.tiles.iter().filter(|t| t.kind == kind).count();
+        println!("  {:<9} {count}", kind.name());
+    }
+    println!("  total     {}", mesh.tiles.len());
+    println!("mesh: {} vertices, {} triangles", mesh.buffers.vertex_count(), mesh.buffers.triangle_count());
+    println!("generation: {:.2} ms", elapsed.as_secs_f64() * 1e3);
+    println!("sharpness (% of max elevation):");
+    println!("  raw map          max {:>7.3}  average {:>7.3}", s.raw_max, s.raw_average);
+    println!(
+        "  manipulated      max {:>7.3}  average {:>7.3}  ({} manipulated vertices)",
+        s.manipulated_max, s.manipulated_average, s.manipulated_vertices
+    );
+    println!("  mesh (eq. 7.3)   {:.3}   measured directly {:.3}", s.weighted_mesh, s.mesh_average);
+    Ok(())
+}
+
+fn main() -> ExitCode {
+    match run(Cli::parse()) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: {e}");
+            ExitCode::FAILURE
+        }
+    }
+}

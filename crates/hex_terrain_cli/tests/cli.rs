@@ -1,0 +1,316 @@
+//! Runs the `hexterrain` binary on small maps: every subcommand on good input, a clear error and
+//! a non-zero exit (never a panic) on each bad input.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+use hex_terrain::{MapConfig, Terrain, TileKind};
+
+fn bin() -> Command {
+    Command::new(env!("CARGO_BIN_EXE_hexterrain"))
+}
+
+fn repo() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
+}
+
+fn tmp(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("hexterrain-cli-tests-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    dir.join(name)
+}
+
+fn run(args: &[&str]) -> Output {
+    bin().args(args).output().unwrap()
+}
+
+fn ok(args: &[&str]) -> String {
+    let out = run(args);
+    assert!(out.status.success(), "{args:?} failed: {}", String::from_utf8_lossy(&out.stderr));
+    String::from_utf8_lossy(&out.stdout).into_owned()
+}
+
+/// Fails with a message containing every `needle`, without panicking.
+fn fails(args: &[&str], needles: &[&str]) {
+    let out = run(args);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(!out.status.success(), "{args:?} should fail");
+    assert!(!err.contains("panicked"), "{args:?} panicked: {err}");
+    for n in needles {
+        assert!(err.contains(n), "{args:?}: {n:?} not in {err:?}");
+    }
+}
+
+fn small_map(name: &str, extra: &str) -> PathBuf {
+    let path = tmp(name);
+    std::fs::write(&path, format!("(name: \"small\", size: Bounded(x: 14, z: 12), {extra})")).unwrap();
+    path
+}
+
+#[test]
+fn render_shows_each_tile_type_in_its_colour() {
+    // Blend 0 so a pixel's colour is its layer's; tiles well inside their range only.
+    let map = small_map("render.ron", "appearance: (blend: 0.0)");
+    let out = tmp("render.png");
+    ok(&["render", map.to_str().unwrap(), "-o", out.to_str().unwrap(), "--width", "300"]);
+    let img = image::open(&out).unwrap().to_rgb8();
+    assert_eq!(img.width(), 300);
+
+    let config = MapConfig::load(&map).unwrap();
+    let terrain = Terrain::new(config).unwrap();
+    let mesh = terrain.generate_map().unwrap();
+    let (mut min_x, mut max_x, mut min_z) = (f32::MAX, f32::MIN, f32::MAX);
+    for p in &mesh.buffers.positions {
+        min_x = min_x.min(p[0]);
+        max_x = max_x.max(p[0]);
+        min_z = min_z.min(p[2]);
+    }
+    let scale = 299.0 / (max_x - min_x);
+    let mut seen = [0; 3];
+    for info in &mesh.tiles {
+        let [x, _, z] = terrain.tile_centre(info.hex);
+        let px = image::Rgb::<u8>::to_owned(
+            img.get_pixel(((x - min_x) * scale).round() as u32, ((z - min_z) * scale).round() as u32),
+        );
+        let [r, g, b] = px.0.map(i32::from);
+        match info.kind {
+            TileKind::Sea => assert!(b > r + 40 && b > g + 20, "sea tile {:?} drawn {:?}", info.hex, px),
+            TileKind::Land => assert!(g > r + 30 && g > b + 30, "land tile {:?} drawn {:?}", info.hex, px),
+            TileKind::Mountain => {
+                assert!((r - g).abs() < 30 && (g - b).abs() < 30 && r > 90, "mountain {:?} drawn {:?}", info.hex, px);
+            }
+        }
+        seen[info.kind as usize] += 1;
+    }
+    assert!(seen.iter().all(|&n| n > 0), "the test map has every tile type: {seen:?}");
+
+    // Outlines darken tile borders; raw renders too.
+    let outlined = tmp("render_outlines.png");
+    ok(&["render", map.to_str().unwrap(), "-o", outlined.to_str().unwrap(), "--width", "300", "--outlines"]);
+    let lined = image::open(&outlined).unwrap().to_rgb8();
+    let darker = img.pixels().zip(lined.pixels()).filter(|(a, b)| b.0[1] < a.0[1]).count();
+    assert!(darker > 1000, "outlines drew {darker} darker pixels");
+    let raw = tmp("render_raw.png");
+    ok(&["render", map.to_str().unwrap(), "-o", raw.to_str().unwrap(), "--width", "200", "--raw"]);
+    assert_eq!(image::open(&raw).unwrap().width(), 200);
+}
+
+#[test]
+fn bad_input_gives_clear_errors() {
+    let out = tmp("bad.png");
+    let o = out.to_str().unwrap();
+    fails(&["render", "/no/such/map.ron", "-o", o], &["/no/such/map.ron", "cannot read"]);
+    let malformed = tmp("malformed.ron");
+    std::fs::write(&malformed, "(\n  seed: 1,\n  noise: (octaves: \"ten\"),\n)").unwrap();
+    fails(&["render", malformed.to_str().unwrap(), "-o", o], &["3:"]);
+    let invalid = small_map("invalid.ron", "noise: (octaves: 0)");
+    fails(&["stats", invalid.to_str().unwrap()], &["noise.octaves", "allowed"]);
+    let unbounded = tmp("unbounded.ron");
+    std::fs::write(&unbounded, "(size: Unbounded)").unwrap();
+    fails(&["render", unbounded.to_str().unwrap(), "-o", o], &["bounded"]);
+    let map = small_map("ok.ron", "");
+    fails(&["render", map.to_str().unwrap(), "-o", o, "--width", "0"], &["--width"]);
+    fails(&["render", map.to_str().unwrap(), "-o", "/no/such/dir/x.png"], &["/no/such/dir/x.png"]);
+    fails(&["export", map.to_str().unwrap(), "-o", tmp("x.stl").to_str().unwrap()], &[".glb or .obj"]);
+    fails(&["render", map.to_str().unwrap(), "-o", o, "--blend", "2"], &["appearance.blend"]);
+}
+
+/// Writes a radial hill heightmap (1 in the middle, 0 at the corners) as a PNG.
+fn hill_png(path: &Path, size: u32, sixteen_bit: bool) {
+    let c = (size - 1) as f32 / 2.0;
+    let value = |x: u32, y: u32| {
+        let (dx, dy) = (x as f32 - c, y as f32 - c);
+        (1.0 - (dx * dx + dy * dy).sqrt() / (c * 1.2)).max(0.0)
+    };
+    if sixteen_bit {
+        let img = image::ImageBuffer::<image::Luma<u16>, _>::from_fn(size, size, |x, y| {
+            image::Luma([(value(x, y) * 65535.0) as u16])
+        });
+        img.save(path).unwrap();
+    } else {
+        let img = image::GrayImage::from_fn(size, size, |x, y| image::Luma([(value(x, y) * 255.0) as u8]));
+        img.save(path).unwrap();
+    }
+}
+
+#[test]
+fn tile_image_puts_sea_where_the_image_is_below_sea_level() {
+    for sixteen in [false, true] {
+        let png = tmp(&format!("hill{sixteen}.png"));
+        hill_png(&png, 121, sixteen);
+        let ron = tmp(&format!("hill{sixteen}.ron"));
+        ok(&[
+            "tile-image",
+            png.to_str().unwrap(),
+            "--sea-level",
+            "0.4",
+            "-o",
+            ron.to_str().unwrap(),
+            "--size",
+            "20x18",
+        ]);
+        let config = MapConfig::load(&ron).unwrap();
+        let terrain = Terrain::new(config).unwrap();
+        let mesh = terrain.generate_map().unwrap();
+        let (mut min_x, mut max_x, mut min_z, mut max_z) = (f32::MAX, f32::MIN, f32::MAX, f32::MIN);
+        for t in &mesh.tiles {
+            let [x, _, z] = terrain.tile_centre(t.hex);
+            min_x = min_x.min(x);
+            max_x = max_x.max(x);
+            min_z = min_z.min(z);
+            max_z = max_z.max(z);
+        }
+        let (mut sea, mut dry) = (0, 0);
+        for t in &mesh.tiles {
+            let [x, _, z] = terrain.tile_centre(t.hex);
+            // The hill's value under the tile centre, from the geometry of the picture.
+            let (u, v) = ((x - min_x) / (max_x - min_x) * 2.0 - 1.0, (z - min_z) / (max_z - min_z) * 2.0 - 1.0);
+            let value = (1.0 - (u * u + v * v).sqrt() / 1.2).max(0.0);
+            if value < 0.37 {
+                assert_eq!(t.kind, TileKind::Sea, "{:?} under {value}", t.hex);
+                sea += 1;
+            } else if value > 0.43 {
+                assert_ne!(t.kind, TileKind::Sea, "{:?} under {value}", t.hex);
+                dry += 1;
+            }
+        }
+        assert!(sea > 30 && dry > 30, "{sea} sea, {dry} dry");
+        let preview = tmp(&format!("hill{sixteen}_preview.png"));
+        ok(&[
+            "tile-image",
+            png.to_str().unwrap(),
+            "--sea-level",
+            "0.4",
+            "-o",
+            preview.to_str().unwrap(),
+            "--width",
+            "160",
+        ]);
+        assert_eq!(image::open(&preview).unwrap().width(), 160);
+    }
+}
+
+/// A PNG signature and IHDR chunk declaring `w`x`h`, with a valid CRC, and no image data.
+fn header_only_png(w: u32, h: u32) -> Vec<u8> {
+    fn crc(bytes: &[u8]) -> u32 {
+        let mut c = 0xFFFF_FFFF_u32;
+        for &b in bytes {
+            c ^= u32::from(b);
+            for _ in 0..8 {
+                c = if c & 1 != 0 { 0xEDB8_8320 ^ (c >> 1) } else { c >> 1 };
+            }
+        }
+        !c
+    }
+    let mut ihdr = b"IHDR".to_vec();
+    ihdr.extend_from_slice(&w.to_be_bytes());
+    ihdr.extend_from_slice(&h.to_be_bytes());
+    ihdr.extend_from_slice(&[8, 0, 0, 0, 0]);
+    let mut out = vec![0x89, b'P', b'N', b'G', 13, 10, 26, 10];
+    out.extend_from_slice(&13_u32.to_be_bytes());
+    out.extend_from_slice(&ihdr);
+    out.extend_from_slice(&crc(&ihdr).to_be_bytes());
+    out
+}
+
+#[test]
+fn tile_image_rejects_bad_heightmaps() {
+    let out = tmp("never.ron");
+    let o = out.to_str().unwrap();
+    let text = tmp("text.png");
+    std::fs::write(&text, "this is not a png").unwrap();
+    fails(&["tile-image", text.to_str().unwrap(), "--sea-level", "0.3", "-o", o], &["text.png", "PNG"]);
+    let good = tmp("good.png");
+    hill_png(&good, 64, false);
+    let bytes = std::fs::read(&good).unwrap();
+    let truncated = tmp("truncated.png");
+    std::fs::write(&truncated, &bytes[..bytes.len() / 2]).unwrap();
+    fails(&["tile-image", truncated.to_str().unwrap(), "--sea-level", "0.3", "-o", o], &["truncated.png"]);
+    let empty = tmp("empty.png");
+    std::fs::write(&empty, header_only_png(0, 0)).unwrap();
+    fails(&["tile-image", empty.to_str().unwrap(), "--sea-level", "0.3", "-o", o], &["empty.png"]);
+    fails(&["tile-image", good.to_str().unwrap(), "--sea-level", "1.5", "-o", o], &["--sea-level", "[0, 1]"]);
+    fails(&["tile-image", "/no/such.png", "--sea-level", "0.3", "-o", o], &["/no/such.png"]);
+    fails(&["tile-image", good.to_str().unwrap(), "--sea-level", "0.3", "-o", o, "--size", "0x5"], &["size"]);
+    assert!(!out.exists());
+}
+
+#[test]
+fn export_reads_back_in_a_gltf_loader_with_the_same_vertices() {
+    let map = small_map("export.ron", "");
+    let stats = ok(&["stats", map.to_str().unwrap()]);
+    let vertices: usize = stats
+        .lines()
+        .find_map(|l| l.strip_prefix("mesh: "))
+        .and_then(|l| l.split_whitespace().next())
+        .unwrap()
+        .parse()
+        .unwrap();
+    let glb = tmp("map.glb");
+    ok(&["export", map.to_str().unwrap(), "-o", glb.to_str().unwrap()]);
+    let bytes = std::fs::read(&glb).unwrap();
+    let gltf = gltf::Gltf::from_slice(&bytes).expect("a valid glTF binary");
+    let mesh = gltf.meshes().next().unwrap();
+    let prim = mesh.primitives().next().unwrap();
+    let positions = prim.get(&gltf::Semantic::Positions).unwrap();
+    assert_eq!(positions.count(), vertices);
+    assert_eq!(prim.get(&gltf::Semantic::Normals).unwrap().count(), vertices);
+    assert_eq!(prim.get(&gltf::Semantic::TexCoords(0)).unwrap().count(), vertices);
+    assert_eq!(prim.get(&gltf::Semantic::Extras("TILE".into())).unwrap().count(), vertices);
+    let indices = prim.indices().unwrap();
+    assert_eq!(indices.count(), 14 * 12 * 24 * 3);
+    // Read the index buffer back and check every index is in range.
+    let blob = gltf.blob.as_ref().unwrap();
+    let view = indices.view().unwrap();
+    let start = view.offset() + indices.offset();
+    let max = blob[start..start + indices.count() * 4]
+        .chunks_exact(4)
+        .map(|c| u32::from_le_bytes([c[0], c[1], c[2], c[3]]))
+        .max()
+        .unwrap();
+    assert_eq!(max as usize, vertices - 1);
+
+    let obj = tmp("map.obj");
+    ok(&["export", map.to_str().unwrap(), "-o", obj.to_str().unwrap()]);
+    let text = std::fs::read_to_string(&obj).unwrap();
+    assert_eq!(text.lines().filter(|l| l.starts_with("v ")).count(), vertices);
+    assert_eq!(text.lines().filter(|l| l.starts_with("vn ")).count(), vertices);
+    assert_eq!(text.lines().filter(|l| l.starts_with("f ")).count(), 14 * 12 * 24);
+}
+
+#[test]
+fn stats_prints_counts_and_sharpness() {
+    let out = ok(&["stats", repo().join("assets/maps/thesis/map00.ron").to_str().unwrap()]);
+    for needle in ["sea", "land", "mountain", "total     900", "vertices", "triangles", "max", "average", "eq. 7.3"] {
+        assert!(out.contains(needle), "{needle:?} missing from {out}");
+    }
+}
+
+#[test]
+fn experiments_write_every_table_and_picture() {
+    let dir = tmp("experiments");
+    let maps = repo().join("assets/maps/thesis");
+    ok(&[
+        "experiments",
+        "--out",
+        dir.to_str().unwrap(),
+        "--maps",
+        maps.to_str().unwrap(),
+        "--runs",
+        "1",
+        "--max-hexes",
+        "200",
+        "--width",
+        "48",
+        "--rings",
+        "1",
+    ]);
+    let md = std::fs::read_to_string(dir.join("README.md")).unwrap();
+    for table in ["Table 5", "Table 6", "Table 7", "Table 8", "Table 9", "Map13", "Map4'"] {
+        assert!(md.contains(table), "{table} missing");
+    }
+    for i in 0..16 {
+        assert!(dir.join(format!("images/map{i:02}_raw.png")).exists());
+        assert!(dir.join(format!("images/map{i:02}_tiled.png")).exists());
+    }
+}
