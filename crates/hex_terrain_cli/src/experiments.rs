@@ -209,10 +209,15 @@ pub fn run(o: &Options) -> CliResult<()> {
     // Table 6.
     let _ = writeln!(
         md,
-        "\n## Table 6: sharpness (% of max elevation)\n\nCurvature (eq. 4.1) at each vertex is the largest `|2a2 - a1 - a3|` over the three lattice lines through it. Manipulated vertices are those hex unity or edge/corner correction moved. `s` is eq. 7.3; \"mesh avg\" is the manipulated mesh's average over every vertex, measured directly. Two pulls for inner vertices: **clamp** (default: the least move that puts every inner vertex in its tile type's range) and **thesis** (Algorithm 3 as written: halfway to the threshold); \"outside\" counts inner vertices the thesis pull leaves outside their range (invariant 4).\n\n| map | raw max | raw avg | clamp max | clamp avg | clamp v1 | clamp s | clamp mesh avg | thesis-pull max | thesis-pull avg | thesis-pull s | outside | thesis raw max | thesis raw avg | thesis max | thesis avg | thesis v1 | thesis s |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
+        "\n## Table 6: sharpness (% of max elevation), {} inner rings ({:.0} vertices a hex; the thesis has ~32)\n\nCurvature (eq. 4.1) at each vertex is the largest `|2a2 - a1 - a3|` over the three lattice lines through it. Manipulated vertices are those hex unity or edge/corner correction moved. `s` is eq. 7.3; \"mesh avg\" is the manipulated mesh's average over every vertex, measured directly. Two pulls for inner vertices: **clamp** (default: the least move that puts every inner vertex in its tile type's range) and **thesis** (Algorithm 3 as written: halfway to the threshold); \"outside\" counts inner vertices the thesis pull leaves outside their range (invariant 4).\n\n| map | raw max | raw avg | clamp max | clamp avg | clamp v1 | clamp s | clamp mesh avg | thesis-pull max | thesis-pull avg | thesis-pull s | outside | thesis raw max | thesis raw avg | thesis max | thesis avg | thesis v1 | thesis s |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|",
+        o.rings,
+        3.0 * f64::from(o.rings + 1).powi(2)
     );
     for ((name, config), t) in rows.iter().zip(TABLE_6) {
         bar.set_message(format!("table 6 {name}"));
+        let mut config = config.clone();
+        config.terrain.inner_rings = o.rings;
+        let config = &config;
         let max_e = config.terrain.max_elevation;
         let raw_mesh = build(raw(config))?.generate_map().ok_or("bounded")?;
         let clamp_mesh = build(config.clone())?.generate_map().ok_or("bounded")?;
@@ -244,6 +249,31 @@ pub fn run(o: &Options) -> CliResult<()> {
             t.5
         );
         bar.inc(1);
+    }
+
+    // Sharpness against ring count (the thesis' conclusion: more inner hexagons, less sharpness).
+    let _ = writeln!(
+        md,
+        "\n## Sharpness of Map0 against the number of inner rings\n\n| inner rings | vertices a hex | raw max | raw avg | manipulated max | manipulated avg | v1 | s (eq. 7.3) | mesh avg |\n|---|---|---|---|---|---|---|---|---|"
+    );
+    for rings in 1..=4 {
+        let mut config = maps[0].clone();
+        config.terrain.inner_rings = rings;
+        let raw_mesh = build(raw(&config))?.generate_map().ok_or("bounded")?;
+        let mesh = build(config.clone())?.generate_map().ok_or("bounded")?;
+        let s = Sharpness::measure(&raw_mesh, &mesh, config.terrain.max_elevation);
+        let _ = writeln!(
+            md,
+            "| {rings} | {} | {:.2} | {:.3} | {:.1} | {:.2} | {} | {:.3} | {:.3} |",
+            3 * (rings + 1).pow(2),
+            s.raw_max,
+            s.raw_average,
+            s.manipulated_max,
+            s.manipulated_average,
+            s.manipulated_vertices,
+            s.weighted_mesh,
+            s.mesh_average
+        );
     }
 
     // Tables 7-9.
