@@ -48,6 +48,26 @@ fn parse() -> Result<Args, String> {
     Ok(args)
 }
 
+/// Median wall times of each workload over `runs` interleaved rounds (each round runs every
+/// workload once, in order), in milliseconds, so drift on a shared machine hits them alike.
+fn time_interleaved(runs: usize, work: &mut [&mut dyn FnMut()]) -> Vec<f64> {
+    let mut samples = vec![Vec::with_capacity(runs); work.len()];
+    for _ in 0..runs {
+        for (w, s) in work.iter_mut().zip(&mut samples) {
+            let start = Instant::now();
+            w();
+            s.push(start.elapsed().as_secs_f64() * 1e3);
+        }
+    }
+    samples
+        .into_iter()
+        .map(|mut s| {
+            s.sort_by(f64::total_cmp);
+            s[s.len() / 2]
+        })
+        .collect()
+}
+
 /// Median wall time of `runs` calls, in milliseconds.
 fn time<T>(runs: usize, mut f: impl FnMut() -> T) -> f64 {
     let mut samples: Vec<f64> = (0..runs)
@@ -70,10 +90,24 @@ fn row(label: &str, x: u32, z: u32, args: &Args) {
     let (v, t) = (mesh.buffers.vertex_count(), mesh.buffers.triangle_count());
     drop(mesh);
     let reference = noise::Perlin::new(full.config().seed);
-    let basic_ms = time(runs, || generate(&basic));
-    let full_ms = time(runs, || generate(&full));
-    let floor_ms = time(runs, || noise_floor(&full));
-    let floor_ref_ms = time(runs, || noise_floor_reference(&full, &reference));
+    let times = time_interleaved(
+        runs,
+        &mut [
+            &mut || {
+                black_box(generate(&basic));
+            },
+            &mut || {
+                black_box(generate(&full));
+            },
+            &mut || {
+                black_box(noise_floor(&full));
+            },
+            &mut || {
+                black_box(noise_floor_reference(&full, &reference));
+            },
+        ],
+    );
+    let (basic_ms, full_ms, floor_ms, floor_ref_ms) = (times[0], times[1], times[2], times[3]);
     let mut peer_vertices = 0;
     let peer_ms = time(runs, || peer_vertices = hexx_columns(&full));
     println!(

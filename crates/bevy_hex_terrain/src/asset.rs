@@ -1,0 +1,98 @@
+//! Map configs as Bevy assets: `*.map.ron` (and `*.ron`) files loaded into [`HexMapAsset`].
+
+use std::sync::Arc;
+
+use bevy::asset::io::Reader;
+use bevy::asset::{AssetLoader, LoadContext};
+use bevy::prelude::*;
+use hex_terrain::{ConfigError, HeightImage, HeightSourceConfig, ImageError, MapConfig};
+use thiserror::Error;
+
+/// A loaded map config, with the heightmap of an `Image` source already decoded.
+#[derive(Asset, TypePath, Debug, Clone)]
+pub struct HexMapAsset {
+    /// The validated config.
+    pub config: MapConfig,
+    /// The decoded heightmap when the config's source is `Image`.
+    pub image: Option<Arc<HeightImage>>,
+}
+
+/// Loads [`HexMapAsset`]s from RON.
+#[derive(Debug, Default, TypePath)]
+pub struct HexMapLoader;
+
+/// Why a map config asset failed to load. A failed (re)load leaves the terrain as it was.
+#[non_exhaustive]
+#[derive(Debug, Error)]
+pub enum HexMapLoaderError {
+    /// The file could not be read.
+    #[error("could not read the map config: {0}")]
+    Io(#[from] std::io::Error),
+    /// Not UTF-8.
+    #[error("the map config is not UTF-8: {0}")]
+    Utf8(#[from] std::str::Utf8Error),
+    /// Malformed RON; carries line and column.
+    #[error("malformed map config at {0}")]
+    Ron(#[from] ron::error::SpannedError),
+    /// A value out of range.
+    #[error(transparent)]
+    Invalid(#[from] ConfigError),
+    /// The heightmap of an `Image` source could not be read.
+    #[error("heightmap {path}: {source}")]
+    Image {
+        /// Asset path of the heightmap.
+        path: String,
+        /// The underlying error.
+        #[source]
+        source: ImageError,
+    },
+    /// The heightmap of an `Image` source could not be read from the asset source.
+    #[error("heightmap {path}: {message}")]
+    ImageRead {
+        /// Asset path of the heightmap.
+        path: String,
+        /// What went wrong.
+        message: String,
+    },
+}
+
+impl AssetLoader for HexMapLoader {
+    type Asset = HexMapAsset;
+    type Settings = ();
+    type Error = HexMapLoaderError;
+
+    async fn load(
+        &self,
+        reader: &mut dyn Reader,
+        _settings: &(),
+        load_context: &mut LoadContext<'_>,
+    ) -> Result<HexMapAsset, HexMapLoaderError> {
+        let mut bytes = Vec::new();
+        reader.read_to_end(&mut bytes).await?;
+        let config: MapConfig = ron::de::from_str(std::str::from_utf8(&bytes)?)?;
+        config.validate()?;
+        let image = match &config.source {
+            HeightSourceConfig::Noise => None,
+            HeightSourceConfig::Image { path, .. } => {
+                // Relative to the map file, like any asset dependency.
+                let asset_path = load_context
+                    .path()
+                    .resolve_embed_str(path)
+                    .map_err(|e| HexMapLoaderError::ImageRead { path: path.clone(), message: e.to_string() })?;
+                let bytes = load_context
+                    .read_asset_bytes(asset_path.clone())
+                    .await
+                    .map_err(|e| HexMapLoaderError::ImageRead { path: path.clone(), message: e.to_string() })?;
+                Some(Arc::new(
+                    HeightImage::from_png_bytes(&bytes)
+                        .map_err(|source| HexMapLoaderError::Image { path: path.clone(), source })?,
+                ))
+            }
+        };
+        Ok(HexMapAsset { config, image })
+    }
+
+    fn extensions(&self) -> &[&str] {
+        &["map.ron", "ron"]
+    }
+}

@@ -1,0 +1,206 @@
+//! The [`HexMap`] resource: the active map and the queries a strategy game needs, answered by
+//! the core crate so they hold for tiles whose chunk is not loaded.
+
+use std::sync::Arc;
+
+use bevy::asset::AssetLoadFailedEvent;
+use bevy::math::Ray3d;
+use bevy::platform::collections::HashSet;
+use bevy::prelude::*;
+use hex_terrain::hexx::Hex;
+use hex_terrain::{ChunkCoord, MapConfig, Terrain, TileInfo, TileKind};
+
+use crate::asset::HexMapAsset;
+
+/// The active map: its config, layout and tile queries.
+///
+/// Positions are Bevy world coordinates: `x` and `z` on the ground, `y` up.
+#[derive(Resource, Clone)]
+pub struct HexMap {
+    terrain: Arc<Terrain>,
+    generation: u64,
+    waiting_for_asset: bool,
+    pub(crate) loaded: HashSet<ChunkCoord>,
+}
+
+impl HexMap {
+    /// A map from a valid config.
+    ///
+    /// # Errors
+    /// The first invalid field of the config.
+    pub fn new(config: MapConfig) -> Result<Self, hex_terrain::ConfigError> {
+        Ok(Self::from_terrain(Terrain::new(config)?))
+    }
+
+    pub(crate) fn from_terrain(terrain: Terrain) -> Self {
+        Self { terrain: Arc::new(terrain), generation: 0, waiting_for_asset: false, loaded: HashSet::default() }
+    }
+
+    /// The active config.
+    #[must_use]
+    pub fn config(&self) -> &MapConfig {
+        self.terrain.config()
+    }
+
+    /// The core generator, shareable with tasks and other threads.
+    #[must_use]
+    pub fn terrain(&self) -> &Arc<Terrain> {
+        &self.terrain
+    }
+
+    /// Increases each time a new config takes effect (hot reload); chunks of an older generation
+    /// are regenerated.
+    #[must_use]
+    pub fn generation(&self) -> u64 {
+        self.generation
+    }
+
+    /// Whether the map still waits for its config asset (no chunks are streamed until then).
+    #[must_use]
+    pub fn is_waiting_for_asset(&self) -> bool {
+        self.waiting_for_asset
+    }
+
+    pub(crate) fn set_waiting(&mut self, waiting: bool) {
+        self.waiting_for_asset = waiting;
+    }
+
+    /// Replaces the terrain, starting a new generation.
+    pub fn replace(&mut self, terrain: Terrain) {
+        self.terrain = Arc::new(terrain);
+        self.generation += 1;
+        self.waiting_for_asset = false;
+    }
+
+    /// The tile under a world position (its `y` is ignored).
+    #[must_use]
+    pub fn tile_at(&self, world: Vec3) -> Hex {
+        self.terrain.tile_at(world.x, world.z)
+    }
+
+    /// The first tile a ray hits on the real terrain surface (not a flat plane), within
+    /// `max_distance`.
+    #[must_use]
+    pub fn raycast(&self, ray: Ray3d, max_distance: f32) -> Option<TileHit> {
+        let hit = self.terrain.raycast(ray.origin.to_array(), ray.direction.to_array(), max_distance)?;
+        Some(TileHit { tile: hit.tile, point: Vec3::from_array(hit.point), distance: hit.distance })
+    }
+
+    /// Type, centre elevation and map membership of a tile.
+    #[must_use]
+    pub fn tile_info(&self, tile: Hex) -> TileInfo {
+        self.terrain.tile_info(tile)
+    }
+
+    /// Type of a tile.
+    #[must_use]
+    pub fn tile_kind(&self, tile: Hex) -> TileKind {
+        self.terrain.tile_kind(tile)
+    }
+
+    /// World position of a tile's centre on the surface: where a unit standing on it goes.
+    #[must_use]
+    pub fn tile_centre(&self, tile: Hex) -> Vec3 {
+        Vec3::from_array(self.terrain.tile_centre(tile))
+    }
+
+    /// Height of the surface at a world position (its `y` is ignored).
+    #[must_use]
+    pub fn surface_height(&self, world: Vec3) -> f32 {
+        self.terrain.surface_height(world.x, world.z)
+    }
+
+    /// The six neighbours of a tile (some may lie outside a bounded map).
+    #[must_use]
+    pub fn neighbours(&self, tile: Hex) -> [Hex; 6] {
+        tile.all_neighbors()
+    }
+
+    /// Whether a tile belongs to the map (always, for an unbounded world).
+    #[must_use]
+    pub fn contains(&self, tile: Hex) -> bool {
+        self.terrain.contains(tile)
+    }
+
+    /// The chunk holding a tile.
+    #[must_use]
+    pub fn chunk_of(&self, tile: Hex) -> ChunkCoord {
+        self.terrain.chunk_of(tile)
+    }
+
+    /// Whether a chunk's mesh is in the world.
+    #[must_use]
+    pub fn is_chunk_loaded(&self, chunk: ChunkCoord) -> bool {
+        self.loaded.contains(&chunk)
+    }
+
+    /// The chunks whose meshes are in the world.
+    pub fn loaded_chunks(&self) -> impl Iterator<Item = ChunkCoord> + '_ {
+        self.loaded.iter().copied()
+    }
+}
+
+/// A ray hitting a tile.
+#[derive(Debug, Clone, Copy, PartialEq, Reflect)]
+pub struct TileHit {
+    /// The tile hit.
+    #[reflect(ignore)]
+    pub tile: Hex,
+    /// World position of the hit on the surface.
+    pub point: Vec3,
+    /// Distance along the ray.
+    pub distance: f32,
+}
+
+/// The map asset the plugin follows, when the map comes from a file.
+#[derive(Resource, Debug, Clone, Default)]
+pub struct HexMapHandle(pub Option<Handle<HexMapAsset>>);
+
+/// A map config that could not be applied: the terrain stays as it was.
+#[derive(Message, Debug, Clone, Reflect)]
+pub struct HexMapError {
+    /// What went wrong, with the field or the line and column.
+    pub message: String,
+}
+
+impl HexMap {
+    /// Applies a loaded or hot-reloaded map asset; logs and reports a bad one, keeping the old
+    /// terrain.
+    pub(crate) fn apply_asset(
+        mut map: ResMut<HexMap>,
+        handle: Res<HexMapHandle>,
+        assets: Res<Assets<HexMapAsset>>,
+        mut events: MessageReader<AssetEvent<HexMapAsset>>,
+        mut failures: MessageReader<AssetLoadFailedEvent<HexMapAsset>>,
+        mut errors: MessageWriter<HexMapError>,
+    ) {
+        let Some(handle) = &handle.0 else { return };
+        for failure in failures.read() {
+            if failure.id == handle.id() {
+                let message =
+                    format!("map {} not applied, keeping the current terrain: {}", failure.path, failure.error);
+                error!("{message}");
+                errors.write(HexMapError { message });
+            }
+        }
+        let changed = events.read().any(|e| match e {
+            AssetEvent::LoadedWithDependencies { id } | AssetEvent::Modified { id } => *id == handle.id(),
+            _ => false,
+        });
+        if !changed {
+            return;
+        }
+        let Some(asset) = assets.get(handle) else { return };
+        match Terrain::with_image(asset.config.clone(), asset.image.clone()) {
+            Ok(terrain) => {
+                info!("hex terrain: map {:?} applied", asset.config.name);
+                map.replace(terrain);
+            }
+            Err(e) => {
+                let message = format!("map not applied, keeping the current terrain: {e}");
+                error!("{message}");
+                errors.write(HexMapError { message });
+            }
+        }
+    }
+}

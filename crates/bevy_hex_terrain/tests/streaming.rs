@@ -1,0 +1,290 @@
+//! Headless `App` tests (`MinimalPlugins` + `AssetPlugin`): streaming, seams, hot reload, queries.
+
+use std::collections::{HashMap, HashSet};
+use std::time::Duration;
+
+use bevy::asset::AssetPlugin;
+use bevy::prelude::*;
+use bevy_hex_terrain::hex_terrain::{ChunkCoord, MapSize, Terrain};
+use bevy_hex_terrain::prelude::*;
+use bevy_hex_terrain::{ChunkStreamer, HexMapAsset, HexMapHandle};
+
+fn unbounded(chunk: (u32, u32)) -> MapConfig {
+    MapConfig { size: MapSize::Unbounded, chunk_size: chunk, ..MapConfig::default() }
+}
+
+fn settings(radius: u32) -> HexTerrainSettings {
+    HexTerrainSettings {
+        load_radius: radius,
+        prefetch: 1,
+        unload_hysteresis: 1,
+        max_inserts_per_frame: 16,
+        max_tasks_in_flight: 16,
+    }
+}
+
+fn app_with(plugin: HexTerrainPlugin, asset_dir: Option<&std::path::Path>) -> App {
+    let mut app = App::new();
+    let assets = AssetPlugin { file_path: asset_dir.map_or("assets".into(), |d| d.display().to_string()), ..default() };
+    app.add_plugins((MinimalPlugins, assets, TransformPlugin, plugin));
+    app
+}
+
+fn app(config: MapConfig, radius: u32) -> App {
+    app_with(HexTerrainPlugin { map: config.into(), settings: settings(radius) }, None)
+}
+
+fn spawn_agent(app: &mut App, at: Vec3) -> Entity {
+    app.world_mut().spawn((HexTerrainAgent::default(), Transform::from_translation(at))).id()
+}
+
+/// Updates until `done` holds, letting the task pool work between frames.
+fn run_until(app: &mut App, what: &str, mut done: impl FnMut(&mut App) -> bool) {
+    for _ in 0..2000 {
+        app.update();
+        if done(app) {
+            return;
+        }
+        std::thread::sleep(Duration::from_millis(1));
+    }
+    panic!("gave up waiting for {what}");
+}
+
+fn ready(app: &mut App) -> bool {
+    let messages = app.world().resource::<Messages<TerrainReady>>();
+    let mut cursor = messages.get_cursor();
+    cursor.read(messages).last().is_some_and(|r| r.generation == app.world().resource::<HexMap>().generation())
+        && app.world_mut().query::<&bevy_hex_terrain::ChunkTask>().iter(app.world()).next().is_none()
+}
+
+fn chunk_coords(app: &mut App) -> HashSet<IVec2> {
+    app.world_mut().query::<&HexChunk>().iter(app.world()).map(|c| c.coord).collect()
+}
+
+fn meshed_chunks(app: &mut App) -> HashMap<IVec2, Handle<Mesh>> {
+    app.world_mut().query::<(&HexChunk, &Mesh3d)>().iter(app.world()).map(|(c, m)| (c.coord, m.0.clone())).collect()
+}
+
+fn window(centre: ChunkCoord, r: i32) -> HashSet<IVec2> {
+    (-r..=r).flat_map(|dz| (-r..=r).map(move |dx| IVec2::new(centre.x + dx, centre.z + dz))).collect()
+}
+
+fn agent_chunk(app: &App, at: Vec3) -> ChunkCoord {
+    let map = app.world().resource::<HexMap>();
+    map.chunk_of(map.tile_at(at))
+}
+
+#[test]
+fn chunks_appear_around_the_agent_and_only_there() {
+    let mut app = app(unbounded((8, 8)), 1);
+    let at = Vec3::new(30.0, 0.0, -20.0);
+    spawn_agent(&mut app, at);
+    run_until(&mut app, "terrain ready", ready);
+    let centre = agent_chunk(&app, at);
+    // radius 1 plus the prefetch ring
+    assert_eq!(chunk_coords(&mut app), window(centre, 2));
+    assert_eq!(meshed_chunks(&mut app).len(), 25);
+    let map = app.world().resource::<HexMap>();
+    assert_eq!(map.loaded_chunks().count(), 25);
+}
+
+#[test]
+fn moving_spawns_ahead_and_despawns_behind() {
+    let mut app = app(unbounded((8, 8)), 1);
+    let agent = spawn_agent(&mut app, Vec3::ZERO);
+    run_until(&mut app, "terrain ready", ready);
+    // 8 columns of flat hexes are 12 world units; move 6 chunks east.
+    let to = Vec3::new(6.0 * 12.0, 0.0, 0.0);
+    app.world_mut().entity_mut(agent).insert(Transform::from_translation(to));
+    run_until(&mut app, "terrain ready after the move", |app| {
+        let c = agent_chunk(app, to);
+        window(c, 2).is_subset(&meshed_chunks(app).keys().copied().collect()) && ready(app)
+    });
+    let centre = agent_chunk(&app, to);
+    let coords = chunk_coords(&mut app);
+    assert!(window(centre, 2).is_subset(&coords));
+    // Nothing beyond radius + prefetch + hysteresis remains.
+    for c in &coords {
+        assert!((c.x - centre.x).abs() <= 3 && (c.y - centre.z).abs() <= 3, "stale chunk {c} kept");
+    }
+    assert!(!coords.contains(&IVec2::new(0, 0)) || centre.x <= 3, "the start chunk was dropped");
+}
+
+#[test]
+fn long_walk_keeps_chunk_count_and_meshes_bounded() {
+    let mut app = app(unbounded((4, 4)), 1);
+    let agent = spawn_agent(&mut app, Vec3::ZERO);
+    let mut max_live = 0;
+    // 4 flat columns are 6 world units: 700 chunk steps east, 3500 chunks generated in all.
+    for step in 0..700 {
+        let at = Vec3::new(step as f32 * 6.0, 0.0, 0.0);
+        app.world_mut().entity_mut(agent).insert(Transform::from_translation(at));
+        for _ in 0..3 {
+            app.update();
+        }
+        let live = app.world().resource::<ChunkStreamer>().live_chunks();
+        max_live = max_live.max(live);
+    }
+    run_until(&mut app, "terrain ready at the end", ready);
+    let streamer = app.world().resource::<ChunkStreamer>();
+    assert!(streamer.tasks_started > 2000, "walked over {} chunk builds", streamer.tasks_started);
+    // radius + prefetch + hysteresis = 3: at most a 7x7 window.
+    assert!(max_live <= 49, "live chunks peaked at {max_live}");
+    for _ in 0..5 {
+        app.update();
+    }
+    let meshes = app.world().resource::<Assets<Mesh>>().len();
+    assert!(meshes <= 49, "{meshes} meshes alive: despawned chunks must free theirs");
+}
+
+#[test]
+fn neighbouring_chunks_share_identical_border_vertices() {
+    let mut app = app(unbounded((6, 6)), 1);
+    spawn_agent(&mut app, Vec3::ZERO);
+    run_until(&mut app, "terrain ready", ready);
+    let handles = meshed_chunks(&mut app);
+    let meshes = app.world().resource::<Assets<Mesh>>();
+    let vertices = |coord: IVec2| -> HashMap<[u32; 2], ([u32; 3], [u32; 3])> {
+        let mesh = meshes.get(&handles[&coord]).unwrap();
+        let p = mesh.attribute(Mesh::ATTRIBUTE_POSITION).unwrap().as_float3().unwrap();
+        let n = mesh.attribute(Mesh::ATTRIBUTE_NORMAL).unwrap().as_float3().unwrap();
+        p.iter()
+            .zip(n)
+            .map(|(p, n)| ([p[0].to_bits(), p[2].to_bits()], (p.map(f32::to_bits), n.map(f32::to_bits))))
+            .collect()
+    };
+    let mut shared_total = 0;
+    for (a, b) in [
+        (IVec2::new(0, 0), IVec2::new(1, 0)),
+        (IVec2::new(0, 0), IVec2::new(0, 1)),
+        (IVec2::new(-1, -1), IVec2::new(-1, 0)),
+    ] {
+        let (va, vb) = (vertices(a), vertices(b));
+        let mut shared = 0;
+        for (xz, bits) in &va {
+            if let Some(other) = vb.get(xz) {
+                assert_eq!(bits, other, "vertex at {xz:?} differs between chunks {a} and {b}");
+                shared += 1;
+            }
+        }
+        assert!(shared >= 6 * 2, "chunks {a} and {b} share {shared} vertices");
+        shared_total += shared;
+    }
+    assert!(shared_total > 0);
+}
+
+#[test]
+fn map_queries_agree_with_the_core_crate() {
+    let config = MapConfig { size: MapSize::Bounded { x: 20, z: 14 }, chunk_size: (8, 8), ..MapConfig::default() };
+    let mut app = app(config.clone(), 1);
+    // No agent: a bounded map is generated whole.
+    run_until(&mut app, "whole map ready", ready);
+    assert_eq!(chunk_coords(&mut app).len(), 3 * 2);
+    let core = Terrain::new(config).unwrap();
+    let map = app.world().resource::<HexMap>();
+    for tile in core.tiles().step_by(7) {
+        assert_eq!(map.tile_info(tile), core.tile_info(tile));
+        let centre = map.tile_centre(tile);
+        assert_eq!(centre.to_array(), core.tile_centre(tile));
+        assert_eq!(map.tile_at(centre), tile);
+        assert!(map.contains(tile));
+        assert_eq!(map.neighbours(tile), tile.all_neighbors());
+        let ray = Ray3d::new(centre + Vec3::new(2.0, 30.0, 1.0), Dir3::new(-Vec3::new(2.0, 30.0, 1.0)).unwrap());
+        let hit = map.raycast(ray, 100.0).unwrap();
+        assert_eq!(hit.tile, tile);
+        assert!((hit.point - centre).length() < 0.05);
+        assert!(map.is_chunk_loaded(map.chunk_of(tile)));
+    }
+    // Queries answer for tiles outside the map and far from any loaded chunk too.
+    let far = Hex::new(500, -300);
+    assert!(!map.contains(far));
+    assert_eq!(map.tile_info(far), core.tile_info(far));
+}
+
+#[test]
+fn far_teleport_cancels_stale_work() {
+    let mut s = settings(3);
+    s.max_tasks_in_flight = 40;
+    s.max_inserts_per_frame = 1;
+    let mut app = app_with(HexTerrainPlugin { map: unbounded((16, 16)).into(), settings: s }, None);
+    let agent = spawn_agent(&mut app, Vec3::ZERO);
+    app.update();
+    let started = app.world().resource::<ChunkStreamer>().tasks_started;
+    assert_eq!(started, 40, "a bounded number of tasks at once");
+    let far = Vec3::new(100_000.0, 0.0, -80_000.0);
+    app.world_mut().entity_mut(agent).insert(Transform::from_translation(far));
+    app.update();
+    app.update();
+    let streamer = app.world().resource::<ChunkStreamer>();
+    assert!(streamer.tasks_cancelled > 0, "work for the old place was dropped");
+    let centre = agent_chunk(&app, far);
+    for c in chunk_coords(&mut app) {
+        assert!((c.x - centre.x).abs() <= 5 && (c.y - centre.z).abs() <= 5, "stale chunk {c} survived the teleport");
+    }
+    run_until(&mut app, "terrain ready at the destination", ready);
+}
+
+fn write(dir: &std::path::Path, name: &str, text: &str) {
+    std::fs::write(dir.join(name), text).unwrap();
+}
+
+#[test]
+fn hot_reload_regenerates_every_chunk_and_a_bad_edit_keeps_the_terrain() {
+    let dir = std::env::temp_dir().join(format!("hex-terrain-plugin-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    write(&dir, "test.map.ron", "(seed: 5, size: Bounded(x: 16, z: 16), chunk_size: (8, 8))");
+    let mut app = app_with(HexTerrainPlugin::from_asset("test.map.ron"), Some(&dir));
+    run_until(&mut app, "first map", |app| app.world().resource::<HexMap>().config().seed == 5 && ready(app));
+    let first = meshed_chunks(&mut app);
+    assert_eq!(first.len(), 4);
+    let generation = app.world().resource::<HexMap>().generation();
+
+    // An edit: the asset changes, every chunk gets a mesh of the new generation.
+    let handle = app.world().resource::<HexMapHandle>().0.clone().unwrap();
+    let mut config = app.world().resource::<Assets<HexMapAsset>>().get(&handle).unwrap().config.clone();
+    config.seed = 6;
+    app.world_mut()
+        .resource_mut::<Assets<HexMapAsset>>()
+        .insert(handle.id(), HexMapAsset { config, image: None })
+        .unwrap();
+    run_until(&mut app, "reloaded map", |app| {
+        let g = app.world().resource::<HexMap>().generation();
+        g > generation && ready(app)
+    });
+    let reloaded = app.world().resource::<HexMap>().generation();
+    for chunk in app.world_mut().query::<&HexChunk>().iter(app.world()) {
+        assert_eq!(chunk.generation, Some(reloaded), "chunk {} regenerated", chunk.coord);
+    }
+    let second = meshed_chunks(&mut app);
+    assert!(second.iter().all(|(c, h)| first[c] != *h), "new meshes replaced the old ones");
+
+    // A broken edit: logged and reported, the terrain stays.
+    write(&dir, "test.map.ron", "(seed: 7, size: Bounded(x: 16, z: 16), chunk_size: (8, 8)");
+    app.world().resource::<AssetServer>().reload("test.map.ron");
+    run_until(&mut app, "the error report", |app| {
+        let messages = app.world().resource::<Messages<HexMapError>>();
+        messages.get_cursor().read(messages).next().is_some()
+    });
+    for _ in 0..10 {
+        app.update();
+    }
+    let map = app.world().resource::<HexMap>();
+    assert_eq!(map.generation(), reloaded);
+    assert_eq!(map.config().seed, 6);
+    assert_eq!(meshed_chunks(&mut app), second, "the terrain is unchanged");
+
+    // An out-of-range value is refused the same way, naming the field.
+    write(&dir, "test.map.ron", "(seed: 8, size: Bounded(x: 16, z: 16), noise: (octaves: 0))");
+    app.world().resource::<AssetServer>().reload("test.map.ron");
+    let mut message = String::new();
+    run_until(&mut app, "the error report", |app| {
+        let messages = app.world().resource::<Messages<HexMapError>>();
+        if let Some(m) = messages.get_cursor().read(messages).find(|m| m.message.contains("octaves")) {
+            message = m.message.clone();
+        }
+        !message.is_empty()
+    });
+    assert!(message.contains("noise.octaves"), "{message}");
+    assert_eq!(app.world().resource::<HexMap>().config().seed, 6);
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -1,0 +1,22 @@
+//! The shortest program that shows hex terrain: the plugin, a camera that streams terrain around
+//! itself, and a light.
+
+use bevy::prelude::*;
+use hex_terrain_game::prelude::*;
+
+fn main() {
+    App::new()
+        .add_plugins((DefaultPlugins, HexTerrainPlugin::default()))
+        .add_systems(Startup, |mut commands: Commands| {
+            commands.spawn((
+                Camera3d::default(),
+                HexTerrainAgent::default(),
+                Transform::from_xyz(0.0, 40.0, 45.0).looking_at(Vec3::ZERO, Vec3::Y),
+            ));
+            commands.spawn((
+                DirectionalLight::default(),
+                Transform::from_xyz(5.0, 10.0, 3.0).looking_at(Vec3::ZERO, Vec3::Y),
+            ));
+        })
+        .run();
+}
