@@ -7,6 +7,8 @@ use hex_terrain_game::prelude::*;
 fn main() {
     App::new()
         .add_plugins((DefaultPlugins, HexTerrainPlugin::default()))
+        // Only acts when HEXTERRAIN_SCREENSHOT names a PNG: saves it after some frames and exits.
+        .add_plugins(hex_terrain_game::screenshot::ScreenshotModePlugin)
         .add_systems(Startup, |mut commands: Commands| {
             commands.spawn((
                 Camera3d::default(),

@@ -9,3 +9,5 @@ pub use bevy_hex_terrain::*;
 pub mod prelude {
     pub use bevy_hex_terrain::prelude::*;
 }
+
+pub mod screenshot;

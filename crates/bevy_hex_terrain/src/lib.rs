@@ -57,13 +57,15 @@ pub enum MapSource {
 }
 
 impl Default for MapSource {
-    /// An unbounded continent with the thesis' Map0 noise.
+    /// An unbounded continent: the thesis' Map0 noise, two inner rings, a maximum elevation of
+    /// four hex radii (Map0's ten makes unit-sized hexes look like needles).
     fn default() -> Self {
-        Self::Config(Box::new(MapConfig {
-            name: "Continent".into(),
-            size: hex_terrain::MapSize::Unbounded,
-            ..MapConfig::default()
-        }))
+        let mut config =
+            MapConfig { name: "Continent".into(), size: hex_terrain::MapSize::Unbounded, ..MapConfig::default() };
+        config.terrain.max_elevation = 4.0;
+        config.terrain.inner_rings = 2;
+        config.noise.scale = 60.0;
+        Self::Config(Box::new(config))
     }
 }
 

@@ -48,8 +48,10 @@ pub fn chunk_to_mesh(terrain: &Terrain, chunk: ChunkMesh) -> Mesh {
         .iter()
         .map(|p| {
             let h = if max > 0.0 { p[1] / max } else { 0.0 };
+            // The palette is sRGB; vertex colours are linear.
             let [r, g, bl] = albedo(h, t.sea_threshold, t.mountain_threshold, blend);
-            [r, g, bl, 1.0]
+            let c = LinearRgba::from(Srgba::rgb(r, g, bl));
+            [c.red, c.green, c.blue, 1.0]
         })
         .collect();
     let tile: Vec<[f32; 2]> = b.tile_kinds.iter().zip(&b.centre_distances).map(|(&k, &d)| [k as f32, d]).collect();
