@@ -202,6 +202,22 @@ fn map_queries_agree_with_the_core_crate() {
 }
 
 #[test]
+fn bounded_maps_never_spawn_chunks_outside() {
+    let config = MapConfig { size: MapSize::Bounded { x: 20, z: 14 }, chunk_size: (8, 8), ..MapConfig::default() };
+    let mut app = app(config.clone(), 2);
+    // An agent at the map's corner and one far outside it.
+    spawn_agent(&mut app, Vec3::ZERO);
+    spawn_agent(&mut app, Vec3::new(-500.0, 0.0, 300.0));
+    run_until(&mut app, "terrain ready", ready);
+    let core = Terrain::new(config).unwrap();
+    let coords = chunk_coords(&mut app);
+    assert!(!coords.is_empty());
+    for c in coords {
+        assert!(core.chunk_rect(ChunkCoord::new(c.x, c.y)).is_some(), "chunk {c} lies outside the map");
+    }
+}
+
+#[test]
 fn far_teleport_cancels_stale_work() {
     let mut s = settings(3);
     s.max_tasks_in_flight = 40;

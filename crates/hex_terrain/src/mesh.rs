@@ -139,22 +139,41 @@ impl Flags {
     }
 }
 
-/// Unit normal at a vertex of height `h0`: the sum of the six lattice triangles' face normals
-/// (area-weighted), from the relative positions of its neighbours, so every chunk computes the
-/// same bits for a shared vertex.
-#[inline]
-fn normal(around: &[[f32; 2]; 6], h0: f32, height: impl Fn(usize) -> f32) -> [f32; 3] {
-    let e: [[f32; 3]; 6] = std::array::from_fn(|k| [around[k][0], height(k) - h0, around[k][1]]);
-    let mut sum = [0.0_f32; 3];
-    for k in 0..6 {
-        let (u, v) = (e[(k + 1) % 6], e[k]);
-        // u x v: upward for a counter-clockwise pair in (x, z).
-        sum[0] += u[1] * v[2] - u[2] * v[1];
-        sum[1] += u[2] * v[0] - u[0] * v[2];
-        sum[2] += u[0] * v[1] - u[1] * v[0];
+/// Coefficients of the smooth normal: the sum of the six lattice triangles' face normals
+/// (area-weighted) around a vertex is `(Σ dₖ·x[k], y, Σ dₖ·z[k])`, with `dₖ` the height of the
+/// k-th neighbour minus the vertex's, because every lattice offset is flat.
+struct NormalCoefficients {
+    x: [f32; 6],
+    y: f32,
+    z: [f32; 6],
+}
+
+impl NormalCoefficients {
+    fn new(around: &[[f32; 2]; 6]) -> Self {
+        // Σ (e_{k+1} × e_k) with e_k = (ax_k, d_k, az_k), collected by d_k.
+        let (mut x, mut z, mut y) = ([0.0_f32; 6], [0.0_f32; 6], 0.0_f32);
+        for k in 0..6 {
+            let (prev, next) = ((k + 5) % 6, (k + 1) % 6);
+            x[k] = around[prev][1] - around[next][1];
+            z[k] = around[next][0] - around[prev][0];
+            y += around[next][1] * around[k][0] - around[next][0] * around[k][1];
+        }
+        Self { x, y, z }
     }
-    let len = (sum[0] * sum[0] + sum[1] * sum[1] + sum[2] * sum[2]).sqrt();
-    if len > 0.0 && len.is_finite() { sum.map(|c| c / len) } else { [0.0, 1.0, 0.0] }
+
+    /// Unit normal at a vertex of height `h0`; the same inputs give the same bits in every chunk.
+    #[inline]
+    fn normal(&self, h0: f32, height: impl Fn(usize) -> f32) -> [f32; 3] {
+        let (mut nx, mut nz) = (0.0_f32, 0.0_f32);
+        for k in 0..6 {
+            let d = height(k) - h0;
+            nx += d * self.x[k];
+            nz += d * self.z[k];
+        }
+        let n = [nx, self.y, nz];
+        let len = (nx * nx + self.y * self.y + nz * nz).sqrt();
+        if len > 0.0 && len.is_finite() { n.map(|c| c / len) } else { [0.0, 1.0, 0.0] }
+    }
 }
 
 /// Lattice directions around a vertex, counter-clockwise in lattice space.
@@ -253,9 +272,12 @@ impl Terrain {
         let halo = rect.grow(1);
         let halo_width = (halo.max[0] - halo.min[0]) as usize;
         let halo_index = |[c, r]: [i32; 2]| (r - halo.min[1]) as usize * halo_width + (c - halo.min[0]) as usize;
+        let halo_tiles: Vec<Hex> = halo.iter().map(|oc| self.tile_from_offset(oc)).collect();
+        let centres_lattice: Vec<Hex> = halo_tiles.iter().map(|&t| lattice.tile_centre(t)).collect();
+        let centre_noise = self.noise_at(&centres_lattice);
         let kinds: Vec<Option<TileKind>> = par_map(halo.len(), |k| {
-            let oc = [halo.min[0] + (k % halo_width) as i32, halo.min[1] + (k / halo_width) as i32];
-            self.map_tile_kind(self.tile_from_offset(oc))
+            let tile = halo_tiles[k];
+            self.contains(tile).then(|| self.thresholds().classify(self.shaped(centre_noise[k], centres_lattice[k])))
         });
         let tile_kinds: Vec<TileKind> = rect.iter().map(|oc| kinds[halo_index(oc)].unwrap_or(TileKind::Sea)).collect();
         let kind_of = |tile: Hex| {
@@ -298,6 +320,7 @@ impl Terrain {
             let (i, j) = (f64::from(d.x), f64::from(d.y));
             [(i * step_a[0] + j * step_b[0]) as f32, (i * step_a[1] + j * step_b[1]) as f32]
         });
+        let coefficients = NormalCoefficients::new(&around);
         let uv_scale = 0.5 / self.config().layout.hex_size;
         let inv_n = 1.0 / n as f32;
         let mut b = MeshBuffers {
@@ -330,11 +353,11 @@ impl Terrain {
                         (_, tile, k) if tile != u32::MAX => {
                             let around_idx = lattice.template_neighbours(usize::from(k));
                             let base = tile as usize * ppt;
-                            normal(&around, heights[i], |d| {
+                            coefficients.normal(heights[i], |d| {
                                 heights[tile_points[base + usize::from(around_idx[d])] as usize]
                             })
                         }
-                        _ => normal(&around, heights[i], |d| heights[grid.get(p + AROUND[d]) as usize]),
+                        _ => coefficients.normal(heights[i], |d| heights[grid.get(p + AROUND[d]) as usize]),
                     };
                 }
             });

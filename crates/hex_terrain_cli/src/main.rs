@@ -136,9 +136,24 @@ fn terrain(config: MapConfig, raw: bool) -> CliResult<Terrain> {
 }
 
 fn whole_map(terrain: &Terrain) -> CliResult<ChunkMesh> {
-    terrain.generate_map().ok_or_else(|| {
+    let (x, z) = terrain.config().size.bounds().ok_or_else(|| {
         "this command needs a bounded map; the config is Unbounded (set size: Bounded(x: .., z: ..))".to_string()
-    })
+    })?;
+    // Large maps take more than a second: show that something is happening.
+    let spinner = (u64::from(x) * u64::from(z) * u64::from(terrain.lattice().subdivisions().pow(2)) > 400_000)
+        .then(|| busy(format!("generating {x}x{z} hexes")));
+    let mesh = terrain.generate_map().ok_or("this command needs a bounded map")?;
+    if let Some(s) = spinner {
+        s.finish_and_clear();
+    }
+    Ok(mesh)
+}
+
+/// A spinner for work that may take more than a second (hidden when stderr is not a terminal).
+pub(crate) fn busy(message: String) -> indicatif::ProgressBar {
+    let s = indicatif::ProgressBar::new_spinner().with_message(message);
+    s.enable_steady_tick(std::time::Duration::from_millis(100));
+    s
 }
 
 fn check_width(width: u32) -> CliResult<()> {
@@ -155,7 +170,11 @@ fn run(cli: Cli) -> CliResult<()> {
             }
             let t = terrain(config, raw)?;
             let mesh = whole_map(&t)?;
+            let spinner = (mesh.buffers.triangle_count() > 2_000_000).then(|| busy("rendering".into()));
             let img = render::render(&t, &mesh, &render::Options { width, outlines })?;
+            if let Some(s) = spinner {
+                s.finish_and_clear();
+            }
             render::save(&img, &output)
         }
         Command::TileImage {
@@ -206,11 +225,17 @@ fn run(cli: Cli) -> CliResult<()> {
         Command::Export { map, output, raw } => {
             let t = terrain(load(&map)?, raw)?;
             let mesh = whole_map(&t)?;
-            match output.extension().and_then(|e| e.to_str()) {
+            let spinner =
+                (mesh.buffers.vertex_count() > 2_000_000).then(|| busy(format!("writing {}", output.display())));
+            let result = match output.extension().and_then(|e| e.to_str()) {
                 Some("glb") => export::write_glb(&mesh, &output),
                 Some("obj") => export::write_obj(&mesh, &output),
                 _ => Err(format!("{}: the output must end in .glb or .obj", output.display())),
+            };
+            if let Some(s) = spinner {
+                s.finish_and_clear();
             }
+            result
         }
         Command::Stats { map } => stats(&map),
         Command::Experiments { out, maps, rings, runs, max_hexes, width } => {
