@@ -21,9 +21,9 @@
 
 pub mod asset;
 pub mod map;
-pub mod mesh;
 #[cfg(feature = "render")]
-pub mod render;
+pub mod material;
+pub mod mesh;
 pub mod streaming;
 
 use bevy::prelude::*;
@@ -32,12 +32,16 @@ use hex_terrain::MapConfig;
 
 pub use crate::asset::{HexMapAsset, HexMapLoader, HexMapLoaderError};
 pub use crate::map::{HexMap, HexMapError, HexMapHandle, TileHit};
+#[cfg(feature = "render")]
+pub use crate::material::{HexTerrainMaterial, TerrainAppearance, TileHighlights};
 pub use crate::streaming::{
     ChunkDespawned, ChunkSpawned, ChunkStreamer, ChunkTask, HexChunk, HexTerrainAgent, HexTerrainSettings, TerrainReady,
 };
 
 /// Everything a game usually needs.
 pub mod prelude {
+    #[cfg(feature = "render")]
+    pub use crate::material::{TerrainAppearance, TileHighlights};
     pub use crate::{
         ChunkDespawned, ChunkSpawned, HexChunk, HexMap, HexMapError, HexTerrainAgent, HexTerrainPlugin,
         HexTerrainSettings, HexTerrainSystems, MapSource, TerrainReady,
@@ -96,12 +100,13 @@ pub enum HexTerrainSystems {
     Stream,
     /// Inserts finished chunk meshes under the per-frame budget.
     Insert,
-    /// Gives new chunk meshes their material.
+    /// Updates the terrain material (hot reload, appearance, highlights) and gives new chunk
+    /// meshes their material.
     Render,
 }
 
 /// The terrain plugin: [`HexMap`], map assets, chunk streaming and (with the `render` feature,
-/// in an app that renders) materials.
+/// in an app that renders) the terrain material. Add it after `DefaultPlugins`.
 #[derive(Debug, Clone, Default)]
 pub struct HexTerrainPlugin {
     /// The map to show.
@@ -184,8 +189,13 @@ impl Plugin for HexTerrainPlugin {
                 handle.0 = Some(server.load(path.clone()));
             });
         }
-        // Does nothing in an app without PBR rendering (headless tests, servers).
+        // Only an app that renders (PbrPlugin, from DefaultPlugins added before this plugin)
+        // gets the material; headless apps (tests, servers) stream meshes without it.
         #[cfg(feature = "render")]
-        app.add_plugins(render::HexTerrainRenderPlugin);
+        if app.is_plugin_added::<bevy::pbr::PbrPlugin>() {
+            app.add_plugins(material::HexTerrainMaterialPlugin);
+        } else {
+            debug!("HexTerrainPlugin: no PbrPlugin, chunks get no material");
+        }
     }
 }

@@ -341,6 +341,6 @@ async fn build_chunk(terrain: Arc<Terrain>, chunk: ChunkCoord, generation: u64) 
         };
     };
     let vertices = generated.buffers.vertex_count();
-    let mesh_bytes = vertices * (12 + 12 + 8 + 8 + 16) + generated.buffers.indices.len() * 4;
-    ChunkBuild { generation, mesh: chunk_to_mesh(&terrain, generated), vertices, mesh_bytes }
+    let mesh_bytes = vertices * (12 + 12 + 8 + 8) + generated.buffers.indices.len() * 4;
+    ChunkBuild { generation, mesh: chunk_to_mesh(generated), vertices, mesh_bytes }
 }

@@ -1,0 +1,274 @@
+//! The terrain material: `StandardMaterial` (so PBR lighting and shadows still work) extended
+//! with a fragment shader that blends sea, land and mountain by height as thesis Algorithm 5
+//! does, in flat colours or textures, and draws tile outlines and highlights.
+
+use bevy::asset::{AssetPath, embedded_asset, embedded_path};
+use bevy::pbr::{ExtendedMaterial, MaterialExtension};
+use bevy::prelude::*;
+use bevy::render::render_resource::{AsBindGroup, ShaderType};
+use bevy::shader::ShaderRef;
+use hex_terrain::MapConfig;
+use hex_terrain::hexx::Hex;
+
+/// The chunk material.
+pub type HexTerrainMaterial = ExtendedMaterial<StandardMaterial, HexTerrainExtension>;
+
+/// Most tiles [`TileHighlights::selected`] tints at once.
+pub const MAX_HIGHLIGHTS: usize = 64;
+
+/// Uniform parameters of the terrain shader.
+#[derive(Debug, Clone, Copy, ShaderType, Reflect)]
+pub struct TerrainParams {
+    /// Sea layer colour (linear).
+    pub sea_colour: Vec4,
+    /// Land layer colour (linear).
+    pub land_colour: Vec4,
+    /// Mountain layer colour (linear).
+    pub mountain_colour: Vec4,
+    /// Hovered tile tint; alpha is the strength.
+    pub hover_colour: Vec4,
+    /// Selected tiles tint; alpha is the strength.
+    pub highlight_colour: Vec4,
+    /// Outline colour; alpha is the strength.
+    pub outline_colour: Vec4,
+    /// World height of the sea threshold.
+    pub sea_level: f32,
+    /// World height of the mountain threshold.
+    pub mountain_level: f32,
+    /// Blend distance in world height.
+    pub blend: f32,
+    /// Hex circumradius.
+    pub hex_size: f32,
+    /// Outline width in world units.
+    pub outline_width: f32,
+    /// Texture repeats per world unit.
+    pub texture_scale: f32,
+    /// Bit 0 outlines, bit 1 textures, bit 2 pointy hexes, bit 3 a hovered tile.
+    pub flags: u32,
+    /// How many entries of the highlight list are used.
+    pub highlight_count: u32,
+    /// Hovered tile (axial `x`, `y`).
+    pub hovered: IVec4,
+}
+
+/// The tiles to tint.
+#[derive(Debug, Clone, Copy, ShaderType, Reflect)]
+pub struct HighlightList {
+    /// Axial coordinates in `x`, `y`.
+    pub tiles: [IVec4; MAX_HIGHLIGHTS],
+}
+
+impl Default for HighlightList {
+    fn default() -> Self {
+        Self { tiles: [IVec4::ZERO; MAX_HIGHLIGHTS] }
+    }
+}
+
+/// The extension part of [`HexTerrainMaterial`].
+#[derive(Asset, AsBindGroup, Reflect, Debug, Clone)]
+pub struct HexTerrainExtension {
+    /// Shader parameters.
+    #[uniform(100)]
+    pub params: TerrainParams,
+    /// Sea texture (used in texture mode).
+    #[texture(101)]
+    #[sampler(102)]
+    pub sea_texture: Option<Handle<Image>>,
+    /// Grass texture (used in texture mode).
+    #[texture(103)]
+    #[sampler(104)]
+    pub land_texture: Option<Handle<Image>>,
+    /// Mountain texture (used in texture mode).
+    #[texture(105)]
+    #[sampler(106)]
+    pub mountain_texture: Option<Handle<Image>>,
+    /// Selected or reachable tiles.
+    #[uniform(107)]
+    pub highlights: HighlightList,
+}
+
+impl MaterialExtension for HexTerrainExtension {
+    fn fragment_shader() -> ShaderRef {
+        ShaderRef::Path(AssetPath::from_path_buf(embedded_path!("terrain.wgsl")).with_source("embedded"))
+    }
+}
+
+/// How the terrain looks, changed at run time by the game (outlines toggle, textures).
+#[derive(Resource, Debug, Clone, Reflect)]
+#[reflect(Resource)]
+pub struct TerrainAppearance {
+    /// Draw tile outlines (thesis figure 47).
+    pub outlines: bool,
+    /// Outline width in world units.
+    pub outline_width: f32,
+    /// Use the textures instead of flat colours (figures 40-41 vs 36-39).
+    pub textures: bool,
+    /// Texture repeats per world unit.
+    pub texture_scale: f32,
+    /// Layer colours, sea, land, mountain.
+    pub colours: [Color; 3],
+    /// Asset paths of the sea, grass and mountain textures.
+    pub texture_paths: [String; 3],
+}
+
+impl Default for TerrainAppearance {
+    fn default() -> Self {
+        Self {
+            outlines: false,
+            outline_width: 0.05,
+            textures: false,
+            texture_scale: 0.25,
+            colours: [Color::srgb(0.11, 0.34, 0.72), Color::srgb(0.30, 0.60, 0.20), Color::srgb(0.62, 0.60, 0.58)],
+            texture_paths: ["textures/sea.png".into(), "textures/grass.png".into(), "textures/mountain.png".into()],
+        }
+    }
+}
+
+/// Tiles the game wants tinted: the hovered one and a set of selected or reachable ones.
+/// Writing it updates a uniform; meshes are not rebuilt.
+#[derive(Resource, Debug, Clone, Default, Reflect)]
+#[reflect(Resource)]
+pub struct TileHighlights {
+    /// The tile under the cursor.
+    #[reflect(ignore)]
+    pub hovered: Option<Hex>,
+    /// Selected or reachable tiles (the first [`MAX_HIGHLIGHTS`] are drawn).
+    #[reflect(ignore)]
+    pub selected: Vec<Hex>,
+}
+
+/// The shared material handle of the chunks.
+#[derive(Resource, Debug, Clone)]
+pub struct HexTerrainMaterialHandle(pub Handle<HexTerrainMaterial>);
+
+/// Builds the shader parameters for a map config and appearance.
+#[must_use]
+pub fn params(config: &MapConfig, appearance: &TerrainAppearance, highlights: &TileHighlights) -> TerrainParams {
+    let t = &config.terrain;
+    let max = t.max_elevation;
+    let lin = |c: Color| Vec4::from_array(c.to_linear().to_f32_array());
+    let mut flags = 0;
+    if appearance.outlines {
+        flags |= 1;
+    }
+    if appearance.textures {
+        flags |= 2;
+    }
+    if config.layout.orientation == hex_terrain::Orientation::Pointy {
+        flags |= 4;
+    }
+    if highlights.hovered.is_some() {
+        flags |= 8;
+    }
+    let hovered = highlights.hovered.map_or(IVec4::ZERO, |h| IVec4::new(h.x, h.y, 0, 0));
+    TerrainParams {
+        sea_colour: lin(appearance.colours[0]),
+        land_colour: lin(appearance.colours[1]),
+        mountain_colour: lin(appearance.colours[2]),
+        hover_colour: Vec4::new(1.0, 0.95, 0.55, 0.45),
+        highlight_colour: Vec4::new(0.35, 0.75, 1.0, 0.4),
+        outline_colour: Vec4::new(0.01, 0.01, 0.01, 0.92),
+        sea_level: t.sea_threshold * max,
+        mountain_level: t.mountain_threshold * max,
+        blend: config.appearance.blend.clamp(0.0, 1.0) * max,
+        hex_size: config.layout.hex_size,
+        outline_width: appearance.outline_width,
+        texture_scale: appearance.texture_scale,
+        flags,
+        highlight_count: highlights.selected.len().min(MAX_HIGHLIGHTS) as u32,
+        hovered,
+    }
+}
+
+/// Registers the material and keeps it in step with the map, the appearance and the highlights.
+pub struct HexTerrainMaterialPlugin;
+
+impl Plugin for HexTerrainMaterialPlugin {
+    fn build(&self, app: &mut App) {
+        embedded_asset!(app, "terrain.wgsl");
+        app.add_plugins(MaterialPlugin::<HexTerrainMaterial>::default())
+            .init_resource::<TerrainAppearance>()
+            .init_resource::<TileHighlights>()
+            .register_type::<TerrainAppearance>()
+            .register_type::<TileHighlights>()
+            .add_systems(Startup, create_material)
+            .add_systems(
+                Update,
+                (update_material, attach_material)
+                    .chain()
+                    .in_set(crate::HexTerrainSystems::Render)
+                    .run_if(resource_exists::<HexTerrainMaterialHandle>),
+            );
+    }
+}
+
+fn textures(server: &AssetServer, appearance: &TerrainAppearance) -> [Option<Handle<Image>>; 3] {
+    if appearance.textures {
+        std::array::from_fn(|i| Some(server.load(appearance.texture_paths[i].clone())))
+    } else {
+        [None, None, None]
+    }
+}
+
+fn create_material(
+    mut commands: Commands,
+    mut materials: ResMut<Assets<HexTerrainMaterial>>,
+    server: Res<AssetServer>,
+    map: Res<crate::HexMap>,
+    appearance: Res<TerrainAppearance>,
+    highlights: Res<TileHighlights>,
+) {
+    let [sea_texture, land_texture, mountain_texture] = textures(&server, &appearance);
+    let handle = materials.add(ExtendedMaterial {
+        base: StandardMaterial { base_color: Color::WHITE, perceptual_roughness: 0.92, reflectance: 0.2, ..default() },
+        extension: HexTerrainExtension {
+            params: params(map.config(), &appearance, &highlights),
+            sea_texture,
+            land_texture,
+            mountain_texture,
+            highlights: HighlightList::default(),
+        },
+    });
+    commands.insert_resource(HexTerrainMaterialHandle(handle));
+}
+
+/// Rewrites the uniforms when the map (hot reload), the appearance or the highlights change;
+/// a texture that failed to load switches to flat colours with a warning.
+fn update_material(
+    handle: Res<HexTerrainMaterialHandle>,
+    mut materials: ResMut<Assets<HexTerrainMaterial>>,
+    server: Res<AssetServer>,
+    map: Res<crate::HexMap>,
+    mut appearance: ResMut<TerrainAppearance>,
+    highlights: Res<TileHighlights>,
+    mut failed: MessageReader<bevy::asset::AssetLoadFailedEvent<Image>>,
+) {
+    for failure in failed.read() {
+        if appearance.textures && appearance.texture_paths.iter().any(|p| failure.path.path().ends_with(p)) {
+            warn!("terrain texture {} could not be loaded ({}); using flat colours", failure.path, failure.error);
+            appearance.textures = false;
+        }
+    }
+    if !(map.is_changed() || appearance.is_changed() || highlights.is_changed()) {
+        return;
+    }
+    let Some(mut material) = materials.get_mut(&handle.0) else { return };
+    let ext = &mut material.extension;
+    ext.params = params(map.config(), &appearance, &highlights);
+    let wants_textures = appearance.textures;
+    if wants_textures != ext.sea_texture.is_some() {
+        [ext.sea_texture, ext.land_texture, ext.mountain_texture] = textures(&server, &appearance);
+    }
+    for (slot, hex) in ext.highlights.tiles.iter_mut().zip(&highlights.selected) {
+        *slot = IVec4::new(hex.x, hex.y, 0, 0);
+    }
+}
+
+/// Chunks with a mesh and no material yet.
+type Unpainted = (With<crate::HexChunk>, With<Mesh3d>, Without<MeshMaterial3d<HexTerrainMaterial>>);
+
+fn attach_material(mut commands: Commands, handle: Res<HexTerrainMaterialHandle>, chunks: Query<Entity, Unpainted>) {
+    for e in &chunks {
+        commands.entity(e).insert(MeshMaterial3d(handle.0.clone()));
+    }
+}

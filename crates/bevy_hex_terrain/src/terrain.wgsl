@@ -1,0 +1,174 @@
+// Hex terrain material: thesis Algorithm 5 (three layers split by the thresholds, blended over
+// the blend distance), flat colours or world-space triplanar textures, tile outlines computed from
+// the world position (no per-vertex data needed, so they are exact on every chunk), hovered and
+// selected tile tints, and a gently animated sea. Lighting and shadows are StandardMaterial's.
+
+#import bevy_pbr::{
+    pbr_fragment::pbr_input_from_standard_material,
+    pbr_functions::alpha_discard,
+    mesh_view_bindings::globals,
+}
+
+#ifdef PREPASS_PIPELINE
+#import bevy_pbr::{
+    prepass_io::{VertexOutput, FragmentOutput},
+    pbr_deferred_functions::deferred_output,
+}
+#else
+#import bevy_pbr::{
+    forward_io::{VertexOutput, FragmentOutput},
+    pbr_functions::{apply_pbr_lighting, main_pass_post_lighting_processing},
+}
+#endif
+
+struct TerrainParams {
+    sea_colour: vec4<f32>,
+    land_colour: vec4<f32>,
+    mountain_colour: vec4<f32>,
+    hover_colour: vec4<f32>,
+    highlight_colour: vec4<f32>,
+    outline_colour: vec4<f32>,
+    // World heights of the thresholds and the blend distance.
+    sea_level: f32,
+    mountain_level: f32,
+    blend: f32,
+    hex_size: f32,
+    outline_width: f32,
+    texture_scale: f32,
+    // Bit 0: outlines, bit 1: textures, bit 2: pointy hexes, bit 3: a tile is hovered.
+    flags: u32,
+    highlight_count: u32,
+    hovered: vec4<i32>,
+}
+
+struct Highlights {
+    tiles: array<vec4<i32>, 64>,
+}
+
+@group(#{MATERIAL_BIND_GROUP}) @binding(100) var<uniform> params: TerrainParams;
+@group(#{MATERIAL_BIND_GROUP}) @binding(101) var sea_texture: texture_2d<f32>;
+@group(#{MATERIAL_BIND_GROUP}) @binding(102) var sea_sampler: sampler;
+@group(#{MATERIAL_BIND_GROUP}) @binding(103) var land_texture: texture_2d<f32>;
+@group(#{MATERIAL_BIND_GROUP}) @binding(104) var land_sampler: sampler;
+@group(#{MATERIAL_BIND_GROUP}) @binding(105) var mountain_texture: texture_2d<f32>;
+@group(#{MATERIAL_BIND_GROUP}) @binding(106) var mountain_sampler: sampler;
+@group(#{MATERIAL_BIND_GROUP}) @binding(107) var<uniform> highlights: Highlights;
+
+const SQRT3: f32 = 1.7320508;
+
+fn triplanar(t: texture_2d<f32>, s: sampler, p: vec3<f32>, n: vec3<f32>) -> vec4<f32> {
+    var w = abs(n);
+    w = w / (w.x + w.y + w.z);
+    let k = params.texture_scale;
+    return textureSample(t, s, p.zx * k) * w.y + textureSample(t, s, p.zy * k) * w.x + textureSample(t, s, p.xy * k) * w.z;
+}
+
+fn layer(i: i32, p: vec3<f32>, n: vec3<f32>) -> vec4<f32> {
+    let textured = (params.flags & 2u) != 0u;
+    if i == 0 {
+        if textured { return triplanar(sea_texture, sea_sampler, p, n); }
+        return params.sea_colour;
+    }
+    if i == 1 {
+        if textured { return triplanar(land_texture, land_sampler, p, n); }
+        return params.land_colour;
+    }
+    if textured { return triplanar(mountain_texture, mountain_sampler, p, n); }
+    return params.mountain_colour;
+}
+
+// Algorithm 5 with linear blending on both sides of each threshold.
+fn albedo(p: vec3<f32>, n: vec3<f32>) -> vec4<f32> {
+    let h = p.y;
+    var own = 2;
+    if h < params.sea_level { own = 0; } else if h < params.mountain_level { own = 1; }
+    var colour = layer(own, p, n);
+    let thresholds = array<f32, 2>(params.sea_level, params.mountain_level);
+    for (var t = 0; t < 2; t++) {
+        let d = h - thresholds[t];
+        if params.blend > 0.0 && abs(d) < params.blend {
+            var other = t;
+            if d < 0.0 { other = t + 1; }
+            colour = mix(colour, layer(other, p, n), 0.5 * (1.0 - abs(d) / params.blend));
+        }
+    }
+    return colour;
+}
+
+// Axial coordinates of the hex under a world position, and the distance to its border.
+fn hex_at(p: vec2<f32>) -> vec3<f32> {
+    let s = params.hex_size;
+    var q: f32;
+    var r: f32;
+    if (params.flags & 4u) != 0u {
+        q = (SQRT3 / 3.0 * p.x - p.y / 3.0) / s;
+        r = (2.0 / 3.0 * p.y) / s;
+    } else {
+        q = (2.0 / 3.0 * p.x) / s;
+        r = (-p.x / 3.0 + SQRT3 / 3.0 * p.y) / s;
+    }
+    let c = vec3<f32>(q, r, -q - r);
+    var rc = round(c);
+    let diff = abs(rc - c);
+    if diff.x > diff.y && diff.x > diff.z {
+        rc.x = -rc.y - rc.z;
+    } else if diff.y > diff.z {
+        rc.y = -rc.x - rc.z;
+    }
+    // Centre of that hex and the distance from it along the three edge normals.
+    var centre: vec2<f32>;
+    var normals: array<vec2<f32>, 3>;
+    if (params.flags & 4u) != 0u {
+        centre = s * vec2<f32>(SQRT3 * rc.x + SQRT3 / 2.0 * rc.y, 1.5 * rc.y);
+        normals = array<vec2<f32>, 3>(vec2<f32>(1.0, 0.0), vec2<f32>(0.5, SQRT3 / 2.0), vec2<f32>(-0.5, SQRT3 / 2.0));
+    } else {
+        centre = s * vec2<f32>(1.5 * rc.x, SQRT3 / 2.0 * rc.x + SQRT3 * rc.y);
+        normals = array<vec2<f32>, 3>(vec2<f32>(0.0, 1.0), vec2<f32>(SQRT3 / 2.0, 0.5), vec2<f32>(SQRT3 / 2.0, -0.5));
+    }
+    let d = p - centre;
+    let reach = max(max(abs(dot(d, normals[0])), abs(dot(d, normals[1]))), abs(dot(d, normals[2])));
+    return vec3<f32>(rc.x, rc.y, s * SQRT3 / 2.0 - reach);
+}
+
+@fragment
+fn fragment(in: VertexOutput, @builtin(front_facing) is_front: bool) -> FragmentOutput {
+    var pbr_input = pbr_input_from_standard_material(in, is_front);
+    let p = in.world_position.xyz;
+    let n = normalize(in.world_normal);
+    var colour = albedo(p, n);
+
+    // A gently moving sea surface: a slow shimmer below sea level.
+    if p.y < params.sea_level {
+        let wave = 0.5 + 0.5 * sin(globals.time * 1.3 + p.x * 1.7 + p.z * 1.1) * sin(globals.time * 0.9 - p.z * 1.3);
+        colour = vec4<f32>(colour.rgb * (0.92 + 0.12 * wave), colour.a);
+    }
+
+    let hex = hex_at(p.xz);
+    let tile = vec2<i32>(i32(hex.x), i32(hex.y));
+    for (var i = 0u; i < params.highlight_count; i++) {
+        if all(highlights.tiles[i].xy == tile) {
+            colour = vec4<f32>(mix(colour.rgb, params.highlight_colour.rgb, params.highlight_colour.a), colour.a);
+        }
+    }
+    if (params.flags & 8u) != 0u && all(params.hovered.xy == tile) {
+        colour = vec4<f32>(mix(colour.rgb, params.hover_colour.rgb, params.hover_colour.a), colour.a);
+    }
+    // Outlines go over the lit colour, so lighting and specular never wash them out.
+    var outline = 0.0;
+    if (params.flags & 1u) != 0u && hex.z < params.outline_width {
+        outline = params.outline_colour.a;
+    }
+
+    pbr_input.material.base_color = pbr_input.material.base_color * colour;
+    pbr_input.material.base_color = alpha_discard(pbr_input.material, pbr_input.material.base_color);
+
+#ifdef PREPASS_PIPELINE
+    let out = deferred_output(in, pbr_input);
+#else
+    var out: FragmentOutput;
+    out.color = apply_pbr_lighting(pbr_input);
+    out.color = vec4<f32>(mix(out.color.rgb, params.outline_colour.rgb, outline), out.color.a);
+    out.color = main_pass_post_lighting_processing(pbr_input, out.color);
+#endif
+    return out;
+}

@@ -1,0 +1,199 @@
+//! The terrain material in a real renderer: a known small map from a fixed top-down camera,
+//! rendered (Mesa's software Vulkan under Xvfb in CI) and saved with Bevy's screenshot API, then
+//! checked pixel by pixel. Each test opens its own window, so run them one process each
+//! (`cargo nextest`, as `scripts/test.sh` does, under `xvfb-run` when there is no display).
+
+use std::path::{Path, PathBuf};
+use std::sync::{Arc, Mutex};
+
+use bevy::camera::ScalingMode;
+use bevy::prelude::*;
+use bevy::render::view::screenshot::{Screenshot, ScreenshotCaptured};
+use bevy::window::WindowResolution;
+use bevy::winit::WinitPlugin;
+use hex_terrain_game::hex_terrain::{MapSize, Terrain, TileKind};
+use hex_terrain_game::prelude::*;
+
+const WIDTH: u32 = 640;
+const HEIGHT: u32 = 480;
+
+fn map() -> MapConfig {
+    let mut c =
+        MapConfig { seed: 7, size: MapSize::Bounded { x: 20, z: 14 }, chunk_size: (8, 8), ..MapConfig::default() };
+    c.terrain.max_elevation = 3.0;
+    c.terrain.inner_rings = 2;
+    c.noise.scale = 30.0;
+    c
+}
+
+/// Where the camera looks and how much it shows.
+fn view(terrain: &Terrain) -> (Vec2, Vec2) {
+    let (mut lo, mut hi) = (Vec2::splat(f32::MAX), Vec2::splat(f32::MIN));
+    for t in terrain.tiles() {
+        let [x, _, z] = terrain.tile_centre(t);
+        lo = lo.min(Vec2::new(x, z));
+        hi = hi.max(Vec2::new(x, z));
+    }
+    let centre = (lo + hi) / 2.0;
+    // Keep the window's aspect ratio, with a margin.
+    let span = (hi - lo) + Vec2::splat(3.0);
+    let aspect = WIDTH as f32 / HEIGHT as f32;
+    let size =
+        if span.x / span.y > aspect { Vec2::new(span.x, span.x / aspect) } else { Vec2::new(span.y * aspect, span.y) };
+    (centre, size)
+}
+
+fn pixel(centre: Vec2, size: Vec2, world: Vec3) -> (u32, u32) {
+    let u = (world.x - centre.x) / size.x + 0.5;
+    let v = (world.z - centre.y) / size.y + 0.5;
+    ((u * WIDTH as f32) as u32, (v * HEIGHT as f32) as u32)
+}
+
+/// Renders the map and returns the screenshot.
+fn render(outlines: bool, name: &str) -> image::RgbImage {
+    let terrain = Terrain::new(map()).unwrap();
+    let (centre, size) = view(&terrain);
+    let out = Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("{name}.png"));
+    let _ = std::fs::remove_file(&out);
+    let done: Arc<Mutex<bool>> = Arc::default();
+    let mut app = App::new();
+    app.add_plugins(
+        DefaultPlugins
+            .set(WindowPlugin {
+                primary_window: Some(Window { resolution: WindowResolution::new(WIDTH, HEIGHT), ..default() }),
+                ..default()
+            })
+            .set(WinitPlugin { run_on_any_thread: true }),
+    )
+    .add_plugins(HexTerrainPlugin::from_config(map()))
+    .insert_resource(TerrainAppearance { outlines, outline_width: 0.1, ..default() })
+    .insert_resource(GlobalAmbientLight { brightness: 600.0, ..default() });
+    app.world_mut().spawn((
+        Camera3d::default(),
+        Projection::Orthographic(OrthographicProjection {
+            scaling_mode: ScalingMode::Fixed { width: size.x, height: size.y },
+            ..OrthographicProjection::default_3d()
+        }),
+        Transform::from_xyz(centre.x, 50.0, centre.y).looking_at(Vec3::new(centre.x, 0.0, centre.y), Vec3::NEG_Z),
+    ));
+    app.world_mut().spawn((
+        DirectionalLight { illuminance: 6000.0, shadow_maps_enabled: false, ..default() },
+        Transform::from_xyz(0.0, 10.0, 0.0).looking_at(Vec3::ZERO, Vec3::Z),
+    ));
+    let path: PathBuf = out.clone();
+    let flag = done.clone();
+    let mut frames = 0;
+    let mut ready_frames = 0;
+    app.add_systems(
+        Last,
+        move |mut commands: Commands, mut ready: MessageReader<TerrainReady>, mut exit: MessageWriter<AppExit>| {
+            frames += 1;
+            if *flag.lock().unwrap() {
+                exit.write(AppExit::Success);
+                return;
+            }
+            if ready.read().count() > 0 || ready_frames > 0 {
+                ready_frames += 1;
+            }
+            assert!(frames < 5000, "no terrain on screen after {frames} frames");
+            // Pipelines compile in the background: shoot every 20 frames once the terrain is
+            // complete, and keep the first picture that shows it.
+            if ready_frames > 0 && ready_frames % 20 == 0 {
+                let path = path.clone();
+                let flag = flag.clone();
+                commands.spawn(Screenshot::primary_window()).observe(move |shot: On<ScreenshotCaptured>| {
+                    let img = shot.image.clone().try_into_dynamic().unwrap().to_rgb8();
+                    let background = *img.get_pixel(0, 0);
+                    let drawn = img.pixels().filter(|p| **p != background).count();
+                    if drawn > img.pixels().len() / 2 {
+                        img.save(&path).unwrap();
+                        *flag.lock().unwrap() = true;
+                    }
+                });
+            }
+        },
+    );
+    app.run();
+    assert!(*done.lock().unwrap(), "no screenshot was taken");
+    image::open(&out).unwrap().to_rgb8()
+}
+
+fn rgb(img: &image::RgbImage, (x, y): (u32, u32)) -> [f32; 3] {
+    img.get_pixel(x.min(WIDTH - 1), y.min(HEIGHT - 1)).0.map(|c| f32::from(c) / 255.0)
+}
+
+fn brightness(c: [f32; 3]) -> f32 {
+    (c[0] + c[1] + c[2]) / 3.0
+}
+
+/// Tile centres well inside their type's range (away from the blend zone), by kind.
+fn clear_tiles(terrain: &Terrain) -> Vec<(Hex, TileKind, Vec3)> {
+    let c = terrain.config();
+    let (s, m, b) = (c.terrain.sea_threshold, c.terrain.mountain_threshold, c.appearance.blend);
+    terrain
+        .tiles()
+        .filter_map(|t| {
+            let info = terrain.tile_info(t);
+            let h = info.elevation / c.terrain.max_elevation;
+            ((h - s).abs() > b && (h - m).abs() > b).then(|| (t, info.kind, Vec3::from_array(terrain.tile_centre(t))))
+        })
+        .collect()
+}
+
+/// Mean brightness ratio of mid-edge pixels to tile-centre pixels.
+fn border_to_centre(img: &image::RgbImage, terrain: &Terrain) -> f32 {
+    let (centre, size) = view(terrain);
+    let layout = terrain.layout();
+    let ratios: Vec<f32> = terrain
+        .tiles()
+        .filter(|t| terrain.contains(t.all_neighbors()[0]))
+        .map(|t| {
+            let a = layout.hex_to_world_pos(t);
+            let b = layout.hex_to_world_pos(t.all_neighbors()[0]);
+            let mid = (a + b) / 2.0;
+            let edge = Vec3::new(mid.x, terrain.surface_height(mid.x, mid.y), mid.y);
+            let centre_px = pixel(centre, size, Vec3::new(a.x, 0.0, a.y));
+            // The darkest pixel around the edge point: lines are a pixel or two wide.
+            let (ex, ey) = pixel(centre, size, edge);
+            let darkest = (0..9)
+                .map(|k| brightness(rgb(img, ((ex + k % 3).saturating_sub(1), (ey + k / 3).saturating_sub(1)))))
+                .fold(f32::MAX, f32::min);
+            darkest / brightness(rgb(img, centre_px)).max(1e-3)
+        })
+        .collect();
+    ratios.iter().sum::<f32>() / ratios.len() as f32
+}
+
+#[test]
+fn tiles_show_their_type_colour_without_outlines() {
+    let terrain = Terrain::new(map()).unwrap();
+    let (centre, size) = view(&terrain);
+    let img = render(false, "outlines_off");
+    let mut seen = [0; 3];
+    for (hex, kind, at) in clear_tiles(&terrain) {
+        let [r, g, b] = rgb(&img, pixel(centre, size, at));
+        match kind {
+            TileKind::Sea => assert!(b > r + 0.1 && b > g, "sea tile {hex:?} drawn {:?}", [r, g, b]),
+            TileKind::Land => assert!(g > r + 0.05 && g > b + 0.05, "land tile {hex:?} drawn {:?}", [r, g, b]),
+            TileKind::Mountain => {
+                assert!(
+                    (r - g).abs() < 0.12 && (g - b).abs() < 0.12 && r > 0.35,
+                    "mountain {hex:?} drawn {:?}",
+                    [r, g, b]
+                );
+            }
+        }
+        seen[kind as usize] += 1;
+    }
+    assert!(seen.iter().all(|&n| n > 0), "the test map has every type: {seen:?}");
+    let ratio = border_to_centre(&img, &terrain);
+    assert!(ratio > 0.85, "without outlines, borders look like centres: {ratio}");
+}
+
+#[test]
+fn outlines_darken_tile_borders() {
+    let terrain = Terrain::new(map()).unwrap();
+    let img = render(true, "outlines_on");
+    let ratio = border_to_centre(&img, &terrain);
+    assert!(ratio < 0.6, "with outlines, borders are darker than centres: {ratio}");
+}
