@@ -49,8 +49,13 @@ fn pixel(centre: Vec2, size: Vec2, world: Vec3) -> (u32, u32) {
     ((u * WIDTH as f32) as u32, (v * HEIGHT as f32) as u32)
 }
 
-/// Renders the map and returns the screenshot.
+/// Renders the map with outlines on or off and returns the screenshot.
 fn render(outlines: bool, name: &str) -> image::RgbImage {
+    render_with(TerrainAppearance { outlines, outline_width: 0.1, ..default() }, TileHighlights::default(), name)
+}
+
+/// Renders the map with an appearance and highlights and returns the screenshot.
+fn render_with(appearance: TerrainAppearance, highlights: TileHighlights, name: &str) -> image::RgbImage {
     let terrain = Terrain::new(map()).unwrap();
     let (centre, size) = view(&terrain);
     let out = Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("{name}.png"));
@@ -66,7 +71,8 @@ fn render(outlines: bool, name: &str) -> image::RgbImage {
             .set(WinitPlugin { run_on_any_thread: true }),
     )
     .add_plugins(HexTerrainPlugin::from_config(map()))
-    .insert_resource(TerrainAppearance { outlines, outline_width: 0.1, ..default() })
+    .insert_resource(appearance)
+    .insert_resource(highlights)
     .insert_resource(GlobalAmbientLight { brightness: 600.0, ..default() });
     app.world_mut().spawn((
         Camera3d::default(),
@@ -164,14 +170,12 @@ fn border_to_centre(img: &image::RgbImage, terrain: &Terrain) -> f32 {
     ratios.iter().sum::<f32>() / ratios.len() as f32
 }
 
-#[test]
-fn tiles_show_their_type_colour_without_outlines() {
-    let terrain = Terrain::new(map()).unwrap();
-    let (centre, size) = view(&terrain);
-    let img = render(false, "outlines_off");
+/// Asserts every clear tile centre shows its type's colour, skipping `except`.
+fn assert_type_colours(img: &image::RgbImage, terrain: &Terrain, except: &[Hex]) {
+    let (centre, size) = view(terrain);
     let mut seen = [0; 3];
-    for (hex, kind, at) in clear_tiles(&terrain) {
-        let [r, g, b] = rgb(&img, pixel(centre, size, at));
+    for (hex, kind, at) in clear_tiles(terrain).into_iter().filter(|(h, _, _)| !except.contains(h)) {
+        let [r, g, b] = rgb(img, pixel(centre, size, at));
         match kind {
             TileKind::Sea => assert!(b > r + 0.1 && b > g, "sea tile {hex:?} drawn {:?}", [r, g, b]),
             TileKind::Land => assert!(g > r + 0.05 && g > b + 0.05, "land tile {hex:?} drawn {:?}", [r, g, b]),
@@ -186,6 +190,13 @@ fn tiles_show_their_type_colour_without_outlines() {
         seen[kind as usize] += 1;
     }
     assert!(seen.iter().all(|&n| n > 0), "the test map has every type: {seen:?}");
+}
+
+#[test]
+fn tiles_show_their_type_colour_without_outlines() {
+    let terrain = Terrain::new(map()).unwrap();
+    let img = render(false, "outlines_off");
+    assert_type_colours(&img, &terrain, &[]);
     let ratio = border_to_centre(&img, &terrain);
     assert!(ratio > 0.85, "without outlines, borders look like centres: {ratio}");
 }
@@ -196,4 +207,39 @@ fn outlines_darken_tile_borders() {
     let img = render(true, "outlines_on");
     let ratio = border_to_centre(&img, &terrain);
     assert!(ratio < 0.6, "with outlines, borders are darker than centres: {ratio}");
+}
+
+#[test]
+fn textures_and_highlights() {
+    let terrain = Terrain::new(map()).unwrap();
+    let (centre, size) = view(&terrain);
+    let land: Vec<Hex> =
+        clear_tiles(&terrain).into_iter().filter(|(_, k, _)| *k == TileKind::Land).map(|(h, _, _)| h).collect();
+    let (hovered, selected) = (land[0], land[1..4].to_vec());
+    let img = render_with(
+        TerrainAppearance { textures: true, ..default() },
+        TileHighlights { hovered: Some(hovered), selected: selected.clone() },
+        "textures_highlights",
+    );
+    let mut tinted = selected.clone();
+    tinted.push(hovered);
+    assert_type_colours(&img, &terrain, &tinted);
+    let at = |h: Hex| rgb(&img, pixel(centre, size, Vec3::from_array(terrain.tile_centre(h))));
+    let [r, g, _] = at(hovered);
+    assert!(r > g * 0.8, "the hovered land tile is tinted warm: {:?}", at(hovered));
+    for h in selected {
+        let [r, _, b] = at(h);
+        assert!(b > r, "a selected land tile is tinted blue: {:?}", at(h));
+    }
+}
+
+#[test]
+fn a_missing_texture_falls_back_to_flat_colours() {
+    let terrain = Terrain::new(map()).unwrap();
+    let mut appearance = TerrainAppearance { textures: true, ..default() };
+    appearance.texture_paths[1] = "textures/no_such_grass.png".into();
+    let img = render_with(appearance, TileHighlights::default(), "missing_texture");
+    let magenta = img.pixels().filter(|p| p[0] > 150 && p[2] > 150 && p[1] < 80).count();
+    assert_eq!(magenta, 0, "no magenta error colour");
+    assert_type_colours(&img, &terrain, &[]);
 }

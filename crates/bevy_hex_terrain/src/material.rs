@@ -3,6 +3,7 @@
 //! does, in flat colours or textures, and draws tile outlines and highlights.
 
 use bevy::asset::{AssetPath, embedded_asset, embedded_path};
+use bevy::image::{ImageAddressMode, ImageLoaderSettings, ImageSampler, ImageSamplerDescriptor};
 use bevy::pbr::{ExtendedMaterial, MaterialExtension};
 use bevy::prelude::*;
 use bevy::render::render_resource::{AsBindGroup, ShaderType};
@@ -204,7 +205,21 @@ impl Plugin for HexTerrainMaterialPlugin {
 
 fn textures(server: &AssetServer, appearance: &TerrainAppearance) -> [Option<Handle<Image>>; 3] {
     if appearance.textures {
-        std::array::from_fn(|i| Some(server.load(appearance.texture_paths[i].clone())))
+        // World-space coordinates run far past [0, 1]: the textures must repeat.
+        std::array::from_fn(|i| {
+            Some(
+                server
+                    .load_builder()
+                    .with_settings(|s: &mut ImageLoaderSettings| {
+                        s.sampler = ImageSampler::Descriptor(ImageSamplerDescriptor {
+                            address_mode_u: ImageAddressMode::Repeat,
+                            address_mode_v: ImageAddressMode::Repeat,
+                            ..ImageSamplerDescriptor::linear()
+                        });
+                    })
+                    .load(appearance.texture_paths[i].clone()),
+            )
+        })
     } else {
         [None, None, None]
     }

@@ -63,33 +63,27 @@ fn triplanar(t: texture_2d<f32>, s: sampler, p: vec3<f32>, n: vec3<f32>) -> vec4
     return textureSample(t, s, p.zx * k) * w.y + textureSample(t, s, p.zy * k) * w.x + textureSample(t, s, p.xy * k) * w.z;
 }
 
-fn layer(i: i32, p: vec3<f32>, n: vec3<f32>) -> vec4<f32> {
-    let textured = (params.flags & 2u) != 0u;
-    if i == 0 {
-        if textured { return triplanar(sea_texture, sea_sampler, p, n); }
-        return params.sea_colour;
-    }
-    if i == 1 {
-        if textured { return triplanar(land_texture, land_sampler, p, n); }
-        return params.land_colour;
-    }
-    if textured { return triplanar(mountain_texture, mountain_sampler, p, n); }
-    return params.mountain_colour;
-}
-
-// Algorithm 5 with linear blending on both sides of each threshold.
+// Algorithm 5 with linear blending on both sides of each threshold. Textures are sampled in
+// uniform control flow (every fragment samples all three) so their derivatives stay valid.
 fn albedo(p: vec3<f32>, n: vec3<f32>) -> vec4<f32> {
+    var layers = array<vec4<f32>, 3>(params.sea_colour, params.land_colour, params.mountain_colour);
+    let sea = triplanar(sea_texture, sea_sampler, p, n);
+    let land = triplanar(land_texture, land_sampler, p, n);
+    let rock = triplanar(mountain_texture, mountain_sampler, p, n);
+    if (params.flags & 2u) != 0u {
+        layers = array<vec4<f32>, 3>(sea, land, rock);
+    }
     let h = p.y;
     var own = 2;
     if h < params.sea_level { own = 0; } else if h < params.mountain_level { own = 1; }
-    var colour = layer(own, p, n);
+    var colour = layers[own];
     let thresholds = array<f32, 2>(params.sea_level, params.mountain_level);
     for (var t = 0; t < 2; t++) {
         let d = h - thresholds[t];
         if params.blend > 0.0 && abs(d) < params.blend {
             var other = t;
             if d < 0.0 { other = t + 1; }
-            colour = mix(colour, layer(other, p, n), 0.5 * (1.0 - abs(d) / params.blend));
+            colour = mix(colour, layers[other], 0.5 * (1.0 - abs(d) / params.blend));
         }
     }
     return colour;

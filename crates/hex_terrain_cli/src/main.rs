@@ -4,6 +4,7 @@
 mod experiments;
 mod export;
 mod render;
+mod textures;
 
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -88,6 +89,15 @@ enum Command {
     Stats {
         /// Map config (RON).
         map: PathBuf,
+    },
+    /// Write the tileable sea, grass and mountain textures of the material's texture mode.
+    Textures {
+        /// Output folder.
+        #[arg(long, default_value = "assets/textures")]
+        out: PathBuf,
+        /// Side in pixels, a power of two.
+        #[arg(long, default_value_t = 256)]
+        size: u32,
     },
     /// Rerun the thesis' chapter 7 (Map0-Map15, table 7/8/9 sizes) and write markdown tables
     /// with the thesis' numbers beside ours, plus before/after PNGs.
@@ -238,6 +248,7 @@ fn run(cli: Cli) -> CliResult<()> {
             result
         }
         Command::Stats { map } => stats(&map),
+        Command::Textures { out, size } => textures::write(&out, size),
         Command::Experiments { out, maps, rings, runs, max_hexes, width } => {
             check_width(width)?;
             experiments::run(&experiments::Options { out, maps, rings, runs: runs.max(1), max_hexes, width })

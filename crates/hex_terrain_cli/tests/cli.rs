@@ -314,3 +314,29 @@ fn experiments_write_every_table_and_picture() {
         assert!(dir.join(format!("images/map{i:02}_tiled.png")).exists());
     }
 }
+
+#[test]
+fn textures_are_tileable_and_distinct() {
+    let dir = tmp("textures");
+    ok(&["textures", "--out", dir.to_str().unwrap(), "--size", "64"]);
+    let mut means = Vec::new();
+    for name in ["sea", "grass", "mountain"] {
+        let img = image::open(dir.join(format!("{name}.png"))).unwrap().to_rgb8();
+        assert_eq!(img.dimensions(), (64, 64));
+        // Tileable: the last column continues into the first as smoothly as neighbours do.
+        let step = |a: &image::Rgb<u8>, b: &image::Rgb<u8>| {
+            a.0.iter().zip(b.0).map(|(x, y)| (i32::from(*x) - i32::from(y)).abs()).sum::<i32>()
+        };
+        let wrap: i32 = (0..64).map(|y| step(img.get_pixel(63, y), img.get_pixel(0, y))).sum();
+        let inner: i32 = (0..64).map(|y| step(img.get_pixel(31, y), img.get_pixel(32, y))).sum();
+        assert!(wrap < inner * 3 + 64 * 12, "{name} seam {wrap} vs inner {inner}");
+        let mean = img
+            .pixels()
+            .fold([0.0_f32; 3], |m, p| [m[0] + f32::from(p[0]), m[1] + f32::from(p[1]), m[2] + f32::from(p[2])]);
+        means.push(mean.map(|c| c / 4096.0));
+    }
+    assert!(means[0][2] > means[0][0] && means[0][2] > means[0][1], "sea is blue: {:?}", means[0]);
+    assert!(means[1][1] > means[1][0] && means[1][1] > means[1][2], "grass is green: {:?}", means[1]);
+    assert!((means[2][0] - means[2][2]).abs() < 30.0, "rock is grey: {:?}", means[2]);
+    fails(&["textures", "--out", dir.to_str().unwrap(), "--size", "100"], &["power of two"]);
+}
