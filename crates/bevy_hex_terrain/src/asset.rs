@@ -15,6 +15,9 @@ pub struct HexMapAsset {
     pub config: MapConfig,
     /// The decoded heightmap when the config's source is `Image`.
     pub image: Option<Arc<HeightImage>>,
+    /// The file's blend value was outside `[0, 1]`: it was clamped and the material falls back
+    /// to flat colours (with a logged warning) instead of refusing the map.
+    pub appearance_fallback: bool,
 }
 
 /// Loads [`HexMapAsset`]s from RON.
@@ -69,7 +72,19 @@ impl AssetLoader for HexMapLoader {
     ) -> Result<HexMapAsset, HexMapLoaderError> {
         let mut bytes = Vec::new();
         reader.read_to_end(&mut bytes).await?;
-        let config: MapConfig = ron::de::from_str(std::str::from_utf8(&bytes)?)?;
+        let mut config: MapConfig = ron::de::from_str(std::str::from_utf8(&bytes)?)?;
+        // An out-of-range blend only affects looks: clamp it, warn, and fall back to flat
+        // colours rather than refusing the whole map.
+        let blend = config.appearance.blend;
+        let appearance_fallback = !(0.0..=1.0).contains(&blend);
+        if appearance_fallback {
+            config.appearance.blend = if blend.is_nan() { 0.1 } else { blend.clamp(0.0, 1.0) };
+            warn!(
+                "{}: appearance.blend = {blend} is outside [0, 1]; using {} and flat colours",
+                load_context.path(),
+                config.appearance.blend
+            );
+        }
         config.validate()?;
         let image = match &config.source {
             HeightSourceConfig::Noise => None,
@@ -89,7 +104,7 @@ impl AssetLoader for HexMapLoader {
                 ))
             }
         };
-        Ok(HexMapAsset { config, image })
+        Ok(HexMapAsset { config, image, appearance_fallback })
     }
 
     fn extensions(&self) -> &[&str] {

@@ -20,6 +20,7 @@ pub struct HexMap {
     terrain: Arc<Terrain>,
     generation: u64,
     waiting_for_asset: bool,
+    appearance_fallback: bool,
     pub(crate) loaded: HashSet<ChunkCoord>,
 }
 
@@ -33,7 +34,13 @@ impl HexMap {
     }
 
     pub(crate) fn from_terrain(terrain: Terrain) -> Self {
-        Self { terrain: Arc::new(terrain), generation: 0, waiting_for_asset: false, loaded: HashSet::default() }
+        Self {
+            terrain: Arc::new(terrain),
+            generation: 0,
+            waiting_for_asset: false,
+            appearance_fallback: false,
+            loaded: HashSet::default(),
+        }
     }
 
     /// The active config.
@@ -63,6 +70,12 @@ impl HexMap {
 
     pub(crate) fn set_waiting(&mut self, waiting: bool) {
         self.waiting_for_asset = waiting;
+    }
+
+    /// Whether the map file's appearance was out of range, so materials should draw flat colours.
+    #[must_use]
+    pub fn appearance_fallback(&self) -> bool {
+        self.appearance_fallback
     }
 
     /// Replaces the terrain, starting a new generation.
@@ -195,6 +208,7 @@ impl HexMap {
             Ok(terrain) => {
                 info!("hex terrain: map {:?} applied", asset.config.name);
                 map.replace(terrain);
+                map.appearance_fallback = asset.appearance_fallback;
             }
             Err(e) => {
                 let message = format!("map not applied, keeping the current terrain: {e}");

@@ -269,10 +269,12 @@ fn update_material(
     }
     let Some(mut material) = materials.get_mut(&handle.0) else { return };
     let ext = &mut material.extension;
-    ext.params = params(map.config(), &appearance, &highlights);
-    let wants_textures = appearance.textures;
-    if wants_textures != ext.sea_texture.is_some() {
-        [ext.sea_texture, ext.land_texture, ext.mountain_texture] = textures(&server, &appearance);
+    // A map whose appearance had to be clamped is drawn in flat colours.
+    let mut effective = appearance.clone();
+    effective.textures &= !map.appearance_fallback();
+    ext.params = params(map.config(), &effective, &highlights);
+    if effective.textures != ext.sea_texture.is_some() {
+        [ext.sea_texture, ext.land_texture, ext.mountain_texture] = textures(&server, &effective);
     }
     for (slot, hex) in ext.highlights.tiles.iter_mut().zip(&highlights.selected) {
         *slot = IVec4::new(hex.x, hex.y, 0, 0);

@@ -261,7 +261,7 @@ fn hot_reload_regenerates_every_chunk_and_a_bad_edit_keeps_the_terrain() {
     config.seed = 6;
     app.world_mut()
         .resource_mut::<Assets<HexMapAsset>>()
-        .insert(handle.id(), HexMapAsset { config, image: None })
+        .insert(handle.id(), HexMapAsset { config, image: None, appearance_fallback: false })
         .unwrap();
     run_until(&mut app, "reloaded map", |app| {
         let g = app.world().resource::<HexMap>().generation();
@@ -302,5 +302,14 @@ fn hot_reload_regenerates_every_chunk_and_a_bad_edit_keeps_the_terrain() {
     });
     assert!(message.contains("noise.octaves"), "{message}");
     assert_eq!(app.world().resource::<HexMap>().config().seed, 6);
+
+    // An out-of-range blend only affects looks: the map applies, clamped, with the flat-colour
+    // fallback flagged for the material.
+    write(&dir, "test.map.ron", "(seed: 9, size: Bounded(x: 16, z: 16), chunk_size: (8, 8), appearance: (blend: 1.5))");
+    app.world().resource::<AssetServer>().reload("test.map.ron");
+    run_until(&mut app, "the clamped map", |app| app.world().resource::<HexMap>().config().seed == 9);
+    let map = app.world().resource::<HexMap>();
+    assert_eq!(map.config().appearance.blend, 1.0);
+    assert!(map.appearance_fallback());
     let _ = std::fs::remove_dir_all(&dir);
 }
