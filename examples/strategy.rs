@@ -1,7 +1,3 @@
-// UNFINISHED, not compiled (kept for the next session). The scripted run (HEXTERRAIN_SCRIPT=1,
-// BEVY_ASSET_ROOT=<repo>) selects a unit and clicks a reachable tile but then stalls at step 2
-// (the unit never reports arriving on the target tile); to debug before moving it back to
-// examples/ with its [[example]] entry and hexx's "algorithms" feature as a dev-dependency.
 //! A small turn-based strategy game on streamed hex terrain: pan (WASD/arrows or the screen
 //! edge), zoom (wheel), rotate (Q/E); hover a tile to see it; click a unit to select it and see
 //! where it can go this turn; click a tile to walk there along an A* path (land costs 1,
@@ -17,8 +13,8 @@ use std::collections::HashSet;
 use bevy::input::mouse::AccumulatedMouseScroll;
 use bevy::prelude::*;
 use bevy::render::view::screenshot::{Screenshot, ScreenshotCaptured};
-use hexx::algorithms::{a_star, field_of_movement};
 use hex_terrain_game::prelude::*;
+use hexx::algorithms::{a_star, field_of_movement};
 
 const MOVES: u32 = 4;
 const PRESETS: [&str; 4] =
@@ -224,6 +220,7 @@ fn cost(map: &HexMap, tile: Hex) -> Option<u32> {
 
 /// Puts three units on land near the camera once the terrain exists, and back on the surface
 /// (on land) after a regeneration.
+#[expect(clippy::too_many_arguments, reason = "a system's parameters")]
 fn place_units(
     mut commands: Commands,
     mut ready: MessageReader<TerrainReady>,
@@ -286,7 +283,9 @@ fn click(
         && let Ok((_, mut unit)) = units.get_mut(e)
         && game.reachable.contains(&tile)
     {
-        let step = |_: Hex, b: Hex| if occupied.contains(&b) && b != tile { None } else { cost(&map, b) };
+        // Other units block the way; the mover's own tile (hexx asks for the start's cost) does not.
+        let from = unit.tile;
+        let step = |_: Hex, b: Hex| if occupied.contains(&b) && b != from { None } else { cost(&map, b) };
         if let Some(path) = a_star(unit.tile, tile, step) {
             let spent: u32 = path.iter().skip(1).filter_map(|&t| cost(&map, t)).sum();
             if spent <= unit.moves_left {
@@ -304,10 +303,12 @@ fn refresh_reachable(map: &HexMap, game: &mut Game, units: &Query<(Entity, &Unit
     let Some(e) = game.selected else { return };
     let Ok((_, unit)) = units.get(e) else { return };
     let occupied: HashSet<Hex> = units.iter().filter(|(o, _)| *o != e).map(|(_, u)| u.tile).collect();
-    game.reachable =
-        field_of_movement(unit.tile, unit.moves_left, |t| if occupied.contains(&t) { None } else { cost(map, t) })
-            .into_iter()
-            .collect();
+    // hexx adds 1 to every tile's cost, so pass the cost minus one.
+    game.reachable = field_of_movement(unit.tile, unit.moves_left, |t| {
+        if occupied.contains(&t) { None } else { cost(map, t).map(|c| c - 1) }
+    })
+    .into_iter()
+    .collect();
     game.reachable.remove(&unit.tile);
 }
 
@@ -407,10 +408,12 @@ fn chunk_boundaries(game: Res<Game>, map: Res<HexMap>, mut gizmos: Gizmos) {
     let top = map.config().terrain.max_elevation + 0.2;
     for chunk in map.loaded_chunks() {
         let Some(rect) = terrain.chunk_rect(chunk) else { continue };
-        let corners = [rect.min, [rect.max[0] - 1, rect.min[1]], [rect.max[0] - 1, rect.max[1] - 1], [
-            rect.min[0],
-            rect.max[1] - 1,
-        ]]
+        let corners = [
+            rect.min,
+            [rect.max[0] - 1, rect.min[1]],
+            [rect.max[0] - 1, rect.max[1] - 1],
+            [rect.min[0], rect.max[1] - 1],
+        ]
         .map(|oc| {
             let [x, _, z] = terrain.tile_centre(terrain.tile_from_offset(oc));
             Vec3::new(x, top, z)
@@ -426,14 +429,17 @@ fn chunk_boundaries(game: Res<Game>, map: Res<HexMap>, mut gizmos: Gizmos) {
 struct Script {
     frame: u32,
     step: u32,
+    generation: u64,
     target: Option<Hex>,
     start: Option<Hex>,
     expected_cost: u32,
 }
 
+#[expect(clippy::too_many_arguments, reason = "a system's parameters")]
 fn script(
     mut commands: Commands,
     mut s: ResMut<Script>,
+    appearance: Res<TerrainAppearance>,
     mut game: ResMut<Game>,
     map: Res<HexMap>,
     units: Query<(Entity, &Unit, &Transform)>,
@@ -442,11 +448,10 @@ fn script(
     mut exit: MessageWriter<AppExit>,
 ) {
     s.frame += 1;
-    if s.frame % 20 == 0 {
-        eprintln!("script frame {} step {} spawned {} units {}", s.frame, s.step, game.spawned, units.iter().count());
-    }
     mouse.release(MouseButton::Left);
-    keys.release(KeyCode::Enter);
+    for key in [KeyCode::Enter, KeyCode::KeyG, KeyCode::KeyR] {
+        keys.release(key);
+    }
     let fail = |msg: String, exit: &mut MessageWriter<AppExit>| {
         eprintln!("SCRIPT FAILED: {msg}");
         exit.write(AppExit::error());
@@ -505,8 +510,29 @@ fn script(
                 fail("movement points were not restored".into(), &mut exit);
                 return;
             }
+            // Outlines off, and a new seed.
+            s.generation = map.generation();
+            keys.press(KeyCode::KeyG);
+            keys.press(KeyCode::KeyR);
+            s.step = 4;
+        }
+        // After the regeneration every unit stands on land, on the new surface.
+        4 if map.generation() > s.generation && s.frame.is_multiple_of(10) => {
+            if appearance.outlines {
+                fail("G did not toggle the outlines".into(), &mut exit);
+                return;
+            }
+            let settled = units.iter().all(|(_, u, t)| {
+                cost(&map, u.tile).is_some() && (t.translation.y - (map.tile_centre(u.tile).y + 0.6)).abs() < 0.05
+            });
+            if !settled {
+                return;
+            }
+            s.step = 5;
+        }
+        5 => {
             println!(
-                "SCRIPT OK: unit moved {:?} -> {:?} for {} moves; turn {}",
+                "SCRIPT OK: unit moved {:?} -> {:?} for {} moves; turn {}; outlines off; regenerated, units on land",
                 s.start, s.target, s.expected_cost, game.turn
             );
             match std::env::var_os("HEXTERRAIN_SCREENSHOT") {
@@ -519,11 +545,11 @@ fn script(
                             exit.write(AppExit::Success);
                         },
                     );
-                    s.step = 4;
+                    s.step = 6;
                 }
                 None => {
                     exit.write(AppExit::Success);
-                    s.step = 4;
+                    s.step = 6;
                 }
             }
         }
