@@ -27,6 +27,14 @@ fn pixels_below_sea_level_become_sea_tiles() {
     };
     let t = Terrain::with_image(config, Some(image.clone())).unwrap();
     let b = t.bounds().unwrap();
+    // The image spans the tile centres' extent.
+    let centres: Vec<[f32; 3]> = t.tiles().map(|h| t.tile_centre(h)).collect();
+    let extent = |axis: usize| {
+        let lo = centres.iter().map(|c| c[axis]).fold(f32::MAX, f32::min);
+        let hi = centres.iter().map(|c| c[axis]).fold(f32::MIN, f32::max);
+        (lo, hi)
+    };
+    let ((min_x, max_x), (min_z, max_z)) = (extent(0), extent(2));
     let (mut sea, mut dry) = (0, 0);
     for oc in b.iter() {
         let tile = t.tile_from_offset(oc);
@@ -34,8 +42,8 @@ fn pixels_below_sea_level_become_sea_tiles() {
         let [x, _, z] = t.tile_centre(tile);
         let kind = t.tile_kind(tile);
         // Sample the image as the source does (u over x extent, v over z extent).
-        let u = (x - min_x(&t)) / (max_x(&t) - min_x(&t));
-        let v = (z - min_z(&t)) / (max_z(&t) - min_z(&t));
+        let u = (x - min_x) / (max_x - min_x);
+        let v = (z - min_z) / (max_z - min_z);
         let value = image.sample(f64::from(u), f64::from(v)) as f32;
         if value < sea_level - 0.02 {
             assert_eq!(kind, TileKind::Sea, "{oc:?} image {value}");
@@ -46,22 +54,6 @@ fn pixels_below_sea_level_become_sea_tiles() {
         }
     }
     assert!(sea > 20 && dry > 20, "both sides are exercised: {sea} sea, {dry} dry");
-}
-
-fn centres(t: &Terrain) -> Vec<[f32; 3]> {
-    t.tiles().map(|h| t.tile_centre(h)).collect()
-}
-fn min_x(t: &Terrain) -> f32 {
-    centres(t).iter().map(|c| c[0]).fold(f32::MAX, f32::min)
-}
-fn max_x(t: &Terrain) -> f32 {
-    centres(t).iter().map(|c| c[0]).fold(f32::MIN, f32::max)
-}
-fn min_z(t: &Terrain) -> f32 {
-    centres(t).iter().map(|c| c[2]).fold(f32::MAX, f32::min)
-}
-fn max_z(t: &Terrain) -> f32 {
-    centres(t).iter().map(|c| c[2]).fold(f32::MIN, f32::max)
 }
 
 #[test]
