@@ -53,6 +53,9 @@ pub struct Lattice {
     /// For each point of `points` inside the tile (ring below `n`), the indices of its six
     /// lattice neighbours in [`NEIGHBOURS`] order, all within the tile.
     neighbour_indices: Vec<[u16; 6]>,
+    /// For each point of `points` on the border, the neighbouring tiles sharing it (one on an
+    /// edge, two on a corner) as indices into `Hex::all_neighbors`; `u8::MAX` when absent.
+    shared_tiles: Vec<[u8; 2]>,
 }
 
 /// The six lattice directions around a point, counter-clockwise in lattice space.
@@ -95,7 +98,7 @@ impl Lattice {
             .iter()
             .map(|p| if p.ring < n as u32 { NEIGHBOURS.map(|d| index_of(p.offset + d)) } else { [u16::MAX; 6] })
             .collect();
-        Self {
+        let mut lattice = Self {
             n,
             orientation,
             hex_size: f64::from(hex_size),
@@ -105,7 +108,33 @@ impl Lattice {
             triangles,
             triangle_indices,
             neighbour_indices,
-        }
+            shared_tiles: Vec::new(),
+        };
+        // Tile centres are a linear function of tile coordinates, so the tiles sharing a border
+        // point of any tile are that tile's neighbours in the same directions as for the origin.
+        lattice.shared_tiles = lattice
+            .points
+            .iter()
+            .map(|p| {
+                let mut shared = [u8::MAX; 2];
+                let set = lattice.tiles_at(p.offset);
+                let others = set.tiles().iter().filter(|&&t| t != Hex::ZERO);
+                for (slot, &tile) in shared.iter_mut().zip(others) {
+                    let direction = Hex::ZERO.all_neighbors().iter().position(|&d| d == tile);
+                    *slot = direction.map_or(u8::MAX, |d| d as u8);
+                }
+                shared
+            })
+            .collect();
+        lattice
+    }
+
+    /// For template point `i`, the neighbouring tiles that share it besides the tile itself (none
+    /// inside the tile, one on an edge, two on a corner), as indices into `Hex::all_neighbors`;
+    /// `u8::MAX` marks an empty slot.
+    #[must_use]
+    pub(crate) fn shared_tiles(&self, i: usize) -> [u8; 2] {
+        self.shared_tiles[i]
     }
 
     /// [`Lattice::template_triangles`] as indices into [`Lattice::template`].

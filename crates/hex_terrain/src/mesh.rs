@@ -72,6 +72,13 @@ fn par_map<O: Send>(len: usize, f: impl Fn(usize) -> O + Sync + Send) -> Vec<O> 
 /// Points processed together by one task.
 const BATCH: usize = 1024;
 
+/// The tile whose template enumerated a point first, and the point's index in that template.
+#[derive(Clone, Copy)]
+struct Owner {
+    tile: u32,
+    k: u16,
+}
+
 /// Lattice points of a rectangle of tiles, as [`Terrain::collect_points`] enumerates them.
 struct Points {
     grid: Grid,
@@ -79,9 +86,8 @@ struct Points {
     lattice: Vec<Hex>,
     /// How many points belong to the tiles (the rest is halo).
     owned: usize,
-    /// For each owned point, its ring and the index of its tile when the point is inside one
-    /// tile (`u32::MAX` on borders, whose tiles are looked up), and its template index.
-    owner: Vec<(u32, u32, u16)>,
+    /// The owner of each owned point.
+    owner: Vec<Owner>,
     /// For each tile, the point index of each of its template points.
     tile_points: Vec<u32>,
     /// Index of each tile's centre point.
@@ -111,31 +117,53 @@ impl Grid {
         (y as usize) * (self.width as usize) + x as usize
     }
 
-    #[inline]
-    fn get(&self, p: Hex) -> u32 {
-        self.slots[self.slot(p)]
+    /// Slot offset of one lattice step `d`.
+    fn step(&self, d: Hex) -> isize {
+        d.y as isize * self.width as isize + d.x as isize
     }
 }
 
-/// Per-vertex bits kept between passes: moved (bit 0), kind (bits 1-2), ring (bits 3-7).
-struct Flags;
+/// The per-vertex outputs of a run of owned points, split in halves for the tasks.
+struct Outputs<'a> {
+    heights: &'a mut [f32],
+    positions: &'a mut [[f32; 3]],
+    uvs: &'a mut [[f32; 2]],
+    kinds: &'a mut [u32],
+    distances: &'a mut [f32],
+    raws: &'a mut [f32],
+    moved: &'a mut [bool],
+    rings: &'a mut [u8],
+}
 
-impl Flags {
-    #[inline]
-    fn pack(moved: bool, kind: TileKind, ring: u32) -> u8 {
-        u8::from(moved) | (kind as u8) << 1 | (ring.min(31) as u8) << 3
+impl Outputs<'_> {
+    fn len(&self) -> usize {
+        self.heights.len()
     }
-    #[inline]
-    fn moved(f: u8) -> bool {
-        f & 1 != 0
+
+    fn split_at(self, mid: usize) -> (Self, Self) {
+        let (h0, h1) = self.heights.split_at_mut(mid);
+        let (p0, p1) = self.positions.split_at_mut(mid);
+        let (u0, u1) = self.uvs.split_at_mut(mid);
+        let (k0, k1) = self.kinds.split_at_mut(mid);
+        let (d0, d1) = self.distances.split_at_mut(mid);
+        let (r0, r1) = self.raws.split_at_mut(mid);
+        let (m0, m1) = self.moved.split_at_mut(mid);
+        let (g0, g1) = self.rings.split_at_mut(mid);
+        (
+            Outputs { heights: h0, positions: p0, uvs: u0, kinds: k0, distances: d0, raws: r0, moved: m0, rings: g0 },
+            Outputs { heights: h1, positions: p1, uvs: u1, kinds: k1, distances: d1, raws: r1, moved: m1, rings: g1 },
+        )
     }
-    #[inline]
-    fn kind(f: u8) -> u8 {
-        (f >> 1) & 3
-    }
-    #[inline]
-    fn ring(f: u8) -> u8 {
-        f >> 3
+}
+
+/// Runs `f(start, outputs)` on batches of at most [`BATCH`] points, on all cores.
+fn in_batches<F: Fn(usize, Outputs<'_>) + Sync>(out: Outputs<'_>, start: usize, f: &F) {
+    if out.len() <= BATCH {
+        f(start, out);
+    } else {
+        let mid = (out.len() / BATCH).div_ceil(2) * BATCH;
+        let (a, b) = out.split_at(mid);
+        rayon::join(|| in_batches(a, start, f), || in_batches(b, start + mid, f));
     }
 }
 
@@ -220,13 +248,10 @@ impl Terrain {
                     grid.slots[slot] = points.len() as u32;
                     if tp.ring == 0 {
                         centres.push(points.len() as u32);
-                    }
-                    if tp.ring == n {
+                    } else if tp.ring == n {
                         border.push(points.len());
-                        owner.push((n, u32::MAX, k as u16));
-                    } else {
-                        owner.push((tp.ring, t as u32, k as u16));
                     }
+                    owner.push(Owner { tile: t as u32, k: k as u16 });
                     points.push(p);
                 }
                 tile_points.push(grid.slots[slot]);
@@ -258,6 +283,10 @@ impl Terrain {
 
     /// Generates the mesh of any rectangle of tiles (clipped to the map) with the halo it needs:
     /// the result for a tile does not depend on which rectangle it was generated in.
+    ///
+    /// Three passes over the points, each on all cores: the owned vertices (noise, shaping,
+    /// manipulation and every attribute but the normal, in one go), the halo's heights, then
+    /// the normals, which need the heights of the six lattice neighbours.
     #[must_use]
     pub fn generate_rect(&self, rect: TileRect) -> ChunkMesh {
         let rect = self.bounds().map_or(rect, |b| rect.intersect(&b));
@@ -267,8 +296,8 @@ impl Terrain {
         let Points { grid, lattice: mut points, owned, owner, centres, tile_points } = self.collect_points(&tiles);
         let ppt = lattice.points_per_tile();
 
-        // Kinds of the tiles and of the ring around them: every vertex evaluated below lies in
-        // one of those.
+        // Kinds of the tiles and of the ring around them (`None` outside the map): every vertex
+        // evaluated below lies in one of those.
         let halo = rect.grow(1);
         let halo_width = (halo.max[0] - halo.min[0]) as usize;
         let halo_index = |[c, r]: [i32; 2]| (r - halo.min[1]) as usize * halo_width + (c - halo.min[0]) as usize;
@@ -279,50 +308,22 @@ impl Terrain {
             let tile = halo_tiles[k];
             self.contains(tile).then(|| self.thresholds().classify(self.shaped(centre_noise[k], centres_lattice[k])))
         });
-        let tile_kinds: Vec<TileKind> = rect.iter().map(|oc| kinds[halo_index(oc)].unwrap_or(TileKind::Sea)).collect();
         let kind_of = |tile: Hex| {
             let oc = self.offset_of(tile);
             if halo.contains(oc) { kinds[halo_index(oc)] } else { self.map_tile_kind(tile) }
         };
-
-        // Noise, shaping and manipulation, one batch of points per task.
-        let max_elevation = self.config().terrain.max_elevation;
-        let total = points.len();
-        let mut heights = vec![0.0_f32; total];
-        let mut raws = vec![0.0_f32; total];
-        let mut flags = vec![0_u8; total];
-        heights
-            .par_chunks_mut(BATCH)
-            .zip(raws.par_chunks_mut(BATCH))
-            .zip(flags.par_chunks_mut(BATCH))
-            .enumerate()
-            .for_each(|(k, ((heights, raws), flags))| {
-                let start = k * BATCH;
-                let pts = &points[start..start + heights.len()];
-                let mut noise = [0.0; BATCH];
-                self.base_heights(pts, &mut noise[..pts.len()]);
-                for (j, &p) in pts.iter().enumerate() {
-                    let raw = self.shaped(noise[j], p);
-                    let s = match owner.get(start + j) {
-                        Some(&(ring, tile, _)) if tile != u32::MAX => {
-                            self.finish_vertex(raw, ring, &[tile_kinds[tile as usize]])
-                        }
-                        _ => self.border_vertex(raw, p, kind_of),
-                    };
-                    heights[j] = s.height * max_elevation;
-                    raws[j] = raw;
-                    flags[j] = Flags::pack(s.moved, s.kind, s.ring);
-                }
-            });
-
-        let (step_a, step_b) = lattice.steps();
-        let around: [[f32; 2]; 6] = AROUND.map(|d| {
-            let (i, j) = (f64::from(d.x), f64::from(d.y));
-            [(i * step_a[0] + j * step_b[0]) as f32, (i * step_a[1] + j * step_b[1]) as f32]
+        // Per tile: its own kind and the kinds of its six neighbours, in `all_neighbors` order.
+        let around_kinds: Vec<(TileKind, [Option<TileKind>; 6])> = par_map(tiles.len(), |t| {
+            let tile = tiles[t];
+            (kind_of(tile).unwrap_or(TileKind::Sea), tile.all_neighbors().map(kind_of))
         });
-        let coefficients = NormalCoefficients::new(&around);
+
+        let max_elevation = self.config().terrain.max_elevation;
         let uv_scale = 0.5 / self.config().layout.hex_size;
         let inv_n = 1.0 / n as f32;
+        let template = lattice.template();
+        let total = points.len();
+        let mut heights = vec![0.0_f32; total];
         let mut b = MeshBuffers {
             positions: vec![[0.0; 3]; owned],
             normals: vec![[0.0; 3]; owned],
@@ -331,36 +332,87 @@ impl Terrain {
             centre_distances: vec![0.0; owned],
             indices: vec![0; tiles.len() * lattice.triangles_per_tile() * 3],
         };
-        b.positions
-            .par_chunks_mut(BATCH)
-            .zip(b.normals.par_chunks_mut(BATCH))
-            .zip(b.uvs.par_chunks_mut(BATCH))
-            .zip(b.tile_kinds.par_chunks_mut(BATCH))
-            .zip(b.centre_distances.par_chunks_mut(BATCH))
-            .enumerate()
-            .for_each(|(k, ((((positions, normals), uvs), kinds), distances))| {
-                for j in 0..positions.len() {
-                    let i = k * BATCH + j;
-                    let p = points[i];
-                    let [x, z] = lattice.world(p);
-                    let (x, z) = (x as f32, z as f32);
-                    positions[j] = [x, heights[i], z];
-                    uvs[j] = [x * uv_scale, z * uv_scale];
-                    kinds[j] = u32::from(Flags::kind(flags[i]));
-                    distances[j] = f32::from(Flags::ring(flags[i])) * inv_n;
-                    normals[j] = match owner[i] {
-                        // Inside a tile: the neighbours are the tile's own points.
-                        (_, tile, k) if tile != u32::MAX => {
-                            let around_idx = lattice.template_neighbours(usize::from(k));
-                            let base = tile as usize * ppt;
-                            coefficients.normal(heights[i], |d| {
-                                heights[tile_points[base + usize::from(around_idx[d])] as usize]
-                            })
+        let mut raws = vec![0.0_f32; owned];
+        let mut moved = vec![false; owned];
+        let mut rings = vec![0_u8; owned];
+        let (owned_heights, halo_heights) = heights.split_at_mut(owned);
+
+        // The tiles' own vertices: their tiles are known, so no lookup is needed.
+        let outputs = Outputs {
+            heights: owned_heights,
+            positions: &mut b.positions,
+            uvs: &mut b.uvs,
+            kinds: &mut b.tile_kinds,
+            distances: &mut b.centre_distances,
+            raws: &mut raws,
+            moved: &mut moved,
+            rings: &mut rings,
+        };
+        in_batches(outputs, 0, &|start, o: Outputs<'_>| {
+            let pts = &points[start..start + o.len()];
+            let mut noise = [0.0; BATCH];
+            self.base_heights(pts, &mut noise[..pts.len()]);
+            for (j, &p) in pts.iter().enumerate() {
+                let Owner { tile, k } = owner[start + j];
+                let k = usize::from(k);
+                let ring = template[k].ring;
+                let raw = self.shaped(noise[j], p);
+                let (own, around) = &around_kinds[tile as usize];
+                let s = if ring < n {
+                    self.finish_vertex(raw, ring, &[*own])
+                } else {
+                    let mut sharing = [*own; 3];
+                    let mut len = 1;
+                    for d in lattice.shared_tiles(k) {
+                        if let Some(&Some(kind)) = around.get(usize::from(d)) {
+                            sharing[len] = kind;
+                            len += 1;
                         }
-                        _ => coefficients.normal(heights[i], |d| heights[grid.get(p + AROUND[d]) as usize]),
-                    };
-                }
-            });
+                    }
+                    self.finish_vertex(raw, ring, &sharing[..len])
+                };
+                let height = s.height * max_elevation;
+                let [x, z] = lattice.world(p);
+                let (x, z) = (x as f32, z as f32);
+                o.heights[j] = height;
+                o.positions[j] = [x, height, z];
+                o.uvs[j] = [x * uv_scale, z * uv_scale];
+                o.kinds[j] = s.kind as u32;
+                o.distances[j] = ring as f32 * inv_n;
+                o.raws[j] = raw;
+                o.moved[j] = s.moved;
+                o.rings[j] = ring as u8;
+            }
+        });
+
+        // The halo: heights only, for the normals of the border vertices.
+        let halo_points = &points[owned..];
+        halo_heights.par_chunks_mut(BATCH).zip(halo_points.par_chunks(BATCH)).for_each(|(out, pts)| {
+            let mut noise = [0.0; BATCH];
+            self.base_heights(pts, &mut noise[..pts.len()]);
+            for ((h, &p), &noise) in out.iter_mut().zip(pts).zip(&noise) {
+                *h = self.border_vertex(self.shaped(noise, p), p, kind_of).height * max_elevation;
+            }
+        });
+
+        // Normals: every neighbour of an owned point is an owned or a halo point.
+        let (step_a, step_b) = lattice.steps();
+        let around: [[f32; 2]; 6] = AROUND.map(|d| {
+            let (i, j) = (f64::from(d.x), f64::from(d.y));
+            [(i * step_a[0] + j * step_b[0]) as f32, (i * step_a[1] + j * step_b[1]) as f32]
+        });
+        let coefficients = NormalCoefficients::new(&around);
+        let steps = AROUND.map(|d| grid.step(d));
+        let heights = &heights;
+        b.normals.par_chunks_mut(BATCH).enumerate().for_each(|(c, normals)| {
+            for (j, normal) in normals.iter_mut().enumerate() {
+                let i = c * BATCH + j;
+                let slot = grid.slot(points[i]);
+                *normal = coefficients
+                    .normal(heights[i], |d| heights[grid.slots[slot.wrapping_add_signed(steps[d])] as usize]);
+            }
+        });
+
         let per_tile = lattice.triangles_per_tile() * 3;
         b.indices.par_chunks_mut(per_tile).zip(tile_points.par_chunks(ppt)).for_each(|(out, own)| {
             for (tri, dst) in lattice.template_triangle_indices().iter().zip(out.chunks_exact_mut(3)) {
@@ -373,20 +425,11 @@ impl Terrain {
         let tiles_info = tiles
             .iter()
             .zip(&centres)
-            .zip(&tile_kinds)
-            .map(|((&hex, &ci), &kind)| TileInfo { hex, kind, elevation: heights[ci as usize], in_map: true })
+            .zip(&around_kinds)
+            .map(|((&hex, &ci), &(kind, _))| TileInfo { hex, kind, elevation: heights[ci as usize], in_map: true })
             .collect();
         points.truncate(owned);
-        raws.truncate(owned);
-        ChunkMesh {
-            rect,
-            buffers: b,
-            lattice: points,
-            raw_heights: raws,
-            moved: par_map(owned, |i| Flags::moved(flags[i])),
-            rings: par_map(owned, |i| Flags::ring(flags[i])),
-            tiles: tiles_info,
-        }
+        ChunkMesh { rect, buffers: b, lattice: points, raw_heights: raws, moved, rings, tiles: tiles_info }
     }
 
     /// The lattice points [`Terrain::generate_rect`] evaluates for `rect`: its vertices, then

@@ -8,7 +8,7 @@ use crate::chunk::{ChunkCoord, TileRect};
 use crate::classify::{Manipulated, Thresholds, TileKind, manipulate};
 use std::sync::Arc;
 
-use crate::config::{HeightSourceConfig, MapConfig, MapSize, Orientation};
+use crate::config::{HeightSourceConfig, MapConfig, MapSize, Orientation, Shape};
 use crate::error::ConfigError;
 use crate::image_source::{HeightImage, remap_sea_level};
 use crate::lattice::Lattice;
@@ -78,6 +78,8 @@ pub struct Terrain {
     origin_lattice: Hex,
     bounds: Option<TileRect>,
     shape_bounds: Option<ShapeBounds>,
+    /// Whether a shaping filter changes heights (a bounded map with a shape other than `None`).
+    shaping: bool,
     thresholds: Thresholds,
     image: Option<(Arc<HeightImage>, f64)>,
 }
@@ -132,6 +134,7 @@ impl Terrain {
             origin_lattice,
             bounds,
             shape_bounds: None,
+            shaping: false,
             image,
         };
         terrain.shape_bounds = bounds.map(|rect| {
@@ -159,6 +162,7 @@ impl Terrain {
             let min_u = if max_x > min_x { step / (max_x - min_x) } else { 1.0 };
             ShapeBounds { min_x, max_x, min_z, max_z, min_u }
         });
+        terrain.shaping = terrain.shape_bounds.is_some() && terrain.config.shape != Shape::None;
         Ok(terrain)
     }
 
@@ -231,7 +235,7 @@ impl Terrain {
     /// Applies the shaping filter to a bare noise height at lattice point `p`.
     #[inline]
     pub(crate) fn shaped(&self, noise: f64, p: Hex) -> f32 {
-        if self.shape_bounds.is_some() {
+        if self.shaping {
             let [x, z] = self.lattice.world(p);
             shape::apply(&self.config.shape, self.shape_bounds.as_ref(), noise, x, z) as f32
         } else {
@@ -257,8 +261,14 @@ impl Terrain {
                 *o = self.image_height(image, *sea_level, *p);
             }
         } else {
-            let positions: Vec<[f64; 2]> = points.iter().map(|&p| self.noise_position(p)).collect();
-            self.fbm.sample_many(&positions, out);
+            const STEP: usize = 256;
+            let mut positions = [[0.0; 2]; STEP];
+            for (points, out) in points.chunks(STEP).zip(out.chunks_mut(STEP)) {
+                for (position, &p) in positions.iter_mut().zip(points) {
+                    *position = self.noise_position(p);
+                }
+                self.fbm.sample_many(&positions[..points.len()], out);
+            }
         }
     }
 

@@ -102,3 +102,29 @@ fn triangle_at_reproduces_the_point() {
         assert!((px - x).abs() < 1e-9 && (pz - z).abs() < 1e-9);
     }
 }
+
+/// The tiles sharing each border point of a template, found once for the origin tile, are the
+/// tiles `tiles_at` finds for the same point of any tile.
+#[test]
+fn shared_tiles_are_the_tiles_at_every_template_point() {
+    for n in [1, 2, 3, 5] {
+        for o in [Orientation::Flat, Orientation::Pointy] {
+            let l = Lattice::new(n, o, 1.5);
+            for tile in [Hex::ZERO, Hex::new(3, -2), Hex::new(-7, 11), Hex::new(1000, -4000)] {
+                for (k, tp) in l.template().iter().enumerate() {
+                    let mut expected: Vec<Hex> = l.tiles_at(l.tile_centre(tile) + tp.offset).tiles().to_vec();
+                    let mut found = vec![tile];
+                    for d in l.shared_tiles(k) {
+                        if d != u8::MAX {
+                            found.push(tile.all_neighbors()[usize::from(d)]);
+                        }
+                    }
+                    expected.sort_by_key(|h| (h.x, h.y));
+                    found.sort_by_key(|h| (h.x, h.y));
+                    assert_eq!(found, expected, "n {n} {o:?} tile {tile:?} point {k}");
+                    assert_eq!(found.len() > 1, tp.ring == n, "only border points are shared");
+                }
+            }
+        }
+    }
+}

@@ -55,3 +55,38 @@ fn buffers_are_consistent() {
     let unique: HashSet<Hex> = m.lattice.iter().copied().collect();
     assert_eq!(unique.len(), v, "shared vertices exist once");
 }
+
+/// The batched generator and the one-vertex evaluator (`Terrain::vertex`, which finds the tiles
+/// around a point from scratch) agree on every vertex, on map edges and chunk edges too.
+#[test]
+fn every_vertex_matches_the_single_vertex_evaluator() {
+    use crate::config::Shape;
+    for rings in [1, 2, 4] {
+        for o in [Orientation::Flat, Orientation::Pointy] {
+            for shape in [Shape::None, Shape::Island { a: 3.0, b: 2.2 }] {
+                let mut c =
+                    MapConfig { size: MapSize::Bounded { x: 9, z: 7 }, shape: shape.clone(), ..MapConfig::default() };
+                c.terrain.inner_rings = rings;
+                c.layout.orientation = o;
+                c.seed = 11 + rings;
+                let t = Terrain::new(c).unwrap();
+                let max = t.config().terrain.max_elevation;
+                for rect in [t.bounds().unwrap(), TileRect::new([2, 1], [6, 5]), TileRect::new([7, 0], [9, 3])] {
+                    let m = t.generate_rect(rect);
+                    for (i, &p) in m.lattice.iter().enumerate() {
+                        let s = t.vertex(p);
+                        let what = format!("{p:?} rings {rings} {o:?} {shape:?} rect {rect:?}");
+                        assert_eq!(m.raw_heights[i].to_bits(), s.raw.to_bits(), "raw {what}");
+                        assert_eq!(m.buffers.positions[i][1].to_bits(), (s.height * max).to_bits(), "height {what}");
+                        assert_eq!(m.buffers.tile_kinds[i], s.kind as u32, "kind {what}");
+                        assert_eq!(m.moved[i], s.moved, "moved {what}");
+                        assert_eq!(u32::from(m.rings[i]), s.ring, "ring {what}");
+                    }
+                    for info in &m.tiles {
+                        assert_eq!(*info, t.tile_info(info.hex));
+                    }
+                }
+            }
+        }
+    }
+}
