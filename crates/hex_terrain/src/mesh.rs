@@ -64,6 +64,48 @@ pub struct ChunkMesh {
     pub tiles: Vec<TileInfo>,
 }
 
+/// Output buffers of a generation.
+struct Buffers {
+    b: MeshBuffers,
+    raws: Vec<f32>,
+    moved: Vec<bool>,
+    rings: Vec<u8>,
+}
+
+impl Buffers {
+    /// Zeroed buffers for `vertices` vertices and `indices` indices. Zeroing recycled memory
+    /// costs a pass over it, so it is done here, beside the sequential point enumeration; fresh
+    /// pages come zeroed from the system and are mapped when the passes first write them.
+    fn new(vertices: usize, indices: usize) -> Self {
+        Self {
+            b: MeshBuffers {
+                positions: vec![[0.0; 3]; vertices],
+                normals: vec![[0.0; 3]; vertices],
+                uvs: vec![[0.0; 2]; vertices],
+                tile_kinds: vec![0; vertices],
+                centre_distances: vec![0.0; vertices],
+                indices: vec![0; indices],
+            },
+            raws: vec![0.0; vertices],
+            moved: vec![false; vertices],
+            rings: vec![0; vertices],
+        }
+    }
+
+    /// The same buffers holding exactly `vertices` vertices (a no-op when the count was right).
+    fn fit(mut self, vertices: usize) -> Self {
+        self.b.positions.resize(vertices, [0.0; 3]);
+        self.b.normals.resize(vertices, [0.0; 3]);
+        self.b.uvs.resize(vertices, [0.0; 2]);
+        self.b.tile_kinds.resize(vertices, 0);
+        self.b.centre_distances.resize(vertices, 0.0);
+        self.raws.resize(vertices, 0.0);
+        self.moved.resize(vertices, false);
+        self.rings.resize(vertices, 0);
+        self
+    }
+}
+
 /// `f(i)` for `i` in `0..len`, on all cores, in order.
 fn par_map<O: Send>(len: usize, f: impl Fn(usize) -> O + Sync + Send) -> Vec<O> {
     (0..len).into_par_iter().with_min_len(512).map(f).collect()
@@ -125,7 +167,6 @@ impl Grid {
 
 /// The per-vertex outputs of a run of owned points, split in halves for the tasks.
 struct Outputs<'a> {
-    heights: &'a mut [f32],
     positions: &'a mut [[f32; 3]],
     uvs: &'a mut [[f32; 2]],
     kinds: &'a mut [u32],
@@ -137,11 +178,10 @@ struct Outputs<'a> {
 
 impl Outputs<'_> {
     fn len(&self) -> usize {
-        self.heights.len()
+        self.positions.len()
     }
 
     fn split_at(self, mid: usize) -> (Self, Self) {
-        let (h0, h1) = self.heights.split_at_mut(mid);
         let (p0, p1) = self.positions.split_at_mut(mid);
         let (u0, u1) = self.uvs.split_at_mut(mid);
         let (k0, k1) = self.kinds.split_at_mut(mid);
@@ -150,8 +190,8 @@ impl Outputs<'_> {
         let (m0, m1) = self.moved.split_at_mut(mid);
         let (g0, g1) = self.rings.split_at_mut(mid);
         (
-            Outputs { heights: h0, positions: p0, uvs: u0, kinds: k0, distances: d0, raws: r0, moved: m0, rings: g0 },
-            Outputs { heights: h1, positions: p1, uvs: u1, kinds: k1, distances: d1, raws: r1, moved: m1, rings: g1 },
+            Outputs { positions: p0, uvs: u0, kinds: k0, distances: d0, raws: r0, moved: m0, rings: g0 },
+            Outputs { positions: p1, uvs: u1, kinds: k1, distances: d1, raws: r1, moved: m1, rings: g1 },
         )
     }
 }
@@ -281,6 +321,38 @@ impl Terrain {
         out
     }
 
+    /// Vertex count of the mesh of `rect` (clipped to the map), from the count formula
+    /// ([`Lattice::mesh_vertex_count`](crate::Lattice::mesh_vertex_count)).
+    fn rect_vertex_count(&self, rect: TileRect) -> usize {
+        let tiles = rect.len();
+        if tiles == 0 {
+            return 0;
+        }
+        // Only tiles in the first or last row or column can have a neighbour outside.
+        let [c0, r0] = rect.min;
+        let [c1, r1] = [rect.max[0] - 1, rect.max[1] - 1];
+        let outline = rect
+            .iter()
+            .filter(|&[c, r]| c == c0 || c == c1 || r == r0 || r == r1)
+            .map(|oc| {
+                let tile = self.tile_from_offset(oc);
+                tile.all_neighbors().iter().filter(|&&nb| !rect.contains(self.offset_of(nb))).count()
+            })
+            .sum();
+        self.lattice().mesh_vertex_count(tiles, outline)
+    }
+
+    /// Kind of every tile of `rect` (row by row), `None` for those outside the map.
+    fn halo_kinds(&self, rect: TileRect) -> Vec<Option<TileKind>> {
+        let lattice = self.lattice();
+        let tiles: Vec<Hex> = rect.iter().map(|oc| self.tile_from_offset(oc)).collect();
+        let centres: Vec<Hex> = tiles.iter().map(|&t| lattice.tile_centre(t)).collect();
+        let noise = self.noise_at(&centres);
+        par_map(tiles.len(), |k| {
+            self.contains(tiles[k]).then(|| self.thresholds().classify(self.shaped(noise[k], centres[k])))
+        })
+    }
+
     /// Generates the mesh of any rectangle of tiles (clipped to the map) with the halo it needs:
     /// the result for a tile does not depend on which rectangle it was generated in.
     ///
@@ -293,21 +365,27 @@ impl Terrain {
         let tiles: Vec<Hex> = rect.iter().map(|oc| self.tile_from_offset(oc)).collect();
         let lattice = self.lattice();
         let n = lattice.subdivisions();
-        let Points { grid, lattice: mut points, owned, owner, centres, tile_points } = self.collect_points(&tiles);
         let ppt = lattice.points_per_tile();
 
         // Kinds of the tiles and of the ring around them (`None` outside the map): every vertex
-        // evaluated below lies in one of those.
+        // evaluated below lies in one of those. They are computed while the points are
+        // enumerated, which is sequential.
         let halo = rect.grow(1);
         let halo_width = (halo.max[0] - halo.min[0]) as usize;
         let halo_index = |[c, r]: [i32; 2]| (r - halo.min[1]) as usize * halo_width + (c - halo.min[0]) as usize;
-        let halo_tiles: Vec<Hex> = halo.iter().map(|oc| self.tile_from_offset(oc)).collect();
-        let centres_lattice: Vec<Hex> = halo_tiles.iter().map(|&t| lattice.tile_centre(t)).collect();
-        let centre_noise = self.noise_at(&centres_lattice);
-        let kinds: Vec<Option<TileKind>> = par_map(halo.len(), |k| {
-            let tile = halo_tiles[k];
-            self.contains(tile).then(|| self.thresholds().classify(self.shaped(centre_noise[k], centres_lattice[k])))
-        });
+        // Enumerating the points is sequential; meanwhile the other cores classify the tiles and
+        // allocate (and touch, so the page faults happen there too) the output buffers, whose
+        // size the vertex count formula gives.
+        let ((Points { grid, lattice: mut points, owned, owner, centres, tile_points }, out), kinds) = rayon::join(
+            || {
+                rayon::join(
+                    || self.collect_points(&tiles),
+                    || Buffers::new(self.rect_vertex_count(rect), tiles.len() * lattice.triangles_per_tile() * 3),
+                )
+            },
+            || self.halo_kinds(halo),
+        );
+        let Buffers { mut b, mut raws, mut moved, mut rings } = out.fit(owned);
         let kind_of = |tile: Hex| {
             let oc = self.offset_of(tile);
             if halo.contains(oc) { kinds[halo_index(oc)] } else { self.map_tile_kind(tile) }
@@ -322,24 +400,10 @@ impl Terrain {
         let uv_scale = 0.5 / self.config().layout.hex_size;
         let inv_n = 1.0 / n as f32;
         let template = lattice.template();
-        let total = points.len();
-        let mut heights = vec![0.0_f32; total];
-        let mut b = MeshBuffers {
-            positions: vec![[0.0; 3]; owned],
-            normals: vec![[0.0; 3]; owned],
-            uvs: vec![[0.0; 2]; owned],
-            tile_kinds: vec![0; owned],
-            centre_distances: vec![0.0; owned],
-            indices: vec![0; tiles.len() * lattice.triangles_per_tile() * 3],
-        };
-        let mut raws = vec![0.0_f32; owned];
-        let mut moved = vec![false; owned];
-        let mut rings = vec![0_u8; owned];
-        let (owned_heights, halo_heights) = heights.split_at_mut(owned);
+        let mut halo_heights = vec![0.0_f32; points.len() - owned];
 
         // The tiles' own vertices: their tiles are known, so no lookup is needed.
         let outputs = Outputs {
-            heights: owned_heights,
             positions: &mut b.positions,
             uvs: &mut b.uvs,
             kinds: &mut b.tile_kinds,
@@ -374,7 +438,6 @@ impl Terrain {
                 let height = s.height * max_elevation;
                 let [x, z] = lattice.world(p);
                 let (x, z) = (x as f32, z as f32);
-                o.heights[j] = height;
                 o.positions[j] = [x, height, z];
                 o.uvs[j] = [x * uv_scale, z * uv_scale];
                 o.kinds[j] = s.kind as u32;
@@ -403,13 +466,28 @@ impl Terrain {
         });
         let coefficients = NormalCoefficients::new(&around);
         let steps = AROUND.map(|d| grid.step(d));
-        let heights = &heights;
+        let (positions, halo_heights) = (&b.positions, &halo_heights);
+        let height = |i: usize| if i < owned { positions[i][1] } else { halo_heights[i - owned] };
+        // Template points inside a tile come first (ring by ring), and a tile's inner points are
+        // never shared, so they follow its centre in the same order as in the template.
+        let inner = lattice.points_per_tile() - 6 * n as usize;
         b.normals.par_chunks_mut(BATCH).enumerate().for_each(|(c, normals)| {
             for (j, normal) in normals.iter_mut().enumerate() {
                 let i = c * BATCH + j;
-                let slot = grid.slot(points[i]);
-                *normal = coefficients
-                    .normal(heights[i], |d| heights[grid.slots[slot.wrapping_add_signed(steps[d])] as usize]);
+                let h0 = positions[i][1];
+                let Owner { tile, k } = owner[i];
+                let k = usize::from(k);
+                *normal = if k < inner {
+                    let (first, base) = (i - k, tile as usize * ppt);
+                    let around = lattice.template_neighbours(k);
+                    coefficients.normal(h0, |d| {
+                        let nk = usize::from(around[d]);
+                        positions[if nk < inner { first + nk } else { tile_points[base + nk] as usize }][1]
+                    })
+                } else {
+                    let slot = grid.slot(points[i]);
+                    coefficients.normal(h0, |d| height(grid.slots[slot.wrapping_add_signed(steps[d])] as usize))
+                };
             }
         });
 
@@ -426,7 +504,12 @@ impl Terrain {
             .iter()
             .zip(&centres)
             .zip(&around_kinds)
-            .map(|((&hex, &ci), &(kind, _))| TileInfo { hex, kind, elevation: heights[ci as usize], in_map: true })
+            .map(|((&hex, &ci), &(kind, _))| TileInfo {
+                hex,
+                kind,
+                elevation: b.positions[ci as usize][1],
+                in_map: true,
+            })
             .collect();
         points.truncate(owned);
         ChunkMesh { rect, buffers: b, lattice: points, raw_heights: raws, moved, rings, tiles: tiles_info }

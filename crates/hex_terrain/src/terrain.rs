@@ -340,7 +340,7 @@ impl Terrain {
 
     /// Applies manipulation to a vertex of raw height `raw` at `ring`, shared by the in-map
     /// tiles of `kinds`.
-    #[inline]
+    #[inline(always)]
     pub(crate) fn finish_vertex(&self, raw: f32, ring: u32, kinds: &[TileKind]) -> VertexSample {
         let n = self.lattice.subdivisions();
         let Manipulated { height, moved } = if self.config.manipulation.any() {

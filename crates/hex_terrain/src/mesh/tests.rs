@@ -90,3 +90,33 @@ fn every_vertex_matches_the_single_vertex_evaluator() {
         }
     }
 }
+
+/// Every normal is the one of the six lattice neighbours' heights, looked up by coordinate (the
+/// generator finds them by index arithmetic).
+#[test]
+fn normals_come_from_the_six_lattice_neighbours() {
+    use std::collections::HashMap;
+    for rings in [1, 3] {
+        for o in [Orientation::Flat, Orientation::Pointy] {
+            let mut c = MapConfig { size: MapSize::Bounded { x: 7, z: 5 }, ..MapConfig::default() };
+            c.terrain.inner_rings = rings;
+            c.layout.orientation = o;
+            let t = Terrain::new(c).unwrap();
+            let max = t.config().terrain.max_elevation;
+            let m = t.generate_rect(TileRect::new([1, 1], [6, 4]));
+            let at: HashMap<Hex, f32> =
+                m.lattice.iter().zip(&m.buffers.positions).map(|(&p, pos)| (p, pos[1])).collect();
+            let height = |p: Hex| at.get(&p).copied().unwrap_or_else(|| t.vertex(p).height * max);
+            let (a, b) = t.lattice().steps();
+            let around = AROUND.map(|d| {
+                let (i, j) = (f64::from(d.x), f64::from(d.y));
+                [(i * a[0] + j * b[0]) as f32, (i * a[1] + j * b[1]) as f32]
+            });
+            let coefficients = NormalCoefficients::new(&around);
+            for (i, &p) in m.lattice.iter().enumerate() {
+                let expected = coefficients.normal(height(p), |d| height(p + AROUND[d]));
+                assert_eq!(m.buffers.normals[i], expected, "{p:?} rings {rings} {o:?}");
+            }
+        }
+    }
+}
