@@ -2,6 +2,7 @@
 
 use hexx::Hex;
 use rayon::prelude::*;
+use std::sync::atomic::{AtomicU32, Ordering};
 
 use crate::chunk::{ChunkCoord, TileRect};
 use crate::classify::TileKind;
@@ -70,13 +71,15 @@ struct Buffers {
     raws: Vec<f32>,
     moved: Vec<bool>,
     rings: Vec<u8>,
+    /// World heights by grid slot (as `f32` bits).
+    heights: Vec<AtomicU32>,
 }
 
 impl Buffers {
-    /// Zeroed buffers for `vertices` vertices and `indices` indices. Zeroing recycled memory
+    /// Zeroed buffers for `vertices` vertices, `indices` indices and a height grid of `slots`. Zeroing recycled memory
     /// costs a pass over it, so it is done here, beside the sequential point enumeration; fresh
     /// pages come zeroed from the system and are mapped when the passes first write them.
-    fn new(vertices: usize, indices: usize) -> Self {
+    fn new(vertices: usize, indices: usize, slots: usize) -> Self {
         Self {
             b: MeshBuffers {
                 positions: vec![[0.0; 3]; vertices],
@@ -89,6 +92,7 @@ impl Buffers {
             raws: vec![0.0; vertices],
             moved: vec![false; vertices],
             rings: vec![0; vertices],
+            heights: (0..slots).map(|_| AtomicU32::new(0)).collect(),
         }
     }
 
@@ -137,31 +141,93 @@ struct Points {
 }
 
 /// Dense lookup from lattice coordinates to vertex indices over a bounding box.
+///
+/// Rows and columns are staggered like hexx's offset coordinates, so that a rectangle of tiles
+/// covers a rectangle of slots with little waste: for flat tiles a row is a lattice `y` and the
+/// column `x + ⌊y/2⌋` follows world x; for pointy tiles a column is a lattice `x` and the row
+/// `y + ⌊x/2⌋` follows world z.
 struct Grid {
-    min: Hex,
-    width: i32,
-    height: i32,
+    shape: GridShape,
     slots: Vec<u32>,
+}
+
+/// The extent and layout of a [`Grid`].
+#[derive(Clone, Copy)]
+struct GridShape {
+    /// Whether rows are staggered by `x` (pointy tiles) rather than columns by `y` (flat).
+    pointy: bool,
+    min: [i32; 2],
+    width: usize,
+    height: usize,
+}
+
+impl GridShape {
+    /// A shape holding every point within `margin` lattice steps of the centres of `tiles`.
+    fn around(lattice: &crate::lattice::Lattice, tiles: &[Hex]) -> Self {
+        let pointy = lattice.orientation() == crate::config::Orientation::Pointy;
+        let (mut min, mut max) = ([i32::MAX; 2], [i32::MIN; 2]);
+        for &tile in tiles {
+            let c = Self::coords(pointy, lattice.tile_centre(tile));
+            min = [min[0].min(c[0]), min[1].min(c[1])];
+            max = [max[0].max(c[0]), max[1].max(c[1])];
+        }
+        if tiles.is_empty() {
+            return Self { pointy, min: [0, 0], width: 0, height: 0 };
+        }
+        // A point `r` steps from a centre is at most `r + 1` columns and `r` rows away; the
+        // halo adds one step to the tiles' `n`.
+        let margin = lattice.subdivisions() as i32 + 2;
+        let min = [min[0] - margin, min[1] - margin];
+        let (width, height) = ((max[0] + margin - min[0] + 1) as usize, (max[1] + margin - min[1] + 1) as usize);
+        Self { pointy, min, width, height }
+    }
+
+    #[inline]
+    fn coords(pointy: bool, p: Hex) -> [i32; 2] {
+        if pointy { [p.x, p.y + p.x.div_euclid(2)] } else { [p.x + p.y.div_euclid(2), p.y] }
+    }
+
+    fn len(&self) -> usize {
+        self.width * self.height
+    }
+
+    #[inline]
+    fn slot(&self, p: Hex) -> usize {
+        let [c, r] = Self::coords(self.pointy, p);
+        let (c, r) = (c - self.min[0], r - self.min[1]);
+        debug_assert!(c >= 0 && r >= 0 && (c as usize) < self.width && (r as usize) < self.height);
+        r as usize * self.width + c as usize
+    }
+
+    /// Parity of `p`'s staggered axis: which of [`GridShape::steps`] applies to it.
+    #[inline]
+    fn parity(&self, p: Hex) -> usize {
+        (if self.pointy { p.x } else { p.y } & 1) as usize
+    }
+
+    /// Slot offsets of the six lattice steps of [`AROUND`], for each parity.
+    fn steps(&self) -> [[isize; 6]; 2] {
+        [0, 1].map(|parity| {
+            let p = if self.pointy { Hex::new(parity, 0) } else { Hex::new(0, parity) };
+            let [c0, r0] = Self::coords(self.pointy, p);
+            AROUND.map(|d| {
+                let [c, r] = Self::coords(self.pointy, p + d);
+                (r - r0) as isize * self.width as isize + (c - c0) as isize
+            })
+        })
+    }
 }
 
 impl Grid {
     const EMPTY: u32 = u32::MAX;
 
-    fn new(min: Hex, max: Hex) -> Self {
-        let (width, height) = (max.x - min.x + 1, max.y - min.y + 1);
-        Self { min, width, height, slots: vec![Self::EMPTY; (width as usize) * (height as usize)] }
+    fn new(shape: GridShape) -> Self {
+        Self { shape, slots: vec![Self::EMPTY; shape.len()] }
     }
 
     #[inline]
     fn slot(&self, p: Hex) -> usize {
-        let (x, y) = (p.x - self.min.x, p.y - self.min.y);
-        debug_assert!(x >= 0 && y >= 0 && x < self.width && y < self.height);
-        (y as usize) * (self.width as usize) + x as usize
-    }
-
-    /// Slot offset of one lattice step `d`.
-    fn step(&self, d: Hex) -> isize {
-        d.y as isize * self.width as isize + d.x as isize
+        self.shape.slot(p)
     }
 }
 
@@ -230,19 +296,41 @@ impl NormalCoefficients {
     }
 
     /// Unit normal at a vertex of height `h0`; the same inputs give the same bits in every chunk.
-    #[inline]
+    #[cfg(test)]
     fn normal(&self, h0: f32, height: impl Fn(usize) -> f32) -> [f32; 3] {
-        let (mut nx, mut nz) = (0.0_f32, 0.0_f32);
-        for k in 0..6 {
-            let d = height(k) - h0;
-            nx += d * self.x[k];
-            nz += d * self.z[k];
+        let mut around = [[0.0; NORMAL_LANES]; 6];
+        for (k, a) in around.iter_mut().enumerate() {
+            a[0] = height(k);
         }
-        let n = [nx, self.y, nz];
-        let len = (nx * nx + self.y * self.y + nz * nz).sqrt();
-        if len > 0.0 && len.is_finite() { n.map(|c| c / len) } else { [0.0, 1.0, 0.0] }
+        let mut out = [[0.0; 3]; NORMAL_LANES];
+        self.normals(&[h0; NORMAL_LANES], &around, &mut out);
+        out[0]
+    }
+
+    /// [`NormalCoefficients::normal`] of [`NORMAL_LANES`] vertices at once (heights `h0`, the
+    /// k-th neighbours' heights in `around[k]`), lane by lane so that it vectorises; every lane
+    /// does the same operations in the same order, so a vertex gets the same bits in any lane.
+    #[inline(always)]
+    fn normals(&self, h0: &[f32; NORMAL_LANES], around: &[[f32; NORMAL_LANES]; 6], out: &mut [[f32; 3]; NORMAL_LANES]) {
+        let (mut nx, mut nz) = ([0.0_f32; NORMAL_LANES], [0.0_f32; NORMAL_LANES]);
+        for ((heights, x), z) in around.iter().zip(self.x).zip(self.z) {
+            for l in 0..NORMAL_LANES {
+                let d = heights[l] - h0[l];
+                nx[l] += d * x;
+                nz[l] += d * z;
+            }
+        }
+        let y2 = self.y * self.y;
+        for l in 0..NORMAL_LANES {
+            let len = (nx[l] * nx[l] + y2 + nz[l] * nz[l]).sqrt();
+            out[l] =
+                if len > 0.0 && len.is_finite() { [nx[l] / len, self.y / len, nz[l] / len] } else { [0.0, 1.0, 0.0] };
+        }
     }
 }
+
+/// Vertices whose normals are computed together.
+const NORMAL_LANES: usize = 8;
 
 /// Lattice directions around a vertex, counter-clockwise in lattice space.
 const AROUND: [Hex; 6] = crate::lattice::NEIGHBOURS;
@@ -262,17 +350,10 @@ impl Terrain {
 
     /// Lattice points of `tiles` (each once, tile by tile in template order) and of the
     /// one-step halo around them that smooth normals need, with the grid indexing both.
-    fn collect_points(&self, tiles: &[Hex]) -> Points {
+    fn collect_points(&self, tiles: &[Hex], shape: GridShape) -> Points {
         let lattice = self.lattice();
         let n = lattice.subdivisions();
-        let (mut min, mut max) = (Hex::new(i32::MAX, i32::MAX), Hex::new(i32::MIN, i32::MIN));
-        for &tile in tiles {
-            let c = lattice.tile_centre(tile);
-            min = Hex::new(min.x.min(c.x), min.y.min(c.y));
-            max = Hex::new(max.x.max(c.x), max.y.max(c.y));
-        }
-        let margin = Hex::new(n as i32 + 1, n as i32 + 1);
-        let mut grid = Grid::new(min - margin, max + margin);
+        let mut grid = Grid::new(shape);
         let estimate = tiles.len() * 3 * (n * n) as usize + 64;
         let mut points = Vec::with_capacity(estimate + estimate / 8);
         let mut owner = Vec::with_capacity(estimate);
@@ -374,18 +455,24 @@ impl Terrain {
         let halo_width = (halo.max[0] - halo.min[0]) as usize;
         let halo_index = |[c, r]: [i32; 2]| (r - halo.min[1]) as usize * halo_width + (c - halo.min[0]) as usize;
         // Enumerating the points is sequential; meanwhile the other cores classify the tiles and
-        // allocate (and touch, so the page faults happen there too) the output buffers, whose
-        // size the vertex count formula gives.
+        // allocate the output buffers, whose size the vertex count formula gives.
+        let shape = GridShape::around(lattice, &tiles);
         let ((Points { grid, lattice: mut points, owned, owner, centres, tile_points }, out), kinds) = rayon::join(
             || {
                 rayon::join(
-                    || self.collect_points(&tiles),
-                    || Buffers::new(self.rect_vertex_count(rect), tiles.len() * lattice.triangles_per_tile() * 3),
+                    || self.collect_points(&tiles, shape),
+                    || {
+                        Buffers::new(
+                            self.rect_vertex_count(rect),
+                            tiles.len() * lattice.triangles_per_tile() * 3,
+                            shape.len(),
+                        )
+                    },
                 )
             },
             || self.halo_kinds(halo),
         );
-        let Buffers { mut b, mut raws, mut moved, mut rings } = out.fit(owned);
+        let Buffers { mut b, mut raws, mut moved, mut rings, heights } = out.fit(owned);
         let kind_of = |tile: Hex| {
             let oc = self.offset_of(tile);
             if halo.contains(oc) { kinds[halo_index(oc)] } else { self.map_tile_kind(tile) }
@@ -400,7 +487,6 @@ impl Terrain {
         let uv_scale = 0.5 / self.config().layout.hex_size;
         let inv_n = 1.0 / n as f32;
         let template = lattice.template();
-        let mut halo_heights = vec![0.0_f32; points.len() - owned];
 
         // The tiles' own vertices: their tiles are known, so no lookup is needed.
         let outputs = Outputs {
@@ -412,6 +498,11 @@ impl Terrain {
             moved: &mut moved,
             rings: &mut rings,
         };
+        // Heights also go to a grid shaped like the point grid, where the normals find the six
+        // neighbours of any point at fixed offsets. Each slot is written once, by the task that
+        // computes its point, and read after all tasks are done.
+        let put = |p: Hex, h: f32| heights[grid.slot(p)].store(h.to_bits(), Ordering::Relaxed);
+        let height_at = |slot: usize| f32::from_bits(heights[slot].load(Ordering::Relaxed));
         in_batches(outputs, 0, &|start, o: Outputs<'_>| {
             let pts = &points[start..start + o.len()];
             let mut noise = [0.0; BATCH];
@@ -439,6 +530,7 @@ impl Terrain {
                 let [x, z] = lattice.world(p);
                 let (x, z) = (x as f32, z as f32);
                 o.positions[j] = [x, height, z];
+                put(p, height);
                 o.uvs[j] = [x * uv_scale, z * uv_scale];
                 o.kinds[j] = s.kind as u32;
                 o.distances[j] = ring as f32 * inv_n;
@@ -449,12 +541,11 @@ impl Terrain {
         });
 
         // The halo: heights only, for the normals of the border vertices.
-        let halo_points = &points[owned..];
-        halo_heights.par_chunks_mut(BATCH).zip(halo_points.par_chunks(BATCH)).for_each(|(out, pts)| {
+        points[owned..].par_chunks(BATCH).for_each(|pts| {
             let mut noise = [0.0; BATCH];
             self.base_heights(pts, &mut noise[..pts.len()]);
-            for ((h, &p), &noise) in out.iter_mut().zip(pts).zip(&noise) {
-                *h = self.border_vertex(self.shaped(noise, p), p, kind_of).height * max_elevation;
+            for (&p, &noise) in pts.iter().zip(&noise) {
+                put(p, self.border_vertex(self.shaped(noise, p), p, kind_of).height * max_elevation);
             }
         });
 
@@ -465,29 +556,22 @@ impl Terrain {
             [(i * step_a[0] + j * step_b[0]) as f32, (i * step_a[1] + j * step_b[1]) as f32]
         });
         let coefficients = NormalCoefficients::new(&around);
-        let steps = AROUND.map(|d| grid.step(d));
-        let (positions, halo_heights) = (&b.positions, &halo_heights);
-        let height = |i: usize| if i < owned { positions[i][1] } else { halo_heights[i - owned] };
-        // Template points inside a tile come first (ring by ring), and a tile's inner points are
-        // never shared, so they follow its centre in the same order as in the template.
-        let inner = lattice.points_per_tile() - 6 * n as usize;
+        let steps = shape.steps();
         b.normals.par_chunks_mut(BATCH).enumerate().for_each(|(c, normals)| {
-            for (j, normal) in normals.iter_mut().enumerate() {
-                let i = c * BATCH + j;
-                let h0 = positions[i][1];
-                let Owner { tile, k } = owner[i];
-                let k = usize::from(k);
-                *normal = if k < inner {
-                    let (first, base) = (i - k, tile as usize * ppt);
-                    let around = lattice.template_neighbours(k);
-                    coefficients.normal(h0, |d| {
-                        let nk = usize::from(around[d]);
-                        positions[if nk < inner { first + nk } else { tile_points[base + nk] as usize }][1]
-                    })
-                } else {
+            let mut h0 = [0.0; NORMAL_LANES];
+            let mut around = [[0.0; NORMAL_LANES]; 6];
+            let mut out = [[0.0; 3]; NORMAL_LANES];
+            for (g, normals) in normals.chunks_mut(NORMAL_LANES).enumerate() {
+                for l in 0..normals.len() {
+                    let i = c * BATCH + g * NORMAL_LANES + l;
                     let slot = grid.slot(points[i]);
-                    coefficients.normal(h0, |d| height(grid.slots[slot.wrapping_add_signed(steps[d])] as usize))
-                };
+                    h0[l] = height_at(slot);
+                    for (d, &step) in steps[shape.parity(points[i])].iter().enumerate() {
+                        around[d][l] = height_at(slot.wrapping_add_signed(step));
+                    }
+                }
+                coefficients.normals(&h0, &around, &mut out);
+                normals.copy_from_slice(&out[..normals.len()]);
             }
         });
 
@@ -521,7 +605,7 @@ impl Terrain {
     pub fn mesh_points(&self, rect: TileRect) -> Vec<Hex> {
         let rect = self.bounds().map_or(rect, |b| rect.intersect(&b));
         let tiles: Vec<Hex> = rect.iter().map(|oc| self.tile_from_offset(oc)).collect();
-        self.collect_points(&tiles).lattice
+        self.collect_points(&tiles, GridShape::around(self.lattice(), &tiles)).lattice
     }
 
     /// Bare fBm at exactly the points [`Terrain::generate_rect`] evaluates, enumerated the same
