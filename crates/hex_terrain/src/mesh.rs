@@ -454,6 +454,10 @@ impl Terrain {
         let halo = rect.grow(1);
         let halo_width = (halo.max[0] - halo.min[0]) as usize;
         let halo_index = |[c, r]: [i32; 2]| (r - halo.min[1]) as usize * halo_width + (c - halo.min[0]) as usize;
+        let kind_in = |kinds: &[Option<TileKind>], tile: Hex| {
+            let oc = self.offset_of(tile);
+            if halo.contains(oc) { kinds[halo_index(oc)] } else { self.map_tile_kind(tile) }
+        };
         // Enumerating the points is sequential; meanwhile the other cores classify the tiles and
         // allocate the output buffers, whose size the vertex count formula gives.
         let shape = GridShape::around(lattice, &tiles);
@@ -470,18 +474,22 @@ impl Terrain {
                     },
                 )
             },
-            || self.halo_kinds(halo),
+            || {
+                // Per tile: its own kind and the kinds of its six neighbours (`all_neighbors`
+                // order).
+                let kinds = self.halo_kinds(halo);
+                let around: Vec<(TileKind, [Option<TileKind>; 6])> = tiles
+                    .iter()
+                    .map(|&t| {
+                        (kind_in(&kinds, t).unwrap_or(TileKind::Sea), t.all_neighbors().map(|nb| kind_in(&kinds, nb)))
+                    })
+                    .collect();
+                (kinds, around)
+            },
         );
+        let (kinds, around_kinds) = kinds;
         let Buffers { mut b, mut raws, mut moved, mut rings, heights } = out.fit(owned);
-        let kind_of = |tile: Hex| {
-            let oc = self.offset_of(tile);
-            if halo.contains(oc) { kinds[halo_index(oc)] } else { self.map_tile_kind(tile) }
-        };
-        // Per tile: its own kind and the kinds of its six neighbours, in `all_neighbors` order.
-        let around_kinds: Vec<(TileKind, [Option<TileKind>; 6])> = par_map(tiles.len(), |t| {
-            let tile = tiles[t];
-            (kind_of(tile).unwrap_or(TileKind::Sea), tile.all_neighbors().map(kind_of))
-        });
+        let kind_of = |tile: Hex| kind_in(&kinds, tile);
 
         let max_elevation = self.config().terrain.max_elevation;
         let uv_scale = 0.5 / self.config().layout.hex_size;
@@ -503,51 +511,57 @@ impl Terrain {
         // computes its point, and read after all tasks are done.
         let put = |p: Hex, h: f32| heights[grid.slot(p)].store(h.to_bits(), Ordering::Relaxed);
         let height_at = |slot: usize| f32::from_bits(heights[slot].load(Ordering::Relaxed));
-        in_batches(outputs, 0, &|start, o: Outputs<'_>| {
-            let pts = &points[start..start + o.len()];
-            let mut noise = [0.0; BATCH];
-            self.base_heights(pts, &mut noise[..pts.len()]);
-            for (j, &p) in pts.iter().enumerate() {
-                let Owner { tile, k } = owner[start + j];
-                let k = usize::from(k);
-                let ring = template[k].ring;
-                let raw = self.shaped(noise[j], p);
-                let (own, around) = &around_kinds[tile as usize];
-                let s = if ring < n {
-                    self.finish_vertex(raw, ring, &[*own])
-                } else {
-                    let mut sharing = [*own; 3];
-                    let mut len = 1;
-                    for d in lattice.shared_tiles(k) {
-                        if let Some(&Some(kind)) = around.get(usize::from(d)) {
-                            sharing[len] = kind;
-                            len += 1;
+        // The tiles' own vertices and, alongside, the halo's heights (for the normals of the
+        // border vertices).
+        let halo_pass = || {
+            points[owned..].par_chunks(BATCH).for_each(|pts| {
+                let mut noise = [0.0; BATCH];
+                self.base_heights(pts, &mut noise[..pts.len()]);
+                for (&p, &noise) in pts.iter().zip(&noise) {
+                    put(p, self.border_vertex(self.shaped(noise, p), p, kind_of).height * max_elevation);
+                }
+            });
+        };
+        let owned_pass = || {
+            in_batches(outputs, 0, &|start, o: Outputs<'_>| {
+                let pts = &points[start..start + o.len()];
+                let mut noise = [0.0; BATCH];
+                self.base_heights(pts, &mut noise[..pts.len()]);
+                for (j, &p) in pts.iter().enumerate() {
+                    let Owner { tile, k } = owner[start + j];
+                    let k = usize::from(k);
+                    let ring = template[k].ring;
+                    let raw = self.shaped(noise[j], p);
+                    let (own, around) = &around_kinds[tile as usize];
+                    let s = if ring < n {
+                        self.finish_vertex(raw, ring, &[*own])
+                    } else {
+                        let mut sharing = [*own; 3];
+                        let mut len = 1;
+                        for d in lattice.shared_tiles(k) {
+                            if let Some(&Some(kind)) = around.get(usize::from(d)) {
+                                sharing[len] = kind;
+                                len += 1;
+                            }
                         }
-                    }
-                    self.finish_vertex(raw, ring, &sharing[..len])
-                };
-                let height = s.height * max_elevation;
-                let [x, z] = lattice.world(p);
-                let (x, z) = (x as f32, z as f32);
-                o.positions[j] = [x, height, z];
-                put(p, height);
-                o.uvs[j] = [x * uv_scale, z * uv_scale];
-                o.kinds[j] = s.kind as u32;
-                o.distances[j] = ring as f32 * inv_n;
-                o.raws[j] = raw;
-                o.moved[j] = s.moved;
-                o.rings[j] = ring as u8;
-            }
-        });
+                        self.finish_vertex(raw, ring, &sharing[..len])
+                    };
+                    let height = s.height * max_elevation;
+                    let [x, z] = lattice.world(p);
+                    let (x, z) = (x as f32, z as f32);
+                    o.positions[j] = [x, height, z];
+                    put(p, height);
+                    o.uvs[j] = [x * uv_scale, z * uv_scale];
+                    o.kinds[j] = s.kind as u32;
+                    o.distances[j] = ring as f32 * inv_n;
+                    o.raws[j] = raw;
+                    o.moved[j] = s.moved;
+                    o.rings[j] = ring as u8;
+                }
+            })
+        };
 
-        // The halo: heights only, for the normals of the border vertices.
-        points[owned..].par_chunks(BATCH).for_each(|pts| {
-            let mut noise = [0.0; BATCH];
-            self.base_heights(pts, &mut noise[..pts.len()]);
-            for (&p, &noise) in pts.iter().zip(&noise) {
-                put(p, self.border_vertex(self.shaped(noise, p), p, kind_of).height * max_elevation);
-            }
-        });
+        rayon::join(owned_pass, halo_pass);
 
         // Normals: every neighbour of an owned point is an owned or a halo point.
         let (step_a, step_b) = lattice.steps();
@@ -557,32 +571,37 @@ impl Terrain {
         });
         let coefficients = NormalCoefficients::new(&around);
         let steps = shape.steps();
-        b.normals.par_chunks_mut(BATCH).enumerate().for_each(|(c, normals)| {
-            let mut h0 = [0.0; NORMAL_LANES];
-            let mut around = [[0.0; NORMAL_LANES]; 6];
-            let mut out = [[0.0; 3]; NORMAL_LANES];
-            for (g, normals) in normals.chunks_mut(NORMAL_LANES).enumerate() {
-                for l in 0..normals.len() {
-                    let i = c * BATCH + g * NORMAL_LANES + l;
-                    let slot = grid.slot(points[i]);
-                    h0[l] = height_at(slot);
-                    for (d, &step) in steps[shape.parity(points[i])].iter().enumerate() {
-                        around[d][l] = height_at(slot.wrapping_add_signed(step));
+        let normals_pass = || {
+            b.normals.par_chunks_mut(BATCH).enumerate().for_each(|(c, normals)| {
+                let mut h0 = [0.0; NORMAL_LANES];
+                let mut around = [[0.0; NORMAL_LANES]; 6];
+                let mut out = [[0.0; 3]; NORMAL_LANES];
+                for (g, normals) in normals.chunks_mut(NORMAL_LANES).enumerate() {
+                    for l in 0..normals.len() {
+                        let i = c * BATCH + g * NORMAL_LANES + l;
+                        let slot = grid.slot(points[i]);
+                        h0[l] = height_at(slot);
+                        for (d, &step) in steps[shape.parity(points[i])].iter().enumerate() {
+                            around[d][l] = height_at(slot.wrapping_add_signed(step));
+                        }
                     }
+                    coefficients.normals(&h0, &around, &mut out);
+                    normals.copy_from_slice(&out[..normals.len()]);
                 }
-                coefficients.normals(&h0, &around, &mut out);
-                normals.copy_from_slice(&out[..normals.len()]);
-            }
-        });
+            })
+        };
 
         let per_tile = lattice.triangles_per_tile() * 3;
-        b.indices.par_chunks_mut(per_tile).zip(tile_points.par_chunks(ppt)).for_each(|(out, own)| {
-            for (tri, dst) in lattice.template_triangle_indices().iter().zip(out.chunks_exact_mut(3)) {
-                for (&k, d) in tri.iter().zip(dst) {
-                    *d = own[usize::from(k)];
+        let indices_pass = || {
+            b.indices.par_chunks_mut(per_tile).zip(tile_points.par_chunks(ppt)).for_each(|(out, own)| {
+                for (tri, dst) in lattice.template_triangle_indices().iter().zip(out.chunks_exact_mut(3)) {
+                    for (&k, d) in tri.iter().zip(dst) {
+                        *d = own[usize::from(k)];
+                    }
                 }
-            }
-        });
+            })
+        };
+        rayon::join(normals_pass, indices_pass);
 
         let tiles_info = tiles
             .iter()
