@@ -155,7 +155,7 @@ pub struct Manipulated {
 /// `ring`/`n` locate it in its tile; `kinds` are the kinds of the in-map tiles sharing it (one
 /// for an inner vertex, up to three on a border; none outside the map).
 #[must_use]
-#[inline]
+#[inline(always)]
 pub fn manipulate(
     thresholds: &Thresholds,
     config: &ManipulationConfig,

@@ -263,13 +263,34 @@ impl Outputs<'_> {
 }
 
 /// Runs `f(start, outputs)` on batches of at most [`BATCH`] points, on all cores.
-fn in_batches<F: Fn(usize, Outputs<'_>) + Sync>(out: Outputs<'_>, start: usize, f: &F) {
+fn in_batches<F: Fn(usize, Outputs<'_>) + Sync>(split: Split, out: Outputs<'_>, start: usize, f: &F) {
     if out.len() <= BATCH {
         f(start, out);
     } else {
         let mid = (out.len() / BATCH).div_ceil(2) * BATCH;
         let (a, b) = out.split_at(mid);
-        rayon::join(|| in_batches(a, start, f), || in_batches(b, start + mid, f));
+        split.join(|| in_batches(split, a, start, f), || in_batches(split, b, start + mid, f));
+    }
+}
+
+/// Whether a generation spreads its work over the thread pool: only when there is enough of it
+/// to pay for waking other threads.
+#[derive(Clone, Copy)]
+struct Split(bool);
+
+impl Split {
+    /// Most points not worth splitting (one batch, as in [`Terrain::noise_floor`]): up to this
+    /// many, a generation runs on the calling thread.
+    const MIN_POINTS: usize = BATCH;
+
+    /// `(a(), b())`, in parallel when splitting.
+    fn join<A: Send, B: Send>(self, a: impl FnOnce() -> A + Send, b: impl FnOnce() -> B + Send) -> (A, B) {
+        if self.0 { rayon::join(a, b) } else { (a(), b()) }
+    }
+
+    /// Smallest piece a parallel iterator may split into: everything at once when not splitting.
+    fn min_len(self, len: usize) -> usize {
+        if self.0 { len } else { usize::MAX }
     }
 }
 
@@ -443,6 +464,17 @@ impl Terrain {
     #[must_use]
     pub fn generate_rect(&self, rect: TileRect) -> ChunkMesh {
         let rect = self.bounds().map_or(rect, |b| rect.intersect(&b));
+        let n = self.lattice().subdivisions() as usize;
+        let split = Split(rect.len() * 3 * n * n > Split::MIN_POINTS);
+        if split.0 && rayon::current_thread_index().is_none() {
+            // Enter the pool once, rather than at every parallel pass.
+            rayon::scope(|_| self.generate_rect_with(rect, split))
+        } else {
+            self.generate_rect_with(rect, split)
+        }
+    }
+
+    fn generate_rect_with(&self, rect: TileRect, split: Split) -> ChunkMesh {
         let tiles: Vec<Hex> = rect.iter().map(|oc| self.tile_from_offset(oc)).collect();
         let lattice = self.lattice();
         let n = lattice.subdivisions();
@@ -461,9 +493,9 @@ impl Terrain {
         // Enumerating the points is sequential; meanwhile the other cores classify the tiles and
         // allocate the output buffers, whose size the vertex count formula gives.
         let shape = GridShape::around(lattice, &tiles);
-        let ((Points { grid, lattice: mut points, owned, owner, centres, tile_points }, out), kinds) = rayon::join(
+        let ((Points { grid, lattice: mut points, owned, owner, centres, tile_points }, out), kinds) = split.join(
             || {
-                rayon::join(
+                split.join(
                     || self.collect_points(&tiles, shape),
                     || {
                         Buffers::new(
@@ -514,7 +546,7 @@ impl Terrain {
         // The tiles' own vertices and, alongside, the halo's heights (for the normals of the
         // border vertices).
         let halo_pass = || {
-            points[owned..].par_chunks(BATCH).for_each(|pts| {
+            points[owned..].par_chunks(BATCH).with_min_len(split.min_len(1)).for_each(|pts| {
                 let mut noise = [0.0; BATCH];
                 self.base_heights(pts, &mut noise[..pts.len()]);
                 for (&p, &noise) in pts.iter().zip(&noise) {
@@ -523,7 +555,7 @@ impl Terrain {
             });
         };
         let owned_pass = || {
-            in_batches(outputs, 0, &|start, o: Outputs<'_>| {
+            in_batches(split, outputs, 0, &|start, o: Outputs<'_>| {
                 let pts = &points[start..start + o.len()];
                 let mut noise = [0.0; BATCH];
                 self.base_heights(pts, &mut noise[..pts.len()]);
@@ -561,7 +593,7 @@ impl Terrain {
             })
         };
 
-        rayon::join(owned_pass, halo_pass);
+        split.join(owned_pass, halo_pass);
 
         // Normals: every neighbour of an owned point is an owned or a halo point.
         let (step_a, step_b) = lattice.steps();
@@ -572,7 +604,7 @@ impl Terrain {
         let coefficients = NormalCoefficients::new(&around);
         let steps = shape.steps();
         let normals_pass = || {
-            b.normals.par_chunks_mut(BATCH).enumerate().for_each(|(c, normals)| {
+            b.normals.par_chunks_mut(BATCH).with_min_len(split.min_len(1)).enumerate().for_each(|(c, normals)| {
                 let mut h0 = [0.0; NORMAL_LANES];
                 let mut around = [[0.0; NORMAL_LANES]; 6];
                 let mut out = [[0.0; 3]; NORMAL_LANES];
@@ -593,15 +625,19 @@ impl Terrain {
 
         let per_tile = lattice.triangles_per_tile() * 3;
         let indices_pass = || {
-            b.indices.par_chunks_mut(per_tile).zip(tile_points.par_chunks(ppt)).for_each(|(out, own)| {
-                for (tri, dst) in lattice.template_triangle_indices().iter().zip(out.chunks_exact_mut(3)) {
-                    for (&k, d) in tri.iter().zip(dst) {
-                        *d = own[usize::from(k)];
+            b.indices
+                .par_chunks_mut(per_tile)
+                .zip(tile_points.par_chunks(ppt))
+                .with_min_len(split.min_len(16))
+                .for_each(|(out, own)| {
+                    for (tri, dst) in lattice.template_triangle_indices().iter().zip(out.chunks_exact_mut(3)) {
+                        for (&k, d) in tri.iter().zip(dst) {
+                            *d = own[usize::from(k)];
+                        }
                     }
-                }
-            })
+                })
         };
-        rayon::join(normals_pass, indices_pass);
+        split.join(normals_pass, indices_pass);
 
         let tiles_info = tiles
             .iter()
