@@ -2,10 +2,11 @@
 
 use hexx::Hex;
 use rayon::prelude::*;
-use std::sync::atomic::{AtomicU32, Ordering};
 
 use crate::chunk::{ChunkCoord, TileRect};
 use crate::classify::TileKind;
+use crate::config::Orientation;
+use crate::lattice::Lattice;
 use crate::terrain::{Terrain, TileInfo};
 
 /// Plain vertex and index buffers, ready for any renderer.
@@ -71,14 +72,15 @@ struct Buffers {
     raws: Vec<f32>,
     moved: Vec<bool>,
     rings: Vec<u8>,
-    /// World heights by grid slot (as `f32` bits).
-    heights: Vec<AtomicU32>,
+    /// World height of the point in each grid slot.
+    heights: Vec<f32>,
 }
 
 impl Buffers {
-    /// Zeroed buffers for `vertices` vertices, `indices` indices and a height grid of `slots`. Zeroing recycled memory
-    /// costs a pass over it, so it is done here, beside the sequential point enumeration; fresh
-    /// pages come zeroed from the system and are mapped when the passes first write them.
+    /// Zeroed buffers for `vertices` vertices, `indices` indices and a height grid of `slots`.
+    /// Zeroing recycled memory costs a pass over it, so it is done here, beside the sequential
+    /// point enumeration; fresh pages come zeroed from the system and are mapped when the passes
+    /// first write them.
     fn new(vertices: usize, indices: usize, slots: usize) -> Self {
         Self {
             b: MeshBuffers {
@@ -92,7 +94,7 @@ impl Buffers {
             raws: vec![0.0; vertices],
             moved: vec![false; vertices],
             rings: vec![0; vertices],
-            heights: (0..slots).map(|_| AtomicU32::new(0)).collect(),
+            heights: vec![0.0; slots],
         }
     }
 
@@ -128,24 +130,22 @@ struct Owner {
 /// Lattice points of a rectangle of tiles, as [`Terrain::collect_points`] enumerates them.
 struct Points {
     grid: Grid,
-    /// Every point: the tiles' own first, then the halo.
+    /// Every point: the tiles' own first, then the halo, each in grid order (row by row).
     lattice: Vec<Hex>,
     /// How many points belong to the tiles (the rest is halo).
     owned: usize,
     /// The owner of each owned point.
     owner: Vec<Owner>,
-    /// For each tile, the point index of each of its template points.
-    tile_points: Vec<u32>,
-    /// Index of each tile's centre point.
-    centres: Vec<u32>,
 }
 
-/// Dense lookup from lattice coordinates to vertex indices over a bounding box.
+/// Dense lookup from lattice coordinates to point indices over a bounding box.
 ///
-/// Rows and columns are staggered like hexx's offset coordinates, so that a rectangle of tiles
-/// covers a rectangle of slots with little waste: for flat tiles a row is a lattice `y` and the
-/// column `x + ⌊y/2⌋` follows world x; for pointy tiles a column is a lattice `x` and the row
-/// `y + ⌊x/2⌋` follows world z.
+/// Rows are staggered like hexx's offset coordinates, so that a rectangle of tiles covers a
+/// rectangle of slots with little waste: for flat tiles a row is a lattice `y` and the column
+/// `x + ⌊y/2⌋` follows world x; for pointy tiles a row is a lattice `x` (a world column) and
+/// the column `y + ⌊x/2⌋` follows world z. Points are numbered in slot order, so the slots of a
+/// run of points increase, and along a row consecutive points sit in consecutive slots and share
+/// the parity of the row, which decides the slot offsets of their neighbours.
 struct Grid {
     shape: GridShape,
     slots: Vec<u32>,
@@ -154,7 +154,7 @@ struct Grid {
 /// The extent and layout of a [`Grid`].
 #[derive(Clone, Copy)]
 struct GridShape {
-    /// Whether rows are staggered by `x` (pointy tiles) rather than columns by `y` (flat).
+    /// Whether rows are lattice `x` (pointy tiles) rather than lattice `y` (flat).
     pointy: bool,
     min: [i32; 2],
     width: usize,
@@ -162,9 +162,9 @@ struct GridShape {
 }
 
 impl GridShape {
-    /// A shape holding every point within `margin` lattice steps of the centres of `tiles`.
-    fn around(lattice: &crate::lattice::Lattice, tiles: &[Hex]) -> Self {
-        let pointy = lattice.orientation() == crate::config::Orientation::Pointy;
+    /// A shape holding every point of `tiles` and the one-step halo around them.
+    fn around(lattice: &Lattice, tiles: &[Hex]) -> Self {
+        let pointy = lattice.orientation() == Orientation::Pointy;
         let (mut min, mut max) = ([i32::MAX; 2], [i32::MIN; 2]);
         for &tile in tiles {
             let c = Self::coords(pointy, lattice.tile_centre(tile));
@@ -174,17 +174,18 @@ impl GridShape {
         if tiles.is_empty() {
             return Self { pointy, min: [0, 0], width: 0, height: 0 };
         }
-        // A point `r` steps from a centre is at most `r + 1` columns and `r` rows away; the
-        // halo adds one step to the tiles' `n`.
+        // A point `r` steps from a centre is at most `r + 1` columns and `r` rows away (in
+        // either layout); the halo adds one step to the tiles' `n`.
         let margin = lattice.subdivisions() as i32 + 2;
         let min = [min[0] - margin, min[1] - margin];
         let (width, height) = ((max[0] + margin - min[0] + 1) as usize, (max[1] + margin - min[1] + 1) as usize);
         Self { pointy, min, width, height }
     }
 
+    /// `[column, row]` of a point in the grid.
     #[inline]
     fn coords(pointy: bool, p: Hex) -> [i32; 2] {
-        if pointy { [p.x, p.y + p.x.div_euclid(2)] } else { [p.x + p.y.div_euclid(2), p.y] }
+        if pointy { [p.y + p.x.div_euclid(2), p.x] } else { [p.x + p.y.div_euclid(2), p.y] }
     }
 
     fn len(&self) -> usize {
@@ -199,18 +200,26 @@ impl GridShape {
         r as usize * self.width + c as usize
     }
 
-    /// Parity of `p`'s staggered axis: which of [`GridShape::steps`] applies to it.
+    /// The point in `slot`.
+    #[inline]
+    fn point(&self, slot: usize) -> Hex {
+        let c = (slot % self.width) as i32 + self.min[0];
+        let r = (slot / self.width) as i32 + self.min[1];
+        if self.pointy { Hex::new(r, c - r.div_euclid(2)) } else { Hex::new(c - r.div_euclid(2), r) }
+    }
+
+    /// Parity of `p`'s row: which of the tables of [`GridShape::offsets`] applies.
     #[inline]
     fn parity(&self, p: Hex) -> usize {
         (if self.pointy { p.x } else { p.y } & 1) as usize
     }
 
-    /// Slot offsets of the six lattice steps of [`AROUND`], for each parity.
-    fn steps(&self) -> [[isize; 6]; 2] {
+    /// Slot offsets of lattice offsets `d` from a point, for each parity of the point.
+    fn offsets<const N: usize>(&self, d: [Hex; N]) -> [[isize; N]; 2] {
         [0, 1].map(|parity| {
             let p = if self.pointy { Hex::new(parity, 0) } else { Hex::new(0, parity) };
             let [c0, r0] = Self::coords(self.pointy, p);
-            AROUND.map(|d| {
+            d.map(|d| {
                 let [c, r] = Self::coords(self.pointy, p + d);
                 (r - r0) as isize * self.width as isize + (c - c0) as isize
             })
@@ -220,6 +229,8 @@ impl GridShape {
 
 impl Grid {
     const EMPTY: u32 = u32::MAX;
+    /// A slot of the halo, before numbering.
+    const HALO: u32 = u32::MAX - 1;
 
     fn new(shape: GridShape) -> Self {
         Self { shape, slots: vec![Self::EMPTY; shape.len()] }
@@ -229,9 +240,34 @@ impl Grid {
     fn slot(&self, p: Hex) -> usize {
         self.shape.slot(p)
     }
+
+    /// Point indices of the template points of the tile centred on `centre`, in template order.
+    #[inline]
+    fn template_points(&self, centre: Hex, offsets: &[[isize; TEMPLATE_MAX]; 2], out: &mut [u32]) {
+        let base = self.slot(centre);
+        for (o, &d) in out.iter_mut().zip(&offsets[self.shape.parity(centre)]) {
+            *o = self.slots[base.wrapping_add_signed(d)];
+        }
+    }
 }
 
-/// The per-vertex outputs of a run of owned points, split in halves for the tasks.
+/// Most points of a tile template (`1 + 3n(n + 1)` for the largest `n`).
+const TEMPLATE_MAX: usize = {
+    let n = crate::config::MAX_INNER_RINGS as usize + 1;
+    1 + 3 * n * (n + 1)
+};
+
+/// Slot offsets of every template point for both parities, padded to [`TEMPLATE_MAX`].
+fn template_offsets(shape: &GridShape, lattice: &Lattice) -> Box<[[isize; TEMPLATE_MAX]; 2]> {
+    let mut offsets = [Hex::ZERO; TEMPLATE_MAX];
+    for (o, tp) in offsets.iter_mut().zip(lattice.template()) {
+        *o = tp.offset;
+    }
+    Box::new(shape.offsets(offsets))
+}
+
+/// The per-vertex outputs of a run of owned points, split in halves for the tasks, with the
+/// part of the height grid from the run's first slot up to the next run's.
 struct Outputs<'a> {
     positions: &'a mut [[f32; 3]],
     uvs: &'a mut [[f32; 2]],
@@ -240,6 +276,9 @@ struct Outputs<'a> {
     raws: &'a mut [f32],
     moved: &'a mut [bool],
     rings: &'a mut [u8],
+    heights: &'a mut [f32],
+    /// The slot of `heights[0]`.
+    first_slot: usize,
 }
 
 impl Outputs<'_> {
@@ -247,7 +286,8 @@ impl Outputs<'_> {
         self.positions.len()
     }
 
-    fn split_at(self, mid: usize) -> (Self, Self) {
+    /// Splits at point `mid`, whose slot is `slot`.
+    fn split_at(self, mid: usize, slot: usize) -> (Self, Self) {
         let (p0, p1) = self.positions.split_at_mut(mid);
         let (u0, u1) = self.uvs.split_at_mut(mid);
         let (k0, k1) = self.kinds.split_at_mut(mid);
@@ -255,21 +295,49 @@ impl Outputs<'_> {
         let (r0, r1) = self.raws.split_at_mut(mid);
         let (m0, m1) = self.moved.split_at_mut(mid);
         let (g0, g1) = self.rings.split_at_mut(mid);
+        let (h0, h1) = self.heights.split_at_mut(slot - self.first_slot);
         (
-            Outputs { positions: p0, uvs: u0, kinds: k0, distances: d0, raws: r0, moved: m0, rings: g0 },
-            Outputs { positions: p1, uvs: u1, kinds: k1, distances: d1, raws: r1, moved: m1, rings: g1 },
+            Outputs {
+                positions: p0,
+                uvs: u0,
+                kinds: k0,
+                distances: d0,
+                raws: r0,
+                moved: m0,
+                rings: g0,
+                heights: h0,
+                first_slot: self.first_slot,
+            },
+            Outputs {
+                positions: p1,
+                uvs: u1,
+                kinds: k1,
+                distances: d1,
+                raws: r1,
+                moved: m1,
+                rings: g1,
+                heights: h1,
+                first_slot: slot,
+            },
         )
     }
 }
 
-/// Runs `f(start, outputs)` on batches of at most [`BATCH`] points, on all cores.
-fn in_batches<F: Fn(usize, Outputs<'_>) + Sync>(split: Split, out: Outputs<'_>, start: usize, f: &F) {
+/// Runs `f(start, outputs)` on batches of at most [`BATCH`] points (`start` is the index of the
+/// first; `slot_of(i)` the slot of point `i`), on all cores when splitting.
+fn in_batches<F: Fn(usize, Outputs<'_>) + Sync>(
+    split: Split,
+    out: Outputs<'_>,
+    start: usize,
+    slot_of: &(impl Fn(usize) -> usize + Sync),
+    f: &F,
+) {
     if out.len() <= BATCH {
         f(start, out);
     } else {
         let mid = (out.len() / BATCH).div_ceil(2) * BATCH;
-        let (a, b) = out.split_at(mid);
-        split.join(|| in_batches(split, a, start, f), || in_batches(split, b, start + mid, f));
+        let (a, b) = out.split_at(mid, slot_of(start + mid));
+        split.join(|| in_batches(split, a, start, slot_of, f), || in_batches(split, b, start + mid, slot_of, f));
     }
 }
 
@@ -369,49 +437,60 @@ impl Terrain {
         self.bounds().map(|rect| self.generate_rect(rect))
     }
 
-    /// Lattice points of `tiles` (each once, tile by tile in template order) and of the
-    /// one-step halo around them that smooth normals need, with the grid indexing both.
+    /// Lattice points of `tiles` and of the one-step halo around them that smooth normals need,
+    /// with the grid indexing both. Each point belongs to the first tile (in `tiles` order)
+    /// whose template holds it; the tiles' points come first, then the halo's, each in grid
+    /// order.
     fn collect_points(&self, tiles: &[Hex], shape: GridShape) -> Points {
         let lattice = self.lattice();
         let n = lattice.subdivisions();
+        let ppt = lattice.points_per_tile();
+        let template = lattice.template();
         let mut grid = Grid::new(shape);
+        // Claim: each slot holds `tile * ppt + k` of its first tile until it is numbered.
+        let offsets = template_offsets(&shape, lattice);
+        for (t, &tile) in tiles.iter().enumerate() {
+            let centre = lattice.tile_centre(tile);
+            let base = grid.slot(centre);
+            for (k, &d) in offsets[shape.parity(centre)][..ppt].iter().enumerate() {
+                let slot = &mut grid.slots[base.wrapping_add_signed(d)];
+                if *slot == Grid::EMPTY {
+                    *slot = (t * ppt + k) as u32;
+                }
+            }
+        }
+        // Number the tiles' points in slot order, marking the halo around border points.
         let estimate = tiles.len() * 3 * (n * n) as usize + 64;
         let mut points = Vec::with_capacity(estimate + estimate / 8);
         let mut owner = Vec::with_capacity(estimate);
-        let mut centres = Vec::with_capacity(tiles.len());
-        let mut border = Vec::new();
-        let mut tile_points = Vec::with_capacity(tiles.len() * lattice.points_per_tile());
-        for (t, &tile) in tiles.iter().enumerate() {
-            let c = lattice.tile_centre(tile);
-            for (k, tp) in lattice.template().iter().enumerate() {
-                let p = c + tp.offset;
-                let slot = grid.slot(p);
-                if grid.slots[slot] == Grid::EMPTY {
-                    grid.slots[slot] = points.len() as u32;
-                    if tp.ring == 0 {
-                        centres.push(points.len() as u32);
-                    } else if tp.ring == n {
-                        border.push(points.len());
+        let steps = shape.offsets(AROUND);
+        for slot in 0..grid.slots.len() {
+            let code = grid.slots[slot];
+            if code >= Grid::HALO {
+                continue;
+            }
+            let (tile, k) = (code as usize / ppt, code as usize % ppt);
+            let p = shape.point(slot);
+            grid.slots[slot] = points.len() as u32;
+            points.push(p);
+            owner.push(Owner { tile: tile as u32, k: k as u16 });
+            if template[k].ring == n {
+                for &d in &steps[shape.parity(p)] {
+                    let next = &mut grid.slots[slot.wrapping_add_signed(d)];
+                    if *next == Grid::EMPTY {
+                        *next = Grid::HALO;
                     }
-                    owner.push(Owner { tile: t as u32, k: k as u16 });
-                    points.push(p);
                 }
-                tile_points.push(grid.slots[slot]);
             }
         }
         let owned = points.len();
-        for i in border {
-            let p = points[i];
-            for d in AROUND {
-                let q = p + d;
-                let slot = grid.slot(q);
-                if grid.slots[slot] == Grid::EMPTY {
-                    grid.slots[slot] = points.len() as u32;
-                    points.push(q);
-                }
+        for slot in 0..grid.slots.len() {
+            if grid.slots[slot] == Grid::HALO {
+                grid.slots[slot] = points.len() as u32;
+                points.push(shape.point(slot));
             }
         }
-        Points { grid, lattice: points, owned, owner, centres, tile_points }
+        Points { grid, lattice: points, owned, owner }
     }
 
     /// Bare fBm at every point, batched and on all cores.
@@ -458,9 +537,11 @@ impl Terrain {
     /// Generates the mesh of any rectangle of tiles (clipped to the map) with the halo it needs:
     /// the result for a tile does not depend on which rectangle it was generated in.
     ///
-    /// Three passes over the points, each on all cores: the owned vertices (noise, shaping,
-    /// manipulation and every attribute but the normal, in one go), the halo's heights, then
-    /// the normals, which need the heights of the six lattice neighbours.
+    /// While the points are enumerated (sequentially), other threads classify the tiles and
+    /// allocate the buffers. Then one pass computes the owned vertices (noise, shaping,
+    /// manipulation and every attribute but the normal) while another computes the halo's
+    /// heights; then the normals, which need the heights of the six lattice neighbours, and the
+    /// indices. Each pass runs on all cores when the rectangle holds more than one batch.
     #[must_use]
     pub fn generate_rect(&self, rect: TileRect) -> ChunkMesh {
         let rect = self.bounds().map_or(rect, |b| rect.intersect(&b));
@@ -481,8 +562,7 @@ impl Terrain {
         let ppt = lattice.points_per_tile();
 
         // Kinds of the tiles and of the ring around them (`None` outside the map): every vertex
-        // evaluated below lies in one of those. They are computed while the points are
-        // enumerated, which is sequential.
+        // evaluated below lies in one of those.
         let halo = rect.grow(1);
         let halo_width = (halo.max[0] - halo.min[0]) as usize;
         let halo_index = |[c, r]: [i32; 2]| (r - halo.min[1]) as usize * halo_width + (c - halo.min[0]) as usize;
@@ -490,10 +570,8 @@ impl Terrain {
             let oc = self.offset_of(tile);
             if halo.contains(oc) { kinds[halo_index(oc)] } else { self.map_tile_kind(tile) }
         };
-        // Enumerating the points is sequential; meanwhile the other cores classify the tiles and
-        // allocate the output buffers, whose size the vertex count formula gives.
         let shape = GridShape::around(lattice, &tiles);
-        let ((Points { grid, lattice: mut points, owned, owner, centres, tile_points }, out), kinds) = split.join(
+        let ((Points { grid, lattice: mut points, owned, owner }, out), (kinds, around_kinds)) = split.join(
             || {
                 split.join(
                     || self.collect_points(&tiles, shape),
@@ -507,8 +585,7 @@ impl Terrain {
                 )
             },
             || {
-                // Per tile: its own kind and the kinds of its six neighbours (`all_neighbors`
-                // order).
+                // Per tile: its own kind and its six neighbours' (`all_neighbors` order).
                 let kinds = self.halo_kinds(halo);
                 let around: Vec<(TileKind, [Option<TileKind>; 6])> = tiles
                     .iter()
@@ -519,16 +596,29 @@ impl Terrain {
                 (kinds, around)
             },
         );
-        let (kinds, around_kinds) = kinds;
-        let Buffers { mut b, mut raws, mut moved, mut rings, heights } = out.fit(owned);
+        let Buffers { mut b, mut raws, mut moved, mut rings, mut heights } = out.fit(owned);
         let kind_of = |tile: Hex| kind_in(&kinds, tile);
 
         let max_elevation = self.config().terrain.max_elevation;
         let uv_scale = 0.5 / self.config().layout.hex_size;
         let inv_n = 1.0 / n as f32;
         let template = lattice.template();
+        let slot_of = |i: usize| grid.slot(points[i]);
 
-        // The tiles' own vertices: their tiles are known, so no lookup is needed.
+        // The halo's heights (for the normals of border vertices), beside the tiles' vertices.
+        let halo_pass = || {
+            let mut out = vec![0.0_f32; points.len() - owned];
+            out.par_chunks_mut(BATCH).zip(points[owned..].par_chunks(BATCH)).with_min_len(split.min_len(1)).for_each(
+                |(out, pts)| {
+                    let mut noise = [0.0; BATCH];
+                    self.base_heights(pts, &mut noise[..pts.len()]);
+                    for ((h, &p), &noise) in out.iter_mut().zip(pts).zip(&noise) {
+                        *h = self.border_vertex(self.shaped(noise, p), p, kind_of).height * max_elevation;
+                    }
+                },
+            );
+            out
+        };
         let outputs = Outputs {
             positions: &mut b.positions,
             uvs: &mut b.uvs,
@@ -537,25 +627,12 @@ impl Terrain {
             raws: &mut raws,
             moved: &mut moved,
             rings: &mut rings,
-        };
-        // Heights also go to a grid shaped like the point grid, where the normals find the six
-        // neighbours of any point at fixed offsets. Each slot is written once, by the task that
-        // computes its point, and read after all tasks are done.
-        let put = |p: Hex, h: f32| heights[grid.slot(p)].store(h.to_bits(), Ordering::Relaxed);
-        let height_at = |slot: usize| f32::from_bits(heights[slot].load(Ordering::Relaxed));
-        // The tiles' own vertices and, alongside, the halo's heights (for the normals of the
-        // border vertices).
-        let halo_pass = || {
-            points[owned..].par_chunks(BATCH).with_min_len(split.min_len(1)).for_each(|pts| {
-                let mut noise = [0.0; BATCH];
-                self.base_heights(pts, &mut noise[..pts.len()]);
-                for (&p, &noise) in pts.iter().zip(&noise) {
-                    put(p, self.border_vertex(self.shaped(noise, p), p, kind_of).height * max_elevation);
-                }
-            });
+            heights: &mut heights,
+            first_slot: 0,
         };
         let owned_pass = || {
-            in_batches(split, outputs, 0, &|start, o: Outputs<'_>| {
+            // The tiles' own vertices: their tiles are known, so no lookup is needed.
+            in_batches(split, outputs, 0, &slot_of, &|start, o: Outputs<'_>| {
                 let pts = &points[start..start + o.len()];
                 let mut noise = [0.0; BATCH];
                 self.base_heights(pts, &mut noise[..pts.len()]);
@@ -582,7 +659,7 @@ impl Terrain {
                     let [x, z] = lattice.world(p);
                     let (x, z) = (x as f32, z as f32);
                     o.positions[j] = [x, height, z];
-                    put(p, height);
+                    o.heights[grid.slot(p) - o.first_slot] = height;
                     o.uvs[j] = [x * uv_scale, z * uv_scale];
                     o.kinds[j] = s.kind as u32;
                     o.distances[j] = ring as f32 * inv_n;
@@ -590,63 +667,79 @@ impl Terrain {
                     o.moved[j] = s.moved;
                     o.rings[j] = ring as u8;
                 }
-            })
+            });
         };
+        let ((), halo_heights) = split.join(owned_pass, halo_pass);
+        for (&p, h) in points[owned..].iter().zip(halo_heights) {
+            heights[grid.slot(p)] = h;
+        }
 
-        split.join(owned_pass, halo_pass);
-
-        // Normals: every neighbour of an owned point is an owned or a halo point.
+        // Normals: every neighbour of an owned point is an owned or a halo point, so its height
+        // is in the grid. Eight points in consecutive slots of one row read eight consecutive
+        // heights per direction.
         let (step_a, step_b) = lattice.steps();
         let around: [[f32; 2]; 6] = AROUND.map(|d| {
             let (i, j) = (f64::from(d.x), f64::from(d.y));
             [(i * step_a[0] + j * step_b[0]) as f32, (i * step_a[1] + j * step_b[1]) as f32]
         });
         let coefficients = NormalCoefficients::new(&around);
-        let steps = shape.steps();
+        let steps = shape.offsets(AROUND);
+        let heights = &heights;
         let normals_pass = || {
             b.normals.par_chunks_mut(BATCH).with_min_len(split.min_len(1)).enumerate().for_each(|(c, normals)| {
                 let mut h0 = [0.0; NORMAL_LANES];
                 let mut around = [[0.0; NORMAL_LANES]; 6];
                 let mut out = [[0.0; 3]; NORMAL_LANES];
                 for (g, normals) in normals.chunks_mut(NORMAL_LANES).enumerate() {
-                    for l in 0..normals.len() {
-                        let i = c * BATCH + g * NORMAL_LANES + l;
-                        let slot = grid.slot(points[i]);
-                        h0[l] = height_at(slot);
-                        for (d, &step) in steps[shape.parity(points[i])].iter().enumerate() {
-                            around[d][l] = height_at(slot.wrapping_add_signed(step));
+                    let first = c * BATCH + g * NORMAL_LANES;
+                    let slot = slot_of(first);
+                    let last = first + NORMAL_LANES - 1;
+                    if normals.len() == NORMAL_LANES
+                        && slot_of(last) == slot + NORMAL_LANES - 1
+                        && slot / shape.width == (slot + NORMAL_LANES - 1) / shape.width
+                    {
+                        h0.copy_from_slice(&heights[slot..slot + NORMAL_LANES]);
+                        for (a, &d) in around.iter_mut().zip(&steps[shape.parity(points[first])]) {
+                            let s = slot.wrapping_add_signed(d);
+                            a.copy_from_slice(&heights[s..s + NORMAL_LANES]);
+                        }
+                    } else {
+                        for l in 0..normals.len() {
+                            let slot = slot_of(first + l);
+                            h0[l] = heights[slot];
+                            for (a, &d) in around.iter_mut().zip(&steps[shape.parity(points[first + l])]) {
+                                a[l] = heights[slot.wrapping_add_signed(d)];
+                            }
                         }
                     }
                     coefficients.normals(&h0, &around, &mut out);
                     normals.copy_from_slice(&out[..normals.len()]);
                 }
-            })
+            });
         };
 
         let per_tile = lattice.triangles_per_tile() * 3;
+        let offsets = template_offsets(&shape, lattice);
         let indices_pass = || {
-            b.indices
-                .par_chunks_mut(per_tile)
-                .zip(tile_points.par_chunks(ppt))
-                .with_min_len(split.min_len(16))
-                .for_each(|(out, own)| {
-                    for (tri, dst) in lattice.template_triangle_indices().iter().zip(out.chunks_exact_mut(3)) {
-                        for (&k, d) in tri.iter().zip(dst) {
-                            *d = own[usize::from(k)];
-                        }
+            b.indices.par_chunks_mut(per_tile).zip(&tiles).with_min_len(split.min_len(16)).for_each(|(out, &tile)| {
+                let mut own = [0_u32; TEMPLATE_MAX];
+                grid.template_points(lattice.tile_centre(tile), &offsets, &mut own[..ppt]);
+                for (tri, dst) in lattice.template_triangle_indices().iter().zip(out.chunks_exact_mut(3)) {
+                    for (&k, d) in tri.iter().zip(dst) {
+                        *d = own[usize::from(k)];
                     }
-                })
+                }
+            });
         };
         split.join(normals_pass, indices_pass);
 
         let tiles_info = tiles
             .iter()
-            .zip(&centres)
             .zip(&around_kinds)
-            .map(|((&hex, &ci), &(kind, _))| TileInfo {
+            .map(|(&hex, &(kind, _))| TileInfo {
                 hex,
                 kind,
-                elevation: b.positions[ci as usize][1],
+                elevation: heights[grid.slot(lattice.tile_centre(hex))],
                 in_map: true,
             })
             .collect();
