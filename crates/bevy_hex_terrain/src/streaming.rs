@@ -273,6 +273,11 @@ impl ChunkStreamer {
                 }
             }
         }
+        // A wanted chunk without its mesh unsettles the terrain, even if the mesh arrives within
+        // this frame, so that `TerrainReady` follows.
+        if wanted.keys().any(|c| !streamer.current.contains(c)) {
+            streamer.settled = false;
+        }
         if streamer.wanted != wanted {
             streamer.wanted = wanted;
         }
@@ -293,8 +298,11 @@ impl ChunkStreamer {
     ) {
         let generation = map.generation();
         if streamer.current_generation != generation {
+            // A new map: nothing shows it yet, so the terrain is unsettled even if every chunk
+            // of the new generation gets inserted in this very frame.
             streamer.current_generation = generation;
             streamer.current.clear();
+            streamer.settled = false;
         }
         let mut budget = settings.max_inserts_per_frame.max(1);
         for (entity, mut chunk, mut task) in &mut tasks {
