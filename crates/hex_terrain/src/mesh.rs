@@ -214,16 +214,17 @@ impl GridShape {
         (if self.pointy { p.x } else { p.y } & 1) as usize
     }
 
+    /// Slot offset of lattice offset `d` from a point whose row has `parity`.
+    fn offset(&self, parity: i32, d: Hex) -> isize {
+        let p = if self.pointy { Hex::new(parity, 0) } else { Hex::new(0, parity) };
+        let [c0, r0] = Self::coords(self.pointy, p);
+        let [c, r] = Self::coords(self.pointy, p + d);
+        (r - r0) as isize * self.width as isize + (c - c0) as isize
+    }
+
     /// Slot offsets of lattice offsets `d` from a point, for each parity of the point.
     fn offsets<const N: usize>(&self, d: [Hex; N]) -> [[isize; N]; 2] {
-        [0, 1].map(|parity| {
-            let p = if self.pointy { Hex::new(parity, 0) } else { Hex::new(0, parity) };
-            let [c0, r0] = Self::coords(self.pointy, p);
-            d.map(|d| {
-                let [c, r] = Self::coords(self.pointy, p + d);
-                (r - r0) as isize * self.width as isize + (c - c0) as isize
-            })
-        })
+        [0, 1].map(|parity| d.map(|d| self.offset(parity, d)))
     }
 }
 
@@ -243,7 +244,7 @@ impl Grid {
 
     /// Point indices of the template points of the tile centred on `centre`, in template order.
     #[inline]
-    fn template_points(&self, centre: Hex, offsets: &[[isize; TEMPLATE_MAX]; 2], out: &mut [u32]) {
+    fn template_points(&self, centre: Hex, offsets: &[Vec<isize>; 2], out: &mut [u32]) {
         let base = self.slot(centre);
         for (o, &d) in out.iter_mut().zip(&offsets[self.shape.parity(centre)]) {
             *o = self.slots[base.wrapping_add_signed(d)];
@@ -257,13 +258,10 @@ const TEMPLATE_MAX: usize = {
     1 + 3 * n * (n + 1)
 };
 
-/// Slot offsets of every template point for both parities, padded to [`TEMPLATE_MAX`].
-fn template_offsets(shape: &GridShape, lattice: &Lattice) -> Box<[[isize; TEMPLATE_MAX]; 2]> {
-    let mut offsets = [Hex::ZERO; TEMPLATE_MAX];
-    for (o, tp) in offsets.iter_mut().zip(lattice.template()) {
-        *o = tp.offset;
-    }
-    Box::new(shape.offsets(offsets))
+/// Slot offsets of every template point, for each parity of the centre.
+fn template_offsets(shape: &GridShape, lattice: &Lattice) -> [Vec<isize>; 2] {
+    let template = lattice.template();
+    [0, 1].map(|parity| template.iter().map(|tp| shape.offset(parity, tp.offset)).collect())
 }
 
 /// The per-vertex outputs of a run of owned points, split in halves for the tasks, with the
@@ -441,18 +439,17 @@ impl Terrain {
     /// with the grid indexing both. Each point belongs to the first tile (in `tiles` order)
     /// whose template holds it; the tiles' points come first, then the halo's, each in grid
     /// order.
-    fn collect_points(&self, tiles: &[Hex], shape: GridShape) -> Points {
+    fn collect_points(&self, tiles: &[Hex], shape: GridShape, offsets: &[Vec<isize>; 2]) -> Points {
         let lattice = self.lattice();
         let n = lattice.subdivisions();
         let ppt = lattice.points_per_tile();
         let template = lattice.template();
         let mut grid = Grid::new(shape);
         // Claim: each slot holds `tile * ppt + k` of its first tile until it is numbered.
-        let offsets = template_offsets(&shape, lattice);
         for (t, &tile) in tiles.iter().enumerate() {
             let centre = lattice.tile_centre(tile);
             let base = grid.slot(centre);
-            for (k, &d) in offsets[shape.parity(centre)][..ppt].iter().enumerate() {
+            for (k, &d) in offsets[shape.parity(centre)].iter().enumerate() {
                 let slot = &mut grid.slots[base.wrapping_add_signed(d)];
                 if *slot == Grid::EMPTY {
                     *slot = (t * ppt + k) as u32;
@@ -571,10 +568,11 @@ impl Terrain {
             if halo.contains(oc) { kinds[halo_index(oc)] } else { self.map_tile_kind(tile) }
         };
         let shape = GridShape::around(lattice, &tiles);
+        let offsets = template_offsets(&shape, lattice);
         let ((Points { grid, lattice: mut points, owned, owner }, out), (kinds, around_kinds)) = split.join(
             || {
                 split.join(
-                    || self.collect_points(&tiles, shape),
+                    || self.collect_points(&tiles, shape, &offsets),
                     || {
                         Buffers::new(
                             self.rect_vertex_count(rect),
@@ -719,7 +717,6 @@ impl Terrain {
         };
 
         let per_tile = lattice.triangles_per_tile() * 3;
-        let offsets = template_offsets(&shape, lattice);
         let indices_pass = || {
             b.indices.par_chunks_mut(per_tile).zip(&tiles).with_min_len(split.min_len(16)).for_each(|(out, &tile)| {
                 let mut own = [0_u32; TEMPLATE_MAX];
@@ -753,7 +750,8 @@ impl Terrain {
     pub fn mesh_points(&self, rect: TileRect) -> Vec<Hex> {
         let rect = self.bounds().map_or(rect, |b| rect.intersect(&b));
         let tiles: Vec<Hex> = rect.iter().map(|oc| self.tile_from_offset(oc)).collect();
-        self.collect_points(&tiles, GridShape::around(self.lattice(), &tiles)).lattice
+        let shape = GridShape::around(self.lattice(), &tiles);
+        self.collect_points(&tiles, shape, &template_offsets(&shape, self.lattice())).lattice
     }
 
     /// Bare fBm at exactly the points [`Terrain::generate_rect`] evaluates, enumerated the same
