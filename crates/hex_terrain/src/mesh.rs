@@ -349,6 +349,15 @@ impl Split {
     /// many, a generation runs on the calling thread.
     const MIN_POINTS: usize = BATCH;
 
+    /// Fewest points for which the work beside the point enumeration goes to another thread.
+    const SIDE_MIN_POINTS: usize = 4 * BATCH;
+
+    /// `f()`, inside the thread pool when splitting (entered once, rather than at every
+    /// parallel call inside `f`).
+    fn in_pool<R: Send>(self, f: impl FnOnce() -> R + Send) -> R {
+        if self.0 && rayon::current_thread_index().is_none() { rayon::scope(|_| f()) } else { f() }
+    }
+
     /// `(a(), b())`, in parallel when splitting.
     fn join<A: Send, B: Send>(self, a: impl FnOnce() -> A + Send, b: impl FnOnce() -> B + Send) -> (A, B) {
         if self.0 { rayon::join(a, b) } else { (a(), b()) }
@@ -543,13 +552,7 @@ impl Terrain {
     pub fn generate_rect(&self, rect: TileRect) -> ChunkMesh {
         let rect = self.bounds().map_or(rect, |b| rect.intersect(&b));
         let n = self.lattice().subdivisions() as usize;
-        let split = Split(rect.len() * 3 * n * n > Split::MIN_POINTS);
-        if split.0 && rayon::current_thread_index().is_none() {
-            // Enter the pool once, rather than at every parallel pass.
-            rayon::scope(|_| self.generate_rect_with(rect, split))
-        } else {
-            self.generate_rect_with(rect, split)
-        }
+        self.generate_rect_with(rect, Split(rect.len() * 3 * n * n > Split::MIN_POINTS))
     }
 
     fn generate_rect_with(&self, rect: TileRect, split: Split) -> ChunkMesh {
@@ -569,31 +572,40 @@ impl Terrain {
         };
         let shape = GridShape::around(lattice, &tiles);
         let offsets = template_offsets(&shape, lattice);
-        let ((Points { grid, lattice: mut points, owned, owner }, out), (kinds, around_kinds)) = split.join(
-            || {
-                split.join(
-                    || self.collect_points(&tiles, shape, &offsets),
-                    || {
-                        Buffers::new(
-                            self.rect_vertex_count(rect),
-                            tiles.len() * lattice.triangles_per_tile() * 3,
-                            shape.len(),
-                        )
-                    },
-                )
-            },
-            || {
-                // Per tile: its own kind and its six neighbours' (`all_neighbors` order).
-                let kinds = self.halo_kinds(halo);
-                let around: Vec<(TileKind, [Option<TileKind>; 6])> = tiles
-                    .iter()
-                    .map(|&t| {
-                        (kind_in(&kinds, t).unwrap_or(TileKind::Sea), t.all_neighbors().map(|nb| kind_in(&kinds, nb)))
-                    })
-                    .collect();
-                (kinds, around)
-            },
-        );
+        // Beside a small rectangle the side work is shorter than waking a second thread (and
+        // letting it fall asleep again before the passes): then it runs before the passes.
+        let side = Split(split.0 && tiles.len() * ppt > Split::SIDE_MIN_POINTS);
+        let prelude = || {
+            side.join(
+                || {
+                    side.join(
+                        || self.collect_points(&tiles, shape, &offsets),
+                        || {
+                            Buffers::new(
+                                self.rect_vertex_count(rect),
+                                tiles.len() * lattice.triangles_per_tile() * 3,
+                                shape.len(),
+                            )
+                        },
+                    )
+                },
+                || {
+                    // Per tile: its own kind and its six neighbours' (`all_neighbors` order).
+                    let kinds = self.halo_kinds(halo);
+                    let around: Vec<(TileKind, [Option<TileKind>; 6])> = tiles
+                        .iter()
+                        .map(|&t| {
+                            (
+                                kind_in(&kinds, t).unwrap_or(TileKind::Sea),
+                                t.all_neighbors().map(|nb| kind_in(&kinds, nb)),
+                            )
+                        })
+                        .collect();
+                    (kinds, around)
+                },
+            )
+        };
+        let ((Points { grid, lattice: mut points, owned, owner }, out), (kinds, around_kinds)) = side.in_pool(prelude);
         let Buffers { mut b, mut raws, mut moved, mut rings, mut heights } = out.fit(owned);
         let kind_of = |tile: Hex| kind_in(&kinds, tile);
 
@@ -617,118 +629,123 @@ impl Terrain {
             );
             out
         };
-        let outputs = Outputs {
-            positions: &mut b.positions,
-            uvs: &mut b.uvs,
-            kinds: &mut b.tile_kinds,
-            distances: &mut b.centre_distances,
-            raws: &mut raws,
-            moved: &mut moved,
-            rings: &mut rings,
-            heights: &mut heights,
-            first_slot: 0,
-        };
-        let owned_pass = || {
-            // The tiles' own vertices: their tiles are known, so no lookup is needed.
-            in_batches(split, outputs, 0, &slot_of, &|start, o: Outputs<'_>| {
-                let pts = &points[start..start + o.len()];
-                let mut noise = [0.0; BATCH];
-                self.base_heights(pts, &mut noise[..pts.len()]);
-                for (j, &p) in pts.iter().enumerate() {
-                    let Owner { tile, k } = owner[start + j];
-                    let k = usize::from(k);
-                    let ring = template[k].ring;
-                    let raw = self.shaped(noise[j], p);
-                    let (own, around) = &around_kinds[tile as usize];
-                    let s = if ring < n {
-                        self.finish_vertex(raw, ring, &[*own])
-                    } else {
-                        let mut sharing = [*own; 3];
-                        let mut len = 1;
-                        for d in lattice.shared_tiles(k) {
-                            if let Some(&Some(kind)) = around.get(usize::from(d)) {
-                                sharing[len] = kind;
-                                len += 1;
+        // Every pass from here on, in one visit to the thread pool.
+        split.in_pool(|| {
+            let outputs = Outputs {
+                positions: &mut b.positions,
+                uvs: &mut b.uvs,
+                kinds: &mut b.tile_kinds,
+                distances: &mut b.centre_distances,
+                raws: &mut raws,
+                moved: &mut moved,
+                rings: &mut rings,
+                heights: &mut heights,
+                first_slot: 0,
+            };
+            let owned_pass = || {
+                // The tiles' own vertices: their tiles are known, so no lookup is needed.
+                in_batches(split, outputs, 0, &slot_of, &|start, o: Outputs<'_>| {
+                    let pts = &points[start..start + o.len()];
+                    let mut noise = [0.0; BATCH];
+                    self.base_heights(pts, &mut noise[..pts.len()]);
+                    for (j, &p) in pts.iter().enumerate() {
+                        let Owner { tile, k } = owner[start + j];
+                        let k = usize::from(k);
+                        let ring = template[k].ring;
+                        let raw = self.shaped(noise[j], p);
+                        let (own, around) = &around_kinds[tile as usize];
+                        let s = if ring < n {
+                            self.finish_vertex(raw, ring, &[*own])
+                        } else {
+                            let mut sharing = [*own; 3];
+                            let mut len = 1;
+                            for d in lattice.shared_tiles(k) {
+                                if let Some(&Some(kind)) = around.get(usize::from(d)) {
+                                    sharing[len] = kind;
+                                    len += 1;
+                                }
+                            }
+                            self.finish_vertex(raw, ring, &sharing[..len])
+                        };
+                        let height = s.height * max_elevation;
+                        let [x, z] = lattice.world(p);
+                        let (x, z) = (x as f32, z as f32);
+                        o.positions[j] = [x, height, z];
+                        o.heights[grid.slot(p) - o.first_slot] = height;
+                        o.uvs[j] = [x * uv_scale, z * uv_scale];
+                        o.kinds[j] = s.kind as u32;
+                        o.distances[j] = ring as f32 * inv_n;
+                        o.raws[j] = raw;
+                        o.moved[j] = s.moved;
+                        o.rings[j] = ring as u8;
+                    }
+                });
+            };
+            let ((), halo_heights) = split.join(owned_pass, halo_pass);
+            for (&p, h) in points[owned..].iter().zip(halo_heights) {
+                heights[grid.slot(p)] = h;
+            }
+
+            // Normals: every neighbour of an owned point is an owned or a halo point, so its height
+            // is in the grid. Eight points in consecutive slots of one row read eight consecutive
+            // heights per direction.
+            let (step_a, step_b) = lattice.steps();
+            let around: [[f32; 2]; 6] = AROUND.map(|d| {
+                let (i, j) = (f64::from(d.x), f64::from(d.y));
+                [(i * step_a[0] + j * step_b[0]) as f32, (i * step_a[1] + j * step_b[1]) as f32]
+            });
+            let coefficients = NormalCoefficients::new(&around);
+            let steps = shape.offsets(AROUND);
+            let heights = &heights;
+            let normals_pass = || {
+                b.normals.par_chunks_mut(BATCH).with_min_len(split.min_len(1)).enumerate().for_each(|(c, normals)| {
+                    let mut h0 = [0.0; NORMAL_LANES];
+                    let mut around = [[0.0; NORMAL_LANES]; 6];
+                    let mut out = [[0.0; 3]; NORMAL_LANES];
+                    for (g, normals) in normals.chunks_mut(NORMAL_LANES).enumerate() {
+                        let first = c * BATCH + g * NORMAL_LANES;
+                        let slot = slot_of(first);
+                        let last = first + NORMAL_LANES - 1;
+                        if normals.len() == NORMAL_LANES
+                            && slot_of(last) == slot + NORMAL_LANES - 1
+                            && slot / shape.width == (slot + NORMAL_LANES - 1) / shape.width
+                        {
+                            h0.copy_from_slice(&heights[slot..slot + NORMAL_LANES]);
+                            for (a, &d) in around.iter_mut().zip(&steps[shape.parity(points[first])]) {
+                                let s = slot.wrapping_add_signed(d);
+                                a.copy_from_slice(&heights[s..s + NORMAL_LANES]);
+                            }
+                        } else {
+                            for l in 0..normals.len() {
+                                let slot = slot_of(first + l);
+                                h0[l] = heights[slot];
+                                for (a, &d) in around.iter_mut().zip(&steps[shape.parity(points[first + l])]) {
+                                    a[l] = heights[slot.wrapping_add_signed(d)];
+                                }
                             }
                         }
-                        self.finish_vertex(raw, ring, &sharing[..len])
-                    };
-                    let height = s.height * max_elevation;
-                    let [x, z] = lattice.world(p);
-                    let (x, z) = (x as f32, z as f32);
-                    o.positions[j] = [x, height, z];
-                    o.heights[grid.slot(p) - o.first_slot] = height;
-                    o.uvs[j] = [x * uv_scale, z * uv_scale];
-                    o.kinds[j] = s.kind as u32;
-                    o.distances[j] = ring as f32 * inv_n;
-                    o.raws[j] = raw;
-                    o.moved[j] = s.moved;
-                    o.rings[j] = ring as u8;
-                }
-            });
-        };
-        let ((), halo_heights) = split.join(owned_pass, halo_pass);
-        for (&p, h) in points[owned..].iter().zip(halo_heights) {
-            heights[grid.slot(p)] = h;
-        }
+                        coefficients.normals(&h0, &around, &mut out);
+                        normals.copy_from_slice(&out[..normals.len()]);
+                    }
+                });
+            };
 
-        // Normals: every neighbour of an owned point is an owned or a halo point, so its height
-        // is in the grid. Eight points in consecutive slots of one row read eight consecutive
-        // heights per direction.
-        let (step_a, step_b) = lattice.steps();
-        let around: [[f32; 2]; 6] = AROUND.map(|d| {
-            let (i, j) = (f64::from(d.x), f64::from(d.y));
-            [(i * step_a[0] + j * step_b[0]) as f32, (i * step_a[1] + j * step_b[1]) as f32]
+            let per_tile = lattice.triangles_per_tile() * 3;
+            let indices_pass = || {
+                b.indices.par_chunks_mut(per_tile).zip(&tiles).with_min_len(split.min_len(16)).for_each(
+                    |(out, &tile)| {
+                        let mut own = [0_u32; TEMPLATE_MAX];
+                        grid.template_points(lattice.tile_centre(tile), &offsets, &mut own[..ppt]);
+                        for (tri, dst) in lattice.template_triangle_indices().iter().zip(out.chunks_exact_mut(3)) {
+                            for (&k, d) in tri.iter().zip(dst) {
+                                *d = own[usize::from(k)];
+                            }
+                        }
+                    },
+                );
+            };
+            split.join(normals_pass, indices_pass);
         });
-        let coefficients = NormalCoefficients::new(&around);
-        let steps = shape.offsets(AROUND);
-        let heights = &heights;
-        let normals_pass = || {
-            b.normals.par_chunks_mut(BATCH).with_min_len(split.min_len(1)).enumerate().for_each(|(c, normals)| {
-                let mut h0 = [0.0; NORMAL_LANES];
-                let mut around = [[0.0; NORMAL_LANES]; 6];
-                let mut out = [[0.0; 3]; NORMAL_LANES];
-                for (g, normals) in normals.chunks_mut(NORMAL_LANES).enumerate() {
-                    let first = c * BATCH + g * NORMAL_LANES;
-                    let slot = slot_of(first);
-                    let last = first + NORMAL_LANES - 1;
-                    if normals.len() == NORMAL_LANES
-                        && slot_of(last) == slot + NORMAL_LANES - 1
-                        && slot / shape.width == (slot + NORMAL_LANES - 1) / shape.width
-                    {
-                        h0.copy_from_slice(&heights[slot..slot + NORMAL_LANES]);
-                        for (a, &d) in around.iter_mut().zip(&steps[shape.parity(points[first])]) {
-                            let s = slot.wrapping_add_signed(d);
-                            a.copy_from_slice(&heights[s..s + NORMAL_LANES]);
-                        }
-                    } else {
-                        for l in 0..normals.len() {
-                            let slot = slot_of(first + l);
-                            h0[l] = heights[slot];
-                            for (a, &d) in around.iter_mut().zip(&steps[shape.parity(points[first + l])]) {
-                                a[l] = heights[slot.wrapping_add_signed(d)];
-                            }
-                        }
-                    }
-                    coefficients.normals(&h0, &around, &mut out);
-                    normals.copy_from_slice(&out[..normals.len()]);
-                }
-            });
-        };
-
-        let per_tile = lattice.triangles_per_tile() * 3;
-        let indices_pass = || {
-            b.indices.par_chunks_mut(per_tile).zip(&tiles).with_min_len(split.min_len(16)).for_each(|(out, &tile)| {
-                let mut own = [0_u32; TEMPLATE_MAX];
-                grid.template_points(lattice.tile_centre(tile), &offsets, &mut own[..ppt]);
-                for (tri, dst) in lattice.template_triangle_indices().iter().zip(out.chunks_exact_mut(3)) {
-                    for (&k, d) in tri.iter().zip(dst) {
-                        *d = own[usize::from(k)];
-                    }
-                }
-            });
-        };
-        split.join(normals_pass, indices_pass);
 
         let tiles_info = tiles
             .iter()
