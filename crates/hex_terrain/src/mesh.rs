@@ -529,15 +529,40 @@ impl Terrain {
         self.lattice().mesh_vertex_count(tiles, outline)
     }
 
-    /// Kind of every tile of `rect` (row by row), `None` for those outside the map.
-    fn halo_kinds(&self, rect: TileRect) -> Vec<Option<TileKind>> {
+    /// Kind of every tile of `rect` (row by row), `None` for those outside the map,
+    /// and the height-source sample at each tile's centre.
+    fn halo_kinds(&self, rect: TileRect) -> (Vec<Option<TileKind>>, Vec<f64>) {
         let lattice = self.lattice();
         let tiles: Vec<Hex> = rect.iter().map(|oc| self.tile_from_offset(oc)).collect();
         let centres: Vec<Hex> = tiles.iter().map(|&t| lattice.tile_centre(t)).collect();
         let noise = self.noise_at(&centres);
-        par_map(tiles.len(), |k| {
+        let kinds = par_map(tiles.len(), |k| {
             self.contains(tiles[k]).then(|| self.thresholds().classify(self.shaped(noise[k], centres[k])))
-        })
+        });
+        (kinds, noise)
+    }
+
+    /// Height-source samples of a batch of owned points; a tile's centre (template point 0)
+    /// takes the sample already taken for its tile's kind, `centre_noise[tile]`.
+    fn batch_noise(&self, points: &[Hex], owners: &[Owner], centre_noise: &[f64], out: &mut [f64]) {
+        if !self.samples_noise() {
+            self.base_heights(points, out);
+            return;
+        }
+        let mut positions = [[0.0; 2]; BATCH];
+        let mut sampled = [0.0; BATCH];
+        let mut len = 0;
+        for (&p, owner) in points.iter().zip(owners) {
+            if owner.k != 0 {
+                positions[len] = self.noise_position(p);
+                len += 1;
+            }
+        }
+        self.fbm().sample_many(&positions[..len], &mut sampled[..len]);
+        let mut next = sampled.iter();
+        for (o, owner) in out.iter_mut().zip(owners) {
+            *o = if owner.k == 0 { centre_noise[owner.tile as usize] } else { next.next().copied().unwrap_or(0.0) };
+        }
     }
 
     /// Generates the mesh of any rectangle of tiles (clipped to the map) with the halo it needs:
@@ -591,7 +616,8 @@ impl Terrain {
                 },
                 || {
                     // Per tile: its own kind and its six neighbours' (`all_neighbors` order).
-                    let kinds = self.halo_kinds(halo);
+                    let (kinds, noise) = self.halo_kinds(halo);
+                    let centre_noise: Vec<f64> = rect.iter().map(|[c, r]| noise[halo_index([c, r])]).collect();
                     let around: Vec<(TileKind, [Option<TileKind>; 6])> = tiles
                         .iter()
                         .map(|&t| {
@@ -601,11 +627,12 @@ impl Terrain {
                             )
                         })
                         .collect();
-                    (kinds, around)
+                    (kinds, around, centre_noise)
                 },
             )
         };
-        let ((Points { grid, lattice: mut points, owned, owner }, out), (kinds, around_kinds)) = side.in_pool(prelude);
+        let ((Points { grid, lattice: mut points, owned, owner }, out), (kinds, around_kinds, centre_noise)) =
+            side.in_pool(prelude);
         let Buffers { mut b, mut raws, mut moved, mut rings, mut heights } = out.fit(owned);
         let kind_of = |tile: Hex| kind_in(&kinds, tile);
 
@@ -647,7 +674,7 @@ impl Terrain {
                 in_batches(split, outputs, 0, &slot_of, &|start, o: Outputs<'_>| {
                     let pts = &points[start..start + o.len()];
                     let mut noise = [0.0; BATCH];
-                    self.base_heights(pts, &mut noise[..pts.len()]);
+                    self.batch_noise(pts, &owner[start..start + pts.len()], &centre_noise, &mut noise[..pts.len()]);
                     for (j, &p) in pts.iter().enumerate() {
                         let Owner { tile, k } = owner[start + j];
                         let k = usize::from(k);

@@ -254,6 +254,11 @@ impl Terrain {
         self.fbm.sample(ux, uz)
     }
 
+    /// Whether heights come from fBm (rather than a heightmap image).
+    pub(crate) fn samples_noise(&self) -> bool {
+        self.image.is_none()
+    }
+
     /// Heights of many lattice points from the height source (batched for the noise).
     pub(crate) fn base_heights(&self, points: &[Hex], out: &mut [f64]) {
         if let Some((image, sea_level)) = &self.image {
