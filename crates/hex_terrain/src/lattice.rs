@@ -56,6 +56,9 @@ pub struct Lattice {
     /// For each point of `points` on the border, the neighbouring tiles sharing it (one on an
     /// edge, two on a corner) as indices into `Hex::all_neighbors`; `u8::MAX` when absent.
     shared_tiles: Vec<[u8; 2]>,
+    /// For each point of `points` and each of the six [`NEIGHBOURS`], the tiles (relative to
+    /// the template's tile) holding that neighbour, and its ring.
+    around_tiles: Vec<[TileSet; 6]>,
 }
 
 /// The six lattice directions around a point, counter-clockwise in lattice space.
@@ -109,6 +112,7 @@ impl Lattice {
             triangle_indices,
             neighbour_indices,
             shared_tiles: Vec::new(),
+            around_tiles: Vec::new(),
         };
         // Tile centres are a linear function of tile coordinates, so the tiles sharing a border
         // point of any tile are that tile's neighbours in the same directions as for the origin.
@@ -126,7 +130,17 @@ impl Lattice {
                 shared
             })
             .collect();
+        lattice.around_tiles =
+            lattice.points.iter().map(|p| NEIGHBOURS.map(|d| lattice.tiles_at(p.offset + d))).collect();
         lattice
+    }
+
+    /// The tiles (relative to the template's tile, to be added to a tile's coordinate) holding
+    /// the lattice neighbour in direction `d` ([`NEIGHBOURS`]) of template point `i`, and that
+    /// neighbour's ring: what [`Lattice::tiles_at`] gives for it, found once for the origin tile.
+    #[must_use]
+    pub(crate) fn around_tiles(&self, i: usize, d: usize) -> &TileSet {
+        &self.around_tiles[i][d]
     }
 
     /// For template point `i`, the neighbouring tiles that share it besides the tile itself (none

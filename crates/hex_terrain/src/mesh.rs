@@ -643,6 +643,36 @@ impl Terrain {
         let slot_of = |i: usize| grid.slot(points[i]);
 
         // The halo's heights (for the normals of border vertices), beside the tiles' vertices.
+        // A halo point is one step from a border point of the rectangle, whose tile and template
+        // index tell which tiles hold the halo point (a table of the lattice), so it needs no
+        // search of its own.
+        let around_steps = shape.offsets(AROUND);
+        let halo_vertex = |p: Hex, raw: f32| {
+            let slot = grid.slot(p);
+            for (d, &step) in around_steps[shape.parity(p)].iter().enumerate() {
+                let i = grid.slots[slot.wrapping_add_signed(step)] as usize;
+                if i >= owned {
+                    continue;
+                }
+                let Owner { tile, k } = owner[i];
+                let k = usize::from(k);
+                if template[k].ring == n {
+                    // `p` is the neighbour of point `i` in the opposite direction.
+                    let set = lattice.around_tiles(k, (d + 3) % 6);
+                    let base = tiles[tile as usize];
+                    let mut sharing = [TileKind::Sea; 3];
+                    let mut len = 0;
+                    for &t in set.tiles() {
+                        if let Some(kind) = kind_of(base + t) {
+                            sharing[len] = kind;
+                            len += 1;
+                        }
+                    }
+                    return self.finish_vertex(raw, set.ring, &sharing[..len]);
+                }
+            }
+            self.border_vertex(raw, p, kind_of)
+        };
         let halo_pass = || {
             let mut out = vec![0.0_f32; points.len() - owned];
             out.par_chunks_mut(BATCH).zip(points[owned..].par_chunks(BATCH)).with_min_len(split.min_len(1)).for_each(
@@ -650,7 +680,7 @@ impl Terrain {
                     let mut noise = [0.0; BATCH];
                     self.base_heights(pts, &mut noise[..pts.len()]);
                     for ((h, &p), &noise) in out.iter_mut().zip(pts).zip(&noise) {
-                        *h = self.border_vertex(self.shaped(noise, p), p, kind_of).height * max_elevation;
+                        *h = halo_vertex(p, self.shaped(noise, p)).height * max_elevation;
                     }
                 },
             );

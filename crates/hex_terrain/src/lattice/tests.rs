@@ -128,3 +128,28 @@ fn shared_tiles_are_the_tiles_at_every_template_point() {
         }
     }
 }
+
+/// The tiles around each template point's neighbours, found once for the origin tile, are the
+/// tiles `tiles_at` finds for the same neighbour of any tile, with the same ring.
+#[test]
+fn around_tiles_are_the_tiles_at_every_neighbour() {
+    for n in [1, 2, 4] {
+        for o in [Orientation::Flat, Orientation::Pointy] {
+            let l = Lattice::new(n, o, 1.5);
+            for tile in [Hex::ZERO, Hex::new(-3, 5), Hex::new(-900, -2000), Hex::new(4000, 17)] {
+                for (k, tp) in l.template().iter().enumerate() {
+                    for (d, &step) in NEIGHBOURS.iter().enumerate() {
+                        let truth = l.tiles_at(l.tile_centre(tile) + tp.offset + step);
+                        let table = l.around_tiles(k, d);
+                        let mut expected = truth.tiles().to_vec();
+                        let mut found: Vec<Hex> = table.tiles().iter().map(|&t| tile + t).collect();
+                        expected.sort_by_key(|h| (h.x, h.y));
+                        found.sort_by_key(|h| (h.x, h.y));
+                        assert_eq!(found, expected, "n {n} {o:?} tile {tile:?} point {k} direction {d}");
+                        assert_eq!(table.ring, truth.ring, "n {n} {o:?} tile {tile:?} point {k} direction {d}");
+                    }
+                }
+            }
+        }
+    }
+}
