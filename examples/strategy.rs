@@ -227,7 +227,7 @@ fn place_units(
     map: Res<HexMap>,
     mut game: ResMut<Game>,
     rigs: Query<&Rig>,
-    mut units: Query<(&mut Unit, &mut Transform)>,
+    mut units: Query<(Entity, &mut Unit, &mut Transform)>,
     mut meshes: ResMut<Assets<Mesh>>,
     mut materials: ResMut<Assets<StandardMaterial>>,
 ) {
@@ -240,7 +240,7 @@ fn place_units(
     };
     let mut taken = Vec::new();
     if game.spawned {
-        for (mut unit, mut t) in &mut units {
+        for (_, mut unit, mut t) in &mut units {
             let tile = if cost(&map, unit.tile).is_some() { Some(unit.tile) } else { land_near(unit.tile, &taken) };
             if let Some(tile) = tile {
                 unit.tile = tile;
@@ -249,6 +249,8 @@ fn place_units(
                 t.translation = map.tile_centre(tile) + Vec3::Y * 0.6;
             }
         }
+        // The selected unit's reach follows the new terrain.
+        refresh_reachable(&map, &mut game, &units.transmute_lens::<(Entity, &Unit)>().query());
         return;
     }
     let mesh = meshes.add(Capsule3d::new(0.3, 0.6));
@@ -526,6 +528,10 @@ fn script(
                 cost(&map, u.tile).is_some() && (t.translation.y - (map.tile_centre(u.tile).y + 0.6)).abs() < 0.05
             });
             if !settled {
+                return;
+            }
+            if let Some(&t) = game.reachable.iter().find(|&&t| cost(&map, t).is_none()) {
+                fail(format!("tile {t:?} is shown reachable but impassable on the new map"), &mut exit);
                 return;
             }
             s.step = 5;
