@@ -149,6 +149,8 @@ struct Points {
 struct Grid {
     shape: GridShape,
     slots: Vec<u32>,
+    /// Slot offsets of the six [`AROUND`] steps, by row parity.
+    around: [[isize; 6]; 2],
 }
 
 /// The extent and layout of a [`Grid`].
@@ -234,12 +236,18 @@ impl Grid {
     const HALO: u32 = u32::MAX - 1;
 
     fn new(shape: GridShape) -> Self {
-        Self { shape, slots: vec![Self::EMPTY; shape.len()] }
+        Self { shape, slots: vec![Self::EMPTY; shape.len()], around: shape.offsets(AROUND) }
     }
 
     #[inline]
     fn slot(&self, p: Hex) -> usize {
         self.shape.slot(p)
+    }
+
+    /// Slot offsets of the six lattice neighbours of `p`, in [`AROUND`] order.
+    #[inline]
+    fn around(&self, p: Hex) -> [isize; 6] {
+        self.around[self.shape.parity(p)]
     }
 
     /// Point indices of the template points of the tile centred on `centre`, in template order.
@@ -469,7 +477,6 @@ impl Terrain {
         let estimate = tiles.len() * 3 * (n * n) as usize + 64;
         let mut points = Vec::with_capacity(estimate + estimate / 8);
         let mut owner = Vec::with_capacity(estimate);
-        let steps = shape.offsets(AROUND);
         for slot in 0..grid.slots.len() {
             let code = grid.slots[slot];
             if code >= Grid::HALO {
@@ -481,7 +488,7 @@ impl Terrain {
             points.push(p);
             owner.push(Owner { tile: tile as u32, k: k as u16 });
             if template[k].ring == n {
-                for &d in &steps[shape.parity(p)] {
+                for d in grid.around(p) {
                     let next = &mut grid.slots[slot.wrapping_add_signed(d)];
                     if *next == Grid::EMPTY {
                         *next = Grid::HALO;
@@ -646,10 +653,9 @@ impl Terrain {
         // A halo point is one step from a border point of the rectangle, whose tile and template
         // index tell which tiles hold the halo point (a table of the lattice), so it needs no
         // search of its own.
-        let around_steps = shape.offsets(AROUND);
         let halo_vertex = |p: Hex, raw: f32| {
             let slot = grid.slot(p);
-            for (d, &step) in around_steps[shape.parity(p)].iter().enumerate() {
+            for (d, step) in grid.around(p).into_iter().enumerate() {
                 let i = grid.slots[slot.wrapping_add_signed(step)] as usize;
                 if i >= owned {
                     continue;
@@ -752,7 +758,6 @@ impl Terrain {
                 [(i * step_a[0] + j * step_b[0]) as f32, (i * step_a[1] + j * step_b[1]) as f32]
             });
             let coefficients = NormalCoefficients::new(&around);
-            let steps = shape.offsets(AROUND);
             let heights = &heights;
             let normals_pass = || {
                 b.normals.par_chunks_mut(BATCH).with_min_len(split.min_len(1)).enumerate().for_each(|(c, normals)| {
@@ -768,7 +773,7 @@ impl Terrain {
                             && slot / shape.width == (slot + NORMAL_LANES - 1) / shape.width
                         {
                             h0.copy_from_slice(&heights[slot..slot + NORMAL_LANES]);
-                            for (a, &d) in around.iter_mut().zip(&steps[shape.parity(points[first])]) {
+                            for (a, d) in around.iter_mut().zip(grid.around(points[first])) {
                                 let s = slot.wrapping_add_signed(d);
                                 a.copy_from_slice(&heights[s..s + NORMAL_LANES]);
                             }
@@ -776,7 +781,7 @@ impl Terrain {
                             for l in 0..normals.len() {
                                 let slot = slot_of(first + l);
                                 h0[l] = heights[slot];
-                                for (a, &d) in around.iter_mut().zip(&steps[shape.parity(points[first + l])]) {
+                                for (a, d) in around.iter_mut().zip(grid.around(points[first + l])) {
                                     a[l] = heights[slot.wrapping_add_signed(d)];
                                 }
                             }
