@@ -122,8 +122,7 @@ pub struct ChunkStreamer {
     /// Chunks showing a mesh of `current_generation`.
     current: bevy::platform::collections::HashSet<ChunkCoord>,
     current_generation: u64,
-    /// Whether every wanted chunk was current at the last check ([`TerrainReady`] is sent on
-    /// each change from not settled to settled).
+    /// Whether every wanted chunk was current at the end of the last frame.
     settled: bool,
     /// Request-to-insert latency of recent chunks, in seconds (last 1024).
     pub latencies: VecDeque<f32>,
@@ -273,18 +272,13 @@ impl ChunkStreamer {
                 }
             }
         }
-        // A wanted chunk without its mesh unsettles the terrain, even if the mesh arrives within
-        // this frame, so that `TerrainReady` follows.
-        if wanted.keys().any(|c| !streamer.current.contains(c)) {
-            streamer.settled = false;
-        }
         if streamer.wanted != wanted {
             streamer.wanted = wanted;
         }
     }
 
     /// Inserts finished meshes, at most [`HexTerrainSettings::max_inserts_per_frame`] a frame,
-    /// and reports [`TerrainReady`] when every wanted chunk is current.
+    /// and reports [`TerrainReady`] when these inserts make every wanted chunk current.
     #[expect(clippy::too_many_arguments, reason = "a system's parameters")]
     pub(crate) fn insert_ready(
         mut commands: Commands,
@@ -298,12 +292,13 @@ impl ChunkStreamer {
     ) {
         let generation = map.generation();
         if streamer.current_generation != generation {
-            // A new map: nothing shows it yet, so the terrain is unsettled even if every chunk
-            // of the new generation gets inserted in this very frame.
             streamer.current_generation = generation;
             streamer.current.clear();
-            streamer.settled = false;
         }
+        // Settling is judged before and after this frame's inserts, so a reload or a newly wanted
+        // chunk whose meshes all arrive within one frame is reported too.
+        let complete = |s: &ChunkStreamer| !s.wanted.is_empty() && s.wanted.keys().all(|c| s.current.contains(c));
+        let was_complete = complete(&streamer);
         let mut budget = settings.max_inserts_per_frame.max(1);
         for (entity, mut chunk, mut task) in &mut tasks {
             if budget == 0 {
@@ -330,11 +325,11 @@ impl ChunkStreamer {
             spawned.write(ChunkSpawned { entity, coord: chunk.coord });
         }
 
-        let complete = !streamer.wanted.is_empty() && streamer.wanted.keys().all(|c| streamer.current.contains(c));
-        if complete && !streamer.settled {
+        let now = complete(&streamer);
+        if now && !(was_complete && streamer.settled) {
             ready.write(TerrainReady { generation });
         }
-        streamer.settled = complete;
+        streamer.settled = now;
     }
 }
 
