@@ -246,7 +246,7 @@ fn place_units(
                 unit.tile = tile;
                 unit.path.clear();
                 taken.push(tile);
-                t.translation = map.tile_centre(tile) + Vec3::Y * 0.6;
+                t.translation = map.tile_center(tile) + Vec3::Y * 0.6;
             }
         }
         // The selected unit's reach follows the new terrain.
@@ -254,15 +254,15 @@ fn place_units(
         return;
     }
     let mesh = meshes.add(Capsule3d::new(0.3, 0.6));
-    let colours = [Color::srgb(0.85, 0.2, 0.15), Color::srgb(0.9, 0.75, 0.1), Color::srgb(0.6, 0.2, 0.8)];
-    for colour in colours {
+    let colors = [Color::srgb(0.85, 0.2, 0.15), Color::srgb(0.9, 0.75, 0.1), Color::srgb(0.6, 0.2, 0.8)];
+    for color in colors {
         let Some(tile) = land_near(map.tile_at(focus), &taken) else { break };
         taken.push(tile);
         commands.spawn((
             Unit { tile, moves_left: MOVES, path: Vec::new() },
             Mesh3d(mesh.clone()),
-            MeshMaterial3d(materials.add(colour)),
-            Transform::from_translation(map.tile_centre(tile) + Vec3::Y * 0.6),
+            MeshMaterial3d(materials.add(color)),
+            Transform::from_translation(map.tile_center(tile) + Vec3::Y * 0.6),
         ));
     }
     game.spawned = true;
@@ -292,7 +292,7 @@ fn click(
             let spent: u32 = path.iter().skip(1).filter_map(|&t| cost(&map, t)).sum();
             if spent <= unit.moves_left {
                 unit.moves_left -= spent;
-                unit.path = path.iter().skip(1).map(|&t| map.tile_centre(t) + Vec3::Y * 0.6).collect();
+                unit.path = path.iter().skip(1).map(|&t| map.tile_center(t) + Vec3::Y * 0.6).collect();
                 unit.tile = tile;
             }
         }
@@ -417,7 +417,7 @@ fn chunk_boundaries(game: Res<Game>, map: Res<HexMap>, mut gizmos: Gizmos) {
             [rect.min[0], rect.max[1] - 1],
         ]
         .map(|oc| {
-            let [x, _, z] = terrain.tile_centre(terrain.tile_from_offset(oc));
+            let [x, _, z] = terrain.tile_center(terrain.tile_from_offset(oc));
             Vec3::new(x, top, z)
         });
         for k in 0..4 {
@@ -499,7 +499,7 @@ fn script(
                 fail(format!("moves left {} after spending {}", unit.moves_left, s.expected_cost), &mut exit);
                 return;
             }
-            let ground = map.tile_centre(target).y + 0.6;
+            let ground = map.tile_center(target).y + 0.6;
             if (t.translation.y - ground).abs() > 0.05 {
                 fail(format!("unit at height {} instead of {ground}", t.translation.y), &mut exit);
                 return;
@@ -525,7 +525,7 @@ fn script(
                 return;
             }
             let settled = units.iter().all(|(_, u, t)| {
-                cost(&map, u.tile).is_some() && (t.translation.y - (map.tile_centre(u.tile).y + 0.6)).abs() < 0.05
+                cost(&map, u.tile).is_some() && (t.translation.y - (map.tile_center(u.tile).y + 0.6)).abs() < 0.05
             });
             if !settled {
                 return;

@@ -30,22 +30,22 @@ fn map() -> MapConfig {
 fn view(terrain: &Terrain) -> (Vec2, Vec2) {
     let (mut lo, mut hi) = (Vec2::splat(f32::MAX), Vec2::splat(f32::MIN));
     for t in terrain.tiles() {
-        let [x, _, z] = terrain.tile_centre(t);
+        let [x, _, z] = terrain.tile_center(t);
         lo = lo.min(Vec2::new(x, z));
         hi = hi.max(Vec2::new(x, z));
     }
-    let centre = (lo + hi) / 2.0;
+    let center = (lo + hi) / 2.0;
     // Keep the window's aspect ratio, with a margin.
     let span = (hi - lo) + Vec2::splat(3.0);
     let aspect = WIDTH as f32 / HEIGHT as f32;
     let size =
         if span.x / span.y > aspect { Vec2::new(span.x, span.x / aspect) } else { Vec2::new(span.y * aspect, span.y) };
-    (centre, size)
+    (center, size)
 }
 
-fn pixel(centre: Vec2, size: Vec2, world: Vec3) -> (u32, u32) {
-    let u = (world.x - centre.x) / size.x + 0.5;
-    let v = (world.z - centre.y) / size.y + 0.5;
+fn pixel(center: Vec2, size: Vec2, world: Vec3) -> (u32, u32) {
+    let u = (world.x - center.x) / size.x + 0.5;
+    let v = (world.z - center.y) / size.y + 0.5;
     ((u * WIDTH as f32) as u32, (v * HEIGHT as f32) as u32)
 }
 
@@ -57,7 +57,7 @@ fn render(outlines: bool, name: &str) -> image::RgbImage {
 /// Renders the map with an appearance and highlights and returns the screenshot.
 fn render_with(appearance: TerrainAppearance, highlights: TileHighlights, name: &str) -> image::RgbImage {
     let terrain = Terrain::new(map()).unwrap();
-    let (centre, size) = view(&terrain);
+    let (center, size) = view(&terrain);
     let out = Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("{name}.png"));
     let _ = std::fs::remove_file(&out);
     let done: Arc<Mutex<bool>> = Arc::default();
@@ -80,7 +80,7 @@ fn render_with(appearance: TerrainAppearance, highlights: TileHighlights, name: 
             scaling_mode: ScalingMode::Fixed { width: size.x, height: size.y },
             ..OrthographicProjection::default_3d()
         }),
-        Transform::from_xyz(centre.x, 50.0, centre.y).looking_at(Vec3::new(centre.x, 0.0, centre.y), Vec3::NEG_Z),
+        Transform::from_xyz(center.x, 50.0, center.y).looking_at(Vec3::new(center.x, 0.0, center.y), Vec3::NEG_Z),
     ));
     app.world_mut().spawn((
         DirectionalLight { illuminance: 6000.0, shadow_maps_enabled: false, ..default() },
@@ -132,7 +132,7 @@ fn brightness(c: [f32; 3]) -> f32 {
     (c[0] + c[1] + c[2]) / 3.0
 }
 
-/// Tile centres well inside their type's range (away from the blend zone), by kind.
+/// Tile centers well inside their type's range (away from the blend zone), by kind.
 fn clear_tiles(terrain: &Terrain) -> Vec<(Hex, TileKind, Vec3)> {
     let c = terrain.config();
     let (s, m, b) = (c.terrain.sea_threshold, c.terrain.mountain_threshold, c.appearance.blend);
@@ -141,14 +141,14 @@ fn clear_tiles(terrain: &Terrain) -> Vec<(Hex, TileKind, Vec3)> {
         .filter_map(|t| {
             let info = terrain.tile_info(t);
             let h = info.elevation / c.terrain.max_elevation;
-            ((h - s).abs() > b && (h - m).abs() > b).then(|| (t, info.kind, Vec3::from_array(terrain.tile_centre(t))))
+            ((h - s).abs() > b && (h - m).abs() > b).then(|| (t, info.kind, Vec3::from_array(terrain.tile_center(t))))
         })
         .collect()
 }
 
-/// Mean brightness ratio of mid-edge pixels to tile-centre pixels.
-fn border_to_centre(img: &image::RgbImage, terrain: &Terrain) -> f32 {
-    let (centre, size) = view(terrain);
+/// Mean brightness ratio of mid-edge pixels to tile-center pixels.
+fn border_to_center(img: &image::RgbImage, terrain: &Terrain) -> f32 {
+    let (center, size) = view(terrain);
     let layout = terrain.layout();
     let ratios: Vec<f32> = terrain
         .tiles()
@@ -158,24 +158,24 @@ fn border_to_centre(img: &image::RgbImage, terrain: &Terrain) -> f32 {
             let b = layout.hex_to_world_pos(t.all_neighbors()[0]);
             let mid = (a + b) / 2.0;
             let edge = Vec3::new(mid.x, terrain.surface_height(mid.x, mid.y), mid.y);
-            let centre_px = pixel(centre, size, Vec3::new(a.x, 0.0, a.y));
+            let center_px = pixel(center, size, Vec3::new(a.x, 0.0, a.y));
             // The darkest pixel around the edge point: lines are a pixel or two wide.
-            let (ex, ey) = pixel(centre, size, edge);
+            let (ex, ey) = pixel(center, size, edge);
             let darkest = (0..9)
                 .map(|k| brightness(rgb(img, ((ex + k % 3).saturating_sub(1), (ey + k / 3).saturating_sub(1)))))
                 .fold(f32::MAX, f32::min);
-            darkest / brightness(rgb(img, centre_px)).max(1e-3)
+            darkest / brightness(rgb(img, center_px)).max(1e-3)
         })
         .collect();
     ratios.iter().sum::<f32>() / ratios.len() as f32
 }
 
-/// Asserts every clear tile centre shows its type's colour, skipping `except`.
-fn assert_type_colours(img: &image::RgbImage, terrain: &Terrain, except: &[Hex]) {
-    let (centre, size) = view(terrain);
+/// Asserts every clear tile center shows its type's color, skipping `except`.
+fn assert_type_colors(img: &image::RgbImage, terrain: &Terrain, except: &[Hex]) {
+    let (center, size) = view(terrain);
     let mut seen = [0; 3];
     for (hex, kind, at) in clear_tiles(terrain).into_iter().filter(|(h, _, _)| !except.contains(h)) {
-        let [r, g, b] = rgb(img, pixel(centre, size, at));
+        let [r, g, b] = rgb(img, pixel(center, size, at));
         match kind {
             TileKind::Sea => assert!(b > r + 0.1 && b > g, "sea tile {hex:?} drawn {:?}", [r, g, b]),
             TileKind::Land => assert!(g > r + 0.05 && g > b + 0.05, "land tile {hex:?} drawn {:?}", [r, g, b]),
@@ -193,26 +193,26 @@ fn assert_type_colours(img: &image::RgbImage, terrain: &Terrain, except: &[Hex])
 }
 
 #[test]
-fn tiles_show_their_type_colour_without_outlines() {
+fn tiles_show_their_type_color_without_outlines() {
     let terrain = Terrain::new(map()).unwrap();
     let img = render(false, "outlines_off");
-    assert_type_colours(&img, &terrain, &[]);
-    let ratio = border_to_centre(&img, &terrain);
-    assert!(ratio > 0.85, "without outlines, borders look like centres: {ratio}");
+    assert_type_colors(&img, &terrain, &[]);
+    let ratio = border_to_center(&img, &terrain);
+    assert!(ratio > 0.85, "without outlines, borders look like centers: {ratio}");
 }
 
 #[test]
 fn outlines_darken_tile_borders() {
     let terrain = Terrain::new(map()).unwrap();
     let img = render(true, "outlines_on");
-    let ratio = border_to_centre(&img, &terrain);
-    assert!(ratio < 0.6, "with outlines, borders are darker than centres: {ratio}");
+    let ratio = border_to_center(&img, &terrain);
+    assert!(ratio < 0.6, "with outlines, borders are darker than centers: {ratio}");
 }
 
 #[test]
 fn textures_and_highlights() {
     let terrain = Terrain::new(map()).unwrap();
-    let (centre, size) = view(&terrain);
+    let (center, size) = view(&terrain);
     let land: Vec<Hex> =
         clear_tiles(&terrain).into_iter().filter(|(_, k, _)| *k == TileKind::Land).map(|(h, _, _)| h).collect();
     let (hovered, selected) = (land[0], land[1..4].to_vec());
@@ -223,8 +223,8 @@ fn textures_and_highlights() {
     );
     let mut tinted = selected.clone();
     tinted.push(hovered);
-    assert_type_colours(&img, &terrain, &tinted);
-    let at = |h: Hex| rgb(&img, pixel(centre, size, Vec3::from_array(terrain.tile_centre(h))));
+    assert_type_colors(&img, &terrain, &tinted);
+    let at = |h: Hex| rgb(&img, pixel(center, size, Vec3::from_array(terrain.tile_center(h))));
     let [r, g, _] = at(hovered);
     assert!(r > g * 0.8, "the hovered land tile is tinted warm: {:?}", at(hovered));
     for h in selected {
@@ -234,12 +234,12 @@ fn textures_and_highlights() {
 }
 
 #[test]
-fn a_missing_texture_falls_back_to_flat_colours() {
+fn a_missing_texture_falls_back_to_flat_colors() {
     let terrain = Terrain::new(map()).unwrap();
     let mut appearance = TerrainAppearance { textures: true, ..default() };
     appearance.texture_paths[1] = "textures/no_such_grass.png".into();
     let img = render_with(appearance, TileHighlights::default(), "missing_texture");
     let magenta = img.pixels().filter(|p| p[0] > 150 && p[2] > 150 && p[1] < 80).count();
-    assert_eq!(magenta, 0, "no magenta error colour");
-    assert_type_colours(&img, &terrain, &[]);
+    assert_eq!(magenta, 0, "no magenta error color");
+    assert_type_colors(&img, &terrain, &[]);
 }

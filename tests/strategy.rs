@@ -29,6 +29,6 @@ fn strategy_demo_plays_a_scripted_turn() {
     );
     assert!(stdout.contains("SCRIPT OK"), "{stdout}");
     let img = image::open(&shot).unwrap().to_rgb8();
-    let colours: std::collections::HashSet<[u8; 3]> = img.pixels().map(|p| p.0).collect();
-    assert!(colours.len() > 500, "the screenshot looks blank ({} colours)", colours.len());
+    let colors: std::collections::HashSet<[u8; 3]> = img.pixels().map(|p| p.0).collect();
+    assert!(colors.len() > 500, "the screenshot looks blank ({} colors)", colors.len());
 }

@@ -16,7 +16,7 @@ pub struct HexMapAsset {
     /// The decoded heightmap when the config's source is `Image`.
     pub image: Option<Arc<HeightImage>>,
     /// The file's blend value was outside `[0, 1]`: it was clamped and the material falls back
-    /// to flat colours (with a logged warning) instead of refusing the map.
+    /// to flat colors (with a logged warning) instead of refusing the map.
     pub appearance_fallback: bool,
 }
 
@@ -74,13 +74,13 @@ impl AssetLoader for HexMapLoader {
         reader.read_to_end(&mut bytes).await?;
         let mut config: MapConfig = ron::de::from_str(std::str::from_utf8(&bytes)?)?;
         // An out-of-range blend only affects looks: clamp it, warn, and fall back to flat
-        // colours rather than refusing the whole map.
+        // colors rather than refusing the whole map.
         let blend = config.appearance.blend;
         let appearance_fallback = !(0.0..=1.0).contains(&blend);
         if appearance_fallback {
             config.appearance.blend = if blend.is_nan() { 0.1 } else { blend.clamp(0.0, 1.0) };
             warn!(
-                "{}: appearance.blend = {blend} is outside [0, 1]; using {} and flat colours",
+                "{}: appearance.blend = {blend} is outside [0, 1]; using {} and flat colors",
                 load_context.path(),
                 config.appearance.blend
             );

@@ -72,7 +72,7 @@ impl HexMap {
         self.waiting_for_asset = waiting;
     }
 
-    /// Whether the map file's appearance was out of range, so materials should draw flat colours.
+    /// Whether the map file's appearance was out of range, so materials should draw flat colors.
     #[must_use]
     pub fn appearance_fallback(&self) -> bool {
         self.appearance_fallback
@@ -99,7 +99,7 @@ impl HexMap {
         Some(TileHit { tile: hit.tile, point: Vec3::from_array(hit.point), distance: hit.distance })
     }
 
-    /// Type, centre elevation and map membership of a tile.
+    /// Type, center elevation and map membership of a tile.
     #[must_use]
     pub fn tile_info(&self, tile: Hex) -> TileInfo {
         self.terrain.tile_info(tile)
@@ -111,10 +111,10 @@ impl HexMap {
         self.terrain.tile_kind(tile)
     }
 
-    /// World position of a tile's centre on the surface: where a unit standing on it goes.
+    /// World position of a tile's center on the surface: where a unit standing on it goes.
     #[must_use]
-    pub fn tile_centre(&self, tile: Hex) -> Vec3 {
-        Vec3::from_array(self.terrain.tile_centre(tile))
+    pub fn tile_center(&self, tile: Hex) -> Vec3 {
+        Vec3::from_array(self.terrain.tile_center(tile))
     }
 
     /// Height of the surface at a world position (its `y` is ignored).
@@ -123,9 +123,9 @@ impl HexMap {
         self.terrain.surface_height(world.x, world.z)
     }
 
-    /// The six neighbours of a tile (some may lie outside a bounded map).
+    /// The six neighbors of a tile (some may lie outside a bounded map).
     #[must_use]
-    pub fn neighbours(&self, tile: Hex) -> [Hex; 6] {
+    pub fn neighbors(&self, tile: Hex) -> [Hex; 6] {
         tile.all_neighbors()
     }
 

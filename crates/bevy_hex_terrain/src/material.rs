@@ -1,6 +1,6 @@
 //! The terrain material: `StandardMaterial` (so PBR lighting and shadows still work) extended
 //! with a fragment shader that blends sea, land and mountain by height as thesis Algorithm 5
-//! does, in flat colours or textures, and draws tile outlines and highlights.
+//! does, in flat colors or textures, and draws tile outlines and highlights.
 
 use bevy::asset::{AssetPath, embedded_asset, embedded_path};
 use bevy::image::{ImageAddressMode, ImageLoaderSettings, ImageSampler, ImageSamplerDescriptor};
@@ -20,18 +20,18 @@ pub const MAX_HIGHLIGHTS: usize = 64;
 /// Uniform parameters of the terrain shader.
 #[derive(Debug, Clone, Copy, ShaderType, Reflect)]
 pub struct TerrainParams {
-    /// Sea layer colour (linear).
-    pub sea_colour: Vec4,
-    /// Land layer colour (linear).
-    pub land_colour: Vec4,
-    /// Mountain layer colour (linear).
-    pub mountain_colour: Vec4,
+    /// Sea layer color (linear).
+    pub sea_color: Vec4,
+    /// Land layer color (linear).
+    pub land_color: Vec4,
+    /// Mountain layer color (linear).
+    pub mountain_color: Vec4,
     /// Hovered tile tint; alpha is the strength.
-    pub hover_colour: Vec4,
+    pub hover_color: Vec4,
     /// Selected tiles tint; alpha is the strength.
-    pub highlight_colour: Vec4,
-    /// Outline colour; alpha is the strength.
-    pub outline_colour: Vec4,
+    pub highlight_color: Vec4,
+    /// Outline color; alpha is the strength.
+    pub outline_color: Vec4,
     /// World height of the sea threshold.
     pub sea_level: f32,
     /// World height of the mountain threshold.
@@ -102,12 +102,12 @@ pub struct TerrainAppearance {
     pub outlines: bool,
     /// Outline width in world units.
     pub outline_width: f32,
-    /// Use the textures instead of flat colours (figures 40-41 vs 36-39).
+    /// Use the textures instead of flat colors (figures 40-41 vs 36-39).
     pub textures: bool,
     /// Texture repeats per world unit.
     pub texture_scale: f32,
-    /// Layer colours, sea, land, mountain.
-    pub colours: [Color; 3],
+    /// Layer colors, sea, land, mountain.
+    pub colors: [Color; 3],
     /// Asset paths of the sea, grass and mountain textures.
     pub texture_paths: [String; 3],
 }
@@ -119,7 +119,7 @@ impl Default for TerrainAppearance {
             outline_width: 0.05,
             textures: false,
             texture_scale: 0.25,
-            colours: [Color::srgb(0.11, 0.34, 0.72), Color::srgb(0.30, 0.60, 0.20), Color::srgb(0.62, 0.60, 0.58)],
+            colors: [Color::srgb(0.11, 0.34, 0.72), Color::srgb(0.30, 0.60, 0.20), Color::srgb(0.62, 0.60, 0.58)],
             texture_paths: ["textures/sea.png".into(), "textures/grass.png".into(), "textures/mountain.png".into()],
         }
     }
@@ -163,12 +163,12 @@ pub fn params(config: &MapConfig, appearance: &TerrainAppearance, highlights: &T
     }
     let hovered = highlights.hovered.map_or(IVec4::ZERO, |h| IVec4::new(h.x, h.y, 0, 0));
     TerrainParams {
-        sea_colour: lin(appearance.colours[0]),
-        land_colour: lin(appearance.colours[1]),
-        mountain_colour: lin(appearance.colours[2]),
-        hover_colour: Vec4::new(1.0, 0.95, 0.55, 0.45),
-        highlight_colour: Vec4::new(0.35, 0.75, 1.0, 0.4),
-        outline_colour: Vec4::new(0.01, 0.01, 0.01, 0.92),
+        sea_color: lin(appearance.colors[0]),
+        land_color: lin(appearance.colors[1]),
+        mountain_color: lin(appearance.colors[2]),
+        hover_color: Vec4::new(1.0, 0.95, 0.55, 0.45),
+        highlight_color: Vec4::new(0.35, 0.75, 1.0, 0.4),
+        outline_color: Vec4::new(0.01, 0.01, 0.01, 0.92),
         sea_level: t.sea_threshold * max,
         mountain_level: t.mountain_threshold * max,
         blend: config.appearance.blend.clamp(0.0, 1.0) * max,
@@ -248,7 +248,7 @@ fn create_material(
 }
 
 /// Rewrites the uniforms when the map (hot reload), the appearance or the highlights change;
-/// a texture that failed to load switches to flat colours with a warning.
+/// a texture that failed to load switches to flat colors with a warning.
 fn update_material(
     handle: Res<HexTerrainMaterialHandle>,
     mut materials: ResMut<Assets<HexTerrainMaterial>>,
@@ -260,7 +260,7 @@ fn update_material(
 ) {
     for failure in failed.read() {
         if appearance.textures && appearance.texture_paths.iter().any(|p| failure.path.path().ends_with(p)) {
-            warn!("terrain texture {} could not be loaded ({}); using flat colours", failure.path, failure.error);
+            warn!("terrain texture {} could not be loaded ({}); using flat colors", failure.path, failure.error);
             appearance.textures = false;
         }
     }
@@ -269,7 +269,7 @@ fn update_material(
     }
     let Some(mut material) = materials.get_mut(&handle.0) else { return };
     let ext = &mut material.extension;
-    // A map whose appearance had to be clamped is drawn in flat colours.
+    // A map whose appearance had to be clamped is drawn in flat colors.
     let mut effective = appearance.clone();
     effective.textures &= !map.appearance_fallback();
     ext.params = params(map.config(), &effective, &highlights);

@@ -167,7 +167,7 @@ impl ChunkStreamer {
         let terrain = map.terrain().clone();
         let generation = map.generation();
         let ahead = settings.prefetch;
-        let mut centres: Vec<(ChunkCoord, u32)> = agents
+        let mut centers: Vec<(ChunkCoord, u32)> = agents
             .iter()
             .map(|(t, a)| {
                 let p = t.translation();
@@ -175,22 +175,22 @@ impl ChunkStreamer {
             })
             .collect();
         let mut wanted: HashMap<ChunkCoord, u32> = HashMap::default();
-        if centres.is_empty() {
+        if centers.is_empty() {
             if terrain.bounds().is_some() {
                 wanted.extend(terrain.chunks().into_iter().map(|c| (c, 0)));
             } else {
-                centres.push((ChunkCoord::default(), settings.load_radius));
+                centers.push((ChunkCoord::default(), settings.load_radius));
             }
         }
-        for &(centre, radius) in &centres {
+        for &(center, radius) in &centers {
             let r = (radius + ahead) as i32;
             for dz in -r..=r {
                 for dx in -r..=r {
-                    let c = ChunkCoord::new(centre.x + dx, centre.z + dz);
+                    let c = ChunkCoord::new(center.x + dx, center.z + dz);
                     if terrain.chunk_rect(c).is_none() {
                         continue;
                     }
-                    let d = c.distance(centre);
+                    let d = c.distance(center);
                     wanted.entry(c).and_modify(|e| *e = (*e).min(d)).or_insert(d);
                 }
             }
@@ -201,10 +201,10 @@ impl ChunkStreamer {
             if terrain.chunk_rect(c).is_none() {
                 return false;
             }
-            if centres.is_empty() {
+            if centers.is_empty() {
                 return true;
             }
-            centres.iter().any(|&(centre, radius)| c.distance(centre) <= radius + ahead + settings.unload_hysteresis)
+            centers.iter().any(|&(center, radius)| c.distance(center) <= radius + ahead + settings.unload_hysteresis)
         };
         let mut dropped = Vec::new();
         for (&c, &e) in &streamer.chunks {

@@ -1,5 +1,5 @@
 // Hex terrain material: thesis Algorithm 5 (three layers split by the thresholds, blended over
-// the blend distance), flat colours or world-space triplanar textures, tile outlines computed from
+// the blend distance), flat colors or world-space triplanar textures, tile outlines computed from
 // the world position (no per-vertex data needed, so they are exact on every chunk), hovered and
 // selected tile tints, and a gently animated sea. Lighting and shadows are StandardMaterial's.
 
@@ -22,12 +22,12 @@
 #endif
 
 struct TerrainParams {
-    sea_colour: vec4<f32>,
-    land_colour: vec4<f32>,
-    mountain_colour: vec4<f32>,
-    hover_colour: vec4<f32>,
-    highlight_colour: vec4<f32>,
-    outline_colour: vec4<f32>,
+    sea_color: vec4<f32>,
+    land_color: vec4<f32>,
+    mountain_color: vec4<f32>,
+    hover_color: vec4<f32>,
+    highlight_color: vec4<f32>,
+    outline_color: vec4<f32>,
     // World heights of the thresholds and the blend distance.
     sea_level: f32,
     mountain_level: f32,
@@ -66,7 +66,7 @@ fn triplanar(t: texture_2d<f32>, s: sampler, p: vec3<f32>, n: vec3<f32>) -> vec4
 // Algorithm 5 with linear blending on both sides of each threshold. Textures are sampled in
 // uniform control flow (every fragment samples all three) so their derivatives stay valid.
 fn albedo(p: vec3<f32>, n: vec3<f32>) -> vec4<f32> {
-    var layers = array<vec4<f32>, 3>(params.sea_colour, params.land_colour, params.mountain_colour);
+    var layers = array<vec4<f32>, 3>(params.sea_color, params.land_color, params.mountain_color);
     let sea = triplanar(sea_texture, sea_sampler, p, n);
     let land = triplanar(land_texture, land_sampler, p, n);
     let rock = triplanar(mountain_texture, mountain_sampler, p, n);
@@ -76,17 +76,17 @@ fn albedo(p: vec3<f32>, n: vec3<f32>) -> vec4<f32> {
     let h = p.y;
     var own = 2;
     if h < params.sea_level { own = 0; } else if h < params.mountain_level { own = 1; }
-    var colour = layers[own];
+    var color = layers[own];
     let thresholds = array<f32, 2>(params.sea_level, params.mountain_level);
     for (var t = 0; t < 2; t++) {
         let d = h - thresholds[t];
         if params.blend > 0.0 && abs(d) < params.blend {
             var other = t;
             if d < 0.0 { other = t + 1; }
-            colour = mix(colour, layers[other], 0.5 * (1.0 - abs(d) / params.blend));
+            color = mix(color, layers[other], 0.5 * (1.0 - abs(d) / params.blend));
         }
     }
-    return colour;
+    return color;
 }
 
 // Axial coordinates of the hex under a world position, and the distance to its border.
@@ -109,17 +109,17 @@ fn hex_at(p: vec2<f32>) -> vec3<f32> {
     } else if diff.y > diff.z {
         rc.y = -rc.x - rc.z;
     }
-    // Centre of that hex and the distance from it along the three edge normals.
-    var centre: vec2<f32>;
+    // Center of that hex and the distance from it along the three edge normals.
+    var center: vec2<f32>;
     var normals: array<vec2<f32>, 3>;
     if (params.flags & 4u) != 0u {
-        centre = s * vec2<f32>(SQRT3 * rc.x + SQRT3 / 2.0 * rc.y, 1.5 * rc.y);
+        center = s * vec2<f32>(SQRT3 * rc.x + SQRT3 / 2.0 * rc.y, 1.5 * rc.y);
         normals = array<vec2<f32>, 3>(vec2<f32>(1.0, 0.0), vec2<f32>(0.5, SQRT3 / 2.0), vec2<f32>(-0.5, SQRT3 / 2.0));
     } else {
-        centre = s * vec2<f32>(1.5 * rc.x, SQRT3 / 2.0 * rc.x + SQRT3 * rc.y);
+        center = s * vec2<f32>(1.5 * rc.x, SQRT3 / 2.0 * rc.x + SQRT3 * rc.y);
         normals = array<vec2<f32>, 3>(vec2<f32>(0.0, 1.0), vec2<f32>(SQRT3 / 2.0, 0.5), vec2<f32>(SQRT3 / 2.0, -0.5));
     }
-    let d = p - centre;
+    let d = p - center;
     let reach = max(max(abs(dot(d, normals[0])), abs(dot(d, normals[1]))), abs(dot(d, normals[2])));
     return vec3<f32>(rc.x, rc.y, s * SQRT3 / 2.0 - reach);
 }
@@ -129,31 +129,31 @@ fn fragment(in: VertexOutput, @builtin(front_facing) is_front: bool) -> Fragment
     var pbr_input = pbr_input_from_standard_material(in, is_front);
     let p = in.world_position.xyz;
     let n = normalize(in.world_normal);
-    var colour = albedo(p, n);
+    var color = albedo(p, n);
 
     // A gently moving sea surface: a slow shimmer below sea level.
     if p.y < params.sea_level {
         let wave = 0.5 + 0.5 * sin(globals.time * 1.3 + p.x * 1.7 + p.z * 1.1) * sin(globals.time * 0.9 - p.z * 1.3);
-        colour = vec4<f32>(colour.rgb * (0.92 + 0.12 * wave), colour.a);
+        color = vec4<f32>(color.rgb * (0.92 + 0.12 * wave), color.a);
     }
 
     let hex = hex_at(p.xz);
     let tile = vec2<i32>(i32(hex.x), i32(hex.y));
     for (var i = 0u; i < params.highlight_count; i++) {
         if all(highlights.tiles[i].xy == tile) {
-            colour = vec4<f32>(mix(colour.rgb, params.highlight_colour.rgb, params.highlight_colour.a), colour.a);
+            color = vec4<f32>(mix(color.rgb, params.highlight_color.rgb, params.highlight_color.a), color.a);
         }
     }
     if (params.flags & 8u) != 0u && all(params.hovered.xy == tile) {
-        colour = vec4<f32>(mix(colour.rgb, params.hover_colour.rgb, params.hover_colour.a), colour.a);
+        color = vec4<f32>(mix(color.rgb, params.hover_color.rgb, params.hover_color.a), color.a);
     }
-    // Outlines go over the lit colour, so lighting and specular never wash them out.
+    // Outlines go over the lit color, so lighting and specular never wash them out.
     var outline = 0.0;
     if (params.flags & 1u) != 0u && hex.z < params.outline_width {
-        outline = params.outline_colour.a;
+        outline = params.outline_color.a;
     }
 
-    pbr_input.material.base_color = pbr_input.material.base_color * colour;
+    pbr_input.material.base_color = pbr_input.material.base_color * color;
     pbr_input.material.base_color = alpha_discard(pbr_input.material, pbr_input.material.base_color);
 
 #ifdef PREPASS_PIPELINE
@@ -161,7 +161,7 @@ fn fragment(in: VertexOutput, @builtin(front_facing) is_front: bool) -> Fragment
 #else
     var out: FragmentOutput;
     out.color = apply_pbr_lighting(pbr_input);
-    out.color = vec4<f32>(mix(out.color.rgb, params.outline_colour.rgb, outline), out.color.a);
+    out.color = vec4<f32>(mix(out.color.rgb, params.outline_color.rgb, outline), out.color.a);
     out.color = main_pass_post_lighting_processing(pbr_input, out.color);
 #endif
     return out;

@@ -65,8 +65,8 @@ fn meshed_chunks(app: &mut App) -> HashMap<IVec2, Handle<Mesh>> {
     app.world_mut().query::<(&HexChunk, &Mesh3d)>().iter(app.world()).map(|(c, m)| (c.coord, m.0.clone())).collect()
 }
 
-fn window(centre: ChunkCoord, r: i32) -> HashSet<IVec2> {
-    (-r..=r).flat_map(|dz| (-r..=r).map(move |dx| IVec2::new(centre.x + dx, centre.z + dz))).collect()
+fn window(center: ChunkCoord, r: i32) -> HashSet<IVec2> {
+    (-r..=r).flat_map(|dz| (-r..=r).map(move |dx| IVec2::new(center.x + dx, center.z + dz))).collect()
 }
 
 fn agent_chunk(app: &App, at: Vec3) -> ChunkCoord {
@@ -80,9 +80,9 @@ fn chunks_appear_around_the_agent_and_only_there() {
     let at = Vec3::new(30.0, 0.0, -20.0);
     spawn_agent(&mut app, at);
     run_until(&mut app, "terrain ready", ready);
-    let centre = agent_chunk(&app, at);
+    let center = agent_chunk(&app, at);
     // radius 1 plus the prefetch ring
-    assert_eq!(chunk_coords(&mut app), window(centre, 2));
+    assert_eq!(chunk_coords(&mut app), window(center, 2));
     assert_eq!(meshed_chunks(&mut app).len(), 25);
     let map = app.world().resource::<HexMap>();
     assert_eq!(map.loaded_chunks().count(), 25);
@@ -100,14 +100,14 @@ fn moving_spawns_ahead_and_despawns_behind() {
         let c = agent_chunk(app, to);
         window(c, 2).is_subset(&meshed_chunks(app).keys().copied().collect()) && ready(app)
     });
-    let centre = agent_chunk(&app, to);
+    let center = agent_chunk(&app, to);
     let coords = chunk_coords(&mut app);
-    assert!(window(centre, 2).is_subset(&coords));
+    assert!(window(center, 2).is_subset(&coords));
     // Nothing beyond radius + prefetch + hysteresis remains.
     for c in &coords {
-        assert!((c.x - centre.x).abs() <= 3 && (c.y - centre.z).abs() <= 3, "stale chunk {c} kept");
+        assert!((c.x - center.x).abs() <= 3 && (c.y - center.z).abs() <= 3, "stale chunk {c} kept");
     }
-    assert!(!coords.contains(&IVec2::new(0, 0)) || centre.x <= 3, "the start chunk was dropped");
+    assert!(!coords.contains(&IVec2::new(0, 0)) || center.x <= 3, "the start chunk was dropped");
 }
 
 #[test]
@@ -138,7 +138,7 @@ fn long_walk_keeps_chunk_count_and_meshes_bounded() {
 }
 
 #[test]
-fn neighbouring_chunks_share_identical_border_vertices() {
+fn neighboring_chunks_share_identical_border_vertices() {
     let mut app = app(unbounded((6, 6)), 1);
     spawn_agent(&mut app, Vec3::ZERO);
     run_until(&mut app, "terrain ready", ready);
@@ -184,15 +184,15 @@ fn map_queries_agree_with_the_core_crate() {
     let map = app.world().resource::<HexMap>();
     for tile in core.tiles().step_by(7) {
         assert_eq!(map.tile_info(tile), core.tile_info(tile));
-        let centre = map.tile_centre(tile);
-        assert_eq!(centre.to_array(), core.tile_centre(tile));
-        assert_eq!(map.tile_at(centre), tile);
+        let center = map.tile_center(tile);
+        assert_eq!(center.to_array(), core.tile_center(tile));
+        assert_eq!(map.tile_at(center), tile);
         assert!(map.contains(tile));
-        assert_eq!(map.neighbours(tile), tile.all_neighbors());
-        let ray = Ray3d::new(centre + Vec3::new(2.0, 30.0, 1.0), Dir3::new(-Vec3::new(2.0, 30.0, 1.0)).unwrap());
+        assert_eq!(map.neighbors(tile), tile.all_neighbors());
+        let ray = Ray3d::new(center + Vec3::new(2.0, 30.0, 1.0), Dir3::new(-Vec3::new(2.0, 30.0, 1.0)).unwrap());
         let hit = map.raycast(ray, 100.0).unwrap();
         assert_eq!(hit.tile, tile);
-        assert!((hit.point - centre).length() < 0.05);
+        assert!((hit.point - center).length() < 0.05);
         assert!(map.is_chunk_loaded(map.chunk_of(tile)));
     }
     // Queries answer for tiles outside the map and far from any loaded chunk too.
@@ -233,9 +233,9 @@ fn far_teleport_cancels_stale_work() {
     app.update();
     let streamer = app.world().resource::<ChunkStreamer>();
     assert!(streamer.tasks_cancelled > 0, "work for the old place was dropped");
-    let centre = agent_chunk(&app, far);
+    let center = agent_chunk(&app, far);
     for c in chunk_coords(&mut app) {
-        assert!((c.x - centre.x).abs() <= 5 && (c.y - centre.z).abs() <= 5, "stale chunk {c} survived the teleport");
+        assert!((c.x - center.x).abs() <= 5 && (c.y - center.z).abs() <= 5, "stale chunk {c} survived the teleport");
     }
     run_until(&mut app, "terrain ready at the destination", ready);
 }
@@ -303,7 +303,7 @@ fn hot_reload_regenerates_every_chunk_and_a_bad_edit_keeps_the_terrain() {
     assert!(message.contains("noise.octaves"), "{message}");
     assert_eq!(app.world().resource::<HexMap>().config().seed, 6);
 
-    // An out-of-range blend only affects looks: the map applies, clamped, with the flat-colour
+    // An out-of-range blend only affects looks: the map applies, clamped, with the flat-color
     // fallback flagged for the material.
     write(&dir, "test.map.ron", "(seed: 9, size: Bounded(x: 16, z: 16), chunk_size: (8, 8), appearance: (blend: 1.5))");
     app.world().resource::<AssetServer>().reload("test.map.ron");

@@ -1,10 +1,14 @@
-//! Chunks: rectangular ranges of tiles in offset coordinates.
+//! Chunks: rectangular ranges of tiles in offset coordinates, and which chunks a map has.
 
+use hexx::Hex;
 use serde::{Deserialize, Serialize};
+
+use crate::terrain::Terrain;
 
 /// A rectangle of tiles in offset coordinates `[col, row]`: columns `min[0]..max[0]`, rows
 /// `min[1]..max[1]` (ends exclusive).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[cfg_attr(feature = "bevy_reflect", derive(bevy_reflect::Reflect))]
 pub struct TileRect {
     /// First column and row.
     pub min: [i32; 2],
@@ -66,6 +70,7 @@ impl TileRect {
 /// Coordinates of a chunk: chunk `(x, z)` covers columns `x * w .. (x + 1) * w` and rows
 /// `z * h .. (z + 1) * h` for a chunk size of `(w, h)` tiles.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Default, Serialize, Deserialize)]
+#[cfg_attr(feature = "bevy_reflect", derive(bevy_reflect::Reflect))]
 pub struct ChunkCoord {
     /// Chunk column.
     pub x: i32,
@@ -97,5 +102,36 @@ impl ChunkCoord {
     #[must_use]
     pub fn distance(self, other: Self) -> u32 {
         (self.x - other.x).unsigned_abs().max((self.z - other.z).unsigned_abs())
+    }
+}
+
+impl Terrain {
+    /// Chunk size in tiles.
+    #[must_use]
+    pub fn chunk_size(&self) -> (u32, u32) {
+        self.config.chunk_size
+    }
+
+    /// The chunk holding a tile.
+    #[must_use]
+    pub fn chunk_of(&self, tile: Hex) -> ChunkCoord {
+        ChunkCoord::of(self.offset_of(tile), self.config.chunk_size)
+    }
+
+    /// A chunk's tiles clipped to the map, `None` when it lies outside.
+    #[must_use]
+    pub fn chunk_rect(&self, chunk: ChunkCoord) -> Option<TileRect> {
+        let rect = chunk.rect(self.config.chunk_size);
+        let rect = self.bounds.map_or(rect, |b| rect.intersect(&b));
+        (!rect.is_empty()).then_some(rect)
+    }
+
+    /// Every chunk of a bounded map; empty for an unbounded world.
+    #[must_use]
+    pub fn chunks(&self) -> Vec<ChunkCoord> {
+        let Some(b) = self.bounds else { return Vec::new() };
+        let (w, h) = (self.config.chunk_size.0 as i32, self.config.chunk_size.1 as i32);
+        let (cx, cz) = ((b.max[0] + w - 1) / w, (b.max[1] + h - 1) / h);
+        (0..cz).flat_map(|z| (0..cx).map(move |x| ChunkCoord::new(x, z))).collect()
     }
 }

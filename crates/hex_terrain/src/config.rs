@@ -137,7 +137,7 @@ pub struct TerrainConfig {
     pub mountain_threshold: f32,
     /// Gap opened on each side of a threshold by linear interpolation (eq. 5.6).
     pub interpolation_tolerance: f32,
-    /// Number of inner hexagons between a tile's centre and its border (the thesis uses 1).
+    /// Number of inner hexagons between a tile's center and its border (the thesis uses 1).
     pub inner_rings: u32,
 }
 
@@ -331,7 +331,7 @@ impl MapConfig {
         ron::ser::to_string_pretty(self, pretty).unwrap_or_default()
     }
 
-    /// Inner subdivisions from centre to corner: `inner_rings + 1`.
+    /// Inner subdivisions from center to corner: `inner_rings + 1`.
     #[must_use]
     pub fn subdivisions(&self) -> u32 {
         self.terrain.inner_rings + 1

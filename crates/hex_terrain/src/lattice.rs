@@ -1,14 +1,14 @@
 //! The hex-in-hex lattice (thesis sections 5.3-5.4).
 //!
-//! Each hexagonal tile is cut into six triangles (centre and two corners) and each of those into
+//! Each hexagonal tile is cut into six triangles (center and two corners) and each of those into
 //! `n * n` small triangles, where `n = inner_rings + 1`. The vertices at lattice distance `k`
-//! from a tile's centre form its ring `k`: ring 0 is the centre, rings `1..n` the inner
-//! hexagons, ring `n` the border (corners and edge vertices) shared with the neighbours. The
+//! from a tile's center form its ring `k`: ring 0 is the center, rings `1..n` the inner
+//! hexagons, ring `n` the border (corners and edge vertices) shared with the neighbors. The
 //! thesis' layout, one inner hexagon, is `n = 2`.
 //!
 //! Together the tiles form one regular triangular lattice over the whole plane, so every vertex
 //! has an integer lattice coordinate, stored as a [`Hex`] of the *fine* lattice (its six lattice
-//! neighbours are exactly hexx's six axial neighbours). A vertex shared by two or three tiles is
+//! neighbors are exactly hexx's six axial neighbors). A vertex shared by two or three tiles is
 //! one lattice point, so it exists once per mesh, and two chunks computing it get the same bits.
 //!
 //! # Counts
@@ -21,18 +21,18 @@
 //! lattice graph). [`Lattice::mesh_vertex_count`] evaluates it; the thesis layout (`n = 2`) has
 //! 12 vertices and 24 triangles per tile in the limit, `n = 4` has 48 and 96.
 
-use hexx::{EdgeDirection, Hex};
+use hexx::Hex;
 
 use crate::config::Orientation;
 
 const SQRT_3: f64 = 1.732_050_807_568_877_2;
 
-/// A point of a tile's template: its offset from the tile centre in lattice steps and its ring.
+/// A point of a tile's template: its offset from the tile center in lattice steps and its ring.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct TemplatePoint {
-    /// Offset from the centre, as a fine-lattice coordinate.
+    /// Offset from the center, as a fine-lattice coordinate.
     pub offset: Hex,
-    /// Ring index: 0 at the centre, `n` on the border.
+    /// Ring index: 0 at the center, `n` on the border.
     pub ring: u32,
 }
 
@@ -50,23 +50,20 @@ pub struct Lattice {
     triangles: Vec<[Hex; 3]>,
     /// `triangles` as indices into `points`.
     triangle_indices: Vec<[u16; 3]>,
-    /// For each point of `points` inside the tile (ring below `n`), the indices of its six
-    /// lattice neighbours in [`NEIGHBOURS`] order, all within the tile.
-    neighbour_indices: Vec<[u16; 6]>,
-    /// For each point of `points` on the border, the neighbouring tiles sharing it (one on an
+    /// For each point of `points` on the border, the neighboring tiles sharing it (one on an
     /// edge, two on a corner) as indices into `Hex::all_neighbors`; `u8::MAX` when absent.
     shared_tiles: Vec<[u8; 2]>,
-    /// For each point of `points` and each of the six [`NEIGHBOURS`], the tiles (relative to
-    /// the template's tile) holding that neighbour, and its ring.
+    /// For each point of `points` and each of the six [`NEIGHBORS`], the tiles (relative to
+    /// the template's tile) holding that neighbor, and its ring.
     around_tiles: Vec<[TileSet; 6]>,
 }
 
 /// The six lattice directions around a point, counter-clockwise in lattice space.
-pub const NEIGHBOURS: [Hex; 6] =
+pub const NEIGHBORS: [Hex; 6] =
     [Hex::new(1, 0), Hex::new(0, 1), Hex::new(-1, 1), Hex::new(-1, 0), Hex::new(0, -1), Hex::new(1, -1)];
 
 impl Lattice {
-    /// A lattice with `subdivisions` steps from a tile's centre to its corners (at least 1).
+    /// A lattice with `subdivisions` steps from a tile's center to its corners (at least 1).
     #[must_use]
     pub fn new(subdivisions: u32, orientation: Orientation, hex_size: f32) -> Self {
         let n = subdivisions.max(1) as i32;
@@ -97,10 +94,6 @@ impl Lattice {
         }
         let index_of = |h: Hex| points.iter().position(|p| p.offset == h).map_or(u16::MAX, |i| i as u16);
         let triangle_indices = triangles.iter().map(|t| t.map(index_of)).collect();
-        let neighbour_indices = points
-            .iter()
-            .map(|p| if p.ring < n as u32 { NEIGHBOURS.map(|d| index_of(p.offset + d)) } else { [u16::MAX; 6] })
-            .collect();
         let mut lattice = Self {
             n,
             orientation,
@@ -110,12 +103,11 @@ impl Lattice {
             points,
             triangles,
             triangle_indices,
-            neighbour_indices,
             shared_tiles: Vec::new(),
             around_tiles: Vec::new(),
         };
-        // Tile centres are a linear function of tile coordinates, so the tiles sharing a border
-        // point of any tile are that tile's neighbours in the same directions as for the origin.
+        // Tile centers are a linear function of tile coordinates, so the tiles sharing a border
+        // point of any tile are that tile's neighbors in the same directions as for the origin.
         lattice.shared_tiles = lattice
             .points
             .iter()
@@ -131,19 +123,19 @@ impl Lattice {
             })
             .collect();
         lattice.around_tiles =
-            lattice.points.iter().map(|p| NEIGHBOURS.map(|d| lattice.tiles_at(p.offset + d))).collect();
+            lattice.points.iter().map(|p| NEIGHBORS.map(|d| lattice.tiles_at(p.offset + d))).collect();
         lattice
     }
 
     /// The tiles (relative to the template's tile, to be added to a tile's coordinate) holding
-    /// the lattice neighbour in direction `d` ([`NEIGHBOURS`]) of template point `i`, and that
-    /// neighbour's ring: what [`Lattice::tiles_at`] gives for it, found once for the origin tile.
+    /// the lattice neighbor in direction `d` ([`NEIGHBORS`]) of template point `i`, and that
+    /// neighbor's ring: what [`Lattice::tiles_at`] gives for it, found once for the origin tile.
     #[must_use]
     pub(crate) fn around_tiles(&self, i: usize, d: usize) -> &TileSet {
         &self.around_tiles[i][d]
     }
 
-    /// For template point `i`, the neighbouring tiles that share it besides the tile itself (none
+    /// For template point `i`, the neighboring tiles that share it besides the tile itself (none
     /// inside the tile, one on an edge, two on a corner), as indices into `Hex::all_neighbors`;
     /// `u8::MAX` marks an empty slot.
     #[must_use]
@@ -157,14 +149,7 @@ impl Lattice {
         &self.triangle_indices
     }
 
-    /// For template point `i` inside the tile (ring below `n`), the template indices of its six
-    /// lattice neighbours in [`NEIGHBOURS`] order.
-    #[must_use]
-    pub fn template_neighbours(&self, i: usize) -> [u16; 6] {
-        self.neighbour_indices[i]
-    }
-
-    /// Steps from centre to corner, `inner_rings + 1`.
+    /// Steps from center to corner, `inner_rings + 1`.
     #[must_use]
     pub fn subdivisions(&self) -> u32 {
         self.n as u32
@@ -176,32 +161,26 @@ impl Lattice {
         self.orientation
     }
 
-    /// The tile template: every lattice point of one tile, centre first, ring by ring.
+    /// The tile template: every lattice point of one tile, center first, ring by ring.
     #[must_use]
     pub fn template(&self) -> &[TemplatePoint] {
         &self.points
     }
 
-    /// The `6n²` triangles of one tile, as lattice offsets from its centre.
+    /// The `6n²` triangles of one tile, as lattice offsets from its center.
     #[must_use]
     pub fn template_triangles(&self) -> &[[Hex; 3]] {
         &self.triangles
     }
 
-    /// Lattice coordinate of a tile's centre.
+    /// Lattice coordinate of a tile's center.
     #[must_use]
-    pub fn tile_centre(&self, tile: Hex) -> Hex {
+    pub fn tile_center(&self, tile: Hex) -> Hex {
         let n = self.n;
         match self.orientation {
             Orientation::Flat => Hex::new(n * (tile.x - tile.y), n * (tile.x + 2 * tile.y)),
             Orientation::Pointy => Hex::new(n * (2 * tile.x + tile.y), n * (tile.y - tile.x)),
         }
-    }
-
-    /// Lattice offset between the centres of two neighbouring tiles.
-    #[must_use]
-    pub fn neighbour_offset(&self, direction: EdgeDirection) -> Hex {
-        self.tile_centre(Hex::ZERO.neighbor(direction))
     }
 
     /// Fractional axial tile coordinates of a lattice point.
@@ -230,12 +209,12 @@ impl Lattice {
             rr = -rq - rs;
         }
         let first = Hex::new(rq as i32, rr as i32);
-        let ring = p.distance_to(self.tile_centre(first)) as u32;
+        let ring = p.distance_to(self.tile_center(first)) as u32;
         let mut set = TileSet { tiles: [first; 3], len: 1, ring };
         if ring >= self.n as u32 {
-            for neighbour in first.all_neighbors() {
-                if p.distance_to(self.tile_centre(neighbour)) <= self.n && set.len < 3 {
-                    set.tiles[set.len] = neighbour;
+            for neighbor in first.all_neighbors() {
+                if p.distance_to(self.tile_center(neighbor)) <= self.n && set.len < 3 {
+                    set.tiles[set.len] = neighbor;
                     set.len += 1;
                 }
             }

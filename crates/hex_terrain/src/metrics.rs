@@ -4,19 +4,20 @@ use std::collections::HashMap;
 
 use hexx::Hex;
 
-use crate::mesh::ChunkMesh;
+use crate::mesh::{ChunkMesh, Diagnostics, MeshBuffers};
 
 /// The three lattice lines through a vertex.
 const LINES: [Hex; 3] = [Hex::new(1, 0), Hex::new(0, 1), Hex::new(-1, 1)];
 
-/// Discrete curvature (eq. 4.1) at every vertex whose six lattice neighbours are in the mesh:
+/// Discrete curvature (eq. 4.1) at every vertex whose six lattice neighbors are in the mesh:
 /// the largest `|2 a2 - a1 - a3|` over the three lattice lines through it, in world units.
-/// `None` for vertices on the mesh's outline.
+/// `None` for vertices on the mesh's outline. `lattice` holds the lattice coordinate of each
+/// vertex of `buffers` ([`Diagnostics::lattice`]).
 #[must_use]
-pub fn curvatures(mesh: &ChunkMesh) -> Vec<Option<f32>> {
-    let index: HashMap<Hex, usize> = mesh.lattice.iter().enumerate().map(|(i, &p)| (p, i)).collect();
-    let h = |p: Hex| index.get(&p).map(|&i| mesh.buffers.positions[i][1]);
-    mesh.lattice
+pub fn curvatures(lattice: &[Hex], buffers: &MeshBuffers) -> Vec<Option<f32>> {
+    let index: HashMap<Hex, usize> = lattice.iter().enumerate().map(|(i, &p)| (p, i)).collect();
+    let h = |p: Hex| index.get(&p).map(|&i| buffers.positions[i][1]);
+    lattice
         .iter()
         .map(|&p| {
             let a2 = h(p)?;
@@ -36,7 +37,7 @@ pub fn curvatures(mesh: &ChunkMesh) -> Vec<Option<f32>> {
 pub struct Sharpness {
     /// Vertices of the mesh (`v`).
     pub vertices: usize,
-    /// Vertices with a full neighbourhood, where curvature is defined.
+    /// Vertices with a full neighborhood, where curvature is defined.
     pub measured: usize,
     /// Largest curvature of the raw map.
     pub raw_max: f32,
@@ -56,17 +57,23 @@ pub struct Sharpness {
 
 impl Sharpness {
     /// Compares a manipulated mesh with the raw mesh of the same tiles (same config with
-    /// manipulation off), both from [`crate::Terrain::generate_rect`].
+    /// manipulation off), both from [`crate::Terrain::generate`] with
+    /// [`GenerateOptions::DIAGNOSTICS`](crate::GenerateOptions::DIAGNOSTICS).
     ///
     /// # Panics
-    /// If the two meshes do not cover the same lattice (programming error, not user data).
+    /// If a mesh was generated without diagnostics, or the two meshes do not cover the same
+    /// lattice (programming errors, not user data).
     #[must_use]
     pub fn measure(raw: &ChunkMesh, manipulated: &ChunkMesh, max_elevation: f32) -> Self {
-        assert_eq!(raw.lattice, manipulated.lattice, "meshes of different tiles");
+        fn diagnostics(m: &ChunkMesh) -> &Diagnostics {
+            m.diagnostics.as_ref().expect("Sharpness::measure needs meshes generated with diagnostics")
+        }
+        let (raw_d, man_d) = (diagnostics(raw), diagnostics(manipulated));
+        assert_eq!(raw_d.lattice, man_d.lattice, "meshes of different tiles");
         let scale = if max_elevation > 0.0 { 100.0 / max_elevation } else { 0.0 };
-        let raw_c = curvatures(raw);
-        let man_c = curvatures(manipulated);
-        let mut s = Self { vertices: raw.lattice.len(), ..Self::default() };
+        let raw_c = curvatures(&raw_d.lattice, &raw.buffers);
+        let man_c = curvatures(&man_d.lattice, &manipulated.buffers);
+        let mut s = Self { vertices: raw_d.lattice.len(), ..Self::default() };
         let (mut raw_sum, mut man_sum, mut mesh_sum) = (0.0_f64, 0.0_f64, 0.0_f64);
         for i in 0..raw_c.len() {
             let (Some(r), Some(m)) = (raw_c[i], man_c[i]) else { continue };
@@ -75,7 +82,7 @@ impl Sharpness {
             s.raw_max = s.raw_max.max(r);
             raw_sum += f64::from(r);
             mesh_sum += f64::from(m);
-            if manipulated.moved[i] {
+            if man_d.moved[i] {
                 s.manipulated_vertices += 1;
                 s.manipulated_max = s.manipulated_max.max(m);
                 man_sum += f64::from(m);

@@ -27,19 +27,19 @@ fn pixels_below_sea_level_become_sea_tiles() {
     };
     let t = Terrain::with_image(config, Some(image.clone())).unwrap();
     let b = t.bounds().unwrap();
-    // The image spans the tile centres' extent.
-    let centres: Vec<[f32; 3]> = t.tiles().map(|h| t.tile_centre(h)).collect();
+    // The image spans the tile centers' extent.
+    let centers: Vec<[f32; 3]> = t.tiles().map(|h| t.tile_center(h)).collect();
     let extent = |axis: usize| {
-        let lo = centres.iter().map(|c| c[axis]).fold(f32::MAX, f32::min);
-        let hi = centres.iter().map(|c| c[axis]).fold(f32::MIN, f32::max);
+        let lo = centers.iter().map(|c| c[axis]).fold(f32::MAX, f32::min);
+        let hi = centers.iter().map(|c| c[axis]).fold(f32::MIN, f32::max);
         (lo, hi)
     };
     let ((min_x, max_x), (min_z, max_z)) = (extent(0), extent(2));
     let (mut sea, mut dry) = (0, 0);
     for oc in b.iter() {
         let tile = t.tile_from_offset(oc);
-        // Where the tile centre falls on the image.
-        let [x, _, z] = t.tile_centre(tile);
+        // Where the tile center falls on the image.
+        let [x, _, z] = t.tile_center(tile);
         let kind = t.tile_kind(tile);
         // Sample the image as the source does (u over x extent, v over z extent).
         let u = (x - min_x) / (max_x - min_x);

@@ -1,11 +1,12 @@
-//! DESIGN.md invariants 1-6, property-based over random valid configs.
+//! The generator's invariants 1-6 (docs/ARCHITECTURE.md), property-based over random valid
+//! configs.
 
 use std::collections::HashMap;
 
 use hex_terrain::hexx::Hex;
 use hex_terrain::{
-    ChunkCoord, ChunkMesh, ManipulationConfig, MapConfig, MapSize, NoiseConfig, Orientation, PullMode, Shape, Terrain,
-    TerrainConfig, TileKind, TileRect,
+    ChunkCoord, ChunkMesh, GenerateOptions, ManipulationConfig, MapConfig, MapSize, NoiseConfig, Orientation, PullMode,
+    Shape, Terrain, TerrainConfig, Threads, TileKind, TileRect,
 };
 use proptest::prelude::*;
 
@@ -98,8 +99,12 @@ fn chunks_of(t: &Terrain, rect: TileRect) -> Vec<ChunkCoord> {
     (first.z..=last.z).flat_map(|z| (first.x..=last.x).map(move |x| ChunkCoord::new(x, z))).collect()
 }
 
+fn lattice(m: &ChunkMesh) -> &[Hex] {
+    &m.diagnostics.as_ref().expect("generated with diagnostics").lattice
+}
+
 fn index(m: &ChunkMesh) -> HashMap<Hex, usize> {
-    m.lattice.iter().enumerate().map(|(i, &p)| (p, i)).collect()
+    lattice(m).iter().enumerate().map(|(i, &p)| (p, i)).collect()
 }
 
 /// Everything a renderer receives for one vertex, as bits.
@@ -112,7 +117,7 @@ fn vertex_bits(m: &ChunkMesh, i: usize) -> VertexBits {
         b.normals[i].map(f32::to_bits),
         b.uvs[i].map(f32::to_bits),
         b.tile_kinds[i],
-        b.centre_distances[i].to_bits(),
+        b.center_distances[i].to_bits(),
     )
 }
 
@@ -120,15 +125,20 @@ proptest! {
     #![proptest_config(ProptestConfig { cases: 48, ..ProptestConfig::default() })]
 
     /// Invariants 1-3: same bytes whatever the thread count and chunk order; chunks generated
-    /// alone equal the whole; neighbours share bit-identical border vertices and normals.
+    /// alone equal the whole; neighbors share bit-identical border vertices and normals.
     #[test]
     fn chunks_are_deterministic_seamless_and_equal_the_whole(config in config(), order_seed in any::<u64>()) {
         let t = Terrain::new(config).unwrap();
         let rect = area(&t);
-        let whole = t.generate_rect(rect);
+        let whole = t.generate(rect, GenerateOptions::DIAGNOSTICS);
         let single = rayon::ThreadPoolBuilder::new().num_threads(1).build().unwrap();
-        let again = single.install(|| t.generate_rect(rect));
+        let again = single.install(|| t.generate(rect, GenerateOptions::DIAGNOSTICS));
         prop_assert_eq!(&whole, &again);
+        // Options change where the work runs and what is kept, never the buffers.
+        let here = t.generate(rect, GenerateOptions { diagnostics: false, threads: Threads::Current });
+        prop_assert_eq!(&here.buffers, &whole.buffers);
+        prop_assert_eq!(&here.tiles, &whole.tiles);
+        prop_assert!(here.diagnostics.is_none());
 
         let whole_index = index(&whole);
         let mut chunks = chunks_of(&t, rect);
@@ -142,9 +152,9 @@ proptest! {
         let mut tiles = 0;
         for chunk in chunks {
             let Some(rect_c) = t.chunk_rect(chunk) else { continue };
-            let m = t.generate_rect(rect_c.intersect(&rect));
+            let m = t.generate(rect_c.intersect(&rect), GenerateOptions::DIAGNOSTICS);
             tiles += m.tiles.len();
-            for (i, p) in m.lattice.iter().enumerate() {
+            for (i, p) in lattice(&m).iter().enumerate() {
                 let bits = vertex_bits(&m, i);
                 let w = whole_index[p];
                 prop_assert_eq!(bits, vertex_bits(&whole, w), "chunk {:?} vertex {:?} differs from the whole", chunk, p);
@@ -158,7 +168,7 @@ proptest! {
             }
         }
         prop_assert_eq!(tiles, whole.tiles.len());
-        prop_assert_eq!(seen.len(), whole.lattice.len());
+        prop_assert_eq!(seen.len(), lattice(&whole).len());
     }
 
     /// Invariants 4-6: every non-border vertex lies in its tile type's range; counts follow the
@@ -167,12 +177,13 @@ proptest! {
     fn tiles_are_recognisable_counts_match_and_buffers_are_finite(config in config()) {
         let t = Terrain::new(config.clone()).unwrap();
         let rect = area(&t);
-        let m = t.generate_rect(rect);
+        let m = t.generate(rect, GenerateOptions::DIAGNOSTICS);
         let b = &m.buffers;
+        let d = m.diagnostics.as_ref().unwrap();
         let n = t.lattice().subdivisions();
 
         let finite = b.positions.iter().flatten().chain(b.normals.iter().flatten()).chain(b.uvs.iter().flatten())
-            .chain(b.centre_distances.iter()).all(|v| v.is_finite());
+            .chain(b.center_distances.iter()).all(|v| v.is_finite());
         prop_assert!(finite);
         prop_assert_eq!(b.triangle_count(), rect.len() * t.lattice().triangles_per_tile());
         let tiles: std::collections::HashSet<Hex> = m.tiles.iter().map(|i| i.hex).collect();
@@ -184,9 +195,9 @@ proptest! {
         let eps = 1e-4 * max.max(1.0);
         let th = t.thresholds();
         let kinds: HashMap<Hex, TileKind> = m.tiles.iter().map(|i| (i.hex, i.kind)).collect();
-        for (i, &p) in m.lattice.iter().enumerate() {
+        for (i, &p) in d.lattice.iter().enumerate() {
             let y = b.positions[i][1];
-            let ring = u32::from(m.rings[i]);
+            let ring = u32::from(d.rings[i]);
             let set = t.lattice().tiles_at(p);
             let owners: Vec<TileKind> = set.tiles().iter().filter_map(|h| kinds.get(h).copied()).collect();
             let check = if ring < n {

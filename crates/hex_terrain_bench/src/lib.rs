@@ -6,7 +6,7 @@
 use std::collections::HashMap;
 
 use hex_terrain::hexx::{HeightMapMeshBuilder, Hex};
-use hex_terrain::{ManipulationConfig, MapConfig, MapSize, Terrain, TileRect};
+use hex_terrain::{GenerateOptions, ManipulationConfig, MapConfig, MapSize, Terrain, TileRect};
 use rayon::prelude::*;
 
 /// The sizes of thesis table 7 (small maps).
@@ -37,10 +37,33 @@ pub fn generate(terrain: &Terrain) -> usize {
     terrain.generate_map().map_or(0, |m| m.buffers.vertex_count())
 }
 
-/// Bare fBm (our Perlin) at the points generation evaluates; returns their sum.
+/// Generates the whole map keeping the per-vertex diagnostics (lattice coordinates, raw
+/// heights, moved flags, rings); returns its vertex count.
+#[must_use]
+pub fn generate_with_diagnostics(terrain: &Terrain) -> usize {
+    terrain.bounds().map_or(0, |rect| terrain.generate(rect, GenerateOptions::DIAGNOSTICS).buffers.vertex_count())
+}
+
+/// Points sampled together, as generation batches them.
+const BATCH: usize = 1024;
+
+/// Bare fBm (our Perlin) at exactly the points generation evaluates, enumerated the same way
+/// and sampled in the same batches on all cores: the noise floor of generation. Returns the sum
+/// of the samples so the work cannot be elided.
 #[must_use]
 pub fn noise_floor(terrain: &Terrain) -> f64 {
-    terrain.bounds().map_or(0.0, |rect| terrain.noise_floor(rect))
+    let Some(rect) = terrain.bounds() else { return 0.0 };
+    let points = terrain.mesh_points(rect);
+    let mut out = vec![0.0; points.len()];
+    out.par_chunks_mut(BATCH).enumerate().for_each(|(k, chunk)| {
+        let mut positions = [[0.0; 2]; BATCH];
+        let points = &points[k * BATCH..k * BATCH + chunk.len()];
+        for (position, &p) in positions.iter_mut().zip(points) {
+            *position = terrain.noise_position(p);
+        }
+        terrain.fbm().sample_many(&positions[..points.len()], chunk);
+    });
+    out.iter().sum()
 }
 
 /// Bare fBm with `noise::Perlin` at the same points; returns their sum.
@@ -83,8 +106,8 @@ pub fn hexx_columns(terrain: &Terrain) -> usize {
                 .iter()
                 .map(|oc| {
                     let hex = terrain.tile_from_offset(oc);
-                    let centre = terrain.lattice().tile_centre(hex);
-                    (hex, terrain.noise_height(centre) as f32 * max_elevation)
+                    let center = terrain.lattice().tile_center(hex);
+                    (hex, terrain.noise_height(center) as f32 * max_elevation)
                 })
                 .collect();
             let mesh = HeightMapMeshBuilder::new(terrain.layout(), &heights).build();

@@ -1,5 +1,5 @@
 //! `hexterrain-bench`: the thesis' run-time tables (7, 8, 9) measured here, with the basic PTG
-//! baseline, the full pipeline, the bare noise floor (ours and `noise`'s Perlin) and hexx's
+//! baseline, the full pipeline (and the same keeping per-vertex diagnostics), the bare noise floor (ours and `noise`'s Perlin) and hexx's
 //! column mesh builder run side by side in one process.
 //!
 //! ```text
@@ -16,7 +16,8 @@ use std::hint::black_box;
 use std::time::Instant;
 
 use hex_terrain_bench::{
-    TABLE_7, TABLE_8, TABLE_9, generate, hexx_columns, noise_floor, noise_floor_reference, terrains,
+    TABLE_7, TABLE_8, TABLE_9, generate, generate_with_diagnostics, hexx_columns, noise_floor, noise_floor_reference,
+    terrains,
 };
 
 /// glibc malloc settings (read from the environment at start-up) that keep freed memory in the
@@ -119,17 +120,21 @@ fn row(label: &str, x: u32, z: u32, args: &Args) {
             &mut || {
                 black_box(noise_floor_reference(&full, &reference));
             },
+            &mut || {
+                black_box(generate_with_diagnostics(&full));
+            },
         ],
     );
-    let (basic_ms, full_ms, floor_ms, floor_ref_ms) = (times[0], times[1], times[2], times[3]);
+    let (basic_ms, full_ms, floor_ms, floor_ref_ms, diag_ms) = (times[0], times[1], times[2], times[3], times[4]);
     let mut peer_vertices = 0;
     let peer_ms = time(runs, || peer_vertices = hexx_columns(&full));
     println!(
-        "| {label} | {x}x{z} | {hexes} | {v} | {t} | {:.1} | {basic_ms:.2} | {full_ms:.2} | {:.2} | {:.0} | {:+.1} | {floor_ms:.2} | {:.2} | {floor_ref_ms:.2} | {:.2} | {peer_ms:.2} | {peer_vertices} |",
+        "| {label} | {x}x{z} | {hexes} | {v} | {t} | {:.1} | {basic_ms:.2} | {full_ms:.2} | {:.2} | {:.0} | {:+.1} | {diag_ms:.2} | {:+.1} | {floor_ms:.2} | {:.2} | {floor_ref_ms:.2} | {:.2} | {peer_ms:.2} | {peer_vertices} |",
         v as f64 / hexes as f64,
         full_ms * 1e3 / hexes as f64,
         full_ms * 1e6 / v as f64,
         (full_ms - basic_ms) / basic_ms * 100.0,
+        (diag_ms - full_ms) / full_ms * 100.0,
         full_ms / floor_ms,
         floor_ref_ms / floor_ms,
     );
@@ -170,9 +175,9 @@ fn main() {
     );
     println!();
     println!(
-        "| map | size | hexes | vertices | triangles | v/hex | basic ms | full ms | full us/hex | full ns/vertex | overhead % | noise floor ms | full/floor | noise-crate floor ms | floor speed-up | hexx columns ms | hexx vertices |"
+        "| map | size | hexes | vertices | triangles | v/hex | basic ms | full ms | full us/hex | full ns/vertex | overhead % | full + diagnostics ms | diagnostics cost % | noise floor ms | full/floor | noise-crate floor ms | floor speed-up | hexx columns ms | hexx vertices |"
     );
-    println!("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|");
+    println!("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|");
     for table in &args.tables {
         let sizes: Vec<(String, u32, u32)> = match table {
             7 => TABLE_7.iter().map(|&(x, z)| ("table 7".to_string(), x, z)).collect(),

@@ -219,12 +219,12 @@ pub fn run(o: &Options) -> CliResult<()> {
         config.terrain.inner_rings = o.rings;
         let config = &config;
         let max_e = config.terrain.max_elevation;
-        let raw_mesh = build(raw(config))?.generate_map().ok_or("bounded")?;
-        let clamp_mesh = build(config.clone())?.generate_map().ok_or("bounded")?;
+        let raw_mesh = map_with_diagnostics(&build(raw(config))?).ok_or("bounded")?;
+        let clamp_mesh = map_with_diagnostics(&build(config.clone())?).ok_or("bounded")?;
         let mut thesis_config = config.clone();
         thesis_config.manipulation.pull = PullMode::Thesis;
         let thesis_terrain = build(thesis_config)?;
-        let thesis_mesh = thesis_terrain.generate_map().ok_or("bounded")?;
+        let thesis_mesh = map_with_diagnostics(&thesis_terrain).ok_or("bounded")?;
         let c = Sharpness::measure(&raw_mesh, &clamp_mesh, max_e);
         let th = Sharpness::measure(&raw_mesh, &thesis_mesh, max_e);
         let outside = outside_range(&thesis_terrain, &thesis_mesh);
@@ -259,8 +259,8 @@ pub fn run(o: &Options) -> CliResult<()> {
     for rings in 1..=4 {
         let mut config = maps[0].clone();
         config.terrain.inner_rings = rings;
-        let raw_mesh = build(raw(&config))?.generate_map().ok_or("bounded")?;
-        let mesh = build(config.clone())?.generate_map().ok_or("bounded")?;
+        let raw_mesh = map_with_diagnostics(&build(raw(&config))?).ok_or("bounded")?;
+        let mesh = map_with_diagnostics(&build(config.clone())?).ok_or("bounded")?;
         let s = Sharpness::measure(&raw_mesh, &mesh, config.terrain.max_elevation);
         let _ = writeln!(
             md,
@@ -319,7 +319,7 @@ pub fn run(o: &Options) -> CliResult<()> {
         bar.set_message(format!("pictures Map{i}"));
         for (suffix, config) in [("raw", raw(m)), ("tiled", m.clone())] {
             let t = build(config)?;
-            let mesh = t.generate_map().ok_or("bounded")?;
+            let mesh = map_with_diagnostics(&t).ok_or("bounded")?;
             let img = render::render(&t, &mesh, &render::Options { width: o.width, outlines: false })?;
             render::save(&img, &images.join(format!("map{i:02}_{suffix}.png")))?;
         }
@@ -338,11 +338,12 @@ fn outside_range(terrain: &Terrain, mesh: &hex_terrain::ChunkMesh) -> usize {
     let n = terrain.lattice().subdivisions();
     let max_e = terrain.config().terrain.max_elevation.max(f32::MIN_POSITIVE);
     let eps = 1e-5;
-    mesh.lattice
+    let Some(d) = &mesh.diagnostics else { return 0 };
+    d.lattice
         .iter()
         .enumerate()
         .filter(|&(i, &p)| {
-            let ring = u32::from(mesh.rings[i]);
+            let ring = u32::from(d.rings[i]);
             if ring == 0 || ring >= n {
                 return false;
             }
@@ -352,4 +353,9 @@ fn outside_range(terrain: &Terrain, mesh: &hex_terrain::ChunkMesh) -> usize {
             h < lo - eps || h > hi + eps
         })
         .count()
+}
+
+/// The whole map with per-vertex diagnostics (what the sharpness and range figures read).
+fn map_with_diagnostics(terrain: &Terrain) -> Option<hex_terrain::ChunkMesh> {
+    terrain.bounds().map(|rect| terrain.generate(rect, hex_terrain::GenerateOptions::DIAGNOSTICS))
 }

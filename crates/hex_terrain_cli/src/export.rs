@@ -11,7 +11,7 @@ use json::validation::USize64;
 
 use crate::CliResult;
 
-/// Name of the custom vertex attribute: `[tile kind, distance to the tile centre]`.
+/// Name of the custom vertex attribute: `[tile kind, distance to the tile center]`.
 pub const TILE_ATTRIBUTE: &str = "TILE";
 
 fn push_f32s(bin: &mut Vec<u8>, values: impl Iterator<Item = f32>) -> (usize, usize) {
@@ -31,7 +31,7 @@ fn document(mesh: &ChunkMesh) -> CliResult<(json::Root, Vec<u8>)> {
         push_f32s(&mut bin, b.positions.iter().flatten().copied()),
         push_f32s(&mut bin, b.normals.iter().flatten().copied()),
         push_f32s(&mut bin, b.uvs.iter().flatten().copied()),
-        push_f32s(&mut bin, b.tile_kinds.iter().zip(&b.centre_distances).flat_map(|(&k, &d)| [k as f32, d])),
+        push_f32s(&mut bin, b.tile_kinds.iter().zip(&b.center_distances).flat_map(|(&k, &d)| [k as f32, d])),
     ];
     let index_start = bin.len();
     for i in &b.indices {

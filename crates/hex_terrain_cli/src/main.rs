@@ -74,7 +74,7 @@ enum Command {
         outlines: bool,
     },
     /// Export the map's mesh as glTF binary (.glb, with normals, UVs and a `_TILE` attribute:
-    /// tile kind and distance to the tile centre) or Wavefront OBJ (.obj).
+    /// tile kind and distance to the tile center) or Wavefront OBJ (.obj).
     Export {
         /// Map config (RON).
         map: PathBuf,
@@ -152,7 +152,10 @@ fn whole_map(terrain: &Terrain) -> CliResult<ChunkMesh> {
     // Large maps take more than a second: show that something is happening.
     let spinner = (u64::from(x) * u64::from(z) * u64::from(terrain.lattice().subdivisions().pow(2)) > 400_000)
         .then(|| busy(format!("generating {x}x{z} hexes")));
-    let mesh = terrain.generate_map().ok_or("this command needs a bounded map")?;
+    let mesh = terrain
+        .bounds()
+        .map(|rect| terrain.generate(rect, hex_terrain::GenerateOptions::DIAGNOSTICS))
+        .ok_or("this command needs a bounded map")?;
     if let Some(s) = spinner {
         s.finish_and_clear();
     }

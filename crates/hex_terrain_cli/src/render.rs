@@ -1,4 +1,4 @@
-//! Top-down software rendering of a map: colours blended by height (thesis Algorithm 5), hill
+//! Top-down software rendering of a map: colors blended by height (thesis Algorithm 5), hill
 //! shading from the mesh normals, optional tile outlines.
 
 use std::path::Path;
@@ -9,11 +9,11 @@ use rayon::prelude::*;
 
 use crate::CliResult;
 
-/// Layer colours: sea, land (grass), mountain (rock).
+/// Layer colors: sea, land (grass), mountain (rock).
 pub const SEA: [f32; 3] = [0.11, 0.34, 0.72];
-/// Land colour.
+/// Land color.
 pub const LAND: [f32; 3] = [0.30, 0.60, 0.20];
-/// Mountain colour.
+/// Mountain color.
 pub const MOUNTAIN: [f32; 3] = [0.62, 0.60, 0.58];
 const BACKGROUND: Rgb<u8> = Rgb([24, 24, 28]);
 
@@ -88,7 +88,7 @@ pub fn render(terrain: &Terrain, mesh: &ChunkMesh, options: &Options) -> CliResu
         let n = (l[0] * l[0] + l[1] * l[1] + l[2] * l[2]).sqrt();
         l.map(|c| c / n)
     };
-    // Outline half-width in centre-distance units, about 1.2 pixels wide.
+    // Outline half-width in center-distance units, about 1.2 pixels wide.
     let n = terrain.lattice().subdivisions() as f32;
     let edge = (1.2 / (scale * config.layout.hex_size / n)).clamp(0.02, 0.5) / n;
 
@@ -136,7 +136,7 @@ pub fn render(terrain: &Terrain, mesh: &ChunkMesh, options: &Options) -> CliResu
                     }
                     let lerp = |v: [f32; 3]| v[0] * l0 + v[1] * l1 + v[2] * l2;
                     let y = lerp(idx.map(|i| b.positions[i][1]));
-                    let colour = if max_e > 0.0 {
+                    let color = if max_e > 0.0 {
                         albedo(y / max_e, sea, mountain, blend)
                     } else {
                         layer(match b.tile_kinds[idx[0]] {
@@ -150,10 +150,10 @@ pub fn render(terrain: &Terrain, mesh: &ChunkMesh, options: &Options) -> CliResu
                     let lambert = (normal[0] * light[0] + normal[1] * light[1] + normal[2] * light[2]) / len;
                     // Flat ground gets 0.92; slopes facing the light brighter, away darker.
                     let mut shade = 0.45 + 0.47 * lambert.max(0.0) / light[1];
-                    if options.outlines && lerp(idx.map(|i| b.centre_distances[i])) > 1.0 - edge {
+                    if options.outlines && lerp(idx.map(|i| b.center_distances[i])) > 1.0 - edge {
                         shade *= 0.3;
                     }
-                    let rgb = colour.map(|c| ((c * shade).clamp(0.0, 1.0) * 255.0).round() as u8);
+                    let rgb = color.map(|c| ((c * shade).clamp(0.0, 1.0) * 255.0).round() as u8);
                     rows[(py - y0) * w + px] = Rgb(rgb);
                 }
             }

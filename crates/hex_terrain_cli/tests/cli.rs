@@ -48,8 +48,8 @@ fn small_map(name: &str, extra: &str) -> PathBuf {
 }
 
 #[test]
-fn render_shows_each_tile_type_in_its_colour() {
-    // Blend 0 so a pixel's colour is its layer's; tiles well inside their range only.
+fn render_shows_each_tile_type_in_its_color() {
+    // Blend 0 so a pixel's color is its layer's; tiles well inside their range only.
     let map = small_map("render.ron", "appearance: (blend: 0.0)");
     let out = tmp("render.png");
     ok(&["render", map.to_str().unwrap(), "-o", out.to_str().unwrap(), "--width", "300"]);
@@ -68,7 +68,7 @@ fn render_shows_each_tile_type_in_its_colour() {
     let scale = 299.0 / (max_x - min_x);
     let mut seen = [0; 3];
     for info in &mesh.tiles {
-        let [x, _, z] = terrain.tile_centre(info.hex);
+        let [x, _, z] = terrain.tile_center(info.hex);
         let px = image::Rgb::<u8>::to_owned(
             img.get_pixel(((x - min_x) * scale).round() as u32, ((z - min_z) * scale).round() as u32),
         );
@@ -154,7 +154,7 @@ fn tile_image_puts_sea_where_the_image_is_below_sea_level() {
         let mesh = terrain.generate_map().unwrap();
         let (mut min_x, mut max_x, mut min_z, mut max_z) = (f32::MAX, f32::MIN, f32::MAX, f32::MIN);
         for t in &mesh.tiles {
-            let [x, _, z] = terrain.tile_centre(t.hex);
+            let [x, _, z] = terrain.tile_center(t.hex);
             min_x = min_x.min(x);
             max_x = max_x.max(x);
             min_z = min_z.min(z);
@@ -162,8 +162,8 @@ fn tile_image_puts_sea_where_the_image_is_below_sea_level() {
         }
         let (mut sea, mut dry) = (0, 0);
         for t in &mesh.tiles {
-            let [x, _, z] = terrain.tile_centre(t.hex);
-            // The hill's value under the tile centre, from the geometry of the picture.
+            let [x, _, z] = terrain.tile_center(t.hex);
+            // The hill's value under the tile center, from the geometry of the picture.
             let (u, v) = ((x - min_x) / (max_x - min_x) * 2.0 - 1.0, (z - min_z) / (max_z - min_z) * 2.0 - 1.0);
             let value = (1.0 - (u * u + v * v).sqrt() / 1.2).max(0.0);
             if value < 0.37 {
@@ -323,7 +323,7 @@ fn textures_are_tileable_and_distinct() {
     for name in ["sea", "grass", "mountain"] {
         let img = image::open(dir.join(format!("{name}.png"))).unwrap().to_rgb8();
         assert_eq!(img.dimensions(), (64, 64));
-        // Tileable: the last column continues into the first as smoothly as neighbours do.
+        // Tileable: the last column continues into the first as smoothly as neighbors do.
         let step = |a: &image::Rgb<u8>, b: &image::Rgb<u8>| {
             a.0.iter().zip(b.0).map(|(x, y)| (i32::from(*x) - i32::from(y)).abs()).sum::<i32>()
         };

@@ -64,7 +64,7 @@ fn malformed_ron_reports_line_and_column() {
     let LoadError::Ron(spanned) = &err else { panic!("{err}") };
     assert_eq!(spanned.span.start.line, 3);
     assert!(err.to_string().contains("3:"), "{err}");
-    let err = MapConfig::from_ron("(seed: 1, colour: 3)").unwrap_err();
+    let err = MapConfig::from_ron("(seed: 1, color: 3)").unwrap_err();
     assert!(matches!(err, LoadError::Ron(_)), "unknown fields are refused: {err}");
     let err = MapConfig::from_ron("(noise: (octaves: 0))").unwrap_err();
     assert!(matches!(&err, LoadError::Invalid(e) if e.field == "noise.octaves"), "{err}");

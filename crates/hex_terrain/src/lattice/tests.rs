@@ -29,18 +29,18 @@ fn template_counts_follow_formula() {
 }
 
 #[test]
-fn tile_centres_match_hexx_layout() {
+fn tile_centers_match_hexx_layout() {
     for l in lattices() {
         let layout =
             HexLayout { orientation: hex_orientation(l.orientation()), origin: Vec2::ZERO, scale: Vec2::splat(1.5) };
         for q in -7..7 {
             for r in -7..7 {
                 let tile = Hex::new(q, r);
-                let [x, z] = l.world(l.tile_centre(tile));
+                let [x, z] = l.world(l.tile_center(tile));
                 let expected = layout.hex_to_world_pos(tile);
                 assert!((x as f32 - expected.x).abs() < 1e-4 && (z as f32 - expected.y).abs() < 1e-4, "{tile:?}");
-                // and back: the centre's tile is the tile itself
-                let set = l.tiles_at(l.tile_centre(tile));
+                // and back: the center's tile is the tile itself
+                let set = l.tiles_at(l.tile_center(tile));
                 assert_eq!(set.tiles(), &[tile]);
                 assert_eq!(set.ring, 0);
             }
@@ -53,7 +53,7 @@ fn points_belong_to_one_two_or_three_tiles() {
     for l in lattices() {
         let n = l.subdivisions();
         let tile = Hex::new(3, -2);
-        let c = l.tile_centre(tile);
+        let c = l.tile_center(tile);
         for tp in l.template() {
             let set = l.tiles_at(c + tp.offset);
             assert!(set.tiles().contains(&tile));
@@ -68,7 +68,7 @@ fn points_belong_to_one_two_or_three_tiles() {
             };
             assert_eq!(set.tiles().len(), expected, "{tp:?} n={n}");
             for &t in set.tiles() {
-                assert!((c + tp.offset).distance_to(l.tile_centre(t)) <= n as i32);
+                assert!((c + tp.offset).distance_to(l.tile_center(t)) <= n as i32);
             }
         }
     }
@@ -112,7 +112,7 @@ fn shared_tiles_are_the_tiles_at_every_template_point() {
             let l = Lattice::new(n, o, 1.5);
             for tile in [Hex::ZERO, Hex::new(3, -2), Hex::new(-7, 11), Hex::new(1000, -4000)] {
                 for (k, tp) in l.template().iter().enumerate() {
-                    let mut expected: Vec<Hex> = l.tiles_at(l.tile_centre(tile) + tp.offset).tiles().to_vec();
+                    let mut expected: Vec<Hex> = l.tiles_at(l.tile_center(tile) + tp.offset).tiles().to_vec();
                     let mut found = vec![tile];
                     for d in l.shared_tiles(k) {
                         if d != u8::MAX {
@@ -129,17 +129,17 @@ fn shared_tiles_are_the_tiles_at_every_template_point() {
     }
 }
 
-/// The tiles around each template point's neighbours, found once for the origin tile, are the
-/// tiles `tiles_at` finds for the same neighbour of any tile, with the same ring.
+/// The tiles around each template point's neighbors, found once for the origin tile, are the
+/// tiles `tiles_at` finds for the same neighbor of any tile, with the same ring.
 #[test]
-fn around_tiles_are_the_tiles_at_every_neighbour() {
+fn around_tiles_are_the_tiles_at_every_neighbor() {
     for n in [1, 2, 4] {
         for o in [Orientation::Flat, Orientation::Pointy] {
             let l = Lattice::new(n, o, 1.5);
             for tile in [Hex::ZERO, Hex::new(-3, 5), Hex::new(-900, -2000), Hex::new(4000, 17)] {
                 for (k, tp) in l.template().iter().enumerate() {
-                    for (d, &step) in NEIGHBOURS.iter().enumerate() {
-                        let truth = l.tiles_at(l.tile_centre(tile) + tp.offset + step);
+                    for (d, &step) in NEIGHBORS.iter().enumerate() {
+                        let truth = l.tiles_at(l.tile_center(tile) + tp.offset + step);
                         let table = l.around_tiles(k, d);
                         let mut expected = truth.tiles().to_vec();
                         let mut found: Vec<Hex> = table.tiles().iter().map(|&t| tile + t).collect();

@@ -1,7 +1,12 @@
 use std::collections::HashSet;
 
+use hexx::Hex;
+
+use super::grid::AROUND;
+use super::normals::NormalCoefficients;
 use super::*;
 use crate::config::{MapConfig, MapSize, Orientation};
+use crate::terrain::Terrain;
 
 fn boundary_edges(t: &Terrain, rect: TileRect) -> usize {
     let tiles: HashSet<Hex> = rect.iter().map(|oc| t.tile_from_offset(oc)).collect();
@@ -38,7 +43,7 @@ fn buffers_are_consistent() {
     assert_eq!(b.normals.len(), v);
     assert_eq!(b.uvs.len(), v);
     assert_eq!(b.tile_kinds.len(), v);
-    assert_eq!(b.centre_distances.len(), v);
+    assert_eq!(b.center_distances.len(), v);
     assert!(b.indices.iter().all(|&i| (i as usize) < v));
     for n in &b.normals {
         let len = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
@@ -52,7 +57,8 @@ fn buffers_are_consistent() {
     }
     let used: HashSet<u32> = b.indices.iter().copied().collect();
     assert_eq!(used.len(), v, "no vertex is left out of the triangles");
-    let unique: HashSet<Hex> = m.lattice.iter().copied().collect();
+    let m = t.generate(t.bounds().unwrap(), GenerateOptions::DIAGNOSTICS);
+    let unique: HashSet<Hex> = m.diagnostics.unwrap().lattice.iter().copied().collect();
     assert_eq!(unique.len(), v, "shared vertices exist once");
 }
 
@@ -72,15 +78,16 @@ fn every_vertex_matches_the_single_vertex_evaluator() {
                 let t = Terrain::new(c).unwrap();
                 let max = t.config().terrain.max_elevation;
                 for rect in [t.bounds().unwrap(), TileRect::new([2, 1], [6, 5]), TileRect::new([7, 0], [9, 3])] {
-                    let m = t.generate_rect(rect);
-                    for (i, &p) in m.lattice.iter().enumerate() {
+                    let m = t.generate(rect, GenerateOptions::DIAGNOSTICS);
+                    let d = m.diagnostics.as_ref().unwrap();
+                    for (i, &p) in d.lattice.iter().enumerate() {
                         let s = t.vertex(p);
                         let what = format!("{p:?} rings {rings} {o:?} {shape:?} rect {rect:?}");
-                        assert_eq!(m.raw_heights[i].to_bits(), s.raw.to_bits(), "raw {what}");
+                        assert_eq!(d.raw_heights[i].to_bits(), s.raw.to_bits(), "raw {what}");
                         assert_eq!(m.buffers.positions[i][1].to_bits(), (s.height * max).to_bits(), "height {what}");
                         assert_eq!(m.buffers.tile_kinds[i], s.kind as u32, "kind {what}");
-                        assert_eq!(m.moved[i], s.moved, "moved {what}");
-                        assert_eq!(u32::from(m.rings[i]), s.ring, "ring {what}");
+                        assert_eq!(d.moved[i], s.moved, "moved {what}");
+                        assert_eq!(u32::from(d.rings[i]), s.ring, "ring {what}");
                     }
                     for info in &m.tiles {
                         assert_eq!(*info, t.tile_info(info.hex));
@@ -91,10 +98,10 @@ fn every_vertex_matches_the_single_vertex_evaluator() {
     }
 }
 
-/// Every normal is the one of the six lattice neighbours' heights, looked up by coordinate (the
+/// Every normal is the one of the six lattice neighbors' heights, looked up by coordinate (the
 /// generator finds them by index arithmetic).
 #[test]
-fn normals_come_from_the_six_lattice_neighbours() {
+fn normals_come_from_the_six_lattice_neighbors() {
     use std::collections::HashMap;
     for rings in [1, 3] {
         for o in [Orientation::Flat, Orientation::Pointy] {
@@ -103,9 +110,9 @@ fn normals_come_from_the_six_lattice_neighbours() {
             c.layout.orientation = o;
             let t = Terrain::new(c).unwrap();
             let max = t.config().terrain.max_elevation;
-            let m = t.generate_rect(TileRect::new([1, 1], [6, 4]));
-            let at: HashMap<Hex, f32> =
-                m.lattice.iter().zip(&m.buffers.positions).map(|(&p, pos)| (p, pos[1])).collect();
+            let m = t.generate(TileRect::new([1, 1], [6, 4]), GenerateOptions::DIAGNOSTICS);
+            let lattice = &m.diagnostics.as_ref().unwrap().lattice;
+            let at: HashMap<Hex, f32> = lattice.iter().zip(&m.buffers.positions).map(|(&p, pos)| (p, pos[1])).collect();
             let height = |p: Hex| at.get(&p).copied().unwrap_or_else(|| t.vertex(p).height * max);
             let (a, b) = t.lattice().steps();
             let around = AROUND.map(|d| {
@@ -113,7 +120,7 @@ fn normals_come_from_the_six_lattice_neighbours() {
                 [(i * a[0] + j * b[0]) as f32, (i * a[1] + j * b[1]) as f32]
             });
             let coefficients = NormalCoefficients::new(&around);
-            for (i, &p) in m.lattice.iter().enumerate() {
+            for (i, &p) in lattice.iter().enumerate() {
                 let expected = coefficients.normal(height(p), |d| height(p + AROUND[d]));
                 assert_eq!(m.buffers.normals[i], expected, "{p:?} rings {rings} {o:?}");
             }

@@ -1,4 +1,5 @@
 use super::*;
+use crate::chunk::ChunkCoord;
 use crate::config::Shape;
 
 fn terrain() -> Terrain {
@@ -6,14 +7,14 @@ fn terrain() -> Terrain {
 }
 
 #[test]
-fn tile_at_inverts_tile_centre() {
+fn tile_at_inverts_tile_center() {
     for o in [Orientation::Flat, Orientation::Pointy] {
         let mut c = MapConfig::default();
         c.layout.orientation = o;
         c.layout.hex_size = 2.5;
         let t = Terrain::new(c).unwrap();
         for tile in t.tiles() {
-            let [x, _, z] = t.tile_centre(tile);
+            let [x, _, z] = t.tile_center(tile);
             assert_eq!(t.tile_at(x, z), tile);
             assert_eq!(t.tile_at(x + 1.0, z - 0.5), tile, "within the hex radius");
         }
@@ -68,10 +69,10 @@ fn island_has_sea_all_around() {
 fn surface_height_matches_vertices_and_raycast_hits_it() {
     let t = terrain();
     for tile in t.tiles().step_by(37) {
-        let [x, y, z] = t.tile_centre(tile);
+        let [x, y, z] = t.tile_center(tile);
         assert!((t.surface_height(x, z) - y).abs() < 1e-3);
         let hit = t.raycast([x + 3.0, 50.0, z - 2.0], [-3.0, -(50.0 - y), 2.0], 200.0).unwrap();
-        assert_eq!(hit.tile, tile, "ray aimed at the centre of {tile:?}");
+        assert_eq!(hit.tile, tile, "ray aimed at the center of {tile:?}");
         assert!((hit.point[1] - y).abs() < 0.05);
     }
     assert!(t.raycast([0.0, 50.0, 0.0], [0.0, 1.0, 0.0], 100.0).is_none());

@@ -52,7 +52,7 @@ impl HeightImage {
         Ok(Self { width, height, data })
     }
 
-    /// Decodes an 8 or 16 bit PNG (grey, grey-alpha, RGB or RGBA; colour is reduced to luma).
+    /// Decodes an 8 or 16 bit PNG (grey, grey-alpha, RGB or RGBA; color is reduced to luma).
     ///
     /// # Errors
     /// [`ImageError::Decode`] for anything that is not a valid PNG, [`ImageError::Empty`] for

@@ -6,13 +6,13 @@ use crate::config::Shape;
 /// The map's extent in world units, used to normalise positions for the filters.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ShapeBounds {
-    /// Smallest world x of a tile centre.
+    /// Smallest world x of a tile center.
     pub min_x: f64,
-    /// Largest world x of a tile centre.
+    /// Largest world x of a tile center.
     pub max_x: f64,
-    /// Smallest world z of a tile centre.
+    /// Smallest world z of a tile center.
     pub min_z: f64,
-    /// Largest world z of a tile centre.
+    /// Largest world z of a tile center.
     pub max_z: f64,
     /// One lattice step as a fraction of the x extent: the smallest `x` of eq. 7.2.
     pub min_u: f64,
@@ -27,7 +27,7 @@ impl ShapeBounds {
     }
 }
 
-/// Eq. 7.1: `f(d) = d^a / (d^a + (b - b d)^a)`, 0 at the centre, 1 at the edges.
+/// Eq. 7.1: `f(d) = d^a / (d^a + (b - b d)^a)`, 0 at the center, 1 at the edges.
 #[must_use]
 pub fn falloff(d: f64, a: f64, b: f64) -> f64 {
     let da = d.powf(a);
@@ -40,7 +40,7 @@ pub fn falloff(d: f64, a: f64, b: f64) -> f64 {
 pub fn apply(shape: &Shape, bounds: Option<&ShapeBounds>, h: f64, x: f64, z: f64) -> f64 {
     let Some(bounds) = bounds else { return h };
     let (u, v) = bounds.normalise(x, z);
-    // Algorithm 6: distance to the nearer edge in the max norm, 0 at the centre, 1 at the edge.
+    // Algorithm 6: distance to the nearer edge in the max norm, 0 at the center, 1 at the edge.
     let edge = || (2.0 * u - 1.0).abs().max((2.0 * v - 1.0).abs());
     let out = match *shape {
         Shape::None => h,

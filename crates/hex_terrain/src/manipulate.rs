@@ -1,83 +1,16 @@
-//! Tile types and the height manipulations that make them easy to recognise
-//! (thesis sections 5.5-5.6, 6.4).
+//! Manipulation (thesis sections 5.5-5.6, 6.4): interpolation opens a gap around each
+//! threshold (Algorithm 4), hex unity pulls inner vertices into their tile's range and puts
+//! border vertices between kinds on the threshold (Algorithm 3), and edge/corner correction
+//! clamps border vertices shared by tiles of one kind. After it, every non-border vertex of a
+//! tile lies inside its kind's height range.
 
-use serde::{Deserialize, Serialize};
+use hexx::Hex;
 
-use crate::config::{ManipulationConfig, PullMode, TerrainConfig};
-
-/// The type of a tile, decided by the height of its centre.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
-#[repr(u8)]
-pub enum TileKind {
-    /// Centre below the sea threshold.
-    Sea = 0,
-    /// Centre between the thresholds.
-    Land = 1,
-    /// Centre at or above the mountain threshold.
-    Mountain = 2,
-}
-
-impl TileKind {
-    /// All kinds, lowest first.
-    pub const ALL: [Self; 3] = [Self::Sea, Self::Land, Self::Mountain];
-
-    /// Lower-case name.
-    #[must_use]
-    pub fn name(self) -> &'static str {
-        match self {
-            Self::Sea => "sea",
-            Self::Land => "land",
-            Self::Mountain => "mountain",
-        }
-    }
-}
-
-/// Thresholds and the height ranges of each tile type, in normalised height.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Thresholds {
-    /// Sea threshold.
-    pub sea: f32,
-    /// Mountain threshold.
-    pub mountain: f32,
-    /// Interpolation tolerance in effect (0 when interpolation is off).
-    pub tolerance: f32,
-}
+use crate::config::{ManipulationConfig, PullMode};
+use crate::kind::{Thresholds, TileKind};
+use crate::terrain::Terrain;
 
 impl Thresholds {
-    /// Thresholds of a config, with the tolerance only when interpolation is on.
-    #[must_use]
-    pub fn new(terrain: &TerrainConfig, manipulation: &ManipulationConfig) -> Self {
-        Self {
-            sea: terrain.sea_threshold,
-            mountain: terrain.mountain_threshold,
-            tolerance: if manipulation.interpolation { terrain.interpolation_tolerance } else { 0.0 },
-        }
-    }
-
-    /// Type of a tile whose centre has raw (shaped, not interpolated) height `h`.
-    #[must_use]
-    #[inline]
-    pub fn classify(&self, h: f32) -> TileKind {
-        if h < self.sea {
-            TileKind::Sea
-        } else if h < self.mountain {
-            TileKind::Land
-        } else {
-            TileKind::Mountain
-        }
-    }
-
-    /// Height range every non-border vertex of a tile of `kind` lies in after manipulation.
-    #[must_use]
-    #[inline]
-    pub fn range(&self, kind: TileKind) -> (f32, f32) {
-        match kind {
-            TileKind::Sea => (0.0, self.sea - self.tolerance),
-            TileKind::Land => (self.sea + self.tolerance, self.mountain - self.tolerance),
-            TileKind::Mountain => (self.mountain + self.tolerance, 1.0),
-        }
-    }
-
     /// Algorithm 4 / eq. 5.6 with a gap on both sides of each threshold: sea `[0, s]` maps to
     /// `[0, s - t]`, land `[s, m]` to `[s + t, m - t]`, mountain `[m, 1]` to `[m + t, 1]`.
     /// The identity when the tolerance is 0.
@@ -186,6 +119,71 @@ pub fn manipulate(
         }
     };
     Manipulated { height: out, moved: out != h }
+}
+
+/// One lattice vertex, evaluated.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct VertexSample {
+    /// Normalised height after shaping, before manipulation.
+    pub raw: f32,
+    /// Normalised height after manipulation.
+    pub height: f32,
+    /// Whether hex unity or edge/corner correction moved it.
+    pub moved: bool,
+    /// Ring in its tile (`n` on a border).
+    pub ring: u32,
+    /// Highest kind among the in-map tiles sharing it, or its height's kind outside the map.
+    pub kind: TileKind,
+}
+
+impl Terrain {
+    /// Evaluates one lattice vertex, computing the kinds of the tiles around it.
+    #[must_use]
+    pub fn vertex(&self, p: Hex) -> VertexSample {
+        self.vertex_with(p, |tile| self.map_tile_kind(tile))
+    }
+
+    /// Evaluates one lattice vertex with tile kinds from `kind_of` (`None` outside the map).
+    #[must_use]
+    #[inline]
+    pub fn vertex_with(&self, p: Hex, kind_of: impl Fn(Hex) -> Option<TileKind>) -> VertexSample {
+        self.border_vertex(self.raw_height(p), p, kind_of)
+    }
+
+    /// Finishes a vertex whose raw height is known, finding the tiles around it.
+    #[inline]
+    pub(crate) fn border_vertex(&self, raw: f32, p: Hex, kind_of: impl Fn(Hex) -> Option<TileKind>) -> VertexSample {
+        let set = self.lattice.tiles_at(p);
+        let mut kinds = [TileKind::Sea; 3];
+        let mut len = 0;
+        for &tile in set.tiles() {
+            if let Some(kind) = kind_of(tile) {
+                kinds[len] = kind;
+                len += 1;
+            }
+        }
+        self.finish_vertex(raw, set.ring, &kinds[..len])
+    }
+
+    /// Applies manipulation to a vertex of raw height `raw` at `ring`, shared by the in-map
+    /// tiles of `kinds`.
+    #[inline(always)]
+    pub(crate) fn finish_vertex(&self, raw: f32, ring: u32, kinds: &[TileKind]) -> VertexSample {
+        let n = self.lattice.subdivisions();
+        let Manipulated { height, moved } = if self.config.manipulation.any() {
+            manipulate(&self.thresholds, &self.config.manipulation, raw, ring, n, kinds)
+        } else {
+            Manipulated { height: raw, moved: false }
+        };
+        let kind = kinds.iter().copied().max().unwrap_or_else(|| self.thresholds.classify(raw));
+        VertexSample { raw, height, moved, ring, kind }
+    }
+
+    /// World height of the manipulated surface at a lattice point.
+    #[must_use]
+    pub fn vertex_elevation(&self, p: Hex) -> f32 {
+        self.vertex(p).height * self.config.terrain.max_elevation
+    }
 }
 
 #[cfg(test)]

@@ -1,0 +1,343 @@
+//! One generation as a job: the tiles of a rectangle, the grid over them and the passes that
+//! fill the buffers.
+//!
+//! While the points are enumerated (sequentially), other threads classify the tiles and
+//! allocate the buffers ([`Job::prelude`]). Then one pass computes the owned vertices (noise,
+//! shaping, manipulation and every attribute but the normal, [`Job::owned_pass`]) while another
+//! computes the halo's heights ([`Job::halo_pass`]); then the normals, which need the heights of
+//! the six lattice neighbors, and the indices. Each pass runs on all cores when the job splits.
+
+use hexx::Hex;
+
+use super::grid::{GridShape, Owner, Points, TEMPLATE_MAX};
+use super::parallel::{BATCH, Outputs, Split, in_batches};
+use super::{Buffers, ChunkMesh, Diagnostics, GenerateOptions, Threads};
+use crate::chunk::TileRect;
+use crate::kind::TileKind;
+use crate::lattice::Lattice;
+use crate::manipulate::VertexSample;
+use crate::terrain::{Terrain, TileInfo};
+
+/// A generation of one rectangle of tiles.
+pub(super) struct Job<'a> {
+    pub terrain: &'a Terrain,
+    pub lattice: &'a Lattice,
+    /// The tiles (clipped to the map).
+    rect: TileRect,
+    /// The tiles of `rect`, row by row.
+    tiles: Vec<Hex>,
+    shape: GridShape,
+    /// Slot offsets of each template point from its tile's center, by the center's parity.
+    offsets: [Vec<isize>; 2],
+    pub split: Split,
+    diagnostics: bool,
+}
+
+/// Kinds of the tiles of a job and of the ring around them, and their center samples.
+struct Kinds {
+    /// The job's rectangle grown by one tile.
+    halo: TileRect,
+    /// Kind of each tile of `halo` (row by row), `None` outside the map.
+    kinds: Vec<Option<TileKind>>,
+    /// Per tile of the job: its own kind and its six neighbors' (`all_neighbors` order).
+    around: Vec<(TileKind, [Option<TileKind>; 6])>,
+    /// Height-source sample at each job tile's center.
+    center_noise: Vec<f64>,
+}
+
+impl Kinds {
+    fn index(&self, [c, r]: [i32; 2]) -> usize {
+        let width = (self.halo.max[0] - self.halo.min[0]) as usize;
+        (r - self.halo.min[1]) as usize * width + (c - self.halo.min[0]) as usize
+    }
+
+    /// Kind of a tile, `None` outside the map; every vertex of the job lies in a tile of `halo`.
+    #[inline]
+    fn get(&self, terrain: &Terrain, tile: Hex) -> Option<TileKind> {
+        let oc = terrain.offset_of(tile);
+        if self.halo.contains(oc) { self.kinds[self.index(oc)] } else { terrain.map_tile_kind(tile) }
+    }
+}
+
+impl<'a> Job<'a> {
+    pub fn new(terrain: &'a Terrain, rect: TileRect, options: GenerateOptions) -> Self {
+        let rect = terrain.bounds().map_or(rect, |b| rect.intersect(&b));
+        let lattice = terrain.lattice();
+        let n = lattice.subdivisions() as usize;
+        let split = Split(options.threads == Threads::Pool && rect.len() * 3 * n * n > Split::MIN_POINTS);
+        let tiles: Vec<Hex> = rect.iter().map(|oc| terrain.tile_from_offset(oc)).collect();
+        let shape = GridShape::around(lattice, &tiles);
+        let offsets = shape.template_offsets(lattice);
+        Self { terrain, lattice, rect, tiles, shape, offsets, split, diagnostics: options.diagnostics }
+    }
+
+    /// The lattice points the job evaluates: its vertices, then the one-step halo.
+    #[cfg(feature = "bench")]
+    pub fn points(&self) -> Vec<Hex> {
+        Points::collect(self.lattice, &self.tiles, self.shape, &self.offsets).lattice
+    }
+
+    /// Runs every pass and returns the chunk.
+    pub fn run(self) -> ChunkMesh {
+        let (points, out, kinds) = self.split.in_pool(|| self.prelude());
+        let Buffers { mut b, mut raws, mut moved, mut rings, mut heights } = out.fit(points.owned, self.diagnostics);
+        // Every pass from here on, in one visit to the thread pool.
+        self.split.in_pool(|| {
+            let outputs = Outputs {
+                positions: &mut b.positions,
+                uvs: &mut b.uvs,
+                kinds: &mut b.tile_kinds,
+                distances: &mut b.center_distances,
+                raws: &mut raws,
+                moved: &mut moved,
+                rings: &mut rings,
+                heights: &mut heights,
+                first_slot: 0,
+            };
+            let ((), halo_heights) =
+                self.split.join(|| self.owned_pass(&points, &kinds, outputs), || self.halo_pass(&points, &kinds));
+            for (&p, h) in points.lattice[points.owned..].iter().zip(halo_heights) {
+                heights[points.grid.slot(p)] = h;
+            }
+            self.split.join(
+                || self.normals_pass(&points, &heights, &mut b.normals),
+                || self.indices_pass(&points, &mut b.indices),
+            );
+        });
+
+        let tiles = self
+            .tiles
+            .iter()
+            .zip(&kinds.around)
+            .map(|(&hex, &(kind, _))| TileInfo {
+                hex,
+                kind,
+                elevation: heights[points.grid.slot(self.lattice.tile_center(hex))],
+                in_map: true,
+            })
+            .collect();
+        let diagnostics = self.diagnostics.then(|| {
+            let mut lattice = points.lattice;
+            lattice.truncate(points.owned);
+            Diagnostics { lattice, raw_heights: raws, moved, rings }
+        });
+        ChunkMesh { rect: self.rect, buffers: b, tiles, diagnostics }
+    }
+
+    /// The work before the passes: the point enumeration beside the tile kinds and the buffers
+    /// (on other threads, unless the rectangle is small: then the side work is shorter than
+    /// waking a second thread and letting it fall asleep again).
+    fn prelude(&self) -> (Points, Buffers, Kinds) {
+        let side = Split(self.split.0 && self.tiles.len() * self.lattice.points_per_tile() > Split::SIDE_MIN_POINTS);
+        let ((points, buffers), kinds) = side.join(
+            || {
+                side.join(
+                    || Points::collect(self.lattice, &self.tiles, self.shape, &self.offsets),
+                    || {
+                        Buffers::new(
+                            self.vertex_count(),
+                            self.tiles.len() * self.lattice.triangles_per_tile() * 3,
+                            self.shape.len(),
+                            self.diagnostics,
+                        )
+                    },
+                )
+            },
+            || self.kinds(),
+        );
+        (points, buffers, kinds)
+    }
+
+    /// Vertex count of the mesh, from the count formula
+    /// ([`Lattice::mesh_vertex_count`](crate::Lattice::mesh_vertex_count)).
+    fn vertex_count(&self) -> usize {
+        let rect = self.rect;
+        if rect.is_empty() {
+            return 0;
+        }
+        // Only tiles in the first or last row or column can have a neighbor outside.
+        let [c0, r0] = rect.min;
+        let [c1, r1] = [rect.max[0] - 1, rect.max[1] - 1];
+        let outline = rect
+            .iter()
+            .filter(|&[c, r]| c == c0 || c == c1 || r == r0 || r == r1)
+            .map(|oc| {
+                let tile = self.terrain.tile_from_offset(oc);
+                tile.all_neighbors().iter().filter(|&&nb| !rect.contains(self.terrain.offset_of(nb))).count()
+            })
+            .sum();
+        self.lattice.mesh_vertex_count(rect.len(), outline)
+    }
+
+    /// Bare source heights at every point, batched.
+    fn noise_at(&self, points: &[Hex]) -> Vec<f64> {
+        let mut out = vec![0.0; points.len()];
+        self.split.for_each_chunk(&mut out, BATCH, 1, |k, chunk| {
+            self.terrain.base_heights(&points[k * BATCH..k * BATCH + chunk.len()], chunk);
+        });
+        out
+    }
+
+    /// Kinds of the tiles and of the ring around them (`None` outside the map), from one sample
+    /// at each center: every vertex evaluated lies in one of those tiles.
+    fn kinds(&self) -> Kinds {
+        let terrain = self.terrain;
+        let halo = self.rect.grow(1);
+        let tiles: Vec<Hex> = halo.iter().map(|oc| terrain.tile_from_offset(oc)).collect();
+        let centers: Vec<Hex> = tiles.iter().map(|&t| self.lattice.tile_center(t)).collect();
+        let noise = self.noise_at(&centers);
+        let kinds = self.split.map(tiles.len(), |k| {
+            terrain.contains(tiles[k]).then(|| terrain.thresholds().classify(terrain.shaped(noise[k], centers[k])))
+        });
+        let mut out = Kinds { halo, kinds, around: Vec::new(), center_noise: Vec::new() };
+        out.center_noise = self.rect.iter().map(|oc| noise[out.index(oc)]).collect();
+        out.around = self
+            .tiles
+            .iter()
+            .map(|&t| (out.get(terrain, t).unwrap_or(TileKind::Sea), t.all_neighbors().map(|nb| out.get(terrain, nb))))
+            .collect();
+        out
+    }
+
+    /// Height-source samples of a batch of owned points; a tile's center (template point 0)
+    /// takes the sample already taken for its tile's kind.
+    fn batch_noise(&self, points: &[Hex], owners: &[Owner], center_noise: &[f64], out: &mut [f64]) {
+        if !self.terrain.samples_noise() {
+            self.terrain.base_heights(points, out);
+            return;
+        }
+        let mut positions = [[0.0; 2]; BATCH];
+        let mut sampled = [0.0; BATCH];
+        let mut len = 0;
+        for (&p, owner) in points.iter().zip(owners) {
+            if owner.k != 0 {
+                positions[len] = self.terrain.noise_position(p);
+                len += 1;
+            }
+        }
+        self.terrain.fbm().sample_many(&positions[..len], &mut sampled[..len]);
+        let mut next = sampled.iter();
+        for (o, owner) in out.iter_mut().zip(owners) {
+            *o = if owner.k == 0 { center_noise[owner.tile as usize] } else { next.next().copied().unwrap_or(0.0) };
+        }
+    }
+
+    /// The tiles' own vertices: their tiles are known, so no lookup is needed.
+    fn owned_pass(&self, points: &Points, kinds: &Kinds, outputs: Outputs<'_>) {
+        let terrain = self.terrain;
+        let lattice = self.lattice;
+        let n = lattice.subdivisions();
+        let template = lattice.template();
+        let max_elevation = terrain.config().terrain.max_elevation;
+        let uv_scale = 0.5 / terrain.config().layout.hex_size;
+        let inv_n = 1.0 / n as f32;
+        let diagnostics = self.diagnostics;
+        in_batches(self.split, outputs, 0, &|i| points.slot_of(i), &|start, o: Outputs<'_>| {
+            let pts = &points.lattice[start..start + o.len()];
+            let mut noise = [0.0; BATCH];
+            self.batch_noise(
+                pts,
+                &points.owner[start..start + pts.len()],
+                &kinds.center_noise,
+                &mut noise[..pts.len()],
+            );
+            for (j, &p) in pts.iter().enumerate() {
+                let Owner { tile, k } = points.owner[start + j];
+                let k = usize::from(k);
+                let ring = template[k].ring;
+                let raw = terrain.shaped(noise[j], p);
+                let (own, around) = &kinds.around[tile as usize];
+                let s = if ring < n {
+                    terrain.finish_vertex(raw, ring, &[*own])
+                } else {
+                    let mut sharing = [*own; 3];
+                    let mut len = 1;
+                    for d in lattice.shared_tiles(k) {
+                        if let Some(&Some(kind)) = around.get(usize::from(d)) {
+                            sharing[len] = kind;
+                            len += 1;
+                        }
+                    }
+                    terrain.finish_vertex(raw, ring, &sharing[..len])
+                };
+                let height = s.height * max_elevation;
+                let [x, z] = lattice.world(p);
+                let (x, z) = (x as f32, z as f32);
+                o.positions[j] = [x, height, z];
+                o.heights[points.grid.slot(p) - o.first_slot] = height;
+                o.uvs[j] = [x * uv_scale, z * uv_scale];
+                o.kinds[j] = s.kind as u32;
+                o.distances[j] = ring as f32 * inv_n;
+                if diagnostics {
+                    o.raws[j] = raw;
+                    o.moved[j] = s.moved;
+                    o.rings[j] = ring as u8;
+                }
+            }
+        });
+    }
+
+    /// A halo point, one step from a border point of the rectangle, whose tile and template
+    /// index tell which tiles hold the halo point (a table of the lattice), so it needs no
+    /// search of its own.
+    fn halo_vertex(&self, points: &Points, kinds: &Kinds, p: Hex, raw: f32) -> VertexSample {
+        let n = self.lattice.subdivisions();
+        let template = self.lattice.template();
+        let kind_of = |tile: Hex| kinds.get(self.terrain, tile);
+        let slot = points.grid.slot(p);
+        for (d, step) in points.grid.around(p).into_iter().enumerate() {
+            let i = points.grid.slots[slot.wrapping_add_signed(step)] as usize;
+            if i >= points.owned {
+                continue;
+            }
+            let Owner { tile, k } = points.owner[i];
+            let k = usize::from(k);
+            if template[k].ring == n {
+                // `p` is the neighbor of point `i` in the opposite direction.
+                let set = self.lattice.around_tiles(k, (d + 3) % 6);
+                let base = self.tiles[tile as usize];
+                let mut sharing = [TileKind::Sea; 3];
+                let mut len = 0;
+                for &t in set.tiles() {
+                    if let Some(kind) = kind_of(base + t) {
+                        sharing[len] = kind;
+                        len += 1;
+                    }
+                }
+                return self.terrain.finish_vertex(raw, set.ring, &sharing[..len]);
+            }
+        }
+        self.terrain.border_vertex(raw, p, kind_of)
+    }
+
+    /// The halo's heights, for the normals of border vertices.
+    fn halo_pass(&self, points: &Points, kinds: &Kinds) -> Vec<f32> {
+        let halo = &points.lattice[points.owned..];
+        let max_elevation = self.terrain.config().terrain.max_elevation;
+        let mut out = vec![0.0_f32; halo.len()];
+        self.split.for_each_chunk(&mut out, BATCH, 1, |c, out| {
+            let pts = &halo[c * BATCH..c * BATCH + out.len()];
+            let mut noise = [0.0; BATCH];
+            self.terrain.base_heights(pts, &mut noise[..pts.len()]);
+            for ((h, &p), &noise) in out.iter_mut().zip(pts).zip(&noise) {
+                *h = self.halo_vertex(points, kinds, p, self.terrain.shaped(noise, p)).height * max_elevation;
+            }
+        });
+        out
+    }
+
+    /// Triangle indices, tile by tile, from the template's triangles and the grid.
+    fn indices_pass(&self, points: &Points, indices: &mut [u32]) {
+        let ppt = self.lattice.points_per_tile();
+        let per_tile = self.lattice.triangles_per_tile() * 3;
+        self.split.for_each_chunk(indices, per_tile, 16, |t, out| {
+            let mut own = [0_u32; TEMPLATE_MAX];
+            points.grid.template_points(self.lattice.tile_center(self.tiles[t]), &self.offsets, &mut own[..ppt]);
+            for (tri, dst) in self.lattice.template_triangle_indices().iter().zip(out.chunks_exact_mut(3)) {
+                for (&k, d) in tri.iter().zip(dst) {
+                    *d = own[usize::from(k)];
+                }
+            }
+        });
+    }
+}

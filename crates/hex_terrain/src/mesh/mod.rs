@@ -1,0 +1,166 @@
+//! Mesh generation: any rectangle of tiles to plain vertex and index buffers.
+//!
+//! | file | stage |
+//! | --- | --- |
+//! | `mod.rs` | the public buffers ([`MeshBuffers`], [`ChunkMesh`], [`Diagnostics`]) and options ([`GenerateOptions`]) |
+//! | `generate.rs` | the `Terrain` methods that generate (`generate_chunk`, `generate_map`, `generate_rect`, `generate`) |
+//! | `grid.rs` | the point grid: lattice coordinates to point indices, and the enumeration of a rectangle's points |
+//! | `job.rs` | one generation as a job whose passes are methods: tile kinds, owned vertices, halo, indices |
+//! | `normals.rs` | the normals pass |
+//! | `parallel.rs` | the parallel policy: batches, pool entry, disjoint output slices |
+
+mod generate;
+mod grid;
+mod job;
+mod normals;
+mod parallel;
+
+use hexx::Hex;
+
+use crate::chunk::TileRect;
+use crate::terrain::TileInfo;
+
+/// Plain vertex and index buffers, ready for any renderer.
+///
+/// Positions are world coordinates with `y` up; faces are wound counter-clockwise seen from
+/// above. UVs are world-space (`x`, `z`) divided by twice the hex size, so textures tile across
+/// chunks without seams.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct MeshBuffers {
+    /// Vertex positions `[x, y, z]`.
+    pub positions: Vec<[f32; 3]>,
+    /// Unit vertex normals, averaged over the six lattice triangles around each vertex.
+    pub normals: Vec<[f32; 3]>,
+    /// World-space texture coordinates.
+    pub uvs: Vec<[f32; 2]>,
+    /// Kind of the tile owning the vertex (`TileKind as u32`; on a border, the highest kind
+    /// among the tiles sharing it).
+    pub tile_kinds: Vec<u32>,
+    /// Distance to the tile center in rings, normalised: 0 at the center, 1 on the border.
+    /// Interpolated across a triangle it reaches 1 exactly on tile edges.
+    pub center_distances: Vec<f32>,
+    /// Triangle list indices.
+    pub indices: Vec<u32>,
+}
+
+impl MeshBuffers {
+    /// Number of vertices.
+    #[must_use]
+    pub fn vertex_count(&self) -> usize {
+        self.positions.len()
+    }
+
+    /// Number of triangles.
+    #[must_use]
+    pub fn triangle_count(&self) -> usize {
+        self.indices.len() / 3
+    }
+}
+
+/// A generated chunk: its mesh plus what games read of its tiles.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ChunkMesh {
+    /// The tiles it covers (clipped to the map).
+    pub rect: TileRect,
+    /// The mesh.
+    pub buffers: MeshBuffers,
+    /// Type and center elevation of each tile, row by row.
+    pub tiles: Vec<TileInfo>,
+    /// Per-vertex data that metrics and tests read, when asked for with
+    /// [`GenerateOptions::diagnostics`].
+    pub diagnostics: Option<Diagnostics>,
+}
+
+/// Per-vertex data of a generation beyond what renders: where each vertex sits in the lattice
+/// and what manipulation did to it. Index `i` is vertex `i` of the buffers.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Diagnostics {
+    /// Lattice coordinate of each vertex.
+    pub lattice: Vec<Hex>,
+    /// Normalised height of each vertex before manipulation.
+    pub raw_heights: Vec<f32>,
+    /// Whether hex unity or edge/corner correction moved each vertex.
+    pub moved: Vec<bool>,
+    /// Ring of each vertex in its tile (`n` on borders).
+    pub rings: Vec<u8>,
+}
+
+/// How a generation runs.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct GenerateOptions {
+    /// Keep [`Diagnostics`] (four more buffers written, about 10 bytes a vertex).
+    pub diagnostics: bool,
+    /// Where the work runs.
+    pub threads: Threads,
+}
+
+impl GenerateOptions {
+    /// On rayon's pool, with diagnostics: what metrics and tests use.
+    pub const DIAGNOSTICS: Self = Self { diagnostics: true, threads: Threads::Pool };
+    /// On the calling thread, without diagnostics: what a caller on its own pool uses (the Bevy
+    /// plugin's chunk tasks on the async compute pool).
+    pub const CURRENT_THREAD: Self = Self { diagnostics: false, threads: Threads::Current };
+}
+
+/// Where a generation's work runs.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Threads {
+    /// On rayon's global pool when the rectangle is large enough to pay for it (more than one
+    /// batch of 1024 points), else on the calling thread.
+    #[default]
+    Pool,
+    /// Only on the calling thread; rayon is not touched.
+    Current,
+}
+
+/// Output buffers of a generation.
+struct Buffers {
+    b: MeshBuffers,
+    raws: Vec<f32>,
+    moved: Vec<bool>,
+    rings: Vec<u8>,
+    /// World height of the point in each grid slot.
+    heights: Vec<f32>,
+}
+
+impl Buffers {
+    /// Zeroed buffers for `vertices` vertices (and their diagnostics when `diagnostics`),
+    /// `indices` indices and a height grid of `slots`. Zeroing recycled memory costs a pass over
+    /// it, so it is done beside the sequential point enumeration; fresh pages come zeroed from
+    /// the system and are mapped when the passes first write them.
+    fn new(vertices: usize, indices: usize, slots: usize, diagnostics: bool) -> Self {
+        let d = if diagnostics { vertices } else { 0 };
+        Self {
+            b: MeshBuffers {
+                positions: vec![[0.0; 3]; vertices],
+                normals: vec![[0.0; 3]; vertices],
+                uvs: vec![[0.0; 2]; vertices],
+                tile_kinds: vec![0; vertices],
+                center_distances: vec![0.0; vertices],
+                indices: vec![0; indices],
+            },
+            raws: vec![0.0; d],
+            moved: vec![false; d],
+            rings: vec![0; d],
+            heights: vec![0.0; slots],
+        }
+    }
+
+    /// The same buffers holding exactly `vertices` vertices (a no-op when the count was right).
+    fn fit(mut self, vertices: usize, diagnostics: bool) -> Self {
+        self.b.positions.resize(vertices, [0.0; 3]);
+        self.b.normals.resize(vertices, [0.0; 3]);
+        self.b.uvs.resize(vertices, [0.0; 2]);
+        self.b.tile_kinds.resize(vertices, 0);
+        self.b.center_distances.resize(vertices, 0.0);
+        if diagnostics {
+            self.raws.resize(vertices, 0.0);
+            self.moved.resize(vertices, false);
+            self.rings.resize(vertices, 0);
+        }
+        self
+    }
+}
+
+#[cfg(test)]
+mod tests;
