@@ -335,9 +335,8 @@ fn end_turn(
 fn keys(
     keys: Res<ButtonInput<KeyCode>>,
     mut appearance: ResMut<TerrainAppearance>,
-    mut map: ResMut<HexMap>,
-    mut handle: ResMut<hex_terrain_game::HexMapHandle>,
-    server: Res<AssetServer>,
+    map: Res<HexMap>,
+    mut load: MessageWriter<LoadHexMap>,
     mut game: ResMut<Game>,
 ) {
     if keys.just_pressed(KeyCode::KeyG) {
@@ -349,14 +348,11 @@ fn keys(
     if keys.just_pressed(KeyCode::KeyR) {
         let mut config = map.config().clone();
         config.seed = config.seed.wrapping_mul(747_796_405).wrapping_add(2_891_336_453);
-        match hex_terrain_game::hex_terrain::Terrain::new(config) {
-            Ok(t) => map.replace(t),
-            Err(e) => error!("{e}"),
-        }
+        load.write(LoadHexMap(config.into()));
     }
     for (i, key) in [KeyCode::Digit1, KeyCode::Digit2, KeyCode::Digit3, KeyCode::Digit4].into_iter().enumerate() {
         if keys.just_pressed(key) {
-            handle.0 = Some(server.load(PRESETS[i]));
+            load.write(LoadHexMap(PRESETS[i].into()));
         }
     }
 }
@@ -402,13 +398,13 @@ fn panel(game: Res<Game>, map: Res<HexMap>, units: Query<&Unit>, mut text: Query
 }
 
 /// F3: outlines of the loaded chunks.
-fn chunk_boundaries(game: Res<Game>, map: Res<HexMap>, mut gizmos: Gizmos) {
+fn chunk_boundaries(game: Res<Game>, map: Res<HexMap>, streamer: Res<ChunkStreamer>, mut gizmos: Gizmos) {
     if !game.show_chunks {
         return;
     }
     let terrain = map.terrain();
     let top = map.config().terrain.max_elevation + 0.2;
-    for chunk in map.loaded_chunks() {
+    for chunk in streamer.loaded_chunks() {
         let Some(rect) = terrain.chunk_rect(chunk) else { continue };
         let corners = [
             rect.min,

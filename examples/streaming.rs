@@ -2,7 +2,6 @@
 //! and is dropped behind. The camera follows; a counter shows live chunks and chunk latency.
 
 use bevy::prelude::*;
-use hex_terrain_game::ChunkStreamer;
 use hex_terrain_game::prelude::*;
 
 /// World units the walker covers a second: about one 16-column chunk.
@@ -55,16 +54,20 @@ fn walk(time: Res<Time>, map: Res<HexMap>, mut walker: Query<&mut Transform, Wit
     }
 }
 
-fn show_figures(streamer: Res<ChunkStreamer>, mut counter: Query<&mut Text, With<Counter>>) {
-    let mut latencies: Vec<f32> = streamer.latencies.iter().copied().collect();
+fn show_figures(
+    streamer: Res<ChunkStreamer>,
+    stats: Res<HexTerrainStats>,
+    mut counter: Query<&mut Text, With<Counter>>,
+) {
+    let mut latencies: Vec<f32> = stats.latencies().collect();
     latencies.sort_by(f32::total_cmp);
     let at = |p: f32| latencies.get(((latencies.len().max(1) - 1) as f32 * p) as usize).map_or(0.0, |s| s * 1e3);
     for mut text in &mut counter {
         text.0 = format!(
             "live chunks: {}   chunks built: {}   cancelled: {}\nchunk latency p50 {:.0} ms, p99 {:.0} ms",
             streamer.live_chunks(),
-            streamer.tasks_started,
-            streamer.tasks_cancelled,
+            stats.tasks_started(),
+            stats.tasks_cancelled(),
             at(0.5),
             at(0.99)
         );

@@ -1,7 +1,7 @@
 //! `hex_terrain_game`: 3D hexagonal tiled terrain for Bevy strategy games.
 //!
 //! This facade re-exports the plugin ([`bevy_hex_terrain`]) and the engine-agnostic core
-//! ([`hex_terrain`]); `use hexterrain::prelude::*` brings in what a game needs.
+//! ([`hex_terrain`]); `use hex_terrain_game::prelude::*` brings in what a game needs.
 
 pub use bevy_hex_terrain::*;
 

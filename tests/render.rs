@@ -1,17 +1,23 @@
 //! The terrain material in a real renderer: a known small map from a fixed top-down camera,
 //! rendered (Mesa's software Vulkan under Xvfb in CI) and saved with Bevy's screenshot API, then
-//! checked pixel by pixel. Each test opens its own window, so run them one process each
-//! (`cargo nextest`, as `scripts/test.sh` does, under `xvfb-run` when there is no display).
+//! checked pixel by pixel. Each scenario opens its own window, so each runs in a process of its
+//! own (`support::in_own_process`, under `xvfb-run` when there is no display): the `#[test]`s
+//! here start the `#[ignore]`d scenarios.
+
+mod support;
 
 use std::path::{Path, PathBuf};
 use std::sync::{Arc, Mutex};
 
 use bevy::camera::ScalingMode;
+use bevy::core_pipeline::prepass::{DeferredPrepass, DepthPrepass};
+use bevy::pbr::DefaultOpaqueRendererMethod;
 use bevy::prelude::*;
 use bevy::render::view::screenshot::{Screenshot, ScreenshotCaptured};
 use bevy::window::WindowResolution;
 use bevy::winit::WinitPlugin;
-use hex_terrain_game::hex_terrain::{MapSize, Terrain, TileKind};
+use hex_terrain_game::HexTerrainMaterial;
+use hex_terrain_game::hex_terrain::Terrain;
 use hex_terrain_game::prelude::*;
 
 const WIDTH: u32 = 640;
@@ -49,13 +55,40 @@ fn pixel(center: Vec2, size: Vec2, world: Vec3) -> (u32, u32) {
     ((u * WIDTH as f32) as u32, (v * HEIGHT as f32) as u32)
 }
 
+/// What a scenario renders.
+#[derive(Default)]
+struct Scene {
+    appearance: TerrainAppearance,
+    highlights: TileHighlights,
+    /// A deferred camera (deferred and depth prepasses) instead of a forward one.
+    deferred: bool,
+}
+
+/// What happened besides the picture.
+#[derive(Default, Clone, Copy)]
+struct Counts {
+    /// `AssetEvent::Modified` events of the terrain material over the whole run.
+    material_modified: usize,
+    /// Frames in which `HexMap` was changed.
+    map_changed: usize,
+    /// Frames run.
+    frames: usize,
+}
+
 /// Renders the map with outlines on or off and returns the screenshot.
 fn render(outlines: bool, name: &str) -> image::RgbImage {
-    render_with(TerrainAppearance { outlines, outline_width: 0.1, ..default() }, TileHighlights::default(), name)
+    let appearance = TerrainAppearance { outlines, outline_width: 0.1, ..default() };
+    render_scene(Scene { appearance, ..default() }, name).0
 }
 
 /// Renders the map with an appearance and highlights and returns the screenshot.
 fn render_with(appearance: TerrainAppearance, highlights: TileHighlights, name: &str) -> image::RgbImage {
+    render_scene(Scene { appearance, highlights, ..default() }, name).0
+}
+
+/// Renders a scene and returns the screenshot and the counts.
+fn render_scene(scene: Scene, name: &str) -> (image::RgbImage, Counts) {
+    let Scene { appearance, highlights, deferred } = scene;
     let terrain = Terrain::new(map()).unwrap();
     let (center, size) = view(&terrain);
     let out = Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("{name}.png"));
@@ -74,14 +107,29 @@ fn render_with(appearance: TerrainAppearance, highlights: TileHighlights, name: 
     .insert_resource(appearance)
     .insert_resource(highlights)
     .insert_resource(GlobalAmbientLight { brightness: 600.0, ..default() });
-    app.world_mut().spawn((
-        Camera3d::default(),
-        Projection::Orthographic(OrthographicProjection {
-            scaling_mode: ScalingMode::Fixed { width: size.x, height: size.y },
-            ..OrthographicProjection::default_3d()
-        }),
-        Transform::from_xyz(center.x, 50.0, center.y).looking_at(Vec3::new(center.x, 0.0, center.y), Vec3::NEG_Z),
-    ));
+    let camera = app
+        .world_mut()
+        .spawn((
+            Camera3d::default(),
+            Projection::Orthographic(OrthographicProjection {
+                scaling_mode: ScalingMode::Fixed { width: size.x, height: size.y },
+                ..OrthographicProjection::default_3d()
+            }),
+            Transform::from_xyz(center.x, 50.0, center.y).looking_at(Vec3::new(center.x, 0.0, center.y), Vec3::NEG_Z),
+        ))
+        .id();
+    if deferred {
+        app.world_mut().entity_mut(camera).insert((Msaa::Off, DepthPrepass, DeferredPrepass));
+        app.insert_resource(DefaultOpaqueRendererMethod::deferred());
+    }
+    let counts: Arc<Mutex<Counts>> = Arc::default();
+    let seen = counts.clone();
+    app.add_systems(Last, move |map: Res<HexMap>, mut events: MessageReader<AssetEvent<HexTerrainMaterial>>| {
+        let mut c = seen.lock().unwrap();
+        c.frames += 1;
+        c.map_changed += usize::from(map.is_changed());
+        c.material_modified += events.read().filter(|e| matches!(e, AssetEvent::Modified { .. })).count();
+    });
     app.world_mut().spawn((
         DirectionalLight { illuminance: 6000.0, shadow_maps_enabled: false, ..default() },
         Transform::from_xyz(0.0, 10.0, 0.0).looking_at(Vec3::ZERO, Vec3::Z),
@@ -121,7 +169,8 @@ fn render_with(appearance: TerrainAppearance, highlights: TileHighlights, name: 
     );
     app.run();
     assert!(*done.lock().unwrap(), "no screenshot was taken");
-    image::open(&out).unwrap().to_rgb8()
+    let counts = *counts.lock().unwrap();
+    (image::open(&out).unwrap().to_rgb8(), counts)
 }
 
 fn rgb(img: &image::RgbImage, (x, y): (u32, u32)) -> [f32; 3] {
@@ -192,17 +241,52 @@ fn assert_type_colors(img: &image::RgbImage, terrain: &Terrain, except: &[Hex]) 
     assert!(seen.iter().all(|&n| n > 0), "the test map has every type: {seen:?}");
 }
 
-#[test]
-fn tiles_show_their_type_color_without_outlines() {
-    let terrain = Terrain::new(map()).unwrap();
-    let img = render(false, "outlines_off");
-    assert_type_colors(&img, &terrain, &[]);
-    let ratio = border_to_center(&img, &terrain);
-    assert!(ratio > 0.85, "without outlines, borders look like centers: {ratio}");
+// Each test runs one ignored scenario below in a process of its own.
+macro_rules! in_own_process {
+    ($($test:ident => $scenario:ident),* $(,)?) => {
+        $(
+            #[test]
+            fn $test() {
+                support::in_own_process(stringify!($scenario));
+            }
+        )*
+    };
+}
+
+in_own_process! {
+    tiles_show_their_type_color_without_outlines => scenario_outlines_off,
+    outlines_darken_tile_borders => scenario_outlines_on,
+    textures_and_highlights => scenario_textures_and_highlights,
+    a_missing_texture_falls_back_to_flat_colors => scenario_missing_texture,
+    a_deferred_camera_draws_the_terrain_colors => scenario_deferred,
 }
 
 #[test]
-fn outlines_darken_tile_borders() {
+#[ignore = "a scenario: run by its #[test] in a process of its own"]
+fn scenario_outlines_off() {
+    let terrain = Terrain::new(map()).unwrap();
+    let appearance = TerrainAppearance { outlines: false, outline_width: 0.1, ..default() };
+    let (img, counts) = render_scene(Scene { appearance, ..default() }, "outlines_off");
+    assert_type_colors(&img, &terrain, &[]);
+    let ratio = border_to_center(&img, &terrain);
+    assert!(ratio > 0.85, "without outlines, borders look like centers: {ratio}");
+    // Streaming chunks in changes neither the map nor the material.
+    assert!(counts.frames > 20, "{} frames", counts.frames);
+    assert_eq!(counts.map_changed, 1, "HexMap changed only when inserted");
+    assert_eq!(counts.material_modified, 0, "the material was rewritten with unchanged parameters");
+}
+
+#[test]
+#[ignore = "a scenario: run by its #[test] in a process of its own"]
+fn scenario_deferred() {
+    let terrain = Terrain::new(map()).unwrap();
+    let (img, _) = render_scene(Scene { deferred: true, ..default() }, "deferred");
+    assert_type_colors(&img, &terrain, &[]);
+}
+
+#[test]
+#[ignore = "a scenario: run by its #[test] in a process of its own"]
+fn scenario_outlines_on() {
     let terrain = Terrain::new(map()).unwrap();
     let img = render(true, "outlines_on");
     let ratio = border_to_center(&img, &terrain);
@@ -210,7 +294,8 @@ fn outlines_darken_tile_borders() {
 }
 
 #[test]
-fn textures_and_highlights() {
+#[ignore = "a scenario: run by its #[test] in a process of its own"]
+fn scenario_textures_and_highlights() {
     let terrain = Terrain::new(map()).unwrap();
     let (center, size) = view(&terrain);
     let land: Vec<Hex> =
@@ -234,7 +319,8 @@ fn textures_and_highlights() {
 }
 
 #[test]
-fn a_missing_texture_falls_back_to_flat_colors() {
+#[ignore = "a scenario: run by its #[test] in a process of its own"]
+fn scenario_missing_texture() {
     let terrain = Terrain::new(map()).unwrap();
     let mut appearance = TerrainAppearance { textures: true, ..default() };
     appearance.texture_paths[1] = "textures/no_such_grass.png".into();

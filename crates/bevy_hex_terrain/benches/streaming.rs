@@ -1,7 +1,9 @@
 //! Streaming benchmark on a headless App: an agent crossing one chunk per second for 60
 //! simulated seconds at 60 frames a second (paced in real time, so chunk tasks get the time a
 //! game would give them). Prints chunk latency (request to mesh inserted), main-thread time in
-//! the terrain systems per frame, live chunks and memory per chunk.
+//! the terrain systems per frame, live chunks and memory per chunk; with chunk generation on
+//! Bevy's async compute pool alone (the default) and, in the same process, with each chunk task
+//! also spreading over rayon's pool.
 //!
 //! ```text
 //! cargo bench -p bevy_hex_terrain --bench streaming [-- --seconds 60]
@@ -10,8 +12,7 @@
 use std::time::{Duration, Instant};
 
 use bevy::prelude::*;
-use bevy_hex_terrain::ChunkStreamer;
-use bevy_hex_terrain::hex_terrain::MapSize;
+use bevy_hex_terrain::ChunkThreads;
 use bevy_hex_terrain::prelude::*;
 
 #[derive(Resource, Default)]
@@ -27,31 +28,40 @@ fn percentile(sorted: &[f64], p: f64) -> f64 {
     sorted[((sorted.len() - 1) as f64 * p).round() as usize]
 }
 
-fn main() {
-    let seconds: u32 =
-        std::env::args().skip_while(|a| a != "--seconds").nth(1).and_then(|s| s.parse().ok()).unwrap_or(60);
+/// Figures of one walk.
+struct Walk {
+    started: u64,
+    latencies: Vec<f64>,
+    times: Vec<f64>,
+    live: usize,
+    live_max: usize,
+    per_chunk: f64,
+}
+
+/// Walks an agent east for `seconds` with chunk generation running on `threads`.
+fn walk(seconds: u32, threads: ChunkThreads) -> Walk {
     let config = MapConfig { size: MapSize::Unbounded, chunk_size: (16, 16), ..MapConfig::default() };
     let chunk_width = 16.0 * 1.5 * config.layout.hex_size;
     let mut app = App::new();
-    app.add_plugins((
-        MinimalPlugins,
-        AssetPlugin::default(),
-        TransformPlugin,
-        HexTerrainPlugin { map: config.into(), settings: HexTerrainSettings::default() },
-    ))
-    .init_resource::<FrameTimes>()
-    // Brackets around the terrain sets: the time between them is the terrain systems' share
-    // of the frame.
-    .add_systems(Update, (|mut t: ResMut<FrameTimes>| t.start = Some(Instant::now())).before(HexTerrainSystems::Map))
-    .add_systems(
-        Update,
-        (|mut t: ResMut<FrameTimes>| {
-            if let Some(s) = t.start.take() {
-                t.samples.push(s.elapsed().as_secs_f64() * 1e3);
-            }
-        })
-        .after(HexTerrainSystems::Render),
-    );
+    let settings = HexTerrainSettings { chunk_threads: threads, ..HexTerrainSettings::default() };
+    app.add_plugins((MinimalPlugins, AssetPlugin::default(), TransformPlugin))
+        .add_plugins(HexTerrainPlugins { map: config.into(), settings }.build().disable::<HexTerrainMaterialPlugin>())
+        .init_resource::<FrameTimes>()
+        // Brackets around the terrain sets: the time between them is the terrain systems' share
+        // of the frame.
+        .add_systems(
+            Update,
+            (|mut t: ResMut<FrameTimes>| t.start = Some(Instant::now())).before(HexTerrainSystems::Map),
+        )
+        .add_systems(
+            Update,
+            (|mut t: ResMut<FrameTimes>| {
+                if let Some(s) = t.start.take() {
+                    t.samples.push(s.elapsed().as_secs_f64() * 1e3);
+                }
+            })
+            .after(HexTerrainSystems::Render),
+        );
     let agent = app.world_mut().spawn((HexTerrainAgent::default(), Transform::default())).id();
     let frames = seconds * 60;
     let frame = Duration::from_secs_f64(1.0 / 60.0);
@@ -68,27 +78,42 @@ fn main() {
     }
     let mut times = app.world().resource::<FrameTimes>().samples.clone();
     times.sort_by(f64::total_cmp);
-    let streamer = app.world().resource::<ChunkStreamer>();
-    let mut latencies: Vec<f64> = streamer.latencies.iter().map(|&s| f64::from(s) * 1e3).collect();
+    let stats = app.world().resource::<HexTerrainStats>();
+    let mut latencies: Vec<f64> = stats.latencies().map(|s| f64::from(s) * 1e3).collect();
     latencies.sort_by(f64::total_cmp);
-    let live = streamer.live_chunks();
-    let started = streamer.tasks_started;
+    let started = stats.tasks_started();
+    let live = app.world().resource::<ChunkStreamer>().live_chunks();
     let bytes: Vec<usize> = app.world_mut().query::<&HexChunk>().iter(app.world()).map(|c| c.mesh_bytes).collect();
     let per_chunk = bytes.iter().sum::<usize>() as f64 / bytes.len().max(1) as f64;
+    Walk { started, latencies, times, live, live_max, per_chunk }
+}
+
+fn main() {
+    let seconds: u32 =
+        std::env::args().skip_while(|a| a != "--seconds").nth(1).and_then(|s| s.parse().ok()).unwrap_or(60);
+    // The default (one pool: each chunk on one thread of the async compute pool) beside the
+    // old way (each chunk task also fanning out over rayon's pool), in one process.
+    let ours = walk(seconds, ChunkThreads::AsyncCompute);
+    let rayon = walk(seconds, ChunkThreads::Rayon);
     println!("streaming: {seconds} s at 60 fps, agent crossing one 16x16-tile chunk per second, default settings");
-    println!("| figure | value |\n|---|---|");
-    println!("| chunks generated | {started} |");
+    println!("| figure | async compute pool only (default) | chunk tasks also on rayon |\n|---|---|---|");
+    let row = |name: &str, f: &dyn Fn(&Walk) -> String| println!("| {name} | {} | {} |", f(&ours), f(&rayon));
+    row("chunks generated", &|w| w.started.to_string());
+    row("chunk latency p50 / p99 (request to mesh inserted)", &|w| {
+        format!("{:.1} ms / {:.1} ms", percentile(&w.latencies, 0.5), percentile(&w.latencies, 0.99))
+    });
+    row("terrain systems per frame p50 / p99 / max", &|w| {
+        format!(
+            "{:.3} ms / {:.3} ms / {:.3} ms",
+            percentile(&w.times, 0.5),
+            percentile(&w.times, 0.99),
+            w.times.last().copied().unwrap_or(f64::NAN)
+        )
+    });
+    row("live chunks at the end / at most", &|w| format!("{} / {}", w.live, w.live_max));
+    row("mesh memory per chunk", &|w| format!("{:.0} KiB", w.per_chunk / 1024.0));
     println!(
-        "| chunk latency p50 / p99 (request to mesh inserted) | {:.1} ms / {:.1} ms |",
-        percentile(&latencies, 0.5),
-        percentile(&latencies, 0.99)
+        "p99 latency ratio (async compute only / with rayon): {:.2}",
+        percentile(&ours.latencies, 0.99) / percentile(&rayon.latencies, 0.99)
     );
-    println!(
-        "| terrain systems per frame p50 / p99 / max | {:.3} ms / {:.3} ms / {:.3} ms |",
-        percentile(&times, 0.5),
-        percentile(&times, 0.99),
-        times.last().copied().unwrap_or(f64::NAN)
-    );
-    println!("| live chunks at the end / at most | {live} / {live_max} |");
-    println!("| mesh memory per chunk | {:.0} KiB |", per_chunk / 1024.0);
 }

@@ -1,4 +1,5 @@
-//! Map configs as Bevy assets: `*.map.ron` (and `*.ron`) files loaded into [`HexMapAsset`].
+//! Map configs as Bevy assets: `*.map.ron` files loaded into [`HexMapAsset`] (the loader claims
+//! no other `.ron` file of a game).
 
 use std::sync::Arc;
 
@@ -108,6 +109,6 @@ impl AssetLoader for HexMapLoader {
     }
 
     fn extensions(&self) -> &[&str] {
-        &["map.ron", "ron"]
+        &["map.ron"]
     }
 }

@@ -1,10 +1,13 @@
 //! A Bevy plugin generating 3D hexagonal tiled terrain for turn-based strategy games, after the
 //! thesis "Applying Perlin noise on 3D hexagonal tiled maps".
 //!
-//! `app.add_plugins(HexTerrainPlugin::default())` registers the [`HexMap`] resource and the
-//! systems that stream chunk meshes around every [`HexTerrainAgent`]; pick a map file with
-//! [`HexTerrainPlugin::from_asset`]. Heights, tile types and meshes come from the Bevy-free
-//! [`hex_terrain`] crate, so [`HexMap`]'s queries hold for tiles whose chunk is not loaded.
+//! `app.add_plugins(HexTerrainPlugin::default())` adds [`HexTerrainPlugins`]: the [`HexMap`]
+//! resource and its map assets ([`HexMapPlugin`]), chunk streaming around every
+//! [`HexTerrainAgent`] ([`HexStreamingPlugin`]) and, with the `render` feature, the terrain
+//! material (`HexTerrainMaterialPlugin`). Pick a map file with [`HexTerrainPlugin::from_asset`],
+//! switch maps at run time with the [`LoadHexMap`] message. Heights, tile types and meshes come
+//! from the Bevy-free [`hex_terrain`] crate, so [`HexMap`]'s queries hold for tiles whose chunk
+//! is not loaded.
 //!
 //! ```no_run
 //! use bevy::prelude::*;
@@ -18,6 +21,18 @@
 //!     })
 //!     .run();
 //! ```
+//!
+//! A headless app (a server, a test) streams meshes without the material:
+//!
+//! ```no_run
+//! use bevy::prelude::*;
+//! use bevy_hex_terrain::prelude::*;
+//!
+//! let mut app = App::new();
+//! app.add_plugins((MinimalPlugins, AssetPlugin::default(), TransformPlugin));
+//! # #[cfg(feature = "render")]
+//! app.add_plugins(HexTerrainPlugins::default().build().disable::<HexTerrainMaterialPlugin>());
+//! ```
 
 pub mod asset;
 pub mod map;
@@ -26,28 +41,31 @@ pub mod material;
 pub mod mesh;
 pub mod streaming;
 
+use bevy::app::PluginGroupBuilder;
 use bevy::prelude::*;
 pub use hex_terrain;
 use hex_terrain::MapConfig;
 
 pub use crate::asset::{HexMapAsset, HexMapLoader, HexMapLoaderError};
-pub use crate::map::{HexMap, HexMapError, HexMapHandle, TileHit};
+pub use crate::map::{HexMap, HexMapError, HexMapHandle, HexMapPlugin, LoadHexMap, TileHit};
 #[cfg(feature = "render")]
-pub use crate::material::{HexTerrainMaterial, TerrainAppearance, TileHighlights};
+pub use crate::material::{HexTerrainMaterial, HexTerrainMaterialPlugin, TerrainAppearance, TileHighlights};
 pub use crate::streaming::{
-    ChunkDespawned, ChunkSpawned, ChunkStreamer, ChunkTask, HexChunk, HexTerrainAgent, HexTerrainSettings, TerrainReady,
+    ChunkDespawned, ChunkSpawned, ChunkStreamer, ChunkTask, ChunkThreads, HexChunk, HexStreamingPlugin,
+    HexTerrainAgent, HexTerrainSettings, HexTerrainStats, TerrainReady,
 };
 
 /// Everything a game usually needs.
 pub mod prelude {
     #[cfg(feature = "render")]
-    pub use crate::material::{TerrainAppearance, TileHighlights};
+    pub use crate::material::{HexTerrainMaterialPlugin, TerrainAppearance, TileHighlights};
     pub use crate::{
-        ChunkDespawned, ChunkSpawned, HexChunk, HexMap, HexMapError, HexTerrainAgent, HexTerrainPlugin,
-        HexTerrainSettings, HexTerrainSystems, MapSource, TerrainReady,
+        ChunkDespawned, ChunkSpawned, ChunkStreamer, HexChunk, HexMap, HexMapError, HexMapPlugin, HexStreamingPlugin,
+        HexTerrainAgent, HexTerrainPlugin, HexTerrainPlugins, HexTerrainSettings, HexTerrainStats, HexTerrainSystems,
+        LoadHexMap, MapSource, TerrainReady, TileHit,
     };
     pub use hex_terrain::hexx::Hex;
-    pub use hex_terrain::{MapConfig, TileKind};
+    pub use hex_terrain::{ChunkCoord, MapConfig, MapSize, TileInfo, TileKind};
 }
 
 /// Where the map comes from.
@@ -91,10 +109,10 @@ impl From<MapConfig> for MapSource {
     }
 }
 
-/// The system sets of the plugin, run in this order in `Update`.
+/// The system sets of the plugins, run in this order in `Update`.
 #[derive(SystemSet, Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum HexTerrainSystems {
-    /// Applies a loaded or hot-reloaded map config to [`HexMap`].
+    /// Applies a loaded, hot-reloaded or switched map to [`HexMap`].
     Map,
     /// Decides the wanted chunks around agents, starts tasks, despawns far chunks.
     Stream,
@@ -105,8 +123,39 @@ pub enum HexTerrainSystems {
     Render,
 }
 
-/// The terrain plugin: [`HexMap`], map assets, chunk streaming and (with the `render` feature,
-/// in an app that renders) the terrain material. Add it after `DefaultPlugins`.
+/// The terrain plugins: [`HexMapPlugin`] (the [`HexMap`] resource, map assets, switching),
+/// [`HexStreamingPlugin`] (chunks around agents) and, with the `render` feature,
+/// `HexTerrainMaterialPlugin` (the terrain material, which needs Bevy's `PbrPlugin`). Disable
+/// one with `HexTerrainPlugins::default().build().disable::<…>()`.
+#[derive(Debug, Clone, Default)]
+pub struct HexTerrainPlugins {
+    /// The map to show.
+    pub map: MapSource,
+    /// Streaming parameters.
+    pub settings: HexTerrainSettings,
+}
+
+impl HexTerrainPlugins {
+    /// The plugins showing a map config (a path or a config).
+    #[must_use]
+    pub fn new(map: impl Into<MapSource>) -> Self {
+        Self { map: map.into(), settings: HexTerrainSettings::default() }
+    }
+}
+
+impl PluginGroup for HexTerrainPlugins {
+    fn build(self) -> PluginGroupBuilder {
+        let group = PluginGroupBuilder::start::<Self>()
+            .add(HexMapPlugin { map: self.map })
+            .add(HexStreamingPlugin { settings: self.settings });
+        #[cfg(feature = "render")]
+        let group = group.add(material::HexTerrainMaterialPlugin);
+        group
+    }
+}
+
+/// The one-line entry: adds every plugin of [`HexTerrainPlugins`]. Add it after
+/// `DefaultPlugins`.
 #[derive(Debug, Clone, Default)]
 pub struct HexTerrainPlugin {
     /// The map to show.
@@ -131,71 +180,6 @@ impl HexTerrainPlugin {
 
 impl Plugin for HexTerrainPlugin {
     fn build(&self, app: &mut App) {
-        if !app.is_plugin_added::<AssetPlugin>() {
-            panic!(
-                "HexTerrainPlugin needs Bevy's AssetPlugin: add DefaultPlugins, or MinimalPlugins with \
-                 AssetPlugin::default(), before HexTerrainPlugin"
-            );
-        }
-        let (map, handle) = match &self.map {
-            MapSource::Config(config) => match HexMap::new((**config).clone()) {
-                Ok(map) => (map, None),
-                Err(e) => panic!("HexTerrainPlugin: the map config given in code is invalid: {e}"),
-            },
-            MapSource::Asset(path) => {
-                let mut map = HexMap::new(MapConfig::default()).unwrap_or_else(|e| panic!("default map: {e}"));
-                map.set_waiting(true);
-                (map, Some(path.clone()))
-            }
-        };
-        if !app.world().contains_resource::<Assets<Mesh>>() {
-            app.init_asset::<Mesh>();
-        }
-        app.init_asset::<HexMapAsset>()
-            .init_asset_loader::<HexMapLoader>()
-            .insert_resource(map)
-            .insert_resource(self.settings.clone())
-            .init_resource::<ChunkStreamer>()
-            .init_resource::<HexMapHandle>()
-            .add_message::<HexMapError>()
-            .add_message::<ChunkSpawned>()
-            .add_message::<ChunkDespawned>()
-            .add_message::<TerrainReady>()
-            .register_type::<HexTerrainAgent>()
-            .register_type::<HexTerrainSettings>()
-            .register_type::<HexChunk>()
-            // A new config must be in place before chunks are requested against it, and a
-            // chunk must be requested before its mesh can be inserted.
-            .configure_sets(
-                Update,
-                (
-                    HexTerrainSystems::Map,
-                    HexTerrainSystems::Stream,
-                    HexTerrainSystems::Insert,
-                    HexTerrainSystems::Render,
-                )
-                    .chain(),
-            )
-            .add_systems(
-                Update,
-                (
-                    HexMap::apply_asset.in_set(HexTerrainSystems::Map),
-                    ChunkStreamer::update.in_set(HexTerrainSystems::Stream),
-                    ChunkStreamer::insert_ready.in_set(HexTerrainSystems::Insert),
-                ),
-            );
-        if let Some(path) = handle {
-            app.add_systems(PreStartup, move |server: Res<AssetServer>, mut handle: ResMut<HexMapHandle>| {
-                handle.0 = Some(server.load(path.clone()));
-            });
-        }
-        // Only an app that renders (PbrPlugin, from DefaultPlugins added before this plugin)
-        // gets the material; headless apps (tests, servers) stream meshes without it.
-        #[cfg(feature = "render")]
-        if app.is_plugin_added::<bevy::pbr::PbrPlugin>() {
-            app.add_plugins(material::HexTerrainMaterialPlugin);
-        } else {
-            debug!("HexTerrainPlugin: no PbrPlugin, chunks get no material");
-        }
+        app.add_plugins(HexTerrainPlugins { map: self.map.clone(), settings: self.settings.clone() });
     }
 }

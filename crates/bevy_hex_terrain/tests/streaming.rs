@@ -5,9 +5,9 @@ use std::time::Duration;
 
 use bevy::asset::AssetPlugin;
 use bevy::prelude::*;
-use bevy_hex_terrain::hex_terrain::{ChunkCoord, MapSize, Terrain};
+use bevy_hex_terrain::hex_terrain::Terrain;
 use bevy_hex_terrain::prelude::*;
-use bevy_hex_terrain::{ChunkStreamer, HexMapAsset, HexMapHandle};
+use bevy_hex_terrain::{ChunkThreads, HexMapAsset, HexMapHandle};
 
 fn unbounded(chunk: (u32, u32)) -> MapConfig {
     MapConfig { size: MapSize::Unbounded, chunk_size: chunk, ..MapConfig::default() }
@@ -20,18 +20,21 @@ fn settings(radius: u32) -> HexTerrainSettings {
         unload_hysteresis: 1,
         max_inserts_per_frame: 16,
         max_tasks_in_flight: 16,
+        ..default()
     }
 }
 
-fn app_with(plugin: HexTerrainPlugin, asset_dir: Option<&std::path::Path>) -> App {
+/// A headless app: the terrain plugins without the material.
+fn app_with(plugins: HexTerrainPlugins, asset_dir: Option<&std::path::Path>) -> App {
     let mut app = App::new();
     let assets = AssetPlugin { file_path: asset_dir.map_or("assets".into(), |d| d.display().to_string()), ..default() };
-    app.add_plugins((MinimalPlugins, assets, TransformPlugin, plugin));
+    app.add_plugins((MinimalPlugins, assets, TransformPlugin));
+    app.add_plugins(plugins.build().disable::<HexTerrainMaterialPlugin>());
     app
 }
 
 fn app(config: MapConfig, radius: u32) -> App {
-    app_with(HexTerrainPlugin { map: config.into(), settings: settings(radius) }, None)
+    app_with(HexTerrainPlugins { map: config.into(), settings: settings(radius) }, None)
 }
 
 fn spawn_agent(app: &mut App, at: Vec3) -> Entity {
@@ -57,16 +60,16 @@ fn ready(app: &mut App) -> bool {
         && app.world_mut().query::<&bevy_hex_terrain::ChunkTask>().iter(app.world()).next().is_none()
 }
 
-fn chunk_coords(app: &mut App) -> HashSet<IVec2> {
+fn chunk_coords(app: &mut App) -> HashSet<ChunkCoord> {
     app.world_mut().query::<&HexChunk>().iter(app.world()).map(|c| c.coord).collect()
 }
 
-fn meshed_chunks(app: &mut App) -> HashMap<IVec2, Handle<Mesh>> {
+fn meshed_chunks(app: &mut App) -> HashMap<ChunkCoord, Handle<Mesh>> {
     app.world_mut().query::<(&HexChunk, &Mesh3d)>().iter(app.world()).map(|(c, m)| (c.coord, m.0.clone())).collect()
 }
 
-fn window(center: ChunkCoord, r: i32) -> HashSet<IVec2> {
-    (-r..=r).flat_map(|dz| (-r..=r).map(move |dx| IVec2::new(center.x + dx, center.z + dz))).collect()
+fn window(center: ChunkCoord, r: i32) -> HashSet<ChunkCoord> {
+    (-r..=r).flat_map(|dz| (-r..=r).map(move |dx| ChunkCoord::new(center.x + dx, center.z + dz))).collect()
 }
 
 fn agent_chunk(app: &App, at: Vec3) -> ChunkCoord {
@@ -84,8 +87,8 @@ fn chunks_appear_around_the_agent_and_only_there() {
     // radius 1 plus the prefetch ring
     assert_eq!(chunk_coords(&mut app), window(center, 2));
     assert_eq!(meshed_chunks(&mut app).len(), 25);
-    let map = app.world().resource::<HexMap>();
-    assert_eq!(map.loaded_chunks().count(), 25);
+    let streamer = app.world().resource::<ChunkStreamer>();
+    assert_eq!(streamer.loaded_chunks().count(), 25);
 }
 
 #[test]
@@ -105,9 +108,9 @@ fn moving_spawns_ahead_and_despawns_behind() {
     assert!(window(center, 2).is_subset(&coords));
     // Nothing beyond radius + prefetch + hysteresis remains.
     for c in &coords {
-        assert!((c.x - center.x).abs() <= 3 && (c.y - center.z).abs() <= 3, "stale chunk {c} kept");
+        assert!((c.x - center.x).abs() <= 3 && (c.z - center.z).abs() <= 3, "stale chunk {c:?} kept");
     }
-    assert!(!coords.contains(&IVec2::new(0, 0)) || center.x <= 3, "the start chunk was dropped");
+    assert!(!coords.contains(&ChunkCoord::new(0, 0)) || center.x <= 3, "the start chunk was dropped");
 }
 
 #[test]
@@ -126,8 +129,8 @@ fn long_walk_keeps_chunk_count_and_meshes_bounded() {
         max_live = max_live.max(live);
     }
     run_until(&mut app, "terrain ready at the end", ready);
-    let streamer = app.world().resource::<ChunkStreamer>();
-    assert!(streamer.tasks_started > 2000, "walked over {} chunk builds", streamer.tasks_started);
+    let started = app.world().resource::<HexTerrainStats>().tasks_started();
+    assert!(started > 2000, "walked over {started} chunk builds");
     // radius + prefetch + hysteresis = 3: at most a 7x7 window.
     assert!(max_live <= 49, "live chunks peaked at {max_live}");
     for _ in 0..5 {
@@ -144,7 +147,7 @@ fn neighboring_chunks_share_identical_border_vertices() {
     run_until(&mut app, "terrain ready", ready);
     let handles = meshed_chunks(&mut app);
     let meshes = app.world().resource::<Assets<Mesh>>();
-    let vertices = |coord: IVec2| -> HashMap<[u32; 2], ([u32; 3], [u32; 3])> {
+    let vertices = |coord: ChunkCoord| -> HashMap<[u32; 2], ([u32; 3], [u32; 3])> {
         let mesh = meshes.get(&handles[&coord]).unwrap();
         let p = mesh.attribute(Mesh::ATTRIBUTE_POSITION).unwrap().as_float3().unwrap();
         let n = mesh.attribute(Mesh::ATTRIBUTE_NORMAL).unwrap().as_float3().unwrap();
@@ -155,19 +158,19 @@ fn neighboring_chunks_share_identical_border_vertices() {
     };
     let mut shared_total = 0;
     for (a, b) in [
-        (IVec2::new(0, 0), IVec2::new(1, 0)),
-        (IVec2::new(0, 0), IVec2::new(0, 1)),
-        (IVec2::new(-1, -1), IVec2::new(-1, 0)),
+        (ChunkCoord::new(0, 0), ChunkCoord::new(1, 0)),
+        (ChunkCoord::new(0, 0), ChunkCoord::new(0, 1)),
+        (ChunkCoord::new(-1, -1), ChunkCoord::new(-1, 0)),
     ] {
         let (va, vb) = (vertices(a), vertices(b));
         let mut shared = 0;
         for (xz, bits) in &va {
             if let Some(other) = vb.get(xz) {
-                assert_eq!(bits, other, "vertex at {xz:?} differs between chunks {a} and {b}");
+                assert_eq!(bits, other, "vertex at {xz:?} differs between chunks {a:?} and {b:?}");
                 shared += 1;
             }
         }
-        assert!(shared >= 6 * 2, "chunks {a} and {b} share {shared} vertices");
+        assert!(shared >= 6 * 2, "chunks {a:?} and {b:?} share {shared} vertices");
         shared_total += shared;
     }
     assert!(shared_total > 0);
@@ -193,7 +196,7 @@ fn map_queries_agree_with_the_core_crate() {
         let hit = map.raycast(ray, 100.0).unwrap();
         assert_eq!(hit.tile, tile);
         assert!((hit.point - center).length() < 0.05);
-        assert!(map.is_chunk_loaded(map.chunk_of(tile)));
+        assert!(app.world().resource::<ChunkStreamer>().is_chunk_loaded(map.chunk_of(tile)));
     }
     // Queries answer for tiles outside the map and far from any loaded chunk too.
     let far = Hex::new(500, -300);
@@ -213,7 +216,7 @@ fn bounded_maps_never_spawn_chunks_outside() {
     let coords = chunk_coords(&mut app);
     assert!(!coords.is_empty());
     for c in coords {
-        assert!(core.chunk_rect(ChunkCoord::new(c.x, c.y)).is_some(), "chunk {c} lies outside the map");
+        assert!(core.chunk_rect(c).is_some(), "chunk {c:?} lies outside the map");
     }
 }
 
@@ -222,20 +225,20 @@ fn far_teleport_cancels_stale_work() {
     let mut s = settings(3);
     s.max_tasks_in_flight = 40;
     s.max_inserts_per_frame = 1;
-    let mut app = app_with(HexTerrainPlugin { map: unbounded((16, 16)).into(), settings: s }, None);
+    let mut app = app_with(HexTerrainPlugins { map: unbounded((16, 16)).into(), settings: s }, None);
     let agent = spawn_agent(&mut app, Vec3::ZERO);
     app.update();
-    let started = app.world().resource::<ChunkStreamer>().tasks_started;
+    let started = app.world().resource::<HexTerrainStats>().tasks_started();
     assert_eq!(started, 40, "a bounded number of tasks at once");
     let far = Vec3::new(100_000.0, 0.0, -80_000.0);
     app.world_mut().entity_mut(agent).insert(Transform::from_translation(far));
     app.update();
     app.update();
-    let streamer = app.world().resource::<ChunkStreamer>();
-    assert!(streamer.tasks_cancelled > 0, "work for the old place was dropped");
+    let cancelled = app.world().resource::<HexTerrainStats>().tasks_cancelled();
+    assert!(cancelled > 0, "work for the old place was dropped");
     let center = agent_chunk(&app, far);
     for c in chunk_coords(&mut app) {
-        assert!((c.x - center.x).abs() <= 5 && (c.y - center.z).abs() <= 5, "stale chunk {c} survived the teleport");
+        assert!((c.x - center.x).abs() <= 5 && (c.z - center.z).abs() <= 5, "stale chunk {c:?} survived the teleport");
     }
     run_until(&mut app, "terrain ready at the destination", ready);
 }
@@ -249,14 +252,14 @@ fn hot_reload_regenerates_every_chunk_and_a_bad_edit_keeps_the_terrain() {
     let dir = std::env::temp_dir().join(format!("hex-terrain-plugin-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     write(&dir, "test.map.ron", "(seed: 5, size: Bounded(x: 16, z: 16), chunk_size: (8, 8))");
-    let mut app = app_with(HexTerrainPlugin::from_asset("test.map.ron"), Some(&dir));
+    let mut app = app_with(HexTerrainPlugins::new("test.map.ron"), Some(&dir));
     run_until(&mut app, "first map", |app| app.world().resource::<HexMap>().config().seed == 5 && ready(app));
     let first = meshed_chunks(&mut app);
     assert_eq!(first.len(), 4);
     let generation = app.world().resource::<HexMap>().generation();
 
     // An edit: the asset changes, every chunk gets a mesh of the new generation.
-    let handle = app.world().resource::<HexMapHandle>().0.clone().unwrap();
+    let handle = app.world().resource::<HexMapHandle>().handle().unwrap().clone();
     let mut config = app.world().resource::<Assets<HexMapAsset>>().get(&handle).unwrap().config.clone();
     config.seed = 6;
     app.world_mut()
@@ -269,7 +272,7 @@ fn hot_reload_regenerates_every_chunk_and_a_bad_edit_keeps_the_terrain() {
     });
     let reloaded = app.world().resource::<HexMap>().generation();
     for chunk in app.world_mut().query::<&HexChunk>().iter(app.world()) {
-        assert_eq!(chunk.generation, Some(reloaded), "chunk {} regenerated", chunk.coord);
+        assert_eq!(chunk.generation, Some(reloaded), "chunk {:?} regenerated", chunk.coord);
     }
     let second = meshed_chunks(&mut app);
     assert!(second.iter().all(|(c, h)| first[c] != *h), "new meshes replaced the old ones");
@@ -312,4 +315,111 @@ fn hot_reload_regenerates_every_chunk_and_a_bad_edit_keeps_the_terrain() {
     assert_eq!(map.config().appearance.blend, 1.0);
     assert!(map.appearance_fallback());
     let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// Counts the frames in which a system saw `HexMap` changed.
+#[derive(Resource, Default)]
+struct MapChanges(usize);
+
+#[test]
+fn streaming_never_marks_the_map_changed() {
+    let mut app = app(unbounded((4, 4)), 1);
+    app.init_resource::<MapChanges>().add_systems(
+        Update,
+        (|mut n: ResMut<MapChanges>| n.0 += 1).run_if(resource_changed::<HexMap>).after(HexTerrainSystems::Insert),
+    );
+    let agent = spawn_agent(&mut app, Vec3::ZERO);
+    run_until(&mut app, "terrain ready", ready);
+    // The first frame sees the resource as added; from here on only chunks change.
+    app.world_mut().resource_mut::<MapChanges>().0 = 0;
+    let before = app.world().resource::<HexTerrainStats>().meshes_inserted();
+    for step in 1..40 {
+        let at = Vec3::new(step as f32 * 6.0, 0.0, 0.0);
+        app.world_mut().entity_mut(agent).insert(Transform::from_translation(at));
+        for _ in 0..3 {
+            app.update();
+        }
+    }
+    run_until(&mut app, "terrain ready at the end", ready);
+    let inserted = app.world().resource::<HexTerrainStats>().meshes_inserted() - before;
+    assert!(inserted > 100, "chunks streamed in: {inserted}");
+    assert_eq!(app.world().resource::<MapChanges>().0, 0, "HexMap was marked changed while streaming");
+}
+
+fn generation(app: &App) -> u64 {
+    app.world().resource::<HexMap>().generation()
+}
+
+fn errors(app: &App) -> Vec<String> {
+    let messages = app.world().resource::<Messages<HexMapError>>();
+    messages.get_cursor().read(messages).map(|m| m.message.clone()).collect()
+}
+
+#[test]
+fn load_hex_map_switches_to_a_config_or_a_file_and_refuses_a_bad_one() {
+    let dir = std::env::temp_dir().join(format!("hex-terrain-switch-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    write(&dir, "a.map.ron", "(seed: 21, size: Bounded(x: 8, z: 8), chunk_size: (8, 8))");
+    write(&dir, "b.map.ron", "(seed: 22, size: Bounded(x: 12, z: 8), chunk_size: (8, 8))");
+    let mut app = app_with(HexTerrainPlugins::new("a.map.ron"), Some(&dir));
+    run_until(&mut app, "map a", |app| app.world().resource::<HexMap>().config().seed == 21 && ready(app));
+
+    // A config applies at once and is streamed.
+    let config = MapConfig { seed: 23, size: MapSize::Bounded { x: 10, z: 10 }, chunk_size: (8, 8), ..default() };
+    app.world_mut().write_message(LoadHexMap(config.into()));
+    run_until(&mut app, "the config", |app| app.world().resource::<HexMap>().config().seed == 23 && ready(app));
+    assert_eq!(chunk_coords(&mut app).len(), 4);
+    assert!(app.world().resource::<HexMapHandle>().handle().is_none(), "no file is followed");
+
+    // A file is loaded, then applied.
+    app.world_mut().write_message(LoadHexMap("b.map.ron".into()));
+    run_until(&mut app, "map b", |app| app.world().resource::<HexMap>().config().seed == 22 && ready(app));
+    assert_eq!(chunk_coords(&mut app).len(), 2);
+
+    // Back to a file loaded before: no load event comes, it applies all the same.
+    app.world_mut().write_message(LoadHexMap("a.map.ron".into()));
+    run_until(&mut app, "map a again", |app| app.world().resource::<HexMap>().config().seed == 21 && ready(app));
+
+    // A bad config is refused with its field named; the terrain stays.
+    let g = generation(&app);
+    let mut bad = MapConfig { seed: 24, ..default() };
+    bad.noise.octaves = 0;
+    app.world_mut().write_message(LoadHexMap(bad.into()));
+    run_until(&mut app, "the refusal", |app| errors(app).iter().any(|m| m.contains("noise.octaves")));
+    assert_eq!(generation(&app), g);
+    assert_eq!(app.world().resource::<HexMap>().config().seed, 21);
+
+    // A missing file is refused too.
+    app.world_mut().write_message(LoadHexMap("no_such.map.ron".into()));
+    run_until(&mut app, "the missing file", |app| errors(app).iter().any(|m| m.contains("no_such")));
+    for _ in 0..5 {
+        app.update();
+    }
+    assert_eq!(generation(&app), g);
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn chunk_tasks_on_rayon_give_the_same_meshes() {
+    let config = MapConfig { size: MapSize::Bounded { x: 20, z: 14 }, chunk_size: (8, 8), ..MapConfig::default() };
+    let mut meshes = Vec::new();
+    for threads in [ChunkThreads::AsyncCompute, ChunkThreads::Rayon] {
+        let mut s = settings(1);
+        s.chunk_threads = threads;
+        let mut app = app_with(HexTerrainPlugins { map: config.clone().into(), settings: s }, None);
+        run_until(&mut app, "whole map ready", ready);
+        let handles = meshed_chunks(&mut app);
+        let assets = app.world().resource::<Assets<Mesh>>();
+        let mut positions: Vec<(ChunkCoord, Vec<[f32; 3]>)> = handles
+            .iter()
+            .map(|(c, h)| {
+                let p = assets.get(h).unwrap().attribute(Mesh::ATTRIBUTE_POSITION).unwrap().as_float3().unwrap();
+                (*c, p.to_vec())
+            })
+            .collect();
+        positions.sort_by_key(|(c, _)| *c);
+        meshes.push(positions);
+    }
+    assert_eq!(meshes[0].len(), 6);
+    assert_eq!(meshes[0], meshes[1]);
 }

@@ -16,6 +16,7 @@ use crate::error::{ConfigError, LoadError};
 /// assert_eq!(config.noise.octaves, 10); // unspecified fields keep the Map0 defaults
 /// ```
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[cfg_attr(feature = "bevy_reflect", derive(bevy_reflect::Reflect))]
 #[serde(default, deny_unknown_fields)]
 pub struct MapConfig {
     /// A human readable name, shown by tools.
@@ -66,6 +67,7 @@ impl Default for MapConfig {
 
 /// Where heights come from.
 #[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+#[cfg_attr(feature = "bevy_reflect", derive(bevy_reflect::Reflect))]
 pub enum HeightSourceConfig {
     /// Perlin fBm (thesis section 5.1).
     #[default]
@@ -82,6 +84,7 @@ pub enum HeightSourceConfig {
 
 /// Map extent.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[cfg_attr(feature = "bevy_reflect", derive(bevy_reflect::Reflect))]
 pub enum MapSize {
     /// A finite map of `x` columns by `z` rows of hexes.
     Bounded {
@@ -107,6 +110,7 @@ impl MapSize {
 
 /// Fractal Brownian motion parameters (thesis section 5.1.1, Algorithm 2).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[cfg_attr(feature = "bevy_reflect", derive(bevy_reflect::Reflect))]
 #[serde(default, deny_unknown_fields)]
 pub struct NoiseConfig {
     /// Number of Perlin signals summed.
@@ -127,6 +131,7 @@ impl Default for NoiseConfig {
 
 /// Elevation and tile-type parameters (thesis table 4, section 5.5-5.6).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[cfg_attr(feature = "bevy_reflect", derive(bevy_reflect::Reflect))]
 #[serde(default, deny_unknown_fields)]
 pub struct TerrainConfig {
     /// World height of normalised height 1.
@@ -155,6 +160,7 @@ impl Default for TerrainConfig {
 
 /// Shaping filters of thesis section 7.1. They need the map's bounds.
 #[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+#[cfg_attr(feature = "bevy_reflect", derive(bevy_reflect::Reflect))]
 pub enum Shape {
     /// Heights as the noise gives them.
     #[default]
@@ -187,6 +193,7 @@ pub enum Shape {
 
 /// How hex unity pulls a vertex that lies outside its tile type's height range.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[cfg_attr(feature = "bevy_reflect", derive(bevy_reflect::Reflect))]
 pub enum PullMode {
     /// Clamp to the range: the least displacement that meets the "easily recognisable"
     /// requirement, and the default.
@@ -199,6 +206,7 @@ pub enum PullMode {
 
 /// Manipulation stages (thesis section 6.4). All off gives the raw ("basic PTG") map.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[cfg_attr(feature = "bevy_reflect", derive(bevy_reflect::Reflect))]
 #[serde(default, deny_unknown_fields)]
 pub struct ManipulationConfig {
     /// Hex unity (Algorithm 3): border vertices between different types go to the threshold,
@@ -235,6 +243,7 @@ impl ManipulationConfig {
 
 /// Hexagon orientation.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[cfg_attr(feature = "bevy_reflect", derive(bevy_reflect::Reflect))]
 pub enum Orientation {
     /// Flat top: columns of hexes (the thesis' frame).
     #[default]
@@ -245,6 +254,7 @@ pub enum Orientation {
 
 /// Hexagon size and orientation.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[cfg_attr(feature = "bevy_reflect", derive(bevy_reflect::Reflect))]
 #[serde(default, deny_unknown_fields)]
 pub struct LayoutConfig {
     /// Circumradius of a hex in world units.
@@ -261,6 +271,7 @@ impl Default for LayoutConfig {
 
 /// Parameters renderers read (thesis section 6.3).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[cfg_attr(feature = "bevy_reflect", derive(bevy_reflect::Reflect))]
 #[serde(default, deny_unknown_fields)]
 pub struct AppearanceConfig {
     /// Blend distance of Algorithm 5, in normalised height, in `[0, 1]`.

@@ -28,10 +28,14 @@ impl ShapeBounds {
 }
 
 /// Eq. 7.1: `f(d) = d^a / (d^a + (b - b d)^a)`, 0 at the center, 1 at the edges.
+///
+/// The powers come from `libm` (a pure-Rust port of musl's), not `f64::powf`, which calls the
+/// platform's C library and may round differently on another platform: a seed gives the same
+/// island everywhere.
 #[must_use]
 pub fn falloff(d: f64, a: f64, b: f64) -> f64 {
-    let da = d.powf(a);
-    let denom = da + (b - b * d).powf(a);
+    let da = libm::pow(d, a);
+    let denom = da + libm::pow(b - b * d, a);
     if denom > 0.0 { da / denom } else { 1.0 }
 }
 

@@ -46,7 +46,7 @@ fn batches_give_the_bits_of_single_samples() {
 
 #[test]
 fn map0_parameters_give_thesis_like_type_shares() {
-    // DESIGN.md: with (v + 1) / 2 and Map0's parameters about 12% of samples fall below 0.3
+    // docs/ARCHITECTURE.md (departures from the thesis): with (v + 1) / 2 and Map0's parameters about 12% of samples fall below 0.3
     // and 12% above 0.7; allow a wide band, this guards the mapping, not the exact share.
     let fbm = Fbm::new(1000, &NoiseConfig::default());
     let (mut low, mut high, mut total) = (0, 0, 0);

@@ -1,13 +1,15 @@
 //! The terrain material: `StandardMaterial` (so PBR lighting and shadows still work) extended
 //! with a fragment shader that blends sea, land and mountain by height as thesis Algorithm 5
-//! does, in flat colors or textures, and draws tile outlines and highlights.
+//! does, in flat colors or textures, and draws tile outlines and highlights. The same shader
+//! serves forward and deferred cameras.
 
 use bevy::asset::{AssetPath, embedded_asset, embedded_path};
 use bevy::image::{ImageAddressMode, ImageLoaderSettings, ImageSampler, ImageSamplerDescriptor};
-use bevy::pbr::{ExtendedMaterial, MaterialExtension};
+use bevy::mesh::MeshVertexBufferLayoutRef;
+use bevy::pbr::{ExtendedMaterial, MaterialExtension, MaterialExtensionKey, MaterialExtensionPipeline};
 use bevy::prelude::*;
-use bevy::render::render_resource::{AsBindGroup, ShaderType};
-use bevy::shader::ShaderRef;
+use bevy::render::render_resource::{AsBindGroup, RenderPipelineDescriptor, ShaderType, SpecializedMeshPipelineError};
+use bevy::shader::{ShaderDefVal, ShaderRef};
 use hex_terrain::MapConfig;
 use hex_terrain::hexx::Hex;
 
@@ -17,8 +19,30 @@ pub type HexTerrainMaterial = ExtendedMaterial<StandardMaterial, HexTerrainExten
 /// Most tiles [`TileHighlights::selected`] tints at once.
 pub const MAX_HIGHLIGHTS: usize = 64;
 
+/// Bits of [`TerrainParams::flags`]. The shader receives these values (and
+/// [`MAX_HIGHLIGHTS`]) as shader defs, so Rust and WGSL share one definition.
+pub mod flags {
+    /// Draw tile outlines.
+    pub const OUTLINES: u32 = 1;
+    /// Sample the textures instead of flat colors.
+    pub const TEXTURES: u32 = 2;
+    /// Pointy-topped hexes (flat-topped without).
+    pub const POINTY: u32 = 4;
+    /// A tile is hovered.
+    pub const HOVERED: u32 = 8;
+}
+
+/// The shader defs every terrain pipeline gets: the flag bits and the highlight array size.
+const SHADER_DEFS: [(&str, u32); 5] = [
+    ("HEX_FLAG_OUTLINES", flags::OUTLINES),
+    ("HEX_FLAG_TEXTURES", flags::TEXTURES),
+    ("HEX_FLAG_POINTY", flags::POINTY),
+    ("HEX_FLAG_HOVERED", flags::HOVERED),
+    ("HEX_MAX_HIGHLIGHTS", MAX_HIGHLIGHTS as u32),
+];
+
 /// Uniform parameters of the terrain shader.
-#[derive(Debug, Clone, Copy, ShaderType, Reflect)]
+#[derive(Debug, Clone, Copy, PartialEq, ShaderType, Reflect)]
 pub struct TerrainParams {
     /// Sea layer color (linear).
     pub sea_color: Vec4,
@@ -44,7 +68,7 @@ pub struct TerrainParams {
     pub outline_width: f32,
     /// Texture repeats per world unit.
     pub texture_scale: f32,
-    /// Bit 0 outlines, bit 1 textures, bit 2 pointy hexes, bit 3 a hovered tile.
+    /// Bits of [`flags`].
     pub flags: u32,
     /// How many entries of the highlight list are used.
     pub highlight_count: u32,
@@ -53,7 +77,7 @@ pub struct TerrainParams {
 }
 
 /// The tiles to tint.
-#[derive(Debug, Clone, Copy, ShaderType, Reflect)]
+#[derive(Debug, Clone, Copy, PartialEq, ShaderType, Reflect)]
 pub struct HighlightList {
     /// Axial coordinates in `x`, `y`.
     pub tiles: [IVec4; MAX_HIGHLIGHTS],
@@ -88,9 +112,29 @@ pub struct HexTerrainExtension {
     pub highlights: HighlightList,
 }
 
+fn shader() -> ShaderRef {
+    ShaderRef::Path(AssetPath::from_path_buf(embedded_path!("terrain.wgsl")).with_source("embedded"))
+}
+
 impl MaterialExtension for HexTerrainExtension {
     fn fragment_shader() -> ShaderRef {
-        ShaderRef::Path(AssetPath::from_path_buf(embedded_path!("terrain.wgsl")).with_source("embedded"))
+        shader()
+    }
+
+    fn deferred_fragment_shader() -> ShaderRef {
+        shader()
+    }
+
+    fn specialize(
+        _pipeline: &MaterialExtensionPipeline,
+        descriptor: &mut RenderPipelineDescriptor,
+        _layout: &MeshVertexBufferLayoutRef,
+        _key: MaterialExtensionKey<Self>,
+    ) -> Result<(), SpecializedMeshPipelineError> {
+        if let Some(fragment) = descriptor.fragment.as_mut() {
+            fragment.shader_defs.extend(SHADER_DEFS.map(|(name, value)| ShaderDefVal::UInt(name.into(), value)));
+        }
+        Ok(())
     }
 }
 
@@ -131,10 +175,8 @@ impl Default for TerrainAppearance {
 #[reflect(Resource)]
 pub struct TileHighlights {
     /// The tile under the cursor.
-    #[reflect(ignore)]
     pub hovered: Option<Hex>,
     /// Selected or reachable tiles (the first [`MAX_HIGHLIGHTS`] are drawn).
-    #[reflect(ignore)]
     pub selected: Vec<Hex>,
 }
 
@@ -148,18 +190,18 @@ pub fn params(config: &MapConfig, appearance: &TerrainAppearance, highlights: &T
     let t = &config.terrain;
     let max = t.max_elevation;
     let lin = |c: Color| Vec4::from_array(c.to_linear().to_f32_array());
-    let mut flags = 0;
+    let mut bits = 0;
     if appearance.outlines {
-        flags |= 1;
+        bits |= flags::OUTLINES;
     }
     if appearance.textures {
-        flags |= 2;
+        bits |= flags::TEXTURES;
     }
     if config.layout.orientation == hex_terrain::Orientation::Pointy {
-        flags |= 4;
+        bits |= flags::POINTY;
     }
     if highlights.hovered.is_some() {
-        flags |= 8;
+        bits |= flags::HOVERED;
     }
     let hovered = highlights.hovered.map_or(IVec4::ZERO, |h| IVec4::new(h.x, h.y, 0, 0));
     TerrainParams {
@@ -175,17 +217,27 @@ pub fn params(config: &MapConfig, appearance: &TerrainAppearance, highlights: &T
         hex_size: config.layout.hex_size,
         outline_width: appearance.outline_width,
         texture_scale: appearance.texture_scale,
-        flags,
+        flags: bits,
         highlight_count: highlights.selected.len().min(MAX_HIGHLIGHTS) as u32,
         hovered,
     }
 }
 
-/// Registers the material and keeps it in step with the map, the appearance and the highlights.
+/// The terrain material: registers [`HexTerrainMaterial`], gives every chunk mesh the shared
+/// material and keeps it in step with the map, [`TerrainAppearance`] and [`TileHighlights`].
+/// Needs Bevy's `PbrPlugin` (in `DefaultPlugins`); a headless app disables this plugin.
+#[derive(Debug, Clone, Copy, Default)]
 pub struct HexTerrainMaterialPlugin;
 
 impl Plugin for HexTerrainMaterialPlugin {
     fn build(&self, app: &mut App) {
+        if !app.is_plugin_added::<bevy::pbr::PbrPlugin>() {
+            panic!(
+                "HexTerrainMaterialPlugin needs Bevy's PbrPlugin: add DefaultPlugins before the hex terrain \
+                 plugins, or in a headless app disable the material: \
+                 HexTerrainPlugins::default().build().disable::<HexTerrainMaterialPlugin>()"
+            );
+        }
         embedded_asset!(app, "terrain.wgsl");
         app.add_plugins(MaterialPlugin::<HexTerrainMaterial>::default())
             .init_resource::<TerrainAppearance>()
@@ -247,8 +299,9 @@ fn create_material(
     commands.insert_resource(HexTerrainMaterialHandle(handle));
 }
 
-/// Rewrites the uniforms when the map (hot reload), the appearance or the highlights change;
-/// a texture that failed to load switches to flat colors with a warning.
+/// Rewrites the material when the map (hot reload, switch), the appearance or the highlights
+/// change its parameters, and only then (a rewritten material is uploaded again); a texture that
+/// failed to load switches to flat colors with a warning.
 fn update_material(
     handle: Res<HexTerrainMaterialHandle>,
     mut materials: ResMut<Assets<HexTerrainMaterial>>,
@@ -267,17 +320,25 @@ fn update_material(
     if !(map.is_changed() || appearance.is_changed() || highlights.is_changed()) {
         return;
     }
-    let Some(mut material) = materials.get_mut(&handle.0) else { return };
-    let ext = &mut material.extension;
+    let Some(material) = materials.get(&handle.0) else { return };
     // A map whose appearance had to be clamped is drawn in flat colors.
     let mut effective = appearance.clone();
     effective.textures &= !map.appearance_fallback();
-    ext.params = params(map.config(), &effective, &highlights);
-    if effective.textures != ext.sea_texture.is_some() {
-        [ext.sea_texture, ext.land_texture, ext.mountain_texture] = textures(&server, &effective);
-    }
-    for (slot, hex) in ext.highlights.tiles.iter_mut().zip(&highlights.selected) {
+    let params = params(map.config(), &effective, &highlights);
+    let mut list = material.extension.highlights;
+    for (slot, hex) in list.tiles.iter_mut().zip(&highlights.selected) {
         *slot = IVec4::new(hex.x, hex.y, 0, 0);
+    }
+    let retexture = effective.textures != material.extension.sea_texture.is_some();
+    if params == material.extension.params && list == material.extension.highlights && !retexture {
+        return;
+    }
+    let Some(mut material) = materials.get_mut(&handle.0) else { return };
+    let ext = &mut material.extension;
+    ext.params = params;
+    ext.highlights = list;
+    if retexture {
+        [ext.sea_texture, ext.land_texture, ext.mountain_texture] = textures(&server, &effective);
     }
 }
 

@@ -1,27 +1,33 @@
 //! The [`HexMap`] resource: the active map and the queries a strategy game needs, answered by
-//! the core crate so they hold for tiles whose chunk is not loaded.
+//! the core crate so they hold for tiles whose chunk is not loaded. [`HexMapPlugin`] (in
+//! `apply.rs`) keeps it in step with map assets, hot reloads and [`LoadHexMap`] requests.
+
+mod apply;
 
 use std::sync::Arc;
 
-use bevy::asset::AssetLoadFailedEvent;
 use bevy::math::Ray3d;
-use bevy::platform::collections::HashSet;
 use bevy::prelude::*;
 use hex_terrain::hexx::Hex;
 use hex_terrain::{ChunkCoord, MapConfig, Terrain, TileInfo, TileKind};
 
-use crate::asset::HexMapAsset;
+pub use apply::{HexMapHandle, HexMapPlugin, LoadHexMap};
 
 /// The active map: its config, layout and tile queries.
 ///
 /// Positions are Bevy world coordinates: `x` and `z` on the ground, `y` up.
-#[derive(Resource, Clone)]
+///
+/// It changes (in Bevy's change detection) only when another map takes effect, so
+/// `resource_changed::<HexMap>` means "new terrain". Which chunks are loaded is
+/// [`ChunkStreamer`](crate::ChunkStreamer)'s business.
+#[derive(Resource, Debug, Clone)]
 pub struct HexMap {
     terrain: Arc<Terrain>,
     generation: u64,
     waiting_for_asset: bool,
     appearance_fallback: bool,
-    pub(crate) loaded: HashSet<ChunkCoord>,
+    /// The map asset whose config is applied, if any.
+    applied: Option<AssetId<crate::asset::HexMapAsset>>,
 }
 
 impl HexMap {
@@ -39,7 +45,7 @@ impl HexMap {
             generation: 0,
             waiting_for_asset: false,
             appearance_fallback: false,
-            loaded: HashSet::default(),
+            applied: None,
         }
     }
 
@@ -78,11 +84,14 @@ impl HexMap {
         self.appearance_fallback
     }
 
-    /// Replaces the terrain, starting a new generation.
+    /// Replaces the terrain, starting a new generation: every chunk is regenerated. (To load
+    /// another map file, send [`LoadHexMap`].)
     pub fn replace(&mut self, terrain: Terrain) {
         self.terrain = Arc::new(terrain);
         self.generation += 1;
         self.waiting_for_asset = false;
+        self.appearance_fallback = false;
+        self.applied = None;
     }
 
     /// The tile under a world position (its `y` is ignored).
@@ -140,24 +149,12 @@ impl HexMap {
     pub fn chunk_of(&self, tile: Hex) -> ChunkCoord {
         self.terrain.chunk_of(tile)
     }
-
-    /// Whether a chunk's mesh is in the world.
-    #[must_use]
-    pub fn is_chunk_loaded(&self, chunk: ChunkCoord) -> bool {
-        self.loaded.contains(&chunk)
-    }
-
-    /// The chunks whose meshes are in the world.
-    pub fn loaded_chunks(&self) -> impl Iterator<Item = ChunkCoord> + '_ {
-        self.loaded.iter().copied()
-    }
 }
 
 /// A ray hitting a tile.
 #[derive(Debug, Clone, Copy, PartialEq, Reflect)]
 pub struct TileHit {
     /// The tile hit.
-    #[reflect(ignore)]
     pub tile: Hex,
     /// World position of the hit on the surface.
     pub point: Vec3,
@@ -165,56 +162,9 @@ pub struct TileHit {
     pub distance: f32,
 }
 
-/// The map asset the plugin follows, when the map comes from a file.
-#[derive(Resource, Debug, Clone, Default)]
-pub struct HexMapHandle(pub Option<Handle<HexMapAsset>>);
-
 /// A map config that could not be applied: the terrain stays as it was.
 #[derive(Message, Debug, Clone, Reflect)]
 pub struct HexMapError {
     /// What went wrong, with the field or the line and column.
     pub message: String,
-}
-
-impl HexMap {
-    /// Applies a loaded or hot-reloaded map asset; logs and reports a bad one, keeping the old
-    /// terrain.
-    pub(crate) fn apply_asset(
-        mut map: ResMut<HexMap>,
-        handle: Res<HexMapHandle>,
-        assets: Res<Assets<HexMapAsset>>,
-        mut events: MessageReader<AssetEvent<HexMapAsset>>,
-        mut failures: MessageReader<AssetLoadFailedEvent<HexMapAsset>>,
-        mut errors: MessageWriter<HexMapError>,
-    ) {
-        let Some(handle) = &handle.0 else { return };
-        for failure in failures.read() {
-            if failure.id == handle.id() {
-                let message =
-                    format!("map {} not applied, keeping the current terrain: {}", failure.path, failure.error);
-                error!("{message}");
-                errors.write(HexMapError { message });
-            }
-        }
-        let changed = events.read().any(|e| match e {
-            AssetEvent::LoadedWithDependencies { id } | AssetEvent::Modified { id } => *id == handle.id(),
-            _ => false,
-        });
-        if !changed {
-            return;
-        }
-        let Some(asset) = assets.get(handle) else { return };
-        match Terrain::with_image(asset.config.clone(), asset.image.clone()) {
-            Ok(terrain) => {
-                info!("hex terrain: map {:?} applied", asset.config.name);
-                map.replace(terrain);
-                map.appearance_fallback = asset.appearance_fallback;
-            }
-            Err(e) => {
-                let message = format!("map not applied, keeping the current terrain: {e}");
-                error!("{message}");
-                errors.write(HexMapError { message });
-            }
-        }
-    }
 }

@@ -35,14 +35,14 @@ struct TerrainParams {
     hex_size: f32,
     outline_width: f32,
     texture_scale: f32,
-    // Bit 0: outlines, bit 1: textures, bit 2: pointy hexes, bit 3: a tile is hovered.
+    // Bits FLAG_*, defined in Rust (material/mod.rs, `flags`) and passed as shader defs.
     flags: u32,
     highlight_count: u32,
     hovered: vec4<i32>,
 }
 
 struct Highlights {
-    tiles: array<vec4<i32>, 64>,
+    tiles: array<vec4<i32>, #{HEX_MAX_HIGHLIGHTS}>,
 }
 
 @group(#{MATERIAL_BIND_GROUP}) @binding(100) var<uniform> params: TerrainParams;
@@ -55,6 +55,10 @@ struct Highlights {
 @group(#{MATERIAL_BIND_GROUP}) @binding(107) var<uniform> highlights: Highlights;
 
 const SQRT3: f32 = 1.7320508;
+const FLAG_OUTLINES: u32 = #{HEX_FLAG_OUTLINES}u;
+const FLAG_TEXTURES: u32 = #{HEX_FLAG_TEXTURES}u;
+const FLAG_POINTY: u32 = #{HEX_FLAG_POINTY}u;
+const FLAG_HOVERED: u32 = #{HEX_FLAG_HOVERED}u;
 
 fn triplanar(t: texture_2d<f32>, s: sampler, p: vec3<f32>, n: vec3<f32>) -> vec4<f32> {
     var w = abs(n);
@@ -70,7 +74,7 @@ fn albedo(p: vec3<f32>, n: vec3<f32>) -> vec4<f32> {
     let sea = triplanar(sea_texture, sea_sampler, p, n);
     let land = triplanar(land_texture, land_sampler, p, n);
     let rock = triplanar(mountain_texture, mountain_sampler, p, n);
-    if (params.flags & 2u) != 0u {
+    if (params.flags & FLAG_TEXTURES) != 0u {
         layers = array<vec4<f32>, 3>(sea, land, rock);
     }
     let h = p.y;
@@ -94,7 +98,7 @@ fn hex_at(p: vec2<f32>) -> vec3<f32> {
     let s = params.hex_size;
     var q: f32;
     var r: f32;
-    if (params.flags & 4u) != 0u {
+    if (params.flags & FLAG_POINTY) != 0u {
         q = (SQRT3 / 3.0 * p.x - p.y / 3.0) / s;
         r = (2.0 / 3.0 * p.y) / s;
     } else {
@@ -112,7 +116,7 @@ fn hex_at(p: vec2<f32>) -> vec3<f32> {
     // Center of that hex and the distance from it along the three edge normals.
     var center: vec2<f32>;
     var normals: array<vec2<f32>, 3>;
-    if (params.flags & 4u) != 0u {
+    if (params.flags & FLAG_POINTY) != 0u {
         center = s * vec2<f32>(SQRT3 * rc.x + SQRT3 / 2.0 * rc.y, 1.5 * rc.y);
         normals = array<vec2<f32>, 3>(vec2<f32>(1.0, 0.0), vec2<f32>(0.5, SQRT3 / 2.0), vec2<f32>(-0.5, SQRT3 / 2.0));
     } else {
@@ -144,12 +148,12 @@ fn fragment(in: VertexOutput, @builtin(front_facing) is_front: bool) -> Fragment
             color = vec4<f32>(mix(color.rgb, params.highlight_color.rgb, params.highlight_color.a), color.a);
         }
     }
-    if (params.flags & 8u) != 0u && all(params.hovered.xy == tile) {
+    if (params.flags & FLAG_HOVERED) != 0u && all(params.hovered.xy == tile) {
         color = vec4<f32>(mix(color.rgb, params.hover_color.rgb, params.hover_color.a), color.a);
     }
     // Outlines go over the lit color, so lighting and specular never wash them out.
     var outline = 0.0;
-    if (params.flags & 1u) != 0u && hex.z < params.outline_width {
+    if (params.flags & FLAG_OUTLINES) != 0u && hex.z < params.outline_width {
         outline = params.outline_color.a;
     }
 

@@ -1,0 +1,162 @@
+//! [`HexMapPlugin`]: the [`HexMap`] resource, map assets and their hot reload, and switching
+//! maps with [`LoadHexMap`]. A map that cannot be applied is reported as [`HexMapError`] and the
+//! terrain stays as it was.
+
+use bevy::asset::AssetLoadFailedEvent;
+use bevy::prelude::*;
+use hex_terrain::{MapConfig, Terrain};
+
+use super::{HexMap, HexMapError};
+use crate::asset::{HexMapAsset, HexMapLoader};
+use crate::{HexTerrainSystems, MapSource};
+
+/// The map asset the plugin follows, when the map comes from a file. Switch maps with
+/// [`LoadHexMap`]; this resource only says which asset is followed.
+#[derive(Resource, Debug, Clone, Default)]
+pub struct HexMapHandle(Option<Handle<HexMapAsset>>);
+
+impl HexMapHandle {
+    /// The followed map asset, if the map comes from a file.
+    #[must_use]
+    pub fn handle(&self) -> Option<&Handle<HexMapAsset>> {
+        self.0.as_ref()
+    }
+}
+
+/// Asks the plugin to show another map: a map file (applied once loaded, then hot-reloaded) or
+/// a config. The current terrain stays until the new map is valid; a bad one is reported as
+/// [`HexMapError`].
+#[derive(Message, Debug, Clone)]
+pub struct LoadHexMap(pub MapSource);
+
+/// The map: [`HexMap`], the `*.map.ron` asset loader, hot reload, [`LoadHexMap`] and
+/// [`HexMapError`], and the order of [`HexTerrainSystems`].
+#[derive(Debug, Clone, Default)]
+pub struct HexMapPlugin {
+    /// The map to show first.
+    pub map: MapSource,
+}
+
+impl Plugin for HexMapPlugin {
+    fn build(&self, app: &mut App) {
+        if !app.is_plugin_added::<AssetPlugin>() {
+            panic!(
+                "HexMapPlugin needs Bevy's AssetPlugin: add DefaultPlugins, or MinimalPlugins with \
+                 AssetPlugin::default(), before the hex terrain plugins"
+            );
+        }
+        let (map, path) = match &self.map {
+            MapSource::Config(config) => match HexMap::new((**config).clone()) {
+                Ok(map) => (map, None),
+                Err(e) => panic!("HexMapPlugin: the map config given in code is invalid: {e}"),
+            },
+            MapSource::Asset(path) => {
+                let mut map = HexMap::new(MapConfig::default()).unwrap_or_else(|e| panic!("default map: {e}"));
+                map.set_waiting(true);
+                (map, Some(path.clone()))
+            }
+        };
+        app.init_asset::<HexMapAsset>()
+            .init_asset_loader::<HexMapLoader>()
+            .insert_resource(map)
+            .init_resource::<HexMapHandle>()
+            .add_message::<HexMapError>()
+            .add_message::<LoadHexMap>()
+            .register_type::<HexMapError>()
+            // A new config must be in place before chunks are requested against it, and a
+            // chunk must be requested before its mesh can be inserted.
+            .configure_sets(
+                Update,
+                (
+                    HexTerrainSystems::Map,
+                    HexTerrainSystems::Stream,
+                    HexTerrainSystems::Insert,
+                    HexTerrainSystems::Render,
+                )
+                    .chain(),
+            )
+            // A request may name an asset that is already loaded: it is applied in the same frame.
+            .add_systems(Update, (load_requested, apply_asset).chain().in_set(HexTerrainSystems::Map));
+        if let Some(path) = path {
+            app.add_systems(PreStartup, move |server: Res<AssetServer>, mut handle: ResMut<HexMapHandle>| {
+                handle.0 = Some(server.load(path.clone()));
+            });
+        }
+    }
+}
+
+/// Reports a map that could not be applied; the terrain stays as it was.
+fn refuse(errors: &mut MessageWriter<HexMapError>, what: &str, why: impl std::fmt::Display) {
+    let message = format!("{what} not applied, keeping the current terrain: {why}");
+    error!("{message}");
+    errors.write(HexMapError { message });
+}
+
+/// Handles [`LoadHexMap`]: a config applies at once, a file is loaded and applied by
+/// [`apply_asset`] when ready.
+fn load_requested(
+    mut requests: MessageReader<LoadHexMap>,
+    server: Res<AssetServer>,
+    mut handle: ResMut<HexMapHandle>,
+    mut map: ResMut<HexMap>,
+    mut errors: MessageWriter<HexMapError>,
+) {
+    // Only the last request of a frame counts.
+    let Some(LoadHexMap(source)) = requests.read().last() else { return };
+    match source {
+        MapSource::Asset(path) => handle.0 = Some(server.load(path.clone())),
+        MapSource::Config(config) => match Terrain::new((**config).clone()) {
+            Ok(terrain) => {
+                handle.0 = None;
+                map.replace(terrain);
+            }
+            Err(e) => refuse(&mut errors, "map config", e),
+        },
+    }
+}
+
+/// Applies a loaded, hot-reloaded or newly followed map asset; reports a bad one, keeping the
+/// old terrain. [`HexMap`] is written only when a map is applied.
+fn apply_asset(
+    mut map: ResMut<HexMap>,
+    handle: Res<HexMapHandle>,
+    assets: Res<Assets<HexMapAsset>>,
+    mut events: MessageReader<AssetEvent<HexMapAsset>>,
+    mut failures: MessageReader<AssetLoadFailedEvent<HexMapAsset>>,
+    mut errors: MessageWriter<HexMapError>,
+    mut refused: Local<Option<AssetId<HexMapAsset>>>,
+) {
+    let Some(handle) = &handle.0 else {
+        events.clear();
+        failures.clear();
+        return;
+    };
+    for failure in failures.read() {
+        if failure.id == handle.id() {
+            refuse(&mut errors, &format!("map {}", failure.path), &failure.error);
+        }
+    }
+    let changed = events.read().any(|e| match e {
+        AssetEvent::LoadedWithDependencies { id } | AssetEvent::Modified { id } => *id == handle.id(),
+        _ => false,
+    });
+    // A newly followed asset that was loaded before sends no event: apply it now (once, if it
+    // is refused).
+    let new = map.applied != Some(handle.id()) && *refused != Some(handle.id());
+    if !(changed || new) {
+        return;
+    }
+    let Some(asset) = assets.get(handle) else { return };
+    match Terrain::with_image(asset.config.clone(), asset.image.clone()) {
+        Ok(terrain) => {
+            info!("hex terrain: map {:?} applied", asset.config.name);
+            map.replace(terrain);
+            map.appearance_fallback = asset.appearance_fallback;
+            map.applied = Some(handle.id());
+        }
+        Err(e) => {
+            *refused = Some(handle.id());
+            refuse(&mut errors, "map", e);
+        }
+    }
+}

@@ -1,0 +1,63 @@
+//! Inserting finished chunk meshes, under a per-frame budget, and reporting when the terrain
+//! settles.
+
+use bevy::prelude::*;
+use bevy::tasks::futures::check_ready;
+
+use super::{ChunkSpawned, ChunkStreamer, ChunkTask, HexChunk, HexTerrainSettings, HexTerrainStats, TerrainReady};
+use crate::map::HexMap;
+
+/// Inserts finished meshes, at most [`HexTerrainSettings::max_inserts_per_frame`] a frame,
+/// and reports [`TerrainReady`] when these inserts make every wanted chunk current.
+#[expect(clippy::too_many_arguments, reason = "a system's parameters")]
+pub(crate) fn insert_ready(
+    mut commands: Commands,
+    mut streamer: ResMut<ChunkStreamer>,
+    mut stats: ResMut<HexTerrainStats>,
+    map: Res<HexMap>,
+    settings: Res<HexTerrainSettings>,
+    mut meshes: ResMut<Assets<Mesh>>,
+    mut tasks: Query<(Entity, &mut HexChunk, &mut ChunkTask)>,
+    mut spawned: MessageWriter<ChunkSpawned>,
+    mut ready: MessageWriter<TerrainReady>,
+) {
+    let generation = map.generation();
+    if streamer.current_generation != generation {
+        streamer.current_generation = generation;
+        streamer.current.clear();
+    }
+    // Settling is judged before and after this frame's inserts, so a reload or a newly wanted
+    // chunk whose meshes all arrive within one frame is reported too.
+    let complete = |s: &ChunkStreamer| !s.wanted.is_empty() && s.wanted.keys().all(|c| s.current.contains(c));
+    let was_complete = complete(&streamer);
+    let mut budget = settings.max_inserts_per_frame.max(1);
+    for (entity, mut chunk, mut task) in &mut tasks {
+        if budget == 0 {
+            break;
+        }
+        let Some(build) = check_ready(&mut task.task) else { continue };
+        let requested = task.requested;
+        commands.entity(entity).remove::<ChunkTask>();
+        if build.generation != generation {
+            // Outdated by a reload while it ran; the next frame starts a current one.
+            continue;
+        }
+        budget -= 1;
+        commands.entity(entity).insert(Mesh3d(meshes.add(build.mesh)));
+        chunk.generation = Some(build.generation);
+        chunk.vertices = build.vertices;
+        chunk.mesh_bytes = build.mesh_bytes;
+        streamer.loaded.insert(chunk.coord);
+        streamer.current.insert(chunk.coord);
+        stats.inserted(requested.elapsed().as_secs_f32());
+        spawned.write(ChunkSpawned { entity, coord: chunk.coord });
+    }
+
+    let now = complete(&streamer);
+    if now && !(was_complete && streamer.settled) {
+        ready.write(TerrainReady { generation });
+    }
+    if streamer.settled != now {
+        streamer.settled = now;
+    }
+}

@@ -1,0 +1,196 @@
+//! Chunk streaming around tracked agents (thesis section 3.4, figure 9): which chunks exist
+//! ([`planner`], a pure function), their meshes built on Bevy's async compute pool ([`tasks`])
+//! and inserted under a per-frame budget ([`insert`]), with figures in [`HexTerrainStats`].
+
+pub mod insert;
+pub mod planner;
+pub mod stats;
+pub mod tasks;
+
+use bevy::platform::collections::{HashMap, HashSet};
+use bevy::prelude::*;
+use hex_terrain::ChunkCoord;
+
+pub use stats::HexTerrainStats;
+pub use tasks::ChunkTask;
+
+use crate::HexTerrainSystems;
+
+/// Put this on any entity (a camera, a unit) to keep terrain generated around it. Several agents
+/// may exist; chunks around each of them are kept.
+///
+/// With no agent at all, a bounded map is generated whole and an unbounded one around the
+/// world origin.
+#[derive(Component, Debug, Clone, Copy, Default, Reflect)]
+#[reflect(Component, Default)]
+pub struct HexTerrainAgent {
+    /// Chunk radius kept around this agent, overriding [`HexTerrainSettings::load_radius`].
+    pub radius: Option<u32>,
+}
+
+/// Where a chunk task's generation runs.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Reflect)]
+pub enum ChunkThreads {
+    /// Each chunk on the one thread of Bevy's async compute pool that runs its task: one pool
+    /// for all chunk work.
+    #[default]
+    AsyncCompute,
+    /// Each chunk task also spreads its generation over rayon's global pool (a second pool
+    /// competing for the same cores; kept for comparison in the streaming benchmark).
+    Rayon,
+}
+
+/// Streaming parameters.
+#[derive(Resource, Debug, Clone, Reflect)]
+#[reflect(Resource)]
+pub struct HexTerrainSettings {
+    /// Chunks within this many chunks (Chebyshev distance) of an agent exist.
+    pub load_radius: u32,
+    /// Extra ring generated ahead, so the ring an agent can reach next exists before it
+    /// arrives.
+    pub prefetch: u32,
+    /// Chunks are dropped only beyond `load_radius + prefetch + unload_hysteresis`, so an agent
+    /// pacing on a chunk border does not make chunks blink.
+    pub unload_hysteresis: u32,
+    /// Finished meshes inserted per frame at most (the rest wait for the next frame).
+    pub max_inserts_per_frame: usize,
+    /// Chunk tasks running at once at most; the nearest missing chunks go first.
+    pub max_tasks_in_flight: usize,
+    /// Where a chunk's generation runs.
+    pub chunk_threads: ChunkThreads,
+}
+
+impl Default for HexTerrainSettings {
+    fn default() -> Self {
+        Self {
+            load_radius: 2,
+            prefetch: 1,
+            unload_hysteresis: 1,
+            max_inserts_per_frame: 4,
+            max_tasks_in_flight: 8,
+            chunk_threads: ChunkThreads::default(),
+        }
+    }
+}
+
+/// A terrain chunk entity.
+#[derive(Component, Debug, Clone, Reflect)]
+#[reflect(Component)]
+pub struct HexChunk {
+    /// Chunk column and row.
+    pub coord: ChunkCoord,
+    /// Map generation of the mesh it shows (see [`HexMap::generation`](crate::HexMap::generation));
+    /// `None` until its first mesh arrives.
+    pub generation: Option<u64>,
+    /// Vertices of its mesh.
+    pub vertices: usize,
+    /// Bytes of its mesh's vertex and index data.
+    pub mesh_bytes: usize,
+}
+
+/// A chunk's mesh was inserted (first time or regenerated).
+#[derive(Message, Debug, Clone, Copy, Reflect)]
+pub struct ChunkSpawned {
+    /// The chunk entity.
+    pub entity: Entity,
+    /// Chunk column and row.
+    pub coord: ChunkCoord,
+}
+
+/// A chunk left the world.
+#[derive(Message, Debug, Clone, Copy, Reflect)]
+pub struct ChunkDespawned {
+    /// Chunk column and row.
+    pub coord: ChunkCoord,
+}
+
+/// Every wanted chunk has its mesh for the current map generation: units can be placed.
+/// Sent each time the terrain settles (at start, after an agent moved on, after a reload).
+#[derive(Message, Debug, Clone, Copy, Reflect)]
+pub struct TerrainReady {
+    /// The map generation now complete.
+    pub generation: u64,
+}
+
+/// Which chunks exist, which are wanted and which show a mesh: the streaming bookkeeping,
+/// written by the streaming systems and read through its getters.
+#[derive(Resource, Debug, Default)]
+pub struct ChunkStreamer {
+    chunks: HashMap<ChunkCoord, Entity>,
+    wanted: HashMap<ChunkCoord, u32>,
+    /// Chunks whose mesh is in the world (of any generation).
+    loaded: HashSet<ChunkCoord>,
+    /// Chunks showing a mesh of `current_generation`.
+    current: HashSet<ChunkCoord>,
+    current_generation: u64,
+    /// Whether every wanted chunk was current at the end of the last frame.
+    settled: bool,
+}
+
+impl ChunkStreamer {
+    /// Chunk entities alive.
+    #[must_use]
+    pub fn live_chunks(&self) -> usize {
+        self.chunks.len()
+    }
+
+    /// The entity of a chunk, if it exists.
+    #[must_use]
+    pub fn entity(&self, chunk: ChunkCoord) -> Option<Entity> {
+        self.chunks.get(&chunk).copied()
+    }
+
+    /// Chunks wanted around the agents last frame, with their distance to the nearest agent.
+    pub fn wanted(&self) -> impl Iterator<Item = (ChunkCoord, u32)> + '_ {
+        self.wanted.iter().map(|(&c, &d)| (c, d))
+    }
+
+    /// Whether a chunk's mesh is in the world.
+    #[must_use]
+    pub fn is_chunk_loaded(&self, chunk: ChunkCoord) -> bool {
+        self.loaded.contains(&chunk)
+    }
+
+    /// The chunks whose meshes are in the world.
+    pub fn loaded_chunks(&self) -> impl Iterator<Item = ChunkCoord> + '_ {
+        self.loaded.iter().copied()
+    }
+}
+
+/// Chunk streaming: [`ChunkStreamer`], [`HexTerrainStats`], the chunk messages, and the systems
+/// in [`HexTerrainSystems::Stream`] and [`HexTerrainSystems::Insert`]. Needs [`HexMapPlugin`](crate::HexMapPlugin).
+#[derive(Debug, Clone, Default)]
+pub struct HexStreamingPlugin {
+    /// Streaming parameters (the [`HexTerrainSettings`] resource).
+    pub settings: HexTerrainSettings,
+}
+
+impl Plugin for HexStreamingPlugin {
+    fn build(&self, app: &mut App) {
+        if !app.is_plugin_added::<crate::HexMapPlugin>() {
+            panic!("HexStreamingPlugin needs HexMapPlugin: add HexTerrainPlugins (or HexMapPlugin before it)");
+        }
+        if !app.world().contains_resource::<Assets<Mesh>>() {
+            app.init_asset::<Mesh>();
+        }
+        app.insert_resource(self.settings.clone())
+            .init_resource::<ChunkStreamer>()
+            .init_resource::<HexTerrainStats>()
+            .add_message::<ChunkSpawned>()
+            .add_message::<ChunkDespawned>()
+            .add_message::<TerrainReady>()
+            .register_type::<HexTerrainAgent>()
+            .register_type::<HexTerrainSettings>()
+            .register_type::<HexChunk>()
+            .register_type::<ChunkSpawned>()
+            .register_type::<ChunkDespawned>()
+            .register_type::<TerrainReady>()
+            .add_systems(
+                Update,
+                (
+                    tasks::stream.in_set(HexTerrainSystems::Stream),
+                    insert::insert_ready.in_set(HexTerrainSystems::Insert),
+                ),
+            );
+    }
+}

@@ -1,0 +1,89 @@
+//! The streaming planner: from the agents' chunks and the chunks that exist, which chunks are
+//! wanted, which are dropped and which get a task, in what order. A pure function of its
+//! inputs, tested on [`ChunkCoord`]s without an `App`.
+
+use bevy::platform::collections::HashMap;
+use hex_terrain::{ChunkCoord, Terrain};
+
+use super::HexTerrainSettings;
+
+/// What an existing chunk shows and does, as the planner sees it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct ChunkState {
+    /// It shows a mesh of the current map generation.
+    pub current: bool,
+    /// A task for the current map generation is building its mesh.
+    pub building: bool,
+}
+
+/// What one frame of streaming does.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Plan {
+    /// Chunks that must exist, with their distance (in chunks) to the nearest agent.
+    pub wanted: HashMap<ChunkCoord, u32>,
+    /// Existing chunks to despawn: beyond every agent's keep distance, or outside the map.
+    pub drop: Vec<ChunkCoord>,
+    /// Wanted chunks to start a task for (missing, or showing an older generation and not
+    /// being rebuilt), nearest first, at most the free task budget.
+    pub start: Vec<ChunkCoord>,
+}
+
+/// Plans a frame. `agents` holds each agent's chunk and radius; `existing` every chunk entity's
+/// state.
+#[must_use]
+pub fn plan(
+    terrain: &Terrain,
+    settings: &HexTerrainSettings,
+    agents: &[(ChunkCoord, u32)],
+    existing: &HashMap<ChunkCoord, ChunkState>,
+) -> Plan {
+    let ahead = settings.prefetch;
+    let mut centers = agents.to_vec();
+    let mut wanted: HashMap<ChunkCoord, u32> = HashMap::default();
+    if centers.is_empty() {
+        if terrain.bounds().is_some() {
+            wanted.extend(terrain.chunks().into_iter().map(|c| (c, 0)));
+        } else {
+            centers.push((ChunkCoord::default(), settings.load_radius));
+        }
+    }
+    for &(center, radius) in &centers {
+        let r = (radius + ahead) as i32;
+        for dz in -r..=r {
+            for dx in -r..=r {
+                let c = ChunkCoord::new(center.x + dx, center.z + dz);
+                if terrain.chunk_rect(c).is_none() {
+                    continue;
+                }
+                let d = c.distance(center);
+                wanted.entry(c).and_modify(|e| *e = (*e).min(d)).or_insert(d);
+            }
+        }
+    }
+
+    // Kept: inside the map and within some agent's radius + prefetch + hysteresis (every chunk
+    // of a bounded map when there is no agent).
+    let keep = |c: ChunkCoord| {
+        terrain.chunk_rect(c).is_some()
+            && (centers.is_empty()
+                || centers
+                    .iter()
+                    .any(|&(center, radius)| c.distance(center) <= radius + ahead + settings.unload_hysteresis))
+    };
+    let mut drop: Vec<ChunkCoord> = existing.keys().copied().filter(|c| !wanted.contains_key(c) && !keep(*c)).collect();
+    drop.sort_unstable();
+
+    let in_flight = existing.iter().filter(|(c, s)| s.building && !drop.contains(c)).count();
+    let budget = settings.max_tasks_in_flight.saturating_sub(in_flight);
+    let mut todo: Vec<(u32, ChunkCoord)> = wanted
+        .iter()
+        .filter(|&(c, _)| existing.get(c).is_none_or(|s| !s.current && !s.building))
+        .map(|(&c, &d)| (d, c))
+        .collect();
+    todo.sort_unstable();
+    let start = todo.into_iter().take(budget).map(|(_, c)| c).collect();
+    Plan { wanted, drop, start }
+}
+
+#[cfg(test)]
+mod tests;

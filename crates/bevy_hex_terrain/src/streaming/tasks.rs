@@ -1,0 +1,141 @@
+//! Chunk tasks: the streaming system that applies the planner's decisions (despawn, spawn,
+//! start tasks on Bevy's async compute pool), and the task body.
+
+use std::sync::Arc;
+
+use bevy::platform::collections::HashMap;
+use bevy::platform::time::Instant;
+use bevy::prelude::*;
+use bevy::tasks::{AsyncComputeTaskPool, Task};
+use hex_terrain::{ChunkCoord, GenerateOptions, Terrain, Threads};
+
+use super::planner::{ChunkState, plan};
+use super::{
+    ChunkDespawned, ChunkStreamer, ChunkThreads, HexChunk, HexTerrainAgent, HexTerrainSettings, HexTerrainStats,
+};
+use crate::map::HexMap;
+use crate::mesh::chunk_to_mesh;
+
+/// What a chunk task returns.
+pub struct ChunkBuild {
+    pub(super) generation: u64,
+    pub(super) mesh: Mesh,
+    pub(super) vertices: usize,
+    pub(super) mesh_bytes: usize,
+}
+
+/// A chunk mesh being built on the async compute pool.
+///
+/// Dropping it (the chunk was despawned, or a newer task replaced it) cancels the work if the
+/// pool has not started it yet. A chunk's generation has no await point, so once started it
+/// runs to its end (about a millisecond for a 16x16-tile chunk) and its result is discarded.
+#[derive(Component)]
+pub struct ChunkTask {
+    pub(super) task: Task<ChunkBuild>,
+    pub(super) generation: u64,
+    pub(super) requested: Instant,
+}
+
+/// Plans the frame ([`plan`]) and applies it: despawns dropped chunks, spawns missing ones and
+/// starts their tasks. An outdated chunk keeps showing its old mesh until the new one arrives.
+pub(crate) fn stream(
+    mut commands: Commands,
+    mut streamer: ResMut<ChunkStreamer>,
+    mut stats: ResMut<HexTerrainStats>,
+    map: Res<HexMap>,
+    settings: Res<HexTerrainSettings>,
+    agents: Query<(&GlobalTransform, &HexTerrainAgent)>,
+    chunks: Query<(&HexChunk, Option<&ChunkTask>)>,
+    mut despawned: MessageWriter<ChunkDespawned>,
+) {
+    if map.is_waiting_for_asset() {
+        return;
+    }
+    let terrain = map.terrain().clone();
+    let generation = map.generation();
+    // Forget entities despawned by someone else.
+    streamer.chunks.retain(|_, e| chunks.contains(*e));
+    let agents: Vec<(ChunkCoord, u32)> = agents
+        .iter()
+        .map(|(t, a)| {
+            let p = t.translation();
+            (terrain.chunk_of(terrain.tile_at(p.x, p.z)), a.radius.unwrap_or(settings.load_radius))
+        })
+        .collect();
+    let existing: HashMap<ChunkCoord, ChunkState> = streamer
+        .chunks
+        .iter()
+        .filter_map(|(&c, &e)| {
+            let (chunk, task) = chunks.get(e).ok()?;
+            Some((
+                c,
+                ChunkState {
+                    current: chunk.generation == Some(generation),
+                    building: task.is_some_and(|t| t.generation == generation),
+                },
+            ))
+        })
+        .collect();
+    let plan = plan(&terrain, &settings, &agents, &existing);
+
+    for c in plan.drop {
+        let Some(e) = streamer.chunks.remove(&c) else { continue };
+        if chunks.get(e).is_ok_and(|(_, task)| task.is_some()) {
+            stats.cancelled();
+        }
+        commands.entity(e).despawn();
+        streamer.loaded.remove(&c);
+        streamer.current.remove(&c);
+        despawned.write(ChunkDespawned { coord: c });
+    }
+
+    let pool = AsyncComputeTaskPool::get();
+    let threads = match settings.chunk_threads {
+        ChunkThreads::AsyncCompute => Threads::Current,
+        ChunkThreads::Rayon => Threads::Pool,
+    };
+    for c in plan.start {
+        let task = ChunkTask {
+            task: pool.spawn(build_chunk(terrain.clone(), c, generation, threads)),
+            generation,
+            requested: Instant::now(),
+        };
+        stats.started();
+        match streamer.chunks.get(&c) {
+            // Replacing an older task drops it.
+            Some(&e) => {
+                commands.entity(e).insert(task);
+            }
+            None => {
+                let e = commands
+                    .spawn((
+                        Name::new(format!("hex chunk {} {}", c.x, c.z)),
+                        HexChunk { coord: c, generation: None, vertices: 0, mesh_bytes: 0 },
+                        Transform::IDENTITY,
+                        task,
+                    ))
+                    .id();
+                streamer.chunks.insert(c, e);
+            }
+        }
+    }
+    if streamer.wanted != plan.wanted {
+        streamer.wanted = plan.wanted;
+    }
+}
+
+/// The body of a chunk task: core generation plus the Bevy mesh, off the main thread.
+async fn build_chunk(terrain: Arc<Terrain>, chunk: ChunkCoord, generation: u64, threads: Threads) -> ChunkBuild {
+    let options = GenerateOptions { diagnostics: false, threads };
+    let Some(generated) = terrain.chunk_rect(chunk).map(|rect| terrain.generate(rect, options)) else {
+        return ChunkBuild {
+            generation,
+            mesh: Mesh::new(bevy::mesh::PrimitiveTopology::TriangleList, default()),
+            vertices: 0,
+            mesh_bytes: 0,
+        };
+    };
+    let vertices = generated.buffers.vertex_count();
+    let mesh_bytes = vertices * (12 + 12 + 8) + generated.buffers.indices.len() * 4;
+    ChunkBuild { generation, mesh: chunk_to_mesh(generated), vertices, mesh_bytes }
+}
