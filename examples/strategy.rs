@@ -90,6 +90,8 @@ fn setup(mut commands: Commands) {
             Rig { focus, yaw: 0.0, distance: 30.0, target_focus: focus, target_yaw: 0.0, target_distance: 30.0 },
             HexTerrainAgent::default(),
             Transform::from_translation(focus),
+            // The camera below inherits visibility from the rig.
+            Visibility::default(),
         ))
         .with_child((Camera3d::default(), Transform::default()));
     commands.spawn((

@@ -6,7 +6,6 @@
 #import bevy_pbr::{
     pbr_fragment::pbr_input_from_standard_material,
     pbr_functions::alpha_discard,
-    mesh_view_bindings::globals,
 }
 
 #ifdef PREPASS_PIPELINE
@@ -18,6 +17,7 @@
 #import bevy_pbr::{
     forward_io::{VertexOutput, FragmentOutput},
     pbr_functions::{apply_pbr_lighting, main_pass_post_lighting_processing},
+    mesh_view_bindings::globals,
 }
 #endif
 
@@ -135,11 +135,14 @@ fn fragment(in: VertexOutput, @builtin(front_facing) is_front: bool) -> Fragment
     let n = normalize(in.world_normal);
     var color = albedo(p, n);
 
-    // A gently moving sea surface: a slow shimmer below sea level.
+    // A gently moving sea surface: a slow shimmer below sea level. (The deferred prepass has no
+    // time uniform bound: there the sea is still.)
+#ifndef PREPASS_PIPELINE
     if p.y < params.sea_level {
         let wave = 0.5 + 0.5 * sin(globals.time * 1.3 + p.x * 1.7 + p.z * 1.1) * sin(globals.time * 0.9 - p.z * 1.3);
         color = vec4<f32>(color.rgb * (0.92 + 0.12 * wave), color.a);
     }
+#endif
 
     let hex = hex_at(p.xz);
     let tile = vec2<i32>(i32(hex.x), i32(hex.y));
@@ -161,6 +164,11 @@ fn fragment(in: VertexOutput, @builtin(front_facing) is_front: bool) -> Fragment
     pbr_input.material.base_color = alpha_discard(pbr_input.material, pbr_input.material.base_color);
 
 #ifdef PREPASS_PIPELINE
+    // Deferred: the outline goes into the albedo (lighting comes later, in the deferred pass).
+    pbr_input.material.base_color = vec4<f32>(
+        mix(pbr_input.material.base_color.rgb, params.outline_color.rgb, outline),
+        pbr_input.material.base_color.a,
+    );
     let out = deferred_output(in, pbr_input);
 #else
     var out: FragmentOutput;
