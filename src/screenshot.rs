@@ -1,6 +1,7 @@
 //! Screenshot mode for examples and tests: with `HEXTERRAIN_SCREENSHOT=out.png` in the
 //! environment, the app saves a screenshot of the primary window after `HEXTERRAIN_FRAMES`
-//! frames (default 60) and exits with status 0. Without it, the plugin does nothing.
+//! frames (default 60), prints the mean frame time of the frames after the first ten (which
+//! compile pipelines) and exits with status 0. Without it, the plugin does nothing.
 
 use std::path::PathBuf;
 
@@ -16,6 +17,8 @@ struct ScreenshotMode {
     frames: u32,
     seen: u32,
     requested: bool,
+    /// Start of the eleventh frame, once reached.
+    timing_from: Option<std::time::Instant>,
 }
 
 /// The screenshot was written.
@@ -26,7 +29,7 @@ impl Plugin for ScreenshotModePlugin {
     fn build(&self, app: &mut App) {
         let Some(path) = std::env::var_os("HEXTERRAIN_SCREENSHOT") else { return };
         let frames = std::env::var("HEXTERRAIN_FRAMES").ok().and_then(|f| f.parse().ok()).unwrap_or(60);
-        app.insert_resource(ScreenshotMode { path: path.into(), frames, seen: 0, requested: false })
+        app.insert_resource(ScreenshotMode { path: path.into(), frames, seen: 0, requested: false, timing_from: None })
             .add_systems(Last, screenshot_after_frames);
     }
 }
@@ -42,8 +45,18 @@ fn screenshot_after_frames(
         return;
     }
     mode.seen += 1;
+    if mode.seen == 10 {
+        mode.timing_from = Some(std::time::Instant::now());
+    }
     if mode.seen >= mode.frames && !mode.requested {
         mode.requested = true;
+        if let Some(from) = mode.timing_from {
+            let frames = mode.seen - 10;
+            if frames > 0 {
+                let ms = from.elapsed().as_secs_f64() * 1e3 / f64::from(frames);
+                info!("mean frame time: {ms:.1} ms over {frames} frames");
+            }
+        }
         let path = mode.path.clone();
         commands.spawn(Screenshot::primary_window()).observe(
             move |captured: On<ScreenshotCaptured>, mut commands: Commands| {

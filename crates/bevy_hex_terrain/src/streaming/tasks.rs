@@ -38,6 +38,7 @@ pub struct ChunkTask {
 
 /// Plans the frame ([`plan`]) and applies it: despawns dropped chunks, spawns missing ones and
 /// starts their tasks. An outdated chunk keeps showing its old mesh until the new one arrives.
+#[expect(clippy::too_many_arguments, reason = "a system's parameters")]
 pub(crate) fn stream(
     mut commands: Commands,
     mut streamer: ResMut<ChunkStreamer>,
