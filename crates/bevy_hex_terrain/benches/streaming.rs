@@ -92,9 +92,11 @@ fn main() {
     let seconds: u32 =
         std::env::args().skip_while(|a| a != "--seconds").nth(1).and_then(|s| s.parse().ok()).unwrap_or(60);
     // The default (one pool: each chunk on one thread of the async compute pool) beside the
-    // old way (each chunk task also fanning out over rayon's pool), in one process.
-    let ours = walk(seconds, ChunkThreads::AsyncCompute);
+    // old way (each chunk task also fanning out over rayon's pool), in one process, after a
+    // short walk that warms up the process (pools, allocator, first page faults).
+    drop(walk(5, ChunkThreads::AsyncCompute));
     let rayon = walk(seconds, ChunkThreads::Rayon);
+    let ours = walk(seconds, ChunkThreads::AsyncCompute);
     println!("streaming: {seconds} s at 60 fps, agent crossing one 16x16-tile chunk per second, default settings");
     println!("| figure | async compute pool only (default) | chunk tasks also on rayon |\n|---|---|---|");
     let row = |name: &str, f: &dyn Fn(&Walk) -> String| println!("| {name} | {} | {} |", f(&ours), f(&rayon));
