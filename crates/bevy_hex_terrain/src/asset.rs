@@ -6,7 +6,7 @@ use std::sync::Arc;
 use bevy::asset::io::Reader;
 use bevy::asset::{AssetLoader, LoadContext};
 use bevy::prelude::*;
-use hex_terrain::{ConfigError, HeightImage, HeightSourceConfig, ImageError, MapConfig};
+use hex_terrain::{HeightImage, HeightSourceConfig, ImageError, LoadError, MapConfig, MapFile};
 use thiserror::Error;
 
 /// A loaded map config, with the heightmap of an `Image` source already decoded.
@@ -32,15 +32,10 @@ pub enum HexMapLoaderError {
     /// The file could not be read.
     #[error("could not read the map config: {0}")]
     Io(#[from] std::io::Error),
-    /// Not UTF-8.
-    #[error("the map config is not UTF-8: {0}")]
-    Utf8(#[from] std::str::Utf8Error),
-    /// Malformed RON; carries line and column.
-    #[error("malformed map config at {0}")]
-    Ron(#[from] ron::error::SpannedError),
-    /// A value out of range.
+    /// Not UTF-8, malformed RON (with line and column) or a value out of range (naming the
+    /// field and the allowed range).
     #[error(transparent)]
-    Invalid(#[from] ConfigError),
+    Map(#[from] LoadError),
     /// The heightmap of an `Image` source could not be read.
     #[error("heightmap {path}: {source}")]
     Image {
@@ -73,20 +68,17 @@ impl AssetLoader for HexMapLoader {
     ) -> Result<HexMapAsset, HexMapLoaderError> {
         let mut bytes = Vec::new();
         reader.read_to_end(&mut bytes).await?;
-        let mut config: MapConfig = ron::de::from_str(std::str::from_utf8(&bytes)?)?;
-        // An out-of-range blend only affects looks: clamp it, warn, and fall back to flat
+        // Parsing and validation are the core's, so the fuzz targets exercise this very path.
+        let MapFile { config, clamped_blend } = MapFile::from_bytes(&bytes)?;
+        // An out-of-range blend only affects looks: it was clamped; warn, and fall back to flat
         // colors rather than refusing the whole map.
-        let blend = config.appearance.blend;
-        let appearance_fallback = !(0.0..=1.0).contains(&blend);
-        if appearance_fallback {
-            config.appearance.blend = if blend.is_nan() { 0.1 } else { blend.clamp(0.0, 1.0) };
+        if let Some(blend) = clamped_blend {
             warn!(
                 "{}: appearance.blend = {blend} is outside [0, 1]; using {} and flat colors",
                 load_context.path(),
                 config.appearance.blend
             );
         }
-        config.validate()?;
         let image = match &config.source {
             HeightSourceConfig::Noise => None,
             HeightSourceConfig::Image { path, .. } => {
@@ -105,10 +97,11 @@ impl AssetLoader for HexMapLoader {
                 ))
             }
         };
-        Ok(HexMapAsset { config, image, appearance_fallback })
+        Ok(HexMapAsset { config, image, appearance_fallback: clamped_blend.is_some() })
     }
 
     fn extensions(&self) -> &[&str] {
         &["map.ron"]
     }
 }
+

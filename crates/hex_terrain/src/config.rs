@@ -5,6 +5,9 @@ use serde::{Deserialize, Serialize};
 
 use crate::error::{ConfigError, LoadError};
 
+mod file;
+pub use file::MapFile;
+
 /// The whole description of a map. Defaults reproduce the thesis' Map0 (tables 2-4) on a
 /// 30x30 map.
 ///
@@ -292,6 +295,9 @@ pub const MAX_INNER_RINGS: u32 = 16;
 pub const MAX_OFFSET: i32 = 1_000_000;
 /// Largest chunk side, in tiles.
 pub const MAX_CHUNK_SIDE: u32 = 512;
+/// Largest estimated size of one chunk's mesh, in bytes: a chunk is generated on one thread
+/// while a game runs, so this keeps one chunk well under a second.
+pub const MAX_CHUNK_BYTES: u64 = 256 << 20;
 /// Largest estimated size of a whole bounded map's mesh, in bytes.
 pub const MAX_MAP_BYTES: u64 = 12 << 30;
 /// Bytes a mesh vertex and its share of the index buffer take, about.
@@ -409,6 +415,14 @@ impl MapConfig {
             format!("{:?}", self.chunk_size),
             format!("each side in 1..={MAX_CHUNK_SIDE}"),
         )?;
+        let per_hex = 3 * u64::from(self.subdivisions()).pow(2);
+        let chunk_bytes = u64::from(self.chunk_size.0) * u64::from(self.chunk_size.1) * per_hex * BYTES_PER_VERTEX;
+        check(
+            chunk_bytes <= MAX_CHUNK_BYTES,
+            "chunk_size",
+            format!("{:?} ({} MiB of mesh a chunk with {} inner rings)", self.chunk_size, chunk_bytes >> 20, t.inner_rings),
+            format!("a chunk mesh of at most {} MiB: fewer tiles a chunk or fewer inner rings", MAX_CHUNK_BYTES >> 20),
+        )?;
         check(
             self.offset.0.unsigned_abs() <= MAX_OFFSET as u32 && self.offset.1.unsigned_abs() <= MAX_OFFSET as u32,
             "offset",
@@ -442,7 +456,6 @@ impl MapConfig {
                     format!("{x}x{z}"),
                     format!("at most {0}x{0} hexes", 2 * MAX_OFFSET),
                 )?;
-                let per_hex = 3 * u64::from(self.subdivisions()).pow(2);
                 let bytes = u64::from(x) * u64::from(z) * per_hex * BYTES_PER_VERTEX;
                 check(
                     bytes <= MAX_MAP_BYTES,

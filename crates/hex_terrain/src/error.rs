@@ -35,6 +35,9 @@ pub enum LoadError {
         #[source]
         source: std::io::Error,
     },
+    /// The file is not UTF-8 text.
+    #[error("the map config is not UTF-8: {0}")]
+    Utf8(#[from] std::str::Utf8Error),
     /// Malformed RON; the message carries line and column.
     #[error("malformed map config at {0}")]
     Ron(#[from] ron::error::SpannedError),

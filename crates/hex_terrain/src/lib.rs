@@ -34,7 +34,7 @@ pub mod terrain;
 
 pub use chunk::{ChunkCoord, TileRect};
 pub use config::{
-    AppearanceConfig, HeightSourceConfig, LayoutConfig, ManipulationConfig, MapConfig, MapSize, NoiseConfig,
+    AppearanceConfig, HeightSourceConfig, LayoutConfig, ManipulationConfig, MapConfig, MapFile, MapSize, NoiseConfig,
     Orientation, PullMode, Shape, TerrainConfig,
 };
 pub use error::{ConfigError, LoadError};

@@ -17,6 +17,10 @@ pub struct RayHit {
     pub tile: Hex,
 }
 
+/// Most marching steps of one [`Terrain::raycast`], each half a lattice step: a ray that stays
+/// inside the relief is followed for 2^18 hex sizes at the default ring count.
+pub const MAX_RAY_STEPS: u32 = 1 << 20;
+
 impl Terrain {
     /// The tile under world `(x, z)`.
     #[must_use]
@@ -41,47 +45,59 @@ impl Terrain {
     }
 
     /// First hit of a ray on the surface within `max_distance`, marching at a fraction of a
-    /// lattice step and refining by bisection.
+    /// lattice step and refining by bisection. Any `max_distance` is fine (`f32::MAX` for no
+    /// limit): the march covers only the part of the ray between the highest and the lowest
+    /// possible surface, and gives up after [`MAX_RAY_STEPS`] steps.
     #[must_use]
     pub fn raycast(&self, origin: [f32; 3], direction: [f32; 3], max_distance: f32) -> Option<RayHit> {
         let len = (direction[0].powi(2) + direction[1].powi(2) + direction[2].powi(2)).sqrt();
-        if len.is_nan() || len <= 0.0 || !max_distance.is_finite() || origin.iter().any(|v| !v.is_finite()) {
+        if len.is_nan() || len <= 0.0 || max_distance.is_nan() || origin.iter().any(|v| !v.is_finite()) {
             return None;
         }
-        let d = direction.map(|v| v / len);
-        let at = |t: f32| [origin[0] + d[0] * t, origin[1] + d[1] * t, origin[2] + d[2] * t];
-        let above = |t: f32| {
+        // March in f64, so a step stays a step however far along the ray.
+        let d = direction.map(|v| f64::from(v / len));
+        let o = origin.map(f64::from);
+        let at = |t: f64| [(o[0] + d[0] * t) as f32, (o[1] + d[1] * t) as f32, (o[2] + d[2] * t) as f32];
+        let above = |t: f64| {
             let p = at(t);
             p[1] - self.surface_height(p[0], p[2])
         };
-        // Skip down to the highest possible surface quickly when looking from far above.
-        let top = self.config.terrain.max_elevation;
-        let mut t0 = 0.0;
-        if origin[1] > top && d[1] < 0.0 {
-            t0 = (origin[1] - top) / -d[1];
+        // The surface lies between 0 and the maximum elevation: skip down to the top quickly
+        // when looking from far above, and stop below the bottom.
+        let top = f64::from(self.config.terrain.max_elevation);
+        if o[1] > top && d[1] >= 0.0 {
+            return None;
         }
-        let step = (self.config.layout.hex_size / self.lattice.subdivisions() as f32 * 0.5).max(1e-4);
+        let t0 = if o[1] > top { (o[1] - top) / -d[1] } else { 0.0 };
+        let mut end = f64::from(max_distance);
+        if d[1] < 0.0 {
+            end = end.min(o[1].max(0.0) / -d[1] + 1.0);
+        }
+        let step = f64::from(self.config.layout.hex_size) / f64::from(self.lattice.subdivisions()) * 0.5;
         let mut prev = above(t0);
         if prev < 0.0 {
             return None;
         }
         let mut t = t0;
-        while t < max_distance {
-            let next = (t + step).min(max_distance);
+        for _ in 0..MAX_RAY_STEPS {
+            if t >= end {
+                break;
+            }
+            let next = (t + step).min(end);
             let h = above(next);
             if h <= 0.0 {
                 let (mut lo, mut hi) = (t, next);
-                for _ in 0..24 {
+                for _ in 0..32 {
                     let mid = 0.5 * (lo + hi);
                     if above(mid) > 0.0 { lo = mid } else { hi = mid }
                 }
                 let point = at(hi);
-                return Some(RayHit { point, distance: hi, tile: self.tile_at(point[0], point[2]) });
+                return Some(RayHit { point, distance: hi as f32, tile: self.tile_at(point[0], point[2]) });
             }
             prev = h;
             t = next;
             // A ray going up and already above every possible height never comes back.
-            if d[1] >= 0.0 && at(t)[1] > top && prev > 0.0 {
+            if d[1] >= 0.0 && f64::from(at(t)[1]) > top && prev > 0.0 {
                 return None;
             }
         }

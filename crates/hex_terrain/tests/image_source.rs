@@ -2,7 +2,7 @@
 
 use std::sync::Arc;
 
-use hex_terrain::{HeightImage, HeightSourceConfig, MapConfig, MapSize, Terrain, TileKind};
+use hex_terrain::{HeightImage, HeightSourceConfig, ImageError, MapConfig, MapSize, Terrain, TileKind};
 
 /// A radial hill: 1 in the middle, 0 at the corners.
 fn hill(size: usize) -> HeightImage {
@@ -67,6 +67,9 @@ fn bad_images_are_errors_not_panics() {
     };
     let err = Terrain::new(missing).unwrap_err();
     assert_eq!(err.field, "source.path");
+    // A device named as the heightmap is refused, not read forever.
+    let err = HeightImage::load(std::path::Path::new("/dev/zero")).unwrap_err();
+    assert!(err.to_string().contains("not a regular file"), "{err}");
     let bad_level = MapConfig {
         source: HeightSourceConfig::Image { path: "x.png".into(), sea_level: 1.5 },
         ..MapConfig::default()
@@ -78,4 +81,45 @@ fn bad_images_are_errors_not_panics() {
         ..MapConfig::default()
     };
     assert_eq!(Terrain::new(unbounded).unwrap_err().field, "source");
+}
+
+/// CRC-32 of a PNG chunk (type and data).
+fn crc32(bytes: &[u8]) -> u32 {
+    let mut crc = !0u32;
+    for &b in bytes {
+        crc ^= u32::from(b);
+        for _ in 0..8 {
+            crc = if crc & 1 == 1 { (crc >> 1) ^ 0xEDB8_8320 } else { crc >> 1 };
+        }
+    }
+    !crc
+}
+
+/// A PNG whose header claims `width x height` 8-bit grey pixels, with an empty image stream.
+fn png_header_only(width: u32, height: u32) -> Vec<u8> {
+    let mut png = vec![0x89, b'P', b'N', b'G', 13, 10, 26, 10];
+    let mut chunk = |kind: &[u8], data: &[u8]| {
+        png.extend_from_slice(&(data.len() as u32).to_be_bytes());
+        let body: Vec<u8> = kind.iter().chain(data).copied().collect();
+        png.extend_from_slice(&body);
+        png.extend_from_slice(&crc32(&body).to_be_bytes());
+    };
+    let mut ihdr = Vec::new();
+    ihdr.extend_from_slice(&width.to_be_bytes());
+    ihdr.extend_from_slice(&height.to_be_bytes());
+    ihdr.extend_from_slice(&[8, 0, 0, 0, 0]);
+    chunk(b"IHDR", &ihdr);
+    chunk(b"IDAT", &[0x78, 0x9c, 0x03, 0x00, 0x00, 0x00, 0x00, 0x01]);
+    chunk(b"IEND", &[]);
+    png
+}
+
+#[test]
+fn oversized_heightmaps_are_refused_from_their_header() {
+    let err = HeightImage::from_png_bytes(&png_header_only(100_000, 90_000)).unwrap_err();
+    assert!(matches!(err, ImageError::TooLarge(100_000, 90_000)), "{err}");
+    assert!(err.to_string().contains("100000x90000") && err.to_string().contains("8192x8192"), "{err}");
+    // Within the limit, the same (truncated) stream is a decode error, not a size error.
+    let err = HeightImage::from_png_bytes(&png_header_only(64, 64)).unwrap_err();
+    assert!(matches!(err, ImageError::Decode(_)), "{err}");
 }

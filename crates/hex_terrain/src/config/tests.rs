@@ -41,6 +41,13 @@ fn every_bad_value_names_its_field() {
     rejects(|c| c.layout.hex_size = 0.0, "layout.hex_size");
     rejects(|c| c.layout.hex_size = f32::NAN, "layout.hex_size");
     rejects(|c| c.chunk_size = (0, 8), "chunk_size");
+    rejects(
+        |c| {
+            c.chunk_size = (512, 512);
+            c.terrain.inner_rings = 16;
+        },
+        "chunk_size",
+    );
     rejects(|c| c.offset = (0, i32::MIN), "offset");
     rejects(|c| c.appearance.blend = 1.5, "appearance.blend");
     rejects(|c| c.size = MapSize::Bounded { x: 0, z: 10 }, "size");
@@ -77,4 +84,18 @@ fn ron_round_trips() {
     c.layout.orientation = Orientation::Pointy;
     let back = MapConfig::from_ron(&c.to_ron()).unwrap();
     assert_eq!(back, c);
+}
+
+#[test]
+fn a_map_file_clamps_its_blend_and_refuses_the_rest() {
+    let file = MapFile::from_bytes(b"(seed: 3, appearance: (blend: 1.5))").unwrap();
+    assert_eq!((file.config.seed, file.config.appearance.blend, file.clamped_blend), (3, 1.0, Some(1.5)));
+    let file = MapFile::from_bytes(b"(appearance: (blend: NaN))").unwrap();
+    assert_eq!(file.config.appearance.blend, AppearanceConfig::default().blend);
+    assert!(file.clamped_blend.is_some_and(f32::is_nan));
+    assert_eq!(MapFile::from_bytes(b"(seed: 3)").unwrap().clamped_blend, None);
+    let err = MapFile::from_bytes(b"(seed: 3, name: \"\xff\")").unwrap_err();
+    assert!(matches!(err, LoadError::Utf8(_)), "{err}");
+    let err = MapFile::from_bytes(b"(noise: (octaves: 40))").unwrap_err();
+    assert!(err.to_string().contains("noise.octaves") && err.to_string().contains("1..=32"), "{err}");
 }

@@ -81,9 +81,10 @@ impl FastPerlin {
     #[inline(always)]
     fn lane(&self, x: f64, y: f64) -> f64 {
         // `noise` floors with "truncate, minus one at or below zero", so an exact integer at or
-        // below zero lands in the cell below it; do the same.
-        let cx = if x <= 0.0 { x as i64 - 1 } else { x as i64 };
-        let cy = if y <= 0.0 { y as i64 - 1 } else { y as i64 };
+        // below zero lands in the cell below it; do the same. The cast saturates beyond i64, where
+        // f64 has no fraction left anyway; the subtraction must saturate with it.
+        let cx = if x <= 0.0 { (x as i64).saturating_sub(1) } else { x as i64 };
+        let cy = if y <= 0.0 { (y as i64).saturating_sub(1) } else { y as i64 };
         let dx = (x - cx as f64).clamp(0.0, 1.0);
         let dy = (y - cy as f64).clamp(0.0, 1.0);
         let cell = self.cells[(((cx & 0xff) << 8) | (cy & 0xff)) as usize];

@@ -2,7 +2,17 @@
 //! 8), where an existing map (a real-world elevation raster, say) is tiled with the same
 //! classification and manipulation as the noise.
 
+use std::io::Cursor;
 use std::path::Path;
+
+use image::ImageDecoder;
+
+/// Largest heightmap file read from disk, in bytes.
+pub const MAX_PNG_BYTES: u64 = 512 << 20;
+
+/// Most pixels a heightmap may have (8192 x 8192): decoding it takes about a second, and its
+/// samples 256 MiB. Larger images are refused before their pixels are decoded.
+pub const MAX_IMAGE_PIXELS: u64 = 8192 * 8192;
 
 /// A heightmap resampled bilinearly, with values in `[0, 1]`.
 #[derive(Clone, PartialEq)]
@@ -37,6 +47,9 @@ pub enum ImageError {
     /// No pixels.
     #[error("the heightmap is empty ({0}x{1} pixels)")]
     Empty(u32, u32),
+    /// More pixels than [`MAX_IMAGE_PIXELS`].
+    #[error("the heightmap is {0}x{1} pixels; allowed: at most {MAX_IMAGE_PIXELS} pixels (8192x8192)")]
+    TooLarge(u32, u32),
 }
 
 impl HeightImage {
@@ -56,25 +69,39 @@ impl HeightImage {
     ///
     /// # Errors
     /// [`ImageError::Decode`] for anything that is not a valid PNG, [`ImageError::Empty`] for
-    /// a 0x0 image.
+    /// a 0x0 image, [`ImageError::TooLarge`] for more than [`MAX_IMAGE_PIXELS`] (read from the
+    /// header, before any pixel is decoded).
     pub fn from_png_bytes(bytes: &[u8]) -> Result<Self, ImageError> {
-        let img = image::load_from_memory_with_format(bytes, image::ImageFormat::Png)?;
-        let (w, h) = (img.width(), img.height());
+        let decoder = image::ImageReader::with_format(Cursor::new(bytes), image::ImageFormat::Png).into_decoder()?;
+        let (w, h) = decoder.dimensions();
         if w == 0 || h == 0 {
             return Err(ImageError::Empty(w, h));
         }
+        if u64::from(w) * u64::from(h) > MAX_IMAGE_PIXELS {
+            return Err(ImageError::TooLarge(w, h));
+        }
+        let img = image::DynamicImage::from_decoder(decoder)?;
         let luma = img.into_luma16();
         let data = luma.pixels().map(|p| f32::from(p.0[0]) / 65535.0).collect();
         Self::from_samples(w as usize, h as usize, data)
     }
 
-    /// Reads a PNG file.
+    /// Reads a PNG file (a regular file of at most [`MAX_PNG_BYTES`]: a device or a pipe
+    /// named as a heightmap is refused, not read forever).
     ///
     /// # Errors
     /// As [`HeightImage::from_png_bytes`], plus [`ImageError::Io`].
     pub fn load(path: &Path) -> Result<Self, ImageError> {
-        let bytes =
-            std::fs::read(path).map_err(|source| ImageError::Io { path: path.display().to_string(), source })?;
+        use std::io::Read;
+        let io = |source| ImageError::Io { path: path.display().to_string(), source };
+        let file = std::fs::File::open(path).map_err(io)?;
+        let meta = file.metadata().map_err(io)?;
+        if !meta.is_file() || meta.len() > MAX_PNG_BYTES {
+            let what = if meta.is_file() { "a file larger than 512 MiB" } else { "not a regular file" };
+            return Err(io(std::io::Error::new(std::io::ErrorKind::InvalidInput, what)));
+        }
+        let mut bytes = Vec::new();
+        file.take(MAX_PNG_BYTES).read_to_end(&mut bytes).map_err(io)?;
         Self::from_png_bytes(&bytes)
     }
 

@@ -10,7 +10,7 @@ pub mod image;
 pub mod shape;
 
 pub use fbm::{FastPerlin, Fbm};
-pub use image::{HeightImage, ImageError, remap_sea_level};
+pub use image::{HeightImage, ImageError, MAX_IMAGE_PIXELS, MAX_PNG_BYTES, remap_sea_level};
 pub use shape::ShapeBounds;
 
 use hexx::Hex;

@@ -62,3 +62,12 @@ fn map0_parameters_give_thesis_like_type_shares() {
     assert!((0.03..0.3).contains(&low), "share below 0.3: {low}");
     assert!((0.03..0.3).contains(&high), "share above 0.7: {high}");
 }
+
+#[test]
+fn coordinates_beyond_i64_give_finite_noise() {
+    let perlin = FastPerlin::new(3);
+    for (x, y) in [(-1e300, 5.5), (1e300, -1e19), (-9.3e18, -9.3e18), (f64::MAX, f64::MIN)] {
+        let v = perlin.get(x, y);
+        assert!(v.is_finite() && (-1.0..=1.0).contains(&v), "noise at ({x}, {y}) = {v}");
+    }
+}

@@ -1,0 +1,105 @@
+//! What each fuzz target does with its input, and the properties it asserts. The cargo-fuzz
+//! targets in `fuzz/` call these functions; `tests/corpus.rs` replays the kept corpus and every
+//! input that once failed through them, so CI checks them in seconds on the stable toolchain.
+//!
+//! A property violation panics, which is what a fuzzer reports:
+//! - no panic anywhere on the way from bytes to buffers (the fuzzer catches those itself);
+//! - no hang: validation refuses every size that would take long, and each target generates a
+//!   bounded amount of terrain (at most [`MAX_TILES`] tiles);
+//! - every buffer finite, every index in range;
+//! - every error names what was wrong (the field and the allowed range, the line and column of
+//!   malformed RON, the size of an oversized image).
+
+use std::sync::Arc;
+
+use hex_terrain::{GenerateOptions, HeightImage, HeightSourceConfig, MapConfig, MapFile, MapSize, Terrain, TileRect};
+
+mod check;
+
+pub use check::{check_config_error, check_load_error, check_terrain};
+
+/// Most tiles a target generates from one input (a 4x4 rectangle).
+pub const MAX_TILES: u32 = 16;
+
+/// The heightmap the map-text target gives an `Image` source (it reads no file named by
+/// fuzzed text): a 5x4 ramp.
+fn ramp() -> Arc<HeightImage> {
+    let data = (0..20).map(|i| i as f32 / 19.0).collect();
+    Arc::new(HeightImage::from_samples(5, 4, data).expect("a 5x4 ramp is a valid heightmap"))
+}
+
+/// Map text: RON → [`MapConfig::from_ron`] → [`Terrain`] → a small rectangle of tiles, as the
+/// CLI reads a map file.
+pub fn map_text(data: &[u8]) {
+    let Ok(text) = std::str::from_utf8(data) else { return };
+    match MapConfig::from_ron(text) {
+        Ok(config) => build(config, Some(ramp())),
+        Err(error) => check_load_error(&error),
+    }
+}
+
+/// Heightmap: PNG bytes → [`HeightImage`] → a 12x8 map tiled from it.
+pub fn heightmap(data: &[u8]) {
+    match HeightImage::from_png_bytes(data) {
+        Ok(image) => {
+            let (w, h) = image.size();
+            assert!(w > 0 && h > 0 && (w as u64) * (h as u64) <= hex_terrain::heights::MAX_IMAGE_PIXELS);
+            for (u, v) in [(0.0, 0.0), (1.0, 1.0), (0.5, 0.25), (-3.0, 7.0)] {
+                let s = image.sample(u, v);
+                assert!((0.0..=1.0).contains(&s), "sample ({u}, {v}) = {s}");
+            }
+            let sea_level = data.len() as f32 % 97.0 / 96.0;
+            let config = MapConfig {
+                source: HeightSourceConfig::Image { path: "fuzzed.png".into(), sea_level },
+                size: MapSize::Bounded { x: 12, z: 8 },
+                ..MapConfig::default()
+            };
+            let terrain = Terrain::with_image(config, Some(Arc::new(image))).expect("a valid config");
+            let map = terrain.generate_map().expect("a bounded map");
+            check_terrain(&terrain, &map);
+        }
+        Err(error) => assert!(!error.to_string().is_empty()),
+    }
+}
+
+/// Map asset, as the Bevy plugin's loader reads it: the bytes up to the first NUL are the map
+/// file ([`MapFile::from_bytes`]); the rest are the bytes of its heightmap when its source is
+/// `Image`. Then the terrain the plugin builds from the asset, and a small chunk of it.
+pub fn map_asset(data: &[u8]) {
+    let split = data.iter().position(|&b| b == 0).unwrap_or(data.len());
+    let (file, png) = (&data[..split], data.get(split + 1..).unwrap_or_default());
+    let file = match MapFile::from_bytes(file) {
+        Ok(file) => file,
+        Err(error) => return check_load_error(&error),
+    };
+    if let Some(blend) = file.clamped_blend {
+        assert!(!(0.0..=1.0).contains(&blend) && (0.0..=1.0).contains(&file.config.appearance.blend));
+    }
+    let image = match &file.config.source {
+        HeightSourceConfig::Noise => None,
+        HeightSourceConfig::Image { .. } => match HeightImage::from_png_bytes(png) {
+            Ok(image) => Some(Arc::new(image)),
+            Err(error) => return assert!(!error.to_string().is_empty()),
+        },
+    };
+    build(file.config, image);
+}
+
+/// Builds the terrain of a valid config and generates at most [`MAX_TILES`] tiles of it: the
+/// first tiles of a bounded map, or tiles around the first chunk of an unbounded one.
+fn build(config: MapConfig, image: Option<Arc<HeightImage>>) {
+    let terrain = match Terrain::with_image(config, image) {
+        Ok(terrain) => terrain,
+        Err(error) => return check_config_error(&error),
+    };
+    let (cx, cz) = terrain.chunk_size();
+    let side = [cx.min(4), cz.min(4)];
+    let min = [terrain.config().offset.0 % 1000, terrain.config().offset.1 % 1000];
+    let rect = match terrain.bounds() {
+        Some(bounds) => TileRect::new(bounds.min, side).intersect(&bounds),
+        None => TileRect::new(min, side),
+    };
+    assert!(rect.len() as u32 <= MAX_TILES);
+    let mesh = terrain.generate(rect, GenerateOptions::default());
+    check_terrain(&terrain, &mesh);
+}
