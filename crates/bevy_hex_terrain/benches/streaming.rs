@@ -36,6 +36,9 @@ struct Walk {
     live: usize,
     live_max: usize,
     per_chunk: f64,
+    /// Meshes inserted, tasks started and tasks cancelled in the frame whose terrain systems
+    /// took longest.
+    worst: (u64, u64, u64),
 }
 
 /// Walks an agent east for `seconds` with chunk generation running on `threads`.
@@ -66,11 +69,24 @@ fn walk(seconds: u32, threads: ChunkThreads) -> Walk {
     let frames = seconds * 60;
     let frame = Duration::from_secs_f64(1.0 / 60.0);
     let mut live_max = 0;
+    let counts = |app: &App| {
+        let s = app.world().resource::<HexTerrainStats>();
+        (s.meshes_inserted(), s.tasks_started(), s.tasks_cancelled())
+    };
+    let (mut worst, mut worst_time) = ((0, 0, 0), 0.0);
     for f in 0..frames {
         let start = Instant::now();
         let x = f as f32 / 60.0 * chunk_width;
         app.world_mut().entity_mut(agent).insert(Transform::from_xyz(x, 0.0, 0.0));
+        let before = counts(&app);
         app.update();
+        let after = counts(&app);
+        if let Some(&t) = app.world().resource::<FrameTimes>().samples.last()
+            && t > worst_time
+        {
+            worst_time = t;
+            worst = (after.0 - before.0, after.1 - before.1, after.2 - before.2);
+        }
         live_max = live_max.max(app.world().resource::<ChunkStreamer>().live_chunks());
         if let Some(rest) = frame.checked_sub(start.elapsed()) {
             std::thread::sleep(rest);
@@ -85,7 +101,7 @@ fn walk(seconds: u32, threads: ChunkThreads) -> Walk {
     let live = app.world().resource::<ChunkStreamer>().live_chunks();
     let bytes: Vec<usize> = app.world_mut().query::<&HexChunk>().iter(app.world()).map(|c| c.mesh_bytes).collect();
     let per_chunk = bytes.iter().sum::<usize>() as f64 / bytes.len().max(1) as f64;
-    Walk { started, latencies, times, live, live_max, per_chunk }
+    Walk { started, latencies, times, live, live_max, per_chunk, worst }
 }
 
 fn main() {
@@ -111,6 +127,9 @@ fn main() {
             percentile(&w.times, 0.99),
             w.times.last().copied().unwrap_or(f64::NAN)
         )
+    });
+    row("in the slowest frame: meshes inserted / tasks started / cancelled", &|w| {
+        format!("{} / {} / {}", w.worst.0, w.worst.1, w.worst.2)
     });
     row("live chunks at the end / at most", &|w| format!("{} / {}", w.live, w.live_max));
     row("mesh memory per chunk", &|w| format!("{:.0} KiB", w.per_chunk / 1024.0));

@@ -423,3 +423,59 @@ fn chunk_tasks_on_rayon_give_the_same_meshes() {
     assert_eq!(meshes[0].len(), 6);
     assert_eq!(meshes[0], meshes[1]);
 }
+
+#[test]
+fn reload_teleport_and_switch_in_one_frame_leave_only_the_new_state() {
+    let dir = std::env::temp_dir().join(format!("hex-terrain-race-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    write(&dir, "a.map.ron", "(seed: 31, size: Unbounded, chunk_size: (8, 8))");
+    write(&dir, "b.map.ron", "(seed: 32, size: Unbounded, chunk_size: (8, 8), terrain: (inner_rings: 2))");
+    let mut s = settings(2);
+    s.max_inserts_per_frame = 2;
+    let mut app = app_with(HexTerrainPlugins { map: "a.map.ron".into(), settings: s }, Some(&dir));
+    let agent = spawn_agent(&mut app, Vec3::ZERO);
+    run_until(&mut app, "map a", |app| app.world().resource::<HexMap>().config().seed == 31 && ready(app));
+    let start = app.world().resource::<HexTerrainStats>().tasks_started();
+    // Send a reload of map a, so tasks of a new generation are in flight...
+    let handle = app.world().resource::<HexMapHandle>().handle().unwrap().clone();
+    let mut config = app.world().resource::<Assets<HexMapAsset>>().get(&handle).unwrap().config.clone();
+    config.seed = 33;
+    let reloaded = HexMapAsset { config: config.clone(), image: None, appearance_fallback: false };
+    app.world_mut().resource_mut::<Assets<HexMapAsset>>().insert(handle.id(), reloaded.clone()).unwrap();
+    run_until(&mut app, "reload tasks", |app| app.world().resource::<HexTerrainStats>().tasks_started() > start);
+    assert!(app.world_mut().query::<&bevy_hex_terrain::ChunkTask>().iter(app.world()).next().is_some());
+    // ...then, in one frame: another reload, a far teleport and a switch to map b.
+    config.seed = 34;
+    let again = HexMapAsset { config, image: None, appearance_fallback: false };
+    app.world_mut().resource_mut::<Assets<HexMapAsset>>().insert(handle.id(), again).unwrap();
+    let far = Vec3::new(9_000.0, 0.0, -7_000.0);
+    app.world_mut().entity_mut(agent).insert(Transform::from_translation(far));
+    app.world_mut().write_message(LoadHexMap("b.map.ron".into()));
+    run_until(&mut app, "map b at the destination", |app| {
+        app.world().resource::<HexMap>().config().seed == 32 && ready(app)
+    });
+    for _ in 0..5 {
+        app.update();
+    }
+
+    // Exactly the chunks of map b around the agent, every one of the current generation, every
+    // mesh the one the core makes for map b.
+    let map = app.world().resource::<HexMap>();
+    let (terrain, generation) = (map.terrain().clone(), map.generation());
+    let center = terrain.chunk_of(terrain.tile_at(far.x, far.z));
+    assert_eq!(chunk_coords(&mut app), window(center, 3), "radius 2 plus the prefetch ring");
+    for chunk in app.world_mut().query::<&HexChunk>().iter(app.world()) {
+        assert_eq!(chunk.generation, Some(generation), "chunk {:?} is of an old map", chunk.coord);
+    }
+    let handles = meshed_chunks(&mut app);
+    assert_eq!(handles.len(), 49);
+    let meshes = app.world().resource::<Assets<Mesh>>();
+    for (coord, handle) in &handles {
+        let mesh = meshes.get(handle).unwrap();
+        let positions = mesh.attribute(Mesh::ATTRIBUTE_POSITION).unwrap().as_float3().unwrap();
+        let expected = terrain.generate_chunk(*coord).unwrap();
+        assert_eq!(positions, expected.buffers.positions.as_slice(), "chunk {coord:?} shows a stale mesh");
+    }
+    assert!(errors(&app).is_empty(), "{:?}", errors(&app));
+    let _ = std::fs::remove_dir_all(&dir);
+}

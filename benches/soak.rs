@@ -1,0 +1,204 @@
+//! Soak: an agent flies over an unbounded map for the equivalent of an hour of brisk play (at
+//! least 10,000 chunk loads) with a hot reload of the map file every few hundred chunks, one of
+//! them a broken edit, while the process's resident memory is sampled. Headless: Bevy's
+//! default plugins with no window and no GPU backend, so the terrain material, its asset and
+//! every chunk entity are those of a game; only the drawing is left out.
+//!
+//! ```text
+//! cargo bench --workspace --profile dev --bench soak [-- --chunks 10000]
+//! ```
+//!
+//! Prints chunks loaded, reloads, resident memory (peak and current), live entities, mesh and
+//! material assets and tasks in flight after warm-up, in the middle and at the end, and fails
+//! when anything grows beyond noise after warm-up, a task outlives the run, or an error other
+//! than the broken edit's is reported.
+
+use std::time::{Duration, Instant};
+
+use bevy::app::PluginsState;
+use bevy::prelude::*;
+use bevy::render::RenderPlugin;
+use bevy::render::settings::WgpuSettings;
+use bevy::window::ExitCondition;
+use bevy::winit::WinitPlugin;
+use bevy_hex_terrain::material::HexTerrainMaterial;
+use bevy_hex_terrain::prelude::*;
+use bevy_hex_terrain::{ChunkTask, HexTerrainSettings};
+
+/// Kibibytes of a `/proc/self/status` line (`VmRSS`, `VmHWM`).
+fn status_kib(key: &str) -> u64 {
+    let status = std::fs::read_to_string("/proc/self/status").unwrap_or_default();
+    status
+        .lines()
+        .find_map(|l| l.strip_prefix(key)?.trim_start_matches(':').trim().strip_suffix("kB")?.trim().parse().ok())
+        .unwrap_or(0)
+}
+
+#[derive(Resource, Default)]
+struct Errors(Vec<String>);
+
+fn collect_errors(mut reader: MessageReader<HexMapError>, mut errors: ResMut<Errors>) {
+    errors.0.extend(reader.read().map(|e| e.message.clone()));
+}
+
+/// One sample of the counts that must stay flat.
+#[derive(Debug, Clone, Copy)]
+struct Sample {
+    chunks: u64,
+    reloads: u32,
+    rss_mib: f64,
+    peak_mib: f64,
+    entities: u32,
+    meshes: usize,
+    materials: usize,
+    tasks: usize,
+    live: usize,
+}
+
+fn sample(app: &mut App, reloads: u32) -> Sample {
+    let tasks = app.world_mut().query::<&ChunkTask>().iter(app.world()).count();
+    let world = app.world();
+    Sample {
+        chunks: world.resource::<HexTerrainStats>().meshes_inserted(),
+        reloads,
+        rss_mib: status_kib("VmRSS") as f64 / 1024.0,
+        peak_mib: status_kib("VmHWM") as f64 / 1024.0,
+        entities: world.entities().count_spawned(),
+        meshes: world.resource::<Assets<Mesh>>().len(),
+        materials: world.resource::<Assets<HexTerrainMaterial>>().len(),
+        tasks,
+        live: world.resource::<ChunkStreamer>().live_chunks(),
+    }
+}
+
+const MAP: &str = "soak.map.ron";
+
+fn map_text(seed: u32) -> String {
+    format!("(name: \"soak\", seed: {seed}, size: Unbounded, noise: (octaves: 8, scale: 60.0), chunk_size: (16, 16))")
+}
+
+fn main() {
+    let target: u64 =
+        std::env::args().skip_while(|a| a != "--chunks").nth(1).and_then(|s| s.parse().ok()).unwrap_or(10_000);
+    let dir = std::env::temp_dir().join(format!("hex-terrain-soak-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("a temporary directory");
+    std::fs::write(dir.join(MAP), map_text(1)).expect("the map file");
+
+    let mut app = App::new();
+    app.add_plugins(
+        DefaultPlugins
+            .set(AssetPlugin { file_path: dir.display().to_string(), ..default() })
+            .set(WindowPlugin { primary_window: None, exit_condition: ExitCondition::DontExit, ..default() })
+            .set(RenderPlugin { render_creation: WgpuSettings { backends: None, ..default() }.into(), ..default() })
+            .disable::<WinitPlugin>(),
+    )
+    .add_plugins(HexTerrainPlugins::new(MAP))
+    .init_resource::<Errors>()
+    .add_systems(Update, collect_errors);
+    let agent = app.world_mut().spawn((HexTerrainAgent::default(), Transform::default())).id();
+    while app.plugins_state() == PluginsState::Adding {
+        bevy::tasks::tick_global_task_pools_on_main_thread();
+    }
+    app.finish();
+    app.cleanup();
+
+    // A 16-column chunk of flat hexes is 24 world units: the agent crosses one every 90 frames
+    // (1.5 s at 60 fps), turning north for a stretch every 40 chunks so it does not only walk
+    // along one row of the world.
+    let chunk_width = 24.0;
+    let started = Instant::now();
+    let (mut reloads, mut broken_sent, mut next_reload) = (0u32, false, 300u64);
+    let mut position = Vec3::ZERO;
+    let mut frame = 0u64;
+    let mut samples: Vec<(&str, Sample)> = Vec::new();
+    loop {
+        frame += 1;
+        let leg = (frame / 90) % 48;
+        let step = chunk_width / 90.0;
+        if leg < 40 { position.x += step } else { position.z -= step }
+        app.world_mut().entity_mut(agent).insert(Transform::from_translation(position));
+        app.update();
+        std::thread::sleep(Duration::from_micros(500));
+        let chunks = app.world().resource::<HexTerrainStats>().meshes_inserted();
+        if chunks >= next_reload {
+            next_reload += 300;
+            reloads += 1;
+            // The seventh edit is broken: it must be reported and keep the terrain.
+            let text = if reloads == 7 { map_text(reloads).replace("size:", "size") } else { map_text(reloads) };
+            broken_sent |= reloads == 7;
+            std::fs::write(dir.join(MAP), text).expect("the map file");
+            app.world().resource::<AssetServer>().reload(MAP);
+        }
+        if samples.is_empty() && chunks >= target / 10 {
+            samples.push(("after warm-up", sample(&mut app, reloads)));
+        }
+        if samples.len() == 1 && chunks >= target / 2 {
+            samples.push(("middle", sample(&mut app, reloads)));
+        }
+        if chunks >= target {
+            break;
+        }
+    }
+    // Let the last tasks land.
+    for _ in 0..600 {
+        app.update();
+        std::thread::sleep(Duration::from_millis(1));
+        if app.world_mut().query::<&ChunkTask>().iter(app.world()).next().is_none() {
+            break;
+        }
+    }
+    samples.push(("end", sample(&mut app, reloads)));
+    let elapsed = started.elapsed().as_secs_f64();
+    let _ = std::fs::remove_dir_all(&dir);
+
+    let settings = HexTerrainSettings::default();
+    println!(
+        "soak: {target} chunk loads of 16x16 tiles, {frame} frames ({:.0} s of play at 60 fps) in {elapsed:.0} s, \
+         load radius {} + prefetch {}",
+        frame as f64 / 60.0,
+        settings.load_radius,
+        settings.prefetch
+    );
+    println!(
+        "| when | chunks loaded | reloads | RSS | peak RSS | entities | mesh assets | material assets | tasks in \
+         flight | live chunks |\n|---|---|---|---|---|---|---|---|---|---|"
+    );
+    for (when, s) in &samples {
+        println!(
+            "| {when} | {} | {} | {:.0} MiB | {:.0} MiB | {} | {} | {} | {} | {} |",
+            s.chunks, s.reloads, s.rss_mib, s.peak_mib, s.entities, s.meshes, s.materials, s.tasks, s.live
+        );
+    }
+    let errors = &app.world().resource::<Errors>().0;
+    println!("errors reported: {}", errors.len());
+    for e in errors {
+        println!("  {e}");
+    }
+
+    let (warm, end) = (samples[0].1, samples[samples.len() - 1].1);
+    let mut failures = Vec::new();
+    // Flat: no more than noise (a few chunks' worth of meshes, allocator slack) above warm-up.
+    if end.rss_mib > warm.rss_mib * 1.15 + 32.0 {
+        failures.push(format!("resident memory grew from {:.0} to {:.0} MiB", warm.rss_mib, end.rss_mib));
+    }
+    let bound = |what: &str, w: usize, e: usize, slack: usize| {
+        (e > w + slack).then(|| format!("{what} grew from {w} to {e}"))
+    };
+    failures.extend(bound("entities", warm.entities as usize, end.entities as usize, 16));
+    failures.extend(bound("mesh assets", warm.meshes, end.meshes, 16));
+    failures.extend(bound("material assets", warm.materials, end.materials, 0));
+    if end.tasks != 0 {
+        failures.push(format!("{} chunk tasks still in flight at the end", end.tasks));
+    }
+    if !broken_sent || errors.len() != 1 || !errors[0].contains("malformed") {
+        failures.push(format!("expected exactly the broken edit's error, got {errors:?}"));
+    }
+    if failures.is_empty() {
+        println!("flat after warm-up, no task left, only the broken edit's error: pass");
+    } else {
+        for f in &failures {
+            println!("FAIL: {f}");
+        }
+        std::process::exit(1);
+    }
+}
