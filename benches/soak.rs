@@ -77,7 +77,27 @@ fn map_text(seed: u32) -> String {
     format!("(name: \"soak\", seed: {seed}, size: Unbounded, noise: (octaves: 8, scale: 60.0), chunk_size: (16, 16))")
 }
 
+/// With `RUST_BACKTRACE` set, the first error that captures a backtrace (the broken edit's)
+/// loads and keeps the binary's debug info to symbolize it: about 700 MiB of a dev build, once.
+/// That is not the terrain's memory, so the soak runs itself again without it.
+fn rerun_without_backtraces() -> Option<i32> {
+    let value = std::env::var("RUST_BACKTRACE").ok()?;
+    if value == "0" {
+        return None;
+    }
+    println!(
+        "RUST_BACKTRACE={value}: running again with RUST_BACKTRACE=0 (backtrace symbolization is not terrain memory)"
+    );
+    let exe = std::env::current_exe().ok()?;
+    let status =
+        std::process::Command::new(exe).args(std::env::args().skip(1)).env("RUST_BACKTRACE", "0").status().ok()?;
+    Some(status.code().unwrap_or(1))
+}
+
 fn main() {
+    if let Some(code) = rerun_without_backtraces() {
+        std::process::exit(code);
+    }
     let target: u64 =
         std::env::args().skip_while(|a| a != "--chunks").nth(1).and_then(|s| s.parse().ok()).unwrap_or(10_000);
     let dir = std::env::temp_dir().join(format!("hex-terrain-soak-{}", std::process::id()));
@@ -87,7 +107,11 @@ fn main() {
     let mut app = App::new();
     app.add_plugins(
         DefaultPlugins
-            .set(AssetPlugin { file_path: dir.display().to_string(), ..default() })
+            .set(AssetPlugin {
+                file_path: dir.display().to_string(),
+                watch_for_changes_override: Some(false),
+                ..default()
+            })
             .set(WindowPlugin { primary_window: None, exit_condition: ExitCondition::DontExit, ..default() })
             .set(RenderPlugin { render_creation: WgpuSettings { backends: None, ..default() }.into(), ..default() })
             .disable::<WinitPlugin>(),
@@ -111,11 +135,17 @@ fn main() {
     let mut position = Vec3::ZERO;
     let mut frame = 0u64;
     let mut samples: Vec<(&str, Sample)> = Vec::new();
+    // Resident memory every 500 chunk loads, to show its shape.
+    let (mut series, mut next_point) = (Vec::new(), 0u64);
     loop {
         frame += 1;
         let leg = (frame / 90) % 48;
         let step = chunk_width / 90.0;
-        if leg < 40 { position.x += step } else { position.z -= step }
+        if leg < 40 {
+            position.x += step
+        } else {
+            position.z -= step
+        }
         app.world_mut().entity_mut(agent).insert(Transform::from_translation(position));
         app.update();
         std::thread::sleep(Duration::from_micros(500));
@@ -128,6 +158,10 @@ fn main() {
             broken_sent |= reloads == 7;
             std::fs::write(dir.join(MAP), text).expect("the map file");
             app.world().resource::<AssetServer>().reload(MAP);
+        }
+        if chunks >= next_point {
+            series.push(format!("{}k: {:.0}", chunks / 1000, status_kib("VmRSS") as f64 / 1024.0));
+            next_point += 500;
         }
         if samples.is_empty() && chunks >= target / 10 {
             samples.push(("after warm-up", sample(&mut app, reloads)));
@@ -169,6 +203,7 @@ fn main() {
             s.chunks, s.reloads, s.rss_mib, s.peak_mib, s.entities, s.meshes, s.materials, s.tasks, s.live
         );
     }
+    println!("RSS (MiB) by chunk loads: {}", series.join(", "));
     let errors = &app.world().resource::<Errors>().0;
     println!("errors reported: {}", errors.len());
     for e in errors {
@@ -181,9 +216,8 @@ fn main() {
     if end.rss_mib > warm.rss_mib * 1.15 + 32.0 {
         failures.push(format!("resident memory grew from {:.0} to {:.0} MiB", warm.rss_mib, end.rss_mib));
     }
-    let bound = |what: &str, w: usize, e: usize, slack: usize| {
-        (e > w + slack).then(|| format!("{what} grew from {w} to {e}"))
-    };
+    let bound =
+        |what: &str, w: usize, e: usize, slack: usize| (e > w + slack).then(|| format!("{what} grew from {w} to {e}"));
     failures.extend(bound("entities", warm.entities as usize, end.entities as usize, 16));
     failures.extend(bound("mesh assets", warm.meshes, end.meshes, 16));
     failures.extend(bound("material assets", warm.materials, end.materials, 0));

@@ -104,4 +104,3 @@ impl AssetLoader for HexMapLoader {
         &["map.ron"]
     }
 }
-

@@ -479,3 +479,57 @@ fn reload_teleport_and_switch_in_one_frame_leave_only_the_new_state() {
     assert!(errors(&app).is_empty(), "{:?}", errors(&app));
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// Every [`HexMapError`] message of the run.
+#[derive(Resource, Default)]
+struct AllErrors(Vec<String>);
+
+#[test]
+fn a_file_reload_applies_once_and_a_broken_one_is_reported_once() {
+    let dir = std::env::temp_dir().join(format!("hex-terrain-once-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    write(&dir, "once.map.ron", "(seed: 41, size: Bounded(x: 8, z: 8), chunk_size: (8, 8))");
+    let mut app = app_with(HexTerrainPlugins::new("once.map.ron"), Some(&dir));
+    app.init_resource::<AllErrors>().add_systems(
+        Last,
+        |mut r: MessageReader<HexMapError>, mut all: ResMut<AllErrors>| {
+            all.0.extend(r.read().map(|e| e.message.clone()));
+        },
+    );
+    run_until(&mut app, "the map", |app| app.world().resource::<HexMap>().config().seed == 41 && ready(app));
+    let g = generation(&app);
+    let settle = |app: &mut App| {
+        for _ in 0..40 {
+            app.update();
+            std::thread::sleep(Duration::from_millis(5));
+        }
+    };
+
+    // Bevy announces a reload as Modified and again as LoadedWithDependencies: one new generation.
+    write(&dir, "once.map.ron", "(seed: 42, size: Bounded(x: 8, z: 8), chunk_size: (8, 8))");
+    app.world().resource::<AssetServer>().reload("once.map.ron");
+    run_until(&mut app, "the reload", |app| app.world().resource::<HexMap>().config().seed == 42 && ready(app));
+    settle(&mut app);
+    assert_eq!(generation(&app), g + 1, "one reload, one regeneration");
+
+    // Bevy retries a failed reload once: one report.
+    write(&dir, "once.map.ron", "(seed: 43, size Bounded(x: 8, z: 8))");
+    app.world().resource::<AssetServer>().reload("once.map.ron");
+    run_until(&mut app, "the report", |app| !app.world().resource::<AllErrors>().0.is_empty());
+    settle(&mut app);
+    let reported = &app.world().resource::<AllErrors>().0;
+    assert_eq!(reported.len(), 1, "{reported:?}");
+    assert!(reported[0].contains("1:"), "{}", reported[0]);
+    assert_eq!(generation(&app), g + 1);
+
+    // Fixed, then broken the same way again: reported again.
+    write(&dir, "once.map.ron", "(seed: 44, size: Bounded(x: 8, z: 8), chunk_size: (8, 8))");
+    app.world().resource::<AssetServer>().reload("once.map.ron");
+    run_until(&mut app, "the fix", |app| app.world().resource::<HexMap>().config().seed == 44 && ready(app));
+    write(&dir, "once.map.ron", "(seed: 43, size Bounded(x: 8, z: 8))");
+    app.world().resource::<AssetServer>().reload("once.map.ron");
+    run_until(&mut app, "the second report", |app| app.world().resource::<AllErrors>().0.len() == 2);
+    settle(&mut app);
+    assert_eq!(app.world().resource::<AllErrors>().0.len(), 2);
+    let _ = std::fs::remove_dir_all(&dir);
+}

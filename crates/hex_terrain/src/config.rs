@@ -420,7 +420,12 @@ impl MapConfig {
         check(
             chunk_bytes <= MAX_CHUNK_BYTES,
             "chunk_size",
-            format!("{:?} ({} MiB of mesh a chunk with {} inner rings)", self.chunk_size, chunk_bytes >> 20, t.inner_rings),
+            format!(
+                "{:?} ({} MiB of mesh a chunk with {} inner rings)",
+                self.chunk_size,
+                chunk_bytes >> 20,
+                t.inner_rings
+            ),
             format!("a chunk mesh of at most {} MiB: fewer tiles a chunk or fewer inner rings", MAX_CHUNK_BYTES >> 20),
         )?;
         check(

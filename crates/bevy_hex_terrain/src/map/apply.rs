@@ -4,7 +4,9 @@
 
 use bevy::asset::AssetLoadFailedEvent;
 use bevy::prelude::*;
-use hex_terrain::{MapConfig, Terrain};
+use std::sync::Arc;
+
+use hex_terrain::{HeightImage, MapConfig, Terrain};
 
 use super::{HexMap, HexMapError};
 use crate::asset::{HexMapAsset, HexMapLoader};
@@ -117,6 +119,11 @@ fn load_requested(
 
 /// Applies a loaded, hot-reloaded or newly followed map asset; reports a bad one, keeping the
 /// old terrain. [`HexMap`] is written only when a map is applied.
+///
+/// Bevy announces one reload twice (`Modified`, then `LoadedWithDependencies`), and retries a
+/// failed reload once: the same content applies once, and the same failure of the same file is
+/// reported once (until the file next loads).
+#[expect(clippy::too_many_arguments, reason = "a system's parameters")]
 fn apply_asset(
     mut map: ResMut<HexMap>,
     handle: Res<HexMapHandle>,
@@ -125,6 +132,7 @@ fn apply_asset(
     mut failures: MessageReader<AssetLoadFailedEvent<HexMapAsset>>,
     mut errors: MessageWriter<HexMapError>,
     mut refused: Local<Option<AssetId<HexMapAsset>>>,
+    mut last_failure: Local<Option<String>>,
 ) {
     let Some(handle) = &handle.0 else {
         events.clear();
@@ -132,8 +140,11 @@ fn apply_asset(
         return;
     };
     for failure in failures.read() {
-        if failure.id == handle.id() {
-            refuse(&mut errors, &format!("map {}", failure.path), &failure.error);
+        // The loader's message, without the backtrace Bevy appends when `RUST_BACKTRACE` is set.
+        let why = failure.error.to_string().lines().next().unwrap_or_default().to_owned();
+        if failure.id == handle.id() && last_failure.as_deref() != Some(why.as_str()) {
+            refuse(&mut errors, &format!("map {}", failure.path), &why);
+            *last_failure = Some(why);
         }
     }
     let changed = events.read().any(|e| match e {
@@ -142,17 +153,31 @@ fn apply_asset(
     });
     // A newly followed asset that was loaded before sends no event: apply it now (once, if it
     // is refused).
-    let new = map.applied != Some(handle.id()) && *refused != Some(handle.id());
+    let followed = map.applied.as_ref().map(|(id, _)| *id);
+    let new = followed != Some(handle.id()) && *refused != Some(handle.id());
     if !(changed || new) {
         return;
     }
     let Some(asset) = assets.get(handle) else { return };
+    *last_failure = None;
+    let same_image = |applied: &Option<Arc<HeightImage>>| match (applied, &asset.image) {
+        (None, None) => true,
+        (Some(a), Some(b)) => Arc::ptr_eq(a, b),
+        _ => false,
+    };
+    if !new
+        && asset.config == *map.config()
+        && asset.appearance_fallback == map.appearance_fallback
+        && map.applied.as_ref().is_some_and(|(_, image)| same_image(image))
+    {
+        return;
+    }
     match Terrain::with_image(asset.config.clone(), asset.image.clone()) {
         Ok(terrain) => {
             info!("hex terrain: map {:?} applied", asset.config.name);
             map.replace(terrain);
             map.appearance_fallback = asset.appearance_fallback;
-            map.applied = Some(handle.id());
+            map.applied = Some((handle.id(), asset.image.clone()));
         }
         Err(e) => {
             *refused = Some(handle.id());

@@ -26,8 +26,8 @@ pub struct HexMap {
     generation: u64,
     waiting_for_asset: bool,
     appearance_fallback: bool,
-    /// The map asset whose config is applied, if any.
-    applied: Option<AssetId<crate::asset::HexMapAsset>>,
+    /// The map asset whose config is applied, if any, with its heightmap.
+    applied: Option<(AssetId<crate::asset::HexMapAsset>, Option<Arc<hex_terrain::HeightImage>>)>,
 }
 
 impl HexMap {
