@@ -1,5 +1,5 @@
 //! Soak: an agent flies over an unbounded map for the equivalent of an hour of brisk play (at
-//! least 10,000 chunk loads) with a hot reload of the map file every few hundred chunks, one of
+//! least 10,000 chunk loads, 216,000 frames) with a hot reload of the map file every few hundred chunks, one of
 //! them a broken edit, while the process's resident memory is sampled. Headless: Bevy's
 //! default plugins with no window and no GPU backend, so the terrain material, its asset and
 //! every chunk entity are those of a game; only the drawing is left out.
@@ -72,6 +72,8 @@ fn sample(app: &mut App, reloads: u32) -> Sample {
 }
 
 const MAP: &str = "soak.map.ron";
+/// An hour of play at 60 frames a second.
+const PLAY_FRAMES: u64 = 60 * 3600;
 
 fn map_text(seed: u32) -> String {
     format!("(name: \"soak\", seed: {seed}, size: Unbounded, noise: (octaves: 8, scale: 60.0), chunk_size: (16, 16))")
@@ -166,10 +168,10 @@ fn main() {
         if samples.is_empty() && chunks >= target / 10 {
             samples.push(("after warm-up", sample(&mut app, reloads)));
         }
-        if samples.len() == 1 && chunks >= target / 2 {
+        if samples.len() == 1 && frame >= PLAY_FRAMES / 2 {
             samples.push(("middle", sample(&mut app, reloads)));
         }
-        if chunks >= target {
+        if chunks >= target && frame >= PLAY_FRAMES {
             break;
         }
     }

@@ -1,7 +1,8 @@
 //! Streaming benchmark on a headless App: an agent crossing one chunk per second for 60
 //! simulated seconds at 60 frames a second (paced in real time, so chunk tasks get the time a
 //! game would give them). Prints chunk latency (request to mesh inserted), main-thread time in
-//! the terrain systems per frame, live chunks and memory per chunk; with chunk generation on
+//! the terrain systems per frame (wall time, split by the thread's schedstat into time on a core
+//! and time waiting for one), live chunks and memory per chunk; with chunk generation on
 //! Bevy's async compute pool alone (the default) and, in the same process, with each chunk task
 //! also spreading over rayon's pool.
 //!
@@ -17,8 +18,28 @@ use bevy_hex_terrain::prelude::*;
 
 #[derive(Resource, Default)]
 struct FrameTimes {
-    start: Option<Instant>,
+    start: Option<(Instant, Schedstat)>,
+    /// Wall time of the terrain systems, ms.
     samples: Vec<f64>,
+    /// Of which the main thread ran on a core (wall time less waiting), ms.
+    cpu: Vec<f64>,
+    /// Of which the main thread waited for a core (runnable, not running), ms.
+    waiting: Vec<f64>,
+}
+
+/// The calling thread's time on a core and time waiting for one, in ns, from
+/// `/proc/thread-self/schedstat` (zeros where there is no such file). The kernel adds a wait
+/// when the thread gets a core back, so the waiting time of an interval is exact; the time on a
+/// core is only brought up to date at scheduler ticks, so it is taken as wall time less waiting.
+#[derive(Clone, Copy, Default)]
+struct Schedstat(#[allow(dead_code, reason = "read for the record; stale between ticks")] u64, u64);
+
+impl Schedstat {
+    fn now() -> Self {
+        let text = std::fs::read_to_string("/proc/thread-self/schedstat").unwrap_or_default();
+        let mut fields = text.split_whitespace().map(|f| f.parse().unwrap_or(0));
+        Self(fields.next().unwrap_or(0), fields.next().unwrap_or(0))
+    }
 }
 
 fn percentile(sorted: &[f64], p: f64) -> f64 {
@@ -33,6 +54,8 @@ struct Walk {
     started: u64,
     latencies: Vec<f64>,
     times: Vec<f64>,
+    cpu: Vec<f64>,
+    waiting: Vec<f64>,
     live: usize,
     live_max: usize,
     per_chunk: f64,
@@ -54,17 +77,28 @@ fn walk(seconds: u32, threads: ChunkThreads) -> Walk {
         // of the frame.
         .add_systems(
             Update,
-            (|mut t: ResMut<FrameTimes>| t.start = Some(Instant::now())).before(HexTerrainSystems::Map),
+            (|mut t: ResMut<FrameTimes>| t.start = Some((Instant::now(), Schedstat::now())))
+                .before(HexTerrainSystems::Map),
         )
         .add_systems(
             Update,
             (|mut t: ResMut<FrameTimes>| {
-                if let Some(s) = t.start.take() {
-                    t.samples.push(s.elapsed().as_secs_f64() * 1e3);
+                if let Some((wall, stat)) = t.start.take() {
+                    let now = Schedstat::now();
+                    let elapsed = wall.elapsed().as_secs_f64() * 1e3;
+                    let waiting = now.1.saturating_sub(stat.1) as f64 * 1e-6;
+                    t.samples.push(elapsed);
+                    t.cpu.push((elapsed - waiting).max(0.0));
+                    t.waiting.push(waiting);
                 }
             })
             .after(HexTerrainSystems::Render),
         );
+    // The terrain systems are one chain: run the frame on the main thread, so the time between
+    // the brackets is the main thread's and its schedstat tells work from waiting for a core.
+    app.edit_schedule(Update, |s| {
+        s.set_executor(bevy::ecs::schedule::SingleThreadedExecutor::new());
+    });
     let agent = app.world_mut().spawn((HexTerrainAgent::default(), Transform::default())).id();
     let frames = seconds * 60;
     let frame = Duration::from_secs_f64(1.0 / 60.0);
@@ -92,8 +126,13 @@ fn walk(seconds: u32, threads: ChunkThreads) -> Walk {
             std::thread::sleep(rest);
         }
     }
-    let mut times = app.world().resource::<FrameTimes>().samples.clone();
-    times.sort_by(f64::total_cmp);
+    let sorted = |v: &Vec<f64>| {
+        let mut v = v.clone();
+        v.sort_by(f64::total_cmp);
+        v
+    };
+    let recorded = app.world().resource::<FrameTimes>();
+    let (times, cpu, waiting) = (sorted(&recorded.samples), sorted(&recorded.cpu), sorted(&recorded.waiting));
     let stats = app.world().resource::<HexTerrainStats>();
     let mut latencies: Vec<f64> = stats.latencies().map(|s| f64::from(s) * 1e3).collect();
     latencies.sort_by(f64::total_cmp);
@@ -101,7 +140,7 @@ fn walk(seconds: u32, threads: ChunkThreads) -> Walk {
     let live = app.world().resource::<ChunkStreamer>().live_chunks();
     let bytes: Vec<usize> = app.world_mut().query::<&HexChunk>().iter(app.world()).map(|c| c.mesh_bytes).collect();
     let per_chunk = bytes.iter().sum::<usize>() as f64 / bytes.len().max(1) as f64;
-    Walk { started, latencies, times, live, live_max, per_chunk, worst }
+    Walk { started, latencies, times, cpu, waiting, live, live_max, per_chunk, worst }
 }
 
 fn main() {
@@ -120,14 +159,17 @@ fn main() {
     row("chunk latency p50 / p99 (request to mesh inserted)", &|w| {
         format!("{:.1} ms / {:.1} ms", percentile(&w.latencies, 0.5), percentile(&w.latencies, 0.99))
     });
-    row("terrain systems per frame p50 / p99 / max", &|w| {
+    let spread = |v: &[f64]| {
         format!(
             "{:.3} ms / {:.3} ms / {:.3} ms",
-            percentile(&w.times, 0.5),
-            percentile(&w.times, 0.99),
-            w.times.last().copied().unwrap_or(f64::NAN)
+            percentile(v, 0.5),
+            percentile(v, 0.99),
+            v.last().copied().unwrap_or(f64::NAN)
         )
-    });
+    };
+    row("terrain systems per frame, wall time, p50 / p99 / max", &|w| spread(&w.times));
+    row("of which the main thread on a core, p50 / p99 / max", &|w| spread(&w.cpu));
+    row("of which waiting for a core, p50 / p99 / max", &|w| spread(&w.waiting));
     row("in the slowest frame: meshes inserted / tasks started / cancelled", &|w| {
         format!("{} / {} / {}", w.worst.0, w.worst.1, w.worst.2)
     });
