@@ -144,9 +144,9 @@ fn main() {
         let leg = (frame / 90) % 48;
         let step = chunk_width / 90.0;
         if leg < 40 {
-            position.x += step
+            position.x += step;
         } else {
-            position.z -= step
+            position.z -= step;
         }
         app.world_mut().entity_mut(agent).insert(Transform::from_translation(position));
         app.update();
