@@ -533,3 +533,32 @@ fn a_file_reload_applies_once_and_a_broken_one_is_reported_once() {
     assert_eq!(app.world().resource::<AllErrors>().0.len(), 2);
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn hostile_heightmap_paths_in_a_map_file_are_refused_and_keep_the_terrain() {
+    let dir = std::env::temp_dir().join(format!("hex-terrain-hostile-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    write(&dir, "good.map.ron", "(seed: 51, size: Bounded(x: 8, z: 8), chunk_size: (8, 8))");
+    write(&dir, "text.png", "this is not a PNG");
+    let mut app = app_with(HexTerrainPlugins::new("good.map.ron"), Some(&dir));
+    app.init_resource::<AllErrors>().add_systems(
+        Last,
+        |mut r: MessageReader<HexMapError>, mut all: ResMut<AllErrors>| {
+            all.0.extend(r.read().map(|e| e.message.clone()));
+        },
+    );
+    run_until(&mut app, "the good map", |app| app.world().resource::<HexMap>().config().seed == 51 && ready(app));
+    let g = generation(&app);
+    for (i, path) in ["../outside.png", "missing.png", "text.png", "a.png#label", "/dev/zero", "::"].iter().enumerate()
+    {
+        let name = format!("hostile{i}.map.ron");
+        write(&dir, &name, &format!("(size: Bounded(x: 8, z: 8), source: Image(path: {path:?}, sea_level: 0.3))"));
+        app.world_mut().write_message(LoadHexMap(name.clone().into()));
+        run_until(&mut app, "the refusal", |app| {
+            app.world().resource::<AllErrors>().0.iter().any(|m| m.contains(&name))
+        });
+        assert_eq!(generation(&app), g, "{path}: the terrain stays");
+        assert_eq!(app.world().resource::<HexMap>().config().seed, 51);
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
