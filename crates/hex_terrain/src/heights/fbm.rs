@@ -81,10 +81,11 @@ impl FastPerlin {
     #[inline(always)]
     fn lane(&self, x: f64, y: f64) -> f64 {
         // `noise` floors with "truncate, minus one at or below zero", so an exact integer at or
-        // below zero lands in the cell below it; do the same. The cast saturates beyond i64, where
-        // f64 has no fraction left anyway; the subtraction must saturate with it.
-        let cx = if x <= 0.0 { (x as i64).saturating_sub(1) } else { x as i64 };
-        let cy = if y <= 0.0 { (y as i64).saturating_sub(1) } else { y as i64 };
+        // below zero lands in the cell below it; do the same. Beyond i64 the cast saturates (f64
+        // has no fraction left there): the subtraction wraps, as release builds always did, so
+        // the offset clamps to 0 and the noise stays finite, without a panic in debug builds.
+        let cx = if x <= 0.0 { (x as i64).wrapping_sub(1) } else { x as i64 };
+        let cy = if y <= 0.0 { (y as i64).wrapping_sub(1) } else { y as i64 };
         let dx = (x - cx as f64).clamp(0.0, 1.0);
         let dy = (y - cy as f64).clamp(0.0, 1.0);
         let cell = self.cells[(((cx & 0xff) << 8) | (cy & 0xff)) as usize];
