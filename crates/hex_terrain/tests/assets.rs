@@ -26,6 +26,8 @@ fn every_asset_loads_round_trips_and_generates() {
     files.sort();
     assert!(files.len() >= 16 + 6 + 4, "thesis maps, Civ6 presets and demo maps: {files:?}");
     for path in files {
+        // The Bevy plugin's loader claims `*.map.ron` only: every shipped map must be loadable.
+        assert!(path.to_string_lossy().ends_with(".map.ron"), "{} is not a .map.ron", path.display());
         let config = MapConfig::load(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
         assert_eq!(MapConfig::from_ron(&config.to_ron()).unwrap(), config, "{}", path.display());
         let terrain = Terrain::new(config.clone()).unwrap();
@@ -37,7 +39,7 @@ fn every_asset_loads_round_trips_and_generates() {
 
 #[test]
 fn thesis_maps_are_the_sixteen_of_section_7() {
-    let load = |i: u32| MapConfig::load(maps_dir().join(format!("thesis/map{i:02}.ron"))).unwrap();
+    let load = |i: u32| MapConfig::load(maps_dir().join(format!("thesis/map{i:02}.map.ron"))).unwrap();
     let map0 = load(0);
     assert_eq!(map0, MapConfig { name: "Map0".into(), ..MapConfig::default() });
     assert_eq!(load(2).size, MapSize::Bounded { x: 40, z: 20 });

@@ -68,7 +68,7 @@ const GOLDEN: [u64; 17] = [
 fn generated_bytes_match_the_pinned_fingerprints() {
     let mut got = Vec::new();
     for i in 0..16 {
-        let config = MapConfig::load(maps_dir().join(format!("thesis/map{i:02}.ron"))).unwrap();
+        let config = MapConfig::load(maps_dir().join(format!("thesis/map{i:02}.map.ron"))).unwrap();
         let terrain = Terrain::new(config).unwrap();
         got.push(fingerprint(&terrain.generate_map().unwrap()));
     }

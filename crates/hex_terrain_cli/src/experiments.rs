@@ -151,7 +151,7 @@ pub fn run(o: &Options) -> CliResult<()> {
     let images = o.out.join("images");
     std::fs::create_dir_all(&images).map_err(|e| format!("{}: {e}", images.display()))?;
     let maps: Vec<MapConfig> =
-        (0..16).map(|i| crate::load(&o.maps.join(format!("map{i:02}.ron")))).collect::<CliResult<_>>()?;
+        (0..16).map(|i| crate::load(&o.maps.join(format!("map{i:02}.map.ron")))).collect::<CliResult<_>>()?;
     // Table 5/6 rows: Map0, then Map1'-Map4' (shape off) before each shaped map, then the rest.
     let mut rows: Vec<(String, MapConfig)> = Vec::new();
     for (i, m) in maps.iter().enumerate() {

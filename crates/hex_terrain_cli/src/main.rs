@@ -27,7 +27,7 @@ struct Cli {
 enum Command {
     /// Render a top-down picture of a map as a player would see it (PNG).
     Render {
-        /// Map config (RON), e.g. assets/maps/thesis/map00.ron.
+        /// Map config (RON), e.g. assets/maps/thesis/map00.map.ron.
         map: PathBuf,
         /// Output PNG.
         #[arg(short, long)]

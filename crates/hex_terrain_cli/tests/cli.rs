@@ -280,7 +280,7 @@ fn export_reads_back_in_a_gltf_loader_with_the_same_vertices() {
 
 #[test]
 fn stats_prints_counts_and_sharpness() {
-    let out = ok(&["stats", repo().join("assets/maps/thesis/map00.ron").to_str().unwrap()]);
+    let out = ok(&["stats", repo().join("assets/maps/thesis/map00.map.ron").to_str().unwrap()]);
     for needle in ["sea", "land", "mountain", "total     900", "vertices", "triangles", "max", "average", "eq. 7.3"] {
         assert!(out.contains(needle), "{needle:?} missing from {out}");
     }
