@@ -484,18 +484,23 @@ fn reload_teleport_and_switch_in_one_frame_leave_only_the_new_state() {
 #[derive(Resource, Default)]
 struct AllErrors(Vec<String>);
 
-#[test]
-fn a_file_reload_applies_once_and_a_broken_one_is_reported_once() {
-    let dir = std::env::temp_dir().join(format!("hex-terrain-once-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    write(&dir, "once.map.ron", "(seed: 41, size: Bounded(x: 8, z: 8), chunk_size: (8, 8))");
-    let mut app = app_with(HexTerrainPlugins::new("once.map.ron"), Some(&dir));
+/// Collects every [`HexMapError`] into [`AllErrors`].
+fn keep_errors(app: &mut App) {
     app.init_resource::<AllErrors>().add_systems(
         Last,
         |mut r: MessageReader<HexMapError>, mut all: ResMut<AllErrors>| {
             all.0.extend(r.read().map(|e| e.message.clone()));
         },
     );
+}
+
+#[test]
+fn a_file_reload_applies_once_and_a_broken_one_is_reported_once() {
+    let dir = std::env::temp_dir().join(format!("hex-terrain-once-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    write(&dir, "once.map.ron", "(seed: 41, size: Bounded(x: 8, z: 8), chunk_size: (8, 8))");
+    let mut app = app_with(HexTerrainPlugins::new("once.map.ron"), Some(&dir));
+    keep_errors(&mut app);
     run_until(&mut app, "the map", |app| app.world().resource::<HexMap>().config().seed == 41 && ready(app));
     let g = generation(&app);
     let settle = |app: &mut App| {
@@ -541,12 +546,7 @@ fn hostile_heightmap_paths_in_a_map_file_are_refused_and_keep_the_terrain() {
     write(&dir, "good.map.ron", "(seed: 51, size: Bounded(x: 8, z: 8), chunk_size: (8, 8))");
     write(&dir, "text.png", "this is not a PNG");
     let mut app = app_with(HexTerrainPlugins::new("good.map.ron"), Some(&dir));
-    app.init_resource::<AllErrors>().add_systems(
-        Last,
-        |mut r: MessageReader<HexMapError>, mut all: ResMut<AllErrors>| {
-            all.0.extend(r.read().map(|e| e.message.clone()));
-        },
-    );
+    keep_errors(&mut app);
     run_until(&mut app, "the good map", |app| app.world().resource::<HexMap>().config().seed == 51 && ready(app));
     let g = generation(&app);
     for (i, path) in ["../outside.png", "missing.png", "text.png", "a.png#label", "/dev/zero", "::"].iter().enumerate()
