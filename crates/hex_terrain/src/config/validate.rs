@@ -1,0 +1,173 @@
+//! Validation: every field of a [`MapConfig`] against its allowed range, and the limits that
+//! keep any accepted config from taking minutes or gigabytes.
+
+use super::{HeightSourceConfig, MapConfig, MapSize, Shape};
+use crate::error::ConfigError;
+
+/// Largest number of octaves accepted.
+pub const MAX_OCTAVES: u32 = 32;
+/// Largest number of inner rings accepted.
+pub const MAX_INNER_RINGS: u32 = 16;
+/// Largest absolute tile offset accepted.
+pub const MAX_OFFSET: i32 = 1_000_000;
+/// Largest chunk side, in tiles.
+pub const MAX_CHUNK_SIDE: u32 = 512;
+/// Largest estimated size of one chunk's mesh, in bytes: a chunk is generated on one thread
+/// while a game runs, so this keeps one chunk well under a second.
+pub const MAX_CHUNK_BYTES: u64 = 256 << 20;
+/// Largest estimated size of a whole bounded map's mesh, in bytes.
+pub const MAX_MAP_BYTES: u64 = 12 << 30;
+/// Bytes a mesh vertex and its share of the index buffer take, about.
+const BYTES_PER_VERTEX: u64 = 3 * 4 + 3 * 4 + 2 * 4 + 4 + 4 + 2 * 3 * 4;
+
+fn check(ok: bool, field: &str, value: impl std::fmt::Display, allowed: impl Into<String>) -> Result<(), ConfigError> {
+    if ok { Ok(()) } else { Err(ConfigError::new(field, value.to_string(), allowed.into())) }
+}
+
+fn finite_in(v: f64, lo: f64, hi: f64) -> bool {
+    v.is_finite() && v >= lo && v <= hi
+}
+
+impl MapConfig {
+    /// Checks every field against its allowed range.
+    ///
+    /// # Errors
+    /// The first invalid field, with its value and the allowed range.
+    pub fn validate(&self) -> Result<(), ConfigError> {
+        let n = &self.noise;
+        check((1..=MAX_OCTAVES).contains(&n.octaves), "noise.octaves", n.octaves, format!("1..={MAX_OCTAVES}"))?;
+        check(
+            n.persistence.is_finite() && n.persistence > 0.0 && n.persistence <= 1.0,
+            "noise.persistence",
+            n.persistence,
+            "(0, 1]",
+        )?;
+        check(finite_in(n.lacunarity, 1.0, 64.0), "noise.lacunarity", n.lacunarity, "[1, 64]")?;
+        check(n.scale.is_finite() && n.scale > 0.0 && n.scale <= 1e9, "noise.scale", n.scale, "(0, 1e9]")?;
+
+        let t = &self.terrain;
+        check(finite_in(f64::from(t.max_elevation), 0.0, 1e6), "terrain.max_elevation", t.max_elevation, "[0, 1e6]")?;
+        check(finite_in(f64::from(t.sea_threshold), 0.0, 1.0), "terrain.sea_threshold", t.sea_threshold, "[0, 1]")?;
+        check(
+            finite_in(f64::from(t.mountain_threshold), 0.0, 1.0),
+            "terrain.mountain_threshold",
+            t.mountain_threshold,
+            "[0, 1]",
+        )?;
+        check(
+            t.sea_threshold < t.mountain_threshold,
+            "terrain.sea_threshold",
+            t.sea_threshold,
+            format!("below terrain.mountain_threshold ({})", t.mountain_threshold),
+        )?;
+        let max_tol =
+            t.sea_threshold.min(1.0 - t.mountain_threshold).min((t.mountain_threshold - t.sea_threshold) / 2.0);
+        check(
+            t.interpolation_tolerance.is_finite()
+                && t.interpolation_tolerance >= 0.0
+                && (t.interpolation_tolerance < max_tol || t.interpolation_tolerance == 0.0),
+            "terrain.interpolation_tolerance",
+            t.interpolation_tolerance,
+            format!("[0, {max_tol}) (below the sea threshold, 1 - the mountain threshold and half the land range)"),
+        )?;
+        check(
+            (1..=MAX_INNER_RINGS).contains(&t.inner_rings),
+            "terrain.inner_rings",
+            t.inner_rings,
+            format!("1..={MAX_INNER_RINGS}"),
+        )?;
+
+        let l = &self.layout;
+        check(
+            l.hex_size.is_finite() && l.hex_size > 0.0 && l.hex_size <= 1e4,
+            "layout.hex_size",
+            l.hex_size,
+            "(0, 1e4]",
+        )?;
+        check(
+            (1..=MAX_CHUNK_SIDE).contains(&self.chunk_size.0) && (1..=MAX_CHUNK_SIDE).contains(&self.chunk_size.1),
+            "chunk_size",
+            format!("{:?}", self.chunk_size),
+            format!("each side in 1..={MAX_CHUNK_SIDE}"),
+        )?;
+        let per_hex = 3 * u64::from(self.subdivisions()).pow(2);
+        let chunk_bytes = u64::from(self.chunk_size.0) * u64::from(self.chunk_size.1) * per_hex * BYTES_PER_VERTEX;
+        check(
+            chunk_bytes <= MAX_CHUNK_BYTES,
+            "chunk_size",
+            format!(
+                "{:?} ({} MiB of mesh a chunk with {} inner rings)",
+                self.chunk_size,
+                chunk_bytes >> 20,
+                t.inner_rings
+            ),
+            format!("a chunk mesh of at most {} MiB: fewer tiles a chunk or fewer inner rings", MAX_CHUNK_BYTES >> 20),
+        )?;
+        check(
+            self.offset.0.unsigned_abs() <= MAX_OFFSET as u32 && self.offset.1.unsigned_abs() <= MAX_OFFSET as u32,
+            "offset",
+            format!("{:?}", self.offset),
+            format!("each in -{MAX_OFFSET}..={MAX_OFFSET}"),
+        )?;
+        check(
+            finite_in(f64::from(self.appearance.blend), 0.0, 1.0),
+            "appearance.blend",
+            self.appearance.blend,
+            "[0, 1]",
+        )?;
+
+        if let HeightSourceConfig::Image { sea_level, path } = &self.source {
+            check(finite_in(f64::from(*sea_level), 0.0, 1.0), "source.sea_level", sea_level, "[0, 1]")?;
+            check(!path.is_empty(), "source.path", "\"\"", "the path of a PNG heightmap")?;
+            check(
+                self.size != MapSize::Unbounded,
+                "source",
+                "Image on an Unbounded map",
+                "Noise for an Unbounded map (an image covers a bounded map)",
+            )?;
+        }
+
+        match self.size {
+            MapSize::Bounded { x, z } => {
+                check(x >= 1 && z >= 1, "size", format!("{x}x{z}"), "at least 1x1 hexes")?;
+                check(
+                    x <= 2 * MAX_OFFSET as u32 && z <= 2 * MAX_OFFSET as u32,
+                    "size",
+                    format!("{x}x{z}"),
+                    format!("at most {0}x{0} hexes", 2 * MAX_OFFSET),
+                )?;
+                let bytes = u64::from(x) * u64::from(z) * per_hex * BYTES_PER_VERTEX;
+                check(
+                    bytes <= MAX_MAP_BYTES,
+                    "size",
+                    format!("{x}x{z} ({} GiB of mesh with {} inner rings)", bytes >> 30, t.inner_rings),
+                    format!(
+                        "a mesh of at most {} GiB; use Unbounded and chunks for larger worlds",
+                        MAX_MAP_BYTES >> 30
+                    ),
+                )?;
+            }
+            MapSize::Unbounded => {
+                check(
+                    self.shape == Shape::None,
+                    "shape",
+                    format!("{:?}", self.shape),
+                    "None for an Unbounded map (shapes need the map's bounds)",
+                )?;
+            }
+        }
+
+        match self.shape {
+            Shape::None | Shape::Gradient => {}
+            Shape::Island { a, b } | Shape::Mediterranean { a, b } => {
+                check(finite_in(f64::from(a), 1e-3, 100.0), "shape.a", a, "[0.001, 100]")?;
+                check(finite_in(f64::from(b), 1e-3, 100.0), "shape.b", b, "[0.001, 100]")?;
+            }
+            Shape::Inland { min, max } => {
+                check(finite_in(f64::from(min), 0.0, 1.0), "shape.min", min, "[0, 1]")?;
+                check(finite_in(f64::from(max), 0.0, 1.0) && max > min, "shape.max", max, format!("({min}, 1]"))?;
+            }
+        }
+        Ok(())
+    }
+}
