@@ -27,18 +27,18 @@ struct FrameTimes {
     waiting: Vec<f64>,
 }
 
-/// The calling thread's time on a core and time waiting for one, in ns, from
-/// `/proc/thread-self/schedstat` (zeros where there is no such file). The kernel adds a wait
-/// when the thread gets a core back, so the waiting time of an interval is exact; the time on a
-/// core is only brought up to date at scheduler ticks, so it is taken as wall time less waiting.
+/// The calling thread's total time waiting for a core, in ns: the second field of
+/// `/proc/thread-self/schedstat` (0 where there is no such file). The kernel adds a wait when
+/// the thread gets a core back, so the waiting time of an interval is exact; the first field,
+/// time on a core, is only brought up to date at scheduler ticks, so time on a core is taken as
+/// wall time less waiting.
 #[derive(Clone, Copy, Default)]
-struct Schedstat(#[allow(dead_code, reason = "read for the record; stale between ticks")] u64, u64);
+struct Schedstat(u64);
 
 impl Schedstat {
     fn now() -> Self {
         let text = std::fs::read_to_string("/proc/thread-self/schedstat").unwrap_or_default();
-        let mut fields = text.split_whitespace().map(|f| f.parse().unwrap_or(0));
-        Self(fields.next().unwrap_or(0), fields.next().unwrap_or(0))
+        Self(text.split_whitespace().nth(1).and_then(|f| f.parse().ok()).unwrap_or(0))
     }
 }
 
@@ -86,7 +86,7 @@ fn walk(seconds: u32, threads: ChunkThreads) -> Walk {
                 if let Some((wall, stat)) = t.start.take() {
                     let now = Schedstat::now();
                     let elapsed = wall.elapsed().as_secs_f64() * 1e3;
-                    let waiting = now.1.saturating_sub(stat.1) as f64 * 1e-6;
+                    let waiting = now.0.saturating_sub(stat.0) as f64 * 1e-6;
                     t.samples.push(elapsed);
                     t.cpu.push((elapsed - waiting).max(0.0));
                     t.waiting.push(waiting);

@@ -243,14 +243,20 @@ fn far_teleport_cancels_stale_work() {
     run_until(&mut app, "terrain ready at the destination", ready);
 }
 
+/// A fresh asset folder of this test process.
+fn asset_dir(name: &str) -> std::path::PathBuf {
+    let dir = std::env::temp_dir().join(format!("hex-terrain-{name}-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
 fn write(dir: &std::path::Path, name: &str, text: &str) {
     std::fs::write(dir.join(name), text).unwrap();
 }
 
 #[test]
 fn hot_reload_regenerates_every_chunk_and_a_bad_edit_keeps_the_terrain() {
-    let dir = std::env::temp_dir().join(format!("hex-terrain-plugin-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = asset_dir("plugin");
     write(&dir, "test.map.ron", "(seed: 5, size: Bounded(x: 16, z: 16), chunk_size: (8, 8))");
     let mut app = app_with(HexTerrainPlugins::new("test.map.ron"), Some(&dir));
     run_until(&mut app, "first map", |app| app.world().resource::<HexMap>().config().seed == 5 && ready(app));
@@ -357,8 +363,7 @@ fn errors(app: &App) -> Vec<String> {
 
 #[test]
 fn load_hex_map_switches_to_a_config_or_a_file_and_refuses_a_bad_one() {
-    let dir = std::env::temp_dir().join(format!("hex-terrain-switch-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = asset_dir("switch");
     write(&dir, "a.map.ron", "(seed: 21, size: Bounded(x: 8, z: 8), chunk_size: (8, 8))");
     write(&dir, "b.map.ron", "(seed: 22, size: Bounded(x: 12, z: 8), chunk_size: (8, 8))");
     let mut app = app_with(HexTerrainPlugins::new("a.map.ron"), Some(&dir));
@@ -426,8 +431,7 @@ fn chunk_tasks_on_rayon_give_the_same_meshes() {
 
 #[test]
 fn reload_teleport_and_switch_in_one_frame_leave_only_the_new_state() {
-    let dir = std::env::temp_dir().join(format!("hex-terrain-race-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = asset_dir("race");
     write(&dir, "a.map.ron", "(seed: 31, size: Unbounded, chunk_size: (8, 8))");
     write(&dir, "b.map.ron", "(seed: 32, size: Unbounded, chunk_size: (8, 8), terrain: (inner_rings: 2))");
     let mut s = settings(2);
@@ -496,8 +500,7 @@ fn keep_errors(app: &mut App) {
 
 #[test]
 fn a_file_reload_applies_once_and_a_broken_one_is_reported_once() {
-    let dir = std::env::temp_dir().join(format!("hex-terrain-once-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = asset_dir("once");
     write(&dir, "once.map.ron", "(seed: 41, size: Bounded(x: 8, z: 8), chunk_size: (8, 8))");
     let mut app = app_with(HexTerrainPlugins::new("once.map.ron"), Some(&dir));
     keep_errors(&mut app);
@@ -541,8 +544,7 @@ fn a_file_reload_applies_once_and_a_broken_one_is_reported_once() {
 
 #[test]
 fn hostile_heightmap_paths_in_a_map_file_are_refused_and_keep_the_terrain() {
-    let dir = std::env::temp_dir().join(format!("hex-terrain-hostile-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = asset_dir("hostile");
     write(&dir, "good.map.ron", "(seed: 51, size: Bounded(x: 8, z: 8), chunk_size: (8, 8))");
     write(&dir, "text.png", "this is not a PNG");
     let mut app = app_with(HexTerrainPlugins::new("good.map.ron"), Some(&dir));
