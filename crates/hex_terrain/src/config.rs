@@ -5,8 +5,11 @@ use serde::{Deserialize, Serialize};
 
 use crate::error::LoadError;
 
+mod climate;
 mod file;
 mod validate;
+
+pub use climate::{BiomeRule, ClimateConfig, RiverConfig};
 
 pub use file::MapFile;
 pub use validate::{MAX_CHUNK_BYTES, MAX_CHUNK_SIDE, MAX_INNER_RINGS, MAX_MAP_BYTES, MAX_OCTAVES, MAX_OFFSET};
@@ -50,6 +53,10 @@ pub struct MapConfig {
     pub chunk_size: (u32, u32),
     /// Appearance parameters that renderers read (Algorithm 5).
     pub appearance: AppearanceConfig,
+    /// Temperature, moisture and biomes (off by default).
+    pub climate: ClimateConfig,
+    /// Rivers and lakes (off by default; bounded maps only).
+    pub rivers: RiverConfig,
 }
 
 impl Default for MapConfig {
@@ -67,6 +74,8 @@ impl Default for MapConfig {
             layout: LayoutConfig::default(),
             chunk_size: (16, 16),
             appearance: AppearanceConfig::default(),
+            climate: ClimateConfig::default(),
+            rivers: RiverConfig::default(),
         }
     }
 }

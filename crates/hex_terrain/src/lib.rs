@@ -21,6 +21,7 @@
 #![cfg_attr(not(test), warn(clippy::unwrap_used))]
 
 pub mod chunk;
+pub mod climate;
 pub mod config;
 pub mod error;
 pub mod heights;
@@ -33,9 +34,10 @@ pub mod query;
 pub mod terrain;
 
 pub use chunk::{ChunkCoord, TileRect};
+pub use climate::{Biome, Climate, Hydrology, RiverTile};
 pub use config::{
-    AppearanceConfig, HeightSourceConfig, LayoutConfig, ManipulationConfig, MapConfig, MapFile, MapSize, NoiseConfig,
-    Orientation, PullMode, Shape, TerrainConfig,
+    AppearanceConfig, BiomeRule, ClimateConfig, HeightSourceConfig, LayoutConfig, ManipulationConfig, MapConfig, MapFile, MapSize, NoiseConfig,
+    Orientation, PullMode, RiverConfig, Shape, TerrainConfig,
 };
 pub use error::{ConfigError, LoadError};
 pub use heights::{HeightImage, ImageError};

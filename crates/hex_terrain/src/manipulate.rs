@@ -134,6 +134,8 @@ pub struct VertexSample {
     pub ring: u32,
     /// Highest kind among the in-map tiles sharing it, or its height's kind outside the map.
     pub kind: TileKind,
+    /// How much river or lake water covers it, in `[0, 1]` (0 on a map without rivers).
+    pub water: f32,
 }
 
 impl Terrain {
@@ -155,14 +157,17 @@ impl Terrain {
     pub(crate) fn border_vertex(&self, raw: f32, p: Hex, kind_of: impl Fn(Hex) -> Option<TileKind>) -> VertexSample {
         let set = self.lattice.tiles_at(p);
         let mut kinds = [TileKind::Sea; 3];
+        let mut tiles = [Hex::ZERO; 3];
         let mut len = 0;
         for &tile in set.tiles() {
             if let Some(kind) = kind_of(tile) {
                 kinds[len] = kind;
+                tiles[len] = tile;
                 len += 1;
             }
         }
-        self.finish_vertex(raw, set.ring, &kinds[..len])
+        let s = self.finish_vertex(raw, set.ring, &kinds[..len]);
+        self.carve(p, &tiles[..len], &kinds[..len], s)
     }
 
     /// Applies manipulation to a vertex of raw height `raw` at `ring`, shared by the in-map
@@ -176,7 +181,7 @@ impl Terrain {
             Manipulated { height: raw, moved: false }
         };
         let kind = kinds.iter().copied().max().unwrap_or_else(|| self.thresholds.classify(raw));
-        VertexSample { raw, height, moved, ring, kind }
+        VertexSample { raw, height, moved, ring, kind, water: 0.0 }
     }
 
     /// World height of the manipulated surface at a lattice point.

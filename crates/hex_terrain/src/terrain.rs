@@ -9,6 +9,7 @@ use serde::{Deserialize, Serialize};
 use std::sync::Arc;
 
 use crate::chunk::TileRect;
+use crate::climate::{Biome, ClimateFields, TileTable};
 use crate::config::{HeightSourceConfig, MapConfig, MapSize, Orientation, Shape};
 use crate::error::ConfigError;
 use crate::heights::{Fbm, HeightImage, ShapeBounds};
@@ -30,6 +31,12 @@ pub struct TileInfo {
     pub elevation: f32,
     /// Whether the tile belongs to the map (always true for an unbounded world).
     pub in_map: bool,
+    /// Biome (from the kind alone when the map has no climate).
+    pub biome: Biome,
+    /// Water a river on the tile carries, 0 without a river.
+    pub river_flow: f32,
+    /// The lake the tile belongs to, if it is a lake tile.
+    pub lake: Option<u32>,
 }
 
 /// A map config compiled into pure functions of position. Cheap to share between threads.
@@ -57,6 +64,10 @@ pub struct Terrain {
     pub(crate) shaping: bool,
     pub(crate) thresholds: Thresholds,
     pub(crate) image: Option<(Arc<HeightImage>, f64)>,
+    /// The climate's noise fields, when the map has a climate.
+    pub(crate) climate: Option<ClimateFields>,
+    /// Per-tile data of a bounded map with climate or rivers, computed once.
+    pub(crate) table: Option<Arc<TileTable>>,
 }
 
 impl Terrain {
@@ -111,6 +122,8 @@ impl Terrain {
             shape_bounds: None,
             shaping: false,
             image,
+            climate: None,
+            table: None,
         };
         terrain.shape_bounds = bounds.map(|rect| {
             let (mut min_x, mut max_x, mut min_z, mut max_z) = (f64::MAX, f64::MIN, f64::MAX, f64::MIN);
@@ -138,6 +151,14 @@ impl Terrain {
             ShapeBounds { min_x, max_x, min_z, max_z, min_u }
         });
         terrain.shaping = terrain.shape_bounds.is_some() && terrain.config.shape != Shape::None;
+        if terrain.config.climate.enabled {
+            terrain.climate = Some(ClimateFields::new(&terrain.config));
+        }
+        if let Some(rect) = bounds
+            && terrain.has_vertex_colors()
+        {
+            terrain.table = Some(Arc::new(TileTable::build(&terrain, rect)));
+        }
         Ok(terrain)
     }
 
@@ -212,15 +233,23 @@ impl Terrain {
         self.contains(tile).then(|| self.tile_kind(tile))
     }
 
-    /// Type, center elevation and membership of a tile.
+    /// Type, center elevation, membership, biome, river and lake of a tile.
     #[must_use]
     pub fn tile_info(&self, tile: Hex) -> TileInfo {
         let sample = self.vertex(self.lattice.tile_center(tile));
+        self.info_of(tile, self.thresholds.classify(sample.raw), sample.height * self.config.terrain.max_elevation)
+    }
+
+    /// A tile's info from its kind and center elevation.
+    pub(crate) fn info_of(&self, tile: Hex, kind: TileKind, elevation: f32) -> TileInfo {
         TileInfo {
             hex: tile,
-            kind: self.thresholds.classify(sample.raw),
-            elevation: sample.height * self.config.terrain.max_elevation,
+            kind,
+            elevation,
             in_map: self.contains(tile),
+            biome: self.tile_biome(tile),
+            river_flow: self.river(tile).map_or(0.0, |r| r.flow),
+            lake: self.lake(tile),
         }
     }
 

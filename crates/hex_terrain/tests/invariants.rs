@@ -6,7 +6,7 @@ use std::collections::HashMap;
 use hex_terrain::hexx::Hex;
 use hex_terrain::{
     ChunkCoord, ChunkMesh, GenerateOptions, ManipulationConfig, MapConfig, MapSize, NoiseConfig, Orientation, PullMode,
-    Shape, Terrain, TerrainConfig, Threads, TileKind, TileRect,
+    RiverConfig, Shape, Terrain, TerrainConfig, Threads, TileKind, TileRect,
 };
 use proptest::prelude::*;
 
@@ -64,6 +64,8 @@ prop_compose! {
         pointy in any::<bool>(),
         hex_size in 0.25f32..4.0,
         chunk_size in (1u32..7, 1u32..7),
+        climate in any::<bool>(),
+        rivers in prop::option::of((1.0f32..12.0, 0.0f32..0.05, 0.0f32..=1.0, 0.5f32..=4.0)),
     ) -> MapConfig {
         let mut c = MapConfig {
             seed,
@@ -78,6 +80,10 @@ prop_compose! {
         };
         if c.size == MapSize::Unbounded {
             c.shape = Shape::None;
+        }
+        c.climate.enabled = climate;
+        if let (Some((threshold, min_lake_depth, carve, width)), MapSize::Bounded { .. }) = (rivers, c.size) {
+            c.rivers = RiverConfig { enabled: true, threshold, lakes: true, min_lake_depth, carve, width };
         }
         c.layout.orientation = if pointy { Orientation::Pointy } else { Orientation::Flat };
         c.layout.hex_size = hex_size;
@@ -108,7 +114,7 @@ fn index(m: &ChunkMesh) -> HashMap<Hex, usize> {
 }
 
 /// Everything a renderer receives for one vertex, as bits.
-type VertexBits = ([u32; 3], [u32; 3], [u32; 2], u32, u32);
+type VertexBits = ([u32; 3], [u32; 3], [u32; 2], u32, u32, Option<[u8; 4]>);
 
 fn vertex_bits(m: &ChunkMesh, i: usize) -> VertexBits {
     let b = &m.buffers;
@@ -118,6 +124,7 @@ fn vertex_bits(m: &ChunkMesh, i: usize) -> VertexBits {
         b.uvs[i].map(f32::to_bits),
         b.tile_kinds[i],
         b.center_distances[i].to_bits(),
+        b.colors.get(i).copied(),
     )
 }
 

@@ -1,7 +1,7 @@
 //! Validation: every field of a [`MapConfig`] against its allowed range, and the limits that
 //! keep any accepted config from taking minutes or gigabytes.
 
-use super::{HeightSourceConfig, MapConfig, MapSize, Shape};
+use super::{HeightSourceConfig, MapConfig, MapSize, NoiseConfig, Shape};
 use crate::error::ConfigError;
 
 /// Largest number of octaves accepted.
@@ -20,11 +20,11 @@ pub const MAX_MAP_BYTES: u64 = 12 << 30;
 /// Bytes a mesh vertex and its share of the index buffer take, about.
 const BYTES_PER_VERTEX: u64 = 3 * 4 + 3 * 4 + 2 * 4 + 4 + 4 + 2 * 3 * 4;
 
-fn check(ok: bool, field: &str, value: impl std::fmt::Display, allowed: impl Into<String>) -> Result<(), ConfigError> {
+pub(super) fn check(ok: bool, field: &str, value: impl std::fmt::Display, allowed: impl Into<String>) -> Result<(), ConfigError> {
     if ok { Ok(()) } else { Err(ConfigError::new(field, value.to_string(), allowed.into())) }
 }
 
-fn finite_in(v: f64, lo: f64, hi: f64) -> bool {
+pub(super) fn finite_in(v: f64, lo: f64, hi: f64) -> bool {
     v.is_finite() && v >= lo && v <= hi
 }
 
@@ -34,16 +34,7 @@ impl MapConfig {
     /// # Errors
     /// The first invalid field, with its value and the allowed range.
     pub fn validate(&self) -> Result<(), ConfigError> {
-        let n = &self.noise;
-        check((1..=MAX_OCTAVES).contains(&n.octaves), "noise.octaves", n.octaves, format!("1..={MAX_OCTAVES}"))?;
-        check(
-            n.persistence.is_finite() && n.persistence > 0.0 && n.persistence <= 1.0,
-            "noise.persistence",
-            n.persistence,
-            "(0, 1]",
-        )?;
-        check(finite_in(n.lacunarity, 1.0, 64.0), "noise.lacunarity", n.lacunarity, "[1, 64]")?;
-        check(n.scale.is_finite() && n.scale > 0.0 && n.scale <= 1e9, "noise.scale", n.scale, "(0, 1e9]")?;
+        check_noise("noise", &self.noise)?;
 
         let t = &self.terrain;
         check(finite_in(f64::from(t.max_elevation), 0.0, 1e6), "terrain.max_elevation", t.max_elevation, "[0, 1e6]")?;
@@ -168,6 +159,20 @@ impl MapConfig {
                 check(finite_in(f64::from(max), 0.0, 1.0) && max > min, "shape.max", max, format!("({min}, 1]"))?;
             }
         }
-        Ok(())
+        self.validate_climate()
     }
+}
+
+/// Checks fBm parameters; `prefix` names the field (`noise`, `climate.moisture`).
+pub(super) fn check_noise(prefix: &str, n: &NoiseConfig) -> Result<(), ConfigError> {
+    let field = |name: &str| format!("{prefix}.{name}");
+    check((1..=MAX_OCTAVES).contains(&n.octaves), &field("octaves"), n.octaves, format!("1..={MAX_OCTAVES}"))?;
+    check(
+        n.persistence.is_finite() && n.persistence > 0.0 && n.persistence <= 1.0,
+        &field("persistence"),
+        n.persistence,
+        "(0, 1]",
+    )?;
+    check(finite_in(n.lacunarity, 1.0, 64.0), &field("lacunarity"), n.lacunarity, "[1, 64]")?;
+    check(n.scale.is_finite() && n.scale > 0.0 && n.scale <= 1e9, &field("scale"), n.scale, "(0, 1e9]")
 }

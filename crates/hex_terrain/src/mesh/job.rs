@@ -13,6 +13,7 @@ use super::grid::{GridShape, Owner, Points, TEMPLATE_MAX};
 use super::parallel::{BATCH, Outputs, Split, in_batches};
 use super::{Buffers, ChunkMesh, Diagnostics, GenerateOptions, Threads};
 use crate::chunk::TileRect;
+use crate::climate::{Biome, TileSample};
 use crate::kind::TileKind;
 use crate::lattice::Lattice;
 use crate::manipulate::VertexSample;
@@ -35,12 +36,15 @@ pub(super) struct Job<'a> {
 
 /// Kinds of the tiles of a job and of the ring around them, and their center samples.
 struct Kinds {
-    /// The job's rectangle grown by one tile.
+    /// The job's rectangle grown by one tile (two when biomes are computed here, which need
+    /// the kinds around each tile of the first ring).
     halo: TileRect,
     /// Kind of each tile of `halo` (row by row), `None` outside the map.
     kinds: Vec<Option<TileKind>>,
     /// Per tile of the job: its own kind and its six neighbors' (`all_neighbors` order).
     around: Vec<(TileKind, [Option<TileKind>; 6])>,
+    /// Per tile of the job, when meshes have vertex colors: its biome and its neighbors'.
+    biomes: Vec<(Biome, [Option<Biome>; 6])>,
     /// Height-source sample at each job tile's center.
     center_noise: Vec<f64>,
 }
@@ -80,7 +84,9 @@ impl<'a> Job<'a> {
     /// Runs every pass and returns the chunk.
     pub fn run(self) -> ChunkMesh {
         let (points, out, kinds) = self.split.in_pool(|| self.prelude());
-        let Buffers { mut b, mut raws, mut moved, mut rings, mut heights } = out.fit(points.owned, self.diagnostics);
+        let colors = self.terrain.has_vertex_colors();
+        let Buffers { mut b, mut raws, mut moved, mut rings, mut heights } =
+            out.fit(points.owned, self.diagnostics, colors);
         // Every pass from here on, in one visit to the thread pool.
         self.split.in_pool(|| {
             let outputs = Outputs {
@@ -88,6 +94,7 @@ impl<'a> Job<'a> {
                 uvs: &mut b.uvs,
                 kinds: &mut b.tile_kinds,
                 distances: &mut b.center_distances,
+                colors: &mut b.colors,
                 raws: &mut raws,
                 moved: &mut moved,
                 rings: &mut rings,
@@ -109,11 +116,15 @@ impl<'a> Job<'a> {
             .tiles
             .iter()
             .zip(&kinds.around)
-            .map(|(&hex, &(kind, _))| TileInfo {
+            .enumerate()
+            .map(|(t, (&hex, &(kind, _)))| TileInfo {
                 hex,
                 kind,
                 elevation: heights[points.grid.slot(self.lattice.tile_center(hex))],
                 in_map: true,
+                biome: kinds.biomes.get(t).map_or(Biome::of_kind(kind), |b| b.0),
+                river_flow: self.terrain.river_flow(hex),
+                lake: self.terrain.lake(hex),
             })
             .collect();
         let diagnostics = self.diagnostics.then(|| {
@@ -139,6 +150,7 @@ impl<'a> Job<'a> {
                             self.tiles.len() * self.lattice.triangles_per_tile() * 3,
                             self.shape.len(),
                             self.diagnostics,
+                            self.terrain.has_vertex_colors(),
                         )
                     },
                 )
@@ -182,20 +194,48 @@ impl<'a> Job<'a> {
     /// at each center: every vertex evaluated lies in one of those tiles.
     fn kinds(&self) -> Kinds {
         let terrain = self.terrain;
-        let halo = self.rect.grow(1);
+        let colors = terrain.has_vertex_colors();
+        // Without a precomputed table, a tile's biome needs its neighbors' kinds: two rings.
+        let local_biomes = colors && terrain.table.is_none();
+        let halo = self.rect.grow(if local_biomes { 2 } else { 1 });
         let tiles: Vec<Hex> = halo.iter().map(|oc| terrain.tile_from_offset(oc)).collect();
         let centers: Vec<Hex> = tiles.iter().map(|&t| self.lattice.tile_center(t)).collect();
         let noise = self.noise_at(&centers);
-        let kinds = self.split.map(tiles.len(), |k| {
-            terrain.contains(tiles[k]).then(|| terrain.thresholds().classify(terrain.shaped(noise[k], centers[k])))
-        });
-        let mut out = Kinds { halo, kinds, around: Vec::new(), center_noise: Vec::new() };
+        let raws = self.split.map(tiles.len(), |k| terrain.shaped(noise[k], centers[k]));
+        let kinds = self.split.map(tiles.len(), |k| terrain.contains(tiles[k]).then(|| terrain.thresholds().classify(raws[k])));
+        let mut out = Kinds { halo, kinds, around: Vec::new(), biomes: Vec::new(), center_noise: Vec::new() };
         out.center_noise = self.rect.iter().map(|oc| noise[out.index(oc)]).collect();
         out.around = self
             .tiles
             .iter()
             .map(|&t| (out.get(terrain, t).unwrap_or(TileKind::Sea), t.all_neighbors().map(|nb| out.get(terrain, nb))))
             .collect();
+        if colors {
+            let biome = |t: Hex| -> Option<Biome> {
+                if !terrain.contains(t) {
+                    return None;
+                }
+                if terrain.table.is_some() {
+                    return Some(terrain.tile_biome(t));
+                }
+                let i = out.index(terrain.offset_of(t));
+                let (mut next_to_sea, mut next_to_land) = (false, false);
+                for nb in t.all_neighbors() {
+                    match out.get(terrain, nb) {
+                        Some(TileKind::Sea) => next_to_sea = true,
+                        Some(_) => next_to_land = true,
+                        None => {}
+                    }
+                }
+                let kind = out.kinds[i].unwrap_or(TileKind::Sea);
+                Some(terrain.biome_of(t, &TileSample { raw: raws[i], kind, next_to_sea, next_to_land }, false))
+            };
+            out.biomes = self
+                .tiles
+                .iter()
+                .map(|&t| (biome(t).unwrap_or(Biome::Ocean), t.all_neighbors().map(biome)))
+                .collect();
+        }
         out
     }
 
@@ -247,19 +287,31 @@ impl<'a> Job<'a> {
                 let ring = template[k].ring;
                 let raw = terrain.shaped(noise[j], p);
                 let (own, around) = &kinds.around[tile as usize];
-                let s = if ring < n {
-                    terrain.finish_vertex(raw, ring, &[*own])
-                } else {
-                    let mut sharing = [*own; 3];
-                    let mut len = 1;
+                let hex = self.tiles[tile as usize];
+                let mut hexes = [hex; 3];
+                let mut sharing = [*own; 3];
+                let mut dirs = [0_usize; 3];
+                let mut len = 1;
+                if ring == n {
                     for d in lattice.shared_tiles(k) {
                         if let Some(&Some(kind)) = around.get(usize::from(d)) {
                             sharing[len] = kind;
+                            hexes[len] = hex.all_neighbors()[usize::from(d)];
+                            dirs[len] = usize::from(d);
                             len += 1;
                         }
                     }
-                    terrain.finish_vertex(raw, ring, &sharing[..len])
-                };
+                }
+                let s = terrain.finish_vertex(raw, ring, &sharing[..len]);
+                let s = terrain.carve(p, &hexes[..len], &sharing[..len], s);
+                if !o.colors.is_empty() {
+                    let (own_biome, around_biomes) = &kinds.biomes[tile as usize];
+                    let mut biomes = [*own_biome; 3];
+                    for (b, &d) in biomes.iter_mut().zip(&dirs).skip(1).take(len - 1) {
+                        *b = around_biomes[d].unwrap_or(*own_biome);
+                    }
+                    o.colors[j] = Terrain::vertex_color(&biomes[..len], s.water);
+                }
                 let height = s.height * max_elevation;
                 let [x, z] = lattice.world(p);
                 let (x, z) = (x as f32, z as f32);
@@ -297,14 +349,17 @@ impl<'a> Job<'a> {
                 let set = self.lattice.around_tiles(k, (d + 3) % 6);
                 let base = self.tiles[tile as usize];
                 let mut sharing = [TileKind::Sea; 3];
+                let mut hexes = [Hex::ZERO; 3];
                 let mut len = 0;
                 for &t in set.tiles() {
                     if let Some(kind) = kind_of(base + t) {
                         sharing[len] = kind;
+                        hexes[len] = base + t;
                         len += 1;
                     }
                 }
-                return self.terrain.finish_vertex(raw, set.ring, &sharing[..len]);
+                let s = self.terrain.finish_vertex(raw, set.ring, &sharing[..len]);
+                return self.terrain.carve(p, &hexes[..len], &sharing[..len], s);
             }
         }
         self.terrain.border_vertex(raw, p, kind_of)

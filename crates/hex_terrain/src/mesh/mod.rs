@@ -39,6 +39,10 @@ pub struct MeshBuffers {
     /// Distance to the tile center in rings, normalised: 0 at the center, 1 on the border.
     /// Interpolated across a triangle it reaches 1 exactly on tile edges.
     pub center_distances: Vec<f32>,
+    /// sRGB color of each vertex when the map has a climate or rivers (empty otherwise): the
+    /// biome colors of the tiles holding it averaged, and in alpha how much river or lake water
+    /// covers it (0 dry, 255 open water).
+    pub colors: Vec<[u8; 4]>,
     /// Triangle list indices.
     pub indices: Vec<u32>,
 }
@@ -128,7 +132,7 @@ impl Buffers {
     /// `indices` indices and a height grid of `slots`. Zeroing recycled memory costs a pass over
     /// it, so it is done beside the sequential point enumeration; fresh pages come zeroed from
     /// the system and are mapped when the passes first write them.
-    fn new(vertices: usize, indices: usize, slots: usize, diagnostics: bool) -> Self {
+    fn new(vertices: usize, indices: usize, slots: usize, diagnostics: bool, colors: bool) -> Self {
         let d = if diagnostics { vertices } else { 0 };
         Self {
             b: MeshBuffers {
@@ -137,6 +141,7 @@ impl Buffers {
                 uvs: vec![[0.0; 2]; vertices],
                 tile_kinds: vec![0; vertices],
                 center_distances: vec![0.0; vertices],
+                colors: vec![[0; 4]; if colors { vertices } else { 0 }],
                 indices: vec![0; indices],
             },
             raws: vec![0.0; d],
@@ -147,7 +152,10 @@ impl Buffers {
     }
 
     /// The same buffers holding exactly `vertices` vertices (a no-op when the count was right).
-    fn fit(mut self, vertices: usize, diagnostics: bool) -> Self {
+    fn fit(mut self, vertices: usize, diagnostics: bool, colors: bool) -> Self {
+        if colors {
+            self.b.colors.resize(vertices, [0; 4]);
+        }
         self.b.positions.resize(vertices, [0.0; 3]);
         self.b.normals.resize(vertices, [0.0; 3]);
         self.b.uvs.resize(vertices, [0.0; 2]);

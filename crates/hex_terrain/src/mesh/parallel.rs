@@ -64,6 +64,7 @@ pub(super) struct Outputs<'a> {
     pub uvs: &'a mut [[f32; 2]],
     pub kinds: &'a mut [u32],
     pub distances: &'a mut [f32],
+    pub colors: &'a mut [[u8; 4]],
     pub raws: &'a mut [f32],
     pub moved: &'a mut [bool],
     pub rings: &'a mut [u8],
@@ -88,6 +89,7 @@ impl Outputs<'_> {
         let (u0, u1) = self.uvs.split_at_mut(mid);
         let (k0, k1) = self.kinds.split_at_mut(mid);
         let (d0, d1) = self.distances.split_at_mut(mid);
+        let (c0, c1) = split_opt(self.colors, mid);
         let (r0, r1) = split_opt(self.raws, mid);
         let (m0, m1) = split_opt(self.moved, mid);
         let (g0, g1) = split_opt(self.rings, mid);
@@ -97,6 +99,7 @@ impl Outputs<'_> {
             uvs: u0,
             kinds: k0,
             distances: d0,
+            colors: c0,
             raws: r0,
             moved: m0,
             rings: g0,
@@ -108,6 +111,7 @@ impl Outputs<'_> {
             uvs: u1,
             kinds: k1,
             distances: d1,
+            colors: c1,
             raws: r1,
             moved: m1,
             rings: g1,

@@ -69,9 +69,13 @@ fn every_vertex_matches_the_single_vertex_evaluator() {
     use crate::config::Shape;
     for rings in [1, 2, 4] {
         for o in [Orientation::Flat, Orientation::Pointy] {
-            for shape in [Shape::None, Shape::Island { a: 3.0, b: 2.2 }] {
+            for (shape, water) in [(Shape::None, false), (Shape::Island { a: 3.0, b: 2.2 }, false), (Shape::None, true)] {
                 let mut c =
                     MapConfig { size: MapSize::Bounded { x: 9, z: 7 }, shape: shape.clone(), ..MapConfig::default() };
+                // Climate and rivers: low thresholds so this small map has rivers and lakes.
+                c.climate.enabled = water;
+                c.rivers.enabled = water;
+                c.rivers.threshold = 1.5;
                 c.terrain.inner_rings = rings;
                 c.layout.orientation = o;
                 c.seed = 11 + rings;
@@ -88,6 +92,15 @@ fn every_vertex_matches_the_single_vertex_evaluator() {
                         assert_eq!(m.buffers.tile_kinds[i], s.kind as u32, "kind {what}");
                         assert_eq!(d.moved[i], s.moved, "moved {what}");
                         assert_eq!(u32::from(d.rings[i]), s.ring, "ring {what}");
+                        if water {
+                            assert_eq!(m.buffers.colors[i], t.point_color(p), "color {what}");
+                        }
+                    }
+                    if water && rect == t.bounds().unwrap() {
+                        assert!(t.rivers().len() > 1, "the water case has rivers");
+                        assert!(m.buffers.colors.iter().any(|c| c[3] > 0), "some vertex is wet");
+                    } else if !water {
+                        assert!(m.buffers.colors.is_empty());
                     }
                     for info in &m.tiles {
                         assert_eq!(*info, t.tile_info(info.hex));
@@ -106,6 +119,9 @@ fn normals_come_from_the_six_lattice_neighbors() {
     for rings in [1, 3] {
         for o in [Orientation::Flat, Orientation::Pointy] {
             let mut c = MapConfig { size: MapSize::Bounded { x: 7, z: 5 }, ..MapConfig::default() };
+            // With rivers carved, so the normals follow the channels too.
+            c.rivers.enabled = true;
+            c.rivers.threshold = 1.5;
             c.terrain.inner_rings = rings;
             c.layout.orientation = o;
             let t = Terrain::new(c).unwrap();

@@ -1,0 +1,295 @@
+//! Rivers and lakes of a bounded map, at the tile level, from the tiles' center heights.
+//!
+//! Priority-flood (Barnes, Lehman and Mulla, 2014): the sea and the map's edge tiles are the
+//! outlets; tiles are taken lowest water level first, and each tile reached from one already
+//! taken gets the water level `max(own height, that tile's level)` and drains into it. That
+//! fills every depression up to its spill height and gives every tile one downstream
+//! neighbor with a level at or below its own, on a path that ends at an outlet: no cycles, never
+//! uphill. A tile whose level lies above its center by more than the minimum depth is a lake
+//! tile (water above sea level). Each land or mountain tile collects its rain (moisture), adds it
+//! to its downstream neighbor's, in reverse order of the flood; a tile whose flow reaches the
+//! threshold carries a river, which ends in the sea, a lake or at the map edge. Rivers merge
+//! where they meet and their flow grows downstream.
+//!
+//! Rivers run through tile centers (as in Endless Legend and Catlike Coding's Hex Map): a river
+//! tile's channel runs from its center to the middle of each edge it crosses, upstream and
+//! downstream, so a river is read as a tile property (a unit stands on it) and the channel uses
+//! the lattice's own points from center to edge.
+
+use std::cmp::Ordering;
+use std::collections::BinaryHeap;
+
+use hexx::Hex;
+use serde::{Deserialize, Serialize};
+
+use super::table::TileTable;
+use crate::kind::TileKind;
+use crate::terrain::Terrain;
+
+/// No downstream tile: the tile is sea (an outlet).
+const OUTLET: u8 = 6;
+
+/// The water network of a bounded map, row by row over its tiles.
+#[derive(Debug, Clone)]
+pub struct Hydrology {
+    /// Water level (normalised height of the filled surface) of each tile.
+    level: Vec<f32>,
+    /// Direction (index into `Hex::all_neighbors`) of the downstream tile; for an edge tile
+    /// draining off the map, the direction of a neighbor outside it; [`OUTLET`] for sea.
+    down: Vec<u8>,
+    /// Water collected by each tile from itself and upstream.
+    flow: Vec<f32>,
+    /// Lake id + 1 of each tile, 0 when not a lake.
+    lake: Vec<u32>,
+    /// Spill height of each lake.
+    spill: Vec<f32>,
+    /// Channel half-width in lattice steps towards each of the six neighbors (0: no channel).
+    channels: Vec<[f32; 6]>,
+    threshold: f32,
+}
+
+/// A river on one tile.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[cfg_attr(feature = "bevy_reflect", derive(bevy_reflect::Reflect))]
+pub struct RiverTile {
+    /// The tile.
+    pub hex: Hex,
+    /// Water it carries (rain collected from itself and upstream).
+    pub flow: f32,
+    /// Water surface level (normalised height); never rises downstream.
+    pub level: f32,
+    /// Where it flows: the next tile (a river, lake or sea tile), or `None` off the map's edge.
+    pub downstream: Option<Hex>,
+    /// The neighbors whose river flows into it.
+    pub upstream: Vec<Hex>,
+}
+
+/// Heap entry: lowest level first, then first pushed.
+#[derive(PartialEq)]
+struct Entry(f32, u32, u32);
+
+impl Eq for Entry {}
+
+impl Ord for Entry {
+    fn cmp(&self, other: &Self) -> Ordering {
+        other.0.total_cmp(&self.0).then(other.1.cmp(&self.1))
+    }
+}
+
+impl PartialOrd for Entry {
+    fn partial_cmp(&self, other: &Self) -> Option<Ordering> {
+        Some(self.cmp(other))
+    }
+}
+
+impl Hydrology {
+    /// Builds the network from the table's center heights and each tile's rain.
+    pub(crate) fn build(terrain: &Terrain, table: &TileTable, tiles: &[Hex], rain: &[f32]) -> Self {
+        let config = &terrain.config().rivers;
+        let count = tiles.len();
+        let neighbor = |i: usize, d: usize| table.index(terrain, tiles[i].all_neighbors()[d]);
+        let mut level = table.raw.clone();
+        let mut down = vec![OUTLET; count];
+        let mut taken = vec![false; count];
+        let mut heap = BinaryHeap::new();
+        let mut seq = 0_u32;
+        for i in 0..count {
+            let off_map = (0..6).find(|&d| neighbor(i, d).is_none());
+            if table.kinds[i] == TileKind::Sea || off_map.is_some() {
+                if table.kinds[i] != TileKind::Sea {
+                    down[i] = off_map.unwrap_or(0) as u8;
+                }
+                taken[i] = true;
+                heap.push(Entry(level[i], seq, i as u32));
+                seq += 1;
+            }
+        }
+        let mut order = Vec::with_capacity(count);
+        while let Some(Entry(l, _, i)) = heap.pop() {
+            let i = i as usize;
+            order.push(i);
+            for d in 0..6 {
+                if let Some(j) = neighbor(i, d)
+                    && !taken[j]
+                {
+                    taken[j] = true;
+                    level[j] = level[j].max(l);
+                    down[j] = ((d + 3) % 6) as u8;
+                    heap.push(Entry(level[j], seq, j as u32));
+                    seq += 1;
+                }
+            }
+        }
+        let downstream = |i: usize, down: &[u8]| (down[i] < OUTLET).then(|| neighbor(i, usize::from(down[i]))).flatten();
+        let mut flow: Vec<f32> = rain.to_vec();
+        for &i in order.iter().rev() {
+            if let Some(j) = downstream(i, &down) {
+                flow[j] += flow[i];
+            }
+        }
+        let (lake, spill) = Self::lakes(config.lakes, config.min_lake_depth, &table.raw, &level, &table.kinds, &order, |i| {
+            (0..6).filter_map(move |d| neighbor(i, d))
+        });
+        let mut hydrology = Self {
+            level,
+            down,
+            flow,
+            lake,
+            spill,
+            channels: vec![[0.0; 6]; count],
+            threshold: config.threshold,
+        };
+        let width = |flow: f32| config.width * (flow / config.threshold).sqrt().clamp(1.0, 2.0);
+        for i in 0..count {
+            if !hydrology.river_at(i) {
+                continue;
+            }
+            let d = usize::from(hydrology.down[i]);
+            hydrology.channels[i][d] = width(hydrology.flow[i]);
+            if let Some(j) = downstream(i, &hydrology.down)
+                && hydrology.river_at(j)
+            {
+                hydrology.channels[j][(d + 3) % 6] = width(hydrology.flow[i]);
+            }
+        }
+        hydrology
+    }
+
+    /// Lake ids (connected tiles filled above their center by more than `min_depth`) and each
+    /// lake's spill height; adjacent filled tiles always share one level.
+    fn lakes<I: Iterator<Item = usize>>(
+        enabled: bool,
+        min_depth: f32,
+        raw: &[f32],
+        level: &[f32],
+        kinds: &[TileKind],
+        order: &[usize],
+        neighbors: impl Fn(usize) -> I,
+    ) -> (Vec<u32>, Vec<f32>) {
+        let mut lake = vec![0_u32; raw.len()];
+        let mut spill = Vec::new();
+        if !enabled {
+            return (lake, spill);
+        }
+        let filled = |i: usize| kinds[i] != TileKind::Sea && level[i] - raw[i] > min_depth;
+        for &start in order {
+            if lake[start] != 0 || !filled(start) {
+                continue;
+            }
+            spill.push(level[start]);
+            let id = spill.len() as u32;
+            let mut stack = vec![start];
+            lake[start] = id;
+            while let Some(i) = stack.pop() {
+                for j in neighbors(i) {
+                    if lake[j] == 0 && filled(j) && level[j] == level[start] {
+                        lake[j] = id;
+                        stack.push(j);
+                    }
+                }
+            }
+        }
+        (lake, spill)
+    }
+
+    /// Lake id of tile `i` (row-major index in the map), if it is a lake tile.
+    pub(crate) fn lake_of(&self, i: usize) -> Option<u32> {
+        self.lake[i].checked_sub(1)
+    }
+
+    /// Spill height (normalised) of a lake.
+    #[must_use]
+    pub fn spill_height(&self, lake: u32) -> Option<f32> {
+        self.spill.get(lake as usize).copied()
+    }
+
+    /// Number of lakes.
+    #[must_use]
+    pub fn lake_count(&self) -> usize {
+        self.spill.len()
+    }
+
+    /// Channel half-widths of tile `i` towards its six neighbors (0: none).
+    #[inline]
+    pub(crate) fn channels(&self, i: usize) -> &[f32; 6] {
+        &self.channels[i]
+    }
+
+    /// Water level of tile `i`.
+    pub(crate) fn level(&self, i: usize) -> f32 {
+        self.level[i]
+    }
+
+    /// Flow of tile `i`.
+    pub(crate) fn flow(&self, i: usize) -> f32 {
+        self.flow[i]
+    }
+
+    /// Whether tile `i` carries a river (the flow threshold reached, not sea, not lake).
+    pub(crate) fn river_at(&self, i: usize) -> bool {
+        self.flow[i] >= self.threshold && self.lake[i] == 0 && self.down[i] < OUTLET
+    }
+
+    /// Downstream direction of tile `i` (`None` for sea).
+    pub(crate) fn down(&self, i: usize) -> Option<usize> {
+        (self.down[i] < OUTLET).then_some(usize::from(self.down[i]))
+    }
+}
+
+impl Terrain {
+    /// The map's water network: `None` on a map without rivers.
+    #[must_use]
+    pub fn hydrology(&self) -> Option<&Hydrology> {
+        self.table.as_ref()?.hydrology.as_ref()
+    }
+
+    /// The river on a tile, if one runs through it.
+    #[must_use]
+    pub fn river(&self, tile: Hex) -> Option<RiverTile> {
+        let table = self.table.as_ref()?;
+        let h = table.hydrology.as_ref()?;
+        let i = table.index(self, tile)?;
+        if !h.river_at(i) {
+            return None;
+        }
+        let neighbors = tile.all_neighbors();
+        let downstream = h.down(i).map(|d| neighbors[d]).filter(|&nb| self.contains(nb));
+        let upstream = (0..6)
+            .filter(|&d| {
+                table.index(self, neighbors[d]).is_some_and(|j| h.river_at(j) && h.down(j) == Some((d + 3) % 6))
+            })
+            .map(|d| neighbors[d])
+            .collect();
+        Some(RiverTile { hex: tile, flow: h.flow(i), level: h.level(i), downstream, upstream })
+    }
+
+    /// The lake a tile belongs to (an id, 0 for the first lake), if it is a lake tile.
+    #[must_use]
+    pub fn lake(&self, tile: Hex) -> Option<u32> {
+        let table = self.table.as_ref()?;
+        table.hydrology.as_ref()?.lake_of(table.index(self, tile)?)
+    }
+
+    /// Every river tile of the map, row by row.
+    #[must_use]
+    pub fn rivers(&self) -> Vec<RiverTile> {
+        self.tiles().filter_map(|t| self.river(t)).collect()
+    }
+
+    /// Water level of a tile (the filled surface, normalised), on a map with rivers.
+    #[must_use]
+    pub fn water_level(&self, tile: Hex) -> Option<f32> {
+        let table = self.table.as_ref()?;
+        Some(table.hydrology.as_ref()?.level(table.index(self, tile)?))
+    }
+}
+
+impl Terrain {
+    /// Water a river on a tile carries, 0 when no river runs through it.
+    #[must_use]
+    pub fn river_flow(&self, tile: Hex) -> f32 {
+        let Some(table) = &self.table else { return 0.0 };
+        let (Some(h), Some(i)) = (&table.hydrology, table.index(self, tile)) else { return 0.0 };
+        if h.river_at(i) { h.flow(i) } else { 0.0 }
+    }
+}
