@@ -65,7 +65,7 @@ pub mod prelude {
         LoadHexMap, MapSource, TerrainReady, TileHit,
     };
     pub use hex_terrain::hexx::Hex;
-    pub use hex_terrain::{ChunkCoord, MapConfig, MapSize, TileInfo, TileKind};
+    pub use hex_terrain::{Biome, ChunkCoord, MapConfig, MapSize, RiverTile, TileInfo, TileKind};
 }
 
 /// Where the map comes from.

@@ -55,3 +55,40 @@ fn thesis_maps_are_the_sixteen_of_section_7() {
     assert_eq!(kinds(load(14)), kinds(map0.clone()));
     assert_eq!(kinds(load(15)), kinds(map0));
 }
+
+/// Biome counts (in `Biome::ALL` order), river tiles and lakes of each preset with a climate:
+/// a change to climate, rivers or lakes changes these and must update the table in the same
+/// commit. The continent is unbounded (climate only): its counts are of the 48x32 tiles at the
+/// origin.
+const PRESETS: [(&str, [usize; 13], usize, usize); 11] = include!("presets_golden.in");
+
+#[test]
+fn presets_keep_their_biomes_rivers_and_lakes() {
+    let mut failed = Vec::new();
+    for (file, biomes, rivers, lakes) in PRESETS {
+        let config = MapConfig::load(maps_dir().join(file)).unwrap();
+        assert!(config.climate.enabled, "{file} has no climate");
+        let t = Terrain::new(config).unwrap();
+        let tiles: Vec<_> = match t.bounds() {
+            Some(_) => t.tiles().collect(),
+            None => hex_terrain::TileRect::new([0, 0], [48, 32]).iter().map(|oc| t.tile_from_offset(oc)).collect(),
+        };
+        let counts = hex_terrain::Biome::ALL.map(|b| tiles.iter().filter(|&&h| t.tile_biome(h) == b).count());
+        let got = (counts, t.rivers().len(), t.hydrology().map_or(0, |h| h.lake_count()));
+        if got != (biomes, rivers, lakes) {
+            failed.push(format!("    (\"{file}\", {:?}, {}, {}),", got.0, got.1, got.2));
+        }
+    }
+    assert!(failed.is_empty(), "presets changed; if intended, the new rows are:\n{}", failed.join("\n"));
+}
+
+#[test]
+fn the_world_preset_has_every_biome_rivers_and_lakes() {
+    let t = Terrain::new(MapConfig::load(maps_dir().join("world.map.ron")).unwrap()).unwrap();
+    let present: std::collections::HashSet<_> = t.tiles().map(|h| t.tile_biome(h)).collect();
+    for b in hex_terrain::Biome::ALL {
+        assert!(present.contains(&b), "no {b:?} in the world preset");
+    }
+    assert!(t.rivers().iter().filter(|r| r.upstream.is_empty()).count() >= 20);
+    assert!(t.hydrology().unwrap().lake_count() >= 5);
+}

@@ -12,7 +12,7 @@ use std::time::Instant;
 
 use clap::{Parser, Subcommand};
 use hex_terrain::{
-    ChunkMesh, HeightSourceConfig, ManipulationConfig, MapConfig, MapSize, Sharpness, Terrain, TileKind,
+    Biome, ChunkMesh, HeightSourceConfig, ManipulationConfig, MapConfig, MapSize, Sharpness, Terrain, TileKind,
 };
 
 /// Generate, preview, export and measure 3D hexagonal tiled terrain.
@@ -141,7 +141,13 @@ fn load(path: &Path) -> CliResult<MapConfig> {
 }
 
 fn terrain(config: MapConfig, raw: bool) -> CliResult<Terrain> {
-    let config = if raw { MapConfig { manipulation: ManipulationConfig::raw(), ..config } } else { config };
+    // The raw map: every manipulation off and river channels not carved.
+    let config = if raw {
+        let rivers = hex_terrain::RiverConfig { carve: 0.0, ..config.rivers.clone() };
+        MapConfig { manipulation: ManipulationConfig::raw(), rivers, ..config }
+    } else {
+        config
+    };
     Terrain::new(config).map_err(|e| e.to_string())
 }
 
@@ -274,6 +280,26 @@ fn stats(path: &Path) -> CliResult<()> {
         println!("  {:<9} {count}", kind.name());
     }
     println!("  total     {}", mesh.tiles.len());
+    if t.config().climate.enabled || t.hydrology().is_some() {
+        println!("biomes:");
+        for biome in Biome::ALL {
+            let count = mesh.tiles.iter().filter(|t| t.biome == biome).count();
+            if count > 0 {
+                println!("  {:<11} {count}", biome.name());
+            }
+        }
+    }
+    if let Some(h) = t.hydrology() {
+        let rivers = t.rivers();
+        let sources = rivers.iter().filter(|r| r.upstream.is_empty()).count();
+        let mouths = rivers.iter().filter(|r| r.downstream.is_none_or(|d| t.river(d).is_none())).count();
+        println!(
+            "water: {} river tiles, {sources} sources, {mouths} mouths; {} lakes ({} tiles)",
+            rivers.len(),
+            h.lake_count(),
+            mesh.tiles.iter().filter(|t| t.lake.is_some()).count()
+        );
+    }
     println!("mesh: {} vertices, {} triangles", mesh.buffers.vertex_count(), mesh.buffers.triangle_count());
     println!("generation: {:.2} ms", elapsed.as_secs_f64() * 1e3);
     println!("sharpness (% of max elevation):");

@@ -1,5 +1,6 @@
-//! Top-down software rendering of a map: colors blended by height (thesis Algorithm 5), hill
-//! shading from the mesh normals, optional tile outlines.
+//! Top-down software rendering of a map: colors blended by height (thesis Algorithm 5), or the
+//! mesh's biome colors with rivers and lakes when the map has a climate or rivers; hill shading
+//! from the mesh normals, optional tile outlines.
 
 use std::path::Path;
 
@@ -15,6 +16,8 @@ pub const SEA: [f32; 3] = [0.11, 0.34, 0.72];
 pub const LAND: [f32; 3] = [0.30, 0.60, 0.20];
 /// Mountain color.
 pub const MOUNTAIN: [f32; 3] = [0.62, 0.60, 0.58];
+/// River and lake color (sRGB, as the plugin's default water color).
+pub const WATER: [f32; 3] = [0.16, 0.42, 0.72];
 const BACKGROUND: Rgb<u8> = Rgb([24, 24, 28]);
 
 /// What to draw.
@@ -136,7 +139,11 @@ pub fn render(terrain: &Terrain, mesh: &ChunkMesh, options: &Options) -> CliResu
                     }
                     let lerp = |v: [f32; 3]| v[0] * l0 + v[1] * l1 + v[2] * l2;
                     let y = lerp(idx.map(|i| b.positions[i][1]));
-                    let color = if max_e > 0.0 {
+                    let color = if !b.colors.is_empty() {
+                        let c = [0, 1, 2, 3].map(|k| lerp(idx.map(|i| f32::from(b.colors[i][k]) / 255.0)));
+                        let t = ((c[3] - 0.2) / 0.35).clamp(0.0, 1.0);
+                        mix([c[0], c[1], c[2]], WATER, t * t * (3.0 - 2.0 * t))
+                    } else if max_e > 0.0 {
                         albedo(y / max_e, sea, mountain, blend)
                     } else {
                         layer(match b.tile_kinds[idx[0]] {

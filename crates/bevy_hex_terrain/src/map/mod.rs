@@ -9,7 +9,7 @@ use std::sync::Arc;
 use bevy::math::Ray3d;
 use bevy::prelude::*;
 use hex_terrain::hexx::Hex;
-use hex_terrain::{ChunkCoord, MapConfig, Terrain, TileInfo, TileKind};
+use hex_terrain::{Biome, ChunkCoord, MapConfig, RiverTile, Terrain, TileInfo, TileKind};
 
 pub use apply::{HexMapHandle, HexMapPlugin, LoadHexMap};
 
@@ -108,10 +108,28 @@ impl HexMap {
         Some(TileHit { tile: hit.tile, point: Vec3::from_array(hit.point), distance: hit.distance })
     }
 
-    /// Type, center elevation and map membership of a tile.
+    /// Type, center elevation, map membership, biome, river flow and lake of a tile.
     #[must_use]
     pub fn tile_info(&self, tile: Hex) -> TileInfo {
         self.terrain.tile_info(tile)
+    }
+
+    /// A tile's biome (from its type alone when the map has no climate).
+    #[must_use]
+    pub fn biome(&self, tile: Hex) -> Biome {
+        self.terrain.tile_biome(tile)
+    }
+
+    /// The river running through a tile (its flow, where it comes from and goes), if any.
+    #[must_use]
+    pub fn river(&self, tile: Hex) -> Option<RiverTile> {
+        self.terrain.river(tile)
+    }
+
+    /// The lake a tile belongs to, if it is a lake tile (water above sea level).
+    #[must_use]
+    pub fn lake(&self, tile: Hex) -> Option<u32> {
+        self.terrain.lake(tile)
     }
 
     /// Type of a tile.

@@ -56,6 +56,8 @@ pub struct TerrainParams {
     pub highlight_color: Vec4,
     /// Outline color; alpha is the strength.
     pub outline_color: Vec4,
+    /// River and lake water color (linear), on meshes with vertex colors.
+    pub water_color: Vec4,
     /// World height of the sea threshold.
     pub sea_level: f32,
     /// World height of the mountain threshold.
@@ -150,8 +152,10 @@ pub struct TerrainAppearance {
     pub textures: bool,
     /// Texture repeats per world unit.
     pub texture_scale: f32,
-    /// Layer colors, sea, land, mountain.
+    /// Layer colors, sea, land, mountain (maps without climate or rivers).
     pub colors: [Color; 3],
+    /// River and lake color (maps with rivers; biome colors come with the mesh).
+    pub water_color: Color,
     /// Asset paths of the sea, grass and mountain textures.
     pub texture_paths: [String; 3],
 }
@@ -164,6 +168,7 @@ impl Default for TerrainAppearance {
             textures: false,
             texture_scale: 0.25,
             colors: [Color::srgb(0.11, 0.34, 0.72), Color::srgb(0.30, 0.60, 0.20), Color::srgb(0.62, 0.60, 0.58)],
+            water_color: Color::srgb(0.16, 0.42, 0.72),
             texture_paths: ["textures/sea.png".into(), "textures/grass.png".into(), "textures/mountain.png".into()],
         }
     }
@@ -211,6 +216,7 @@ pub fn params(config: &MapConfig, appearance: &TerrainAppearance, highlights: &T
         hover_color: Vec4::new(1.0, 0.95, 0.55, 0.45),
         highlight_color: Vec4::new(0.35, 0.75, 1.0, 0.4),
         outline_color: Vec4::new(0.01, 0.01, 0.01, 0.92),
+        water_color: lin(appearance.water_color),
         sea_level: t.sea_threshold * max,
         mountain_level: t.mountain_threshold * max,
         blend: config.appearance.blend.clamp(0.0, 1.0) * max,

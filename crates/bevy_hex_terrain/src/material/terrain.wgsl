@@ -28,6 +28,7 @@ struct TerrainParams {
     hover_color: vec4<f32>,
     highlight_color: vec4<f32>,
     outline_color: vec4<f32>,
+    water_color: vec4<f32>,
     // World heights of the thresholds and the blend distance.
     sea_level: f32,
     mountain_level: f32,
@@ -134,11 +135,26 @@ fn fragment(in: VertexOutput, @builtin(front_facing) is_front: bool) -> Fragment
     let p = in.world_position.xyz;
     let n = normalize(in.world_normal);
     var color = albedo(p, n);
+#ifdef VERTEX_COLORS
+    // Biomes: the vertex color is the tiles' biome colors (blended across tile borders by the
+    // interpolation between vertices); its alpha is river or lake water. With textures on, the
+    // relief texture's detail modulates the biome color.
+    var biome = in.color.rgb;
+    if (params.flags & FLAG_TEXTURES) != 0u {
+        biome = biome * (0.6 + 0.8 * color.rgb);
+    }
+    let water = smoothstep(0.2, 0.55, in.color.a);
+    color = vec4<f32>(mix(biome, params.water_color.rgb, water), 1.0);
+#endif
 
     // A gently moving sea surface: a slow shimmer below sea level. (The deferred prepass has no
     // time uniform bound: there the sea is still.)
 #ifndef PREPASS_PIPELINE
-    if p.y < params.sea_level {
+    var wet = p.y < params.sea_level;
+#ifdef VERTEX_COLORS
+    wet = wet || in.color.a > 0.3;
+#endif
+    if wet {
         let wave = 0.5 + 0.5 * sin(globals.time * 1.3 + p.x * 1.7 + p.z * 1.1) * sin(globals.time * 0.9 - p.z * 1.3);
         color = vec4<f32>(color.rgb * (0.92 + 0.12 * wave), color.a);
     }
@@ -160,7 +176,12 @@ fn fragment(in: VertexOutput, @builtin(front_facing) is_front: bool) -> Fragment
         outline = params.outline_color.a;
     }
 
+#ifdef VERTEX_COLORS
+    // The standard path put the vertex color (water in alpha) in the base color: replace it.
+    pbr_input.material.base_color = color;
+#else
     pbr_input.material.base_color = pbr_input.material.base_color * color;
+#endif
     pbr_input.material.base_color = alpha_discard(pbr_input.material, pbr_input.material.base_color);
 
 #ifdef PREPASS_PIPELINE

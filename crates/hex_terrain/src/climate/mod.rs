@@ -232,8 +232,7 @@ impl Terrain {
                 let rows = (bounds.max[1] - bounds.min[1]).max(1) as f32;
                 let row = self.offset_of(tile)[1] as f32;
                 let latitude = ((row + 0.5) / rows - 0.5).abs() * 2.0;
-                // Squared: a wide warm belt and narrow polar caps, as on a globe.
-                1.0 - latitude * latitude + c.temperature_jitter * (2.0 * field as f32 - 1.0)
+                1.0 - latitude + c.temperature_jitter * (2.0 * field as f32 - 1.0)
             }
             None => stretch(field, 3.0),
         };

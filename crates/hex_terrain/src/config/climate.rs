@@ -54,7 +54,7 @@ impl Default for ClimateConfig {
             coast_moisture: 0.15,
             temperature_scale: 2000.0,
             temperature_jitter: 0.12,
-            lapse_rate: 0.45,
+            lapse_rate: 0.3,
             hills: 0.7,
             biomes: BiomeRule::defaults(),
         }
@@ -143,7 +143,7 @@ pub struct RiverConfig {
 
 impl Default for RiverConfig {
     fn default() -> Self {
-        Self { enabled: false, threshold: 6.0, lakes: true, min_lake_depth: 0.0, carve: 0.8, width: 1.0 }
+        Self { enabled: false, threshold: 8.0, lakes: true, min_lake_depth: 0.015, carve: 0.8, width: 1.0 }
     }
 }
 
