@@ -1,24 +1,31 @@
 //! A small turn-based strategy game on streamed hex terrain: pan (WASD/arrows or the screen
 //! edge), zoom (wheel), rotate (Q/E); hover a tile to see it; click a unit to select it and see
 //! where it can go this turn; click a tile to walk there along an A* path (land costs 1,
-//! mountain 3, sea is impassable); End Turn (button or Enter) restores movement. G toggles tile
-//! outlines, R regenerates with a new seed, 1-4 switch presets, F3 shows chunk boundaries.
+//! mountain 3, fording a river 1 more, sea and lakes are impassable); End Turn (button or Enter)
+//! restores movement. G toggles tile outlines, R regenerates with a new seed, 1-5 switch presets,
+//! F3 shows chunk boundaries.
 //!
 //! `HEXTERRAIN_SCRIPT=1` plays a scripted turn (select, move, end turn), checks the game state
 //! and exits 0 (1 on a failed check); with `HEXTERRAIN_SCREENSHOT=out.png` it saves a picture
 //! first. Without the script, `HEXTERRAIN_SCREENSHOT` takes a picture after some frames.
 
-use std::collections::HashSet;
+use std::cmp::Reverse;
+use std::collections::{BinaryHeap, HashMap, HashSet};
 
 use bevy::input::mouse::AccumulatedMouseScroll;
 use bevy::prelude::*;
 use bevy::render::view::screenshot::{Screenshot, ScreenshotCaptured};
 use hex_terrain_game::prelude::*;
-use hexx::algorithms::{a_star, field_of_movement};
+use hexx::algorithms::a_star;
 
 const MOVES: u32 = 4;
-const PRESETS: [&str; 4] =
-    ["maps/island.map.ron", "maps/mediterranean.map.ron", "maps/inland.map.ron", "maps/continent.map.ron"];
+const PRESETS: [&str; 5] = [
+    "maps/world.map.ron",
+    "maps/island.map.ron",
+    "maps/mediterranean.map.ron",
+    "maps/inland.map.ron",
+    "maps/continent.map.ron",
+];
 
 /// The camera's pivot on the ground; the streaming agent.
 #[derive(Component)]
@@ -105,7 +112,7 @@ fn setup(mut commands: Commands) {
         Node { position_type: PositionType::Absolute, top: px(10.0), left: px(10.0), ..default() },
     ));
     commands.spawn((
-        Text::new("WASD/arrows/edge pan, wheel zoom, Q/E rotate, click unit then tile, Enter end turn, G outlines, R new seed, 1-4 presets, F3 chunks"),
+        Text::new("WASD/arrows/edge pan, wheel zoom, Q/E rotate, click unit then tile, Enter end turn, G outlines, R new seed, 1-5 presets, F3 chunks"),
         TextFont::from_font_size(13.0),
         Node { position_type: PositionType::Absolute, bottom: px(8.0), left: px(10.0), ..default() },
     ));
@@ -208,9 +215,10 @@ fn hover(
     game.hovered = map.raycast(ray, 2000.0).map(|hit| hit.tile).filter(|&t| map.contains(t));
 }
 
-/// Movement cost of entering a tile: land 1, mountain 3, sea or outside the map impassable.
+/// Movement cost of entering a tile: land 1, mountain 3; sea, lakes and outside the map
+/// impassable.
 fn cost(map: &HexMap, tile: Hex) -> Option<u32> {
-    if !map.contains(tile) {
+    if !map.contains(tile) || map.lake(tile).is_some() {
         return None;
     }
     match map.tile_kind(tile) {
@@ -218,6 +226,45 @@ fn cost(map: &HexMap, tile: Hex) -> Option<u32> {
         TileKind::Land => Some(1),
         TileKind::Mountain => Some(3),
     }
+}
+
+/// Cost of the step from `a` to its neighbor `b`: entering `b`, plus 1 for fording a river, that
+/// is entering a river tile from a tile its river does not come from or go to (walking along a
+/// river costs nothing more).
+fn step_cost(map: &HexMap, a: Hex, b: Hex) -> Option<u32> {
+    let enter = cost(map, b)?;
+    let ford = map.river(b).is_some_and(|r| r.downstream != Some(a) && !r.upstream.contains(&a));
+    Some(enter + u32::from(ford))
+}
+
+/// What a path costs, step by step.
+fn path_cost(map: &HexMap, path: &[Hex]) -> u32 {
+    path.windows(2).filter_map(|w| step_cost(map, w[0], w[1])).sum()
+}
+
+/// Every tile reachable from `start` with `budget` moves (Dijkstra over [`step_cost`]), tiles
+/// in `blocked` excluded.
+fn reachable(map: &HexMap, start: Hex, budget: u32, blocked: &HashSet<Hex>) -> HashSet<Hex> {
+    let mut best: HashMap<Hex, u32> = HashMap::from([(start, 0)]);
+    let mut queue = BinaryHeap::from([(Reverse(0), start.x, start.y)]);
+    while let Some((Reverse(spent), x, y)) = queue.pop() {
+        let here = Hex::new(x, y);
+        if best.get(&here).is_some_and(|&b| b < spent) {
+            continue;
+        }
+        for next in here.all_neighbors() {
+            if blocked.contains(&next) {
+                continue;
+            }
+            let Some(c) = step_cost(map, here, next) else { continue };
+            let total = spent + c;
+            if total <= budget && best.get(&next).is_none_or(|&b| total < b) {
+                best.insert(next, total);
+                queue.push((Reverse(total), next.x, next.y));
+            }
+        }
+    }
+    best.into_keys().filter(|&t| t != start).collect()
 }
 
 /// Puts three units on land near the camera once the terrain exists, and back on the surface
@@ -289,9 +336,9 @@ fn click(
     {
         // Other units block the way; the mover's own tile (hexx asks for the start's cost) does not.
         let from = unit.tile;
-        let step = |_: Hex, b: Hex| if occupied.contains(&b) && b != from { None } else { cost(&map, b) };
+        let step = |a: Hex, b: Hex| if occupied.contains(&b) && b != from { None } else { step_cost(&map, a, b) };
         if let Some(path) = a_star(unit.tile, tile, step) {
-            let spent: u32 = path.iter().skip(1).filter_map(|&t| cost(&map, t)).sum();
+            let spent = path_cost(&map, &path);
             if spent <= unit.moves_left {
                 unit.moves_left -= spent;
                 unit.path = path.iter().skip(1).map(|&t| map.tile_center(t) + Vec3::Y * 0.6).collect();
@@ -307,13 +354,9 @@ fn refresh_reachable(map: &HexMap, game: &mut Game, units: &Query<(Entity, &Unit
     let Some(e) = game.selected else { return };
     let Ok((_, unit)) = units.get(e) else { return };
     let occupied: HashSet<Hex> = units.iter().filter(|(o, _)| *o != e).map(|(_, u)| u.tile).collect();
-    // hexx adds 1 to every tile's cost, so pass the cost minus one.
-    game.reachable = field_of_movement(unit.tile, unit.moves_left, |t| {
-        if occupied.contains(&t) { None } else { cost(map, t).map(|c| c - 1) }
-    })
-    .into_iter()
-    .collect();
-    game.reachable.remove(&unit.tile);
+    // hexx's field of movement charges per tile entered; fording a river depends on the step,
+    // so the reach is a small Dijkstra over the same step costs as the A* path.
+    game.reachable = reachable(map, unit.tile, unit.moves_left, &occupied);
 }
 
 fn end_turn(
@@ -352,7 +395,8 @@ fn keys(
         config.seed = config.seed.wrapping_mul(747_796_405).wrapping_add(2_891_336_453);
         load.write(LoadHexMap(config.into()));
     }
-    for (i, key) in [KeyCode::Digit1, KeyCode::Digit2, KeyCode::Digit3, KeyCode::Digit4].into_iter().enumerate() {
+    let digits = [KeyCode::Digit1, KeyCode::Digit2, KeyCode::Digit3, KeyCode::Digit4, KeyCode::Digit5];
+    for (i, key) in digits.into_iter().enumerate() {
         if keys.just_pressed(key) {
             load.write(LoadHexMap(PRESETS[i].into()));
         }
@@ -389,7 +433,20 @@ fn panel(game: Res<Game>, map: Res<HexMap>, units: Query<&Unit>, mut text: Query
     let mut s = format!("Turn {}", game.turn);
     if let Some(tile) = game.hovered {
         let info = map.tile_info(tile);
-        s += &format!("\nTile ({}, {})  {}  elevation {:.2}", tile.x, tile.y, info.kind.name(), info.elevation);
+        s += &format!(
+            "\nTile ({}, {})  {} ({})  elevation {:.2}",
+            tile.x,
+            tile.y,
+            info.biome.name(),
+            info.kind.name(),
+            info.elevation
+        );
+        if let Some(river) = map.river(tile) {
+            s += &format!("\nRiver: flow {:.1} (fording costs 1 more)", river.flow);
+        }
+        if let Some(lake) = info.lake {
+            s += &format!("\nLake {lake} (impassable)");
+        }
     }
     if let Some(unit) = game.selected.and_then(|e| units.get(e).ok()) {
         s += &format!("\nSelected unit: {} of {MOVES} moves left", unit.moves_left);
@@ -479,8 +536,8 @@ fn script(
             let mut options: Vec<Hex> = game.reachable.iter().copied().collect();
             options.sort_unstable_by_key(|h| (std::cmp::Reverse(h.unsigned_distance_to(start)), h.x, h.y));
             let target = options[0];
-            let path = a_star(start, target, |_, b| cost(&map, b)).unwrap_or_default();
-            s.expected_cost = path.iter().skip(1).filter_map(|&t| cost(&map, t)).sum();
+            let path = a_star(start, target, |a, b| step_cost(&map, a, b)).unwrap_or_default();
+            s.expected_cost = path_cost(&map, &path);
             s.target = Some(target);
             game.hovered = Some(target);
             mouse.press(MouseButton::Left);

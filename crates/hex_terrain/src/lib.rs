@@ -36,8 +36,8 @@ pub mod terrain;
 pub use chunk::{ChunkCoord, TileRect};
 pub use climate::{Biome, Climate, Hydrology, RiverTile};
 pub use config::{
-    AppearanceConfig, BiomeRule, ClimateConfig, HeightSourceConfig, LayoutConfig, ManipulationConfig, MapConfig, MapFile, MapSize, NoiseConfig,
-    Orientation, PullMode, RiverConfig, Shape, TerrainConfig,
+    AppearanceConfig, BiomeRule, ClimateConfig, HeightSourceConfig, LayoutConfig, ManipulationConfig, MapConfig,
+    MapFile, MapSize, NoiseConfig, Orientation, PullMode, RiverConfig, Shape, TerrainConfig,
 };
 pub use error::{ConfigError, LoadError};
 pub use heights::{HeightImage, ImageError};

@@ -189,7 +189,9 @@ fn a_heightmap_puts_rivers_in_its_valleys_and_lakes_in_its_basins() {
         }
     }
     let image = std::sync::Arc::new(HeightImage::from_samples(w, h, data).unwrap());
-    let mut c = MapConfig::from_ron(r#"(size: Bounded(x: 48, z: 32), source: Image(path: "valley.png", sea_level: 0.2))"#).unwrap();
+    let mut c =
+        MapConfig::from_ron(r#"(size: Bounded(x: 48, z: 32), source: Image(path: "valley.png", sea_level: 0.2))"#)
+            .unwrap();
     c.rivers.enabled = true;
     c.rivers.threshold = 30.0;
     let t = Terrain::with_image(c, Some(image)).unwrap();

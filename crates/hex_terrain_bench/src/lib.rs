@@ -31,6 +31,18 @@ pub fn terrains(x: u32, z: u32, inner_rings: u32) -> (Terrain, Terrain) {
     (full, basic)
 }
 
+/// Map0's parameters at a size and ring count without and with climate (biomes), rivers and
+/// lakes: the same heights, plus the tile-level water network and a colored, carved mesh.
+#[must_use]
+pub fn water_terrains(x: u32, z: u32, inner_rings: u32) -> (MapConfig, MapConfig) {
+    let mut plain = MapConfig { size: MapSize::Bounded { x, z }, ..MapConfig::default() };
+    plain.terrain.inner_rings = inner_rings;
+    let mut water = plain.clone();
+    water.climate.enabled = true;
+    water.rivers.enabled = true;
+    (plain, water)
+}
+
 /// Generates the whole map; returns its vertex count.
 #[must_use]
 pub fn generate(terrain: &Terrain) -> usize {

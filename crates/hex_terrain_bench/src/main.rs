@@ -15,9 +15,10 @@
 use std::hint::black_box;
 use std::time::Instant;
 
+use hex_terrain::Terrain;
 use hex_terrain_bench::{
     TABLE_7, TABLE_8, TABLE_9, generate, generate_with_diagnostics, hexx_columns, noise_floor, noise_floor_reference,
-    terrains,
+    terrains, water_terrains,
 };
 
 /// glibc malloc settings (read from the environment at start-up) that keep freed memory in the
@@ -140,6 +141,43 @@ fn row(label: &str, x: u32, z: u32, args: &Args) {
     );
 }
 
+/// One row of the climate/rivers table: whole-map generation without and with biomes, rivers
+/// and lakes (same run, interleaved), and compiling each config (`Terrain::new`: the water
+/// network, biomes and their noise field are built there, once per map).
+fn water_row(label: &str, x: u32, z: u32, args: &Args) {
+    let (plain_config, water_config) = water_terrains(x, z, args.rings);
+    let plain = Terrain::new(plain_config.clone()).expect("valid");
+    let water = Terrain::new(water_config.clone()).expect("valid");
+    let times = time_interleaved(
+        args.runs,
+        &mut [
+            &mut || {
+                black_box(generate(&plain));
+            },
+            &mut || {
+                black_box(generate(&water));
+            },
+            &mut || {
+                black_box(Terrain::new(plain_config.clone()).expect("valid"));
+            },
+            &mut || {
+                black_box(Terrain::new(water_config.clone()).expect("valid"));
+            },
+        ],
+    );
+    let rivers = water.rivers().len();
+    let lakes = water.hydrology().map_or(0, |h| h.lake_count());
+    println!(
+        "| {label} | {x}x{z} | {:.2} | {:.2} | {:.2} | {:.2} | {:.2} | {:.2} | {rivers} | {lakes} |",
+        times[0],
+        times[1],
+        times[1] / times[0],
+        times[2],
+        times[3],
+        times[3] - times[2],
+    );
+}
+
 /// Runs this program again with [`KEEP_MEMORY`] in its environment, unless it is there already
 /// (or `--fresh-pages` was given); returns whether it did, with the child's exit code.
 fn rerun_keeping_memory(args: &Args) -> Option<i32> {
@@ -192,6 +230,18 @@ fn main() {
             if u64::from(x) * u64::from(z) <= args.max_hexes {
                 row(&label, x, z, &args);
             }
+        }
+    }
+    if args.tables.contains(&9) {
+        println!();
+        println!("Climate (biomes), rivers and lakes on the Civ6 sizes, Map0 parameters, same run:");
+        println!();
+        println!(
+            "| map | size | plain ms | with water ms | ratio | compile plain ms | compile with water ms | network + biomes ms | river tiles | lakes |"
+        );
+        println!("|---|---|---|---|---|---|---|---|---|---|");
+        for (name, x, z) in TABLE_9 {
+            water_row(&format!("Civ6 {name}"), x, z, &args);
         }
     }
 }

@@ -120,25 +120,20 @@ impl Hydrology {
                 }
             }
         }
-        let downstream = |i: usize, down: &[u8]| (down[i] < OUTLET).then(|| neighbor(i, usize::from(down[i]))).flatten();
+        let downstream =
+            |i: usize, down: &[u8]| (down[i] < OUTLET).then(|| neighbor(i, usize::from(down[i]))).flatten();
         let mut flow: Vec<f32> = rain.to_vec();
         for &i in order.iter().rev() {
             if let Some(j) = downstream(i, &down) {
                 flow[j] += flow[i];
             }
         }
-        let (lake, spill) = Self::lakes(config.lakes, config.min_lake_depth, &table.raw, &level, &table.kinds, &order, |i| {
-            (0..6).filter_map(move |d| neighbor(i, d))
-        });
-        let mut hydrology = Self {
-            level,
-            down,
-            flow,
-            lake,
-            spill,
-            channels: vec![[0.0; 6]; count],
-            threshold: config.threshold,
-        };
+        let (lake, spill) =
+            Self::lakes(config.lakes, config.min_lake_depth, &table.raw, &level, &table.kinds, &order, |i| {
+                (0..6).filter_map(move |d| neighbor(i, d))
+            });
+        let mut hydrology =
+            Self { level, down, flow, lake, spill, channels: vec![[0.0; 6]; count], threshold: config.threshold };
         let width = |flow: f32| config.width * (flow / config.threshold).sqrt().clamp(1.0, 2.0);
         for i in 0..count {
             if !hydrology.river_at(i) {

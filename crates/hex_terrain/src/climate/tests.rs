@@ -55,7 +55,9 @@ fn poles_are_colder_than_the_equator() {
     c.climate.enabled = true;
     c.climate.lapse_rate = 0.0;
     let t = Terrain::new(c).unwrap();
-    let mean = |row: i32| (0..40).map(|col| t.tile_climate(t.tile_from_offset([col, row])).unwrap().temperature).sum::<f32>() / 40.0;
+    let mean = |row: i32| {
+        (0..40).map(|col| t.tile_climate(t.tile_from_offset([col, row])).unwrap().temperature).sum::<f32>() / 40.0
+    };
     assert!(mean(0) + 0.5 < mean(30), "pole {} equator {}", mean(0), mean(30));
     assert!(mean(59) + 0.5 < mean(30));
 }

@@ -20,7 +20,12 @@ pub const MAX_MAP_BYTES: u64 = 12 << 30;
 /// Bytes a mesh vertex and its share of the index buffer take, about.
 const BYTES_PER_VERTEX: u64 = 3 * 4 + 3 * 4 + 2 * 4 + 4 + 4 + 2 * 3 * 4;
 
-pub(super) fn check(ok: bool, field: &str, value: impl std::fmt::Display, allowed: impl Into<String>) -> Result<(), ConfigError> {
+pub(super) fn check(
+    ok: bool,
+    field: &str,
+    value: impl std::fmt::Display,
+    allowed: impl Into<String>,
+) -> Result<(), ConfigError> {
     if ok { Ok(()) } else { Err(ConfigError::new(field, value.to_string(), allowed.into())) }
 }
 

@@ -202,7 +202,8 @@ impl<'a> Job<'a> {
         let centers: Vec<Hex> = tiles.iter().map(|&t| self.lattice.tile_center(t)).collect();
         let noise = self.noise_at(&centers);
         let raws = self.split.map(tiles.len(), |k| terrain.shaped(noise[k], centers[k]));
-        let kinds = self.split.map(tiles.len(), |k| terrain.contains(tiles[k]).then(|| terrain.thresholds().classify(raws[k])));
+        let kinds =
+            self.split.map(tiles.len(), |k| terrain.contains(tiles[k]).then(|| terrain.thresholds().classify(raws[k])));
         let mut out = Kinds { halo, kinds, around: Vec::new(), biomes: Vec::new(), center_noise: Vec::new() };
         out.center_noise = self.rect.iter().map(|oc| noise[out.index(oc)]).collect();
         out.around = self
@@ -230,11 +231,8 @@ impl<'a> Job<'a> {
                 let kind = out.kinds[i].unwrap_or(TileKind::Sea);
                 Some(terrain.biome_of(t, &TileSample { raw: raws[i], kind, next_to_sea, next_to_land }, false))
             };
-            out.biomes = self
-                .tiles
-                .iter()
-                .map(|&t| (biome(t).unwrap_or(Biome::Ocean), t.all_neighbors().map(biome)))
-                .collect();
+            out.biomes =
+                self.tiles.iter().map(|&t| (biome(t).unwrap_or(Biome::Ocean), t.all_neighbors().map(biome))).collect();
         }
         out
     }

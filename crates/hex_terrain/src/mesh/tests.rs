@@ -69,7 +69,8 @@ fn every_vertex_matches_the_single_vertex_evaluator() {
     use crate::config::Shape;
     for rings in [1, 2, 4] {
         for o in [Orientation::Flat, Orientation::Pointy] {
-            for (shape, water) in [(Shape::None, false), (Shape::Island { a: 3.0, b: 2.2 }, false), (Shape::None, true)] {
+            for (shape, water) in [(Shape::None, false), (Shape::Island { a: 3.0, b: 2.2 }, false), (Shape::None, true)]
+            {
                 let mut c =
                     MapConfig { size: MapSize::Bounded { x: 9, z: 7 }, shape: shape.clone(), ..MapConfig::default() };
                 // Climate and rivers: low thresholds so this small map has rivers and lakes.
