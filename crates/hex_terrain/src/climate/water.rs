@@ -52,6 +52,15 @@ impl Terrain {
         best as f32
     }
 
+    /// Whether any water (a lake, or a river channel) lies on a tile: a point of a dry tile has
+    /// a water profile of 0.
+    #[must_use]
+    pub fn tile_is_wet(&self, tile: Hex) -> bool {
+        let Some(table) = &self.table else { return false };
+        let (Some(h), Some(i)) = (&table.hydrology, table.index(self, tile)) else { return false };
+        h.lake_of(i).is_some() || h.channels(i).iter().any(|&w| w > 0.0)
+    }
+
     /// Carves a manipulated vertex at `p` shared by the in-map `tiles` of `kinds` (same order):
     /// lowers it by the water profile towards the bottom of its kind's range. A no-op on a map
     /// without rivers.

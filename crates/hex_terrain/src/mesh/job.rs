@@ -45,6 +45,9 @@ struct Kinds {
     around: Vec<(TileKind, [Option<TileKind>; 6])>,
     /// Per tile of the job, when meshes have vertex colors: its biome and its neighbors'.
     biomes: Vec<(Biome, [Option<Biome>; 6])>,
+    /// Per tile of the job, on a map with rivers: whether water lies on it and on each neighbor
+    /// (only points of wet tiles are carved).
+    wet: Vec<(bool, [bool; 6])>,
     /// Height-source sample at each job tile's center.
     center_noise: Vec<f64>,
 }
@@ -204,13 +207,21 @@ impl<'a> Job<'a> {
         let raws = self.split.map(tiles.len(), |k| terrain.shaped(noise[k], centers[k]));
         let kinds =
             self.split.map(tiles.len(), |k| terrain.contains(tiles[k]).then(|| terrain.thresholds().classify(raws[k])));
-        let mut out = Kinds { halo, kinds, around: Vec::new(), biomes: Vec::new(), center_noise: Vec::new() };
+        let mut out =
+            Kinds { halo, kinds, around: Vec::new(), biomes: Vec::new(), wet: Vec::new(), center_noise: Vec::new() };
         out.center_noise = self.rect.iter().map(|oc| noise[out.index(oc)]).collect();
         out.around = self
             .tiles
             .iter()
             .map(|&t| (out.get(terrain, t).unwrap_or(TileKind::Sea), t.all_neighbors().map(|nb| out.get(terrain, nb))))
             .collect();
+        if terrain.hydrology().is_some() {
+            out.wet = self
+                .tiles
+                .iter()
+                .map(|&t| (terrain.tile_is_wet(t), t.all_neighbors().map(|nb| terrain.tile_is_wet(nb))))
+                .collect();
+        }
         if colors {
             let biome = |t: Hex| -> Option<Biome> {
                 if !terrain.contains(t) {
@@ -300,8 +311,12 @@ impl<'a> Job<'a> {
                         }
                     }
                 }
-                let s = terrain.finish_vertex(raw, ring, &sharing[..len]);
-                let s = terrain.carve(p, &hexes[..len], &sharing[..len], s);
+                let mut s = terrain.finish_vertex(raw, ring, &sharing[..len]);
+                if let Some((own_wet, around_wet)) = kinds.wet.get(tile as usize)
+                    && (*own_wet || dirs[1..len].iter().any(|&d| around_wet[d]))
+                {
+                    s = terrain.carve(p, &hexes[..len], &sharing[..len], s);
+                }
                 if !o.colors.is_empty() {
                     let (own_biome, around_biomes) = &kinds.biomes[tile as usize];
                     let mut biomes = [*own_biome; 3];
