@@ -4,6 +4,7 @@ use std::collections::{HashMap, HashSet};
 use std::time::Duration;
 
 use bevy::asset::AssetPlugin;
+use bevy::mesh::VertexAttributeValues;
 use bevy::prelude::*;
 use bevy_hex_terrain::hex_terrain::Terrain;
 use bevy_hex_terrain::prelude::*;
@@ -563,4 +564,52 @@ fn hostile_heightmap_paths_in_a_map_file_are_refused_and_keep_the_terrain() {
         assert_eq!(app.world().resource::<HexMap>().config().seed, 51);
     }
     let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// A bounded map with climate, rivers and lakes: the plugin's queries give the core's biomes,
+/// rivers and lakes, and every chunk mesh carries the core's vertex colors (sRGB to linear,
+/// water in alpha), whichever chunk a vertex is in.
+#[test]
+fn climate_and_river_maps_give_biomes_rivers_lakes_and_vertex_colors() {
+    let mut config = MapConfig { size: MapSize::Bounded { x: 30, z: 22 }, chunk_size: (8, 8), ..MapConfig::default() };
+    config.climate.enabled = true;
+    config.rivers.enabled = true;
+    config.rivers.threshold = 3.0;
+    let mut app = app(config.clone(), 1);
+    run_until(&mut app, "whole map ready", ready);
+    let core = Terrain::new(config).unwrap();
+    assert!(!core.rivers().is_empty(), "the test map has rivers");
+    let map = app.world().resource::<HexMap>();
+    for tile in core.tiles() {
+        assert_eq!(map.tile_info(tile), core.tile_info(tile));
+        assert_eq!(map.biome(tile), core.tile_biome(tile));
+        assert_eq!(map.river(tile), core.river(tile));
+        assert_eq!(map.lake(tile), core.lake(tile));
+    }
+    let whole = core.generate_map().unwrap();
+    let expected: HashMap<[u32; 2], [u8; 4]> = whole
+        .buffers
+        .positions
+        .iter()
+        .zip(&whole.buffers.colors)
+        .map(|(p, &c)| ([p[0].to_bits(), p[2].to_bits()], c))
+        .collect();
+    let handles = meshed_chunks(&mut app);
+    assert_eq!(handles.len(), 4 * 3);
+    let meshes = app.world().resource::<Assets<Mesh>>();
+    let mut wet = 0;
+    for handle in handles.values() {
+        let mesh = meshes.get(handle).unwrap();
+        let p = mesh.attribute(Mesh::ATTRIBUTE_POSITION).unwrap().as_float3().unwrap();
+        let Some(VertexAttributeValues::Float32x4(c)) = mesh.attribute(Mesh::ATTRIBUTE_COLOR) else {
+            panic!("a chunk of a climate map has no vertex colors");
+        };
+        for (p, c) in p.iter().zip(c) {
+            let [r, g, b, a] = expected[&[p[0].to_bits(), p[2].to_bits()]];
+            let linear = Color::srgb_u8(r, g, b).to_linear();
+            assert_eq!([linear.red, linear.green, linear.blue, f32::from(a) / 255.0], *c);
+            wet += usize::from(a > 0);
+        }
+    }
+    assert!(wet > 0, "no vertex shows river or lake water");
 }
