@@ -55,9 +55,20 @@ fn pixel(center: Vec2, size: Vec2, world: Vec3) -> (u32, u32) {
     ((u * WIDTH as f32) as u32, (v * HEIGHT as f32) as u32)
 }
 
+/// [`map`] with a climate, rivers and lakes.
+fn wet_map() -> MapConfig {
+    let mut c = map();
+    c.climate.enabled = true;
+    c.rivers.enabled = true;
+    c.rivers.threshold = 2.5;
+    c
+}
+
 /// What a scenario renders.
 #[derive(Default)]
 struct Scene {
+    /// The map ([`map`] when `None`).
+    config: Option<MapConfig>,
     appearance: TerrainAppearance,
     highlights: TileHighlights,
     /// A deferred camera (deferred and depth prepasses) instead of a forward one.
@@ -88,8 +99,9 @@ fn render_with(appearance: TerrainAppearance, highlights: TileHighlights, name: 
 
 /// Renders a scene and returns the screenshot and the counts.
 fn render_scene(scene: Scene, name: &str) -> (image::RgbImage, Counts) {
-    let Scene { appearance, highlights, deferred } = scene;
-    let terrain = Terrain::new(map()).unwrap();
+    let Scene { config, appearance, highlights, deferred } = scene;
+    let config = config.unwrap_or_else(map);
+    let terrain = Terrain::new(config.clone()).unwrap();
     let (center, size) = view(&terrain);
     let out = Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("{name}.png"));
     let _ = std::fs::remove_file(&out);
@@ -103,7 +115,7 @@ fn render_scene(scene: Scene, name: &str) -> (image::RgbImage, Counts) {
             })
             .set(WinitPlugin { run_on_any_thread: true }),
     )
-    .add_plugins(HexTerrainPlugin::from_config(map()))
+    .add_plugins(HexTerrainPlugin::from_config(config))
     .insert_resource(appearance)
     .insert_resource(highlights)
     .insert_resource(GlobalAmbientLight { brightness: 600.0, ..default() });
@@ -259,6 +271,66 @@ in_own_process! {
     textures_and_highlights => scenario_textures_and_highlights,
     a_missing_texture_falls_back_to_flat_colors => scenario_missing_texture,
     a_deferred_camera_draws_the_terrain_colors => scenario_deferred,
+    biomes_rivers_and_lakes_show_their_colors => scenario_biomes,
+}
+
+/// Tiles whose neighbors (in the map) all share their biome, so the center shows it unblended.
+fn interior_tiles(terrain: &Terrain) -> Vec<(Hex, Biome)> {
+    terrain
+        .tiles()
+        .filter_map(|t| {
+            let b = terrain.tile_biome(t);
+            t.all_neighbors().iter().all(|&n| terrain.contains(n) && terrain.tile_biome(n) == b).then_some((t, b))
+        })
+        .collect()
+}
+
+#[test]
+#[ignore = "a scenario: run by its #[test] in a process of its own"]
+fn scenario_biomes() {
+    let terrain = Terrain::new(wet_map()).unwrap();
+    let (center, size) = view(&terrain);
+    let (img, _) = render_scene(Scene { config: Some(wet_map()), ..default() }, "biomes");
+    let at = |h: Hex| rgb(&img, pixel(center, size, Vec3::from_array(terrain.tile_center(h))));
+    let mut classes = std::collections::BTreeSet::new();
+    for (hex, biome) in interior_tiles(&terrain) {
+        let [r, g, b] = at(hex);
+        let c = [r, g, b];
+        let spread = r.max(g).max(b) - r.min(g).min(b);
+        let class = match biome {
+            Biome::Ocean | Biome::Coast | Biome::Lake => {
+                assert!(b > r + 0.1 && b > g, "{biome:?} tile {hex:?} drawn {c:?}");
+                "water"
+            }
+            Biome::Desert | Biome::Plains => {
+                assert!(r > b + 0.1, "{biome:?} tile {hex:?} drawn {c:?}");
+                "dry"
+            }
+            Biome::Grassland | Biome::Forest | Biome::Rainforest => {
+                assert!(g > r && g > b, "{biome:?} tile {hex:?} drawn {c:?}");
+                "green"
+            }
+            Biome::Snow | Biome::SnowPeak => {
+                assert!(brightness(c) > 0.6 && spread < 0.15, "{biome:?} tile {hex:?} drawn {c:?}");
+                "snow"
+            }
+            Biome::Tundra | Biome::Rock | Biome::Hills => {
+                assert!(spread < 0.2, "{biome:?} tile {hex:?} drawn {c:?}");
+                "grey"
+            }
+        };
+        if terrain.river(hex).is_none() {
+            classes.insert(class);
+        }
+    }
+    assert!(classes.len() >= 3, "the test map shows several biome classes: {classes:?}");
+    // A river tile's center shows water; a point of it away from the channel shows its biome.
+    let rivers = terrain.rivers();
+    assert!(!rivers.is_empty(), "the test map has rivers");
+    for river in &rivers {
+        let [r, g, b] = at(river.hex);
+        assert!(b > r && b > g, "river tile {:?} center drawn {:?}", river.hex, [r, g, b]);
+    }
 }
 
 #[test]

@@ -154,8 +154,12 @@ impl Terrain {
         if terrain.config.climate.enabled {
             terrain.climate = Some(ClimateFields::new(&terrain.config));
         }
+        // Rivers need the whole map's table; a climate alone uses it on maps up to the size
+        // rivers allow, and computes biomes chunk by chunk on larger ones.
+        let tiles = bounds.map_or(u64::MAX, |b| b.len() as u64);
         if let Some(rect) = bounds
-            && terrain.has_vertex_colors()
+            && (terrain.config.rivers.enabled
+                || (terrain.config.climate.enabled && tiles <= crate::config::MAX_WATER_TILES))
         {
             terrain.table = Some(Arc::new(TileTable::build(&terrain, rect)));
         }

@@ -252,3 +252,18 @@ fn every_new_field_out_of_range_is_refused_by_name() {
     let e = MapConfig::from_ron("(climate: (enabled: true, biomes: []))").unwrap_err();
     assert!(e.to_string().contains("climate.biomes"), "{e}");
 }
+
+#[test]
+fn rivers_on_maps_too_large_for_one_network_are_refused_and_climate_still_works() {
+    let e = MapConfig::from_ron("(size: Bounded(x: 2000, z: 1000), rivers: (enabled: true))").unwrap_err();
+    assert!(e.to_string().contains("rivers.enabled") && e.to_string().contains("2000000 tiles"), "{e}");
+    // A climate on such a map computes biomes per chunk, as on an unbounded map.
+    let mut c = MapConfig::from_ron("(size: Bounded(x: 2000, z: 1000), climate: (enabled: true))").unwrap();
+    c.chunk_size = (6, 5);
+    let t = Terrain::new(c).unwrap();
+    let m = t.generate_chunk(ChunkCoord::new(100, 80)).unwrap();
+    for info in &m.tiles {
+        assert_eq!(info.biome, t.tile_biome(info.hex));
+    }
+    assert!(!m.buffers.colors.is_empty());
+}

@@ -340,3 +340,55 @@ fn textures_are_tileable_and_distinct() {
     assert!((means[2][0] - means[2][2]).abs() < 30.0, "rock is grey: {:?}", means[2]);
     fails(&["textures", "--out", dir.to_str().unwrap(), "--size", "100"], &["power of two"]);
 }
+
+#[test]
+fn stats_and_render_show_biomes_rivers_and_lakes() {
+    let world = repo().join("assets/maps/world.map.ron");
+    let out = ok(&["stats", world.to_str().unwrap()]);
+    for needle in
+        ["biomes:", "ocean", "coast", "lake", "desert", "forest", "tundra", "snow peak", "river tiles", "lakes ("]
+    {
+        assert!(out.contains(needle), "{needle:?} missing from {out}");
+    }
+    // Per-biome counts add up to the tiles.
+    let biomes: usize = out
+        .lines()
+        .skip_while(|l| !l.starts_with("biomes:"))
+        .skip(1)
+        .take_while(|l| l.starts_with("  "))
+        .map(|l| l.split_whitespace().last().unwrap().parse::<usize>().unwrap())
+        .sum();
+    assert_eq!(biomes, 80 * 52);
+
+    // Each tile center of the render shows its biome's color (hill shading scales it), and a
+    // river tile's center shows water.
+    let png = tmp("world.png");
+    ok(&["render", world.to_str().unwrap(), "-o", png.to_str().unwrap(), "--width", "640"]);
+    let img = image::open(&png).unwrap().to_rgb8();
+    let terrain = Terrain::new(MapConfig::load(&world).unwrap()).unwrap();
+    let mesh = terrain.generate_map().unwrap();
+    let (mut min_x, mut max_x, mut min_z) = (f32::MAX, f32::MIN, f32::MAX);
+    for p in &mesh.buffers.positions {
+        min_x = min_x.min(p[0]);
+        max_x = max_x.max(p[0]);
+        min_z = min_z.min(p[2]);
+    }
+    let scale = 639.0 / (max_x - min_x);
+    let (mut matched, mut total) = (0, 0);
+    for info in &mesh.tiles {
+        let [x, _, z] = terrain.tile_center(info.hex);
+        let px = img.get_pixel(((x - min_x) * scale).round() as u32, ((z - min_z) * scale).round() as u32).0;
+        let [r, g, b] = px.map(f32::from);
+        if info.river_flow > 0.0 || info.lake.is_some() {
+            assert!(b > r && b > g, "river or lake tile {:?} drawn {px:?}", info.hex);
+            continue;
+        }
+        // Same hue as the biome color: the channels in the same proportions.
+        let [br, bg, bb] = info.biome.color().map(f32::from);
+        let (s, t) = (r + g + b, br + bg + bb);
+        let close = (r / s - br / t).abs() < 0.05 && (g / s - bg / t).abs() < 0.05;
+        matched += usize::from(close);
+        total += 1;
+    }
+    assert!(matched * 10 >= total * 9, "{matched} of {total} tiles drawn in their biome's color");
+}

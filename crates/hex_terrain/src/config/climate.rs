@@ -116,6 +116,10 @@ fn in_range(v: f32, (lo, hi): (f32, f32)) -> bool {
     v >= lo && (v < hi || (hi >= 1.0 && v <= 1.0))
 }
 
+/// Most tiles of a map with rivers (and of a map whose biomes are computed once for the whole
+/// map; larger maps with a climate compute each chunk's biomes as unbounded maps do).
+pub const MAX_WATER_TILES: u64 = 1 << 20;
+
 /// Rivers and lakes, computed once per bounded map from the tiles' center heights. Off by
 /// default. Refused on unbounded maps: a river drains a whole basin, which no chunk sees.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -197,6 +201,18 @@ impl super::MapConfig {
         check(unit(r.min_lake_depth), "rivers.min_lake_depth", r.min_lake_depth, "[0, 1]")?;
         check(unit(r.carve), "rivers.carve", r.carve, "[0, 1]")?;
         check(finite_in(f64::from(r.width), 0.5, 4.0), "rivers.width", r.width, "[0.5, 4]")?;
+        if let (true, Some((x, z))) = (r.enabled, self.size.bounds()) {
+            let tiles = u64::from(x) * u64::from(z);
+            check(
+                tiles <= MAX_WATER_TILES,
+                "rivers.enabled",
+                format!("true on a {x}x{z} map ({tiles} tiles)"),
+                format!(
+                    "false on maps of more than {MAX_WATER_TILES} tiles (the river network of a whole map is computed \
+                     at once when the map is compiled)"
+                ),
+            )?;
+        }
         check(
             !(r.enabled && self.size == super::MapSize::Unbounded),
             "rivers.enabled",
