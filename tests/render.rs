@@ -274,7 +274,6 @@ in_own_process! {
     biomes_rivers_and_lakes_show_their_colors => scenario_biomes,
 }
 
-
 #[test]
 #[ignore = "a scenario: run by its #[test] in a process of its own"]
 fn scenario_biomes() {
