@@ -248,6 +248,13 @@ impl Terrain {
 
     /// The biome of a tile from its sample; `lake` from the hydrology.
     pub(crate) fn biome_of(&self, tile: Hex, s: &TileSample, lake: bool) -> Biome {
+        let climate = (self.climate.is_some() && !lake && s.kind != TileKind::Sea).then(|| self.climate_of(tile, s));
+        self.biome_from(s, lake, climate)
+    }
+
+    /// The biome of a tile from its sample and climate (`None` when the map has none, or when
+    /// the tile is sea or lake, which need none).
+    pub(crate) fn biome_from(&self, s: &TileSample, lake: bool, climate: Option<Climate>) -> Biome {
         if lake {
             return Biome::Lake;
         }
@@ -257,7 +264,7 @@ impl Terrain {
         if s.kind == TileKind::Sea {
             return if s.next_to_land { Biome::Coast } else { Biome::Ocean };
         }
-        let climate = self.climate_of(tile, s);
+        let Some(climate) = climate else { return Biome::of_kind(s.kind) };
         let c = &self.config.climate;
         let found = c
             .biomes

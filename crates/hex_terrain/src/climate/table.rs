@@ -5,7 +5,7 @@
 use hexx::Hex;
 
 use super::hydrology::Hydrology;
-use super::{Biome, TileSample};
+use super::{Biome, Climate, TileSample};
 use crate::chunk::TileRect;
 use crate::kind::TileKind;
 use crate::terrain::Terrain;
@@ -51,26 +51,32 @@ impl TileTable {
         let kinds: Vec<TileKind> = raw.iter().map(|&h| terrain.thresholds().classify(h)).collect();
         let mut table = Self { rect, raw, kinds, biomes: Vec::new(), hydrology: None };
         let samples: Vec<TileSample> = tiles.iter().enumerate().map(|(i, &t)| table.sample(terrain, i, t)).collect();
+        // Each land tile's climate, once: rain and biome both read it.
+        let climates: Vec<Option<Climate>> = tiles
+            .iter()
+            .zip(&samples)
+            .map(|(&t, s)| (terrain.climate.is_some() && s.kind != TileKind::Sea).then(|| terrain.climate_of(t, s)))
+            .collect();
         if terrain.config().rivers.enabled {
-            let rain: Vec<f32> = tiles
+            let rain: Vec<f32> = samples
                 .iter()
-                .zip(&samples)
-                .map(|(&t, s)| match s.kind {
-                    TileKind::Sea => 0.0,
+                .zip(&climates)
+                .map(|(s, c)| match (s.kind, c) {
+                    (TileKind::Sea, _) => 0.0,
                     // A floor, so every land tile adds water and flow grows strictly downstream.
-                    _ if terrain.climate.is_some() => 0.05 + 0.95 * terrain.climate_of(t, s).moisture,
-                    _ => 1.0,
+                    (_, Some(c)) => 0.05 + 0.95 * c.moisture,
+                    (_, None) => 1.0,
                 })
                 .collect();
             table.hydrology = Some(Hydrology::build(terrain, &table, &tiles, &rain));
         }
-        table.biomes = tiles
+        table.biomes = samples
             .iter()
-            .zip(&samples)
+            .zip(climates)
             .enumerate()
-            .map(|(i, (&t, s))| {
+            .map(|(i, (s, climate))| {
                 let lake = table.hydrology.as_ref().is_some_and(|h| h.lake_of(i).is_some());
-                terrain.biome_of(t, s, lake)
+                terrain.biome_from(s, lake, climate)
             })
             .collect();
         table

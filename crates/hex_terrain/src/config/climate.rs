@@ -118,7 +118,7 @@ fn in_range(v: f32, (lo, hi): (f32, f32)) -> bool {
 
 /// Most tiles of a map with rivers (and of a map whose biomes are computed once for the whole
 /// map; larger maps with a climate compute each chunk's biomes as unbounded maps do).
-pub const MAX_WATER_TILES: u64 = 1 << 20;
+pub const MAX_WATER_TILES: u64 = 1 << 18;
 
 /// Rivers and lakes, computed once per bounded map from the tiles' center heights. Off by
 /// default. Refused on unbounded maps: a river drains a whole basin, which no chunk sees.
