@@ -64,7 +64,7 @@ const PRESETS: [(&str, [usize; 13], usize, usize); 11] = include!("presets_golde
 
 #[test]
 fn presets_keep_their_biomes_rivers_and_lakes() {
-    let mut failed = Vec::new();
+    let (mut rows, mut changed) = (Vec::new(), false);
     for (file, biomes, rivers, lakes) in PRESETS {
         let config = MapConfig::load(maps_dir().join(file)).unwrap();
         assert!(config.climate.enabled, "{file} has no climate");
@@ -75,11 +75,10 @@ fn presets_keep_their_biomes_rivers_and_lakes() {
         };
         let counts = hex_terrain::Biome::ALL.map(|b| tiles.iter().filter(|&&h| t.tile_biome(h) == b).count());
         let got = (counts, t.rivers().len(), t.hydrology().map_or(0, |h| h.lake_count()));
-        if got != (biomes, rivers, lakes) {
-            failed.push(format!("    (\"{file}\", {:?}, {}, {}),", got.0, got.1, got.2));
-        }
+        changed |= got != (biomes, rivers, lakes);
+        rows.push(format!("    (\"{file}\", {:?}, {}, {}),", got.0, got.1, got.2));
     }
-    assert!(failed.is_empty(), "presets changed; if intended, the new rows are:\n{}", failed.join("\n"));
+    assert!(!changed, "presets changed; if intended, presets_golden.in becomes:\n[\n{}\n]", rows.join("\n"));
 }
 
 #[test]
@@ -89,6 +88,24 @@ fn the_world_preset_has_every_biome_rivers_and_lakes() {
     for b in hex_terrain::Biome::ALL {
         assert!(present.contains(&b), "no {b:?} in the world preset");
     }
-    assert!(t.rivers().iter().filter(|r| r.upstream.is_empty()).count() >= 20);
+    let rivers = t.rivers();
+    let sources: Vec<_> = rivers.iter().filter(|r| r.upstream.is_empty()).collect();
+    assert!(sources.len() >= 20);
+    // Rivers rise on high, wet ground: their sources lie higher than the rivers' tiles and wetter
+    // than land, on average.
+    let mean = |tiles: &mut dyn Iterator<Item = hex_terrain::hexx::Hex>| {
+        let (mut h, mut m, mut n) = (0.0, 0.0, 0.0);
+        for tile in tiles {
+            h += t.raw_height(t.lattice().tile_center(tile));
+            m += t.tile_climate(tile).unwrap().moisture;
+            n += 1.0;
+        }
+        (h / n, m / n)
+    };
+    let land = mean(&mut t.tiles().filter(|&h| t.tile_kind(h) != TileKind::Sea && t.lake(h).is_none()));
+    let at_sources = mean(&mut sources.iter().map(|r| r.hex));
+    let along = mean(&mut rivers.iter().map(|r| r.hex));
+    assert!(at_sources.0 > along.0 + 0.02, "sources {at_sources:?}, river tiles {along:?}");
+    assert!(at_sources.1 > land.1 + 0.05, "sources {at_sources:?}, land {land:?}");
     assert!(t.hydrology().unwrap().lake_count() >= 5);
 }

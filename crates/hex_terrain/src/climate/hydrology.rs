@@ -6,7 +6,8 @@
 //! fills every depression up to its spill height and gives every tile one downstream
 //! neighbor with a level at or below its own, on a path that ends at an outlet: no cycles, never
 //! uphill. A tile whose level lies above its center by more than the minimum depth is a lake
-//! tile (water above sea level). Each land or mountain tile collects its rain (moisture), adds it
+//! tile (water above sea level). Each land or mountain tile collects its rain (its moisture, more on
+//! higher ground, so rivers rise on high, wet tiles), adds it
 //! to its downstream neighbor's, in reverse order of the flood; a tile whose flow reaches the
 //! threshold carries a river, which ends in the sea, a lake or at the map edge. Rivers merge
 //! where they meet and their flow grows downstream.

@@ -58,14 +58,20 @@ impl TileTable {
             .map(|(&t, s)| (terrain.climate.is_some() && s.kind != TileKind::Sea).then(|| terrain.climate_of(t, s)))
             .collect();
         if terrain.config().rivers.enabled {
+            let sea = terrain.thresholds().sea;
             let rain: Vec<f32> = samples
                 .iter()
                 .zip(&climates)
-                .map(|(s, c)| match (s.kind, c) {
-                    (TileKind::Sea, _) => 0.0,
-                    // A floor, so every land tile adds water and flow grows strictly downstream.
-                    (_, Some(c)) => 0.05 + 0.95 * c.moisture,
-                    (_, None) => 1.0,
+                .map(|(s, c)| {
+                    // Wetter and higher tiles get more rain (air rising over relief rains out), so
+                    // rivers rise on high, wet ground; the floor makes every land tile add water,
+                    // so flow grows strictly downstream.
+                    let relief = 0.5 + ((s.raw - sea) / (1.0 - sea).max(f32::EPSILON)).clamp(0.0, 1.0);
+                    match (s.kind, c) {
+                        (TileKind::Sea, _) => 0.0,
+                        (_, Some(c)) => (0.05 + 0.95 * c.moisture) * relief,
+                        (_, None) => relief,
+                    }
                 })
                 .collect();
             table.hydrology = Some(Hydrology::build(terrain, &table, &tiles, &rain));
