@@ -9,7 +9,7 @@ mod climate;
 mod file;
 mod validate;
 
-pub use climate::{BiomeRule, ClimateConfig, MAX_WATER_TILES, RiverConfig};
+pub use climate::{BiomeRule, ClimateConfig, MAX_BIOME_RULES, MAX_WATER_TILES, RiverConfig};
 
 pub use file::MapFile;
 pub use validate::{MAX_CHUNK_BYTES, MAX_CHUNK_SIDE, MAX_INNER_RINGS, MAX_MAP_BYTES, MAX_OCTAVES, MAX_OFFSET};

@@ -249,6 +249,9 @@ fn every_new_field_out_of_range_is_refused_by_name() {
     }
     let e = MapConfig::from_ron("(size: Unbounded, rivers: (enabled: true))").unwrap_err();
     assert!(e.to_string().contains("rivers.enabled"), "{e}");
+    let mut c = MapConfig::default();
+    c.climate.biomes = vec![c.climate.biomes[0].clone(); hex_terrain::config::MAX_BIOME_RULES + 1];
+    assert_eq!(Terrain::new(c).unwrap_err().field, "climate.biomes");
     let e = MapConfig::from_ron("(climate: (enabled: true, biomes: []))").unwrap_err();
     assert!(e.to_string().contains("climate.biomes"), "{e}");
 }

@@ -116,6 +116,10 @@ fn in_range(v: f32, (lo, hi): (f32, f32)) -> bool {
     v >= lo && (v < hi || (hi >= 1.0 && v <= 1.0))
 }
 
+/// Most rules in a biome table (checking that a table covers the unit square once takes time
+/// cubic in the number of rules).
+pub const MAX_BIOME_RULES: usize = 64;
+
 /// Most tiles of a map with rivers (and of a map whose biomes are computed once for the whole
 /// map; larger maps with a climate compute each chunk's biomes as unbounded maps do).
 pub const MAX_WATER_TILES: u64 = 1 << 18;
@@ -168,6 +172,12 @@ impl super::MapConfig {
         check(unit(c.temperature_jitter), "climate.temperature_jitter", c.temperature_jitter, "[0, 1]")?;
         check(finite_in(f64::from(c.lapse_rate), 0.0, 2.0), "climate.lapse_rate", c.lapse_rate, "[0, 2]")?;
         check(unit(c.hills), "climate.hills", c.hills, "[0, 1]")?;
+        check(
+            c.biomes.len() <= MAX_BIOME_RULES,
+            "climate.biomes",
+            format!("{} rules", c.biomes.len()),
+            format!("at most {MAX_BIOME_RULES} rules"),
+        )?;
         for (i, rule) in c.biomes.iter().enumerate() {
             let field = |name: &str| format!("climate.biomes[{i}].{name}");
             check(
