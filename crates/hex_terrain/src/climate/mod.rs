@@ -10,7 +10,7 @@
 
 pub mod hydrology;
 mod table;
-pub mod water;
+mod water;
 
 use hexx::Hex;
 use serde::{Deserialize, Serialize};

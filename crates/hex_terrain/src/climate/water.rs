@@ -15,9 +15,6 @@ use crate::kind::TileKind;
 use crate::manipulate::VertexSample;
 use crate::terrain::Terrain;
 
-/// Water alpha of a vertex with no water.
-pub const DRY: u8 = 0;
-
 impl Terrain {
     /// How much of a channel or lake covers lattice point `p` of `tile`: 1 on a lake tile and on
     /// a channel's middle line, falling smoothly to 0 at the channel's half-width.
