@@ -184,6 +184,22 @@ pub(crate) struct TileSample {
     pub next_to_land: bool,
 }
 
+impl TileSample {
+    /// A tile's sample from its center's raw height and kind and its neighbors' kinds (`None`
+    /// outside the map).
+    pub(crate) fn new(raw: f32, kind: TileKind, neighbors: impl IntoIterator<Item = Option<TileKind>>) -> Self {
+        let (mut next_to_sea, mut next_to_land) = (false, false);
+        for nb in neighbors {
+            match nb {
+                Some(TileKind::Sea) => next_to_sea = true,
+                Some(_) => next_to_land = true,
+                None => {}
+            }
+        }
+        Self { raw, kind, next_to_sea, next_to_land }
+    }
+}
+
 impl Terrain {
     /// Temperature and moisture of a tile, `None` when the map has no climate.
     #[must_use]
@@ -208,15 +224,7 @@ impl Terrain {
     /// The center sample of a tile and its neighbors' kinds.
     pub(crate) fn tile_sample(&self, tile: Hex) -> TileSample {
         let raw = self.raw_height(self.lattice.tile_center(tile));
-        let (mut next_to_sea, mut next_to_land) = (false, false);
-        for nb in tile.all_neighbors() {
-            match self.map_tile_kind(nb) {
-                Some(TileKind::Sea) => next_to_sea = true,
-                Some(_) => next_to_land = true,
-                None => {}
-            }
-        }
-        TileSample { raw, kind: self.thresholds.classify(raw), next_to_sea, next_to_land }
+        TileSample::new(raw, self.thresholds.classify(raw), tile.all_neighbors().map(|nb| self.map_tile_kind(nb)))
     }
 
     /// Temperature and moisture of a tile from its sample (climate must be on).

@@ -90,14 +90,7 @@ impl TileTable {
 
     /// Tile `i`'s sample, its neighbors' kinds read from the table.
     fn sample(&self, terrain: &Terrain, i: usize, tile: Hex) -> TileSample {
-        let (mut next_to_sea, mut next_to_land) = (false, false);
-        for nb in tile.all_neighbors() {
-            match self.index(terrain, nb).map(|j| self.kinds[j]) {
-                Some(TileKind::Sea) => next_to_sea = true,
-                Some(_) => next_to_land = true,
-                None => {}
-            }
-        }
-        TileSample { raw: self.raw[i], kind: self.kinds[i], next_to_sea, next_to_land }
+        let neighbors = tile.all_neighbors().map(|nb| self.index(terrain, nb).map(|j| self.kinds[j]));
+        TileSample::new(self.raw[i], self.kinds[i], neighbors)
     }
 }

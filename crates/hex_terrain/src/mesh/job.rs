@@ -87,9 +87,8 @@ impl<'a> Job<'a> {
     /// Runs every pass and returns the chunk.
     pub fn run(self) -> ChunkMesh {
         let (points, out, kinds) = self.split.in_pool(|| self.prelude());
-        let colors = self.terrain.has_vertex_colors();
         let Buffers { mut b, mut raws, mut moved, mut rings, mut heights } =
-            out.fit(points.owned, self.diagnostics, colors);
+            out.fit(points.owned, self.diagnostics, self.terrain.has_vertex_colors());
         // Every pass from here on, in one visit to the thread pool.
         self.split.in_pool(|| {
             let outputs = Outputs {
@@ -231,16 +230,9 @@ impl<'a> Job<'a> {
                     return Some(terrain.tile_biome(t));
                 }
                 let i = out.index(terrain.offset_of(t));
-                let (mut next_to_sea, mut next_to_land) = (false, false);
-                for nb in t.all_neighbors() {
-                    match out.get(terrain, nb) {
-                        Some(TileKind::Sea) => next_to_sea = true,
-                        Some(_) => next_to_land = true,
-                        None => {}
-                    }
-                }
                 let kind = out.kinds[i].unwrap_or(TileKind::Sea);
-                Some(terrain.biome_of(t, &TileSample { raw: raws[i], kind, next_to_sea, next_to_land }, false))
+                let sample = TileSample::new(raws[i], kind, t.all_neighbors().map(|nb| out.get(terrain, nb)));
+                Some(terrain.biome_of(t, &sample, false))
             };
             out.biomes =
                 self.tiles.iter().map(|&t| (biome(t).unwrap_or(Biome::Ocean), t.all_neighbors().map(biome))).collect();
