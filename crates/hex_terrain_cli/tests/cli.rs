@@ -4,6 +4,7 @@
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
+use hex_terrain::hexx::Hex;
 use hex_terrain::{MapConfig, Terrain, TileKind};
 
 fn bin() -> Command {
@@ -41,6 +42,21 @@ fn fails(args: &[&str], needles: &[&str]) {
     }
 }
 
+/// The pixel of `render`'s top-down picture, `width` pixels wide, under each tile's center.
+fn center_pixels(terrain: &Terrain, mesh: &hex_terrain::ChunkMesh, width: u32) -> impl Fn(Hex) -> (u32, u32) {
+    let (mut min_x, mut max_x, mut min_z) = (f32::MAX, f32::MIN, f32::MAX);
+    for p in &mesh.buffers.positions {
+        min_x = min_x.min(p[0]);
+        max_x = max_x.max(p[0]);
+        min_z = min_z.min(p[2]);
+    }
+    let scale = (width - 1) as f32 / (max_x - min_x);
+    move |hex| {
+        let [x, _, z] = terrain.tile_center(hex);
+        (((x - min_x) * scale).round() as u32, ((z - min_z) * scale).round() as u32)
+    }
+}
+
 fn small_map(name: &str, extra: &str) -> PathBuf {
     let path = tmp(name);
     std::fs::write(&path, format!("(name: \"small\", size: Bounded(x: 14, z: 12), {extra})")).unwrap();
@@ -59,19 +75,11 @@ fn render_shows_each_tile_type_in_its_color() {
     let config = MapConfig::load(&map).unwrap();
     let terrain = Terrain::new(config).unwrap();
     let mesh = terrain.generate_map().unwrap();
-    let (mut min_x, mut max_x, mut min_z) = (f32::MAX, f32::MIN, f32::MAX);
-    for p in &mesh.buffers.positions {
-        min_x = min_x.min(p[0]);
-        max_x = max_x.max(p[0]);
-        min_z = min_z.min(p[2]);
-    }
-    let scale = 299.0 / (max_x - min_x);
+    let at = center_pixels(&terrain, &mesh, 300);
     let mut seen = [0; 3];
     for info in &mesh.tiles {
-        let [x, _, z] = terrain.tile_center(info.hex);
-        let px = image::Rgb::<u8>::to_owned(
-            img.get_pixel(((x - min_x) * scale).round() as u32, ((z - min_z) * scale).round() as u32),
-        );
+        let (px, py) = at(info.hex);
+        let px = image::Rgb::<u8>::to_owned(img.get_pixel(px, py));
         let [r, g, b] = px.0.map(i32::from);
         match info.kind {
             TileKind::Sea => assert!(b > r + 40 && b > g + 20, "sea tile {:?} drawn {:?}", info.hex, px),
@@ -367,17 +375,11 @@ fn stats_and_render_show_biomes_rivers_and_lakes() {
     let img = image::open(&png).unwrap().to_rgb8();
     let terrain = Terrain::new(MapConfig::load(&world).unwrap()).unwrap();
     let mesh = terrain.generate_map().unwrap();
-    let (mut min_x, mut max_x, mut min_z) = (f32::MAX, f32::MIN, f32::MAX);
-    for p in &mesh.buffers.positions {
-        min_x = min_x.min(p[0]);
-        max_x = max_x.max(p[0]);
-        min_z = min_z.min(p[2]);
-    }
-    let scale = 639.0 / (max_x - min_x);
+    let at = center_pixels(&terrain, &mesh, 640);
     let (mut matched, mut total) = (0, 0);
     for info in &mesh.tiles {
-        let [x, _, z] = terrain.tile_center(info.hex);
-        let px = img.get_pixel(((x - min_x) * scale).round() as u32, ((z - min_z) * scale).round() as u32).0;
+        let (x, y) = at(info.hex);
+        let px = img.get_pixel(x, y).0;
         let [r, g, b] = px.map(f32::from);
         if info.river_flow > 0.0 || info.lake.is_some() {
             assert!(b > r && b > g, "river or lake tile {:?} drawn {px:?}", info.hex);
