@@ -6,252 +6,10 @@
 
 mod support;
 
-use std::path::{Path, PathBuf};
-use std::sync::{Arc, Mutex};
-
-use bevy::camera::ScalingMode;
-use bevy::core_pipeline::prepass::{DeferredPrepass, DepthPrepass};
-use bevy::pbr::DefaultOpaqueRendererMethod;
 use bevy::prelude::*;
-use bevy::render::view::screenshot::{Screenshot, ScreenshotCaptured};
-use bevy::window::WindowResolution;
-use bevy::winit::WinitPlugin;
-use hex_terrain_game::HexTerrainMaterial;
 use hex_terrain_game::hex_terrain::Terrain;
 use hex_terrain_game::prelude::*;
-
-const WIDTH: u32 = 640;
-const HEIGHT: u32 = 480;
-
-fn map() -> MapConfig {
-    let mut c =
-        MapConfig { seed: 7, size: MapSize::Bounded { x: 20, z: 14 }, chunk_size: (8, 8), ..MapConfig::default() };
-    c.terrain.max_elevation = 3.0;
-    c.terrain.inner_rings = 2;
-    c.noise.scale = 30.0;
-    c
-}
-
-/// Where the camera looks and how much it shows.
-fn view(terrain: &Terrain) -> (Vec2, Vec2) {
-    let (mut lo, mut hi) = (Vec2::splat(f32::MAX), Vec2::splat(f32::MIN));
-    for t in terrain.tiles() {
-        let [x, _, z] = terrain.tile_center(t);
-        lo = lo.min(Vec2::new(x, z));
-        hi = hi.max(Vec2::new(x, z));
-    }
-    let center = (lo + hi) / 2.0;
-    // Keep the window's aspect ratio, with a margin.
-    let span = (hi - lo) + Vec2::splat(3.0);
-    let aspect = WIDTH as f32 / HEIGHT as f32;
-    let size =
-        if span.x / span.y > aspect { Vec2::new(span.x, span.x / aspect) } else { Vec2::new(span.y * aspect, span.y) };
-    (center, size)
-}
-
-fn pixel(center: Vec2, size: Vec2, world: Vec3) -> (u32, u32) {
-    let u = (world.x - center.x) / size.x + 0.5;
-    let v = (world.z - center.y) / size.y + 0.5;
-    ((u * WIDTH as f32) as u32, (v * HEIGHT as f32) as u32)
-}
-
-/// [`map`] with a climate, rivers and lakes.
-fn wet_map() -> MapConfig {
-    let mut c = map();
-    c.climate.enabled = true;
-    c.rivers.enabled = true;
-    c.rivers.threshold = 2.5;
-    c
-}
-
-/// What a scenario renders.
-#[derive(Default)]
-struct Scene {
-    /// The map ([`map`] when `None`).
-    config: Option<MapConfig>,
-    appearance: TerrainAppearance,
-    highlights: TileHighlights,
-    /// A deferred camera (deferred and depth prepasses) instead of a forward one.
-    deferred: bool,
-}
-
-/// What happened besides the picture.
-#[derive(Default, Clone, Copy)]
-struct Counts {
-    /// `AssetEvent::Modified` events of the terrain material over the whole run.
-    material_modified: usize,
-    /// Frames in which `HexMap` was changed.
-    map_changed: usize,
-    /// Frames run.
-    frames: usize,
-}
-
-/// Renders the map with outlines on or off and returns the screenshot.
-fn render(outlines: bool, name: &str) -> image::RgbImage {
-    let appearance = TerrainAppearance { outlines, outline_width: 0.1, ..default() };
-    render_scene(Scene { appearance, ..default() }, name).0
-}
-
-/// Renders the map with an appearance and highlights and returns the screenshot.
-fn render_with(appearance: TerrainAppearance, highlights: TileHighlights, name: &str) -> image::RgbImage {
-    render_scene(Scene { appearance, highlights, ..default() }, name).0
-}
-
-/// Renders a scene and returns the screenshot and the counts.
-fn render_scene(scene: Scene, name: &str) -> (image::RgbImage, Counts) {
-    let Scene { config, appearance, highlights, deferred } = scene;
-    let config = config.unwrap_or_else(map);
-    let terrain = Terrain::new(config.clone()).unwrap();
-    let (center, size) = view(&terrain);
-    let out = Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("{name}.png"));
-    let _ = std::fs::remove_file(&out);
-    let done: Arc<Mutex<bool>> = Arc::default();
-    let mut app = App::new();
-    app.add_plugins(
-        DefaultPlugins
-            .set(WindowPlugin {
-                primary_window: Some(Window { resolution: WindowResolution::new(WIDTH, HEIGHT), ..default() }),
-                ..default()
-            })
-            .set(WinitPlugin { run_on_any_thread: true }),
-    )
-    .add_plugins(HexTerrainPlugin::from_config(config))
-    .insert_resource(appearance)
-    .insert_resource(highlights)
-    .insert_resource(GlobalAmbientLight { brightness: 600.0, ..default() });
-    let camera = app
-        .world_mut()
-        .spawn((
-            Camera3d::default(),
-            Projection::Orthographic(OrthographicProjection {
-                scaling_mode: ScalingMode::Fixed { width: size.x, height: size.y },
-                ..OrthographicProjection::default_3d()
-            }),
-            Transform::from_xyz(center.x, 50.0, center.y).looking_at(Vec3::new(center.x, 0.0, center.y), Vec3::NEG_Z),
-        ))
-        .id();
-    if deferred {
-        app.world_mut().entity_mut(camera).insert((Msaa::Off, DepthPrepass, DeferredPrepass));
-        app.insert_resource(DefaultOpaqueRendererMethod::deferred());
-    }
-    let counts: Arc<Mutex<Counts>> = Arc::default();
-    let seen = counts.clone();
-    app.add_systems(Last, move |map: Res<HexMap>, mut events: MessageReader<AssetEvent<HexTerrainMaterial>>| {
-        let mut c = seen.lock().unwrap();
-        c.frames += 1;
-        c.map_changed += usize::from(map.is_changed());
-        c.material_modified += events.read().filter(|e| matches!(e, AssetEvent::Modified { .. })).count();
-    });
-    app.world_mut().spawn((
-        DirectionalLight { illuminance: 6000.0, shadow_maps_enabled: false, ..default() },
-        Transform::from_xyz(0.0, 10.0, 0.0).looking_at(Vec3::ZERO, Vec3::Z),
-    ));
-    let path: PathBuf = out.clone();
-    let flag = done.clone();
-    let mut frames = 0;
-    let mut ready_frames = 0;
-    app.add_systems(
-        Last,
-        move |mut commands: Commands, mut ready: MessageReader<TerrainReady>, mut exit: MessageWriter<AppExit>| {
-            frames += 1;
-            if *flag.lock().unwrap() {
-                exit.write(AppExit::Success);
-                return;
-            }
-            if ready.read().count() > 0 || ready_frames > 0 {
-                ready_frames += 1;
-            }
-            assert!(frames < 5000, "no terrain on screen after {frames} frames");
-            // Pipelines compile in the background: shoot every 20 frames once the terrain is
-            // complete, and keep the first picture that shows it.
-            if ready_frames > 0 && ready_frames % 20 == 0 {
-                let path = path.clone();
-                let flag = flag.clone();
-                commands.spawn(Screenshot::primary_window()).observe(move |shot: On<ScreenshotCaptured>| {
-                    let img = shot.image.clone().try_into_dynamic().unwrap().to_rgb8();
-                    let background = *img.get_pixel(0, 0);
-                    let drawn = img.pixels().filter(|p| **p != background).count();
-                    if drawn > img.pixels().len() / 2 {
-                        img.save(&path).unwrap();
-                        *flag.lock().unwrap() = true;
-                    }
-                });
-            }
-        },
-    );
-    app.run();
-    assert!(*done.lock().unwrap(), "no screenshot was taken");
-    let counts = *counts.lock().unwrap();
-    (image::open(&out).unwrap().to_rgb8(), counts)
-}
-
-fn rgb(img: &image::RgbImage, (x, y): (u32, u32)) -> [f32; 3] {
-    img.get_pixel(x.min(WIDTH - 1), y.min(HEIGHT - 1)).0.map(|c| f32::from(c) / 255.0)
-}
-
-fn brightness(c: [f32; 3]) -> f32 {
-    (c[0] + c[1] + c[2]) / 3.0
-}
-
-/// Tile centers well inside their type's range (away from the blend zone), by kind.
-fn clear_tiles(terrain: &Terrain) -> Vec<(Hex, TileKind, Vec3)> {
-    let c = terrain.config();
-    let (s, m, b) = (c.terrain.sea_threshold, c.terrain.mountain_threshold, c.appearance.blend);
-    terrain
-        .tiles()
-        .filter_map(|t| {
-            let info = terrain.tile_info(t);
-            let h = info.elevation / c.terrain.max_elevation;
-            ((h - s).abs() > b && (h - m).abs() > b).then(|| (t, info.kind, Vec3::from_array(terrain.tile_center(t))))
-        })
-        .collect()
-}
-
-/// Mean brightness ratio of mid-edge pixels to tile-center pixels.
-fn border_to_center(img: &image::RgbImage, terrain: &Terrain) -> f32 {
-    let (center, size) = view(terrain);
-    let layout = terrain.layout();
-    let ratios: Vec<f32> = terrain
-        .tiles()
-        .filter(|t| terrain.contains(t.all_neighbors()[0]))
-        .map(|t| {
-            let a = layout.hex_to_world_pos(t);
-            let b = layout.hex_to_world_pos(t.all_neighbors()[0]);
-            let mid = (a + b) / 2.0;
-            let edge = Vec3::new(mid.x, terrain.surface_height(mid.x, mid.y), mid.y);
-            let center_px = pixel(center, size, Vec3::new(a.x, 0.0, a.y));
-            // The darkest pixel around the edge point: lines are a pixel or two wide.
-            let (ex, ey) = pixel(center, size, edge);
-            let darkest = (0..9)
-                .map(|k| brightness(rgb(img, ((ex + k % 3).saturating_sub(1), (ey + k / 3).saturating_sub(1)))))
-                .fold(f32::MAX, f32::min);
-            darkest / brightness(rgb(img, center_px)).max(1e-3)
-        })
-        .collect();
-    ratios.iter().sum::<f32>() / ratios.len() as f32
-}
-
-/// Asserts every clear tile center shows its type's color, skipping `except`.
-fn assert_type_colors(img: &image::RgbImage, terrain: &Terrain, except: &[Hex]) {
-    let (center, size) = view(terrain);
-    let mut seen = [0; 3];
-    for (hex, kind, at) in clear_tiles(terrain).into_iter().filter(|(h, _, _)| !except.contains(h)) {
-        let [r, g, b] = rgb(img, pixel(center, size, at));
-        match kind {
-            TileKind::Sea => assert!(b > r + 0.1 && b > g, "sea tile {hex:?} drawn {:?}", [r, g, b]),
-            TileKind::Land => assert!(g > r + 0.05 && g > b + 0.05, "land tile {hex:?} drawn {:?}", [r, g, b]),
-            TileKind::Mountain => {
-                assert!(
-                    (r - g).abs() < 0.12 && (g - b).abs() < 0.12 && r > 0.35,
-                    "mountain {hex:?} drawn {:?}",
-                    [r, g, b]
-                );
-            }
-        }
-        seen[kind as usize] += 1;
-    }
-    assert!(seen.iter().all(|&n| n > 0), "the test map has every type: {seen:?}");
-}
+use support::scene::*;
 
 // Each test runs one ignored scenario below in a process of its own.
 macro_rules! in_own_process {
@@ -362,12 +120,17 @@ fn scenario_outlines_on() {
 fn scenario_textures_and_highlights() {
     let terrain = Terrain::new(map()).unwrap();
     let (center, size) = view(&terrain);
-    let land: Vec<Hex> =
-        clear_tiles(&terrain).into_iter().filter(|(_, k, _)| *k == TileKind::Land).map(|(h, _, _)| h).collect();
-    let (hovered, selected) = (land[0], land[1..4].to_vec());
-    let img = render_with(
-        TerrainAppearance { textures: true, ..default() },
-        TileHighlights { hovered: Some(hovered), selected: selected.clone() },
+    let (hovered, selected) = highlighted(&terrain);
+    let (img, _) = render_scene(
+        Scene {
+            appearance: TerrainAppearance { textures: true, ..default() },
+            tiles: Some(|terrain, states| {
+                let (hovered, selected) = highlighted(terrain);
+                states.set_highlight(hovered, Highlight::Hovered, true).unwrap();
+                states.replace_highlight(Highlight::Reachable, selected);
+            }),
+            ..default()
+        },
         "textures_highlights",
     );
     let mut tinted = selected.clone();
@@ -378,8 +141,15 @@ fn scenario_textures_and_highlights() {
     assert!(r > g * 0.8, "the hovered land tile is tinted warm: {:?}", at(hovered));
     for h in selected {
         let [r, _, b] = at(h);
-        assert!(b > r, "a selected land tile is tinted blue: {:?}", at(h));
+        assert!(b > r, "a reachable land tile is tinted blue: {:?}", at(h));
     }
+}
+
+/// The hovered and the reachable tiles of the highlight scenario: clear land tiles.
+fn highlighted(terrain: &Terrain) -> (Hex, Vec<Hex>) {
+    let land: Vec<Hex> =
+        clear_tiles(terrain).into_iter().filter(|(_, k, _)| *k == TileKind::Land).map(|(h, _, _)| h).collect();
+    (land[0], land[1..4].to_vec())
 }
 
 #[test]
@@ -388,7 +158,7 @@ fn scenario_missing_texture() {
     let terrain = Terrain::new(map()).unwrap();
     let mut appearance = TerrainAppearance { textures: true, ..default() };
     appearance.texture_paths[1] = "textures/no_such_grass.png".into();
-    let img = render_with(appearance, TileHighlights::default(), "missing_texture");
+    let img = render_with(appearance, "missing_texture");
     let magenta = img.pixels().filter(|p| p[0] > 150 && p[2] > 150 && p[1] < 80).count();
     assert_eq!(magenta, 0, "no magenta error color");
     assert_type_colors(&img, &terrain, &[]);

@@ -2,6 +2,9 @@
 //! one event loop per process, and libtest runs tests as threads of one process), under
 //! `xvfb-run` when there is no display, so plain `cargo test` passes as well as nextest.
 
+#[allow(dead_code, reason = "not every test binary that includes this module renders")]
+pub mod scene;
+
 use std::path::Path;
 use std::process::{Command, Output};
 

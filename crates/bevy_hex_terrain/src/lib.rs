@@ -40,6 +40,7 @@ pub mod map;
 pub mod material;
 pub mod mesh;
 pub mod streaming;
+pub mod tiles;
 
 use bevy::app::PluginGroupBuilder;
 use bevy::prelude::*;
@@ -49,20 +50,23 @@ use hex_terrain::MapConfig;
 pub use crate::asset::{HexMapAsset, HexMapLoader, HexMapLoaderError};
 pub use crate::map::{HexMap, HexMapError, HexMapHandle, HexMapPlugin, LoadHexMap, TileHit};
 #[cfg(feature = "render")]
-pub use crate::material::{HexTerrainMaterial, HexTerrainMaterialPlugin, TerrainAppearance, TileHighlights};
+pub use crate::material::{HexTerrainMaterial, HexTerrainMaterialPlugin, TerrainAppearance};
 pub use crate::streaming::{
     ChunkDespawned, ChunkSpawned, ChunkStreamer, ChunkTask, ChunkThreads, HexChunk, HexStreamingPlugin,
     HexTerrainAgent, HexTerrainSettings, HexTerrainStats, TerrainReady,
+};
+pub use crate::tiles::{
+    FogState, HexTileStatePlugin, Highlight, TileStateError, TileStateSettings, TileStateStats, TileStates,
 };
 
 /// Everything a game usually needs.
 pub mod prelude {
     #[cfg(feature = "render")]
-    pub use crate::material::{HexTerrainMaterialPlugin, TerrainAppearance, TileHighlights};
+    pub use crate::material::{HexTerrainMaterialPlugin, TerrainAppearance};
     pub use crate::{
-        ChunkDespawned, ChunkSpawned, ChunkStreamer, HexChunk, HexMap, HexMapError, HexMapPlugin, HexStreamingPlugin,
-        HexTerrainAgent, HexTerrainPlugin, HexTerrainPlugins, HexTerrainSettings, HexTerrainStats, HexTerrainSystems,
-        LoadHexMap, MapSource, TerrainReady, TileHit,
+        ChunkDespawned, ChunkSpawned, ChunkStreamer, FogState, HexChunk, HexMap, HexMapError, HexMapPlugin,
+        HexStreamingPlugin, HexTerrainAgent, HexTerrainPlugin, HexTerrainPlugins, HexTerrainSettings, HexTerrainStats,
+        HexTerrainSystems, HexTileStatePlugin, Highlight, LoadHexMap, MapSource, TerrainReady, TileHit, TileStates,
     };
     pub use hex_terrain::hexx::Hex;
     pub use hex_terrain::{Biome, ChunkCoord, MapConfig, MapSize, RiverTile, TileInfo, TileKind};
@@ -118,13 +122,16 @@ pub enum HexTerrainSystems {
     Stream,
     /// Inserts finished chunk meshes under the per-frame budget.
     Insert,
-    /// Updates the terrain material (hot reload, appearance, highlights) and gives new chunk
-    /// meshes their material.
+    /// Keeps the [`TileStates`] window on the map and around the loaded chunks.
+    Tiles,
+    /// Updates the terrain material (hot reload, appearance, tile state texture) and gives new
+    /// chunk meshes their material.
     Render,
 }
 
 /// The terrain plugins: [`HexMapPlugin`] (the [`HexMap`] resource, map assets, switching),
-/// [`HexStreamingPlugin`] (chunks around agents) and, with the `render` feature,
+/// [`HexStreamingPlugin`] (chunks around agents), [`HexTileStatePlugin`] (per-tile game state:
+/// fog of war, territory, lenses, highlights) and, with the `render` feature,
 /// `HexTerrainMaterialPlugin` (the terrain material, which needs Bevy's `PbrPlugin`). Disable
 /// one with `HexTerrainPlugins::default().build().disable::<…>()`.
 #[derive(Debug, Clone, Default)]
@@ -147,7 +154,8 @@ impl PluginGroup for HexTerrainPlugins {
     fn build(self) -> PluginGroupBuilder {
         let group = PluginGroupBuilder::start::<Self>()
             .add(HexMapPlugin { map: self.map })
-            .add(HexStreamingPlugin { settings: self.settings });
+            .add(HexStreamingPlugin { settings: self.settings })
+            .add(HexTileStatePlugin::default());
         #[cfg(feature = "render")]
         let group = group.add(material::HexTerrainMaterialPlugin);
         group

@@ -73,6 +73,7 @@ impl Plugin for HexMapPlugin {
                     HexTerrainSystems::Map,
                     HexTerrainSystems::Stream,
                     HexTerrainSystems::Insert,
+                    HexTerrainSystems::Tiles,
                     HexTerrainSystems::Render,
                 )
                     .chain(),
@@ -175,7 +176,12 @@ fn apply_asset(
     match Terrain::with_image(asset.config.clone(), asset.image.clone()) {
         Ok(terrain) => {
             info!("hex terrain: map {:?} applied", asset.config.name);
-            map.replace(terrain);
+            // The plugin's first map file and a hot reload keep the map id; another file changes it.
+            if new && !map.waiting_for_asset {
+                map.replace(terrain);
+            } else {
+                map.reload(terrain);
+            }
             map.appearance_fallback = asset.appearance_fallback;
             map.applied = Some((handle.id(), asset.image.clone()));
         }

@@ -24,6 +24,7 @@ pub use apply::{HexMapHandle, HexMapPlugin, LoadHexMap};
 pub struct HexMap {
     terrain: Arc<Terrain>,
     generation: u64,
+    map_id: u64,
     waiting_for_asset: bool,
     appearance_fallback: bool,
     /// The map asset whose config is applied, if any, with its heightmap.
@@ -43,6 +44,7 @@ impl HexMap {
         Self {
             terrain: Arc::new(terrain),
             generation: 0,
+            map_id: 0,
             waiting_for_asset: false,
             appearance_fallback: false,
             applied: None,
@@ -68,6 +70,14 @@ impl HexMap {
         self.generation
     }
 
+    /// Changes each time another map is shown ([`LoadHexMap`] or [`replace`](Self::replace));
+    /// stays the same over hot reloads of the same map file. [`TileStates`](crate::TileStates) is
+    /// cleared when it changes.
+    #[must_use]
+    pub fn map_id(&self) -> u64 {
+        self.map_id
+    }
+
     /// Whether the map still waits for its config asset (no chunks are streamed until then).
     #[must_use]
     pub fn is_waiting_for_asset(&self) -> bool {
@@ -87,6 +97,12 @@ impl HexMap {
     /// Replaces the terrain, starting a new generation: every chunk is regenerated. (To load
     /// another map file, send [`LoadHexMap`].)
     pub fn replace(&mut self, terrain: Terrain) {
+        self.reload(terrain);
+        self.map_id += 1;
+    }
+
+    /// A new config of the same map (hot reload): a new generation, the same [`map_id`](Self::map_id).
+    pub(crate) fn reload(&mut self, terrain: Terrain) {
         self.terrain = Arc::new(terrain);
         self.generation += 1;
         self.waiting_for_asset = false;

@@ -11,16 +11,16 @@ use bevy::prelude::*;
 use bevy::render::render_resource::{AsBindGroup, RenderPipelineDescriptor, ShaderType, SpecializedMeshPipelineError};
 use bevy::shader::{ShaderDefVal, ShaderRef};
 use hex_terrain::MapConfig;
-use hex_terrain::hexx::Hex;
+use crate::tiles::{MAX_OWNERS, TileStates};
+pub use tile_texture::TileStateTexture;
+
+mod tile_texture;
 
 /// The chunk material.
 pub type HexTerrainMaterial = ExtendedMaterial<StandardMaterial, HexTerrainExtension>;
 
-/// Most tiles [`TileHighlights::selected`] tints at once.
-pub const MAX_HIGHLIGHTS: usize = 64;
-
 /// Bits of [`TerrainParams::flags`]. The shader receives these values (and
-/// [`MAX_HIGHLIGHTS`]) as shader defs, so Rust and WGSL share one definition.
+/// [`MAX_OWNERS`]) as shader defs, so Rust and WGSL share one definition.
 pub mod flags {
     /// Draw tile outlines.
     pub const OUTLINES: u32 = 1;
@@ -28,17 +28,26 @@ pub mod flags {
     pub const TEXTURES: u32 = 2;
     /// Pointy-topped hexes (flat-topped without).
     pub const POINTY: u32 = 4;
-    /// A tile is hovered.
-    pub const HOVERED: u32 = 8;
+    /// Draw fog of war from the tile states.
+    pub const FOG: u32 = 8;
+    /// Draw territory borders.
+    pub const BORDERS: u32 = 16;
+    /// Tint owned tiles in their owner's color.
+    pub const TERRITORY_TINT: u32 = 32;
+    /// Draw the tiles' overlay colors (the lens).
+    pub const LENS: u32 = 64;
 }
 
-/// The shader defs every terrain pipeline gets: the flag bits and the highlight array size.
-const SHADER_DEFS: [(&str, u32); 5] = [
+/// The shader defs every terrain pipeline gets: the flag bits and the owner palette size.
+const SHADER_DEFS: [(&str, u32); 8] = [
     ("HEX_FLAG_OUTLINES", flags::OUTLINES),
     ("HEX_FLAG_TEXTURES", flags::TEXTURES),
     ("HEX_FLAG_POINTY", flags::POINTY),
-    ("HEX_FLAG_HOVERED", flags::HOVERED),
-    ("HEX_MAX_HIGHLIGHTS", MAX_HIGHLIGHTS as u32),
+    ("HEX_FLAG_FOG", flags::FOG),
+    ("HEX_FLAG_BORDERS", flags::BORDERS),
+    ("HEX_FLAG_TERRITORY_TINT", flags::TERRITORY_TINT),
+    ("HEX_FLAG_LENS", flags::LENS),
+    ("HEX_MAX_OWNERS", MAX_OWNERS as u32),
 ];
 
 /// Uniform parameters of the terrain shader.
@@ -53,7 +62,11 @@ pub struct TerrainParams {
     /// Hovered tile tint; alpha is the strength.
     pub hover_color: Vec4,
     /// Selected tiles tint; alpha is the strength.
-    pub highlight_color: Vec4,
+    pub selected_color: Vec4,
+    /// Reachable tiles tint; alpha is the strength.
+    pub reachable_color: Vec4,
+    /// Unexplored tiles' color (linear).
+    pub unexplored_color: Vec4,
     /// Outline color; alpha is the strength.
     pub outline_color: Vec4,
     /// River and lake water color (linear), on meshes with vertex colors.
@@ -70,24 +83,30 @@ pub struct TerrainParams {
     pub outline_width: f32,
     /// Texture repeats per world unit.
     pub texture_scale: f32,
+    /// Territory border width, a fraction of the hex radius.
+    pub border_width: f32,
+    /// Gap between a tile's edge and its border, a fraction of the hex radius.
+    pub border_inset: f32,
+    /// Width of the fog's blend across tile borders, a fraction of the hex radius.
+    pub fog_softness: f32,
+    /// Strength of the territory tint.
+    pub tint_strength: f32,
     /// Bits of [`flags`].
     pub flags: u32,
-    /// How many entries of the highlight list are used.
-    pub highlight_count: u32,
-    /// Hovered tile (axial `x`, `y`).
-    pub hovered: IVec4,
+    /// The tiles the tile state texture holds: first offset column and row, width and height.
+    pub tile_window: IVec4,
 }
 
-/// The tiles to tint.
+/// Owner colors (linear), owner `n` at index `n - 1`.
 #[derive(Debug, Clone, Copy, PartialEq, ShaderType, Reflect)]
-pub struct HighlightList {
-    /// Axial coordinates in `x`, `y`.
-    pub tiles: [IVec4; MAX_HIGHLIGHTS],
+pub struct OwnerColors {
+    /// One color an owner.
+    pub colors: [Vec4; MAX_OWNERS as usize],
 }
 
-impl Default for HighlightList {
+impl Default for OwnerColors {
     fn default() -> Self {
-        Self { tiles: [IVec4::ZERO; MAX_HIGHLIGHTS] }
+        Self { colors: [Vec4::ONE; MAX_OWNERS as usize] }
     }
 }
 
@@ -109,9 +128,12 @@ pub struct HexTerrainExtension {
     #[texture(105)]
     #[sampler(106)]
     pub mountain_texture: Option<Handle<Image>>,
-    /// Selected or reachable tiles.
-    #[uniform(107)]
-    pub highlights: HighlightList,
+    /// The tile states ([`TileStates`]), written in place by `tile_texture.rs`.
+    #[texture(107, sample_type = "u_int")]
+    pub tile_state: Handle<Image>,
+    /// Owner colors.
+    #[uniform(108)]
+    pub owners: OwnerColors,
 }
 
 fn shader() -> ShaderRef {
@@ -140,7 +162,8 @@ impl MaterialExtension for HexTerrainExtension {
     }
 }
 
-/// How the terrain looks, changed at run time by the game (outlines toggle, textures).
+/// How the terrain looks, changed at run time by the game (outlines toggle, textures, fog of
+/// war, borders, the lens). Per-tile state itself is in [`TileStates`].
 #[derive(Resource, Debug, Clone, Reflect)]
 #[reflect(Resource)]
 pub struct TerrainAppearance {
@@ -158,6 +181,32 @@ pub struct TerrainAppearance {
     pub water_color: Color,
     /// Asset paths of the sea, grass and mountain textures.
     pub texture_paths: [String; 3],
+    /// Draw fog of war from [`TileStates::visibility`]: unexplored tiles dark, explored ones
+    /// desaturated. Off, every tile is drawn as visible.
+    pub fog_of_war: bool,
+    /// Color of unexplored tiles.
+    pub unexplored_color: Color,
+    /// Width of the fog's blend across tile borders, a fraction of the hex radius (0: hard).
+    pub fog_softness: f32,
+    /// Draw a line in the owner's color inside every owned tile's edges that border another
+    /// owner or nobody.
+    pub borders: bool,
+    /// Border line width, a fraction of the hex radius.
+    pub border_width: f32,
+    /// Gap between a tile's edge and its border line, a fraction of the hex radius.
+    pub border_inset: f32,
+    /// Tint owned tiles lightly in their owner's color.
+    pub territory_tint: bool,
+    /// Owner colors: owner `n` takes entry `n - 1`; owners past the list get generated hues.
+    pub owner_colors: Vec<Color>,
+    /// Draw the tiles' overlay colors ([`TileStates::set_overlay`]): the lens.
+    pub lens: bool,
+    /// Tint of the hovered tile; alpha is the strength.
+    pub hover_color: Color,
+    /// Tint of selected tiles; alpha is the strength.
+    pub selected_color: Color,
+    /// Tint of reachable tiles; alpha is the strength.
+    pub reachable_color: Color,
 }
 
 impl Default for TerrainAppearance {
@@ -170,67 +219,103 @@ impl Default for TerrainAppearance {
             colors: [Color::srgb(0.11, 0.34, 0.72), Color::srgb(0.30, 0.60, 0.20), Color::srgb(0.62, 0.60, 0.58)],
             water_color: Color::srgb(0.16, 0.42, 0.72),
             texture_paths: ["textures/sea.png".into(), "textures/grass.png".into(), "textures/mountain.png".into()],
+            fog_of_war: false,
+            unexplored_color: Color::srgb(0.11, 0.10, 0.09),
+            fog_softness: 0.35,
+            borders: true,
+            border_width: 0.1,
+            border_inset: 0.03,
+            territory_tint: true,
+            owner_colors: vec![
+                Color::srgb(0.90, 0.15, 0.12),
+                Color::srgb(0.15, 0.45, 0.95),
+                Color::srgb(0.98, 0.80, 0.10),
+                Color::srgb(0.60, 0.20, 0.85),
+                Color::srgb(0.95, 0.50, 0.10),
+                Color::srgb(0.10, 0.80, 0.75),
+                Color::srgb(0.95, 0.40, 0.70),
+                Color::srgb(0.95, 0.95, 0.95),
+            ],
+            lens: false,
+            hover_color: Color::srgba(1.0, 0.95, 0.55, 0.45),
+            selected_color: Color::srgba(1.0, 0.85, 0.25, 0.5),
+            reachable_color: Color::srgba(0.35, 0.75, 1.0, 0.4),
         }
     }
-}
-
-/// Tiles the game wants tinted: the hovered one and a set of selected or reachable ones.
-/// Writing it updates a uniform; meshes are not rebuilt.
-#[derive(Resource, Debug, Clone, Default, Reflect)]
-#[reflect(Resource)]
-pub struct TileHighlights {
-    /// The tile under the cursor.
-    pub hovered: Option<Hex>,
-    /// Selected or reachable tiles (the first [`MAX_HIGHLIGHTS`] are drawn).
-    pub selected: Vec<Hex>,
 }
 
 /// The shared material handle of the chunks.
 #[derive(Resource, Debug, Clone)]
 pub struct HexTerrainMaterialHandle(pub Handle<HexTerrainMaterial>);
 
-/// Builds the shader parameters for a map config and appearance.
+fn linear(c: Color) -> Vec4 {
+    Vec4::from_array(c.to_linear().to_f32_array())
+}
+
+/// Builds the shader parameters for a map config, an appearance and the tile state window
+/// (first offset column and row, size).
 #[must_use]
-pub fn params(config: &MapConfig, appearance: &TerrainAppearance, highlights: &TileHighlights) -> TerrainParams {
+pub fn params(config: &MapConfig, appearance: &TerrainAppearance, window: (IVec2, UVec2)) -> TerrainParams {
     let t = &config.terrain;
     let max = t.max_elevation;
-    let lin = |c: Color| Vec4::from_array(c.to_linear().to_f32_array());
     let mut bits = 0;
-    if appearance.outlines {
-        bits |= flags::OUTLINES;
+    for (on, bit) in [
+        (appearance.outlines, flags::OUTLINES),
+        (appearance.textures, flags::TEXTURES),
+        (config.layout.orientation == hex_terrain::Orientation::Pointy, flags::POINTY),
+        (appearance.fog_of_war, flags::FOG),
+        (appearance.borders, flags::BORDERS),
+        (appearance.territory_tint, flags::TERRITORY_TINT),
+        (appearance.lens, flags::LENS),
+    ] {
+        if on {
+            bits |= bit;
+        }
     }
-    if appearance.textures {
-        bits |= flags::TEXTURES;
-    }
-    if config.layout.orientation == hex_terrain::Orientation::Pointy {
-        bits |= flags::POINTY;
-    }
-    if highlights.hovered.is_some() {
-        bits |= flags::HOVERED;
-    }
-    let hovered = highlights.hovered.map_or(IVec4::ZERO, |h| IVec4::new(h.x, h.y, 0, 0));
+    let finite = |v: f32, lo: f32, hi: f32| if v.is_finite() { v.clamp(lo, hi) } else { lo };
     TerrainParams {
-        sea_color: lin(appearance.colors[0]),
-        land_color: lin(appearance.colors[1]),
-        mountain_color: lin(appearance.colors[2]),
-        hover_color: Vec4::new(1.0, 0.95, 0.55, 0.45),
-        highlight_color: Vec4::new(0.35, 0.75, 1.0, 0.4),
+        sea_color: linear(appearance.colors[0]),
+        land_color: linear(appearance.colors[1]),
+        mountain_color: linear(appearance.colors[2]),
+        hover_color: linear(appearance.hover_color),
+        selected_color: linear(appearance.selected_color),
+        reachable_color: linear(appearance.reachable_color),
+        unexplored_color: linear(appearance.unexplored_color),
         outline_color: Vec4::new(0.01, 0.01, 0.01, 0.92),
-        water_color: lin(appearance.water_color),
+        water_color: linear(appearance.water_color),
         sea_level: t.sea_threshold * max,
         mountain_level: t.mountain_threshold * max,
         blend: config.appearance.blend.clamp(0.0, 1.0) * max,
         hex_size: config.layout.hex_size,
         outline_width: appearance.outline_width,
         texture_scale: appearance.texture_scale,
+        border_width: finite(appearance.border_width, 0.0, 1.0),
+        border_inset: finite(appearance.border_inset, 0.0, 1.0),
+        fog_softness: finite(appearance.fog_softness, 0.0, 1.0),
+        tint_strength: 0.22,
         flags: bits,
-        highlight_count: highlights.selected.len().min(MAX_HIGHLIGHTS) as u32,
-        hovered,
+        tile_window: IVec4::new(window.0.x, window.0.y, window.1.x as i32, window.1.y as i32),
     }
 }
 
+/// The owner palette: the appearance's colors, then hues spaced by the golden angle.
+#[must_use]
+pub fn owner_colors(appearance: &TerrainAppearance) -> OwnerColors {
+    let mut owners = OwnerColors::default();
+    for (i, slot) in owners.colors.iter_mut().enumerate() {
+        let color = appearance
+            .owner_colors
+            .get(i)
+            .copied()
+            .unwrap_or_else(|| Color::hsl((i as f32 * 137.508) % 360.0, 0.75, 0.55));
+        *slot = linear(color);
+    }
+    owners
+}
+
 /// The terrain material: registers [`HexTerrainMaterial`], gives every chunk mesh the shared
-/// material and keeps it in step with the map, [`TerrainAppearance`] and [`TileHighlights`].
+/// material and keeps it in step with the map, [`TerrainAppearance`] and the tile state
+/// texture, into which it copies [`TileStates`]' changes (`tile_texture.rs`).
 /// Needs Bevy's `PbrPlugin` (in `DefaultPlugins`); a headless app disables this plugin.
 #[derive(Debug, Clone, Copy, Default)]
 pub struct HexTerrainMaterialPlugin;
@@ -244,13 +329,14 @@ impl Plugin for HexTerrainMaterialPlugin {
                  HexTerrainPlugins::default().build().disable::<HexTerrainMaterialPlugin>()"
             );
         }
+        if !app.is_plugin_added::<crate::tiles::HexTileStatePlugin>() {
+            panic!("HexTerrainMaterialPlugin needs HexTileStatePlugin: add HexTerrainPlugins");
+        }
         embedded_asset!(app, "terrain.wgsl");
-        app.add_plugins(MaterialPlugin::<HexTerrainMaterial>::default())
+        app.add_plugins((MaterialPlugin::<HexTerrainMaterial>::default(), tile_texture::TileTexturePlugin))
             .init_resource::<TerrainAppearance>()
-            .init_resource::<TileHighlights>()
             .register_type::<TerrainAppearance>()
-            .register_type::<TileHighlights>()
-            .add_systems(Startup, create_material)
+            .add_systems(Startup, create_material.after(tile_texture::create_texture))
             .add_systems(
                 Update,
                 (update_material, attach_material)
@@ -289,32 +375,37 @@ fn create_material(
     server: Res<AssetServer>,
     map: Res<crate::HexMap>,
     appearance: Res<TerrainAppearance>,
-    highlights: Res<TileHighlights>,
+    states: Res<TileStates>,
+    texture: Res<TileStateTexture>,
 ) {
     let [sea_texture, land_texture, mountain_texture] = textures(&server, &appearance);
     let handle = materials.add(ExtendedMaterial {
         base: StandardMaterial { base_color: Color::WHITE, perceptual_roughness: 0.92, reflectance: 0.2, ..default() },
         extension: HexTerrainExtension {
-            params: params(map.config(), &appearance, &highlights),
+            params: params(map.config(), &appearance, states.window()),
             sea_texture,
             land_texture,
             mountain_texture,
-            highlights: HighlightList::default(),
+            tile_state: texture.handle.clone(),
+            owners: owner_colors(&appearance),
         },
     });
     commands.insert_resource(HexTerrainMaterialHandle(handle));
 }
 
-/// Rewrites the material when the map (hot reload, switch), the appearance or the highlights
-/// change its parameters, and only then (a rewritten material is uploaded again); a texture that
-/// failed to load switches to flat colors with a warning.
+/// Rewrites the material when the map (hot reload, switch), the appearance or the tile state
+/// window change its parameters, and only then (a rewritten material is uploaded again; tile
+/// state changes go straight into the texture); a texture that failed to load switches to flat
+/// colors with a warning.
+#[expect(clippy::too_many_arguments, reason = "a system's parameters")]
 fn update_material(
     handle: Res<HexTerrainMaterialHandle>,
     mut materials: ResMut<Assets<HexTerrainMaterial>>,
     server: Res<AssetServer>,
     map: Res<crate::HexMap>,
     mut appearance: ResMut<TerrainAppearance>,
-    highlights: Res<TileHighlights>,
+    states: Res<TileStates>,
+    texture: Res<TileStateTexture>,
     mut failed: MessageReader<bevy::asset::AssetLoadFailedEvent<Image>>,
 ) {
     for failure in failed.read() {
@@ -323,26 +414,26 @@ fn update_material(
             appearance.textures = false;
         }
     }
-    if !(map.is_changed() || appearance.is_changed() || highlights.is_changed()) {
-        return;
-    }
     let Some(material) = materials.get(&handle.0) else { return };
     // A map whose appearance had to be clamped is drawn in flat colors.
     let mut effective = appearance.clone();
     effective.textures &= !map.appearance_fallback();
-    let params = params(map.config(), &effective, &highlights);
-    let mut list = material.extension.highlights;
-    for (slot, hex) in list.tiles.iter_mut().zip(&highlights.selected) {
-        *slot = IVec4::new(hex.x, hex.y, 0, 0);
+    let ext = &material.extension;
+    let window_moved = ext.params.tile_window != params(map.config(), &effective, states.window()).tile_window;
+    if !(map.is_changed() || appearance.is_changed() || texture.is_changed() || window_moved) {
+        return;
     }
-    let retexture = effective.textures != material.extension.sea_texture.is_some();
-    if params == material.extension.params && list == material.extension.highlights && !retexture {
+    let params = params(map.config(), &effective, states.window());
+    let owners = owner_colors(&effective);
+    let retexture = effective.textures != ext.sea_texture.is_some();
+    if params == ext.params && owners == ext.owners && ext.tile_state == texture.handle && !retexture {
         return;
     }
     let Some(mut material) = materials.get_mut(&handle.0) else { return };
     let ext = &mut material.extension;
     ext.params = params;
-    ext.highlights = list;
+    ext.owners = owners;
+    ext.tile_state = texture.handle.clone();
     if retexture {
         [ext.sea_texture, ext.land_texture, ext.mountain_texture] = textures(&server, &effective);
     }

@@ -1,7 +1,9 @@
 // Hex terrain material: thesis Algorithm 5 (three layers split by the thresholds, blended over
 // the blend distance), flat colors or world-space triplanar textures, tile outlines computed from
-// the world position (no per-vertex data needed, so they are exact on every chunk), hovered and
-// selected tile tints, and a gently animated sea. Lighting and shadows are StandardMaterial's.
+// the world position (no per-vertex data needed, so they are exact on every chunk), a gently
+// animated sea, and the per-tile game state read from the tile state texture: highlights, the
+// lens, territory tint and borders, and fog of war blended across tile borders. Lighting and
+// shadows are StandardMaterial's.
 
 #import bevy_pbr::{
     pbr_fragment::pbr_input_from_standard_material,
@@ -26,7 +28,9 @@ struct TerrainParams {
     land_color: vec4<f32>,
     mountain_color: vec4<f32>,
     hover_color: vec4<f32>,
-    highlight_color: vec4<f32>,
+    selected_color: vec4<f32>,
+    reachable_color: vec4<f32>,
+    unexplored_color: vec4<f32>,
     outline_color: vec4<f32>,
     water_color: vec4<f32>,
     // World heights of the thresholds and the blend distance.
@@ -36,14 +40,19 @@ struct TerrainParams {
     hex_size: f32,
     outline_width: f32,
     texture_scale: f32,
+    // Fractions of the hex radius.
+    border_width: f32,
+    border_inset: f32,
+    fog_softness: f32,
+    tint_strength: f32,
     // Bits FLAG_*, defined in Rust (material/mod.rs, `flags`) and passed as shader defs.
     flags: u32,
-    highlight_count: u32,
-    hovered: vec4<i32>,
+    // The tiles the tile state texture holds: first offset column and row, width, height.
+    tile_window: vec4<i32>,
 }
 
-struct Highlights {
-    tiles: array<vec4<i32>, #{HEX_MAX_HIGHLIGHTS}>,
+struct OwnerColors {
+    colors: array<vec4<f32>, #{HEX_MAX_OWNERS}>,
 }
 
 @group(#{MATERIAL_BIND_GROUP}) @binding(100) var<uniform> params: TerrainParams;
@@ -53,13 +62,23 @@ struct Highlights {
 @group(#{MATERIAL_BIND_GROUP}) @binding(104) var land_sampler: sampler;
 @group(#{MATERIAL_BIND_GROUP}) @binding(105) var mountain_texture: texture_2d<f32>;
 @group(#{MATERIAL_BIND_GROUP}) @binding(106) var mountain_sampler: sampler;
-@group(#{MATERIAL_BIND_GROUP}) @binding(107) var<uniform> highlights: Highlights;
+@group(#{MATERIAL_BIND_GROUP}) @binding(107) var tile_state: texture_2d<u32>;
+@group(#{MATERIAL_BIND_GROUP}) @binding(108) var<uniform> owners: OwnerColors;
 
 const SQRT3: f32 = 1.7320508;
 const FLAG_OUTLINES: u32 = #{HEX_FLAG_OUTLINES}u;
 const FLAG_TEXTURES: u32 = #{HEX_FLAG_TEXTURES}u;
 const FLAG_POINTY: u32 = #{HEX_FLAG_POINTY}u;
-const FLAG_HOVERED: u32 = #{HEX_FLAG_HOVERED}u;
+const FLAG_FOG: u32 = #{HEX_FLAG_FOG}u;
+const FLAG_BORDERS: u32 = #{HEX_FLAG_BORDERS}u;
+const FLAG_TERRITORY_TINT: u32 = #{HEX_FLAG_TERRITORY_TINT}u;
+const FLAG_LENS: u32 = #{HEX_FLAG_LENS}u;
+// Bits of a tile state texel's first channel (tiles/window.rs): fog in bits 0-1, then the
+// highlights.
+const FOG_MASK: u32 = 3u;
+const HOVERED: u32 = 4u;
+const SELECTED: u32 = 8u;
+const REACHABLE: u32 = 16u;
 
 fn triplanar(t: texture_2d<f32>, s: sampler, p: vec3<f32>, n: vec3<f32>) -> vec4<f32> {
     var w = abs(n);
@@ -94,12 +113,16 @@ fn albedo(p: vec3<f32>, n: vec3<f32>) -> vec4<f32> {
     return color;
 }
 
-// Axial coordinates of the hex under a world position, and the distance to its border.
-fn hex_at(p: vec2<f32>) -> vec3<f32> {
+fn pointy() -> bool {
+    return (params.flags & FLAG_POINTY) != 0u;
+}
+
+// Axial coordinates of the hex under a world position.
+fn hex_at(p: vec2<f32>) -> vec2<i32> {
     let s = params.hex_size;
     var q: f32;
     var r: f32;
-    if (params.flags & FLAG_POINTY) != 0u {
+    if pointy() {
         q = (SQRT3 / 3.0 * p.x - p.y / 3.0) / s;
         r = (2.0 / 3.0 * p.y) / s;
     } else {
@@ -114,19 +137,147 @@ fn hex_at(p: vec2<f32>) -> vec3<f32> {
     } else if diff.y > diff.z {
         rc.y = -rc.x - rc.z;
     }
-    // Center of that hex and the distance from it along the three edge normals.
-    var center: vec2<f32>;
-    var normals: array<vec2<f32>, 3>;
-    if (params.flags & FLAG_POINTY) != 0u {
-        center = s * vec2<f32>(SQRT3 * rc.x + SQRT3 / 2.0 * rc.y, 1.5 * rc.y);
-        normals = array<vec2<f32>, 3>(vec2<f32>(1.0, 0.0), vec2<f32>(0.5, SQRT3 / 2.0), vec2<f32>(-0.5, SQRT3 / 2.0));
-    } else {
-        center = s * vec2<f32>(1.5 * rc.x, SQRT3 / 2.0 * rc.x + SQRT3 * rc.y);
-        normals = array<vec2<f32>, 3>(vec2<f32>(0.0, 1.0), vec2<f32>(SQRT3 / 2.0, 0.5), vec2<f32>(SQRT3 / 2.0, -0.5));
+    return vec2<i32>(i32(rc.x), i32(rc.y));
+}
+
+// World (x, z) center of a hex.
+fn hex_center(h: vec2<i32>) -> vec2<f32> {
+    let f = vec2<f32>(h);
+    if pointy() {
+        return params.hex_size * vec2<f32>(SQRT3 * f.x + SQRT3 / 2.0 * f.y, 1.5 * f.y);
     }
-    let d = p - center;
-    let reach = max(max(abs(dot(d, normals[0])), abs(dot(d, normals[1]))), abs(dot(d, normals[2])));
-    return vec3<f32>(rc.x, rc.y, s * SQRT3 / 2.0 - reach);
+    return params.hex_size * vec2<f32>(1.5 * f.x, SQRT3 / 2.0 * f.x + SQRT3 * f.y);
+}
+
+// The six axial neighbor steps.
+const NEIGHBORS = array<vec2<i32>, 6>(
+    vec2<i32>(1, 0), vec2<i32>(1, -1), vec2<i32>(0, -1), vec2<i32>(-1, 0), vec2<i32>(-1, 1), vec2<i32>(0, 1),
+);
+
+// Distance from a point to the edge of its hex `h` that faces neighbor step `d`.
+fn edge_distance(p: vec2<f32>, h: vec2<i32>, d: vec2<i32>) -> f32 {
+    let c = hex_center(h);
+    let towards = normalize(hex_center(h + d) - c);
+    return params.hex_size * SQRT3 / 2.0 - dot(p - c, towards);
+}
+
+// The tile state texel of a hex (zero, the default state, outside the texture's window). Offset
+// coordinates are hexx's odd mode, as the core's.
+fn tile_texel(h: vec2<i32>) -> vec4<u32> {
+    var oc: vec2<i32>;
+    if pointy() {
+        oc = vec2<i32>(h.x + (h.y - (h.y & 1)) / 2, h.y);
+    } else {
+        oc = vec2<i32>(h.x, h.y + (h.x - (h.x & 1)) / 2);
+    }
+    let w = params.tile_window;
+    let local = oc - w.xy;
+    if any(local < vec2<i32>(0)) || any(local >= w.zw) {
+        return vec4<u32>(0u);
+    }
+    let t = ((oc % w.zw) + w.zw) % w.zw;
+    return textureLoad(tile_state, t, 0);
+}
+
+fn overlay_of(texel: vec4<u32>) -> vec4<f32> {
+    return vec4<f32>(
+        f32(texel.z & 255u), f32(texel.z >> 8u), f32(texel.w & 255u), f32(texel.w >> 8u),
+    ) / 255.0;
+}
+
+fn srgb_to_linear(c: vec3<f32>) -> vec3<f32> {
+    return select(pow((c + 0.055) / 1.055, vec3<f32>(2.4)), c / 12.92, c <= vec3<f32>(0.04045));
+}
+
+fn tint(color: vec4<f32>, t: vec4<f32>) -> vec4<f32> {
+    return vec4<f32>(mix(color.rgb, t.rgb, t.a), color.a);
+}
+
+// What the per-tile state does to a fragment: albedo tints before lighting, and after lighting
+// the border (color, strength) and the fog (explored and visible weights, blended across
+// borders).
+struct TileLook {
+    albedo: vec4<f32>,
+    border: vec4<f32>,
+    explored: f32,
+    visible: f32,
+    outline: f32,
+}
+
+fn tile_look(p: vec2<f32>, albedo: vec4<f32>) -> TileLook {
+    var look: TileLook;
+    let h = hex_at(p);
+    let texel = tile_texel(h);
+    let owner = texel.y;
+    var color = albedo;
+    if owner != 0u && (params.flags & FLAG_TERRITORY_TINT) != 0u {
+        color = tint(color, vec4<f32>(owners.colors[owner - 1u].rgb, params.tint_strength));
+    }
+    let overlay = overlay_of(texel);
+    if (params.flags & FLAG_LENS) != 0u && overlay.a > 0.0 {
+        color = tint(color, vec4<f32>(srgb_to_linear(overlay.rgb), overlay.a));
+    }
+    if (texel.x & REACHABLE) != 0u { color = tint(color, params.reachable_color); }
+    if (texel.x & SELECTED) != 0u { color = tint(color, params.selected_color); }
+    if (texel.x & HOVERED) != 0u { color = tint(color, params.hover_color); }
+    look.albedo = color;
+
+    // Fog weights: own tile 1, each neighbor from 1 at the shared edge to 0 at `fog_softness`
+    // inside, so both sides of an edge (and the three tiles at a corner) agree.
+    let fog = texel.x & FOG_MASK;
+    var explored = f32(fog >= 1u);
+    var visible = f32(fog == 2u);
+    var total = 1.0;
+    let radius = params.hex_size;
+    let soft = max(params.fog_softness * radius, 1e-4);
+    let band = vec2<f32>(params.border_inset, params.border_inset + params.border_width) * radius;
+    var border = 0.0;
+    var nearest = radius;
+    for (var i = 0; i < 6; i++) {
+        let d = edge_distance(p, h, NEIGHBORS[i]);
+        nearest = min(nearest, d);
+        let near_fog = d < soft;
+        let near_border = owner != 0u && d < band.y;
+        if !(near_fog || near_border) {
+            continue;
+        }
+        let n = tile_texel(h + NEIGHBORS[i]);
+        if near_fog {
+            let k = 1.0 - smoothstep(0.0, soft, d);
+            let nf = n.x & FOG_MASK;
+            explored += k * f32(nf >= 1u);
+            visible += k * f32(nf == 2u);
+            total += k;
+        }
+        if near_border && n.y != owner {
+            // Antialiased edges of the band, a hundredth of the radius wide.
+            let aa = 0.01 * radius;
+            border = max(border, smoothstep(band.x - aa, band.x + aa, d) * (1.0 - smoothstep(band.y - aa, band.y + aa, d)));
+        }
+    }
+    look.explored = explored / total;
+    look.visible = visible / total;
+    if (params.flags & FLAG_FOG) == 0u {
+        look.explored = 1.0;
+        look.visible = 1.0;
+    }
+    if (params.flags & FLAG_BORDERS) != 0u && owner != 0u {
+        look.border = vec4<f32>(owners.colors[owner - 1u].rgb, 0.95 * border);
+    }
+    if (params.flags & FLAG_OUTLINES) != 0u && nearest < params.outline_width {
+        look.outline = params.outline_color.a;
+    }
+    return look;
+}
+
+// Fog of war over a finished color: desaturated and darker where explored, the unexplored color
+// (with a faint low-frequency mottle, no terrain detail) where never seen.
+fn apply_fog(color: vec3<f32>, look: TileLook, p: vec2<f32>) -> vec3<f32> {
+    let grey = vec3<f32>(dot(color, vec3<f32>(0.2126, 0.7152, 0.0722)));
+    let remembered = mix(grey, color, 0.25) * 0.6;
+    let seen = mix(remembered, color, look.visible);
+    let mottle = 0.85 + 0.15 * sin(p.x * 0.37 + sin(p.y * 0.23)) * sin(p.y * 0.31 + sin(p.x * 0.19));
+    return mix(params.unexplored_color.rgb * mottle, seen, look.explored);
 }
 
 @fragment
@@ -160,21 +311,8 @@ fn fragment(in: VertexOutput, @builtin(front_facing) is_front: bool) -> Fragment
     }
 #endif
 
-    let hex = hex_at(p.xz);
-    let tile = vec2<i32>(i32(hex.x), i32(hex.y));
-    for (var i = 0u; i < params.highlight_count; i++) {
-        if all(highlights.tiles[i].xy == tile) {
-            color = vec4<f32>(mix(color.rgb, params.highlight_color.rgb, params.highlight_color.a), color.a);
-        }
-    }
-    if (params.flags & FLAG_HOVERED) != 0u && all(params.hovered.xy == tile) {
-        color = vec4<f32>(mix(color.rgb, params.hover_color.rgb, params.hover_color.a), color.a);
-    }
-    // Outlines go over the lit color, so lighting and specular never wash them out.
-    var outline = 0.0;
-    if (params.flags & FLAG_OUTLINES) != 0u && hex.z < params.outline_width {
-        outline = params.outline_color.a;
-    }
+    let look = tile_look(p.xz, color);
+    color = look.albedo;
 
 #ifdef VERTEX_COLORS
     // The standard path put the vertex color (water in alpha) in the base color: replace it.
@@ -184,17 +322,21 @@ fn fragment(in: VertexOutput, @builtin(front_facing) is_front: bool) -> Fragment
 #endif
     pbr_input.material.base_color = alpha_discard(pbr_input.material, pbr_input.material.base_color);
 
+    // Borders and outlines go over the lit color, so lighting and specular never wash them out;
+    // fog goes over everything.
 #ifdef PREPASS_PIPELINE
-    // Deferred: the outline goes into the albedo (lighting comes later, in the deferred pass).
-    pbr_input.material.base_color = vec4<f32>(
-        mix(pbr_input.material.base_color.rgb, params.outline_color.rgb, outline),
-        pbr_input.material.base_color.a,
-    );
+    // Deferred: everything goes into the albedo (lighting comes later, in the deferred pass).
+    var base = pbr_input.material.base_color.rgb;
+    base = mix(base, look.border.rgb, look.border.a);
+    base = mix(base, params.outline_color.rgb, look.outline);
+    pbr_input.material.base_color = vec4<f32>(apply_fog(base, look, p.xz), pbr_input.material.base_color.a);
     let out = deferred_output(in, pbr_input);
 #else
     var out: FragmentOutput;
     out.color = apply_pbr_lighting(pbr_input);
-    out.color = vec4<f32>(mix(out.color.rgb, params.outline_color.rgb, outline), out.color.a);
+    var lit = mix(out.color.rgb, look.border.rgb, look.border.a);
+    lit = mix(lit, params.outline_color.rgb, look.outline);
+    out.color = vec4<f32>(apply_fog(lit, look, p.xz), out.color.a);
     out.color = main_pass_post_lighting_processing(pbr_input, out.color);
 #endif
     return out;

@@ -2,23 +2,35 @@
 //! edge), zoom (wheel), rotate (Q/E); hover a tile to see it; click a unit to select it and see
 //! where it can go this turn; click a tile to walk there along an A* path (land costs 1,
 //! mountain 3, fording a river 1 more, sea and lakes are impassable); End Turn (button or Enter)
-//! restores movement. G toggles tile outlines, R regenerates with a new seed, 1-5 switch presets,
-//! F3 shows chunk boundaries.
+//! restores movement. G toggles tile outlines, L the movement-cost lens, T the territory tint,
+//! V the fog of war, R regenerates with a new seed, 1-5 switch presets, F3 shows chunk
+//! boundaries.
 //!
-//! `HEXTERRAIN_SCRIPT=1` plays a scripted turn (select, move, end turn), checks the game state
-//! and exits 0 (1 on a failed check); with `HEXTERRAIN_SCREENSHOT=out.png` it saves a picture
-//! first. Without the script, `HEXTERRAIN_SCREENSHOT` takes a picture after some frames.
+//! Two players: yours (red) and a rival (blue), each with territory around its units that grows
+//! at the end of each turn. Fog of war shows what your units see (mountains block the view, hills
+//! and mountains see farther); rival units out of sight are hidden. All of it is per-tile state
+//! ([`TileStates`]) the terrain shader draws: no mesh is rebuilt.
+//!
+//! `HEXTERRAIN_SCRIPT=1` plays a scripted turn (select, move, end turn), checks the game state,
+//! fog and territory, and exits 0 (1 on a failed check); with `HEXTERRAIN_SCREENSHOT=out.png` it
+//! saves a picture first. Without the script, `HEXTERRAIN_SCREENSHOT` takes a picture after some
+//! frames.
+
+mod script;
+mod vision;
 
 use std::cmp::Reverse;
 use std::collections::{BinaryHeap, HashMap, HashSet};
 
 use bevy::input::mouse::AccumulatedMouseScroll;
 use bevy::prelude::*;
-use bevy::render::view::screenshot::{Screenshot, ScreenshotCaptured};
 use hex_terrain_game::prelude::*;
 use hexx::algorithms::a_star;
 
-const MOVES: u32 = 4;
+/// Moves a unit has each turn.
+pub(crate) const MOVES: u32 = 4;
+/// Distance from the human player's units to the rival's.
+const RIVAL_DISTANCE: u32 = 9;
 const PRESETS: [&str; 5] = [
     "maps/world.map.ron",
     "maps/island.map.ron",
@@ -39,20 +51,22 @@ struct Rig {
 }
 
 #[derive(Component)]
-struct Unit {
-    tile: Hex,
-    moves_left: u32,
+pub(crate) struct Unit {
+    /// [`vision::HUMAN`] or [`vision::RIVAL`].
+    pub(crate) player: u8,
+    pub(crate) tile: Hex,
+    pub(crate) moves_left: u32,
     /// World positions still to walk through.
-    path: Vec<Vec3>,
+    pub(crate) path: Vec<Vec3>,
 }
 
 #[derive(Resource, Default)]
-struct Game {
-    turn: u32,
-    selected: Option<Entity>,
-    hovered: Option<Hex>,
-    reachable: HashSet<Hex>,
-    spawned: bool,
+pub(crate) struct Game {
+    pub(crate) turn: u32,
+    pub(crate) selected: Option<Entity>,
+    pub(crate) hovered: Option<Hex>,
+    pub(crate) reachable: HashSet<Hex>,
+    pub(crate) spawned: bool,
     show_chunks: bool,
 }
 
@@ -66,7 +80,7 @@ fn main() -> AppExit {
     let scripted = std::env::var_os("HEXTERRAIN_SCRIPT").is_some();
     let mut app = App::new();
     app.add_plugins((DefaultPlugins, HexTerrainPlugin::from_asset(PRESETS[0])))
-        .insert_resource(TerrainAppearance { outlines: true, outline_width: 0.04, ..default() })
+        .insert_resource(TerrainAppearance { outlines: true, outline_width: 0.04, fog_of_war: true, ..default() })
         .insert_resource(Game { turn: 1, ..default() })
         .add_systems(Startup, setup)
         .add_systems(
@@ -77,13 +91,17 @@ fn main() -> AppExit {
                 place_units,
                 (click, end_turn, keys).after(hover),
                 walk,
-                highlight,
                 panel,
                 chunk_boundaries,
             ),
+        )
+        .add_systems(
+            Update,
+            (vision::update_fog, vision::highlight, vision::paint_lens).after(HexTerrainSystems::Render).after(walk),
         );
     if scripted {
-        app.init_resource::<Script>().add_systems(PreUpdate, script.after(bevy::input::InputSystems));
+        app.init_resource::<script::Script>()
+            .add_systems(PreUpdate, script::script.after(bevy::input::InputSystems));
     } else {
         app.add_plugins(hex_terrain_game::screenshot::ScreenshotModePlugin);
     }
@@ -112,7 +130,10 @@ fn setup(mut commands: Commands) {
         Node { position_type: PositionType::Absolute, top: px(10.0), left: px(10.0), ..default() },
     ));
     commands.spawn((
-        Text::new("WASD/arrows/edge pan, wheel zoom, Q/E rotate, click unit then tile, Enter end turn, G outlines, R new seed, 1-5 presets, F3 chunks"),
+        Text::new(
+            "WASD/arrows/edge pan, wheel zoom, Q/E rotate, click unit then tile, Enter end turn, G outlines, \
+             L lens, T tint, V fog, R new seed, 1-5 presets, F3 chunks",
+        ),
         TextFont::from_font_size(13.0),
         Node { position_type: PositionType::Absolute, bottom: px(8.0), left: px(10.0), ..default() },
     ));
@@ -203,7 +224,7 @@ fn hover(
     cameras: Query<(&Camera, &GlobalTransform)>,
     map: Res<HexMap>,
     mut game: ResMut<Game>,
-    script: Option<Res<Script>>,
+    script: Option<Res<script::Script>>,
 ) {
     // A scripted run points at tiles itself.
     if script.is_some() {
@@ -217,7 +238,7 @@ fn hover(
 
 /// Movement cost of entering a tile: land 1, mountain 3; sea, lakes and outside the map
 /// impassable.
-fn cost(map: &HexMap, tile: Hex) -> Option<u32> {
+pub(crate) fn cost(map: &HexMap, tile: Hex) -> Option<u32> {
     if !map.contains(tile) || map.lake(tile).is_some() {
         return None;
     }
@@ -231,14 +252,14 @@ fn cost(map: &HexMap, tile: Hex) -> Option<u32> {
 /// Cost of the step from `a` to its neighbor `b`: entering `b`, plus 1 for fording a river, that
 /// is entering a river tile from a tile its river does not come from or go to (walking along a
 /// river costs nothing more).
-fn step_cost(map: &HexMap, a: Hex, b: Hex) -> Option<u32> {
+pub(crate) fn step_cost(map: &HexMap, a: Hex, b: Hex) -> Option<u32> {
     let enter = cost(map, b)?;
     let ford = map.river(b).is_some_and(|r| r.downstream != Some(a) && !r.upstream.contains(&a));
     Some(enter + u32::from(ford))
 }
 
 /// What a path costs, step by step.
-fn path_cost(map: &HexMap, path: &[Hex]) -> u32 {
+pub(crate) fn path_cost(map: &HexMap, path: &[Hex]) -> u32 {
     path.windows(2).filter_map(|w| step_cost(map, w[0], w[1])).sum()
 }
 
@@ -267,14 +288,17 @@ fn reachable(map: &HexMap, start: Hex, budget: u32, blocked: &HashSet<Hex>) -> H
     best.into_keys().filter(|&t| t != start).collect()
 }
 
-/// Puts three units on land near the camera once the terrain exists, and back on the surface
-/// (on land) after a regeneration.
+/// Puts three units of yours on land near the camera and two rival units [`RIVAL_DISTANCE`]
+/// tiles away once the terrain exists, each player claiming territory around its units; after a
+/// regeneration, puts every unit back on land and claims again (another map starts with no
+/// territory).
 #[expect(clippy::too_many_arguments, reason = "a system's parameters")]
 fn place_units(
     mut commands: Commands,
     mut ready: MessageReader<TerrainReady>,
     map: Res<HexMap>,
     mut game: ResMut<Game>,
+    mut states: ResMut<TileStates>,
     rigs: Query<&Rig>,
     mut units: Query<(Entity, &mut Unit, &mut Transform)>,
     mut meshes: ResMut<Assets<Mesh>>,
@@ -296,6 +320,7 @@ fn place_units(
                 unit.path.clear();
                 taken.push(tile);
                 t.translation = map.tile_center(tile) + Vec3::Y * 0.6;
+                vision::claim(&map, &mut states, unit.player, tile, vision::HOME_RADIUS - 1);
             }
         }
         // The selected unit's reach follows the new terrain.
@@ -303,16 +328,25 @@ fn place_units(
         return;
     }
     let mesh = meshes.add(Capsule3d::new(0.3, 0.6));
-    let colors = [Color::srgb(0.85, 0.2, 0.15), Color::srgb(0.9, 0.75, 0.1), Color::srgb(0.6, 0.2, 0.8)];
-    for color in colors {
-        let Some(tile) = land_near(map.tile_at(focus), &taken) else { break };
-        taken.push(tile);
-        commands.spawn((
-            Unit { tile, moves_left: MOVES, path: Vec::new() },
-            Mesh3d(mesh.clone()),
-            MeshMaterial3d(materials.add(color)),
-            Transform::from_translation(map.tile_center(tile) + Vec3::Y * 0.6),
-        ));
+    let home = map.tile_at(focus);
+    // The rival starts on the first land tile of the ring at RIVAL_DISTANCE, searching from the
+    // east.
+    let rival_home = home.ring(RIVAL_DISTANCE).find(|&t| cost(&map, t) == Some(1)).unwrap_or(home);
+    let human = [Color::srgb(0.85, 0.2, 0.15), Color::srgb(0.9, 0.75, 0.1), Color::srgb(0.95, 0.45, 0.1)];
+    let rival = [Color::srgb(0.15, 0.35, 0.9), Color::srgb(0.2, 0.7, 0.85)];
+    for (player, near, colors) in [(vision::HUMAN, home, &human[..]), (vision::RIVAL, rival_home, &rival[..])] {
+        for (i, &color) in colors.iter().enumerate() {
+            let Some(tile) = land_near(near, &taken) else { break };
+            taken.push(tile);
+            let radius = if i == 0 { vision::HOME_RADIUS } else { vision::HOME_RADIUS - 1 };
+            vision::claim(&map, &mut states, player, tile, radius);
+            commands.spawn((
+                Unit { player, tile, moves_left: MOVES, path: Vec::new() },
+                Mesh3d(mesh.clone()),
+                MeshMaterial3d(materials.add(color)),
+                Transform::from_translation(map.tile_center(tile) + Vec3::Y * 0.6),
+            ));
+        }
     }
     game.spawned = true;
 }
@@ -328,7 +362,7 @@ fn click(
     }
     let Some(tile) = game.hovered else { return };
     let occupied: HashSet<Hex> = units.iter().map(|(_, u)| u.tile).collect();
-    if let Some((e, _)) = units.iter().find(|(_, u)| u.tile == tile) {
+    if let Some((e, _)) = units.iter().find(|(_, u)| u.tile == tile && u.player == vision::HUMAN) {
         game.selected = Some(e);
     } else if let Some(e) = game.selected
         && let Ok((_, mut unit)) = units.get_mut(e)
@@ -364,6 +398,7 @@ fn end_turn(
     buttons: Query<&Interaction, (Changed<Interaction>, With<EndTurnButton>)>,
     map: Res<HexMap>,
     mut game: ResMut<Game>,
+    mut states: ResMut<TileStates>,
     mut units: Query<(Entity, &mut Unit)>,
 ) {
     let pressed = buttons.iter().any(|i| *i == Interaction::Pressed);
@@ -371,6 +406,7 @@ fn end_turn(
         return;
     }
     game.turn += 1;
+    vision::grow_territory(&map, &mut states, &units);
     for (_, mut unit) in &mut units {
         unit.moves_left = MOVES;
     }
@@ -386,6 +422,15 @@ fn keys(
 ) {
     if keys.just_pressed(KeyCode::KeyG) {
         appearance.outlines = !appearance.outlines;
+    }
+    if keys.just_pressed(KeyCode::KeyL) {
+        appearance.lens = !appearance.lens;
+    }
+    if keys.just_pressed(KeyCode::KeyT) {
+        appearance.territory_tint = !appearance.territory_tint;
+    }
+    if keys.just_pressed(KeyCode::KeyV) {
+        appearance.fog_of_war = !appearance.fog_of_war;
     }
     if keys.just_pressed(KeyCode::F3) {
         game.show_chunks = !game.show_chunks;
@@ -419,19 +464,25 @@ fn walk(time: Res<Time>, map: Res<HexMap>, mut units: Query<(&mut Unit, &mut Tra
     }
 }
 
-fn highlight(game: Res<Game>, mut highlights: ResMut<TileHighlights>) {
-    if !game.is_changed() {
-        return;
-    }
-    highlights.hovered = game.hovered;
-    let mut tiles: Vec<Hex> = game.reachable.iter().copied().collect();
-    tiles.sort_unstable_by_key(|h| (h.x, h.y));
-    highlights.selected = tiles;
-}
-
-fn panel(game: Res<Game>, map: Res<HexMap>, units: Query<&Unit>, mut text: Query<&mut Text, With<Panel>>) {
+fn panel(
+    game: Res<Game>,
+    map: Res<HexMap>,
+    states: Res<TileStates>,
+    appearance: Res<TerrainAppearance>,
+    units: Query<&Unit>,
+    mut text: Query<&mut Text, With<Panel>>,
+) {
     let mut s = format!("Turn {}", game.turn);
-    if let Some(tile) = game.hovered {
+    if appearance.lens {
+        s += "   Lens: movement cost (green 1, orange 3, red impassable)";
+    }
+    if let Some(tile) = game.hovered.filter(|&t| !appearance.fog_of_war || states.visibility(t) != FogState::Unexplored) {
+        let owner = match states.owner(tile) {
+            Some(vision::HUMAN) => "yours",
+            Some(_) => "rival's",
+            None => "nobody's",
+        };
+        s += &format!("\nTerritory: {owner}");
         let info = map.tile_info(tile);
         s += &format!(
             "\nTile ({}, {})  {} ({})  elevation {:.2}",
@@ -478,142 +529,5 @@ fn chunk_boundaries(game: Res<Game>, map: Res<HexMap>, streamer: Res<ChunkStream
         for k in 0..4 {
             gizmos.line(corners[k], corners[(k + 1) % 4], Color::srgb(1.0, 0.3, 0.1));
         }
-    }
-}
-
-/// A scripted turn for tests: select a unit, move it, end the turn, check the state.
-#[derive(Resource, Default)]
-struct Script {
-    frame: u32,
-    step: u32,
-    generation: u64,
-    target: Option<Hex>,
-    start: Option<Hex>,
-    expected_cost: u32,
-}
-
-#[expect(clippy::too_many_arguments, reason = "a system's parameters")]
-fn script(
-    mut commands: Commands,
-    mut s: ResMut<Script>,
-    appearance: Res<TerrainAppearance>,
-    mut game: ResMut<Game>,
-    map: Res<HexMap>,
-    units: Query<(Entity, &Unit, &Transform)>,
-    mut mouse: ResMut<ButtonInput<MouseButton>>,
-    mut keys: ResMut<ButtonInput<KeyCode>>,
-    mut exit: MessageWriter<AppExit>,
-) {
-    s.frame += 1;
-    mouse.release(MouseButton::Left);
-    for key in [KeyCode::Enter, KeyCode::KeyG, KeyCode::KeyR] {
-        keys.release(key);
-    }
-    let fail = |msg: String, exit: &mut MessageWriter<AppExit>| {
-        eprintln!("SCRIPT FAILED: {msg}");
-        exit.write(AppExit::error());
-    };
-    if s.frame > 6000 {
-        fail(format!("stuck at step {}", s.step), &mut exit);
-        return;
-    }
-    match s.step {
-        // Wait for the units, then click the first one.
-        0 if game.spawned && units.iter().count() == 3 => {
-            let Some((_, unit, _)) = units.iter().next() else { return };
-            s.start = Some(unit.tile);
-            game.hovered = Some(unit.tile);
-            mouse.press(MouseButton::Left);
-            s.step = 1;
-        }
-        // Selected: pick the reachable tile farthest along (cost > 1 if any) and click it.
-        1 if game.selected.is_some() => {
-            if game.reachable.is_empty() {
-                fail("the selected unit can go nowhere".into(), &mut exit);
-                return;
-            }
-            let start = s.start.unwrap_or_default();
-            let mut options: Vec<Hex> = game.reachable.iter().copied().collect();
-            options.sort_unstable_by_key(|h| (std::cmp::Reverse(h.unsigned_distance_to(start)), h.x, h.y));
-            let target = options[0];
-            let path = a_star(start, target, |a, b| step_cost(&map, a, b)).unwrap_or_default();
-            s.expected_cost = path_cost(&map, &path);
-            s.target = Some(target);
-            game.hovered = Some(target);
-            mouse.press(MouseButton::Left);
-            s.step = 2;
-        }
-        // Wait for the walk to end, check, then end the turn.
-        2 => {
-            let Some((_, unit, t)) = units.iter().find(|(_, u, _)| Some(u.tile) == s.target) else { return };
-            if !unit.path.is_empty() {
-                return;
-            }
-            let Some(target) = s.target else { return };
-            if unit.moves_left != MOVES - s.expected_cost {
-                fail(format!("moves left {} after spending {}", unit.moves_left, s.expected_cost), &mut exit);
-                return;
-            }
-            let ground = map.tile_center(target).y + 0.6;
-            if (t.translation.y - ground).abs() > 0.05 {
-                fail(format!("unit at height {} instead of {ground}", t.translation.y), &mut exit);
-                return;
-            }
-            keys.press(KeyCode::Enter);
-            s.step = 3;
-        }
-        3 if game.turn == 2 => {
-            if units.iter().any(|(_, u, _)| u.moves_left != MOVES) {
-                fail("movement points were not restored".into(), &mut exit);
-                return;
-            }
-            // Outlines off, and a new seed.
-            s.generation = map.generation();
-            keys.press(KeyCode::KeyG);
-            keys.press(KeyCode::KeyR);
-            s.step = 4;
-        }
-        // After the regeneration every unit stands on land, on the new surface.
-        4 if map.generation() > s.generation && s.frame.is_multiple_of(10) => {
-            if appearance.outlines {
-                fail("G did not toggle the outlines".into(), &mut exit);
-                return;
-            }
-            let settled = units.iter().all(|(_, u, t)| {
-                cost(&map, u.tile).is_some() && (t.translation.y - (map.tile_center(u.tile).y + 0.6)).abs() < 0.05
-            });
-            if !settled {
-                return;
-            }
-            if let Some(&t) = game.reachable.iter().find(|&&t| cost(&map, t).is_none()) {
-                fail(format!("tile {t:?} is shown reachable but impassable on the new map"), &mut exit);
-                return;
-            }
-            s.step = 5;
-        }
-        5 => {
-            println!(
-                "SCRIPT OK: unit moved {:?} -> {:?} for {} moves; turn {}; outlines off; regenerated, units on land",
-                s.start, s.target, s.expected_cost, game.turn
-            );
-            match std::env::var_os("HEXTERRAIN_SCREENSHOT") {
-                Some(path) => {
-                    commands.spawn(Screenshot::primary_window()).observe(
-                        move |shot: On<ScreenshotCaptured>, mut exit: MessageWriter<AppExit>| {
-                            if let Ok(img) = shot.image.clone().try_into_dynamic() {
-                                let _ = img.to_rgb8().save(&path);
-                            }
-                            exit.write(AppExit::Success);
-                        },
-                    );
-                    s.step = 6;
-                }
-                None => {
-                    exit.write(AppExit::Success);
-                    s.step = 6;
-                }
-            }
-        }
-        _ => {}
     }
 }

@@ -1,0 +1,162 @@
+//! Per-tile game state drawn by the terrain material: fog of war, territory, lens overlays and
+//! highlights. The game writes [`TileStates`]; [`HexTileStatePlugin`] keeps its GPU window on
+//! the map and around the loaded chunks and, after `Update`, packs the changed rows into
+//! [`TileStateUpload`], which the material plugin copies into the texture the shader reads
+//! (`material/tile_texture.rs`). No mesh is touched.
+
+mod state;
+mod window;
+
+#[cfg(test)]
+mod tests;
+
+use bevy::prelude::*;
+
+pub use state::{FogState, Highlight, MAX_OWNERS, TileStateError, TileStates};
+pub use window::{TEXEL_BYTES, Texel, TileStateUpload};
+
+use crate::{ChunkStreamer, HexMap, HexTerrainSystems};
+
+/// Parameters of the tile state store.
+#[derive(Resource, Debug, Clone, Reflect)]
+#[reflect(Resource)]
+pub struct TileStateSettings {
+    /// Largest window of tiles the GPU texture holds (8 bytes a tile). A bounded map that fits
+    /// is held whole; a larger or unbounded map gets a window of this size that follows the
+    /// loaded chunks, which must fit in it (tiles outside draw as unexplored and plain). Sides
+    /// are clamped to `1..=4096`.
+    pub max_window: UVec2,
+}
+
+impl Default for TileStateSettings {
+    fn default() -> Self {
+        Self { max_window: UVec2::splat(512) }
+    }
+}
+
+/// Figures of the tile state uploads.
+#[derive(Resource, Debug, Clone, Default, Reflect)]
+#[reflect(Resource)]
+pub struct TileStateStats {
+    /// Bytes packed for the GPU in the last frame (0 when nothing changed).
+    pub last_upload_bytes: usize,
+    /// Bytes packed since the start.
+    pub total_upload_bytes: u64,
+    /// Frames that uploaded anything.
+    pub uploads: u64,
+    /// Times the window moved or was resized.
+    pub window_moves: u64,
+}
+
+/// [`TileStates`], [`TileStateSettings`], [`TileStateStats`] and [`TileStateUpload`], with the
+/// systems keeping the window on the map ([`HexTerrainSystems::Tiles`]) and packing the
+/// changes (`PostUpdate`). Works headless; the material plugin draws it.
+#[derive(Debug, Clone, Default)]
+pub struct HexTileStatePlugin {
+    /// Store parameters (the [`TileStateSettings`] resource).
+    pub settings: TileStateSettings,
+}
+
+impl Plugin for HexTileStatePlugin {
+    fn build(&self, app: &mut App) {
+        if !app.is_plugin_added::<crate::HexMapPlugin>() {
+            panic!("HexTileStatePlugin needs HexMapPlugin: add HexTerrainPlugins (or HexMapPlugin before it)");
+        }
+        app.insert_resource(self.settings.clone())
+            .init_resource::<TileStates>()
+            .init_resource::<TileStateStats>()
+            .init_resource::<TileStateUpload>()
+            .register_type::<TileStates>()
+            .register_type::<TileStateSettings>()
+            .register_type::<TileStateStats>()
+            .register_type::<TileStateUpload>()
+            .register_type::<FogState>()
+            .register_type::<Highlight>()
+            .add_systems(Update, (follow_map, follow_chunks).chain().in_set(HexTerrainSystems::Tiles))
+            .add_systems(PostUpdate, pack_upload);
+    }
+}
+
+/// Follows the map: a hot reload keeps the state of tiles still on the map, another map clears
+/// it.
+fn follow_map(map: Res<HexMap>, mut states: ResMut<TileStates>, mut shown: Local<Option<u64>>) {
+    if !map.is_changed() && shown.is_some() {
+        return;
+    }
+    let keep = shown.is_none_or(|id| id == map.map_id());
+    *shown = Some(map.map_id());
+    let terrain = map.terrain();
+    states.set_map(terrain.bounds(), terrain.layout().orientation, keep);
+}
+
+/// Places the window: the whole map when it fits, else around the loaded chunks, moving only
+/// when they leave it.
+fn follow_chunks(
+    map: Res<HexMap>,
+    settings: Res<TileStateSettings>,
+    streamer: Option<Res<ChunkStreamer>>,
+    mut states: ResMut<TileStates>,
+    mut stats: ResMut<TileStateStats>,
+    mut warned: Local<bool>,
+) {
+    let terrain = map.terrain();
+    let max = settings.max_window.clamp(UVec2::ONE, UVec2::splat(4096));
+    let bounds = terrain.bounds().map(|b| IRect::new(b.min[0], b.min[1], b.max[0], b.max[1]));
+    let size = bounds.map_or(max, |b| b.size().as_uvec2().max(UVec2::ONE).min(max));
+    let (origin, current) = states.window();
+    let mut want = origin;
+    if let Some(b) = bounds.filter(|b| b.size().as_uvec2() == size) {
+        want = b.min;
+    } else {
+        // The loaded chunks' tiles (or the wanted ones before any loaded).
+        let mut area: Option<IRect> = None;
+        if let Some(streamer) = &streamer {
+            let chunks = streamer.loaded_chunks().chain(streamer.wanted().map(|(c, _)| c));
+            for chunk in chunks {
+                let r = chunk.rect(terrain.chunk_size());
+                let r = IRect::new(r.min[0], r.min[1], r.max[0], r.max[1]);
+                area = Some(area.map_or(r, |a| a.union(r)));
+            }
+        }
+        let area = area.unwrap_or_else(|| IRect::from_center_size(IVec2::ZERO, IVec2::ONE));
+        if (area.width() as u32 > size.x || area.height() as u32 > size.y) && !*warned {
+            warn!(
+                "hex terrain: the loaded chunks span {}x{} tiles, more than the tile state window of {}x{} \
+                 (TileStateSettings::max_window): tiles outside it draw as unexplored",
+                area.width(),
+                area.height(),
+                size.x,
+                size.y
+            );
+            *warned = true;
+        }
+        let inside = |o: IVec2| {
+            let w = IRect::from_corners(o, o + size.as_ivec2());
+            w.contains(area.min) && w.contains(area.max - IVec2::ONE)
+        };
+        if current != size || !inside(origin) {
+            want = area.center() - size.as_ivec2() / 2;
+            if let Some(b) = bounds {
+                want = want.clamp(b.min, b.max - size.as_ivec2());
+            }
+        }
+    }
+    if want != origin || size != current {
+        states.refill_window(want, size);
+        stats.window_moves += 1;
+    }
+}
+
+/// Packs the rows changed this frame for the GPU; a frame without changes touches nothing.
+fn pack_upload(mut states: ResMut<TileStates>, mut upload: ResMut<TileStateUpload>, mut stats: ResMut<TileStateStats>) {
+    if !states.has_upload() {
+        if stats.last_upload_bytes != 0 {
+            stats.last_upload_bytes = 0;
+        }
+        return;
+    }
+    *upload = states.bypass_change_detection().take_upload();
+    stats.last_upload_bytes = upload.bytes();
+    stats.total_upload_bytes += upload.bytes() as u64;
+    stats.uploads += 1;
+}

@@ -1,0 +1,379 @@
+//! [`TileStates`]: per-tile game state (fog of war, owner, lens overlay, highlights) written by
+//! the game, kept for every tile on the CPU and mirrored into the window the GPU texture holds.
+
+use bevy::platform::collections::{HashMap, HashSet};
+use bevy::prelude::*;
+use hex_terrain::hexx::{Hex, HexOrientation};
+use hex_terrain::TileRect;
+use hex_terrain::terrain::OFFSET_MODE;
+
+use super::window::{TexelWindow, Texel, TileStateUpload};
+
+/// Highest owner id: owners are `1..=MAX_OWNERS` (Civilization VI's largest map has 12
+/// civilizations and 16 city-states).
+pub const MAX_OWNERS: u8 = 64;
+
+/// What a player knows of a tile.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, Reflect)]
+pub enum FogState {
+    /// Never seen: drawn dark, without terrain detail.
+    #[default]
+    Unexplored,
+    /// Seen before, not now: drawn desaturated.
+    Explored,
+    /// In sight: drawn in full color.
+    Visible,
+}
+
+/// A tile tint; a tile may carry several.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Reflect)]
+pub enum Highlight {
+    /// The tile under the cursor.
+    Hovered,
+    /// Selected tiles (a unit's tile, a city's).
+    Selected,
+    /// Tiles a unit can reach, or any other set the game shows.
+    Reachable,
+}
+
+impl Highlight {
+    /// Every highlight.
+    pub const ALL: [Self; 3] = [Self::Hovered, Self::Selected, Self::Reachable];
+
+    const fn bit(self) -> u16 {
+        match self {
+            Self::Hovered => 1 << 2,
+            Self::Selected => 1 << 3,
+            Self::Reachable => 1 << 4,
+        }
+    }
+}
+
+/// A write [`TileStates`] refused; the state is unchanged.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum TileStateError {
+    /// The tile is not on the (bounded) map.
+    #[error("tile ({}, {}) is outside the map: columns {}..{} and rows {}..{} (offset coordinates) are allowed, it is at column {} row {}", .tile.x, .tile.y, .bounds.min[0], .bounds.max[0], .bounds.min[1], .bounds.max[1], .offset[0], .offset[1])]
+    OutsideMap {
+        /// The tile.
+        tile: Hex,
+        /// Its offset coordinate.
+        offset: [i32; 2],
+        /// The map's tiles.
+        bounds: TileRect,
+    },
+    /// An owner id beyond [`MAX_OWNERS`].
+    #[error("owner {owner} is out of range: owners are 1..={MAX_OWNERS} (None for nobody)")]
+    OwnerOutOfRange {
+        /// The id given.
+        owner: u8,
+    },
+    /// An overlay color with a NaN or infinite component.
+    #[error("overlay color {color:?} is not finite: every component must be a number in 0..=1")]
+    OverlayNotFinite {
+        /// The color given.
+        color: [f32; 4],
+    },
+}
+
+/// Per-tile game state the terrain material draws without rebuilding a mesh: fog of war
+/// ([`FogState`]), territory ([`set_owner`](Self::set_owner)), a lens overlay color and any
+/// number of highlighted tiles.
+///
+/// Every tile's state is kept here, loaded or not (a chunk streamed out and back keeps it); the
+/// GPU holds a window of tiles around the loaded chunks (the whole map when it fits in
+/// [`TileStateSettings::max_window`]) and receives only the rows that changed, once a frame,
+/// after `Update`. The state is kept when the map file is hot-reloaded (tiles that fall off a
+/// resized map are dropped) and cleared when another map is loaded.
+///
+/// A write to a tile outside a bounded map, an owner beyond [`MAX_OWNERS`] or a non-finite
+/// overlay color is refused with a [`TileStateError`] and changes nothing.
+#[derive(Resource, Debug, Clone, Reflect)]
+#[reflect(Resource)]
+pub struct TileStates {
+    #[reflect(ignore)]
+    tiles: HashMap<Hex, Texel>,
+    #[reflect(ignore)]
+    highlighted: [HashSet<Hex>; 3],
+    #[reflect(ignore)]
+    bounds: Option<TileRect>,
+    #[reflect(ignore)]
+    orientation: HexOrientation,
+    #[reflect(ignore)]
+    window: TexelWindow,
+    writes: u64,
+}
+
+impl Default for TileStates {
+    fn default() -> Self {
+        Self {
+            tiles: HashMap::default(),
+            highlighted: Default::default(),
+            bounds: None,
+            orientation: HexOrientation::Flat,
+            window: TexelWindow::new(IVec2::ZERO, UVec2::ONE),
+            writes: 0,
+        }
+    }
+}
+
+const FOG_MASK: u16 = 0b11;
+
+impl TileStates {
+    /// What the player knows of a tile.
+    #[must_use]
+    pub fn visibility(&self, tile: Hex) -> FogState {
+        match self.texel(tile)[0] & FOG_MASK {
+            0 => FogState::Unexplored,
+            1 => FogState::Explored,
+            _ => FogState::Visible,
+        }
+    }
+
+    /// The owner of a tile (`1..=MAX_OWNERS`), if any.
+    #[must_use]
+    pub fn owner(&self, tile: Hex) -> Option<u8> {
+        let owner = self.texel(tile)[1] as u8;
+        (owner != 0).then_some(owner)
+    }
+
+    /// The overlay color of a tile, if any (drawn while the lens is on).
+    #[must_use]
+    pub fn overlay(&self, tile: Hex) -> Option<Color> {
+        let [_, _, rg, ba] = self.texel(tile);
+        (ba >> 8 != 0).then(|| Color::srgba_u8(rg as u8, (rg >> 8) as u8, ba as u8, (ba >> 8) as u8))
+    }
+
+    /// Whether a tile carries a highlight.
+    #[must_use]
+    pub fn is_highlighted(&self, tile: Hex, highlight: Highlight) -> bool {
+        self.texel(tile)[0] & highlight.bit() != 0
+    }
+
+    /// The tiles carrying a highlight.
+    pub fn highlighted(&self, highlight: Highlight) -> impl Iterator<Item = Hex> + '_ {
+        self.highlighted[highlight as usize].iter().copied()
+    }
+
+    /// Sets what the player knows of a tile.
+    ///
+    /// # Errors
+    /// [`TileStateError::OutsideMap`]; nothing changes.
+    pub fn set_visibility(&mut self, tile: Hex, fog: FogState) -> Result<(), TileStateError> {
+        self.check(tile)?;
+        self.update(tile, |t| t[0] = (t[0] & !FOG_MASK) | fog as u16);
+        Ok(())
+    }
+
+    /// Makes every visible tile explored (the start of a sight update: the game then marks what
+    /// its units see now as visible).
+    pub fn hide_visible(&mut self) {
+        let visible: Vec<Hex> =
+            self.tiles.iter().filter(|(_, t)| t[0] & FOG_MASK == FogState::Visible as u16).map(|(h, _)| *h).collect();
+        for tile in visible {
+            self.update(tile, |t| t[0] = (t[0] & !FOG_MASK) | FogState::Explored as u16);
+        }
+    }
+
+    /// Gives a tile to an owner (`1..=MAX_OWNERS`), or to nobody.
+    ///
+    /// # Errors
+    /// [`TileStateError::OutsideMap`], [`TileStateError::OwnerOutOfRange`]; nothing changes.
+    pub fn set_owner(&mut self, tile: Hex, owner: Option<u8>) -> Result<(), TileStateError> {
+        self.check(tile)?;
+        let owner = owner.unwrap_or(0);
+        if owner > MAX_OWNERS {
+            return Err(TileStateError::OwnerOutOfRange { owner });
+        }
+        self.update(tile, |t| t[1] = u16::from(owner));
+        Ok(())
+    }
+
+    /// Sets a tile's overlay color (its alpha is the strength; 8 bits a channel, sRGB), or
+    /// removes it.
+    ///
+    /// # Errors
+    /// [`TileStateError::OutsideMap`], [`TileStateError::OverlayNotFinite`]; nothing changes.
+    pub fn set_overlay(&mut self, tile: Hex, color: Option<Color>) -> Result<(), TileStateError> {
+        self.check(tile)?;
+        let [r, g, b, a] = match color {
+            None => [0; 4],
+            Some(c) => {
+                let s = c.to_srgba();
+                let f = [s.red, s.green, s.blue, s.alpha];
+                if f.iter().any(|v| !v.is_finite()) {
+                    return Err(TileStateError::OverlayNotFinite { color: f });
+                }
+                s.to_u8_array()
+            }
+        };
+        self.update(tile, |t| {
+            t[2] = u16::from(r) | u16::from(g) << 8;
+            t[3] = u16::from(b) | u16::from(a) << 8;
+        });
+        Ok(())
+    }
+
+    /// Puts a highlight on a tile or takes it off.
+    ///
+    /// # Errors
+    /// [`TileStateError::OutsideMap`]; nothing changes.
+    pub fn set_highlight(&mut self, tile: Hex, highlight: Highlight, on: bool) -> Result<(), TileStateError> {
+        self.check(tile)?;
+        let set = &mut self.highlighted[highlight as usize];
+        let changed = if on { set.insert(tile) } else { set.remove(&tile) };
+        if changed {
+            let bit = highlight.bit();
+            self.update(tile, |t| t[0] = if on { t[0] | bit } else { t[0] & !bit });
+        }
+        Ok(())
+    }
+
+    /// Makes `tiles` the only ones carrying `highlight` (however many); tiles outside the map
+    /// are skipped. Returns how many were skipped.
+    pub fn replace_highlight(&mut self, highlight: Highlight, tiles: impl IntoIterator<Item = Hex>) -> usize {
+        let new: HashSet<Hex> = tiles.into_iter().collect();
+        let before = new.len();
+        let new: HashSet<Hex> = new.into_iter().filter(|&h| self.check(h).is_ok()).collect();
+        let skipped = before - new.len();
+        let old = std::mem::take(&mut self.highlighted[highlight as usize]);
+        let bit = highlight.bit();
+        for &tile in old.difference(&new) {
+            self.update(tile, |t| t[0] &= !bit);
+        }
+        for &tile in new.difference(&old) {
+            self.update(tile, |t| t[0] |= bit);
+        }
+        self.highlighted[highlight as usize] = new;
+        skipped
+    }
+
+    /// Takes a highlight off every tile.
+    pub fn clear_highlight(&mut self, highlight: Highlight) {
+        self.replace_highlight(highlight, []);
+    }
+
+    /// Forgets every tile's state: unexplored, nobody's, no overlay, no highlight.
+    pub fn clear(&mut self) {
+        self.tiles.clear();
+        self.highlighted = Default::default();
+        self.window.clear();
+    }
+
+    /// Writes made so far (a write that changes nothing is not counted).
+    #[must_use]
+    pub fn writes(&self) -> u64 {
+        self.writes
+    }
+
+    /// Tiles with a state other than the default (unexplored, nobody's, no overlay, no
+    /// highlight): the memory the store holds.
+    #[must_use]
+    pub fn stored_tiles(&self) -> usize {
+        self.tiles.len()
+    }
+
+    /// The window of tiles the GPU texture holds: first offset coordinate `[col, row]` and
+    /// size in tiles.
+    #[must_use]
+    pub fn window(&self) -> (IVec2, UVec2) {
+        (self.window.origin(), self.window.size())
+    }
+
+    /// Offset coordinate of a tile, in the map's orientation.
+    #[must_use]
+    pub fn offset_of(&self, tile: Hex) -> IVec2 {
+        IVec2::from(tile.to_offset_coordinates(OFFSET_MODE, self.orientation))
+    }
+
+    /// The map's hex orientation (which offset coordinates mean).
+    #[must_use]
+    pub fn orientation(&self) -> HexOrientation {
+        self.orientation
+    }
+
+    fn check(&self, tile: Hex) -> Result<(), TileStateError> {
+        match self.bounds {
+            Some(bounds) => {
+                let offset = self.offset_of(tile).to_array();
+                if bounds.contains(offset) { Ok(()) } else { Err(TileStateError::OutsideMap { tile, offset, bounds }) }
+            }
+            None => Ok(()),
+        }
+    }
+
+    fn texel(&self, tile: Hex) -> Texel {
+        self.tiles.get(&tile).copied().unwrap_or_default()
+    }
+
+    fn update(&mut self, tile: Hex, f: impl FnOnce(&mut Texel)) {
+        let old = self.texel(tile);
+        let mut new = old;
+        f(&mut new);
+        if new == old {
+            return;
+        }
+        self.writes += 1;
+        if new == Texel::default() {
+            self.tiles.remove(&tile);
+        } else {
+            self.tiles.insert(tile, new);
+        }
+        let oc = self.offset_of(tile);
+        self.window.write(oc, new);
+    }
+
+    /// Follows a new map shape: `bounds` (None: unbounded) and orientation. With `keep`, tiles
+    /// still on the map keep their state; otherwise everything is forgotten.
+    pub(crate) fn set_map(&mut self, bounds: Option<TileRect>, orientation: HexOrientation, keep: bool) {
+        let reoriented = orientation != self.orientation;
+        self.bounds = bounds;
+        self.orientation = orientation;
+        if !keep {
+            self.clear();
+            return;
+        }
+        let outside: Vec<Hex> = self.tiles.keys().copied().filter(|&h| self.check(h).is_err()).collect();
+        for tile in outside {
+            self.tiles.remove(&tile);
+            for set in &mut self.highlighted {
+                set.remove(&tile);
+            }
+        }
+        if reoriented {
+            // Offset coordinates changed meaning: refill the whole window.
+            let (tiles, orientation) = (&self.tiles, self.orientation);
+            self.window.refill_all(|oc| stored(tiles, orientation, oc));
+        }
+    }
+
+    /// Places the window (a new size makes a new texture).
+    pub(crate) fn refill_window(&mut self, origin: IVec2, size: UVec2) {
+        let (tiles, orientation) = (&self.tiles, self.orientation);
+        self.window.reposition(origin, size, |oc| stored(tiles, orientation, oc));
+    }
+
+    /// Whether the texture has changes to upload.
+    #[must_use]
+    pub fn has_upload(&self) -> bool {
+        self.window.is_dirty()
+    }
+
+    /// The rows changed since the last call, ready for the texture; the plugin calls this once
+    /// a frame.
+    pub fn take_upload(&mut self) -> TileStateUpload {
+        self.window.take_upload()
+    }
+
+    /// Generation of the texture (a new one each time the window size changes).
+    #[must_use]
+    pub fn texture_generation(&self) -> u64 {
+        self.window.texture()
+    }
+}
+
+/// The stored texel of the tile at an offset coordinate.
+fn stored(tiles: &HashMap<Hex, Texel>, orientation: HexOrientation, oc: IVec2) -> Texel {
+    let hex = Hex::from_offset_coordinates(oc.to_array(), OFFSET_MODE, orientation);
+    tiles.get(&hex).copied().unwrap_or_default()
+}

@@ -1,0 +1,229 @@
+//! The scripted turn (`HEXTERRAIN_SCRIPT=1`): select a unit, move it, end the turn, regenerate,
+//! checking the game state, the fog of war and the territory on the way.
+
+use std::collections::HashSet;
+
+use bevy::prelude::*;
+use bevy::render::view::screenshot::{Screenshot, ScreenshotCaptured};
+use hex_terrain_game::prelude::*;
+use hexx::algorithms::a_star;
+
+use crate::vision::{self, HUMAN, RIVAL};
+use crate::{Game, MOVES, Unit, cost, path_cost, step_cost};
+
+/// A scripted turn for tests: select a unit, move it, end the turn, check the state.
+#[derive(Resource, Default)]
+pub struct Script {
+    frame: u32,
+    step: u32,
+    generation: u64,
+    target: Option<Hex>,
+    start: Option<Hex>,
+    expected_cost: u32,
+    /// Tiles visible before the move.
+    seen: HashSet<Hex>,
+    /// Tiles the human player owned before the turn ended.
+    owned: usize,
+}
+
+/// Checks the fog and the territory against what the units see and own; the first mismatch.
+fn check_vision(map: &HexMap, states: &TileStates, units: &Query<(Entity, &Unit, &Transform, &Visibility)>) -> Result<(), String> {
+    let mut sight = HashSet::new();
+    for (_, unit, t, _) in units.iter().filter(|(_, u, ..)| u.player == HUMAN) {
+        sight.extend(vision::sight(map, map.tile_at(t.translation)));
+        if states.owner(unit.tile).is_none() {
+            return Err(format!("the human unit's tile {:?} belongs to nobody", unit.tile));
+        }
+    }
+    if let Some(t) = sight.iter().find(|&&t| states.visibility(t) != FogState::Visible) {
+        return Err(format!("tile {t:?} is in sight but drawn {:?}", states.visibility(*t)));
+    }
+    let far = sight.iter().map(|&t| t + Hex::new(30, 0)).find(|&t| map.contains(t) && !sight.contains(&t));
+    if let Some(t) = far.filter(|&t| states.visibility(t) == FogState::Visible) {
+        return Err(format!("tile {t:?}, far from every unit, is visible"));
+    }
+    for (_, unit, t, visibility) in units.iter().filter(|(_, u, ..)| u.player == RIVAL) {
+        if states.owner(unit.tile) != Some(RIVAL) {
+            return Err(format!("the rival unit's tile {:?} is owned by {:?}", unit.tile, states.owner(unit.tile)));
+        }
+        let in_sight = sight.contains(&map.tile_at(t.translation));
+        if in_sight != (*visibility != Visibility::Hidden) {
+            return Err(format!("rival unit on {:?}: in sight {in_sight}, shown {:?}", unit.tile, visibility));
+        }
+    }
+    Ok(())
+}
+
+/// Plays the scripted turn, a step once the previous one shows its effect.
+#[expect(clippy::too_many_arguments, reason = "a system's parameters")]
+pub fn script(
+    mut commands: Commands,
+    mut s: ResMut<Script>,
+    appearance: Res<TerrainAppearance>,
+    mut game: ResMut<Game>,
+    map: Res<HexMap>,
+    states: Res<TileStates>,
+    units: Query<(Entity, &Unit, &Transform, &Visibility)>,
+    mut mouse: ResMut<ButtonInput<MouseButton>>,
+    mut keys: ResMut<ButtonInput<KeyCode>>,
+    mut exit: MessageWriter<AppExit>,
+) {
+    s.frame += 1;
+    mouse.release(MouseButton::Left);
+    for key in [KeyCode::Enter, KeyCode::KeyG, KeyCode::KeyR, KeyCode::KeyL] {
+        keys.release(key);
+    }
+    let fail = |msg: String, exit: &mut MessageWriter<AppExit>| {
+        eprintln!("SCRIPT FAILED: {msg}");
+        exit.write(AppExit::error());
+    };
+    if s.frame > 6000 {
+        fail(format!("stuck at step {}", s.step), &mut exit);
+        return;
+    }
+    match s.step {
+        // Wait for the units, then click the first one.
+        0 if game.spawned && units.iter().count() == 5 && s.frame.is_multiple_of(5) => {
+            if let Err(e) = check_vision(&map, &states, &units) {
+                fail(format!("before the move: {e}"), &mut exit);
+                return;
+            }
+            s.seen = units
+                .iter()
+                .filter(|(_, u, ..)| u.player == HUMAN)
+                .flat_map(|(_, u, ..)| vision::sight(&map, u.tile))
+                .collect();
+            let Some((_, unit, ..)) = units.iter().find(|(_, u, ..)| u.player == HUMAN) else { return };
+            s.start = Some(unit.tile);
+            game.hovered = Some(unit.tile);
+            mouse.press(MouseButton::Left);
+            s.step = 1;
+        }
+        // Selected: pick the reachable tile farthest along (cost > 1 if any) and click it.
+        1 if game.selected.is_some() => {
+            if game.reachable.is_empty() {
+                fail("the selected unit can go nowhere".into(), &mut exit);
+                return;
+            }
+            if states.highlighted(Highlight::Reachable).count() != game.reachable.len() {
+                fail(format!("{} reachable tiles, {} highlighted", game.reachable.len(), states.highlighted(Highlight::Reachable).count()), &mut exit);
+                return;
+            }
+            let start = s.start.unwrap_or_default();
+            let mut options: Vec<Hex> = game.reachable.iter().copied().collect();
+            options.sort_unstable_by_key(|h| (std::cmp::Reverse(h.unsigned_distance_to(start)), h.x, h.y));
+            let target = options[0];
+            let path = a_star(start, target, |a, b| step_cost(&map, a, b)).unwrap_or_default();
+            s.expected_cost = path_cost(&map, &path);
+            s.target = Some(target);
+            game.hovered = Some(target);
+            mouse.press(MouseButton::Left);
+            s.step = 2;
+        }
+        // Wait for the walk to end, check, then end the turn.
+        2 => {
+            let Some((_, unit, t, _)) = units.iter().find(|(_, u, ..)| Some(u.tile) == s.target) else { return };
+            if !unit.path.is_empty() {
+                return;
+            }
+            let Some(target) = s.target else { return };
+            if unit.moves_left != MOVES - s.expected_cost {
+                fail(format!("moves left {} after spending {}", unit.moves_left, s.expected_cost), &mut exit);
+                return;
+            }
+            let ground = map.tile_center(target).y + 0.6;
+            if (t.translation.y - ground).abs() > 0.05 {
+                fail(format!("unit at height {} instead of {ground}", t.translation.y), &mut exit);
+                return;
+            }
+            if let Err(e) = check_vision(&map, &states, &units) {
+                fail(format!("after the move: {e}"), &mut exit);
+                return;
+            }
+            if let Some(t) = s.seen.iter().find(|&&t| states.visibility(t) == FogState::Unexplored) {
+                fail(format!("tile {t:?} was seen and is unexplored again"), &mut exit);
+                return;
+            }
+            s.owned = owned(&map, &states, HUMAN);
+            keys.press(KeyCode::Enter);
+            s.step = 3;
+        }
+        3 if game.turn == 2 => {
+            if units.iter().any(|(_, u, ..)| u.moves_left != MOVES) {
+                fail("movement points were not restored".into(), &mut exit);
+                return;
+            }
+            let now = owned(&map, &states, HUMAN);
+            if now <= s.owned {
+                fail(format!("the territory did not grow at the end of the turn ({} tiles, then {now})", s.owned), &mut exit);
+                return;
+            }
+            println!("SCRIPT: territory {} -> {now} tiles", s.owned);
+            keys.press(KeyCode::KeyL);
+            // Outlines off, and a new seed.
+            s.generation = map.generation();
+            keys.press(KeyCode::KeyG);
+            keys.press(KeyCode::KeyR);
+            s.step = 4;
+        }
+        // After the regeneration every unit stands on land, on the new surface.
+        4 if map.generation() > s.generation && s.frame.is_multiple_of(10) => {
+            if appearance.outlines || !appearance.lens {
+                fail("G did not toggle the outlines or L the lens".into(), &mut exit);
+                return;
+            }
+            let settled = units.iter().all(|(_, u, t, _)| {
+                cost(&map, u.tile).is_some() && (t.translation.y - (map.tile_center(u.tile).y + 0.6)).abs() < 0.05
+            });
+            if !settled {
+                return;
+            }
+            if let Some(&t) = game.reachable.iter().find(|&&t| cost(&map, t).is_none()) {
+                fail(format!("tile {t:?} is shown reachable but impassable on the new map"), &mut exit);
+                return;
+            }
+            // Another map: territory starts again around the units, and the fog from what they see.
+            if let Err(e) = check_vision(&map, &states, &units) {
+                fail(format!("after the regeneration: {e}"), &mut exit);
+                return;
+            }
+            let Some((_, unit, ..)) = units.iter().next() else { return };
+            if states.overlay(unit.tile).is_none() {
+                fail("the lens has no color on a unit's tile".into(), &mut exit);
+                return;
+            }
+            s.step = 5;
+        }
+        5 => {
+            println!(
+                "SCRIPT OK: unit moved {:?} -> {:?} for {} moves; turn {}; fog and territory checked; outlines off; \
+                 lens on; regenerated, units on land",
+                s.start, s.target, s.expected_cost, game.turn
+            );
+            match std::env::var_os("HEXTERRAIN_SCREENSHOT") {
+                Some(path) => {
+                    commands.spawn(Screenshot::primary_window()).observe(
+                        move |shot: On<ScreenshotCaptured>, mut exit: MessageWriter<AppExit>| {
+                            if let Ok(img) = shot.image.clone().try_into_dynamic() {
+                                let _ = img.to_rgb8().save(&path);
+                            }
+                            exit.write(AppExit::Success);
+                        },
+                    );
+                    s.step = 6;
+                }
+                None => {
+                    exit.write(AppExit::Success);
+                    s.step = 6;
+                }
+            }
+        }
+        _ => {}
+    }
+}
+
+/// Tiles of the map's chunks owned by `player` (the whole map: every preset the script plays is
+/// bounded).
+fn owned(map: &HexMap, states: &TileStates, player: u8) -> usize {
+    map.terrain().tiles().filter(|&t| states.owner(t) == Some(player)).count()
+}
