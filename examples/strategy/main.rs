@@ -474,7 +474,7 @@ fn panel(
 ) {
     let mut s = format!("Turn {}", game.turn);
     if appearance.lens {
-        s += "   Lens: movement cost (green 1, orange 3, red impassable)";
+        s += "   Lens: movement cost (green 1, orange 3; water impassable)";
     }
     if let Some(tile) = game.hovered.filter(|&t| !appearance.fog_of_war || states.visibility(t) != FogState::Unexplored) {
         let owner = match states.owner(tile) {

@@ -26,12 +26,18 @@ pub struct Script {
     owned: usize,
 }
 
-/// Checks the fog and the territory against what the units see and own; the first mismatch.
-fn check_vision(map: &HexMap, states: &TileStates, units: &Query<(Entity, &Unit, &Transform, &Visibility)>) -> Result<(), String> {
+/// Checks the fog against what the units see, and with `owned` that every unit stands in its
+/// player's territory (at the start, and after the end of a turn); the first mismatch.
+fn check_vision(
+    map: &HexMap,
+    states: &TileStates,
+    units: &Query<(Entity, &Unit, &Transform, &Visibility)>,
+    owned: bool,
+) -> Result<(), String> {
     let mut sight = HashSet::new();
     for (_, unit, t, _) in units.iter().filter(|(_, u, ..)| u.player == HUMAN) {
         sight.extend(vision::sight(map, map.tile_at(t.translation)));
-        if states.owner(unit.tile).is_none() {
+        if owned && states.owner(unit.tile) != Some(HUMAN) {
             return Err(format!("the human unit's tile {:?} belongs to nobody", unit.tile));
         }
     }
@@ -43,7 +49,7 @@ fn check_vision(map: &HexMap, states: &TileStates, units: &Query<(Entity, &Unit,
         return Err(format!("tile {t:?}, far from every unit, is visible"));
     }
     for (_, unit, t, visibility) in units.iter().filter(|(_, u, ..)| u.player == RIVAL) {
-        if states.owner(unit.tile) != Some(RIVAL) {
+        if owned && states.owner(unit.tile) != Some(RIVAL) {
             return Err(format!("the rival unit's tile {:?} is owned by {:?}", unit.tile, states.owner(unit.tile)));
         }
         let in_sight = sight.contains(&map.tile_at(t.translation));
@@ -84,7 +90,7 @@ pub fn script(
     match s.step {
         // Wait for the units, then click the first one.
         0 if game.spawned && units.iter().count() == 5 && s.frame.is_multiple_of(5) => {
-            if let Err(e) = check_vision(&map, &states, &units) {
+            if let Err(e) = check_vision(&map, &states, &units, true) {
                 fail(format!("before the move: {e}"), &mut exit);
                 return;
             }
@@ -136,7 +142,7 @@ pub fn script(
                 fail(format!("unit at height {} instead of {ground}", t.translation.y), &mut exit);
                 return;
             }
-            if let Err(e) = check_vision(&map, &states, &units) {
+            if let Err(e) = check_vision(&map, &states, &units, false) {
                 fail(format!("after the move: {e}"), &mut exit);
                 return;
             }
@@ -183,12 +189,12 @@ pub fn script(
                 return;
             }
             // Another map: territory starts again around the units, and the fog from what they see.
-            if let Err(e) = check_vision(&map, &states, &units) {
+            if let Err(e) = check_vision(&map, &states, &units, true) {
                 fail(format!("after the regeneration: {e}"), &mut exit);
                 return;
             }
             let Some((_, unit, ..)) = units.iter().next() else { return };
-            if states.overlay(unit.tile).is_none() {
+            if states.overlay(unit.tile) != crate::vision::lens_color(&map, unit.tile) {
                 fail("the lens has no color on a unit's tile".into(), &mut exit);
                 return;
             }

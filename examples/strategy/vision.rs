@@ -97,12 +97,12 @@ pub fn highlight(game: Res<Game>, units: Query<&Unit>, mut states: ResMut<TileSt
     states.replace_highlight(Highlight::Reachable, game.reachable.iter().copied());
 }
 
-/// The movement-cost lens colors: green for 1, orange for 3, red for impassable land or water.
-pub fn lens_color(map: &HexMap, tile: Hex) -> Color {
-    match cost(map, tile) {
-        Some(1) => Color::srgba(0.2, 0.9, 0.2, 0.55),
-        Some(_) => Color::srgba(1.0, 0.55, 0.1, 0.6),
-        None => Color::srgba(0.9, 0.1, 0.1, 0.45),
+/// The movement-cost lens colors: green for 1, orange for 3; water (impassable) keeps its
+/// color.
+pub fn lens_color(map: &HexMap, tile: Hex) -> Option<Color> {
+    match cost(map, tile)? {
+        1 => Some(Color::srgba(0.2, 0.9, 0.2, 0.55)),
+        _ => Some(Color::srgba(1.0, 0.5, 0.05, 0.65)),
     }
 }
 
@@ -125,7 +125,7 @@ pub fn paint_lens(
         let Some(rect) = terrain.chunk_rect(chunk.coord) else { continue };
         for oc in rect.iter() {
             let tile = terrain.tile_from_offset(oc);
-            let _ = states.set_overlay(tile, Some(lens_color(&map, tile)));
+            let _ = states.set_overlay(tile, lens_color(&map, tile));
         }
     }
 }

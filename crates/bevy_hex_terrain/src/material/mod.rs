@@ -223,7 +223,7 @@ impl Default for TerrainAppearance {
             unexplored_color: Color::srgb(0.11, 0.10, 0.09),
             fog_softness: 0.35,
             borders: true,
-            border_width: 0.1,
+            border_width: 0.14,
             border_inset: 0.03,
             territory_tint: true,
             owner_colors: vec![
