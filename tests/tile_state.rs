@@ -68,7 +68,7 @@ fn scenario_fog() {
         match fog_of(&terrain, h) {
             FogState::Unexplored => assert!(brightness(c) < 0.16 && spread(c) < 0.08, "unexplored {h:?} drawn {c:?}"),
             FogState::Explored => {
-                assert!(spread(c) < 0.12 && brightness(c) > 0.12, "explored {kind:?} {h:?} drawn {c:?}");
+                assert!(spread(c) < 0.2 && brightness(c) > 0.12, "explored {kind:?} {h:?} drawn {c:?}");
             }
             FogState::Visible => {}
         }
@@ -252,7 +252,11 @@ fn toggling_the_lens_changes_only_the_tiles_it_colors() {
         let p = pixel(center, size, p);
         let (before, after) = (rgb(&off, p), rgb(&on, p));
         if lensed(&terrain, t) {
-            assert!(after[0] > before[0] + 0.1 && after[2] > before[2] + 0.05, "lensed {kind:?} tile {t:?}: {before:?} -> {after:?}");
+            let magenta = [1.0, 0.0, 1.0];
+            assert!(
+                distance(after, magenta) < distance(before, magenta) - 0.1,
+                "lensed {kind:?} tile {t:?}: {before:?} -> {after:?}, not towards magenta"
+            );
             changed += 1;
         } else {
             let allowed = if kind == TileKind::Sea { 0.1 } else { 0.02 };

@@ -274,7 +274,7 @@ fn tile_look(p: vec2<f32>, albedo: vec4<f32>) -> TileLook {
 // (with a faint low-frequency mottle, no terrain detail) where never seen.
 fn apply_fog(color: vec3<f32>, look: TileLook, p: vec2<f32>) -> vec3<f32> {
     let grey = vec3<f32>(dot(color, vec3<f32>(0.2126, 0.7152, 0.0722)));
-    let remembered = mix(grey, color, 0.25) * 0.6;
+    let remembered = mix(grey, color, 0.2) * 0.6;
     let seen = mix(remembered, color, look.visible);
     let mottle = 0.85 + 0.15 * sin(p.x * 0.37 + sin(p.y * 0.23)) * sin(p.y * 0.31 + sin(p.x * 0.19));
     return mix(params.unexplored_color.rgb * mottle, seen, look.explored);

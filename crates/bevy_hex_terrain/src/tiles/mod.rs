@@ -72,6 +72,8 @@ impl Plugin for HexTileStatePlugin {
             .register_type::<TileStateUpload>()
             .register_type::<FogState>()
             .register_type::<Highlight>()
+            // Placed before `Startup`, so the material starts with the window's texture.
+            .add_systems(PreStartup, (follow_map, follow_chunks).chain())
             .add_systems(Update, (follow_map, follow_chunks).chain().in_set(HexTerrainSystems::Tiles))
             .add_systems(PostUpdate, pack_upload);
     }
