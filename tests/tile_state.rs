@@ -90,7 +90,8 @@ fn scenario_fog() {
     for &(a, b) in &pairs {
         let (pa, pb) = (Vec3::from_array(terrain.tile_center(a)), Vec3::from_array(terrain.tile_center(b)));
         let samples: Vec<f32> = (0..=40).map(|k| brightness(at(pa.lerp(pb, k as f32 / 40.0)))).collect();
-        let (lo, hi) = (samples[..10].iter().copied().fold(f32::MAX, f32::min), samples[30..].iter().copied().fold(0.0, f32::max));
+        let (lo, hi) =
+            (samples[..10].iter().copied().fold(f32::MAX, f32::min), samples[30..].iter().copied().fold(0.0, f32::max));
         let between = samples.iter().filter(|&&v| v > lo + 0.25 * (hi - lo) && v < hi - 0.25 * (hi - lo)).count();
         soft += usize::from(hi - lo > 0.05 && between >= 4);
     }
@@ -106,7 +107,9 @@ fn assert_type_colors_some(img: &image::RgbImage, terrain: &Terrain, except: &[H
         match kind {
             TileKind::Sea => assert!(b > r + 0.1 && b > g, "visible sea tile {hex:?} drawn {:?}", [r, g, b]),
             TileKind::Land => assert!(g > r + 0.05 && g > b + 0.05, "visible land tile {hex:?} drawn {:?}", [r, g, b]),
-            TileKind::Mountain => assert!(spread([r, g, b]) < 0.12 && r > 0.35, "visible mountain {hex:?} drawn {:?}", [r, g, b]),
+            TileKind::Mountain => {
+                assert!(spread([r, g, b]) < 0.12 && r > 0.35, "visible mountain {hex:?} drawn {:?}", [r, g, b])
+            }
         }
     }
 }
@@ -126,8 +129,7 @@ fn borders_carry_the_owner_color_inside_the_owned_tile() {
 fn scenario_borders() {
     let terrain = Terrain::new(map()).unwrap();
     let (center, size) = view(&terrain);
-    let appearance =
-        TerrainAppearance { territory_tint: false, border_width: 0.25, border_inset: 0.05, ..default() };
+    let appearance = TerrainAppearance { territory_tint: false, border_width: 0.25, border_inset: 0.05, ..default() };
     let tiles = |terrain: &Terrain, states: &mut TileStates| {
         for t in terrain.tiles() {
             states.set_owner(t, owner_of(terrain, t)).unwrap();
@@ -150,7 +152,10 @@ fn scenario_borders() {
             let c = at(mid + (pa - mid).normalize() * 0.175);
             match oa {
                 Some(1) => {
-                    assert!(c[0] > c[1] + 0.25 && c[0] > c[2] + 0.25, "player 1's border in {a:?} towards {b:?}: {c:?}");
+                    assert!(
+                        c[0] > c[1] + 0.25 && c[0] > c[2] + 0.25,
+                        "player 1's border in {a:?} towards {b:?}: {c:?}"
+                    );
                     red += 1;
                 }
                 Some(_) => {
@@ -209,7 +214,10 @@ fn five_hundred_highlighted_tiles_are_all_tinted() {
             );
         } else {
             // The sea's shimmer moves with time: a little change is allowed.
-            assert!(distance(after, before) < 0.1, "tile {t:?} is not highlighted but changed: {before:?} -> {after:?}");
+            assert!(
+                distance(after, before) < 0.1,
+                "tile {t:?} is not highlighted but changed: {before:?} -> {after:?}"
+            );
         }
     }
 }
@@ -260,7 +268,10 @@ fn toggling_the_lens_changes_only_the_tiles_it_colors() {
             changed += 1;
         } else {
             let allowed = if kind == TileKind::Sea { 0.1 } else { 0.02 };
-            assert!(distance(after, before) < allowed, "{kind:?} tile {t:?} has no lens color but changed: {before:?} -> {after:?}");
+            assert!(
+                distance(after, before) < allowed,
+                "{kind:?} tile {t:?} has no lens color but changed: {before:?} -> {after:?}"
+            );
             kept += 1;
         }
     }

@@ -85,23 +85,14 @@ fn main() -> AppExit {
         .add_systems(Startup, setup)
         .add_systems(
             Update,
-            (
-                camera_controls,
-                hover,
-                place_units,
-                (click, end_turn, keys).after(hover),
-                walk,
-                panel,
-                chunk_boundaries,
-            ),
+            (camera_controls, hover, place_units, (click, end_turn, keys).after(hover), walk, panel, chunk_boundaries),
         )
         .add_systems(
             Update,
             (vision::update_fog, vision::highlight, vision::paint_lens).after(HexTerrainSystems::Render).after(walk),
         );
     if scripted {
-        app.init_resource::<script::Script>()
-            .add_systems(PreUpdate, script::script.after(bevy::input::InputSystems));
+        app.init_resource::<script::Script>().add_systems(PreUpdate, script::script.after(bevy::input::InputSystems));
     } else {
         app.add_plugins(hex_terrain_game::screenshot::ScreenshotModePlugin);
     }
@@ -476,7 +467,8 @@ fn panel(
     if appearance.lens {
         s += "   Lens: movement cost (green 1, orange 3; water impassable)";
     }
-    if let Some(tile) = game.hovered.filter(|&t| !appearance.fog_of_war || states.visibility(t) != FogState::Unexplored) {
+    if let Some(tile) = game.hovered.filter(|&t| !appearance.fog_of_war || states.visibility(t) != FogState::Unexplored)
+    {
         let owner = match states.owner(tile) {
             Some(vision::HUMAN) => "yours",
             Some(_) => "rival's",

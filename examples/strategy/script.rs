@@ -112,7 +112,14 @@ pub fn script(
                 return;
             }
             if states.highlighted(Highlight::Reachable).count() != game.reachable.len() {
-                fail(format!("{} reachable tiles, {} highlighted", game.reachable.len(), states.highlighted(Highlight::Reachable).count()), &mut exit);
+                fail(
+                    format!(
+                        "{} reachable tiles, {} highlighted",
+                        game.reachable.len(),
+                        states.highlighted(Highlight::Reachable).count()
+                    ),
+                    &mut exit,
+                );
                 return;
             }
             let start = s.start.unwrap_or_default();
@@ -161,7 +168,10 @@ pub fn script(
             }
             let now = owned(&map, &states, HUMAN);
             if now <= s.owned {
-                fail(format!("the territory did not grow at the end of the turn ({} tiles, then {now})", s.owned), &mut exit);
+                fail(
+                    format!("the territory did not grow at the end of the turn ({} tiles, then {now})", s.owned),
+                    &mut exit,
+                );
                 return;
             }
             println!("SCRIPT: territory {} -> {now} tiles", s.owned);

@@ -257,4 +257,3 @@ pub fn assert_type_colors(img: &image::RgbImage, terrain: &Terrain, except: &[He
     }
     assert!(seen.iter().all(|&n| n > 0), "the test map has every type: {seen:?}");
 }
-

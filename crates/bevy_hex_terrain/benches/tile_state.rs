@@ -87,11 +87,7 @@ fn run(mode: Mode, frames: usize) -> Run {
 
 fn main() {
     let args: Vec<String> = std::env::args().collect();
-    let frames = args
-        .iter()
-        .position(|a| a == "--frames")
-        .and_then(|i| args.get(i + 1)?.parse().ok())
-        .unwrap_or(600);
+    let frames = args.iter().position(|a| a == "--frames").and_then(|i| args.get(i + 1)?.parse().ok()).unwrap_or(600);
     println!("tile state: {frames} frames each, 128x80 map (10,240 tiles), headless, main thread");
     // Interleaved repeats, so a noisy neighbour hits every mode alike.
     let mut all: [Vec<f64>; 3] = Default::default();
@@ -115,8 +111,14 @@ fn main() {
         v.sort_by(f64::total_cmp);
     }
     let base = (percentile(&all[0], 0.5), percentile(&all[0], 0.99));
-    println!("| frames | p50 ms | p99 ms | p50 / baseline | p99 / baseline | upload bytes a frame (mean, max) |\n|---|---|---|---|---|---|");
-    let names = ["terrain plugins, no tile state (baseline)", "with tile state, no change", "with tile state, 10,000 fog writes"];
+    println!(
+        "| frames | p50 ms | p99 ms | p50 / baseline | p99 / baseline | upload bytes a frame (mean, max) |\n|---|---|---|---|---|---|"
+    );
+    let names = [
+        "terrain plugins, no tile state (baseline)",
+        "with tile state, no change",
+        "with tile state, 10,000 fog writes",
+    ];
     for (i, name) in names.iter().enumerate() {
         let (p50, p99) = (percentile(&all[i], 0.5), percentile(&all[i], 0.99));
         let b = match i {

@@ -3,6 +3,7 @@
 //! does, in flat colors or textures, and draws tile outlines and highlights. The same shader
 //! serves forward and deferred cameras.
 
+use crate::tiles::{MAX_OWNERS, TileStates};
 use bevy::asset::{AssetPath, embedded_asset, embedded_path};
 use bevy::image::{ImageAddressMode, ImageLoaderSettings, ImageSampler, ImageSamplerDescriptor};
 use bevy::mesh::MeshVertexBufferLayoutRef;
@@ -11,7 +12,6 @@ use bevy::prelude::*;
 use bevy::render::render_resource::{AsBindGroup, RenderPipelineDescriptor, ShaderType, SpecializedMeshPipelineError};
 use bevy::shader::{ShaderDefVal, ShaderRef};
 use hex_terrain::MapConfig;
-use crate::tiles::{MAX_OWNERS, TileStates};
 pub use tile_texture::TileStateTexture;
 
 mod tile_texture;

@@ -32,9 +32,10 @@ pub(super) struct TileTexturePlugin;
 
 impl Plugin for TileTexturePlugin {
     fn build(&self, app: &mut App) {
-        app.register_type::<TileStateTexture>()
-            .add_systems(Startup, create_texture)
-            .add_systems(Update, create_texture.in_set(crate::HexTerrainSystems::Render).before(super::update_material));
+        app.register_type::<TileStateTexture>().add_systems(Startup, create_texture).add_systems(
+            Update,
+            create_texture.in_set(crate::HexTerrainSystems::Render).before(super::update_material),
+        );
         if let Some(render_app) = app.get_sub_app_mut(RenderApp) {
             render_app
                 .init_resource::<PendingUploads>()
@@ -118,7 +119,11 @@ fn write_uploads(mut pending: ResMut<PendingUploads>, images: Res<RenderAssets<G
                     aspect: TextureAspect::All,
                 },
                 bytes,
-                TexelCopyBufferLayout { offset: 0, bytes_per_row: Some(span.z * TEXEL_BYTES as u32), rows_per_image: None },
+                TexelCopyBufferLayout {
+                    offset: 0,
+                    bytes_per_row: Some(span.z * TEXEL_BYTES as u32),
+                    rows_per_image: None,
+                },
                 Extent3d { width: span.z, height: 1, depth_or_array_layers: 1 },
             );
         }

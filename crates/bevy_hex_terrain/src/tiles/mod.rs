@@ -5,6 +5,7 @@
 //! (`material/tile_texture.rs`). No mesh is touched.
 
 mod state;
+mod store;
 mod window;
 
 #[cfg(test)]

@@ -1,13 +1,14 @@
 //! [`TileStates`]: per-tile game state (fog of war, owner, lens overlay, highlights) written by
 //! the game, kept for every tile on the CPU and mirrored into the window the GPU texture holds.
 
-use bevy::platform::collections::{HashMap, HashSet};
+use bevy::platform::collections::HashSet;
 use bevy::prelude::*;
-use hex_terrain::hexx::{Hex, HexOrientation};
 use hex_terrain::TileRect;
+use hex_terrain::hexx::{Hex, HexOrientation};
 use hex_terrain::terrain::OFFSET_MODE;
 
-use super::window::{TexelWindow, Texel, TileStateUpload};
+use super::store::TileStore;
+use super::window::{Texel, TexelWindow, TileStateUpload};
 
 /// Highest owner id: owners are `1..=MAX_OWNERS` (Civilization VI's largest map has 12
 /// civilizations and 16 city-states).
@@ -92,7 +93,7 @@ pub enum TileStateError {
 #[reflect(Resource)]
 pub struct TileStates {
     #[reflect(ignore)]
-    tiles: HashMap<Hex, Texel>,
+    tiles: TileStore,
     #[reflect(ignore)]
     highlighted: [HashSet<Hex>; 3],
     #[reflect(ignore)]
@@ -107,7 +108,7 @@ pub struct TileStates {
 impl Default for TileStates {
     fn default() -> Self {
         Self {
-            tiles: HashMap::default(),
+            tiles: TileStore::default(),
             highlighted: Default::default(),
             bounds: None,
             orientation: HexOrientation::Flat,
@@ -160,18 +161,20 @@ impl TileStates {
     /// # Errors
     /// [`TileStateError::OutsideMap`]; nothing changes.
     pub fn set_visibility(&mut self, tile: Hex, fog: FogState) -> Result<(), TileStateError> {
-        self.check(tile)?;
-        self.update(tile, |t| t[0] = (t[0] & !FOG_MASK) | fog as u16);
+        let oc = self.check(tile)?;
+        self.update(oc, |t| t[0] = (t[0] & !FOG_MASK) | fog as u16);
         Ok(())
     }
 
     /// Makes every visible tile explored (the start of a sight update: the game then marks what
     /// its units see now as visible).
     pub fn hide_visible(&mut self) {
-        let visible: Vec<Hex> =
-            self.tiles.iter().filter(|(_, t)| t[0] & FOG_MASK == FogState::Visible as u16).map(|(h, _)| *h).collect();
-        for tile in visible {
-            self.update(tile, |t| t[0] = (t[0] & !FOG_MASK) | FogState::Explored as u16);
+        for (oc, old) in self.tiles.stored() {
+            if old[0] & FOG_MASK == FogState::Visible as u16 {
+                let mut texel = old;
+                texel[0] = (texel[0] & !FOG_MASK) | FogState::Explored as u16;
+                self.store(oc, old, texel);
+            }
         }
     }
 
@@ -180,12 +183,12 @@ impl TileStates {
     /// # Errors
     /// [`TileStateError::OutsideMap`], [`TileStateError::OwnerOutOfRange`]; nothing changes.
     pub fn set_owner(&mut self, tile: Hex, owner: Option<u8>) -> Result<(), TileStateError> {
-        self.check(tile)?;
+        let oc = self.check(tile)?;
         let owner = owner.unwrap_or(0);
         if owner > MAX_OWNERS {
             return Err(TileStateError::OwnerOutOfRange { owner });
         }
-        self.update(tile, |t| t[1] = u16::from(owner));
+        self.update(oc, |t| t[1] = u16::from(owner));
         Ok(())
     }
 
@@ -195,7 +198,7 @@ impl TileStates {
     /// # Errors
     /// [`TileStateError::OutsideMap`], [`TileStateError::OverlayNotFinite`]; nothing changes.
     pub fn set_overlay(&mut self, tile: Hex, color: Option<Color>) -> Result<(), TileStateError> {
-        self.check(tile)?;
+        let oc = self.check(tile)?;
         let [r, g, b, a] = match color {
             None => [0; 4],
             Some(c) => {
@@ -207,7 +210,7 @@ impl TileStates {
                 s.to_u8_array()
             }
         };
-        self.update(tile, |t| {
+        self.update(oc, |t| {
             t[2] = u16::from(r) | u16::from(g) << 8;
             t[3] = u16::from(b) | u16::from(a) << 8;
         });
@@ -219,12 +222,12 @@ impl TileStates {
     /// # Errors
     /// [`TileStateError::OutsideMap`]; nothing changes.
     pub fn set_highlight(&mut self, tile: Hex, highlight: Highlight, on: bool) -> Result<(), TileStateError> {
-        self.check(tile)?;
+        let oc = self.check(tile)?;
         let set = &mut self.highlighted[highlight as usize];
         let changed = if on { set.insert(tile) } else { set.remove(&tile) };
         if changed {
             let bit = highlight.bit();
-            self.update(tile, |t| t[0] = if on { t[0] | bit } else { t[0] & !bit });
+            self.update(oc, |t| t[0] = if on { t[0] | bit } else { t[0] & !bit });
         }
         Ok(())
     }
@@ -239,10 +242,10 @@ impl TileStates {
         let old = std::mem::take(&mut self.highlighted[highlight as usize]);
         let bit = highlight.bit();
         for &tile in old.difference(&new) {
-            self.update(tile, |t| t[0] &= !bit);
+            self.update(self.offset_of(tile), |t| t[0] &= !bit);
         }
         for &tile in new.difference(&old) {
-            self.update(tile, |t| t[0] |= bit);
+            self.update(self.offset_of(tile), |t| t[0] |= bit);
         }
         self.highlighted[highlight as usize] = new;
         skipped
@@ -255,7 +258,7 @@ impl TileStates {
 
     /// Forgets every tile's state: unexplored, nobody's, no overlay, no highlight.
     pub fn clear(&mut self) {
-        self.tiles.clear();
+        self.tiles = TileStore::new(self.bounds);
         self.highlighted = Default::default();
         self.window.clear();
     }
@@ -292,65 +295,68 @@ impl TileStates {
         self.orientation
     }
 
-    fn check(&self, tile: Hex) -> Result<(), TileStateError> {
+    /// The tile's offset coordinate, if it is on the map.
+    fn check(&self, tile: Hex) -> Result<IVec2, TileStateError> {
+        let oc = self.offset_of(tile);
         match self.bounds {
-            Some(bounds) => {
-                let offset = self.offset_of(tile).to_array();
-                if bounds.contains(offset) { Ok(()) } else { Err(TileStateError::OutsideMap { tile, offset, bounds }) }
+            Some(bounds) if !bounds.contains(oc.to_array()) => {
+                Err(TileStateError::OutsideMap { tile, offset: oc.to_array(), bounds })
             }
-            None => Ok(()),
+            _ => Ok(oc),
         }
     }
 
     fn texel(&self, tile: Hex) -> Texel {
-        self.tiles.get(&tile).copied().unwrap_or_default()
+        self.tiles.get(self.offset_of(tile))
     }
 
-    fn update(&mut self, tile: Hex, f: impl FnOnce(&mut Texel)) {
-        let old = self.texel(tile);
-        let mut new = old;
-        f(&mut new);
-        if new == old {
+    /// Changes the texel of a tile on the map (checked by the caller).
+    fn update(&mut self, oc: IVec2, f: impl FnOnce(&mut Texel)) {
+        let old = self.tiles.get(oc);
+        let mut texel = old;
+        f(&mut texel);
+        self.store(oc, old, texel);
+    }
+
+    fn store(&mut self, oc: IVec2, old: Texel, texel: Texel) {
+        if old == texel {
             return;
         }
         self.writes += 1;
-        if new == Texel::default() {
-            self.tiles.remove(&tile);
-        } else {
-            self.tiles.insert(tile, new);
-        }
-        let oc = self.offset_of(tile);
-        self.window.write(oc, new);
+        self.tiles.set(oc, texel);
+        self.window.write(oc, texel);
     }
 
     /// Follows a new map shape: `bounds` (None: unbounded) and orientation. With `keep`, tiles
     /// still on the map keep their state; otherwise everything is forgotten.
     pub(crate) fn set_map(&mut self, bounds: Option<TileRect>, orientation: HexOrientation, keep: bool) {
-        let reoriented = orientation != self.orientation;
+        let (old, old_orientation) = (std::mem::take(&mut self.tiles), self.orientation);
         self.bounds = bounds;
         self.orientation = orientation;
+        self.tiles = TileStore::new(bounds);
         if !keep {
-            self.clear();
+            self.highlighted = Default::default();
+            self.window.clear();
             return;
         }
-        let outside: Vec<Hex> = self.tiles.keys().copied().filter(|&h| self.check(h).is_err()).collect();
-        for tile in outside {
-            self.tiles.remove(&tile);
-            for set in &mut self.highlighted {
-                set.remove(&tile);
+        // Offset coordinates may change meaning (another orientation): through the hexes.
+        for (oc, texel) in old.stored() {
+            let tile = Hex::from_offset_coordinates(oc.to_array(), OFFSET_MODE, old_orientation);
+            if let Ok(oc) = self.check(tile) {
+                self.tiles.set(oc, texel);
             }
         }
-        if reoriented {
-            // Offset coordinates changed meaning: refill the whole window.
-            let (tiles, orientation) = (&self.tiles, self.orientation);
-            self.window.refill_all(|oc| stored(tiles, orientation, oc));
+        for set in &mut self.highlighted {
+            set.retain(|&h| bounds.is_none_or(|b| b.contains(h.to_offset_coordinates(OFFSET_MODE, orientation))));
         }
+        let tiles = &self.tiles;
+        self.window.refill_all(|oc| tiles.get(oc));
     }
 
     /// Places the window (a new size makes a new texture).
     pub(crate) fn refill_window(&mut self, origin: IVec2, size: UVec2) {
-        let (tiles, orientation) = (&self.tiles, self.orientation);
-        self.window.reposition(origin, size, |oc| stored(tiles, orientation, oc));
+        let tiles = &self.tiles;
+        self.window.reposition(origin, size, |oc| tiles.get(oc));
     }
 
     /// Whether the texture has changes to upload.
@@ -370,10 +376,4 @@ impl TileStates {
     pub fn texture_generation(&self) -> u64 {
         self.window.texture()
     }
-}
-
-/// The stored texel of the tile at an offset coordinate.
-fn stored(tiles: &HashMap<Hex, Texel>, orientation: HexOrientation, oc: IVec2) -> Texel {
-    let hex = Hex::from_offset_coordinates(oc.to_array(), OFFSET_MODE, orientation);
-    tiles.get(&hex).copied().unwrap_or_default()
 }

@@ -144,7 +144,12 @@ fn a_moving_window_always_mirrors_the_store() {
                 let oc = origin + IVec2::new(rng.range(-6, size.x as i32 + 6), rng.range(-6, size.y as i32 + 6));
                 let h = Hex::from_offset_coordinates(oc.to_array(), hex_terrain::terrain::OFFSET_MODE, s.orientation());
                 match rng.range(0, 3) {
-                    0 => s.set_visibility(h, [FogState::Unexplored, FogState::Explored, FogState::Visible][rng.range(0, 3) as usize]).unwrap(),
+                    0 => s
+                        .set_visibility(
+                            h,
+                            [FogState::Unexplored, FogState::Explored, FogState::Visible][rng.range(0, 3) as usize],
+                        )
+                        .unwrap(),
                     1 => s.set_owner(h, Some(rng.range(0, 5) as u8).filter(|&o| o > 0)).unwrap(),
                     _ => s.set_highlight(h, Highlight::Reachable, rng.range(0, 2) == 1).unwrap(),
                 }
@@ -157,7 +162,8 @@ fn a_moving_window_always_mirrors_the_store() {
             for y in 0..size.y as i32 {
                 for x in 0..size.x as i32 {
                     let oc = origin + IVec2::new(x, y);
-                    let h = Hex::from_offset_coordinates(oc.to_array(), hex_terrain::terrain::OFFSET_MODE, s.orientation());
+                    let h =
+                        Hex::from_offset_coordinates(oc.to_array(), hex_terrain::terrain::OFFSET_MODE, s.orientation());
                     let t = UVec2::new(oc.x.rem_euclid(size.x as i32) as u32, oc.y.rem_euclid(size.y as i32) as u32);
                     let texel = texture[(t.y * size.x + t.x) as usize];
                     assert_eq!(texel[0] & 3, s.visibility(h) as u16, "seed {seed} tile {oc}");
