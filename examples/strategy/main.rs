@@ -30,7 +30,7 @@ use hexx::algorithms::a_star;
 /// Moves a unit has each turn.
 pub(crate) const MOVES: u32 = 4;
 /// Distance from the human player's units to the rival's.
-const RIVAL_DISTANCE: u32 = 9;
+const RIVAL_DISTANCE: u32 = 7;
 const PRESETS: [&str; 5] = [
     "maps/world.map.ron",
     "maps/island.map.ron",
@@ -103,7 +103,7 @@ fn setup(mut commands: Commands) {
     let focus = Vec3::new(48.0, 0.0, 40.0);
     commands
         .spawn((
-            Rig { focus, yaw: 0.0, distance: 30.0, target_focus: focus, target_yaw: 0.0, target_distance: 30.0 },
+            Rig { focus, yaw: 0.0, distance: 24.0, target_focus: focus, target_yaw: 0.0, target_distance: 24.0 },
             HexTerrainAgent::default(),
             Transform::from_translation(focus),
             // The camera below inherits visibility from the rig.

@@ -236,8 +236,16 @@ pub fn border_to_center(img: &image::RgbImage, terrain: &Terrain) -> f32 {
     ratios.iter().sum::<f32>() / ratios.len() as f32
 }
 
-/// Asserts every clear tile center shows its type's color, skipping `except`.
+/// Asserts every clear tile center shows its type's color, skipping `except`, and that the test
+/// map has tiles of every type.
 pub fn assert_type_colors(img: &image::RgbImage, terrain: &Terrain, except: &[Hex]) {
+    let seen = check_type_colors(img, terrain, except);
+    assert!(seen.iter().all(|&n| n > 0), "the test map has every type: {seen:?}");
+}
+
+/// Asserts every clear tile center shows its type's color, skipping `except`; returns how many
+/// tiles of each type were checked.
+pub fn check_type_colors(img: &image::RgbImage, terrain: &Terrain, except: &[Hex]) -> [usize; 3] {
     let (center, size) = view(terrain);
     let mut seen = [0; 3];
     for (hex, kind, at) in clear_tiles(terrain).into_iter().filter(|(h, _, _)| !except.contains(h)) {
@@ -255,5 +263,5 @@ pub fn assert_type_colors(img: &image::RgbImage, terrain: &Terrain, except: &[He
         }
         seen[kind as usize] += 1;
     }
-    assert!(seen.iter().all(|&n| n > 0), "the test map has every type: {seen:?}");
+    seen
 }

@@ -83,7 +83,7 @@ pub enum TileStateError {
 ///
 /// Every tile's state is kept here, loaded or not (a chunk streamed out and back keeps it); the
 /// GPU holds a window of tiles around the loaded chunks (the whole map when it fits in
-/// [`TileStateSettings::max_window`]) and receives only the rows that changed, once a frame,
+/// [`TileStateSettings::max_window`](super::TileStateSettings::max_window)) and receives only the rows that changed, once a frame,
 /// after `Update`. The state is kept when the map file is hot-reloaded (tiles that fall off a
 /// resized map are dropped) and cleared when another map is loaded.
 ///
