@@ -204,8 +204,13 @@ pub fn script(
                 return;
             }
             let Some((_, unit, ..)) = units.iter().next() else { return };
-            if states.overlay(unit.tile) != crate::vision::lens_color(&map, unit.tile) {
-                fail("the lens has no color on a unit's tile".into(), &mut exit);
+            // Overlays are stored in 8 bits a channel.
+            let bytes = |c: Option<Color>| c.map(|c| c.to_srgba().to_u8_array());
+            if bytes(states.overlay(unit.tile)) != bytes(vision::lens_color(&map, unit.tile)) {
+                fail(
+                    format!("the lens color of a unit's tile {:?} is {:?}", unit.tile, states.overlay(unit.tile)),
+                    &mut exit,
+                );
                 return;
             }
             s.step = 5;
