@@ -4,24 +4,13 @@
 //! own (`support::in_own_process`, under `xvfb-run` when there is no display): the `#[test]`s
 //! here start the `#[ignore]`d scenarios.
 
+#[macro_use]
 mod support;
 
 use bevy::prelude::*;
 use hex_terrain_game::hex_terrain::Terrain;
 use hex_terrain_game::prelude::*;
 use support::scene::*;
-
-// Each test runs one ignored scenario below in a process of its own.
-macro_rules! in_own_process {
-    ($($test:ident => $scenario:ident),* $(,)?) => {
-        $(
-            #[test]
-            fn $test() {
-                support::in_own_process(stringify!($scenario));
-            }
-        )*
-    };
-}
 
 in_own_process! {
     tiles_show_their_type_color_without_outlines => scenario_outlines_off,

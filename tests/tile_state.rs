@@ -3,6 +3,7 @@
 //! screenshots. Each scenario renders in a process of its own; tests comparing two pictures run
 //! two scenarios and read their files.
 
+#[macro_use]
 mod support;
 
 use std::path::Path;
@@ -48,9 +49,9 @@ fn spread(c: [f32; 3]) -> f32 {
     c[0].max(c[1]).max(c[2]) - c[0].min(c[1]).min(c[2])
 }
 
-#[test]
-fn fog_shows_unexplored_dark_explored_grey_and_visible_in_color() {
-    support::in_own_process("scenario_fog");
+in_own_process! {
+    fog_shows_unexplored_dark_explored_grey_and_visible_in_color => scenario_fog,
+    borders_carry_the_owner_color_inside_the_owned_tile => scenario_borders,
 }
 
 #[test]
@@ -102,11 +103,6 @@ fn scenario_fog() {
 /// Owners: nobody in the first two rows, player 1 left of column 10, player 2 from it.
 fn owner_of(terrain: &Terrain, h: Hex) -> Option<u8> {
     (row(terrain, h) >= 2).then_some(if col(terrain, h) < 10 { 1 } else { 2 })
-}
-
-#[test]
-fn borders_carry_the_owner_color_inside_the_owned_tile() {
-    support::in_own_process("scenario_borders");
 }
 
 #[test]

@@ -2,6 +2,20 @@
 //! one event loop per process, and libtest runs tests as threads of one process), under
 //! `xvfb-run` when there is no display, so plain `cargo test` passes as well as nextest.
 
+/// `#[test]`s each running one ignored scenario in a process of its own:
+/// `in_own_process! { test_name => scenario_name, ... }`.
+#[allow(unused_macros, reason = "not every test binary that includes this module uses it")]
+macro_rules! in_own_process {
+    ($($test:ident => $scenario:ident),* $(,)?) => {
+        $(
+            #[test]
+            fn $test() {
+                support::in_own_process(stringify!($scenario));
+            }
+        )*
+    };
+}
+
 #[allow(dead_code, reason = "not every test binary that includes this module renders")]
 pub mod scene;
 

@@ -252,6 +252,11 @@ fn linear(c: Color) -> Vec4 {
     Vec4::from_array(c.to_linear().to_f32_array())
 }
 
+/// The tile state window as the shader reads it: first offset column and row, width, height.
+fn window_param((origin, size): (IVec2, UVec2)) -> IVec4 {
+    origin.extend(size.x as i32).extend(size.y as i32)
+}
+
 /// Builds the shader parameters for a map config, an appearance and the tile state window
 /// (first offset column and row, size).
 #[must_use]
@@ -294,7 +299,7 @@ pub fn params(config: &MapConfig, appearance: &TerrainAppearance, window: (IVec2
         fog_softness: finite(appearance.fog_softness, 0.0, 1.0),
         tint_strength: 0.22,
         flags: bits,
-        tile_window: IVec4::new(window.0.x, window.0.y, window.1.x as i32, window.1.y as i32),
+        tile_window: window_param(window),
     }
 }
 
@@ -415,14 +420,14 @@ fn update_material(
         }
     }
     let Some(material) = materials.get(&handle.0) else { return };
-    // A map whose appearance had to be clamped is drawn in flat colors.
-    let mut effective = appearance.clone();
-    effective.textures &= !map.appearance_fallback();
     let ext = &material.extension;
-    let window_moved = ext.params.tile_window != params(map.config(), &effective, states.window()).tile_window;
+    let window_moved = ext.params.tile_window != window_param(states.window());
     if !(map.is_changed() || appearance.is_changed() || texture.is_changed() || window_moved) {
         return;
     }
+    // A map whose appearance had to be clamped is drawn in flat colors.
+    let mut effective = appearance.clone();
+    effective.textures &= !map.appearance_fallback();
     let params = params(map.config(), &effective, states.window());
     let owners = owner_colors(&effective);
     let retexture = effective.textures != ext.sea_texture.is_some();

@@ -154,11 +154,10 @@ const NEIGHBORS = array<vec2<i32>, 6>(
     vec2<i32>(1, 0), vec2<i32>(1, -1), vec2<i32>(0, -1), vec2<i32>(-1, 0), vec2<i32>(-1, 1), vec2<i32>(0, 1),
 );
 
-// Distance from a point to the edge of its hex `h` that faces neighbor step `d`.
-fn edge_distance(p: vec2<f32>, h: vec2<i32>, d: vec2<i32>) -> f32 {
-    let c = hex_center(h);
-    let towards = normalize(hex_center(h + d) - c);
-    return params.hex_size * SQRT3 / 2.0 - dot(p - c, towards);
+// Distance to the edge facing neighbor step `d` of a point `offset` from its hex's center (the
+// center of a step is the direction to that neighbor: centers are linear in the coordinates).
+fn edge_distance(offset: vec2<f32>, d: vec2<i32>) -> f32 {
+    return params.hex_size * SQRT3 / 2.0 - dot(offset, normalize(hex_center(d)));
 }
 
 // The tile state texel of a hex (zero, the default state, outside the texture's window). Offset
@@ -233,8 +232,9 @@ fn tile_look(p: vec2<f32>, albedo: vec4<f32>) -> TileLook {
     let band = vec2<f32>(params.border_inset, params.border_inset + params.border_width) * radius;
     var border = 0.0;
     var nearest = radius;
+    let offset = p - hex_center(h);
     for (var i = 0; i < 6; i++) {
-        let d = edge_distance(p, h, NEIGHBORS[i]);
+        let d = edge_distance(offset, NEIGHBORS[i]);
         nearest = min(nearest, d);
         let near_fog = d < soft;
         let near_border = owner != 0u && d < band.y;

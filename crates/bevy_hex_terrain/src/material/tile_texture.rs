@@ -89,44 +89,56 @@ fn extract_uploads(
 }
 
 /// Copies the pending rows into the texture once it exists on the GPU; uploads for an older
-/// texture are dropped (the new one was filled whole).
+/// texture are dropped (the new one was filled whole). Runs of whole rows go in one copy.
 fn write_uploads(mut pending: ResMut<PendingUploads>, images: Res<RenderAssets<GpuImage>>, queue: Res<RenderQueue>) {
     let Some((id, generation)) = pending.texture else { return };
+    if pending.uploads.is_empty() {
+        return;
+    }
     pending.uploads.retain(|u| u.texture >= generation);
     let Some(gpu) = images.get(id) else { return };
     let PendingUploads { uploads, bytes, .. } = &mut *pending;
     let size = gpu.texture_descriptor.size;
-    let mut keep = Vec::new();
-    for upload in uploads.drain(..) {
-        if upload.texture != generation || upload.size != UVec2::new(size.width, size.height) {
-            keep.push(upload);
-            continue;
-        }
+    let (width, height) = (size.width, size.height);
+    // Uploads for a texture not made yet wait; the others are written now.
+    let ready = |u: &TileStateUpload| u.texture == generation && u.size == UVec2::new(width, height);
+    for upload in uploads.iter().filter(|u| ready(u)) {
         let mut at = 0;
-        for span in &upload.spans {
-            let texels = &upload.data[at..at + span.z as usize];
-            at += span.z as usize;
-            if span.x + span.z > size.width || span.y >= size.height {
+        let mut spans = upload.spans.iter().peekable();
+        while let Some(&first) = spans.next() {
+            // A span and the whole rows right below it, when it is a whole row itself.
+            let (mut rows, mut texels) = (1, first.z);
+            while first.x == 0
+                && first.z == width
+                && spans.peek().is_some_and(|s| s.x == 0 && s.z == width && s.y == first.y + rows)
+            {
+                spans.next();
+                rows += 1;
+                texels += width;
+            }
+            let data = &upload.data[at..at + texels as usize];
+            at += texels as usize;
+            if first.x + first.z > width || first.y + rows > height {
                 continue;
             }
             bytes.clear();
-            bytes.extend(texels.iter().flat_map(|t| t.iter().flat_map(|v| v.to_le_bytes())));
+            bytes.extend(data.iter().flat_map(|t| t.iter().flat_map(|v| v.to_le_bytes())));
             queue.write_texture(
                 TexelCopyTextureInfo {
                     texture: &gpu.texture,
                     mip_level: 0,
-                    origin: Origin3d { x: span.x, y: span.y, z: 0 },
+                    origin: Origin3d { x: first.x, y: first.y, z: 0 },
                     aspect: TextureAspect::All,
                 },
                 bytes,
                 TexelCopyBufferLayout {
                     offset: 0,
-                    bytes_per_row: Some(span.z * TEXEL_BYTES as u32),
+                    bytes_per_row: Some(first.z * TEXEL_BYTES as u32),
                     rows_per_image: None,
                 },
-                Extent3d { width: span.z, height: 1, depth_or_array_layers: 1 },
+                Extent3d { width: first.z, height: rows, depth_or_array_layers: 1 },
             );
         }
     }
-    *uploads = keep;
+    uploads.retain(|u| !ready(u));
 }

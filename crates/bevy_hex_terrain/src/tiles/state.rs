@@ -235,10 +235,15 @@ impl TileStates {
     /// Makes `tiles` the only ones carrying `highlight` (however many); tiles outside the map
     /// are skipped. Returns how many were skipped.
     pub fn replace_highlight(&mut self, highlight: Highlight, tiles: impl IntoIterator<Item = Hex>) -> usize {
-        let new: HashSet<Hex> = tiles.into_iter().collect();
-        let before = new.len();
-        let new: HashSet<Hex> = new.into_iter().filter(|&h| self.check(h).is_ok()).collect();
-        let skipped = before - new.len();
+        let mut skipped = 0;
+        let mut new = HashSet::default();
+        for tile in tiles {
+            if self.check(tile).is_ok() {
+                new.insert(tile);
+            } else {
+                skipped += 1;
+            }
+        }
         let old = std::mem::take(&mut self.highlighted[highlight as usize]);
         let bit = highlight.bit();
         for &tile in old.difference(&new) {

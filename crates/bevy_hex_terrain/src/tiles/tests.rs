@@ -28,8 +28,8 @@ fn bounded(x: i32, z: i32) -> TileStates {
     s
 }
 
-fn hex(s: &TileStates, col: i32, row: i32) -> Hex {
-    let _ = s;
+/// The tile at an offset coordinate of a flat-topped map (the maps here).
+fn hex(_: &TileStates, col: i32, row: i32) -> Hex {
     Hex::from_offset_coordinates([col, row], hex_terrain::terrain::OFFSET_MODE, HexOrientation::Flat)
 }
 
