@@ -516,7 +516,7 @@ fn chunk_boundaries(game: Res<Game>, map: Res<HexMap>, streamer: Res<ChunkStream
         ]
         .map(|oc| {
             let [x, _, z] = terrain.tile_center(terrain.tile_from_offset(oc));
-            Vec3::new(x, top, z)
+            Vec3::new(x as f32, top, z as f32)
         });
         for k in 0..4 {
             gizmos.line(corners[k], corners[(k + 1) % 4], Color::srgb(1.0, 0.3, 0.1));

@@ -7,6 +7,7 @@ use std::sync::{Arc, Mutex};
 
 use bevy::camera::ScalingMode;
 use bevy::core_pipeline::prepass::{DeferredPrepass, DepthPrepass};
+use bevy::math::DVec3;
 use bevy::pbr::DefaultOpaqueRendererMethod;
 use bevy::prelude::*;
 use bevy::render::view::screenshot::{Screenshot, ScreenshotCaptured};
@@ -32,7 +33,7 @@ pub fn map() -> MapConfig {
 pub fn view(terrain: &Terrain) -> (Vec2, Vec2) {
     let (mut lo, mut hi) = (Vec2::splat(f32::MAX), Vec2::splat(f32::MIN));
     for t in terrain.tiles() {
-        let [x, _, z] = terrain.tile_center(t);
+        let [x, _, z] = terrain.tile_center(t).map(|v| v as f32);
         lo = lo.min(Vec2::new(x, z));
         hi = hi.max(Vec2::new(x, z));
     }
@@ -207,7 +208,8 @@ pub fn clear_tiles(terrain: &Terrain) -> Vec<(Hex, TileKind, Vec3)> {
         .filter_map(|t| {
             let info = terrain.tile_info(t);
             let h = info.elevation / c.terrain.max_elevation;
-            ((h - s).abs() > b && (h - m).abs() > b).then(|| (t, info.kind, Vec3::from_array(terrain.tile_center(t))))
+            ((h - s).abs() > b && (h - m).abs() > b)
+                .then(|| (t, info.kind, DVec3::from_array(terrain.tile_center(t)).as_vec3()))
         })
         .collect()
 }
@@ -223,7 +225,7 @@ pub fn border_to_center(img: &image::RgbImage, terrain: &Terrain) -> f32 {
             let a = layout.hex_to_world_pos(t);
             let b = layout.hex_to_world_pos(t.all_neighbors()[0]);
             let mid = (a + b) / 2.0;
-            let edge = Vec3::new(mid.x, terrain.surface_height(mid.x, mid.y), mid.y);
+            let edge = Vec3::new(mid.x, terrain.surface_height(f64::from(mid.x), f64::from(mid.y)) as f32, mid.y);
             let center_px = pixel(center, size, Vec3::new(a.x, 0.0, a.y));
             // The darkest pixel around the edge point: lines are a pixel or two wide.
             let (ex, ey) = pixel(center, size, edge);

@@ -35,6 +35,8 @@
 //! ```
 
 pub mod asset;
+#[cfg(feature = "big_space")]
+pub mod far;
 pub mod map;
 #[cfg(feature = "render")]
 pub mod material;
@@ -48,12 +50,14 @@ pub use hex_terrain;
 use hex_terrain::MapConfig;
 
 pub use crate::asset::{HexMapAsset, HexMapLoader, HexMapLoaderError};
-pub use crate::map::{HexMap, HexMapError, HexMapHandle, HexMapPlugin, LoadHexMap, TileHit};
+#[cfg(feature = "big_space")]
+pub use crate::far::{HexBigSpacePlugin, HexTerrainGrid};
+pub use crate::map::{HexMap, HexMapError, HexMapHandle, HexMapPlugin, LoadHexMap, TileHit, TileHitF64};
 #[cfg(feature = "render")]
-pub use crate::material::{HexTerrainMaterial, HexTerrainMaterialPlugin, TerrainAppearance};
+pub use crate::material::{HexTerrainMaterial, HexTerrainMaterialPlugin, RenderOrigin, TerrainAppearance};
 pub use crate::streaming::{
     ChunkDespawned, ChunkSpawned, ChunkStreamer, ChunkTask, ChunkThreads, HexChunk, HexStreamingPlugin,
-    HexTerrainAgent, HexTerrainSettings, HexTerrainStats, TerrainReady,
+    HexTerrainAgent, HexTerrainSettings, HexTerrainStats, HexWorldPosition, TerrainReady,
 };
 pub use crate::tiles::{
     FogState, HexTileStatePlugin, Highlight, TileStateError, TileStateSettings, TileStateStats, TileStates,
@@ -61,12 +65,15 @@ pub use crate::tiles::{
 
 /// Everything a game usually needs.
 pub mod prelude {
+    #[cfg(feature = "big_space")]
+    pub use crate::far::{HexBigSpacePlugin, HexTerrainGrid};
     #[cfg(feature = "render")]
     pub use crate::material::{HexTerrainMaterialPlugin, TerrainAppearance};
     pub use crate::{
         ChunkDespawned, ChunkSpawned, ChunkStreamer, FogState, HexChunk, HexMap, HexMapError, HexMapPlugin,
         HexStreamingPlugin, HexTerrainAgent, HexTerrainPlugin, HexTerrainPlugins, HexTerrainSettings, HexTerrainStats,
-        HexTerrainSystems, HexTileStatePlugin, Highlight, LoadHexMap, MapSource, TerrainReady, TileHit, TileStates,
+        HexTerrainSystems, HexTileStatePlugin, HexWorldPosition, Highlight, LoadHexMap, MapSource, TerrainReady,
+        TileHit, TileStates,
     };
     pub use hex_terrain::hexx::Hex;
     pub use hex_terrain::{Biome, ChunkCoord, MapConfig, MapSize, RiverTile, TileInfo, TileKind};

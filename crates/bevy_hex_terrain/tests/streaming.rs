@@ -1,82 +1,17 @@
 //! Headless `App` tests (`MinimalPlugins` + `AssetPlugin`): streaming, seams, hot reload, queries.
 
-use std::collections::{HashMap, HashSet};
+use std::collections::HashMap;
 use std::time::Duration;
 
-use bevy::asset::AssetPlugin;
 use bevy::mesh::VertexAttributeValues;
 use bevy::prelude::*;
 use bevy_hex_terrain::hex_terrain::Terrain;
 use bevy_hex_terrain::prelude::*;
 use bevy_hex_terrain::{ChunkThreads, HexMapAsset, HexMapHandle};
 
-fn unbounded(chunk: (u32, u32)) -> MapConfig {
-    MapConfig { size: MapSize::Unbounded, chunk_size: chunk, ..MapConfig::default() }
-}
+mod common;
 
-fn settings(radius: u32) -> HexTerrainSettings {
-    HexTerrainSettings {
-        load_radius: radius,
-        prefetch: 1,
-        unload_hysteresis: 1,
-        max_inserts_per_frame: 16,
-        max_tasks_in_flight: 16,
-        ..default()
-    }
-}
-
-/// A headless app: the terrain plugins without the material.
-fn app_with(plugins: HexTerrainPlugins, asset_dir: Option<&std::path::Path>) -> App {
-    let mut app = App::new();
-    let assets = AssetPlugin { file_path: asset_dir.map_or("assets".into(), |d| d.display().to_string()), ..default() };
-    app.add_plugins((MinimalPlugins, assets, TransformPlugin));
-    app.add_plugins(plugins.build().disable::<HexTerrainMaterialPlugin>());
-    app
-}
-
-fn app(config: MapConfig, radius: u32) -> App {
-    app_with(HexTerrainPlugins { map: config.into(), settings: settings(radius) }, None)
-}
-
-fn spawn_agent(app: &mut App, at: Vec3) -> Entity {
-    app.world_mut().spawn((HexTerrainAgent::default(), Transform::from_translation(at))).id()
-}
-
-/// Updates until `done` holds, letting the task pool work between frames.
-fn run_until(app: &mut App, what: &str, mut done: impl FnMut(&mut App) -> bool) {
-    for _ in 0..2000 {
-        app.update();
-        if done(app) {
-            return;
-        }
-        std::thread::sleep(Duration::from_millis(1));
-    }
-    panic!("gave up waiting for {what}");
-}
-
-fn ready(app: &mut App) -> bool {
-    let messages = app.world().resource::<Messages<TerrainReady>>();
-    let mut cursor = messages.get_cursor();
-    cursor.read(messages).last().is_some_and(|r| r.generation == app.world().resource::<HexMap>().generation())
-        && app.world_mut().query::<&bevy_hex_terrain::ChunkTask>().iter(app.world()).next().is_none()
-}
-
-fn chunk_coords(app: &mut App) -> HashSet<ChunkCoord> {
-    app.world_mut().query::<&HexChunk>().iter(app.world()).map(|c| c.coord).collect()
-}
-
-fn meshed_chunks(app: &mut App) -> HashMap<ChunkCoord, Handle<Mesh>> {
-    app.world_mut().query::<(&HexChunk, &Mesh3d)>().iter(app.world()).map(|(c, m)| (c.coord, m.0.clone())).collect()
-}
-
-fn window(center: ChunkCoord, r: i32) -> HashSet<ChunkCoord> {
-    (-r..=r).flat_map(|dz| (-r..=r).map(move |dx| ChunkCoord::new(center.x + dx, center.z + dz))).collect()
-}
-
-fn agent_chunk(app: &App, at: Vec3) -> ChunkCoord {
-    let map = app.world().resource::<HexMap>();
-    map.chunk_of(map.tile_at(at))
-}
+use common::*;
 
 #[test]
 fn chunks_appear_around_the_agent_and_only_there() {
@@ -148,14 +83,17 @@ fn neighboring_chunks_share_identical_border_vertices() {
     run_until(&mut app, "terrain ready", ready);
     let handles = meshed_chunks(&mut app);
     let meshes = app.world().resource::<Assets<Mesh>>();
-    let vertices = |coord: ChunkCoord| -> HashMap<[u32; 2], ([u32; 3], [u32; 3])> {
+    let terrain = app.world().resource::<HexMap>().terrain().clone();
+    // Positions are relative to each chunk's origin: vertices meet at the same world position (to
+    // a thousandth of a unit; they are a quarter unit apart), with the same height and normal bits.
+    let vertices = |coord: ChunkCoord| -> HashMap<[i64; 2], (u32, [u32; 3])> {
+        let [ox, _, oz] = terrain.chunk_origin(coord).unwrap();
         let mesh = meshes.get(&handles[&coord]).unwrap();
         let p = mesh.attribute(Mesh::ATTRIBUTE_POSITION).unwrap().as_float3().unwrap();
         let n = mesh.attribute(Mesh::ATTRIBUTE_NORMAL).unwrap().as_float3().unwrap();
-        p.iter()
-            .zip(n)
-            .map(|(p, n)| ([p[0].to_bits(), p[2].to_bits()], (p.map(f32::to_bits), n.map(f32::to_bits))))
-            .collect()
+        let key =
+            |x: f32, z: f32| [((ox + f64::from(x)) * 1e3).round() as i64, ((oz + f64::from(z)) * 1e3).round() as i64];
+        p.iter().zip(n).map(|(p, n)| (key(p[0], p[2]), (p[1].to_bits(), n.map(f32::to_bits)))).collect()
     };
     let mut shared_total = 0;
     for (a, b) in [
@@ -189,7 +127,7 @@ fn map_queries_agree_with_the_core_crate() {
     for tile in core.tiles().step_by(7) {
         assert_eq!(map.tile_info(tile), core.tile_info(tile));
         let center = map.tile_center(tile);
-        assert_eq!(center.to_array(), core.tile_center(tile));
+        assert_eq!(center.to_array(), core.tile_center(tile).map(|v| v as f32));
         assert_eq!(map.tile_at(center), tile);
         assert!(map.contains(tile));
         assert_eq!(map.neighbors(tile), tile.all_neighbors());
@@ -467,7 +405,7 @@ fn reload_teleport_and_switch_in_one_frame_leave_only_the_new_state() {
     // mesh the one the core makes for map b.
     let map = app.world().resource::<HexMap>();
     let (terrain, generation) = (map.terrain().clone(), map.generation());
-    let center = terrain.chunk_of(terrain.tile_at(far.x, far.z));
+    let center = terrain.chunk_of(terrain.tile_at(f64::from(far.x), f64::from(far.z)));
     assert_eq!(chunk_coords(&mut app), window(center, 3), "radius 2 plus the prefetch ring");
     for chunk in app.world_mut().query::<&HexChunk>().iter(app.world()) {
         assert_eq!(chunk.generation, Some(generation), "chunk {:?} is of an old map", chunk.coord);
@@ -587,25 +525,29 @@ fn climate_and_river_maps_give_biomes_rivers_lakes_and_vertex_colors() {
         assert_eq!(map.lake(tile), core.lake(tile));
     }
     let whole = core.generate_map().unwrap();
-    let expected: HashMap<[u32; 2], [u8; 4]> = whole
+    // Chunk positions are relative to the chunk's origin: match vertices by world position,
+    // to a thousandth of a unit (vertices are a quarter unit apart).
+    let key = |x: f64, z: f64| [(x * 1e3).round() as i64, (z * 1e3).round() as i64];
+    let expected: HashMap<[i64; 2], [u8; 4]> = whole
         .buffers
         .positions
         .iter()
         .zip(&whole.buffers.colors)
-        .map(|(p, &c)| ([p[0].to_bits(), p[2].to_bits()], c))
+        .map(|(p, &c)| (key(f64::from(p[0]), f64::from(p[2])), c))
         .collect();
     let handles = meshed_chunks(&mut app);
     assert_eq!(handles.len(), 4 * 3);
     let meshes = app.world().resource::<Assets<Mesh>>();
     let mut wet = 0;
-    for handle in handles.values() {
+    for (&coord, handle) in &handles {
+        let [ox, _, oz] = core.chunk_origin(coord).unwrap();
         let mesh = meshes.get(handle).unwrap();
         let p = mesh.attribute(Mesh::ATTRIBUTE_POSITION).unwrap().as_float3().unwrap();
         let Some(VertexAttributeValues::Float32x4(c)) = mesh.attribute(Mesh::ATTRIBUTE_COLOR) else {
             panic!("a chunk of a climate map has no vertex colors");
         };
         for (p, c) in p.iter().zip(c) {
-            let [r, g, b, a] = expected[&[p[0].to_bits(), p[2].to_bits()]];
+            let [r, g, b, a] = expected[&key(ox + f64::from(p[0]), oz + f64::from(p[2]))];
             let linear = Color::srgb_u8(r, g, b).to_linear();
             assert_eq!([linear.red, linear.green, linear.blue, f32::from(a) / 255.0], *c);
             wet += usize::from(a > 0);

@@ -12,7 +12,10 @@ mod validate;
 pub use climate::{BiomeRule, ClimateConfig, MAX_BIOME_RULES, MAX_WATER_TILES, RiverConfig};
 
 pub use file::MapFile;
-pub use validate::{MAX_CHUNK_BYTES, MAX_CHUNK_SIDE, MAX_INNER_RINGS, MAX_MAP_BYTES, MAX_OCTAVES, MAX_OFFSET};
+pub use validate::{
+    MAX_CHUNK_BYTES, MAX_CHUNK_SIDE, MAX_INNER_RINGS, MAX_MAP_BYTES, MAX_OCTAVES, MAX_OFFSET, MAX_WORLD_TILE,
+    MIN_WRAP_COLUMNS,
+};
 
 /// The whole description of a map. Defaults reproduce the thesis' Map0 (tables 2-4) on a
 /// 30x30 map.
@@ -36,6 +39,10 @@ pub struct MapConfig {
     pub seed: u32,
     /// Map size in hexes, or unbounded.
     pub size: MapSize,
+    /// East-west wrapping (bounded maps): walking east off the map comes back on its west side,
+    /// as on Civilization's maps. Column `x + width` is column `x`, for heights, shapes,
+    /// climate, rivers, meshes and queries.
+    pub wrap: bool,
     /// Shift of the sampled window, in tiles `(x, z)`: the map's first tile is the tile at these
     /// offset coordinates of the infinite world, so a map offset by its own width continues it.
     pub offset: (i32, i32),
@@ -66,6 +73,7 @@ impl Default for MapConfig {
             source: HeightSourceConfig::default(),
             seed: 1000,
             size: MapSize::Bounded { x: 30, z: 30 },
+            wrap: false,
             offset: (0, 0),
             noise: NoiseConfig::default(),
             terrain: TerrainConfig::default(),

@@ -32,6 +32,7 @@ pub mod mesh;
 pub mod metrics;
 pub mod query;
 pub mod terrain;
+pub mod wrap;
 
 pub use chunk::{ChunkCoord, TileRect};
 pub use climate::{Biome, Climate, Hydrology, RiverTile};
@@ -49,3 +50,4 @@ pub use mesh::{ChunkMesh, Diagnostics, GenerateOptions, MeshBuffers, Threads};
 pub use metrics::Sharpness;
 pub use query::RayHit;
 pub use terrain::{Terrain, TileInfo};
+pub use wrap::Wrap;

@@ -1,47 +1,77 @@
 //! Surface queries: the tile under a world position, a tile's center on the surface, the
 //! surface height as meshed, and ray casts against the real surface. All are answered from the
 //! config, so they hold for tiles whose chunk was never generated.
+//!
+//! Positions are f64 world coordinates, so the answers stay exact far from the world's origin
+//! (an f32 coordinate a million units out is only good to an eighth of a unit). On a wrapping
+//! map the tiles they return are the map's own ([`Terrain::wrap_tile`]) and the heights those of
+//! the map's surface placed again: a position one map width east is the same place.
 
-use hexx::{Hex, Vec2};
+use hexx::Hex;
 
+use crate::config::Orientation;
 use crate::terrain::Terrain;
 
 /// A ray hitting the terrain surface.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct RayHit {
     /// World position of the hit.
-    pub point: [f32; 3],
+    pub point: [f64; 3],
     /// Distance along the (normalised) ray.
-    pub distance: f32,
-    /// The tile under the hit.
+    pub distance: f64,
+    /// The tile under the hit (the map's own tile on a wrapping map).
     pub tile: Hex,
 }
+
+const SQRT_3: f64 = 1.732_050_807_568_877_2;
 
 /// Most marching steps of one [`Terrain::raycast`], each half a lattice step: a ray that stays
 /// inside the relief is followed for 2^18 hex sizes at the default ring count.
 pub const MAX_RAY_STEPS: u32 = 1 << 20;
 
 impl Terrain {
-    /// The tile under world `(x, z)`.
+    /// The tile under world `(x, z)` (the map's own tile on a wrapping map).
     #[must_use]
-    pub fn tile_at(&self, x: f32, z: f32) -> Hex {
-        self.layout.world_pos_to_hex(Vec2::new(x, z))
+    pub fn tile_at(&self, x: f64, z: f64) -> Hex {
+        self.wrap_tile(self.unwrapped_tile_at(x, z))
     }
 
-    /// World position of a tile's center on the surface.
+    /// The tile under world `(x, z)` of the plane, not wrapped: on a wrapping map, a position
+    /// one map width east gives the tile one map width east.
     #[must_use]
-    pub fn tile_center(&self, tile: Hex) -> [f32; 3] {
+    pub fn unwrapped_tile_at(&self, x: f64, z: f64) -> Hex {
+        // Axial coordinates in f64 and cube rounding (hexx's layout works in f32, which loses
+        // whole tiles far out).
+        let s = f64::from(self.config.layout.hex_size);
+        let (q, r) = match self.config.layout.orientation {
+            Orientation::Flat => (2.0 / 3.0 * x / s, (-x / 3.0 + SQRT_3 / 3.0 * z) / s),
+            Orientation::Pointy => ((SQRT_3 / 3.0 * x - z / 3.0) / s, 2.0 / 3.0 * z / s),
+        };
+        let c = -q - r;
+        let (mut rq, mut rr, rc) = (q.round(), r.round(), c.round());
+        let (dq, dr, dc) = ((rq - q).abs(), (rr - r).abs(), (rc - c).abs());
+        if dq > dr && dq > dc {
+            rq = -rr - rc;
+        } else if dr > dc {
+            rr = -rq - rc;
+        }
+        Hex::new(rq as i32, rr as i32)
+    }
+
+    /// World position of a tile's center on the surface (for a tile past a wrapping map's
+    /// edge, where it is drawn there).
+    #[must_use]
+    pub fn tile_center(&self, tile: Hex) -> [f64; 3] {
         let p = self.lattice.tile_center(tile);
         let [x, z] = self.lattice.world(p);
-        [x as f32, self.vertex_elevation(p), z as f32]
+        [x, f64::from(self.vertex_elevation(p)), z]
     }
 
     /// World height of the surface (as meshed) at world `(x, z)`.
     #[must_use]
-    pub fn surface_height(&self, x: f32, z: f32) -> f32 {
-        let (tri, w) = self.lattice.triangle_at(f64::from(x), f64::from(z));
-        let h: f64 = tri.iter().zip(w).map(|(&p, w)| w * f64::from(self.vertex_elevation(p))).sum();
-        h as f32
+    pub fn surface_height(&self, x: f64, z: f64) -> f64 {
+        let (tri, w) = self.lattice.triangle_at(x, z);
+        tri.iter().zip(w).map(|(&p, w)| w * f64::from(self.vertex_elevation(p))).sum()
     }
 
     /// First hit of a ray on the surface within `max_distance`, marching at a fraction of a
@@ -49,15 +79,15 @@ impl Terrain {
     /// limit): the march covers only the part of the ray between the highest and the lowest
     /// possible surface, and gives up after [`MAX_RAY_STEPS`] steps.
     #[must_use]
-    pub fn raycast(&self, origin: [f32; 3], direction: [f32; 3], max_distance: f32) -> Option<RayHit> {
+    pub fn raycast(&self, origin: [f64; 3], direction: [f64; 3], max_distance: f64) -> Option<RayHit> {
         let len = (direction[0].powi(2) + direction[1].powi(2) + direction[2].powi(2)).sqrt();
         if len.is_nan() || len <= 0.0 || max_distance.is_nan() || origin.iter().any(|v| !v.is_finite()) {
             return None;
         }
         // March in f64, so a step stays a step however far along the ray.
-        let d = direction.map(|v| f64::from(v / len));
-        let o = origin.map(f64::from);
-        let at = |t: f64| [(o[0] + d[0] * t) as f32, (o[1] + d[1] * t) as f32, (o[2] + d[2] * t) as f32];
+        let d = direction.map(|v| v / len);
+        let o = origin;
+        let at = |t: f64| [o[0] + d[0] * t, o[1] + d[1] * t, o[2] + d[2] * t];
         let above = |t: f64| {
             let p = at(t);
             p[1] - self.surface_height(p[0], p[2])
@@ -69,7 +99,7 @@ impl Terrain {
             return None;
         }
         let t0 = if o[1] > top { (o[1] - top) / -d[1] } else { 0.0 };
-        let mut end = f64::from(max_distance);
+        let mut end = max_distance;
         if d[1] < 0.0 {
             end = end.min(o[1].max(0.0) / -d[1] + 1.0);
         }
@@ -92,12 +122,12 @@ impl Terrain {
                     if above(mid) > 0.0 { lo = mid } else { hi = mid }
                 }
                 let point = at(hi);
-                return Some(RayHit { point, distance: hi as f32, tile: self.tile_at(point[0], point[2]) });
+                return Some(RayHit { point, distance: hi, tile: self.tile_at(point[0], point[2]) });
             }
             prev = h;
             t = next;
             // A ray going up and already above every possible height never comes back.
-            if d[1] >= 0.0 && f64::from(at(t)[1]) > top && prev > 0.0 {
+            if d[1] >= 0.0 && at(t)[1] > top && prev > 0.0 {
                 return None;
             }
         }

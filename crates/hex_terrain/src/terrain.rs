@@ -15,6 +15,7 @@ use crate::error::ConfigError;
 use crate::heights::{Fbm, HeightImage, ShapeBounds};
 use crate::kind::{Thresholds, TileKind};
 use crate::lattice::Lattice;
+use crate::wrap::Wrap;
 
 /// Offset-coordinate convention of the map's rectangles (hexx's odd columns/rows shoved).
 pub const OFFSET_MODE: OffsetHexMode = OffsetHexMode::Odd;
@@ -59,6 +60,8 @@ pub struct Terrain {
     pub(crate) layout: HexLayout,
     pub(crate) origin_lattice: Hex,
     pub(crate) bounds: Option<TileRect>,
+    /// The period of an east-west wrapping map.
+    pub(crate) wrap: Option<Wrap>,
     pub(crate) shape_bounds: Option<ShapeBounds>,
     /// Whether a shaping filter changes heights (a bounded map with a shape other than `None`).
     pub(crate) shaping: bool,
@@ -111,8 +114,14 @@ impl Terrain {
         let origin_tile = Hex::from_offset_coordinates([config.offset.0, config.offset.1], OFFSET_MODE, orientation);
         let origin_lattice = lattice.tile_center(origin_tile);
         let bounds = config.size.bounds().map(|(x, z)| TileRect::new([0, 0], [x, z]));
+        let wrap = bounds.filter(|_| config.wrap).map(|b| Wrap::new(&lattice, b.max[0], config.chunk_size.0));
+        let fbm = match &wrap {
+            Some(w) => Fbm::wrapped(config.seed, &config.noise, w.width / f64::from(config.layout.hex_size)),
+            None => Fbm::new(config.seed, &config.noise),
+        };
         let mut terrain = Self {
-            fbm: Fbm::new(config.seed, &config.noise),
+            fbm,
+            wrap,
             thresholds: Thresholds::new(&config.terrain, &config.manipulation),
             config,
             lattice,
@@ -152,7 +161,8 @@ impl Terrain {
         });
         terrain.shaping = terrain.shape_bounds.is_some() && terrain.config.shape != Shape::None;
         if terrain.config.climate.enabled {
-            terrain.climate = Some(ClimateFields::new(&terrain.config));
+            let wrap_width = terrain.wrap.map(|w| w.width / f64::from(terrain.config.layout.hex_size));
+            terrain.climate = Some(ClimateFields::new(&terrain.config, wrap_width));
         }
         // Rivers need the whole map's table; a climate alone uses it on maps up to the size
         // rivers allow, and computes biomes chunk by chunk on larger ones.
@@ -214,10 +224,15 @@ impl Terrain {
         tile.to_offset_coordinates(OFFSET_MODE, self.layout.orientation)
     }
 
-    /// Whether a tile belongs to the map.
+    /// Whether a tile belongs to the map: on a wrapping map, every tile of the map's rows (a
+    /// tile past the east or west edge is a tile of the map again, see [`Terrain::wrap_tile`]).
     #[must_use]
     pub fn contains(&self, tile: Hex) -> bool {
-        self.bounds.is_none_or(|b| b.contains(self.offset_of(tile)))
+        match (self.bounds, &self.wrap) {
+            (None, _) => true,
+            (Some(b), Some(_)) => (b.min[1]..b.max[1]).contains(&self.offset_of(tile)[1]),
+            (Some(b), None) => b.contains(self.offset_of(tile)),
+        }
     }
 
     /// Every tile of a bounded map, row by row; empty for an unbounded world.

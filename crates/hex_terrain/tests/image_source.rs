@@ -28,10 +28,10 @@ fn pixels_below_sea_level_become_sea_tiles() {
     let t = Terrain::with_image(config, Some(image.clone())).unwrap();
     let b = t.bounds().unwrap();
     // The image spans the tile centers' extent.
-    let centers: Vec<[f32; 3]> = t.tiles().map(|h| t.tile_center(h)).collect();
+    let centers: Vec<[f64; 3]> = t.tiles().map(|h| t.tile_center(h)).collect();
     let extent = |axis: usize| {
-        let lo = centers.iter().map(|c| c[axis]).fold(f32::MAX, f32::min);
-        let hi = centers.iter().map(|c| c[axis]).fold(f32::MIN, f32::max);
+        let lo = centers.iter().map(|c| c[axis]).fold(f64::MAX, f64::min);
+        let hi = centers.iter().map(|c| c[axis]).fold(f64::MIN, f64::max);
         (lo, hi)
     };
     let ((min_x, max_x), (min_z, max_z)) = (extent(0), extent(2));
@@ -44,7 +44,7 @@ fn pixels_below_sea_level_become_sea_tiles() {
         // Sample the image as the source does (u over x extent, v over z extent).
         let u = (x - min_x) / (max_x - min_x);
         let v = (z - min_z) / (max_z - min_z);
-        let value = image.sample(f64::from(u), f64::from(v)) as f32;
+        let value = image.sample(u, v) as f32;
         if value < sea_level - 0.02 {
             assert_eq!(kind, TileKind::Sea, "{oc:?} image {value}");
             sea += 1;

@@ -65,6 +65,7 @@ prop_compose! {
         hex_size in 0.25f32..4.0,
         chunk_size in (1u32..7, 1u32..7),
         climate in any::<bool>(),
+        wrap in any::<bool>(),
         rivers in prop::option::of((1.0f32..12.0, 0.0f32..0.05, 0.0f32..=1.0, 0.5f32..=4.0)),
     ) -> MapConfig {
         let mut c = MapConfig {
@@ -87,8 +88,27 @@ prop_compose! {
         }
         c.layout.orientation = if pointy { Orientation::Pointy } else { Orientation::Flat };
         c.layout.hex_size = hex_size;
+        if wrap {
+            c = wrapping(c);
+        }
         c
     }
+}
+
+/// The config made a valid wrapping map: bounded, at least four columns, an even number of
+/// them for flat tiles, no gradient.
+fn wrapping(mut c: MapConfig) -> MapConfig {
+    let (x, z) = c.size.bounds().unwrap_or((8, 6));
+    let mut x = x.max(hex_terrain::config::MIN_WRAP_COLUMNS);
+    if c.layout.orientation == Orientation::Flat {
+        x += x % 2;
+    }
+    c.size = MapSize::Bounded { x, z };
+    if c.shape == Shape::Gradient {
+        c.shape = Shape::None;
+    }
+    c.wrap = true;
+    c
 }
 
 /// The area compared: the whole bounded map, or a 3x3-chunk window of an unbounded world.
@@ -113,19 +133,34 @@ fn index(m: &ChunkMesh) -> HashMap<Hex, usize> {
     lattice(m).iter().enumerate().map(|(i, &p)| (p, i)).collect()
 }
 
-/// Everything a renderer receives for one vertex, as bits.
-type VertexBits = ([u32; 3], [u32; 3], [u32; 2], u32, u32, Option<[u8; 4]>);
+/// What a renderer receives for one vertex that does not depend on the mesh's frame, as bits:
+/// height, normal, kind, center distance, color.
+type VertexBits = (u32, [u32; 3], u32, u32, Option<[u8; 4]>);
 
 fn vertex_bits(m: &ChunkMesh, i: usize) -> VertexBits {
     let b = &m.buffers;
     (
-        b.positions[i].map(f32::to_bits),
+        b.positions[i][1].to_bits(),
         b.normals[i].map(f32::to_bits),
-        b.uvs[i].map(f32::to_bits),
         b.tile_kinds[i],
         b.center_distances[i].to_bits(),
         b.colors.get(i).copied(),
     )
+}
+
+/// A vertex's world `(x, z)`, brought out of its mesh's frame in f64.
+fn world_xz(m: &ChunkMesh, i: usize) -> [f64; 2] {
+    let p = m.buffers.positions[i];
+    [m.origin[0] + f64::from(p[0]), m.origin[2] + f64::from(p[2])]
+}
+
+/// Distance between two UVs modulo whole texture repeats.
+fn uv_gap(a: [f32; 2], b: [f32; 2]) -> f64 {
+    let d = |x: f32, y: f32| {
+        let f = (f64::from(x) - f64::from(y)).rem_euclid(1.0);
+        f.min(1.0 - f)
+    };
+    d(a[0], b[0]).max(d(a[1], b[1]))
 }
 
 proptest! {
@@ -157,6 +192,8 @@ proptest! {
         }
         let mut seen: HashMap<Hex, VertexBits> = HashMap::new();
         let mut tiles = 0;
+        // Positions are relative to each mesh's origin: in one frame, within 1e-5 lattice steps.
+        let step = f64::from(t.config().layout.hex_size) / f64::from(t.lattice().subdivisions());
         for chunk in chunks {
             let Some(rect_c) = t.chunk_rect(chunk) else { continue };
             let m = t.generate(rect_c.intersect(&rect), GenerateOptions::DIAGNOSTICS);
@@ -165,6 +202,9 @@ proptest! {
                 let bits = vertex_bits(&m, i);
                 let w = whole_index[p];
                 prop_assert_eq!(bits, vertex_bits(&whole, w), "chunk {:?} vertex {:?} differs from the whole", chunk, p);
+                let ([x, z], [wx, wz]) = (world_xz(&m, i), world_xz(&whole, w));
+                prop_assert!((x - wx).abs().max((z - wz).abs()) <= 1e-5 * step, "vertex {:?} at {:?} vs {:?}", p, (x, z), (wx, wz));
+                prop_assert!(uv_gap(m.buffers.uvs[i], whole.buffers.uvs[w]) < 1e-4, "uv of {:?}", p);
                 if let Some(prev) = seen.insert(*p, bits) {
                     prop_assert_eq!(prev, bits, "seam vertex {:?} differs between chunks", p);
                 }

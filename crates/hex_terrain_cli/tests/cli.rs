@@ -52,7 +52,7 @@ fn center_pixels(terrain: &Terrain, mesh: &hex_terrain::ChunkMesh, width: u32) -
     }
     let scale = (width - 1) as f32 / (max_x - min_x);
     move |hex| {
-        let [x, _, z] = terrain.tile_center(hex);
+        let [x, _, z] = terrain.tile_center(hex).map(|v| v as f32);
         (((x - min_x) * scale).round() as u32, ((z - min_z) * scale).round() as u32)
     }
 }
@@ -160,7 +160,7 @@ fn tile_image_puts_sea_where_the_image_is_below_sea_level() {
         let config = MapConfig::load(&ron).unwrap();
         let terrain = Terrain::new(config).unwrap();
         let mesh = terrain.generate_map().unwrap();
-        let (mut min_x, mut max_x, mut min_z, mut max_z) = (f32::MAX, f32::MIN, f32::MAX, f32::MIN);
+        let (mut min_x, mut max_x, mut min_z, mut max_z) = (f64::MAX, f64::MIN, f64::MAX, f64::MIN);
         for t in &mesh.tiles {
             let [x, _, z] = terrain.tile_center(t.hex);
             min_x = min_x.min(x);

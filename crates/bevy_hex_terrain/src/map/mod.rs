@@ -6,7 +6,7 @@ mod apply;
 
 use std::sync::Arc;
 
-use bevy::math::Ray3d;
+use bevy::math::{DVec3, Ray3d};
 use bevy::prelude::*;
 use hex_terrain::hexx::Hex;
 use hex_terrain::{Biome, ChunkCoord, MapConfig, RiverTile, Terrain, TileInfo, TileKind};
@@ -110,9 +110,17 @@ impl HexMap {
         self.applied = None;
     }
 
-    /// The tile under a world position (its `y` is ignored).
+    /// The tile under a world position (its `y` is ignored); on a wrapping map, the map's own
+    /// tile (a position one map width east is the same tile).
     #[must_use]
     pub fn tile_at(&self, world: Vec3) -> Hex {
+        self.tile_at_f64(world.as_dvec3())
+    }
+
+    /// [`tile_at`](Self::tile_at) for an f64 world position, exact however far from the origin
+    /// (with the `big_space` feature, `Grid::grid_position_double` gives an entity's).
+    #[must_use]
+    pub fn tile_at_f64(&self, world: DVec3) -> Hex {
         self.terrain.tile_at(world.x, world.z)
     }
 
@@ -120,8 +128,16 @@ impl HexMap {
     /// `max_distance`.
     #[must_use]
     pub fn raycast(&self, ray: Ray3d, max_distance: f32) -> Option<TileHit> {
-        let hit = self.terrain.raycast(ray.origin.to_array(), ray.direction.to_array(), max_distance)?;
-        Some(TileHit { tile: hit.tile, point: Vec3::from_array(hit.point), distance: hit.distance })
+        let hit =
+            self.raycast_f64(ray.origin.as_dvec3(), ray.direction.as_vec3().as_dvec3(), f64::from(max_distance))?;
+        Some(TileHit { tile: hit.tile, point: hit.point.as_vec3(), distance: hit.distance as f32 })
+    }
+
+    /// [`raycast`](Self::raycast) from an f64 origin, exact however far from the world's origin.
+    #[must_use]
+    pub fn raycast_f64(&self, origin: DVec3, direction: DVec3, max_distance: f64) -> Option<TileHitF64> {
+        let hit = self.terrain.raycast(origin.to_array(), direction.to_array(), max_distance)?;
+        Some(TileHitF64 { tile: hit.tile, point: DVec3::from_array(hit.point), distance: hit.distance })
     }
 
     /// Type, center elevation, map membership, biome, river flow and lake of a tile.
@@ -157,19 +173,54 @@ impl HexMap {
     /// World position of a tile's center on the surface: where a unit standing on it goes.
     #[must_use]
     pub fn tile_center(&self, tile: Hex) -> Vec3 {
-        Vec3::from_array(self.terrain.tile_center(tile))
+        self.tile_center_f64(tile).as_vec3()
+    }
+
+    /// [`tile_center`](Self::tile_center) in f64, exact however far from the origin.
+    #[must_use]
+    pub fn tile_center_f64(&self, tile: Hex) -> DVec3 {
+        DVec3::from_array(self.terrain.tile_center(tile))
     }
 
     /// Height of the surface at a world position (its `y` is ignored).
     #[must_use]
     pub fn surface_height(&self, world: Vec3) -> f32 {
+        self.surface_height_f64(world.as_dvec3()) as f32
+    }
+
+    /// [`surface_height`](Self::surface_height) at an f64 world position.
+    #[must_use]
+    pub fn surface_height_f64(&self, world: DVec3) -> f64 {
         self.terrain.surface_height(world.x, world.z)
     }
 
-    /// The six neighbors of a tile (some may lie outside a bounded map).
+    /// The six neighbors of a tile (some may lie outside a bounded map; on a wrapping map,
+    /// neighbors across the seam are the map's own tiles on the other side).
     #[must_use]
     pub fn neighbors(&self, tile: Hex) -> [Hex; 6] {
-        tile.all_neighbors()
+        self.terrain.neighbors(tile)
+    }
+
+    /// Hex distance between two tiles, the short way round on a wrapping map.
+    #[must_use]
+    pub fn distance(&self, a: Hex, b: Hex) -> u32 {
+        self.terrain.distance(a, b)
+    }
+
+    /// The tile of the map a tile stands for (on a wrapping map, its column modulo the map's
+    /// width; the tile itself otherwise).
+    #[must_use]
+    pub fn wrap_tile(&self, tile: Hex) -> Hex {
+        self.terrain.wrap_tile(tile)
+    }
+
+    /// On a wrapping map, `position` moved by whole map widths to the copy nearest `near` (where
+    /// to draw a unit of a tile near the camera); `position` itself otherwise.
+    #[must_use]
+    pub fn wrap_near(&self, position: Vec3, near: Vec3) -> Vec3 {
+        let Some(width) = self.terrain.wrap().map(|w| w.width as f32) else { return position };
+        let k = ((near.x - position.x) / width).round();
+        position + Vec3::X * (k * width)
     }
 
     /// Whether a tile belongs to the map (always, for an unbounded world).
@@ -194,6 +245,17 @@ pub struct TileHit {
     pub point: Vec3,
     /// Distance along the ray.
     pub distance: f32,
+}
+
+/// A ray hitting a tile, in f64 world coordinates.
+#[derive(Debug, Clone, Copy, PartialEq, Reflect)]
+pub struct TileHitF64 {
+    /// The tile hit.
+    pub tile: Hex,
+    /// World position of the hit on the surface.
+    pub point: DVec3,
+    /// Distance along the ray.
+    pub distance: f64,
 }
 
 /// A map config that could not be applied: the terrain stays as it was.

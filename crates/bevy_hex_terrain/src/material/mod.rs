@@ -95,6 +95,34 @@ pub struct TerrainParams {
     pub flags: u32,
     /// The tiles the tile state texture holds: first offset column and row, width and height.
     pub tile_window: IVec4,
+    /// `x`: a wrapping map's width in columns (0 when it does not wrap); `y`, `z`: the axial
+    /// tile nearest the render frame's origin ([`RenderOrigin`]).
+    pub map_wrap: IVec4,
+    /// `x`, `y`: the render frame's origin relative to that tile's center, in world `(x, z)`.
+    pub origin_offset: Vec4,
+}
+
+/// Where the render frame's origin lies in the world: world zero, unless a floating origin (the
+/// `big_space` feature) renders positions relative to a far-away cell. The shader finds a
+/// fragment's tile from its render position plus this, in integers and small floats, so tile
+/// state and outlines stay exact at any distance.
+#[derive(Resource, Debug, Clone, Copy, Default, PartialEq, Reflect)]
+#[reflect(Resource, Default)]
+pub struct RenderOrigin {
+    /// The axial tile whose center is nearest the render origin.
+    pub tile: IVec2,
+    /// The render origin relative to that tile's center, world `(x, z)`.
+    pub offset: Vec2,
+}
+
+impl RenderOrigin {
+    /// The render origin of a frame whose origin is at world `(x, z)` (in f64).
+    #[must_use]
+    pub fn at(terrain: &hex_terrain::Terrain, x: f64, z: f64) -> Self {
+        let tile = terrain.unwrapped_tile_at(x, z);
+        let [cx, _, cz] = terrain.tile_center(tile);
+        Self { tile: IVec2::new(tile.x, tile.y), offset: Vec2::new((x - cx) as f32, (z - cz) as f32) }
+    }
 }
 
 /// Owner colors (linear), owner `n` at index `n - 1`.
@@ -260,7 +288,12 @@ fn window_param((origin, size): (IVec2, UVec2)) -> IVec4 {
 /// Builds the shader parameters for a map config, an appearance and the tile state window
 /// (first offset column and row, size).
 #[must_use]
-pub fn params(config: &MapConfig, appearance: &TerrainAppearance, window: (IVec2, UVec2)) -> TerrainParams {
+pub fn params(
+    config: &MapConfig,
+    appearance: &TerrainAppearance,
+    window: (IVec2, UVec2),
+    origin: RenderOrigin,
+) -> TerrainParams {
     let t = &config.terrain;
     let max = t.max_elevation;
     let mut bits = 0;
@@ -300,6 +333,13 @@ pub fn params(config: &MapConfig, appearance: &TerrainAppearance, window: (IVec2
         tint_strength: 0.22,
         flags: bits,
         tile_window: window_param(window),
+        map_wrap: IVec4::new(
+            config.size.bounds().filter(|_| config.wrap).map_or(0, |(x, _)| x as i32),
+            origin.tile.x,
+            origin.tile.y,
+            0,
+        ),
+        origin_offset: origin.offset.extend(0.0).extend(0.0),
     }
 }
 
@@ -340,7 +380,9 @@ impl Plugin for HexTerrainMaterialPlugin {
         embedded_asset!(app, "terrain.wgsl");
         app.add_plugins((MaterialPlugin::<HexTerrainMaterial>::default(), tile_texture::TileTexturePlugin))
             .init_resource::<TerrainAppearance>()
+            .init_resource::<RenderOrigin>()
             .register_type::<TerrainAppearance>()
+            .register_type::<RenderOrigin>()
             .add_systems(Startup, create_material.after(tile_texture::create_texture))
             .add_systems(
                 Update,
@@ -382,12 +424,13 @@ fn create_material(
     appearance: Res<TerrainAppearance>,
     states: Res<TileStates>,
     texture: Res<TileStateTexture>,
+    origin: Res<RenderOrigin>,
 ) {
     let [sea_texture, land_texture, mountain_texture] = textures(&server, &appearance);
     let handle = materials.add(ExtendedMaterial {
         base: StandardMaterial { base_color: Color::WHITE, perceptual_roughness: 0.92, reflectance: 0.2, ..default() },
         extension: HexTerrainExtension {
-            params: params(map.config(), &appearance, states.window()),
+            params: params(map.config(), &appearance, states.window(), *origin),
             sea_texture,
             land_texture,
             mountain_texture,
@@ -411,6 +454,7 @@ fn update_material(
     mut appearance: ResMut<TerrainAppearance>,
     states: Res<TileStates>,
     texture: Res<TileStateTexture>,
+    origin: Res<RenderOrigin>,
     mut failed: MessageReader<bevy::asset::AssetLoadFailedEvent<Image>>,
 ) {
     for failure in failed.read() {
@@ -422,13 +466,13 @@ fn update_material(
     let Some(material) = materials.get(&handle.0) else { return };
     let ext = &material.extension;
     let window_moved = ext.params.tile_window != window_param(states.window());
-    if !(map.is_changed() || appearance.is_changed() || texture.is_changed() || window_moved) {
+    if !(map.is_changed() || appearance.is_changed() || texture.is_changed() || origin.is_changed() || window_moved) {
         return;
     }
     // A map whose appearance had to be clamped is drawn in flat colors.
     let mut effective = appearance.clone();
     effective.textures &= !map.appearance_fallback();
-    let params = params(map.config(), &effective, states.window());
+    let params = params(map.config(), &effective, states.window(), *origin);
     let owners = owner_colors(&effective);
     let retexture = effective.textures != ext.sea_texture.is_some();
     if params == ext.params && owners == ext.owners && ext.tile_state == texture.handle && !retexture {

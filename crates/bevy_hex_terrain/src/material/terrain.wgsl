@@ -49,6 +49,11 @@ struct TerrainParams {
     flags: u32,
     // The tiles the tile state texture holds: first offset column and row, width, height.
     tile_window: vec4<i32>,
+    // x: a wrapping map's width in columns (0: no wrap); yz: the axial tile nearest the render
+    // frame's origin (a floating origin renders relative to a far-away cell).
+    map_wrap: vec4<i32>,
+    // xy: the render frame's origin relative to that tile's center.
+    origin_offset: vec4<f32>,
 }
 
 struct OwnerColors {
@@ -169,6 +174,11 @@ fn tile_texel(h: vec2<i32>) -> vec4<u32> {
     } else {
         oc = vec2<i32>(h.x, h.y + (h.x - (h.x & 1)) / 2);
     }
+    // A wrapping map's tiles east or west of it are its own.
+    let columns = params.map_wrap.x;
+    if columns > 0 {
+        oc.x = ((oc.x % columns) + columns) % columns;
+    }
     let w = params.tile_window;
     let local = oc - w.xy;
     if any(local < vec2<i32>(0)) || any(local >= w.zw) {
@@ -203,10 +213,14 @@ struct TileLook {
     outline: f32,
 }
 
-fn tile_look(p: vec2<f32>, albedo: vec4<f32>) -> TileLook {
+fn tile_look(render_p: vec2<f32>, albedo: vec4<f32>) -> TileLook {
     var look: TileLook;
+    // Hexes relative to the tile nearest the render origin (small numbers, exact), and `base`
+    // to make them absolute for the tile state.
+    let p = render_p + params.origin_offset.xy;
+    let base = params.map_wrap.yz;
     let h = hex_at(p);
-    let texel = tile_texel(h);
+    let texel = tile_texel(h + base);
     let owner = texel.y;
     var color = albedo;
     if owner != 0u && (params.flags & FLAG_TERRITORY_TINT) != 0u {
@@ -241,7 +255,7 @@ fn tile_look(p: vec2<f32>, albedo: vec4<f32>) -> TileLook {
         if !(near_fog || near_border) {
             continue;
         }
-        let n = tile_texel(h + NEIGHBORS[i]);
+        let n = tile_texel(h + base + NEIGHBORS[i]);
         if near_fog {
             let k = 1.0 - smoothstep(0.0, soft, d);
             let nf = n.x & FOG_MASK;

@@ -17,7 +17,7 @@ pub(crate) fn insert_ready(
     map: Res<HexMap>,
     settings: Res<HexTerrainSettings>,
     mut meshes: ResMut<Assets<Mesh>>,
-    mut tasks: Query<(Entity, &mut HexChunk, &mut ChunkTask)>,
+    mut tasks: Query<(Entity, &mut HexChunk, Option<&mut ChunkTask>)>,
     mut spawned: MessageWriter<ChunkSpawned>,
     mut ready: MessageWriter<TerrainReady>,
 ) {
@@ -31,10 +31,14 @@ pub(crate) fn insert_ready(
     let complete = |s: &ChunkStreamer| !s.wanted.is_empty() && s.wanted.keys().all(|c| s.current.contains(c));
     let was_complete = complete(&streamer);
     let mut budget = settings.max_inserts_per_frame.max(1);
-    for (entity, mut chunk, mut task) in &mut tasks {
+    let terrain = map.terrain().clone();
+    // Meshes inserted this frame, by the chunk of the map they show (wrapping maps share them).
+    let mut inserted: Vec<(hex_terrain::ChunkCoord, Handle<Mesh>, usize, usize)> = Vec::new();
+    for (entity, mut chunk, task) in &mut tasks {
         if budget == 0 {
             break;
         }
+        let Some(mut task) = task else { continue };
         let Some(build) = check_ready(&mut task.task) else { continue };
         let requested = task.requested;
         commands.entity(entity).remove::<ChunkTask>();
@@ -43,7 +47,11 @@ pub(crate) fn insert_ready(
             continue;
         }
         budget -= 1;
-        commands.entity(entity).insert(Mesh3d(meshes.add(build.mesh)));
+        let handle = meshes.add(build.mesh);
+        inserted.push((terrain.wrap_chunk(chunk.coord).0, handle.clone(), build.vertices, build.mesh_bytes));
+        // A hot reload may move a chunk's origin (another hex size): place it again.
+        chunk.origin = super::tasks::chunk_origin(&terrain, chunk.coord);
+        commands.entity(entity).insert((Mesh3d(handle), Transform::from_translation(chunk.origin.as_vec3())));
         chunk.generation = Some(build.generation);
         chunk.vertices = build.vertices;
         chunk.mesh_bytes = build.mesh_bytes;
@@ -51,6 +59,29 @@ pub(crate) fn insert_ready(
         streamer.current.insert(chunk.coord);
         stats.inserted(requested.elapsed().as_secs_f32());
         spawned.write(ChunkSpawned { entity, coord: chunk.coord });
+    }
+
+    // Copies of those chunks past a wrapping map's edge waiting for the mesh show it too.
+    if terrain.wrap().is_some() && !inserted.is_empty() {
+        for (entity, mut chunk, task) in &mut tasks {
+            let canonical = terrain.wrap_chunk(chunk.coord).0;
+            let Some((_, handle, vertices, mesh_bytes)) = inserted.iter().find(|(c, ..)| *c == canonical) else {
+                continue;
+            };
+            if chunk.generation == Some(generation) || task.is_some_and(|t| t.generation == generation) {
+                continue;
+            }
+            chunk.origin = super::tasks::chunk_origin(&terrain, chunk.coord);
+            commands
+                .entity(entity)
+                .insert((Mesh3d(handle.clone()), Transform::from_translation(chunk.origin.as_vec3())));
+            chunk.generation = Some(generation);
+            chunk.vertices = *vertices;
+            chunk.mesh_bytes = *mesh_bytes;
+            streamer.loaded.insert(chunk.coord);
+            streamer.current.insert(chunk.coord);
+            spawned.write(ChunkSpawned { entity, coord: chunk.coord });
+        }
     }
 
     let now = complete(&streamer);

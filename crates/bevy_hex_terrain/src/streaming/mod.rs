@@ -28,6 +28,13 @@ pub struct HexTerrainAgent {
     pub radius: Option<u32>,
 }
 
+/// An entity's world position in f64, for agents far from the origin: streaming reads it
+/// instead of the `GlobalTransform` when present. With the `big_space` feature, agents in the
+/// terrain's grid get it from their cell and transform every frame.
+#[derive(Component, Debug, Clone, Copy, Default, PartialEq, Reflect)]
+#[reflect(Component, Default)]
+pub struct HexWorldPosition(pub bevy::math::DVec3);
+
 /// Where a chunk task's generation runs.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Reflect)]
 pub enum ChunkThreads {
@@ -77,8 +84,13 @@ impl Default for HexTerrainSettings {
 #[derive(Component, Debug, Clone, Reflect)]
 #[reflect(Component)]
 pub struct HexChunk {
-    /// Chunk column and row.
+    /// Chunk column and row. On a wrapping map, chunks past the map's east or west edge have
+    /// their own coordinates and show the mesh of the map's chunk they stand for
+    /// ([`Terrain::wrap_chunk`](hex_terrain::Terrain::wrap_chunk)), generated once for all.
     pub coord: ChunkCoord,
+    /// World position of the chunk's mesh origin, in f64 (the entity's `Transform` holds it in
+    /// f32; with the `big_space` feature, its cell and a small transform).
+    pub origin: bevy::math::DVec3,
     /// Map generation of the mesh it shows (see [`HexMap::generation`](crate::HexMap::generation));
     /// `None` until its first mesh arrives.
     pub generation: Option<u64>,
@@ -180,6 +192,7 @@ impl Plugin for HexStreamingPlugin {
             .add_message::<ChunkDespawned>()
             .add_message::<TerrainReady>()
             .register_type::<HexTerrainAgent>()
+            .register_type::<HexWorldPosition>()
             .register_type::<HexTerrainSettings>()
             .register_type::<HexChunk>()
             .register_type::<ChunkSpawned>()

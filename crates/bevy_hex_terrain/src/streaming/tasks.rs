@@ -3,7 +3,8 @@
 
 use std::sync::Arc;
 
-use bevy::platform::collections::HashMap;
+use bevy::math::DVec3;
+use bevy::platform::collections::{HashMap, HashSet};
 use bevy::platform::time::Instant;
 use bevy::prelude::*;
 use bevy::tasks::{AsyncComputeTaskPool, Task};
@@ -11,7 +12,8 @@ use hex_terrain::{ChunkCoord, GenerateOptions, Terrain, Threads};
 
 use super::planner::{ChunkState, plan};
 use super::{
-    ChunkDespawned, ChunkStreamer, ChunkThreads, HexChunk, HexTerrainAgent, HexTerrainSettings, HexTerrainStats,
+    ChunkDespawned, ChunkSpawned, ChunkStreamer, ChunkThreads, HexChunk, HexTerrainAgent, HexTerrainSettings,
+    HexTerrainStats, HexWorldPosition,
 };
 use crate::map::HexMap;
 use crate::mesh::chunk_to_mesh;
@@ -45,9 +47,10 @@ pub(crate) fn stream(
     mut stats: ResMut<HexTerrainStats>,
     map: Res<HexMap>,
     settings: Res<HexTerrainSettings>,
-    agents: Query<(&GlobalTransform, &HexTerrainAgent)>,
-    chunks: Query<(&HexChunk, Option<&ChunkTask>)>,
+    agents: Query<(&GlobalTransform, &HexTerrainAgent, Option<&HexWorldPosition>)>,
+    chunks: Query<(&HexChunk, Option<&ChunkTask>, Option<&Mesh3d>)>,
     mut despawned: MessageWriter<ChunkDespawned>,
+    mut spawned: MessageWriter<ChunkSpawned>,
 ) {
     if map.is_waiting_for_asset() {
         return;
@@ -58,16 +61,18 @@ pub(crate) fn stream(
     streamer.chunks.retain(|_, e| chunks.contains(*e));
     let agents: Vec<(ChunkCoord, u32)> = agents
         .iter()
-        .map(|(t, a)| {
-            let p = t.translation();
-            (terrain.chunk_of(terrain.tile_at(p.x, p.z)), a.radius.unwrap_or(settings.load_radius))
+        .map(|(t, a, world)| {
+            let p = world.map_or_else(|| t.translation().as_dvec3(), |w| w.0);
+            // The tile of the plane (not wrapped): on a wrapping map the agent's chunk is the copy
+            // under it, east or west of the map.
+            (terrain.chunk_of(terrain.unwrapped_tile_at(p.x, p.z)), a.radius.unwrap_or(settings.load_radius))
         })
         .collect();
     let existing: HashMap<ChunkCoord, ChunkState> = streamer
         .chunks
         .iter()
         .filter_map(|(&c, &e)| {
-            let (chunk, task) = chunks.get(e).ok()?;
+            let (chunk, task, _) = chunks.get(e).ok()?;
             Some((
                 c,
                 ChunkState {
@@ -81,7 +86,7 @@ pub(crate) fn stream(
 
     for c in plan.drop {
         let Some(e) = streamer.chunks.remove(&c) else { continue };
-        if chunks.get(e).is_ok_and(|(_, task)| task.is_some()) {
+        if chunks.get(e).is_ok_and(|(_, task, _)| task.is_some()) {
             stats.cancelled();
         }
         commands.entity(e).despawn();
@@ -95,7 +100,47 @@ pub(crate) fn stream(
         ChunkThreads::AsyncCompute => Threads::Current,
         ChunkThreads::Rayon => Threads::Pool,
     };
+    // Chunks of the map whose task starts this frame.
+    let mut started = HashSet::new();
     for c in plan.start {
+        // On a wrapping map, chunks standing for the same chunk of the map share one mesh: copy
+        // it when a copy shows the current one, wait while one is being built.
+        let canonical = terrain.wrap_chunk(c).0;
+        let mut shared = None;
+        let mut building = started.contains(&canonical);
+        for (&other, &e) in &streamer.chunks {
+            if other == c || terrain.wrap_chunk(other).0 != canonical {
+                continue;
+            }
+            let Ok((chunk, task, mesh)) = chunks.get(e) else { continue };
+            building |= task.is_some_and(|t| t.generation == generation);
+            if chunk.generation == Some(generation)
+                && let Some(mesh) = mesh
+            {
+                shared = Some((mesh.clone(), chunk.vertices, chunk.mesh_bytes));
+            }
+        }
+        if let Some((mesh, vertices, mesh_bytes)) = shared {
+            let chunk = HexChunk { generation: Some(generation), vertices, mesh_bytes, ..new_chunk(&terrain, c) };
+            let e = match streamer.chunks.get(&c) {
+                Some(&e) => {
+                    commands.entity(e).insert((mesh, chunk, chunk_transform(&terrain, c)));
+                    e
+                }
+                None => commands
+                    .spawn((Name::new(format!("hex chunk {} {}", c.x, c.z)), chunk_transform(&terrain, c), chunk, mesh))
+                    .id(),
+            };
+            streamer.chunks.insert(c, e);
+            streamer.loaded.insert(c);
+            streamer.current.insert(c);
+            spawned.write(ChunkSpawned { entity: e, coord: c });
+            continue;
+        }
+        if building {
+            continue;
+        }
+        started.insert(canonical);
         let task = ChunkTask {
             task: pool.spawn(build_chunk(terrain.clone(), c, generation, threads)),
             generation,
@@ -111,8 +156,8 @@ pub(crate) fn stream(
                 let e = commands
                     .spawn((
                         Name::new(format!("hex chunk {} {}", c.x, c.z)),
-                        HexChunk { coord: c, generation: None, vertices: 0, mesh_bytes: 0 },
-                        Transform::IDENTITY,
+                        new_chunk(&terrain, c),
+                        chunk_transform(&terrain, c),
                         task,
                     ))
                     .id();
@@ -123,6 +168,22 @@ pub(crate) fn stream(
     if streamer.wanted != plan.wanted {
         streamer.wanted = plan.wanted;
     }
+}
+
+/// A chunk's mesh origin in f64 (zero for a chunk outside the map, which has no mesh).
+pub(super) fn chunk_origin(terrain: &Terrain, coord: ChunkCoord) -> DVec3 {
+    terrain.chunk_origin(coord).map_or(DVec3::ZERO, DVec3::from_array)
+}
+
+/// A chunk entity's component before its first mesh.
+fn new_chunk(terrain: &Terrain, coord: ChunkCoord) -> HexChunk {
+    HexChunk { coord, origin: chunk_origin(terrain, coord), generation: None, vertices: 0, mesh_bytes: 0 }
+}
+
+/// A chunk's transform: its mesh origin (exact near the world's origin; far out, the
+/// `big_space` feature places chunks in cells instead).
+fn chunk_transform(terrain: &Terrain, coord: ChunkCoord) -> Transform {
+    Transform::from_translation(chunk_origin(terrain, coord).as_vec3())
 }
 
 /// The body of a chunk task: core generation plus the Bevy mesh, off the main thread.

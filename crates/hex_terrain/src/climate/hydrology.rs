@@ -248,7 +248,8 @@ impl Terrain {
         if !h.river_at(i) {
             return None;
         }
-        let neighbors = tile.all_neighbors();
+        let tile = self.wrap_tile(tile);
+        let neighbors = self.neighbors(tile);
         let downstream = h.down(i).map(|d| neighbors[d]).filter(|&nb| self.contains(nb));
         let upstream = (0..6)
             .filter(|&d| {

@@ -148,21 +148,38 @@ pub(crate) struct ClimateFields {
     moisture: Fbm,
     /// Temperature positions are moisture positions times this.
     temperature_zoom: f64,
+    /// On a wrapping map, temperature's own fBm, periodic over the map like moisture's (the
+    /// zoomed moisture field would not be).
+    wrapped_temperature: Option<Fbm>,
 }
 
 /// Where the temperature field is read in the moisture fBm's space, away from moisture.
 const TEMPERATURE_SHIFT: f64 = 7.0e4;
 
 impl ClimateFields {
-    pub(crate) fn new(config: &MapConfig) -> Self {
+    /// The fields of a map; `wrap_width` is a wrapping map's width in hex radii.
+    pub(crate) fn new(config: &MapConfig, wrap_width: Option<f64>) -> Self {
         let c = &config.climate;
+        let seed = config.seed.wrapping_add(c.moisture_seed);
+        let Some(width) = wrap_width else {
+            return Self {
+                moisture: Fbm::new(seed, &c.moisture),
+                temperature_zoom: c.moisture.scale / c.temperature_scale,
+                wrapped_temperature: None,
+            };
+        };
+        let temperature = crate::config::NoiseConfig { scale: c.temperature_scale, ..c.moisture.clone() };
         Self {
-            moisture: Fbm::new(config.seed.wrapping_add(c.moisture_seed), &c.moisture),
-            temperature_zoom: c.moisture.scale / c.temperature_scale,
+            moisture: Fbm::wrapped(seed, &c.moisture, width),
+            temperature_zoom: 1.0,
+            wrapped_temperature: Some(Fbm::wrapped(seed.wrapping_add(1), &temperature, width)),
         }
     }
 
     fn temperature(&self, x: f64, z: f64) -> f64 {
+        if let Some(fbm) = &self.wrapped_temperature {
+            return fbm.sample(x, z);
+        }
         let k = self.temperature_zoom;
         self.moisture.sample(x * k + TEMPERATURE_SHIFT, z * k - TEMPERATURE_SHIFT)
     }

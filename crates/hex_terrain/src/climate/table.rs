@@ -24,7 +24,7 @@ impl TileTable {
     /// Row-major index of an in-map tile.
     #[inline]
     pub fn index(&self, terrain: &Terrain, tile: Hex) -> Option<usize> {
-        self.index_of(terrain.offset_of(tile))
+        self.index_of(terrain.offset_of(terrain.wrap_tile(tile)))
     }
 
     /// Row-major index of an offset coordinate in the map.

@@ -1,7 +1,7 @@
 //! Validation: every field of a [`MapConfig`] against its allowed range, and the limits that
 //! keep any accepted config from taking minutes or gigabytes.
 
-use super::{HeightSourceConfig, MapConfig, MapSize, NoiseConfig, Shape};
+use super::{HeightSourceConfig, MapConfig, MapSize, NoiseConfig, Orientation, Shape};
 use crate::error::ConfigError;
 
 /// Largest number of octaves accepted.
@@ -10,6 +10,11 @@ pub const MAX_OCTAVES: u32 = 32;
 pub const MAX_INNER_RINGS: u32 = 16;
 /// Largest absolute tile offset accepted.
 pub const MAX_OFFSET: i32 = 1_000_000;
+/// Fewest columns of a wrapping map.
+pub const MIN_WRAP_COLUMNS: u32 = 4;
+/// Largest absolute tile column or row of an unbounded world: lattice coordinates stay within
+/// `i32` for every ring count. Chunks beyond it do not exist.
+pub const MAX_WORLD_TILE: i32 = 1 << 24;
 /// Largest chunk side, in tiles.
 pub const MAX_CHUNK_SIDE: u32 = 512;
 /// Largest estimated size of one chunk's mesh, in bytes: a chunk is generated on one thread
@@ -145,12 +150,41 @@ impl MapConfig {
             }
             MapSize::Unbounded => {
                 check(
+                    !self.wrap,
+                    "wrap",
+                    "true on an Unbounded map",
+                    "false for an Unbounded map (only a bounded map wraps: an unbounded one has no edge)",
+                )?;
+                check(
                     self.shape == Shape::None,
                     "shape",
                     format!("{:?}", self.shape),
                     "None for an Unbounded map (shapes need the map's bounds)",
                 )?;
             }
+        }
+
+        if let (true, MapSize::Bounded { x, .. }) = (self.wrap, self.size) {
+            check(
+                x >= MIN_WRAP_COLUMNS,
+                "size.x",
+                x,
+                format!("at least {MIN_WRAP_COLUMNS} columns on a wrapping map"),
+            )?;
+            check(
+                self.layout.orientation == Orientation::Pointy || x % 2 == 0,
+                "size.x",
+                x,
+                "an even number of columns on a wrapping map of flat tiles (odd columns are shoved half a \
+                 tile: an odd width would not join its first column)",
+            )?;
+            check(
+                self.shape != Shape::Gradient,
+                "shape",
+                "Gradient on a wrapping map",
+                "None, Island, Mediterranean or Inland on a wrapping map (the gradient rises from the west \
+                 edge, which a wrapping map does not have)",
+            )?;
         }
 
         match self.shape {

@@ -19,6 +19,9 @@ pub struct FastPerlin {
     /// four corners packed in one byte: `(x, y)` in bits 0-1, `(x+1, y)` in 2-3, `(x, y+1)` in
     /// 4-5, `(x+1, y+1)` in 6-7. One load per evaluation instead of four.
     cells: Box<[u8; TABLE * TABLE]>,
+    /// The gradient code (0..4) of each lattice corner `(x & 255, y & 255)`, row-major in `x`:
+    /// what periodic noise reads, whose corner east of the last cell of a period is the first.
+    gradients: Box<[u8; TABLE * TABLE]>,
 }
 
 impl std::fmt::Debug for FastPerlin {
@@ -55,6 +58,8 @@ impl FastPerlin {
             }
         }
         let mut cells = Box::new([0_u8; TABLE * TABLE]);
+        let mut corner_codes = Box::new([0_u8; TABLE * TABLE]);
+        corner_codes.copy_from_slice(&gradients);
         for x in 0..TABLE {
             for y in 0..TABLE {
                 let (x1, y1) = ((x + 1) % TABLE, (y + 1) % TABLE);
@@ -64,7 +69,7 @@ impl FastPerlin {
                     | gradients[x1 * TABLE + y1] << 6;
             }
         }
-        Self { cells }
+        Self { cells, gradients: corner_codes }
     }
 
     /// Noise at `(x, y)`, in `[-1, 1]`, within 1e-6 of `noise::Perlin::new(seed).get([x, y])`.
@@ -105,6 +110,46 @@ impl FastPerlin {
     }
 }
 
+impl FastPerlin {
+    /// Noise periodic in `x` with a period of `cells` noise cells (at least 1): equal to
+    /// [`FastPerlin::get`] for `x` in `[0, cells - 1)`, and the corner east of the period's last
+    /// cell is its first, so the noise joins across `x = cells` without a seam. `y` is as
+    /// [`FastPerlin::get`]'s.
+    #[must_use]
+    #[inline]
+    pub fn get_periodic(&self, x: f64, y: f64, cells: i64) -> f64 {
+        self.lane_periodic(x, y, cells, 1.0 / cells as f64)
+    }
+
+    /// One periodic evaluation: `x` is brought into `[0, cells)` first.
+    #[inline(always)]
+    fn lane_periodic(&self, x: f64, y: f64, cells: i64, inv_cells: f64) -> f64 {
+        let period = cells as f64;
+        let t = x * inv_cells;
+        // Floor of t without a library call (as `lane` does), then the remainder.
+        let q = if t < 0.0 { (t as i64).wrapping_sub(1) } else { t as i64 };
+        let mut xw = x - q as f64 * period;
+        xw = if xw >= period { xw - period } else { xw };
+        xw = if xw < 0.0 { xw + period } else { xw };
+        let cx = (xw as i64).clamp(0, cells - 1);
+        let cx1 = if cx + 1 >= cells { 0 } else { cx + 1 };
+        let cy = if y <= 0.0 { (y as i64).wrapping_sub(1) } else { y as i64 };
+        let dx = (xw - cx as f64).clamp(0.0, 1.0);
+        let dy = (y - cy as f64).clamp(0.0, 1.0);
+        let code = |c: i64, r: i64| self.gradients[(((c & 0xff) << 8) | (r & 0xff)) as usize];
+        let grad =
+            |c: u8, px: f64, py: f64| (1.0 - 2.0 * f64::from(c & 1)) * px + (1.0 - 2.0 * f64::from((c >> 1) & 1)) * py;
+        let g00 = grad(code(cx, cy), dx, dy);
+        let g10 = grad(code(cx1, cy), dx - 1.0, dy);
+        let g01 = grad(code(cx, cy + 1), dx, dy - 1.0);
+        let g11 = grad(code(cx1, cy + 1), dx - 1.0, dy - 1.0);
+        let sx = quintic(dx);
+        let sy = quintic(dy);
+        let result = lerp(lerp(g00, g01, sy), lerp(g10, g11, sy), sx) * SCALE_2D;
+        result.clamp(-1.0, 1.0)
+    }
+}
+
 #[inline(always)]
 fn quintic(x: f64) -> f64 {
     x * x * x * (x * (x * 6.0 - 15.0) + 10.0)
@@ -131,6 +176,8 @@ pub struct Fbm {
     octaves: Vec<(f64, f64)>,
     /// Noise units per hex radius.
     inv_scale: f64,
+    /// On a wrapping map, per octave, the period in noise cells and its inverse.
+    periods: Option<Vec<(i64, f64)>>,
 }
 
 impl Fbm {
@@ -150,7 +197,40 @@ impl Fbm {
         }
         // The thesis' vertex step is a quarter of a hex radius (its 9x9 frame spans two hexes),
         // and its noise scale counts those steps.
-        Self { perlin: FastPerlin::new(seed), octaves, inv_scale: 4.0 / config.scale }
+        Self { perlin: FastPerlin::new(seed), octaves, inv_scale: 4.0 / config.scale, periods: None }
+    }
+
+    /// fBm periodic in x with a period of `width` hex radii, for a wrapping map.
+    ///
+    /// Each octave's frequency is rounded so that `width` holds a whole number of its noise
+    /// cells (at least one), and that octave's noise is periodic over those cells
+    /// ([`FastPerlin::get_periodic`]): the sum joins across the period without a seam, with the
+    /// gradients, fade curve and statistics of the planar noise (no projection stretches it).
+    /// The rounding changes an octave's frequency by at most half a cell over the map's width.
+    #[must_use]
+    pub fn wrapped(seed: u32, config: &NoiseConfig, width: f64) -> Self {
+        let mut fbm = Self::new(seed, config);
+        let cells_per_frequency = width * fbm.inv_scale;
+        let mut periods = Vec::with_capacity(fbm.octaves.len());
+        for (freq, _) in &mut fbm.octaves {
+            let cells = (cells_per_frequency * *freq).round().clamp(1.0, (1_u64 << 52) as f64);
+            *freq = cells / cells_per_frequency;
+            periods.push((cells as i64, 1.0 / cells));
+        }
+        fbm.periods = Some(periods);
+        fbm
+    }
+
+    /// Per octave on a wrapping map, the period in noise cells; `None` for planar noise.
+    #[must_use]
+    pub fn periods(&self) -> Option<Vec<i64>> {
+        self.periods.as_ref().map(|p| p.iter().map(|&(c, _)| c).collect())
+    }
+
+    /// Per octave, `(frequency, amplitude)`, the amplitudes normalised to sum to 1.
+    #[must_use]
+    pub fn octaves(&self) -> &[(f64, f64)] {
+        &self.octaves
     }
 
     /// Normalised height at a position measured in hex radii.
@@ -182,9 +262,17 @@ impl Fbm {
             px[l] = xs[l] * self.inv_scale;
             pz[l] = zs[l] * self.inv_scale;
         }
-        for &(freq, amp) in &self.octaves {
-            for l in 0..L {
-                total[l] += amp * self.perlin.lane(px[l] * freq, pz[l] * freq);
+        if let Some(periods) = &self.periods {
+            for (&(freq, amp), &(cells, inv)) in self.octaves.iter().zip(periods) {
+                for l in 0..L {
+                    total[l] += amp * self.perlin.lane_periodic(px[l] * freq, pz[l] * freq, cells, inv);
+                }
+            }
+        } else {
+            for &(freq, amp) in &self.octaves {
+                for l in 0..L {
+                    total[l] += amp * self.perlin.lane(px[l] * freq, pz[l] * freq);
+                }
             }
         }
         for l in 0..L {

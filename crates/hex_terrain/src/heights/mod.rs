@@ -29,7 +29,7 @@ impl Terrain {
     #[inline]
     pub(crate) fn shaped(&self, noise: f64, p: Hex) -> f32 {
         if self.shaping {
-            let [x, z] = self.lattice.world(p);
+            let [x, z] = self.lattice.world(self.wrap_point(p));
             shape::apply(&self.config.shape, self.shape_bounds.as_ref(), noise, x, z) as f32
         } else {
             noise as f32
@@ -71,16 +71,16 @@ impl Terrain {
     }
 
     fn image_height(&self, image: &HeightImage, sea_level: f64, p: Hex) -> f64 {
-        let [x, z] = self.lattice.world(p);
+        let [x, z] = self.lattice.world(self.wrap_point(p));
         let (u, v) = self.shape_bounds.map_or((0.5, 0.5), |b| b.normalise(x, z));
         remap_sea_level(image.sample(u, v), sea_level, f64::from(self.config.terrain.sea_threshold))
     }
 
     /// Where a lattice point samples the noise: its world position in hex radii, shifted by the
-    /// map's offset.
+    /// map's offset (on a wrapping map, the position of its canonical point).
     #[must_use]
     #[inline]
     pub fn noise_position(&self, p: Hex) -> [f64; 2] {
-        self.lattice.unit(p + self.origin_lattice)
+        self.lattice.unit(self.wrap_point(p) + self.origin_lattice)
     }
 }

@@ -32,6 +32,8 @@ pub(super) struct Job<'a> {
     offsets: [Vec<isize>; 2],
     pub split: Split,
     diagnostics: bool,
+    /// The lattice point positions are relative to ([`Terrain::rect_origin`]).
+    origin: Hex,
 }
 
 /// Kinds of the tiles of a job and of the ring around them, and their center samples.
@@ -75,7 +77,8 @@ impl<'a> Job<'a> {
         let tiles: Vec<Hex> = rect.iter().map(|oc| terrain.tile_from_offset(oc)).collect();
         let shape = GridShape::around(lattice, &tiles);
         let offsets = shape.template_offsets(lattice);
-        Self { terrain, lattice, rect, tiles, shape, offsets, split, diagnostics: options.diagnostics }
+        let origin = terrain.rect_origin(rect);
+        Self { terrain, lattice, rect, tiles, shape, offsets, split, diagnostics: options.diagnostics, origin }
     }
 
     /// The lattice points the job evaluates: its vertices, then the one-step halo.
@@ -134,7 +137,8 @@ impl<'a> Job<'a> {
             lattice.truncate(points.owned);
             Diagnostics { lattice, raw_heights: raws, moved, rings }
         });
-        ChunkMesh { rect: self.rect, buffers: b, tiles, diagnostics }
+        let [x, z] = self.lattice.world(self.origin);
+        ChunkMesh { rect: self.rect, origin: [x, 0.0, z], buffers: b, tiles, diagnostics }
     }
 
     /// The work before the passes: the point enumeration beside the tile kinds and the buffers
@@ -270,7 +274,12 @@ impl<'a> Job<'a> {
         let n = lattice.subdivisions();
         let template = lattice.template();
         let max_elevation = terrain.config().terrain.max_elevation;
-        let uv_scale = 0.5 / terrain.config().layout.hex_size;
+        let uv_scale = 0.5 / f64::from(terrain.config().layout.hex_size);
+        // UVs are world-space modulo whole texture repeats: the origin's fraction plus the
+        // local offset, so they stay small (and exact) anywhere in the world.
+        let [ox, oz] = lattice.world(self.origin);
+        let uv_origin = [(ox * uv_scale).rem_euclid(1.0), (oz * uv_scale).rem_euclid(1.0)];
+        let origin = self.origin;
         let inv_n = 1.0 / n as f32;
         let diagnostics = self.diagnostics;
         in_batches(self.split, outputs, 0, &|i| points.slot_of(i), &|start, o: Outputs<'_>| {
@@ -318,11 +327,11 @@ impl<'a> Job<'a> {
                     o.colors[j] = Terrain::vertex_color(&biomes[..len], s.water);
                 }
                 let height = s.height * max_elevation;
-                let [x, z] = lattice.world(p);
-                let (x, z) = (x as f32, z as f32);
-                o.positions[j] = [x, height, z];
+                // Relative to the origin from the integer lattice offset: exact however far out.
+                let [x, z] = lattice.world(p - origin);
+                o.positions[j] = [x as f32, height, z as f32];
                 o.heights[points.grid.slot(p) - o.first_slot] = height;
-                o.uvs[j] = [x * uv_scale, z * uv_scale];
+                o.uvs[j] = [(uv_origin[0] + x * uv_scale) as f32, (uv_origin[1] + z * uv_scale) as f32];
                 o.kinds[j] = s.kind as u32;
                 o.distances[j] = ring as f32 * inv_n;
                 if diagnostics {

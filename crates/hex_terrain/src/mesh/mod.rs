@@ -22,9 +22,11 @@ use crate::terrain::TileInfo;
 
 /// Plain vertex and index buffers, ready for any renderer.
 ///
-/// Positions are world coordinates with `y` up; faces are wound counter-clockwise seen from
-/// above. UVs are world-space (`x`, `z`) divided by twice the hex size, so textures tile across
-/// chunks without seams.
+/// Positions are relative to the generation's origin ([`ChunkMesh::origin`], the center of its
+/// first tile), `y` up: computed from integer lattice offsets, so they keep their precision
+/// however far from the world's origin the chunk lies. Faces are wound counter-clockwise seen
+/// from above. UVs are world-space (`x`, `z`) divided by twice the hex size, modulo whole
+/// texture repeats, so textures tile across chunks without seams.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct MeshBuffers {
     /// Vertex positions `[x, y, z]`.
@@ -66,6 +68,10 @@ impl MeshBuffers {
 pub struct ChunkMesh {
     /// The tiles it covers (clipped to the map).
     pub rect: TileRect,
+    /// World position `[x, y, z]` of the origin its positions are relative to (the center of
+    /// its first tile at height 0): put the mesh there. A whole map starting at offset `[0, 0]`
+    /// has its origin at zero, so its positions are world positions.
+    pub origin: [f64; 3],
     /// The mesh.
     pub buffers: MeshBuffers,
     /// Type and center elevation of each tile, row by row.

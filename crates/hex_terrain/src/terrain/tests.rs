@@ -77,7 +77,7 @@ fn surface_height_matches_vertices_and_raycast_hits_it() {
     }
     assert!(t.raycast([0.0, 50.0, 0.0], [0.0, 1.0, 0.0], 100.0).is_none());
     assert!(t.raycast([0.0, 50.0, 0.0], [0.0, 0.0, 0.0], 100.0).is_none());
-    assert!(t.raycast([f32::NAN, 50.0, 0.0], [0.0, -1.0, 0.0], 100.0).is_none());
+    assert!(t.raycast([f64::NAN, 50.0, 0.0], [0.0, -1.0, 0.0], 100.0).is_none());
 }
 
 #[test]
@@ -88,10 +88,10 @@ fn raycasts_end_whatever_their_length_and_the_hex_size() {
     config.terrain.max_elevation = 1.0;
     let t = Terrain::new(config).unwrap();
     // Horizontal just above the relief: never hits, and ends after the step cap.
-    assert!(t.raycast([0.0, 1.5, 0.0], [1.0, 0.0, 0.0], f32::MAX).is_none());
+    assert!(t.raycast([0.0, 1.5, 0.0], [1.0, 0.0, 0.0], f64::MAX).is_none());
     // From far above and far out, aimed down: hits.
-    let hit = t.raycast([3000.0, 1e6, 3000.0], [0.0, -1.0, 0.0], f32::MAX).unwrap();
+    let hit = t.raycast([3000.0, 1e6, 3000.0], [0.0, -1.0, 0.0], f64::MAX).unwrap();
     assert!((hit.point[1] - t.surface_height(3000.0, 3000.0)).abs() < 1e-3, "{hit:?}");
     // Going up from above every height: no hit at once.
-    assert!(t.raycast([0.0, 2.0, 0.0], [0.1, 1.0, 0.0], f32::MAX).is_none());
+    assert!(t.raycast([0.0, 2.0, 0.0], [0.1, 1.0, 0.0], f64::MAX).is_none());
 }

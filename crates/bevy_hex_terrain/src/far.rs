@@ -1,0 +1,103 @@
+//! Far from the origin with [`big_space`] (the `big_space` cargo feature): chunks placed in the
+//! cells of a floating-origin grid, agents streamed from their f64 position, and the shader's
+//! tiles measured from the floating origin's cell, so a camera a million units out renders
+//! without jitter.
+//!
+//! Put [`HexTerrainGrid`] on the [`Grid`] entity that holds the terrain (usually the
+//! [`BigSpace`](big_space::prelude::BigSpace) root), add [`HexBigSpacePlugin`] beside
+//! `BigSpaceDefaultPlugins`, and give the camera `FloatingOrigin`. Agents that are children of
+//! that grid with a [`CellCoord`] stream terrain from their exact position; the queries take it
+//! as [`HexMap::tile_at_f64`](crate::HexMap::tile_at_f64) and friends, from
+//! [`Grid::grid_position_double`].
+//!
+//! Without the feature, chunk entities carry their origin in a plain `Transform`: exact while an
+//! f32 holds the origin to a fraction of a lattice step. At 10⁵ world units an f32 is good to
+//! 0.008 units (3% of a lattice step of the default 1-unit hexes with one inner ring); at 10⁶,
+//! to 0.06 units (a quarter of a step): use the feature beyond a few hundred thousand units.
+
+use bevy::math::DVec3;
+use bevy::prelude::*;
+use big_space::prelude::{CellCoord, FloatingOrigin, Grid};
+
+use crate::HexTerrainSystems;
+use crate::map::HexMap;
+use crate::streaming::{HexChunk, HexTerrainAgent, HexWorldPosition};
+
+/// Marks the [`Grid`] entity the terrain's chunks are placed in.
+#[derive(Component, Debug, Clone, Copy, Default, Reflect)]
+#[reflect(Component, Default)]
+pub struct HexTerrainGrid;
+
+/// Places chunks in the [`HexTerrainGrid`]'s cells, feeds agents' f64 positions to streaming,
+/// and keeps the shader's render origin on the floating origin's cell. Add it after
+/// `HexTerrainPlugins` and `BigSpaceDefaultPlugins`.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct HexBigSpacePlugin;
+
+impl Plugin for HexBigSpacePlugin {
+    fn build(&self, app: &mut App) {
+        app.register_type::<HexTerrainGrid>()
+            .add_systems(Update, track_agents.before(HexTerrainSystems::Stream).after(HexTerrainSystems::Map))
+            .add_systems(Update, place_chunks.after(HexTerrainSystems::Insert).before(HexTerrainSystems::Tiles));
+        #[cfg(feature = "render")]
+        app.add_systems(Update, follow_floating_origin.before(HexTerrainSystems::Render));
+    }
+}
+
+/// The grid's f64 position of an entity in it.
+fn position(grid: &Grid, cell: &CellCoord, transform: &Transform) -> DVec3 {
+    grid.grid_position_double(cell, transform)
+}
+
+/// Agents in a grid stream from their f64 position.
+fn track_agents(
+    mut commands: Commands,
+    grids: Query<&Grid>,
+    agents: Query<(Entity, &ChildOf, &CellCoord, &Transform, Option<&HexWorldPosition>), With<HexTerrainAgent>>,
+) {
+    for (entity, parent, cell, transform, known) in &agents {
+        let Ok(grid) = grids.get(parent.parent()) else { continue };
+        let world = HexWorldPosition(position(grid, cell, transform));
+        if known != Some(&world) {
+            commands.entity(entity).insert(world);
+        }
+    }
+}
+
+/// Chunks that changed (new, or a new mesh, whose origin a hot reload may have moved) go into the
+/// grid's cell holding their origin, with a small transform inside it.
+fn place_chunks(
+    mut commands: Commands,
+    grids: Query<(Entity, &Grid), With<HexTerrainGrid>>,
+    chunks: Query<(Entity, &HexChunk, Option<&CellCoord>, Option<&ChildOf>), Changed<HexChunk>>,
+) {
+    let Ok((grid_entity, grid)) = grids.single() else { return };
+    for (entity, chunk, cell, parent) in &chunks {
+        let (new_cell, local) = grid.translation_to_grid(chunk.origin);
+        let mut e = commands.entity(entity);
+        e.insert(Transform::from_translation(local));
+        if cell != Some(&new_cell) {
+            e.insert(new_cell);
+        }
+        if parent.is_none_or(|p| p.parent() != grid_entity) {
+            e.insert(ChildOf(grid_entity));
+        }
+    }
+}
+
+/// The shader measures tiles from the floating origin's cell, where positions are rendered from.
+#[cfg(feature = "render")]
+fn follow_floating_origin(
+    map: Res<HexMap>,
+    grids: Query<&Grid>,
+    origins: Query<(&CellCoord, &ChildOf), With<FloatingOrigin>>,
+    mut render: ResMut<crate::material::RenderOrigin>,
+) {
+    let Ok((cell, parent)) = origins.single() else { return };
+    let Ok(grid) = grids.get(parent.parent()) else { return };
+    let at = grid.cell_to_float(cell);
+    let origin = crate::material::RenderOrigin::at(map.terrain(), at.x, at.z);
+    if *render != origin {
+        *render = origin;
+    }
+}

@@ -1,0 +1,78 @@
+//! Helpers shared by the headless `App` tests.
+#![allow(dead_code, reason = "each test file uses its own subset")]
+
+use std::collections::{HashMap, HashSet};
+use std::time::Duration;
+
+use bevy::asset::AssetPlugin;
+use bevy::prelude::*;
+use bevy_hex_terrain::HexTerrainPlugins;
+use bevy_hex_terrain::prelude::*;
+
+pub fn unbounded(chunk: (u32, u32)) -> MapConfig {
+    MapConfig { size: MapSize::Unbounded, chunk_size: chunk, ..MapConfig::default() }
+}
+
+pub fn settings(radius: u32) -> HexTerrainSettings {
+    HexTerrainSettings {
+        load_radius: radius,
+        prefetch: 1,
+        unload_hysteresis: 1,
+        max_inserts_per_frame: 16,
+        max_tasks_in_flight: 16,
+        ..default()
+    }
+}
+
+/// A headless app: the terrain plugins without the material.
+pub fn app_with(plugins: HexTerrainPlugins, asset_dir: Option<&std::path::Path>) -> App {
+    let mut app = App::new();
+    let assets = AssetPlugin { file_path: asset_dir.map_or("assets".into(), |d| d.display().to_string()), ..default() };
+    app.add_plugins((MinimalPlugins, assets, TransformPlugin));
+    app.add_plugins(plugins.build().disable::<HexTerrainMaterialPlugin>());
+    app
+}
+
+pub fn app(config: MapConfig, radius: u32) -> App {
+    app_with(HexTerrainPlugins { map: config.into(), settings: settings(radius) }, None)
+}
+
+pub fn spawn_agent(app: &mut App, at: Vec3) -> Entity {
+    app.world_mut().spawn((HexTerrainAgent::default(), Transform::from_translation(at))).id()
+}
+
+/// Updates until `done` holds, letting the task pool work between frames.
+pub fn run_until(app: &mut App, what: &str, mut done: impl FnMut(&mut App) -> bool) {
+    for _ in 0..2000 {
+        app.update();
+        if done(app) {
+            return;
+        }
+        std::thread::sleep(Duration::from_millis(1));
+    }
+    panic!("gave up waiting for {what}");
+}
+
+pub fn ready(app: &mut App) -> bool {
+    let messages = app.world().resource::<Messages<TerrainReady>>();
+    let mut cursor = messages.get_cursor();
+    cursor.read(messages).last().is_some_and(|r| r.generation == app.world().resource::<HexMap>().generation())
+        && app.world_mut().query::<&bevy_hex_terrain::ChunkTask>().iter(app.world()).next().is_none()
+}
+
+pub fn chunk_coords(app: &mut App) -> HashSet<ChunkCoord> {
+    app.world_mut().query::<&HexChunk>().iter(app.world()).map(|c| c.coord).collect()
+}
+
+pub fn meshed_chunks(app: &mut App) -> HashMap<ChunkCoord, Handle<Mesh>> {
+    app.world_mut().query::<(&HexChunk, &Mesh3d)>().iter(app.world()).map(|(c, m)| (c.coord, m.0.clone())).collect()
+}
+
+pub fn window(center: ChunkCoord, r: i32) -> HashSet<ChunkCoord> {
+    (-r..=r).flat_map(|dz| (-r..=r).map(move |dx| ChunkCoord::new(center.x + dx, center.z + dz))).collect()
+}
+
+pub fn agent_chunk(app: &App, at: Vec3) -> ChunkCoord {
+    let map = app.world().resource::<HexMap>();
+    map.chunk_of(map.tile_at(at))
+}
