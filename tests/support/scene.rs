@@ -13,6 +13,7 @@ use bevy::prelude::*;
 use bevy::render::view::screenshot::{Screenshot, ScreenshotCaptured};
 use bevy::window::WindowResolution;
 use bevy::winit::WinitPlugin;
+use big_space::prelude::{BigSpaceCommands, BigSpaceDefaultPlugins, FloatingOrigin, Grid};
 use hex_terrain_game::HexTerrainMaterial;
 use hex_terrain_game::hex_terrain::Terrain;
 use hex_terrain_game::prelude::*;
@@ -71,7 +72,17 @@ pub struct Scene {
     pub tiles: Option<fn(&Terrain, &mut TileStates)>,
     /// A deferred camera (deferred and depth prepasses) instead of a forward one.
     pub deferred: bool,
+    /// Far out with big_space: the camera looks straight down on this f64 world position of an
+    /// unbounded map, from a floating origin, over [`FAR_VIEW`] world units; the clear color is
+    /// [`HOLE`], so any pixel of it is a hole in the terrain.
+    pub far: Option<DVec3>,
 }
+
+/// World units the far camera shows, `x` by `z`.
+pub const FAR_VIEW: Vec2 = Vec2::new(40.0, 30.0);
+
+/// The far scene's clear color: magenta, which no terrain color is.
+pub const HOLE: [u8; 3] = [255, 0, 255];
 
 /// What happened besides the picture.
 #[derive(Default, Clone, Copy)]
@@ -97,36 +108,71 @@ pub fn render_with(appearance: TerrainAppearance, name: &str) -> image::RgbImage
 
 /// Renders a scene and returns the screenshot and the counts.
 pub fn render_scene(scene: Scene, name: &str) -> (image::RgbImage, Counts) {
-    let Scene { config, appearance, tiles, deferred } = scene;
+    let Scene { config, appearance, tiles, deferred, far } = scene;
     let config = config.unwrap_or_else(map);
     let terrain = Terrain::new(config.clone()).unwrap();
-    let (center, size) = view(&terrain);
+    let (center, size) = if far.is_some() { (Vec2::ZERO, FAR_VIEW) } else { view(&terrain) };
     let out = Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("{name}.png"));
     let _ = std::fs::remove_file(&out);
     let done: Arc<Mutex<bool>> = Arc::default();
     let mut app = App::new();
-    app.add_plugins(
-        DefaultPlugins
-            .set(WindowPlugin {
-                primary_window: Some(Window { resolution: WindowResolution::new(WIDTH, HEIGHT), ..default() }),
-                ..default()
-            })
-            .set(WinitPlugin { run_on_any_thread: true }),
-    )
-    .add_plugins(HexTerrainPlugin::from_config(config))
-    .insert_resource(appearance)
-    .insert_resource(GlobalAmbientLight { brightness: 600.0, ..default() });
-    let camera = app
-        .world_mut()
-        .spawn((
-            Camera3d::default(),
-            Projection::Orthographic(OrthographicProjection {
-                scaling_mode: ScalingMode::Fixed { width: size.x, height: size.y },
-                ..OrthographicProjection::default_3d()
-            }),
-            Transform::from_xyz(center.x, 50.0, center.y).looking_at(Vec3::new(center.x, 0.0, center.y), Vec3::NEG_Z),
-        ))
-        .id();
+    let plugins = DefaultPlugins
+        .set(WindowPlugin {
+            primary_window: Some(Window { resolution: WindowResolution::new(WIDTH, HEIGHT), ..default() }),
+            ..default()
+        })
+        .set(WinitPlugin { run_on_any_thread: true });
+    if far.is_some() {
+        app.add_plugins((plugins.disable::<TransformPlugin>(), BigSpaceDefaultPlugins));
+    } else {
+        app.add_plugins(plugins);
+    }
+    app.add_plugins(HexTerrainPlugin::from_config(config))
+        .insert_resource(appearance)
+        .insert_resource(GlobalAmbientLight { brightness: 600.0, ..default() });
+    let camera_bundle = (
+        Camera3d::default(),
+        Projection::Orthographic(OrthographicProjection {
+            scaling_mode: ScalingMode::Fixed { width: size.x, height: size.y },
+            ..OrthographicProjection::default_3d()
+        }),
+    );
+    let light = (
+        DirectionalLight { illuminance: 6000.0, shadow_maps_enabled: false, ..default() },
+        Transform::from_xyz(0.0, 10.0, 0.0).looking_at(Vec3::ZERO, Vec3::Z),
+    );
+    let camera = if let Some(at) = far {
+        app.add_plugins(HexBigSpacePlugin).insert_resource(ClearColor(Color::srgb_u8(HOLE[0], HOLE[1], HOLE[2])));
+        let mut commands = app.world_mut().commands();
+        let mut camera = Entity::PLACEHOLDER;
+        commands.spawn_big_space(Grid::default(), |grid| {
+            grid.insert(HexTerrainGrid);
+            let (cell, local) = grid.grid().translation_to_grid(DVec3::new(at.x, 50.0, at.z));
+            camera = grid
+                .spawn_spatial((
+                    camera_bundle,
+                    FloatingOrigin,
+                    HexTerrainAgent { radius: Some(2) },
+                    cell,
+                    Transform::from_translation(local).looking_to(Vec3::NEG_Y, Vec3::NEG_Z),
+                ))
+                .id();
+            grid.spawn_spatial(light.clone());
+        });
+        app.world_mut().flush();
+        camera
+    } else {
+        let camera = app
+            .world_mut()
+            .spawn((
+                camera_bundle,
+                Transform::from_xyz(center.x, 50.0, center.y)
+                    .looking_at(Vec3::new(center.x, 0.0, center.y), Vec3::NEG_Z),
+            ))
+            .id();
+        app.world_mut().spawn(light);
+        camera
+    };
     if deferred {
         app.world_mut().entity_mut(camera).insert((Msaa::Off, DepthPrepass, DeferredPrepass));
         app.insert_resource(DefaultOpaqueRendererMethod::deferred());
@@ -148,10 +194,6 @@ pub fn render_scene(scene: Scene, name: &str) -> (image::RgbImage, Counts) {
         c.map_changed += usize::from(map.is_changed());
         c.material_modified += events.read().filter(|e| matches!(e, AssetEvent::Modified { .. })).count();
     });
-    app.world_mut().spawn((
-        DirectionalLight { illuminance: 6000.0, shadow_maps_enabled: false, ..default() },
-        Transform::from_xyz(0.0, 10.0, 0.0).looking_at(Vec3::ZERO, Vec3::Z),
-    ));
     let path: PathBuf = out.clone();
     let flag = done.clone();
     let mut frames = 0;
@@ -251,7 +293,15 @@ pub fn check_type_colors(img: &image::RgbImage, terrain: &Terrain, except: &[Hex
     let (center, size) = view(terrain);
     let mut seen = [0; 3];
     for (hex, kind, at) in clear_tiles(terrain).into_iter().filter(|(h, _, _)| !except.contains(h)) {
-        let [r, g, b] = rgb(img, pixel(center, size, at));
+        assert_kind_color(hex, kind, rgb(img, pixel(center, size, at)));
+        seen[kind as usize] += 1;
+    }
+    seen
+}
+
+/// Asserts a tile center's pixel shows its type's color.
+pub fn assert_kind_color(hex: Hex, kind: TileKind, [r, g, b]: [f32; 3]) {
+    {
         match kind {
             TileKind::Sea => assert!(b > r + 0.1 && b > g, "sea tile {hex:?} drawn {:?}", [r, g, b]),
             TileKind::Land => assert!(g > r + 0.05 && g > b + 0.05, "land tile {hex:?} drawn {:?}", [r, g, b]),
@@ -263,7 +313,5 @@ pub fn check_type_colors(img: &image::RgbImage, terrain: &Terrain, except: &[Hex
                 );
             }
         }
-        seen[kind as usize] += 1;
     }
-    seen
 }

@@ -89,7 +89,7 @@ fn follow_map(map: Res<HexMap>, mut states: ResMut<TileStates>, mut shown: Local
     let keep = shown.is_none_or(|id| id == map.map_id());
     *shown = Some(map.map_id());
     let terrain = map.terrain();
-    states.set_map(terrain.bounds(), terrain.layout().orientation, keep);
+    states.set_map(terrain.bounds(), terrain.layout().orientation, terrain.wrap().is_some(), keep);
 }
 
 /// Places the window: the whole map when it fits, else around the loaded chunks, moving only

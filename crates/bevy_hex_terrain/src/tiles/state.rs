@@ -100,6 +100,8 @@ pub struct TileStates {
     bounds: Option<TileRect>,
     #[reflect(ignore)]
     orientation: HexOrientation,
+    /// Whether the map wraps east to west: a tile past its east or west edge is its own.
+    wrap: bool,
     #[reflect(ignore)]
     window: TexelWindow,
     writes: u64,
@@ -112,6 +114,7 @@ impl Default for TileStates {
             highlighted: Default::default(),
             bounds: None,
             orientation: HexOrientation::Flat,
+            wrap: false,
             window: TexelWindow::new(IVec2::ZERO, UVec2::ONE),
             writes: 0,
         }
@@ -222,6 +225,7 @@ impl TileStates {
     /// # Errors
     /// [`TileStateError::OutsideMap`]; nothing changes.
     pub fn set_highlight(&mut self, tile: Hex, highlight: Highlight, on: bool) -> Result<(), TileStateError> {
+        let tile = self.wrap_tile(tile);
         let oc = self.check(tile)?;
         let set = &mut self.highlighted[highlight as usize];
         let changed = if on { set.insert(tile) } else { set.remove(&tile) };
@@ -238,6 +242,7 @@ impl TileStates {
         let mut skipped = 0;
         let mut new = HashSet::default();
         for tile in tiles {
+            let tile = self.wrap_tile(tile);
             if self.check(tile).is_ok() {
                 new.insert(tile);
             } else {
@@ -300,9 +305,21 @@ impl TileStates {
         self.orientation
     }
 
-    /// The tile's offset coordinate, if it is on the map.
-    fn check(&self, tile: Hex) -> Result<IVec2, TileStateError> {
+    /// The tile of the map a tile stands for: on a wrapping map, past its east or west edge,
+    /// the tile of the same row whose column is the tile's column modulo the map's width; the
+    /// tile itself otherwise. Every method takes such tiles.
+    #[must_use]
+    pub fn wrap_tile(&self, tile: Hex) -> Hex {
+        let Some(b) = self.bounds.filter(|_| self.wrap) else { return tile };
         let oc = self.offset_of(tile);
+        let col = (oc.x - b.min[0]).rem_euclid(b.max[0] - b.min[0]) + b.min[0];
+        if col == oc.x { tile } else { Hex::from_offset_coordinates([col, oc.y], OFFSET_MODE, self.orientation) }
+    }
+
+    /// The tile's offset coordinate (of the map's own tile on a wrapping map), if it is on the
+    /// map.
+    fn check(&self, tile: Hex) -> Result<IVec2, TileStateError> {
+        let oc = self.offset_of(self.wrap_tile(tile));
         match self.bounds {
             Some(bounds) if !bounds.contains(oc.to_array()) => {
                 Err(TileStateError::OutsideMap { tile, offset: oc.to_array(), bounds })
@@ -312,7 +329,7 @@ impl TileStates {
     }
 
     fn texel(&self, tile: Hex) -> Texel {
-        self.tiles.get(self.offset_of(tile))
+        self.tiles.get(self.offset_of(self.wrap_tile(tile)))
     }
 
     /// Changes the texel of a tile on the map (checked by the caller).
@@ -332,12 +349,13 @@ impl TileStates {
         self.window.write(oc, texel);
     }
 
-    /// Follows a new map shape: `bounds` (None: unbounded) and orientation. With `keep`, tiles
-    /// still on the map keep their state; otherwise everything is forgotten.
-    pub(crate) fn set_map(&mut self, bounds: Option<TileRect>, orientation: HexOrientation, keep: bool) {
+    /// Follows a new map shape: `bounds` (None: unbounded), orientation and east-west wrap. With
+    /// `keep`, tiles still on the map keep their state; otherwise everything is forgotten.
+    pub(crate) fn set_map(&mut self, bounds: Option<TileRect>, orientation: HexOrientation, wrap: bool, keep: bool) {
         let (old, old_orientation) = (std::mem::take(&mut self.tiles), self.orientation);
         self.bounds = bounds;
         self.orientation = orientation;
+        self.wrap = wrap;
         self.tiles = TileStore::new(bounds);
         if !keep {
             self.highlighted = Default::default();

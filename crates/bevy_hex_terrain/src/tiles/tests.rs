@@ -23,7 +23,7 @@ impl Rng {
 
 fn bounded(x: i32, z: i32) -> TileStates {
     let mut s = TileStates::default();
-    s.set_map(Some(TileRect::new([0, 0], [x as u32, z as u32])), HexOrientation::Flat, true);
+    s.set_map(Some(TileRect::new([0, 0], [x as u32, z as u32])), HexOrientation::Flat, false, true);
     s.refill_window(IVec2::ZERO, UVec2::new(x as u32, z as u32));
     s
 }
@@ -134,7 +134,7 @@ fn a_moving_window_always_mirrors_the_store() {
     for seed in 1..=20u64 {
         let mut rng = Rng(seed.wrapping_mul(0x9E37_79B9_7F4A_7C15));
         let mut s = TileStates::default();
-        s.set_map(None, if seed % 2 == 0 { HexOrientation::Flat } else { HexOrientation::Pointy }, true);
+        s.set_map(None, if seed % 2 == 0 { HexOrientation::Flat } else { HexOrientation::Pointy }, false, true);
         let size = UVec2::new(rng.range(3, 12) as u32, rng.range(3, 12) as u32);
         let mut origin = IVec2::new(rng.range(-20, 20), rng.range(-20, 20));
         s.refill_window(origin, size);
@@ -196,11 +196,33 @@ fn a_new_map_clears_and_a_reload_keeps_what_is_still_on_the_map() {
     s.set_owner(a, Some(1)).unwrap();
     s.set_owner(b, Some(2)).unwrap();
     // Hot reload to a smaller map: `b` falls off.
-    s.set_map(Some(TileRect::new([0, 0], [10, 10])), HexOrientation::Flat, true);
+    s.set_map(Some(TileRect::new([0, 0], [10, 10])), HexOrientation::Flat, false, true);
     assert_eq!(s.owner(a), Some(1));
     assert_eq!(s.owner(b), None);
     // Another map: nothing kept.
-    s.set_map(Some(TileRect::new([0, 0], [10, 10])), HexOrientation::Flat, false);
+    s.set_map(Some(TileRect::new([0, 0], [10, 10])), HexOrientation::Flat, false, false);
     assert_eq!(s.owner(a), None);
     assert_eq!(s.stored_tiles(), 0);
+}
+
+#[test]
+fn a_wrapping_map_takes_tiles_past_its_east_and_west_edges_as_its_own() {
+    for orientation in [HexOrientation::Flat, HexOrientation::Pointy] {
+        let mut s = TileStates::default();
+        s.set_map(Some(TileRect::new([0, 0], [20, 10])), orientation, true, true);
+        s.refill_window(IVec2::ZERO, UVec2::new(20, 10));
+        let at = |col: i32, row: i32| {
+            Hex::from_offset_coordinates([col, row], hex_terrain::terrain::OFFSET_MODE, orientation)
+        };
+        // Column 23 is column 3, column -1 is column 19, in the same row.
+        s.set_owner(at(23, 4), Some(5)).unwrap();
+        assert_eq!(s.owner(at(3, 4)), Some(5));
+        assert_eq!(s.wrap_tile(at(-1, 7)), at(19, 7));
+        s.set_highlight(at(-1, 7), Highlight::Selected, true).unwrap();
+        assert!(s.is_highlighted(at(19, 7), Highlight::Selected));
+        assert_eq!(s.highlighted(Highlight::Selected).collect::<Vec<_>>(), vec![at(19, 7)]);
+        assert_eq!(s.replace_highlight(Highlight::Reachable, [at(40, 1), at(0, 1), at(5, 10)]), 1, "row 10 is off");
+        assert_eq!(s.highlighted(Highlight::Reachable).count(), 1, "columns 40 and 0 are one tile");
+        assert!(s.set_visibility(at(3, -1), FogState::Visible).is_err(), "rows do not wrap");
+    }
 }
