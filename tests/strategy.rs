@@ -74,15 +74,32 @@ fn the_other_examples_show_terrain_and_log_no_warnings() {
 
 #[test]
 fn strategy_demo_plays_a_scripted_turn() {
+    scripted_turn("strategy", &[("HEXTERRAIN_SCRIPT", "1")]);
+}
+
+/// On the wrapping Civ6 Standard preset with the camera on the seam (84 columns of 1.5 units:
+/// the seam is at x = 126), the unit's reach crosses the seam and it walks across, the short way.
+#[test]
+fn strategy_demo_crosses_the_seam_of_a_wrapping_map() {
+    let out = scripted_turn(
+        "strategy_seam",
+        &[("HEXTERRAIN_SCRIPT", "seam"), ("HEXTERRAIN_PRESET", "6"), ("HEXTERRAIN_FOCUS", "125.25,40")],
+    );
+    assert!(out.contains("across the seam"), "{out}");
+}
+
+/// Runs the demo's scripted turn with `env`, checks it succeeded without warnings and its
+/// screenshot (`name`.png) is not blank; returns what it printed.
+fn scripted_turn(name: &str, env: &[(&str, &str)]) -> String {
     let example = example("strategy");
-    let shot = Path::new(env!("CARGO_TARGET_TMPDIR")).join("strategy.png");
+    let shot = Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("{name}.png"));
     let _ = std::fs::remove_file(&shot);
-    let out = support::with_display(&example)
-        .env("BEVY_ASSET_ROOT", env!("CARGO_MANIFEST_DIR"))
-        .env("HEXTERRAIN_SCRIPT", "1")
-        .env("HEXTERRAIN_SCREENSHOT", &shot)
-        .output()
-        .unwrap();
+    let mut command = support::with_display(&example);
+    command.env("BEVY_ASSET_ROOT", env!("CARGO_MANIFEST_DIR")).env("HEXTERRAIN_SCREENSHOT", &shot);
+    for (key, value) in env {
+        command.env(key, value);
+    }
+    let out = command.output().unwrap();
     let stdout = String::from_utf8_lossy(&out.stdout);
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert!(
@@ -96,4 +113,5 @@ fn strategy_demo_plays_a_scripted_turn() {
     let img = image::open(&shot).unwrap().to_rgb8();
     let colors: std::collections::HashSet<[u8; 3]> = img.pixels().map(|p| p.0).collect();
     assert!(colors.len() > 500, "the screenshot looks blank ({} colors)", colors.len());
+    stdout.into_owned()
 }

@@ -3,7 +3,7 @@
 //! where it can go this turn; click a tile to walk there along an A* path (land costs 1,
 //! mountain 3, fording a river 1 more, sea and lakes are impassable); End Turn (button or Enter)
 //! restores movement. G toggles tile outlines, L the movement-cost lens, T the territory tint,
-//! V the fog of war, R regenerates with a new seed, 1-5 switch presets, F3 shows chunk
+//! V the fog of war, R regenerates with a new seed, 1-6 switch presets (6: Civ6 Standard, wrapping; P pans east across its seam), F3 shows chunk
 //! boundaries.
 //!
 //! Two players: yours (red) and a rival (blue), each with territory around its units that grows
@@ -31,12 +31,14 @@ use hexx::algorithms::a_star;
 pub(crate) const MOVES: u32 = 4;
 /// Distance from the human player's units to the rival's.
 const RIVAL_DISTANCE: u32 = 7;
-const PRESETS: [&str; 5] = [
+const PRESETS: [&str; 6] = [
     "maps/world.map.ron",
     "maps/island.map.ron",
     "maps/mediterranean.map.ron",
     "maps/inland.map.ron",
     "maps/continent.map.ron",
+    // Civilization's Standard size, wrapping east to west.
+    "maps/civ6/standard.map.ron",
 ];
 
 /// The camera's pivot on the ground; the streaming agent.
@@ -68,6 +70,8 @@ pub(crate) struct Game {
     pub(crate) reachable: HashSet<Hex>,
     pub(crate) spawned: bool,
     show_chunks: bool,
+    /// The camera pans east by itself (P): across the seam of a wrapping map, and on.
+    auto_pan: bool,
 }
 
 #[derive(Component)]
@@ -78,9 +82,13 @@ struct EndTurnButton;
 
 fn main() -> AppExit {
     let scripted = std::env::var_os("HEXTERRAIN_SCRIPT").is_some();
+    // HEXTERRAIN_PRESET=1..6 starts on another preset (6: the wrapping Civ6 Standard map).
+    let preset = std::env::var("HEXTERRAIN_PRESET").ok().and_then(|p| p.parse::<usize>().ok()).unwrap_or(1);
     let mut app = App::new();
-    app.add_plugins((DefaultPlugins, HexTerrainPlugin::from_asset(PRESETS[0])))
-        .insert_resource(TerrainAppearance { outlines: true, outline_width: 0.04, fog_of_war: true, ..default() })
+    // HEXTERRAIN_FOG=off starts without the fog of war (V toggles it).
+    let fog_of_war = std::env::var("HEXTERRAIN_FOG").map_or(true, |v| v != "off");
+    app.add_plugins((DefaultPlugins, HexTerrainPlugin::from_asset(PRESETS[preset.clamp(1, PRESETS.len()) - 1])))
+        .insert_resource(TerrainAppearance { outlines: true, outline_width: 0.04, fog_of_war, ..default() })
         .insert_resource(Game { turn: 1, ..default() })
         .add_systems(Startup, setup)
         .add_systems(
@@ -100,7 +108,14 @@ fn main() -> AppExit {
 }
 
 fn setup(mut commands: Commands) {
-    let focus = Vec3::new(48.0, 0.0, 40.0);
+    // HEXTERRAIN_FOCUS=x,z starts the camera elsewhere (the README's seam picture).
+    let focus = std::env::var("HEXTERRAIN_FOCUS")
+        .ok()
+        .and_then(|f| {
+            let (x, z) = f.split_once(',')?;
+            Some(Vec3::new(x.trim().parse().ok()?, 0.0, z.trim().parse().ok()?))
+        })
+        .unwrap_or(Vec3::new(48.0, 0.0, 40.0));
     commands
         .spawn((
             Rig { focus, yaw: 0.0, distance: 24.0, target_focus: focus, target_yaw: 0.0, target_distance: 24.0 },
@@ -123,7 +138,7 @@ fn setup(mut commands: Commands) {
     commands.spawn((
         Text::new(
             "WASD/arrows/edge pan, wheel zoom, Q/E rotate, click unit then tile, Enter end turn, G outlines, \
-             L lens, T tint, V fog, R new seed, 1-5 presets, F3 chunks",
+             L lens, T tint, V fog, R new seed, 1-6 presets (6 wraps), P pan east, F3 chunks",
         ),
         TextFont::from_font_size(13.0),
         Node { position_type: PositionType::Absolute, bottom: px(8.0), left: px(10.0), ..default() },
@@ -146,6 +161,7 @@ fn setup(mut commands: Commands) {
 
 fn camera_controls(
     time: Res<Time>,
+    game: Res<Game>,
     keys: Res<ButtonInput<KeyCode>>,
     scroll: Res<AccumulatedMouseScroll>,
     windows: Query<&Window>,
@@ -183,6 +199,9 @@ fn camera_controls(
             } else if c.y > size.y - m {
                 pan.y += 1.0;
             }
+        }
+        if game.auto_pan {
+            pan.x += 1.0;
         }
         let speed = rig.target_distance * 0.9;
         let rotated = Vec2::from_angle(-rig.target_yaw).rotate(pan.normalize_or_zero());
@@ -245,6 +264,8 @@ pub(crate) fn cost(map: &HexMap, tile: Hex) -> Option<u32> {
 /// river costs nothing more).
 pub(crate) fn step_cost(map: &HexMap, a: Hex, b: Hex) -> Option<u32> {
     let enter = cost(map, b)?;
+    // Rivers name the map's own tiles; `a` may be a copy past a wrapping map's edge.
+    let a = map.wrap_tile(a);
     let ford = map.river(b).is_some_and(|r| r.downstream != Some(a) && !r.upstream.contains(&a));
     Some(enter + u32::from(ford))
 }
@@ -255,7 +276,8 @@ pub(crate) fn path_cost(map: &HexMap, path: &[Hex]) -> u32 {
 }
 
 /// Every tile reachable from `start` with `budget` moves (Dijkstra over [`step_cost`]), tiles
-/// in `blocked` excluded.
+/// in `blocked` excluded. The search runs on the plane, so on a wrapping map it crosses the
+/// seam; the tiles returned are the map's own.
 fn reachable(map: &HexMap, start: Hex, budget: u32, blocked: &HashSet<Hex>) -> HashSet<Hex> {
     let mut best: HashMap<Hex, u32> = HashMap::from([(start, 0)]);
     let mut queue = BinaryHeap::from([(Reverse(0), start.x, start.y)]);
@@ -265,7 +287,7 @@ fn reachable(map: &HexMap, start: Hex, budget: u32, blocked: &HashSet<Hex>) -> H
             continue;
         }
         for next in here.all_neighbors() {
-            if blocked.contains(&next) {
+            if blocked.contains(&map.wrap_tile(next)) {
                 continue;
             }
             let Some(c) = step_cost(map, here, next) else { continue };
@@ -276,7 +298,7 @@ fn reachable(map: &HexMap, start: Hex, budget: u32, blocked: &HashSet<Hex>) -> H
             }
         }
     }
-    best.into_keys().filter(|&t| t != start).collect()
+    best.into_keys().map(|t| map.wrap_tile(t)).filter(|&t| t != start).collect()
 }
 
 /// Puts three units of yours on land near the camera and two rival units [`RIVAL_DISTANCE`]
@@ -300,7 +322,10 @@ fn place_units(
     }
     let focus = rigs.iter().next().map_or(Vec3::ZERO, |r| r.focus);
     let land_near = |from: Hex, taken: &[Hex]| {
-        (0..40u32).flat_map(|r| from.ring(r)).find(|&t| cost(&map, t) == Some(1) && !taken.contains(&t))
+        (0..40u32)
+            .flat_map(|r| from.ring(r))
+            .map(|t| map.wrap_tile(t))
+            .find(|&t| cost(&map, t) == Some(1) && !taken.contains(&t))
     };
     let mut taken = Vec::new();
     if game.spawned {
@@ -310,7 +335,7 @@ fn place_units(
                 unit.tile = tile;
                 unit.path.clear();
                 taken.push(tile);
-                t.translation = map.tile_center(tile) + Vec3::Y * 0.6;
+                t.translation = map.wrap_near(map.tile_center(tile), focus) + Vec3::Y * 0.6;
                 vision::claim(&map, &mut states, unit.player, tile, vision::HOME_RADIUS - 1);
             }
         }
@@ -335,7 +360,7 @@ fn place_units(
                 Unit { player, tile, moves_left: MOVES, path: Vec::new() },
                 Mesh3d(mesh.clone()),
                 MeshMaterial3d(materials.add(color)),
-                Transform::from_translation(map.tile_center(tile) + Vec3::Y * 0.6),
+                Transform::from_translation(map.wrap_near(map.tile_center(tile), focus) + Vec3::Y * 0.6),
             ));
         }
     }
@@ -360,14 +385,20 @@ fn click(
         && game.reachable.contains(&tile)
     {
         // Other units block the way; the mover's own tile (hexx asks for the start's cost) does not.
+        // On a wrapping map the goal is the copy of the tile nearest the unit: A* runs on the
+        // plane and takes the short way, across the seam when that is shorter.
         let from = unit.tile;
-        let step = |a: Hex, b: Hex| if occupied.contains(&b) && b != from { None } else { step_cost(&map, a, b) };
-        if let Some(path) = a_star(unit.tile, tile, step) {
+        let goal = map.tile_near(tile, from);
+        let step = |a: Hex, b: Hex| {
+            let taken = occupied.contains(&map.wrap_tile(b)) && b != from;
+            if taken { None } else { step_cost(&map, a, b) }
+        };
+        if let Some(path) = a_star(from, goal, step) {
             let spent = path_cost(&map, &path);
             if spent <= unit.moves_left {
                 unit.moves_left -= spent;
                 unit.path = path.iter().skip(1).map(|&t| map.tile_center(t) + Vec3::Y * 0.6).collect();
-                unit.tile = tile;
+                unit.tile = map.wrap_tile(goal);
             }
         }
     }
@@ -426,12 +457,15 @@ fn keys(
     if keys.just_pressed(KeyCode::F3) {
         game.show_chunks = !game.show_chunks;
     }
+    if keys.just_pressed(KeyCode::KeyP) {
+        game.auto_pan = !game.auto_pan;
+    }
     if keys.just_pressed(KeyCode::KeyR) {
         let mut config = map.config().clone();
         config.seed = config.seed.wrapping_mul(747_796_405).wrapping_add(2_891_336_453);
         load.write(LoadHexMap(config.into()));
     }
-    let digits = [KeyCode::Digit1, KeyCode::Digit2, KeyCode::Digit3, KeyCode::Digit4, KeyCode::Digit5];
+    let digits = [KeyCode::Digit1, KeyCode::Digit2, KeyCode::Digit3, KeyCode::Digit4, KeyCode::Digit5, KeyCode::Digit6];
     for (i, key) in digits.into_iter().enumerate() {
         if keys.just_pressed(key) {
             load.write(LoadHexMap(PRESETS[i].into()));
@@ -439,10 +473,15 @@ fn keys(
     }
 }
 
-/// Moves units along their paths, on the surface.
-fn walk(time: Res<Time>, map: Res<HexMap>, mut units: Query<(&mut Unit, &mut Transform)>) {
+/// Moves units along their paths, on the surface. On a wrapping map a unit is drawn at its copy
+/// nearest the camera, and walks the short way to the next point of its path, whichever copy of
+/// it that is.
+fn walk(time: Res<Time>, map: Res<HexMap>, rigs: Query<&Rig>, mut units: Query<(&mut Unit, &mut Transform)>) {
+    let focus = rigs.iter().next().map_or(Vec3::ZERO, |r| r.focus);
     for (mut unit, mut t) in &mut units {
+        t.translation = map.wrap_near(t.translation, focus);
         let Some(&next) = unit.path.first() else { continue };
+        let next = map.wrap_near(next, t.translation);
         let to = next - t.translation;
         let step = 6.0 * time.delta_secs();
         if to.length() <= step {
@@ -508,6 +547,8 @@ fn chunk_boundaries(game: Res<Game>, map: Res<HexMap>, streamer: Res<ChunkStream
     let top = map.config().terrain.max_elevation + 0.2;
     for chunk in streamer.loaded_chunks() {
         let Some(rect) = terrain.chunk_rect(chunk) else { continue };
+        // A chunk past a wrapping map's edge shows its map chunk's tiles, whole map widths on.
+        let shift = terrain.wrap().map_or(0.0, |w| w.width * f64::from(terrain.wrap_chunk(chunk).1));
         let corners = [
             rect.min,
             [rect.max[0] - 1, rect.min[1]],
@@ -516,7 +557,7 @@ fn chunk_boundaries(game: Res<Game>, map: Res<HexMap>, streamer: Res<ChunkStream
         ]
         .map(|oc| {
             let [x, _, z] = terrain.tile_center(terrain.tile_from_offset(oc));
-            Vec3::new(x as f32, top, z as f32)
+            Vec3::new((x + shift) as f32, top, z as f32)
         });
         for k in 0..4 {
             gizmos.line(corners[k], corners[(k + 1) % 4], Color::srgb(1.0, 0.3, 0.1));

@@ -1,5 +1,7 @@
 //! The scripted turn (`HEXTERRAIN_SCRIPT=1`): select a unit, move it, end the turn, regenerate,
-//! checking the game state, the fog of war and the territory on the way.
+//! checking the game state, the fog of war and the territory on the way. With
+//! `HEXTERRAIN_SCRIPT=seam`, on a wrapping map with the camera on its seam, the unit's reach
+//! must cross the seam and the move goes to a tile on the other side, the short way.
 
 use std::collections::HashSet;
 
@@ -26,6 +28,17 @@ pub struct Script {
     owned: usize,
 }
 
+/// Whether the script crosses a wrapping map's seam (`HEXTERRAIN_SCRIPT=seam`).
+fn across_the_seam() -> bool {
+    std::env::var("HEXTERRAIN_SCRIPT").is_ok_and(|v| v == "seam")
+}
+
+/// Which half of the map a tile's column is in.
+fn east_half(map: &HexMap, tile: Hex) -> bool {
+    let columns = map.terrain().bounds().map_or(1, |b| b.max[0]);
+    map.terrain().offset_of(map.wrap_tile(tile))[0] >= columns / 2
+}
+
 /// Checks the fog against what the units see, and with `owned` that every unit stands in its
 /// player's territory (at the start, and after the end of a turn); the first mismatch.
 fn check_vision(
@@ -44,7 +57,10 @@ fn check_vision(
     if let Some(t) = sight.iter().find(|&&t| states.visibility(t) != FogState::Visible) {
         return Err(format!("tile {t:?} is in sight but drawn {:?}", states.visibility(*t)));
     }
-    let far = sight.iter().map(|&t| t + Hex::new(30, 0)).find(|&t| map.contains(t) && !sight.contains(&t));
+    let far = sight
+        .iter()
+        .map(|&t| t + Hex::new(30, 0))
+        .find(|&t| map.contains(t) && !sight.contains(&map.wrap_tile(t)));
     if let Some(t) = far.filter(|&t| states.visibility(t) == FogState::Visible) {
         return Err(format!("tile {t:?}, far from every unit, is visible"));
     }
@@ -124,9 +140,24 @@ pub fn script(
             }
             let start = s.start.unwrap_or_default();
             let mut options: Vec<Hex> = game.reachable.iter().copied().collect();
-            options.sort_unstable_by_key(|h| (std::cmp::Reverse(h.unsigned_distance_to(start)), h.x, h.y));
+            if across_the_seam() {
+                // The reach crosses the seam: go to a tile on the other side of it.
+                let side = east_half(&map, start);
+                options.retain(|&t| east_half(&map, t) != side && map.distance(t, start) <= MOVES);
+                if options.is_empty() || map.terrain().wrap().is_none() {
+                    fail(format!("the reach of the unit on {start:?} does not cross the seam"), &mut exit);
+                    return;
+                }
+            }
+            options.sort_unstable_by_key(|&h| (std::cmp::Reverse(map.distance(h, start)), h.x, h.y));
             let target = options[0];
-            let path = a_star(start, target, |a, b| step_cost(&map, a, b)).unwrap_or_default();
+            // The short way: to the copy of the target nearest the start (itself off a seam).
+            let goal = map.tile_near(target, start);
+            let path = a_star(start, goal, |a, b| step_cost(&map, a, b)).unwrap_or_default();
+            if path.len() as u32 > MOVES + 1 {
+                fail(format!("the path to {target:?} takes {} steps", path.len() - 1), &mut exit);
+                return;
+            }
             s.expected_cost = path_cost(&map, &path);
             s.target = Some(target);
             game.hovered = Some(target);
@@ -217,9 +248,13 @@ pub fn script(
         }
         5 => {
             println!(
-                "SCRIPT OK: unit moved {:?} -> {:?} for {} moves; turn {}; fog and territory checked; outlines off; \
-                 lens on; regenerated, units on land",
-                s.start, s.target, s.expected_cost, game.turn
+                "SCRIPT OK: unit moved {:?} -> {:?} for {} moves{}; turn {}; fog and territory checked; outlines \
+                 off; lens on; regenerated, units on land",
+                s.start,
+                s.target,
+                s.expected_cost,
+                if across_the_seam() { " across the seam" } else { "" },
+                game.turn
             );
             match std::env::var_os("HEXTERRAIN_SCREENSHOT") {
                 Some(path) => {

@@ -170,6 +170,18 @@ impl Terrain {
         }
     }
 
+    /// The copy of a tile nearest another tile: on a wrapping map, of the tile and the tiles a
+    /// whole number of map widths east or west of it, the one nearest `near` (where a path from
+    /// `near` goes the short way round, across the seam if that is shorter); the tile itself
+    /// otherwise.
+    #[must_use]
+    pub fn tile_near(&self, tile: Hex, near: Hex) -> Hex {
+        let Some(w) = &self.wrap else { return tile };
+        let tile = self.wrap_tile(tile);
+        let k = w.tile_period(self.offset_of(near)[0]);
+        (k - 1..=k + 1).map(|k| tile + w.tile_shift * k).min_by_key(|t| t.unsigned_distance_to(near)).unwrap_or(tile)
+    }
+
     /// The six neighbors of a tile, each wrapped into the map on a wrapping map.
     #[must_use]
     pub fn neighbors(&self, tile: Hex) -> [Hex; 6] {

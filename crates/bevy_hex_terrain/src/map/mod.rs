@@ -214,6 +214,14 @@ impl HexMap {
         self.terrain.wrap_tile(tile)
     }
 
+    /// The copy of `tile` nearest `near` on a wrapping map (one a whole number of map widths
+    /// east or west): the goal of a path from `near` that takes the short way round, across the
+    /// seam when that is shorter. The tile itself otherwise.
+    #[must_use]
+    pub fn tile_near(&self, tile: Hex, near: Hex) -> Hex {
+        self.terrain.tile_near(tile, near)
+    }
+
     /// On a wrapping map, `position` moved by whole map widths to the copy nearest `near` (where
     /// to draw a unit of a tile near the camera); `position` itself otherwise.
     #[must_use]
