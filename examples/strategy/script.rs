@@ -57,10 +57,8 @@ fn check_vision(
     if let Some(t) = sight.iter().find(|&&t| states.visibility(t) != FogState::Visible) {
         return Err(format!("tile {t:?} is in sight but drawn {:?}", states.visibility(*t)));
     }
-    let far = sight
-        .iter()
-        .map(|&t| t + Hex::new(30, 0))
-        .find(|&t| map.contains(t) && !sight.contains(&map.wrap_tile(t)));
+    let far =
+        sight.iter().map(|&t| t + Hex::new(30, 0)).find(|&t| map.contains(t) && !sight.contains(&map.wrap_tile(t)));
     if let Some(t) = far.filter(|&t| states.visibility(t) == FogState::Visible) {
         return Err(format!("tile {t:?}, far from every unit, is visible"));
     }

@@ -19,9 +19,6 @@ pub struct FastPerlin {
     /// four corners packed in one byte: `(x, y)` in bits 0-1, `(x+1, y)` in 2-3, `(x, y+1)` in
     /// 4-5, `(x+1, y+1)` in 6-7. One load per evaluation instead of four.
     cells: Box<[u8; TABLE * TABLE]>,
-    /// The gradient code (0..4) of each lattice corner `(x & 255, y & 255)`, row-major in `x`:
-    /// what periodic noise reads, whose corner east of the last cell of a period is the first.
-    gradients: Box<[u8; TABLE * TABLE]>,
 }
 
 impl std::fmt::Debug for FastPerlin {
@@ -58,8 +55,6 @@ impl FastPerlin {
             }
         }
         let mut cells = Box::new([0_u8; TABLE * TABLE]);
-        let mut corner_codes = Box::new([0_u8; TABLE * TABLE]);
-        corner_codes.copy_from_slice(&gradients);
         for x in 0..TABLE {
             for y in 0..TABLE {
                 let (x1, y1) = ((x + 1) % TABLE, (y + 1) % TABLE);
@@ -69,7 +64,7 @@ impl FastPerlin {
                     | gradients[x1 * TABLE + y1] << 6;
             }
         }
-        Self { cells, gradients: corner_codes }
+        Self { cells }
     }
 
     /// Noise at `(x, y)`, in `[-1, 1]`, within 1e-6 of `noise::Perlin::new(seed).get([x, y])`.
@@ -118,36 +113,48 @@ impl FastPerlin {
     #[must_use]
     #[inline]
     pub fn get_periodic(&self, x: f64, y: f64, cells: i64) -> f64 {
-        self.lane_periodic(x, y, cells, 1.0 / cells as f64)
+        let cells = cells.max(1);
+        self.lane_periodic(reduce(x, cells as f64), y, cells)
     }
 
-    /// One periodic evaluation: `x` is brought into `[0, cells)` first.
+    /// One periodic evaluation at `xw` in `[0, cells]` (already reduced); the packed cell is
+    /// the planar one except in the period's last cell, whose east corners are column 0's west
+    /// ones.
     #[inline(always)]
-    fn lane_periodic(&self, x: f64, y: f64, cells: i64, inv_cells: f64) -> f64 {
-        let period = cells as f64;
-        let t = x * inv_cells;
-        // Floor of t without a library call (as `lane` does), then the remainder.
-        let q = if t < 0.0 { (t as i64).wrapping_sub(1) } else { t as i64 };
-        let mut xw = x - q as f64 * period;
-        xw = if xw >= period { xw - period } else { xw };
-        xw = if xw < 0.0 { xw + period } else { xw };
+    fn lane_periodic(&self, xw: f64, y: f64, cells: i64) -> f64 {
         let cx = (xw as i64).clamp(0, cells - 1);
-        let cx1 = if cx + 1 >= cells { 0 } else { cx + 1 };
         let cy = if y <= 0.0 { (y as i64).wrapping_sub(1) } else { y as i64 };
         let dx = (xw - cx as f64).clamp(0.0, 1.0);
         let dy = (y - cy as f64).clamp(0.0, 1.0);
-        let code = |c: i64, r: i64| self.gradients[(((c & 0xff) << 8) | (r & 0xff)) as usize];
-        let grad =
-            |c: u8, px: f64, py: f64| (1.0 - 2.0 * f64::from(c & 1)) * px + (1.0 - 2.0 * f64::from((c >> 1) & 1)) * py;
-        let g00 = grad(code(cx, cy), dx, dy);
-        let g10 = grad(code(cx1, cy), dx - 1.0, dy);
-        let g01 = grad(code(cx, cy + 1), dx, dy - 1.0);
-        let g11 = grad(code(cx1, cy + 1), dx - 1.0, dy - 1.0);
+        let row = cy & 0xff;
+        let cell = self.cells[(((cx & 0xff) << 8) | row) as usize];
+        // Column 0's cell: its west corners (bits 0-1 and 4-5) are the last cell's east ones.
+        let first = self.cells[row as usize];
+        let seam = (cell & 0b0011_0011) | ((first & 0b0011_0011) << 2);
+        let cell = if cx == cells - 1 { seam } else { cell };
+        let grad = |shift: u8, px: f64, py: f64| {
+            let c = cell >> shift;
+            (1.0 - 2.0 * f64::from(c & 1)) * px + (1.0 - 2.0 * f64::from((c >> 1) & 1)) * py
+        };
+        let g00 = grad(0, dx, dy);
+        let g10 = grad(2, dx - 1.0, dy);
+        let g01 = grad(4, dx, dy - 1.0);
+        let g11 = grad(6, dx - 1.0, dy - 1.0);
         let sx = quintic(dx);
         let sy = quintic(dy);
         let result = lerp(lerp(g00, g01, sy), lerp(g10, g11, sy), sx) * SCALE_2D;
         result.clamp(-1.0, 1.0)
     }
+}
+
+/// `x` modulo `period`, in `[0, period)` (up to rounding), without a library call.
+#[inline(always)]
+fn reduce(x: f64, period: f64) -> f64 {
+    let t = x / period;
+    let q = if t < 0.0 { (t as i64).wrapping_sub(1) } else { t as i64 };
+    let xw = x - q as f64 * period;
+    let xw = if xw >= period { xw - period } else { xw };
+    if xw < 0.0 { xw + period } else { xw }
 }
 
 #[inline(always)]
@@ -176,8 +183,9 @@ pub struct Fbm {
     octaves: Vec<(f64, f64)>,
     /// Noise units per hex radius.
     inv_scale: f64,
-    /// On a wrapping map, per octave, the period in noise cells and its inverse.
-    periods: Option<Vec<(i64, f64)>>,
+    /// On a wrapping map, the period in noise units at frequency 1, and per octave the period
+    /// in noise cells (the period times the octave's frequency).
+    periods: Option<(f64, Vec<i64>)>,
 }
 
 impl Fbm {
@@ -215,16 +223,16 @@ impl Fbm {
         for (freq, _) in &mut fbm.octaves {
             let cells = (cells_per_frequency * *freq).round().clamp(1.0, (1_u64 << 52) as f64);
             *freq = cells / cells_per_frequency;
-            periods.push((cells as i64, 1.0 / cells));
+            periods.push(cells as i64);
         }
-        fbm.periods = Some(periods);
+        fbm.periods = Some((cells_per_frequency, periods));
         fbm
     }
 
     /// Per octave on a wrapping map, the period in noise cells; `None` for planar noise.
     #[must_use]
     pub fn periods(&self) -> Option<Vec<i64>> {
-        self.periods.as_ref().map(|p| p.iter().map(|&(c, _)| c).collect())
+        self.periods.as_ref().map(|(_, p)| p.clone())
     }
 
     /// Per octave, `(frequency, amplitude)`, the amplitudes normalised to sum to 1.
@@ -262,10 +270,15 @@ impl Fbm {
             px[l] = xs[l] * self.inv_scale;
             pz[l] = zs[l] * self.inv_scale;
         }
-        if let Some(periods) = &self.periods {
-            for (&(freq, amp), &(cells, inv)) in self.octaves.iter().zip(periods) {
+        if let Some((period, cells)) = &self.periods {
+            // One reduction a point: every octave's period is a whole number of its cells, so
+            // x in [0, period) is in [0, cells] at every octave.
+            for x in &mut px {
+                *x = reduce(*x, *period);
+            }
+            for (&(freq, amp), &cells) in self.octaves.iter().zip(cells) {
                 for l in 0..L {
-                    total[l] += amp * self.perlin.lane_periodic(px[l] * freq, pz[l] * freq, cells, inv);
+                    total[l] += amp * self.perlin.lane_periodic(px[l] * freq, pz[l] * freq, cells);
                 }
             }
         } else {
