@@ -18,6 +18,7 @@
 use bevy::math::DVec3;
 use bevy::prelude::*;
 use big_space::prelude::{CellCoord, FloatingOrigin, Grid};
+use hex_terrain::hexx::Hex;
 
 use crate::HexTerrainSystems;
 use crate::map::HexMap;
@@ -47,6 +48,42 @@ impl Plugin for HexBigSpacePlugin {
 /// The grid's f64 position of an entity in it.
 fn position(grid: &Grid, cell: &CellCoord, transform: &Transform) -> DVec3 {
     grid.grid_position_double(cell, transform)
+}
+
+/// Queries in big_space's convention: positions as a cell of a grid and a small offset in it.
+impl HexMap {
+    /// The tile under a position given as a cell of `grid` and an offset from its center.
+    #[must_use]
+    pub fn tile_at_cell(&self, grid: &Grid, cell: &CellCoord, offset: Vec3) -> Hex {
+        self.tile_at_f64(position(grid, cell, &Transform::from_translation(offset)))
+    }
+
+    /// Height of the surface under a position given as a cell of `grid` and an offset.
+    #[must_use]
+    pub fn surface_height_at_cell(&self, grid: &Grid, cell: &CellCoord, offset: Vec3) -> f64 {
+        self.surface_height_f64(position(grid, cell, &Transform::from_translation(offset)))
+    }
+
+    /// The first tile a ray from a cell of `grid` (and an offset in it) hits on the surface.
+    #[must_use]
+    pub fn raycast_from_cell(
+        &self,
+        grid: &Grid,
+        cell: &CellCoord,
+        offset: Vec3,
+        direction: Dir3,
+        max_distance: f64,
+    ) -> Option<crate::TileHitF64> {
+        let origin = position(grid, cell, &Transform::from_translation(offset));
+        self.raycast_f64(origin, direction.as_vec3().as_dvec3(), max_distance)
+    }
+
+    /// Where a tile's center on the surface lies in `grid`: its cell and the offset in it (where
+    /// a unit standing on the tile goes).
+    #[must_use]
+    pub fn tile_center_in_grid(&self, grid: &Grid, tile: Hex) -> (CellCoord, Vec3) {
+        grid.translation_to_grid(self.tile_center_f64(tile))
+    }
 }
 
 /// Agents in a grid stream from their f64 position.

@@ -118,3 +118,22 @@ fn an_agent_a_million_units_out_streams_exact_chunks() {
     let center = app.world().resource::<HexMap>().tile_center_f64(tile);
     assert!((center.x - at.x).abs() < 1.0 && (center.z - at.z).abs() < 1.0, "{center} vs {at}");
 }
+
+/// With big_space, the queries take positions as a cell and an offset, a million units out.
+#[cfg(feature = "big_space")]
+#[test]
+fn queries_in_grid_cells_are_exact_far_out() {
+    use big_space::prelude::Grid;
+    let map = HexMap::new(MapConfig { size: MapSize::Unbounded, ..MapConfig::default() }).unwrap();
+    let grid = Grid::default();
+    let at = DVec3::new(1.0e6 + 0.3, 2.0, -1.0e6 - 0.7);
+    let tile = map.tile_at_f64(at);
+    let (cell, offset) = grid.translation_to_grid(at);
+    assert_eq!(map.tile_at_cell(&grid, &cell, offset), tile);
+    assert!((map.surface_height_at_cell(&grid, &cell, offset) - map.surface_height_f64(at)).abs() < 1e-5);
+    let hit = map.raycast_from_cell(&grid, &cell, offset + Vec3::Y * 30.0, Dir3::NEG_Y, 100.0).unwrap();
+    assert_eq!(hit.tile, tile);
+    let (center_cell, center_offset) = map.tile_center_in_grid(&grid, tile);
+    assert_eq!(map.tile_at_cell(&grid, &center_cell, center_offset), tile);
+    assert!(center_offset.length() < grid.cell_edge_length());
+}

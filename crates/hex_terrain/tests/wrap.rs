@@ -275,3 +275,40 @@ fn far_chunks_keep_exact_positions() {
     assert!(t.chunk_rect(ChunkCoord::new(last + 2, 0)).is_none());
     assert!(t.chunk_rect(ChunkCoord::new(i32::MAX, i32::MIN)).is_none());
 }
+
+/// Map0's parameters give thesis-like maps when wrapping: on every Civ6 size, the share of sea,
+/// land and mountain tiles and the sharpness figures of eq. 7.3 stay close to the planar map's
+/// (the periodic noise changes each octave's frequency by at most half a cell over the map).
+#[test]
+fn map0_stays_thesis_like_when_wrapping() {
+    use hex_terrain::{ManipulationConfig, Sharpness, TileKind};
+    for (x, z) in [(44, 26), (84, 54), (106, 66)] {
+        let planar = MapConfig { size: MapSize::Bounded { x, z }, ..MapConfig::default() };
+        let wrapping = MapConfig { wrap: true, ..planar.clone() };
+        let measure = |config: &MapConfig| {
+            let t = Terrain::new(config.clone()).unwrap();
+            let raw = Terrain::new(MapConfig { manipulation: ManipulationConfig::raw(), ..config.clone() }).unwrap();
+            let rect = t.bounds().unwrap();
+            let m = t.generate(rect, GenerateOptions::DIAGNOSTICS);
+            let r = raw.generate(rect, GenerateOptions::DIAGNOSTICS);
+            let mut shares = [0.0_f64; 3];
+            for info in &m.tiles {
+                shares[info.kind as usize] += 1.0 / m.tiles.len() as f64;
+            }
+            (shares, Sharpness::measure(&r, &m, config.terrain.max_elevation))
+        };
+        let ((a, sa), (b, sb)) = (measure(&planar), measure(&wrapping));
+        for kind in [TileKind::Sea, TileKind::Land, TileKind::Mountain] {
+            let (p, w) = (a[kind as usize], b[kind as usize]);
+            assert!((p - w).abs() < 0.12, "{x}x{z} {kind:?}: {p:.3} planar, {w:.3} wrapping");
+        }
+        let close = |p: f32, w: f32| (p - w).abs() <= 0.25 * p.abs().max(1e-6);
+        assert!(
+            close(sa.weighted_mesh, sb.weighted_mesh),
+            "{x}x{z} eq. 7.3: {} vs {}",
+            sa.weighted_mesh,
+            sb.weighted_mesh
+        );
+        assert!(close(sa.raw_average, sb.raw_average), "{x}x{z} raw: {} vs {}", sa.raw_average, sb.raw_average);
+    }
+}

@@ -326,7 +326,7 @@ pub fn params(
         blend: config.appearance.blend.clamp(0.0, 1.0) * max,
         hex_size: config.layout.hex_size,
         outline_width: appearance.outline_width,
-        texture_scale: appearance.texture_scale,
+        texture_scale: wrapped_texture_scale(config, appearance.texture_scale),
         border_width: finite(appearance.border_width, 0.0, 1.0),
         border_inset: finite(appearance.border_inset, 0.0, 1.0),
         fog_softness: finite(appearance.fog_softness, 0.0, 1.0),
@@ -341,6 +341,21 @@ pub fn params(
         ),
         origin_offset: origin.offset.extend(0.0).extend(0.0),
     }
+}
+
+/// The texture scale, on a wrapping map rounded so the map's width holds a whole number of
+/// texture repeats: the relief textures continue across the seam.
+fn wrapped_texture_scale(config: &MapConfig, scale: f32) -> f32 {
+    let Some((columns, _)) = config.size.bounds().filter(|_| config.wrap) else { return scale };
+    let column = match config.layout.orientation {
+        hex_terrain::Orientation::Flat => 1.5,
+        hex_terrain::Orientation::Pointy => 3.0_f32.sqrt(),
+    };
+    let width = columns as f32 * column * config.layout.hex_size;
+    if !(width.is_finite() && width > 0.0 && scale.is_finite()) {
+        return scale;
+    }
+    (width * scale).round().max(1.0) / width
 }
 
 /// The owner palette: the appearance's colors, then hues spaced by the golden angle.

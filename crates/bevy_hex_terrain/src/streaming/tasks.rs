@@ -48,7 +48,7 @@ pub(crate) fn stream(
     map: Res<HexMap>,
     settings: Res<HexTerrainSettings>,
     agents: Query<(&GlobalTransform, &HexTerrainAgent, Option<&HexWorldPosition>)>,
-    chunks: Query<(&HexChunk, Option<&ChunkTask>, Option<&Mesh3d>)>,
+    chunks: ChunkQuery,
     mut despawned: MessageWriter<ChunkDespawned>,
     mut spawned: MessageWriter<ChunkSpawned>,
 ) {
@@ -104,41 +104,29 @@ pub(crate) fn stream(
     let mut started = HashSet::new();
     for c in plan.start {
         // On a wrapping map, chunks standing for the same chunk of the map share one mesh: copy
-        // it when a copy shows the current one, wait while one is being built.
+        // it when a twin shows the current one, wait while one is being built.
         let canonical = terrain.wrap_chunk(c).0;
-        let mut shared = None;
-        let mut building = started.contains(&canonical);
-        for (&other, &e) in &streamer.chunks {
-            if other == c || terrain.wrap_chunk(other).0 != canonical {
+        let twin = if started.contains(&canonical) {
+            Twin::Building
+        } else {
+            twin(&terrain, &streamer, &chunks, c, generation)
+        };
+        match twin {
+            Twin::Building => continue,
+            Twin::Showing(mesh, vertices, mesh_bytes) => {
+                let chunk = HexChunk { generation: Some(generation), vertices, mesh_bytes, ..new_chunk(&terrain, c) };
+                let shown = (mesh, chunk, chunk_transform(&terrain, c));
+                let e = match streamer.chunks.get(&c) {
+                    Some(&e) => commands.entity(e).insert(shown).id(),
+                    None => commands.spawn((Name::new(format!("hex chunk {} {}", c.x, c.z)), shown)).id(),
+                };
+                streamer.chunks.insert(c, e);
+                streamer.loaded.insert(c);
+                streamer.current.insert(c);
+                spawned.write(ChunkSpawned { entity: e, coord: c });
                 continue;
             }
-            let Ok((chunk, task, mesh)) = chunks.get(e) else { continue };
-            building |= task.is_some_and(|t| t.generation == generation);
-            if chunk.generation == Some(generation)
-                && let Some(mesh) = mesh
-            {
-                shared = Some((mesh.clone(), chunk.vertices, chunk.mesh_bytes));
-            }
-        }
-        if let Some((mesh, vertices, mesh_bytes)) = shared {
-            let chunk = HexChunk { generation: Some(generation), vertices, mesh_bytes, ..new_chunk(&terrain, c) };
-            let e = match streamer.chunks.get(&c) {
-                Some(&e) => {
-                    commands.entity(e).insert((mesh, chunk, chunk_transform(&terrain, c)));
-                    e
-                }
-                None => commands
-                    .spawn((Name::new(format!("hex chunk {} {}", c.x, c.z)), chunk_transform(&terrain, c), chunk, mesh))
-                    .id(),
-            };
-            streamer.chunks.insert(c, e);
-            streamer.loaded.insert(c);
-            streamer.current.insert(c);
-            spawned.write(ChunkSpawned { entity: e, coord: c });
-            continue;
-        }
-        if building {
-            continue;
+            Twin::None => {}
         }
         started.insert(canonical);
         let task = ChunkTask {
@@ -168,6 +156,41 @@ pub(crate) fn stream(
     if streamer.wanted != plan.wanted {
         streamer.wanted = plan.wanted;
     }
+}
+
+/// What the twins of a chunk (chunks of a wrapping map standing for the same map chunk) offer it.
+enum Twin {
+    /// No twin shows or builds the current mesh (always, off a wrapping map).
+    None,
+    /// A twin's task builds the current mesh.
+    Building,
+    /// A twin shows the current mesh: its handle, vertices and bytes.
+    Showing(Mesh3d, usize, usize),
+}
+
+/// The chunk entities' streaming state, as [`stream`] reads it.
+type ChunkQuery<'w, 's> = Query<'w, 's, (&'static HexChunk, Option<&'static ChunkTask>, Option<&'static Mesh3d>)>;
+
+/// What `c`'s twins offer, for map generation `generation`.
+fn twin(terrain: &Terrain, streamer: &ChunkStreamer, chunks: &ChunkQuery, c: ChunkCoord, generation: u64) -> Twin {
+    let (canonical, _) = terrain.wrap_chunk(c);
+    if terrain.wrap().is_none() {
+        return Twin::None;
+    }
+    let mut found = Twin::None;
+    for (&other, &e) in &streamer.chunks {
+        if other == c || terrain.wrap_chunk(other).0 != canonical {
+            continue;
+        }
+        let Ok((chunk, task, mesh)) = chunks.get(e) else { continue };
+        if let (true, Some(mesh)) = (chunk.generation == Some(generation), mesh) {
+            return Twin::Showing(mesh.clone(), chunk.vertices, chunk.mesh_bytes);
+        }
+        if task.is_some_and(|t| t.generation == generation) {
+            found = Twin::Building;
+        }
+    }
+    found
 }
 
 /// A chunk's mesh origin in f64 (zero for a chunk outside the map, which has no mesh).

@@ -88,21 +88,34 @@ impl FastPerlin {
         let cy = if y <= 0.0 { (y as i64).wrapping_sub(1) } else { y as i64 };
         let dx = (x - cx as f64).clamp(0.0, 1.0);
         let dy = (y - cy as f64).clamp(0.0, 1.0);
-        let cell = self.cells[(((cx & 0xff) << 8) | (cy & 0xff)) as usize];
-        // Gradient code c: (1 - 2 (c & 1), 1 - 2 ((c >> 1) & 1)) is (1,1), (-1,1), (1,-1), (-1,-1).
-        let grad = |shift: u8, px: f64, py: f64| {
-            let c = cell >> shift;
-            (1.0 - 2.0 * f64::from(c & 1)) * px + (1.0 - 2.0 * f64::from((c >> 1) & 1)) * py
-        };
-        let g00 = grad(0, dx, dy);
-        let g10 = grad(2, dx - 1.0, dy);
-        let g01 = grad(4, dx, dy - 1.0);
-        let g11 = grad(6, dx - 1.0, dy - 1.0);
-        let sx = quintic(dx);
-        let sy = quintic(dy);
-        let result = lerp(lerp(g00, g01, sy), lerp(g10, g11, sy), sx) * SCALE_2D;
-        result.clamp(-1.0, 1.0)
+        interpolate(self.cells[(((cx & 0xff) << 8) | (cy & 0xff)) as usize], dx, dy)
     }
+}
+
+/// The noise inside one cell from its packed corner gradients and the offset in it.
+#[inline(always)]
+fn interpolate(cell: u8, dx: f64, dy: f64) -> f64 {
+    // Gradient code c: (1 - 2 (c & 1), 1 - 2 ((c >> 1) & 1)) is (1,1), (-1,1), (1,-1), (-1,-1).
+    let grad = |shift: u8, px: f64, py: f64| {
+        let c = cell >> shift;
+        (1.0 - 2.0 * f64::from(c & 1)) * px + (1.0 - 2.0 * f64::from((c >> 1) & 1)) * py
+    };
+    let g00 = grad(0, dx, dy);
+    let g10 = grad(2, dx - 1.0, dy);
+    let g01 = grad(4, dx, dy - 1.0);
+    let g11 = grad(6, dx - 1.0, dy - 1.0);
+    let sx = quintic(dx);
+    let sy = quintic(dy);
+    let result = lerp(lerp(g00, g01, sy), lerp(g10, g11, sy), sx) * SCALE_2D;
+    result.clamp(-1.0, 1.0)
+}
+
+/// Packed cell of column `cells - 1` (a period's last) whose east corners are column 0's west
+/// ones, for row `row`.
+#[inline(always)]
+fn seam_cell(table: &[u8; TABLE * TABLE], cells: i64, row: usize) -> u8 {
+    let last = table[(((cells - 1) & 0xff) as usize) << 8 | row];
+    (last & 0b0011_0011) | ((table[row] & 0b0011_0011) << 2)
 }
 
 impl FastPerlin {
@@ -114,43 +127,76 @@ impl FastPerlin {
     #[inline]
     pub fn get_periodic(&self, x: f64, y: f64, cells: i64) -> f64 {
         let cells = cells.max(1);
-        self.lane_periodic(reduce(x, cells as f64), y, cells)
+        let xw = reduce(x, cells as f64, 1.0 / cells as f64);
+        let (cx, cy) = ((xw as i64).clamp(0, cells - 1), if y <= 0.0 { (y as i64).wrapping_sub(1) } else { y as i64 });
+        let row = (cy & 0xff) as usize;
+        let cell = if cx == cells - 1 {
+            seam_cell(&self.cells, cells, row)
+        } else {
+            self.cells[((cx & 0xff) as usize) << 8 | row]
+        };
+        interpolate(cell, (xw - cx as f64).clamp(0.0, 1.0), (y - cy as f64).clamp(0.0, 1.0))
+    }
+}
+
+/// The cells a wrapping map's fBm reads: the planar packed cells, then for each octave the 256
+/// rows of its period's last column with their east corners taken from column 0, so an
+/// evaluation picks one index and makes one load.
+#[derive(Clone)]
+struct PeriodicCells {
+    /// The period in noise units at frequency 1, and its inverse.
+    period: f64,
+    inv_period: f64,
+    /// Per octave, the period in noise cells.
+    cells: Vec<i64>,
+    /// Fixed-size, and indexed by masked values, so no index needs a bounds check (which would
+    /// stop the lanes from vectorising).
+    table: Box<[u8; PERIODIC_TABLE]>,
+}
+
+/// Octaves [`PeriodicCells`] has room for: the most a config may ask.
+const PERIODIC_OCTAVES: usize = crate::config::MAX_OCTAVES as usize;
+/// Bytes of [`PeriodicCells::table`].
+const PERIODIC_TABLE: usize = TABLE * TABLE + PERIODIC_OCTAVES * TABLE;
+
+impl std::fmt::Debug for PeriodicCells {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("PeriodicCells")
+            .field("period", &self.period)
+            .field("cells", &self.cells)
+            .finish_non_exhaustive()
+    }
+}
+
+impl PeriodicCells {
+    fn new(perlin: &FastPerlin, period: f64, cells: Vec<i64>) -> Self {
+        let mut table = Box::new([0_u8; PERIODIC_TABLE]);
+        table[..TABLE * TABLE].copy_from_slice(&perlin.cells[..]);
+        for (o, &c) in cells.iter().enumerate().take(PERIODIC_OCTAVES) {
+            for row in 0..TABLE {
+                table[TABLE * TABLE + o * TABLE + row] = seam_cell(&perlin.cells, c, row);
+            }
+        }
+        Self { period, inv_period: 1.0 / period, cells, table }
     }
 
-    /// One periodic evaluation at `xw` in `[0, cells]` (already reduced); the packed cell is
-    /// the planar one except in the period's last cell, whose east corners are column 0's west
-    /// ones.
+    /// Octave `octave`'s noise at `xw` in `[0, cells]` (already reduced).
     #[inline(always)]
-    fn lane_periodic(&self, xw: f64, y: f64, cells: i64) -> f64 {
+    fn lane(&self, octave: usize, cells: i64, xw: f64, y: f64) -> f64 {
         let cx = (xw as i64).clamp(0, cells - 1);
         let cy = if y <= 0.0 { (y as i64).wrapping_sub(1) } else { y as i64 };
-        let dx = (xw - cx as f64).clamp(0.0, 1.0);
-        let dy = (y - cy as f64).clamp(0.0, 1.0);
-        let row = cy & 0xff;
-        let cell = self.cells[(((cx & 0xff) << 8) | row) as usize];
-        // Column 0's cell: its west corners (bits 0-1 and 4-5) are the last cell's east ones.
-        let first = self.cells[row as usize];
-        let seam = (cell & 0b0011_0011) | ((first & 0b0011_0011) << 2);
-        let cell = if cx == cells - 1 { seam } else { cell };
-        let grad = |shift: u8, px: f64, py: f64| {
-            let c = cell >> shift;
-            (1.0 - 2.0 * f64::from(c & 1)) * px + (1.0 - 2.0 * f64::from((c >> 1) & 1)) * py
-        };
-        let g00 = grad(0, dx, dy);
-        let g10 = grad(2, dx - 1.0, dy);
-        let g01 = grad(4, dx, dy - 1.0);
-        let g11 = grad(6, dx - 1.0, dy - 1.0);
-        let sx = quintic(dx);
-        let sy = quintic(dy);
-        let result = lerp(lerp(g00, g01, sy), lerp(g10, g11, sy), sx) * SCALE_2D;
-        result.clamp(-1.0, 1.0)
+        let row = (cy & 0xff) as usize;
+        let planar = ((cx & 0xff) as usize) << 8 | row;
+        let seam = TABLE * TABLE + (octave % PERIODIC_OCTAVES) * TABLE + row;
+        let cell = self.table[if cx == cells - 1 { seam } else { planar }];
+        interpolate(cell, (xw - cx as f64).clamp(0.0, 1.0), (y - cy as f64).clamp(0.0, 1.0))
     }
 }
 
 /// `x` modulo `period`, in `[0, period)` (up to rounding), without a library call.
 #[inline(always)]
-fn reduce(x: f64, period: f64) -> f64 {
-    let t = x / period;
+fn reduce(x: f64, period: f64, inv_period: f64) -> f64 {
+    let t = x * inv_period;
     let q = if t < 0.0 { (t as i64).wrapping_sub(1) } else { t as i64 };
     let xw = x - q as f64 * period;
     let xw = if xw >= period { xw - period } else { xw };
@@ -183,9 +229,8 @@ pub struct Fbm {
     octaves: Vec<(f64, f64)>,
     /// Noise units per hex radius.
     inv_scale: f64,
-    /// On a wrapping map, the period in noise units at frequency 1, and per octave the period
-    /// in noise cells (the period times the octave's frequency).
-    periods: Option<(f64, Vec<i64>)>,
+    /// On a wrapping map, the period and the cells the periodic noise reads.
+    periods: Option<PeriodicCells>,
 }
 
 impl Fbm {
@@ -225,14 +270,14 @@ impl Fbm {
             *freq = cells / cells_per_frequency;
             periods.push(cells as i64);
         }
-        fbm.periods = Some((cells_per_frequency, periods));
+        fbm.periods = Some(PeriodicCells::new(&fbm.perlin, cells_per_frequency, periods));
         fbm
     }
 
     /// Per octave on a wrapping map, the period in noise cells; `None` for planar noise.
     #[must_use]
     pub fn periods(&self) -> Option<Vec<i64>> {
-        self.periods.as_ref().map(|(_, p)| p.clone())
+        self.periods.as_ref().map(|p| p.cells.clone())
     }
 
     /// Per octave, `(frequency, amplitude)`, the amplitudes normalised to sum to 1.
@@ -270,15 +315,15 @@ impl Fbm {
             px[l] = xs[l] * self.inv_scale;
             pz[l] = zs[l] * self.inv_scale;
         }
-        if let Some((period, cells)) = &self.periods {
+        if let Some(periodic) = &self.periods {
             // One reduction a point: every octave's period is a whole number of its cells, so
             // x in [0, period) is in [0, cells] at every octave.
             for x in &mut px {
-                *x = reduce(*x, *period);
+                *x = reduce(*x, periodic.period, periodic.inv_period);
             }
-            for (&(freq, amp), &cells) in self.octaves.iter().zip(cells) {
+            for (o, (&(freq, amp), &cells)) in self.octaves.iter().zip(&periodic.cells).enumerate() {
                 for l in 0..L {
-                    total[l] += amp * self.perlin.lane_periodic(px[l] * freq, pz[l] * freq, cells);
+                    total[l] += amp * periodic.lane(o, cells, px[l] * freq, pz[l] * freq);
                 }
             }
         } else {
