@@ -1,5 +1,5 @@
 //! A camera flies east over an unbounded world, starting a million units from the origin, and
-//! keeps going. With big_space's floating origin (the `big_space` feature of
+//! keeps going. With `big_space`'s floating origin (the `big_space` feature of
 //! `bevy_hex_terrain`), chunks sit in grid cells and render from the camera's cell: no jitter,
 //! no cracks, however far out. The counter shows the camera's f64 position, its cell and the
 //! tile under it.
@@ -62,7 +62,7 @@ fn setup(mut commands: Commands) {
     ));
 }
 
-/// Moves east by a delta (big_space moves the camera to the next cell when it leaves one).
+/// Moves east by a delta (`big_space` moves the camera to the next cell when it leaves one).
 fn fly(time: Res<Time>, mut flyer: Query<&mut Transform, With<Flyer>>) {
     for mut t in &mut flyer {
         t.translation.x += SPEED * time.delta_secs();

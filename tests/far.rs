@@ -1,4 +1,4 @@
-//! Rendering a million units from the origin with big_space's floating origin (Mesa's software
+//! Rendering a million units from the origin with `big_space`'s floating origin (Mesa's software
 //! Vulkan under Xvfb in CI): the picture is not blank, has no hole (no clear-color pixel: no
 //! crack between chunks, no NaN vertex), every clear tile shows its type's color at its center,
 //! and the tile state (a lens overlay) lands on the right tile.

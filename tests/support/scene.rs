@@ -72,7 +72,7 @@ pub struct Scene {
     pub tiles: Option<fn(&Terrain, &mut TileStates)>,
     /// A deferred camera (deferred and depth prepasses) instead of a forward one.
     pub deferred: bool,
-    /// Far out with big_space: the camera looks straight down on this f64 world position of an
+    /// Far out with `big_space`: the camera looks straight down on this f64 world position of an
     /// unbounded map, from a floating origin, over [`FAR_VIEW`] world units; the clear color is
     /// [`HOLE`], so any pixel of it is a hole in the terrain.
     pub far: Option<DVec3>,
@@ -157,7 +157,7 @@ pub fn render_scene(scene: Scene, name: &str) -> (image::RgbImage, Counts) {
                     Transform::from_translation(local).looking_to(Vec3::NEG_Y, Vec3::NEG_Z),
                 ))
                 .id();
-            grid.spawn_spatial(light.clone());
+            grid.spawn_spatial(light);
         });
         app.world_mut().flush();
         camera

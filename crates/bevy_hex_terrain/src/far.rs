@@ -50,7 +50,7 @@ fn position(grid: &Grid, cell: &CellCoord, transform: &Transform) -> DVec3 {
     grid.grid_position_double(cell, transform)
 }
 
-/// Queries in big_space's convention: positions as a cell of a grid and a small offset in it.
+/// Queries in `big_space`'s convention: positions as a cell of a grid and a small offset in it.
 impl HexMap {
     /// The tile under a position given as a cell of `grid` and an offset from its center.
     #[must_use]
@@ -86,12 +86,20 @@ impl HexMap {
     }
 }
 
+/// Agents in a grid: where they are, and the f64 position streaming last read.
+type GridAgents<'w, 's> = Query<
+    'w,
+    's,
+    (Entity, &'static ChildOf, &'static CellCoord, &'static Transform, Option<&'static HexWorldPosition>),
+    With<HexTerrainAgent>,
+>;
+
+/// Chunks that changed, with their cell and parent if placed.
+type ChangedChunks<'w, 's> =
+    Query<'w, 's, (Entity, &'static HexChunk, Option<&'static CellCoord>, Option<&'static ChildOf>), Changed<HexChunk>>;
+
 /// Agents in a grid stream from their f64 position.
-fn track_agents(
-    mut commands: Commands,
-    grids: Query<&Grid>,
-    agents: Query<(Entity, &ChildOf, &CellCoord, &Transform, Option<&HexWorldPosition>), With<HexTerrainAgent>>,
-) {
+fn track_agents(mut commands: Commands, grids: Query<&Grid>, agents: GridAgents) {
     for (entity, parent, cell, transform, known) in &agents {
         let Ok(grid) = grids.get(parent.parent()) else { continue };
         let world = HexWorldPosition(position(grid, cell, transform));
@@ -103,11 +111,7 @@ fn track_agents(
 
 /// Chunks that changed (new, or a new mesh, whose origin a hot reload may have moved) go into the
 /// grid's cell holding their origin, with a small transform inside it.
-fn place_chunks(
-    mut commands: Commands,
-    grids: Query<(Entity, &Grid), With<HexTerrainGrid>>,
-    chunks: Query<(Entity, &HexChunk, Option<&CellCoord>, Option<&ChildOf>), Changed<HexChunk>>,
-) {
+fn place_chunks(mut commands: Commands, grids: Query<(Entity, &Grid), With<HexTerrainGrid>>, chunks: ChangedChunks) {
     let Ok((grid_entity, grid)) = grids.single() else { return };
     for (entity, chunk, cell, parent) in &chunks {
         let (new_cell, local) = grid.translation_to_grid(chunk.origin);

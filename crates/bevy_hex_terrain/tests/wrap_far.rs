@@ -119,7 +119,7 @@ fn an_agent_a_million_units_out_streams_exact_chunks() {
     assert!((center.x - at.x).abs() < 1.0 && (center.z - at.z).abs() < 1.0, "{center} vs {at}");
 }
 
-/// With big_space, the queries take positions as a cell and an offset, a million units out.
+/// With `big_space`, the queries take positions as a cell and an offset, a million units out.
 #[cfg(feature = "big_space")]
 #[test]
 fn queries_in_grid_cells_are_exact_far_out() {

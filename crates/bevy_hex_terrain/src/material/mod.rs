@@ -431,6 +431,7 @@ fn textures(server: &AssetServer, appearance: &TerrainAppearance) -> [Option<Han
     }
 }
 
+#[expect(clippy::too_many_arguments, reason = "a system's parameters")]
 fn create_material(
     mut commands: Commands,
     mut materials: ResMut<Assets<HexTerrainMaterial>>,
