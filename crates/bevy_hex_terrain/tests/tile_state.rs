@@ -2,8 +2,6 @@
 //! frame uploads nothing, state outlives streaming and hot reloads, another map clears it, and
 //! the GPU window follows the loaded chunks.
 
-use std::time::Duration;
-
 use bevy::asset::AssetPlugin;
 use bevy::prelude::*;
 use bevy_hex_terrain::prelude::*;
@@ -21,17 +19,9 @@ fn headless(map: impl Into<MapSource>, asset_dir: Option<&std::path::Path>) -> A
     app
 }
 
-/// Updates until `done` holds.
-fn settle(app: &mut App, what: &str, mut done: impl FnMut(&mut App) -> bool) {
-    for _ in 0..3000 {
-        app.update();
-        if done(app) {
-            return;
-        }
-        std::thread::sleep(Duration::from_millis(1));
-    }
-    panic!("gave up waiting for {what}");
-}
+mod common;
+
+use common::run_until as settle;
 
 fn idle(app: &mut App) -> bool {
     app.world_mut().query::<&bevy_hex_terrain::ChunkTask>().iter(app.world()).next().is_none()

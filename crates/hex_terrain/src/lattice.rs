@@ -200,15 +200,7 @@ impl Lattice {
         // Cube rounding in f64: hexx's `Hex::round` takes f32, which loses whole lattice steps
         // beyond ~10^7 and would misplace far-away points of an unbounded world.
         let [q, r] = self.fract_tile(p);
-        let s = -q - r;
-        let (mut rq, mut rr, rs) = (q.round(), r.round(), s.round());
-        let (dq, dr, ds) = ((rq - q).abs(), (rr - r).abs(), (rs - s).abs());
-        if dq > dr && dq > ds {
-            rq = -rr - rs;
-        } else if dr > ds {
-            rr = -rq - rs;
-        }
-        let first = Hex::new(rq as i32, rr as i32);
+        let first = cube_round(q, r);
         let ring = p.distance_to(self.tile_center(first)) as u32;
         let mut set = TileSet { tiles: [first; 3], len: 1, ring };
         if ring >= self.n as u32 {
@@ -287,6 +279,21 @@ impl Lattice {
         let n = self.n as usize;
         3 * n * n * tiles + n * boundary_edges / 2 + 1
     }
+}
+
+/// The hex nearest fractional axial coordinates `(q, r)`, by cube rounding in f64 (hexx's
+/// `Hex::round` takes f32, which loses whole hexes beyond ~10^7).
+#[must_use]
+pub fn cube_round(q: f64, r: f64) -> Hex {
+    let s = -q - r;
+    let (mut rq, mut rr, rs) = (q.round(), r.round(), s.round());
+    let (dq, dr, ds) = ((rq - q).abs(), (rr - r).abs(), (rs - s).abs());
+    if dq > dr && dq > ds {
+        rq = -rr - rs;
+    } else if dr > ds {
+        rr = -rq - rs;
+    }
+    Hex::new(rq as i32, rr as i32)
 }
 
 /// Up to three tiles sharing a lattice point.

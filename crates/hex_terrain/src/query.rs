@@ -40,22 +40,14 @@ impl Terrain {
     /// one map width east gives the tile one map width east.
     #[must_use]
     pub fn unwrapped_tile_at(&self, x: f64, z: f64) -> Hex {
-        // Axial coordinates in f64 and cube rounding (hexx's layout works in f32, which loses
+        // Axial coordinates and cube rounding in f64 (hexx's layout works in f32, which loses
         // whole tiles far out).
         let s = f64::from(self.config.layout.hex_size);
         let (q, r) = match self.config.layout.orientation {
             Orientation::Flat => (2.0 / 3.0 * x / s, (-x / 3.0 + SQRT_3 / 3.0 * z) / s),
             Orientation::Pointy => ((SQRT_3 / 3.0 * x - z / 3.0) / s, 2.0 / 3.0 * z / s),
         };
-        let c = -q - r;
-        let (mut rq, mut rr, rc) = (q.round(), r.round(), c.round());
-        let (dq, dr, dc) = ((rq - q).abs(), (rr - r).abs(), (rc - c).abs());
-        if dq > dr && dq > dc {
-            rq = -rr - rc;
-        } else if dr > dc {
-            rr = -rq - rc;
-        }
-        Hex::new(rq as i32, rr as i32)
+        crate::lattice::cube_round(q, r)
     }
 
     /// World position of a tile's center on the surface (for a tile past a wrapping map's

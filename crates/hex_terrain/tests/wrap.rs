@@ -265,6 +265,7 @@ fn far_chunks_keep_exact_positions() {
             worst = worst.max((f64::from(pos[0]) - x).abs()).max((f64::from(pos[2]) - z).abs());
             assert!(pos[1].is_finite());
         }
+        println!("chunk {chunk:?}: worst vertex {:.2e} lattice steps from exact", worst / step);
         assert!(worst <= 1e-4 * step, "chunk {chunk:?}: {} lattice steps off", worst / step);
         // The f64 queries find the chunk's tiles out there.
         let first = t.tile_from_offset(rect.min);

@@ -43,7 +43,7 @@ pub fn spawn_agent(app: &mut App, at: Vec3) -> Entity {
 
 /// Updates until `done` holds, letting the task pool work between frames.
 pub fn run_until(app: &mut App, what: &str, mut done: impl FnMut(&mut App) -> bool) {
-    for _ in 0..2000 {
+    for _ in 0..3000 {
         app.update();
         if done(app) {
             return;
