@@ -512,3 +512,33 @@ fn attach_material(mut commands: Commands, handle: Res<HexTerrainMaterialHandle>
         commands.entity(e).insert(MeshMaterial3d(handle.0.clone()));
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use hex_terrain::{MapSize, Orientation};
+
+    use super::*;
+
+    /// On a wrapping map the texture scale gives a whole number of repeats across the map's
+    /// width (textures continue across the seam), and `map_wrap` carries the width in columns;
+    /// elsewhere both are as asked.
+    #[test]
+    fn wrapping_maps_get_whole_texture_repeats_and_their_width() {
+        let appearance = TerrainAppearance::default();
+        for (orientation, column) in [(Orientation::Flat, 1.5_f32), (Orientation::Pointy, 3.0_f32.sqrt())] {
+            for columns in [44_u32, 84, 106] {
+                let mut config = MapConfig { size: MapSize::Bounded { x: columns, z: 20 }, ..MapConfig::default() };
+                config.layout.orientation = orientation;
+                let plain = params(&config, &appearance, (IVec2::ZERO, UVec2::ONE), RenderOrigin::default());
+                assert_eq!(plain.texture_scale, appearance.texture_scale);
+                assert_eq!(plain.map_wrap.x, 0);
+                config.wrap = true;
+                let wrapped = params(&config, &appearance, (IVec2::ZERO, UVec2::ONE), RenderOrigin::default());
+                let repeats = wrapped.texture_scale * columns as f32 * column * config.layout.hex_size;
+                assert!((repeats - repeats.round()).abs() < 1e-3, "{repeats} repeats across {columns} columns");
+                assert!((wrapped.texture_scale / appearance.texture_scale - 1.0).abs() < 0.1);
+                assert_eq!(wrapped.map_wrap.x, columns as i32);
+            }
+        }
+    }
+}
