@@ -1,0 +1,253 @@
+//! The terrain shader's uniform parameters, built from the map config and the appearance.
+
+use super::TerrainAppearance;
+use crate::tiles::MAX_OWNERS;
+use bevy::prelude::*;
+use bevy::render::render_resource::ShaderType;
+use hex_terrain::MapConfig;
+
+/// Bits of [`TerrainParams::flags`]. The shader receives these values (and
+/// [`MAX_OWNERS`]) as shader defs, so Rust and WGSL share one definition.
+pub mod flags {
+    /// Draw tile outlines.
+    pub const OUTLINES: u32 = 1;
+    /// Sample the textures instead of flat colors.
+    pub const TEXTURES: u32 = 2;
+    /// Pointy-topped hexes (flat-topped without).
+    pub const POINTY: u32 = 4;
+    /// Draw fog of war from the tile states.
+    pub const FOG: u32 = 8;
+    /// Draw territory borders.
+    pub const BORDERS: u32 = 16;
+    /// Tint owned tiles in their owner's color.
+    pub const TERRITORY_TINT: u32 = 32;
+    /// Draw the tiles' overlay colors (the lens).
+    pub const LENS: u32 = 64;
+}
+
+/// The shader defs every terrain pipeline gets: the flag bits and the owner palette size.
+pub(super) const SHADER_DEFS: [(&str, u32); 8] = [
+    ("HEX_FLAG_OUTLINES", flags::OUTLINES),
+    ("HEX_FLAG_TEXTURES", flags::TEXTURES),
+    ("HEX_FLAG_POINTY", flags::POINTY),
+    ("HEX_FLAG_FOG", flags::FOG),
+    ("HEX_FLAG_BORDERS", flags::BORDERS),
+    ("HEX_FLAG_TERRITORY_TINT", flags::TERRITORY_TINT),
+    ("HEX_FLAG_LENS", flags::LENS),
+    ("HEX_MAX_OWNERS", MAX_OWNERS as u32),
+];
+
+/// Uniform parameters of the terrain shader.
+#[derive(Debug, Clone, Copy, PartialEq, ShaderType, Reflect)]
+pub struct TerrainParams {
+    /// Sea layer color (linear).
+    pub sea_color: Vec4,
+    /// Land layer color (linear).
+    pub land_color: Vec4,
+    /// Mountain layer color (linear).
+    pub mountain_color: Vec4,
+    /// Hovered tile tint; alpha is the strength.
+    pub hover_color: Vec4,
+    /// Selected tiles tint; alpha is the strength.
+    pub selected_color: Vec4,
+    /// Reachable tiles tint; alpha is the strength.
+    pub reachable_color: Vec4,
+    /// Unexplored tiles' color (linear).
+    pub unexplored_color: Vec4,
+    /// Outline color; alpha is the strength.
+    pub outline_color: Vec4,
+    /// River and lake water color (linear), on meshes with vertex colors.
+    pub water_color: Vec4,
+    /// World height of the sea threshold.
+    pub sea_level: f32,
+    /// World height of the mountain threshold.
+    pub mountain_level: f32,
+    /// Blend distance in world height.
+    pub blend: f32,
+    /// Hex circumradius.
+    pub hex_size: f32,
+    /// Outline width in world units.
+    pub outline_width: f32,
+    /// Texture repeats per world unit.
+    pub texture_scale: f32,
+    /// Territory border width, a fraction of the hex radius.
+    pub border_width: f32,
+    /// Gap between a tile's edge and its border, a fraction of the hex radius.
+    pub border_inset: f32,
+    /// Width of the fog's blend across tile borders, a fraction of the hex radius.
+    pub fog_softness: f32,
+    /// Strength of the territory tint.
+    pub tint_strength: f32,
+    /// Bits of [`flags`].
+    pub flags: u32,
+    /// The tiles the tile state texture holds: first offset column and row, width and height.
+    pub tile_window: IVec4,
+    /// `x`: a wrapping map's width in columns (0 when it does not wrap); `y`, `z`: the axial
+    /// tile nearest the render frame's origin ([`RenderOrigin`]).
+    pub map_wrap: IVec4,
+    /// `x`, `y`: the render frame's origin relative to that tile's center, in world `(x, z)`.
+    pub origin_offset: Vec4,
+}
+
+/// Where the render frame's origin lies in the world: world zero, unless a floating origin (the
+/// `big_space` feature) renders positions relative to a far-away cell. The shader finds a
+/// fragment's tile from its render position plus this, in integers and small floats, so tile
+/// state and outlines stay exact at any distance.
+#[derive(Resource, Debug, Clone, Copy, Default, PartialEq, Reflect)]
+#[reflect(Resource, Default)]
+pub struct RenderOrigin {
+    /// The axial tile whose center is nearest the render origin.
+    pub tile: IVec2,
+    /// The render origin relative to that tile's center, world `(x, z)`.
+    pub offset: Vec2,
+}
+
+impl RenderOrigin {
+    /// The render origin of a frame whose origin is at world `(x, z)` (in f64).
+    #[must_use]
+    pub fn at(terrain: &hex_terrain::Terrain, x: f64, z: f64) -> Self {
+        let tile = terrain.unwrapped_tile_at(x, z);
+        let [cx, _, cz] = terrain.tile_center(tile);
+        Self { tile: IVec2::new(tile.x, tile.y), offset: Vec2::new((x - cx) as f32, (z - cz) as f32) }
+    }
+}
+
+/// Owner colors (linear), owner `n` at index `n - 1`.
+#[derive(Debug, Clone, Copy, PartialEq, ShaderType, Reflect)]
+pub struct OwnerColors {
+    /// One color an owner.
+    pub colors: [Vec4; MAX_OWNERS as usize],
+}
+
+impl Default for OwnerColors {
+    fn default() -> Self {
+        Self { colors: [Vec4::ONE; MAX_OWNERS as usize] }
+    }
+}
+
+fn linear(c: Color) -> Vec4 {
+    Vec4::from_array(c.to_linear().to_f32_array())
+}
+
+/// The tile state window as the shader reads it: first offset column and row, width, height.
+pub(super) fn window_param((origin, size): (IVec2, UVec2)) -> IVec4 {
+    origin.extend(size.x as i32).extend(size.y as i32)
+}
+
+/// Builds the shader parameters for a map config, an appearance and the tile state window
+/// (first offset column and row, size).
+#[must_use]
+pub fn params(
+    config: &MapConfig,
+    appearance: &TerrainAppearance,
+    window: (IVec2, UVec2),
+    origin: RenderOrigin,
+) -> TerrainParams {
+    let t = &config.terrain;
+    let max = t.max_elevation;
+    let mut bits = 0;
+    for (on, bit) in [
+        (appearance.outlines, flags::OUTLINES),
+        (appearance.textures, flags::TEXTURES),
+        (config.layout.orientation == hex_terrain::Orientation::Pointy, flags::POINTY),
+        (appearance.fog_of_war, flags::FOG),
+        (appearance.borders, flags::BORDERS),
+        (appearance.territory_tint, flags::TERRITORY_TINT),
+        (appearance.lens, flags::LENS),
+    ] {
+        if on {
+            bits |= bit;
+        }
+    }
+    let finite = |v: f32, lo: f32, hi: f32| if v.is_finite() { v.clamp(lo, hi) } else { lo };
+    TerrainParams {
+        sea_color: linear(appearance.colors[0]),
+        land_color: linear(appearance.colors[1]),
+        mountain_color: linear(appearance.colors[2]),
+        hover_color: linear(appearance.hover_color),
+        selected_color: linear(appearance.selected_color),
+        reachable_color: linear(appearance.reachable_color),
+        unexplored_color: linear(appearance.unexplored_color),
+        outline_color: Vec4::new(0.01, 0.01, 0.01, 0.92),
+        water_color: linear(appearance.water_color),
+        sea_level: t.sea_threshold * max,
+        mountain_level: t.mountain_threshold * max,
+        blend: config.appearance.blend.clamp(0.0, 1.0) * max,
+        hex_size: config.layout.hex_size,
+        outline_width: appearance.outline_width,
+        texture_scale: wrapped_texture_scale(config, appearance.texture_scale),
+        border_width: finite(appearance.border_width, 0.0, 1.0),
+        border_inset: finite(appearance.border_inset, 0.0, 1.0),
+        fog_softness: finite(appearance.fog_softness, 0.0, 1.0),
+        tint_strength: 0.22,
+        flags: bits,
+        tile_window: window_param(window),
+        map_wrap: IVec4::new(
+            config.size.bounds().filter(|_| config.wrap).map_or(0, |(x, _)| x as i32),
+            origin.tile.x,
+            origin.tile.y,
+            0,
+        ),
+        origin_offset: origin.offset.extend(0.0).extend(0.0),
+    }
+}
+
+/// The texture scale, on a wrapping map rounded so the map's width holds a whole number of
+/// texture repeats: the relief textures continue across the seam.
+fn wrapped_texture_scale(config: &MapConfig, scale: f32) -> f32 {
+    let Some((columns, _)) = config.size.bounds().filter(|_| config.wrap) else { return scale };
+    let column = match config.layout.orientation {
+        hex_terrain::Orientation::Flat => 1.5,
+        hex_terrain::Orientation::Pointy => 3.0_f32.sqrt(),
+    };
+    let width = columns as f32 * column * config.layout.hex_size;
+    if !(width.is_finite() && width > 0.0 && scale.is_finite()) {
+        return scale;
+    }
+    (width * scale).round().max(1.0) / width
+}
+
+/// The owner palette: the appearance's colors, then hues spaced by the golden angle.
+#[must_use]
+pub fn owner_colors(appearance: &TerrainAppearance) -> OwnerColors {
+    let mut owners = OwnerColors::default();
+    for (i, slot) in owners.colors.iter_mut().enumerate() {
+        let color = appearance
+            .owner_colors
+            .get(i)
+            .copied()
+            .unwrap_or_else(|| Color::hsl((i as f32 * 137.508) % 360.0, 0.75, 0.55));
+        *slot = linear(color);
+    }
+    owners
+}
+
+#[cfg(test)]
+mod tests {
+    use hex_terrain::{MapSize, Orientation};
+
+    use super::*;
+
+    /// On a wrapping map the texture scale gives a whole number of repeats across the map's
+    /// width (textures continue across the seam), and `map_wrap` carries the width in columns;
+    /// elsewhere both are as asked.
+    #[test]
+    fn wrapping_maps_get_whole_texture_repeats_and_their_width() {
+        let appearance = TerrainAppearance::default();
+        for (orientation, column) in [(Orientation::Flat, 1.5_f32), (Orientation::Pointy, 3.0_f32.sqrt())] {
+            for columns in [44_u32, 84, 106] {
+                let mut config = MapConfig { size: MapSize::Bounded { x: columns, z: 20 }, ..MapConfig::default() };
+                config.layout.orientation = orientation;
+                let plain = params(&config, &appearance, (IVec2::ZERO, UVec2::ONE), RenderOrigin::default());
+                assert_eq!(plain.texture_scale, appearance.texture_scale);
+                assert_eq!(plain.map_wrap.x, 0);
+                config.wrap = true;
+                let wrapped = params(&config, &appearance, (IVec2::ZERO, UVec2::ONE), RenderOrigin::default());
+                let repeats = wrapped.texture_scale * columns as f32 * column * config.layout.hex_size;
+                assert!((repeats - repeats.round()).abs() < 1e-3, "{repeats} repeats across {columns} columns");
+                assert!((wrapped.texture_scale / appearance.texture_scale - 1.0).abs() < 0.1);
+                assert_eq!(wrapped.map_wrap.x, columns as i32);
+            }
+        }
+    }
+}
