@@ -64,6 +64,8 @@ pub struct MapConfig {
     pub climate: ClimateConfig,
     /// Rivers and lakes (off by default; bounded maps only).
     pub rivers: RiverConfig,
+    /// Peaks on mountains and swells on hills, inside their ranges (off by default: Map0).
+    pub relief: ReliefConfig,
 }
 
 impl Default for MapConfig {
@@ -84,7 +86,38 @@ impl Default for MapConfig {
             appearance: AppearanceConfig::default(),
             climate: ClimateConfig::default(),
             rivers: RiverConfig::default(),
+            relief: ReliefConfig::default(),
         }
+    }
+}
+
+/// Relief after manipulation (see the `relief` module): how far mountain tiles rise to a peak
+/// and land tiles swell into hills, always inside their tile type's height range. All zero
+/// (the default, the thesis' Map0) leaves the manipulated surface as it is.
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
+#[cfg_attr(feature = "bevy_reflect", derive(bevy_reflect::Reflect))]
+#[serde(default, deny_unknown_fields)]
+pub struct ReliefConfig {
+    /// Height of a mountain tile's peak as a fraction of the mountain range above its bottom,
+    /// in `[0, 1]`: the center vertex rises to at least this, the rings between fall linearly
+    /// to the border.
+    pub peaks: f32,
+    /// How much each vertex's rise is lowered at random (from a hash of its position), in
+    /// `[0, 1]`: 0 gives smooth cones, higher values ridges and gullies.
+    pub ridges: f32,
+    /// Height of hills, a fraction of the land range, in `[0, 1]`: land tiles whose noise lies
+    /// in the upper half of the land range swell by up to this.
+    pub hills: f32,
+}
+
+impl ReliefConfig {
+    /// The relief of the bundled strategy maps: tall peaks, visible ridges, gentle hills.
+    pub const MOUNTAINS: Self = Self { peaks: 0.8, ridges: 0.45, hills: 0.45 };
+
+    /// Whether any relief is on.
+    #[must_use]
+    pub fn any(&self) -> bool {
+        self.peaks > 0.0 || self.hills > 0.0
     }
 }
 

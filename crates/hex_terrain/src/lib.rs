@@ -24,13 +24,16 @@ pub mod chunk;
 pub mod climate;
 pub mod config;
 pub mod error;
+pub mod hash;
 pub mod heights;
 pub mod kind;
 pub mod lattice;
 pub mod manipulate;
 pub mod mesh;
 pub mod metrics;
+pub mod props;
 pub mod query;
+pub mod relief;
 pub mod terrain;
 pub mod wrap;
 
@@ -38,7 +41,7 @@ pub use chunk::{ChunkCoord, TileRect};
 pub use climate::{Biome, Climate, Hydrology, RiverTile};
 pub use config::{
     AppearanceConfig, BiomeRule, ClimateConfig, HeightSourceConfig, LayoutConfig, ManipulationConfig, MapConfig,
-    MapFile, MapSize, NoiseConfig, Orientation, PullMode, RiverConfig, Shape, TerrainConfig,
+    MapFile, MapSize, NoiseConfig, Orientation, PullMode, ReliefConfig, RiverConfig, Shape, TerrainConfig,
 };
 pub use error::{ConfigError, LoadError};
 pub use heights::{HeightImage, ImageError};
@@ -46,8 +49,9 @@ pub use hexx;
 pub use kind::{Thresholds, TileKind};
 pub use lattice::Lattice;
 pub use manipulate::VertexSample;
-pub use mesh::{ChunkMesh, Diagnostics, GenerateOptions, MeshBuffers, Threads};
+pub use mesh::{ChunkMesh, Diagnostics, GenerateOptions, MeshBuffers, Threads, WaterBuffers};
 pub use metrics::Sharpness;
+pub use props::{PROP_VARIANTS, Prop, PropKind};
 pub use query::RayHit;
 pub use terrain::{Terrain, TileInfo};
 pub use wrap::Wrap;

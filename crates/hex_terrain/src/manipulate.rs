@@ -166,14 +166,14 @@ impl Terrain {
                 len += 1;
             }
         }
-        let s = self.finish_vertex(raw, set.ring, &kinds[..len]);
+        let s = self.finish_vertex(raw, p, set.ring, &kinds[..len]);
         self.carve(p, &tiles[..len], &kinds[..len], s)
     }
 
-    /// Applies manipulation to a vertex of raw height `raw` at `ring`, shared by the in-map
-    /// tiles of `kinds`.
+    /// Applies manipulation and relief to lattice point `p` of raw height `raw` at `ring`,
+    /// shared by the in-map tiles of `kinds`.
     #[inline(always)]
-    pub(crate) fn finish_vertex(&self, raw: f32, ring: u32, kinds: &[TileKind]) -> VertexSample {
+    pub(crate) fn finish_vertex(&self, raw: f32, p: Hex, ring: u32, kinds: &[TileKind]) -> VertexSample {
         let n = self.lattice.subdivisions();
         let Manipulated { height, moved } = if self.config.manipulation.any() {
             manipulate(&self.thresholds, &self.config.manipulation, raw, ring, n, kinds)
@@ -181,6 +181,7 @@ impl Terrain {
             Manipulated { height: raw, moved: false }
         };
         let kind = kinds.iter().copied().max().unwrap_or_else(|| self.thresholds.classify(raw));
+        let height = self.relief(height, raw, p, ring, kinds);
         VertexSample { raw, height, moved, ring, kind, water: 0.0 }
     }
 

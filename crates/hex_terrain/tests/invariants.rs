@@ -6,7 +6,7 @@ use std::collections::HashMap;
 use hex_terrain::hexx::Hex;
 use hex_terrain::{
     ChunkCoord, ChunkMesh, GenerateOptions, ManipulationConfig, MapConfig, MapSize, NoiseConfig, Orientation, PullMode,
-    RiverConfig, Shape, Terrain, TerrainConfig, Threads, TileKind, TileRect,
+    ReliefConfig, RiverConfig, Shape, Terrain, TerrainConfig, Threads, TileKind, TileRect,
 };
 use proptest::prelude::*;
 
@@ -67,6 +67,7 @@ prop_compose! {
         climate in any::<bool>(),
         wrap in any::<bool>(),
         rivers in prop::option::of((1.0f32..12.0, 0.0f32..0.05, 0.0f32..=1.0, 0.5f32..=4.0)),
+        relief in prop::option::of((0.0f32..=1.0, 0.0f32..=1.0, 0.0f32..=1.0)),
     ) -> MapConfig {
         let mut c = MapConfig {
             seed,
@@ -85,6 +86,9 @@ prop_compose! {
         c.climate.enabled = climate;
         if let (Some((threshold, min_lake_depth, carve, width)), MapSize::Bounded { .. }) = (rivers, c.size) {
             c.rivers = RiverConfig { enabled: true, threshold, lakes: true, min_lake_depth, carve, width };
+        }
+        if let Some((peaks, ridges, hills)) = relief {
+            c.relief = ReliefConfig { peaks, ridges, hills };
         }
         c.layout.orientation = if pointy { Orientation::Pointy } else { Orientation::Flat };
         c.layout.hex_size = hex_size;
@@ -265,7 +269,7 @@ proptest! {
 
     /// Invariant 6: every invalid value is refused with the field named, never a panic.
     #[test]
-    fn invalid_configs_are_refused_with_the_field(config in config(), which in 0usize..9, bad in prop_oneof![
+    fn invalid_configs_are_refused_with_the_field(config in config(), which in 0usize..10, bad in prop_oneof![
         Just(f64::NAN), Just(f64::INFINITY), Just(f64::NEG_INFINITY), Just(-1.0), Just(0.0), Just(1e12)]) {
         let mut c = config;
         let field = match which {
@@ -277,6 +281,7 @@ proptest! {
             5 => { c.layout.hex_size = if bad > 0.0 && bad <= 1e4 { -1.0 } else { bad as f32 }; "layout.hex_size" }
             6 => { c.noise.octaves = 0; "noise.octaves" }
             7 => { c.terrain.inner_rings = 0; "terrain.inner_rings" }
+            8 => { c.relief.ridges = if (0.0..=1.0).contains(&bad) { -0.5 } else { bad as f32 }; "relief.ridges" }
             _ => { c.appearance.blend = if (0.0..=1.0).contains(&bad) { 1.5 } else { bad as f32 }; "appearance.blend" }
         };
         let err = Terrain::new(c).expect_err("invalid config accepted");

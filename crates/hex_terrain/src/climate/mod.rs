@@ -120,6 +120,12 @@ impl Biome {
         matches!(self, Self::Ocean | Self::Coast | Self::Lake)
     }
 
+    /// Whether the biome is bare rock or a snow peak (the mountain biomes).
+    #[must_use]
+    pub fn is_rocky(self) -> bool {
+        matches!(self, Self::Rock | Self::SnowPeak)
+    }
+
     /// The biome a tile of `kind` has when the map has no climate.
     #[must_use]
     pub fn of_kind(kind: TileKind) -> Self {

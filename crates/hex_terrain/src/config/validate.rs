@@ -110,6 +110,10 @@ impl MapConfig {
             format!("{:?}", self.offset),
             format!("each in -{MAX_OFFSET}..={MAX_OFFSET}"),
         )?;
+        let r = &self.relief;
+        for (value, field) in [(r.peaks, "relief.peaks"), (r.ridges, "relief.ridges"), (r.hills, "relief.hills")] {
+            check(finite_in(f64::from(value), 0.0, 1.0), field, value, "[0, 1]")?;
+        }
         check(
             finite_in(f64::from(self.appearance.blend), 0.0, 1.0),
             "appearance.blend",

@@ -312,7 +312,7 @@ impl<'a> Job<'a> {
                         }
                     }
                 }
-                let mut s = terrain.finish_vertex(raw, ring, &sharing[..len]);
+                let mut s = terrain.finish_vertex(raw, p, ring, &sharing[..len]);
                 if let Some((own_wet, around_wet)) = kinds.wet.get(tile as usize)
                     && (*own_wet || dirs[1..len].iter().any(|&d| around_wet[d]))
                 {
@@ -372,7 +372,7 @@ impl<'a> Job<'a> {
                         len += 1;
                     }
                 }
-                let s = self.terrain.finish_vertex(raw, set.ring, &sharing[..len]);
+                let s = self.terrain.finish_vertex(raw, p, set.ring, &sharing[..len]);
                 return self.terrain.carve(p, &hexes[..len], &sharing[..len], s);
             }
         }

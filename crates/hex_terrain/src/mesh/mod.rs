@@ -8,14 +8,17 @@
 //! | `job.rs` | one generation as a job whose passes are methods: tile kinds, owned vertices, halo, indices |
 //! | `normals.rs` | the normals pass |
 //! | `parallel.rs` | the parallel policy: batches, pool entry, disjoint output slices |
+//! | `water.rs` | the water surface over a generated chunk ([`WaterBuffers`]) |
 
 mod generate;
 mod grid;
 mod job;
 mod normals;
 mod parallel;
+mod water;
 
 use hexx::Hex;
+pub use water::{WaterBuffers, water_surface};
 
 use crate::chunk::TileRect;
 use crate::terrain::TileInfo;

@@ -1,0 +1,168 @@
+//! Props: where trees, rocks and reeds stand on a chunk, decided tile by tile from a hash of
+//! the tile, so the same map always has the same props, whichever chunk, thread or order
+//! generates them, and a tile's props never depend on its neighbors' chunks.
+//!
+//! - **Trees** on wooded tiles: the forest and rainforest biomes (dense), hills and tundra
+//!   (sparse); on a map without a climate, on a band of land elevation (the middle of the land
+//!   range) on about half its tiles. Pines on high or cold ground, broadleaf trees elsewhere.
+//! - **Rocks** on mountain tiles (and rock and snow peak biomes), a few each.
+//! - **Reeds** on land tiles of the coast biome, near the tile's edge.
+//!
+//! Each prop stands on the meshed surface ([`Terrain::surface_height`]) at a point drawn inside
+//! its tile; points under the sea, in a river channel or on a lake are skipped. A chunk keeps at
+//! most `max_per_chunk` props: over the cap, those with the lowest hash priority stay, so the
+//! thinning is as deterministic as the placement.
+
+use hexx::Hex;
+
+use crate::climate::Biome;
+use crate::hash;
+use crate::kind::TileKind;
+use crate::mesh::ChunkMesh;
+use crate::terrain::{Terrain, TileInfo};
+
+/// What a prop is: which family of meshes draws it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+#[cfg_attr(feature = "bevy_reflect", derive(bevy_reflect::Reflect))]
+pub enum PropKind {
+    /// A round-crowned tree.
+    Broadleaf,
+    /// A conifer.
+    Pine,
+    /// A boulder.
+    Rock,
+    /// A clump of reeds.
+    Reed,
+}
+
+impl PropKind {
+    /// Every kind, in order.
+    pub const ALL: [Self; 4] = [Self::Broadleaf, Self::Pine, Self::Rock, Self::Reed];
+}
+
+/// How many mesh variants each prop kind has; [`Prop::variant`] is below it.
+pub const PROP_VARIANTS: u8 = 3;
+
+/// One prop of a chunk.
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "bevy_reflect", derive(bevy_reflect::Reflect))]
+pub struct Prop {
+    /// What it is.
+    pub kind: PropKind,
+    /// Which of the kind's meshes, below [`PROP_VARIANTS`].
+    pub variant: u8,
+    /// Position of its foot, relative to the chunk's origin ([`ChunkMesh::origin`]) like the
+    /// chunk's mesh: on the surface.
+    pub position: [f32; 3],
+    /// Rotation about the vertical axis, radians.
+    pub yaw: f32,
+    /// Size, in hex radii (a mesh of unit size is scaled by this times the hex size).
+    pub scale: f32,
+    /// The tile it stands on (map-local axial coordinate).
+    pub tile: Hex,
+}
+
+/// What a tile grows: the kind, how many, and their size in hex radii.
+fn rule(terrain: &Terrain, info: &TileInfo, h: u64) -> Option<(PropKind, u32, f32)> {
+    let t = terrain.thresholds();
+    let max = terrain.config().terrain.max_elevation.max(f32::MIN_POSITIVE);
+    // Where the tile's center lies in the land range, 0 at the sea threshold, 1 at the mountains.
+    let land = ((info.elevation / max - t.sea) / (t.mountain - t.sea).max(f32::EPSILON)).clamp(0.0, 1.0);
+    let pick = hash::unit(h);
+    let extra = (h >> 8) as u32 % 3;
+    let tree = if land > 0.62 { PropKind::Pine } else { PropKind::Broadleaf };
+    match (info.kind, info.biome) {
+        (TileKind::Sea, _) | (_, Biome::Ocean | Biome::Lake | Biome::Desert | Biome::Snow) => None,
+        (TileKind::Mountain, _) | (_, Biome::Rock | Biome::SnowPeak) => Some((PropKind::Rock, 1 + extra, 0.2)),
+        (_, Biome::Forest) => Some((tree, 5 + extra, 0.3)),
+        (_, Biome::Rainforest) => Some((PropKind::Broadleaf, 7 + extra, 0.32)),
+        (_, Biome::Tundra) => (pick < 0.5).then_some((PropKind::Pine, 1 + extra, 0.24)),
+        (_, Biome::Hills) => (pick < 0.6).then_some((tree, 2 + extra, 0.27)),
+        (_, Biome::Coast) => Some((PropKind::Reed, 2 + extra, 0.16)),
+        (_, Biome::Grassland) if !terrain.config().climate.enabled => {
+            ((0.25..0.75).contains(&land) && pick < 0.5).then_some((tree, 4 + extra, 0.3))
+        }
+        _ => None,
+    }
+}
+
+impl Terrain {
+    /// The props of a generated chunk (see the module docs), at most `max_per_chunk`, with
+    /// `density` (in `[0, 1]`, clamped) the share of each tile's props that stand.
+    #[must_use]
+    pub fn props(&self, chunk: &ChunkMesh, max_per_chunk: usize, density: f32) -> Vec<Prop> {
+        let density = if density.is_finite() { density.clamp(0.0, 1.0) } else { 0.0 };
+        let mut props = Vec::new();
+        let mut priority = Vec::new();
+        if max_per_chunk == 0 || density == 0.0 {
+            return props;
+        }
+        let origin = self.rect_origin(chunk.rect);
+        let lattice = self.lattice();
+        let size = f64::from(self.config().layout.hex_size);
+        let sea = f64::from(self.sea_level());
+        for (info, offset) in chunk.tiles.iter().zip(chunk.rect.iter()) {
+            if !info.in_map || info.lake.is_some() {
+                continue;
+            }
+            let tile = self.tile_from_offset(offset);
+            let key = self.wrap_tile(tile);
+            let seed = self.config().seed;
+            let h = hash::hash(seed, &[i64::from(key.x), i64::from(key.y), 0x9e0]);
+            let Some((kind, count, scale)) = rule(self, info, h) else { continue };
+            let center = lattice.tile_center(tile);
+            let [cx, cz] = lattice.world(center);
+            let [lx, lz] = lattice.world(center - origin);
+            for i in 0..count {
+                let r = hash::hash(seed, &[i64::from(key.x), i64::from(key.y), i64::from(i)]);
+                let u = |k: u32| f64::from(hash::unit(hash::hash(seed, &[r as i64, i64::from(k)])));
+                if u(0) >= f64::from(density) {
+                    continue;
+                }
+                // Inside the tile's inscribed circle (reeds in its outer band, near the shore).
+                let (inner, outer) = if kind == PropKind::Reed { (0.55, 0.82) } else { (0.0, 0.78) };
+                let radius = size * 0.866 * (inner + (outer - inner) * u(1).sqrt());
+                let angle = std::f64::consts::TAU * u(2);
+                let (dx, dz) = (radius * angle.cos(), radius * angle.sin());
+                let (x, z) = (cx + dx, cz + dz);
+                if self.is_wet_at(tile, x, z) {
+                    continue;
+                }
+                let y = self.surface_height(x, z);
+                if y <= sea + 0.02 * size {
+                    continue;
+                }
+                props.push(Prop {
+                    kind,
+                    variant: (u(3) * f64::from(PROP_VARIANTS)) as u8 % PROP_VARIANTS,
+                    position: [(lx + dx) as f32, y as f32, (lz + dz) as f32],
+                    yaw: (std::f64::consts::TAU * u(4)) as f32,
+                    scale: scale * (0.75 + 0.5 * u(5) as f32),
+                    tile: key,
+                });
+                priority.push(hash::unit(r));
+            }
+        }
+        if props.len() > max_per_chunk {
+            let mut order: Vec<usize> = (0..props.len()).collect();
+            order.sort_by(|&a, &b| priority[a].total_cmp(&priority[b]).then(a.cmp(&b)));
+            let mut keep = vec![false; props.len()];
+            for &i in &order[..max_per_chunk] {
+                keep[i] = true;
+            }
+            let mut k = keep.iter();
+            props.retain(|_| k.next().copied().unwrap_or(false));
+        }
+        props
+    }
+
+    /// Whether river or lake water covers world `(x, z)` of `tile` (the lattice triangle's
+    /// corners' water cover).
+    fn is_wet_at(&self, tile: Hex, x: f64, z: f64) -> bool {
+        if !self.tile_is_wet(tile) {
+            return false;
+        }
+        let (tri, _) = self.lattice().triangle_at(x, z);
+        tri.iter().any(|&p| self.water_profile(tile, p) > 0.05)
+    }
+}
