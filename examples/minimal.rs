@@ -1,5 +1,5 @@
-//! The shortest program that shows hex terrain: the plugin, a camera that streams terrain around
-//! itself, and a light.
+//! The shortest program that shows hex terrain: the plugin and a camera that streams terrain
+//! around itself; the plugin lights what a `HexTerrainCamera` shows (sun, shadows, fog).
 
 use bevy::prelude::*;
 use hex_terrain_game::prelude::*;
@@ -12,12 +12,9 @@ fn main() {
         .add_systems(Startup, |mut commands: Commands| {
             commands.spawn((
                 Camera3d::default(),
+                HexTerrainCamera,
                 HexTerrainAgent::default(),
                 Transform::from_xyz(0.0, 40.0, 45.0).looking_at(Vec3::ZERO, Vec3::Y),
-            ));
-            commands.spawn((
-                DirectionalLight::default(),
-                Transform::from_xyz(5.0, 10.0, 3.0).looking_at(Vec3::ZERO, Vec3::Y),
             ));
         })
         .run();

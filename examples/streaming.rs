@@ -1,5 +1,6 @@
 //! An agent walks a straight line east across an unbounded map; terrain streams in ahead of it
-//! and is dropped behind. The camera follows; a counter shows live chunks and chunk latency.
+//! and is dropped behind. The camera follows; a counter shows live chunks, chunk latency and
+//! what each frame draws (draw calls, instances, triangles).
 
 use bevy::prelude::*;
 use hex_terrain_game::prelude::*;
@@ -17,6 +18,7 @@ fn main() {
     App::new()
         .add_plugins((DefaultPlugins, HexTerrainPlugin::default()))
         .add_plugins(hex_terrain_game::screenshot::ScreenshotModePlugin)
+        .add_plugins(hex_terrain_game::render_figures::RenderFiguresPlugin)
         .insert_resource(TerrainAppearance { outlines: true, outline_width: 0.04, ..default() })
         .add_systems(Startup, setup)
         .add_systems(Update, (walk, show_figures))
@@ -33,11 +35,11 @@ fn setup(mut commands: Commands, mut meshes: ResMut<Assets<Mesh>>, mut materials
             MeshMaterial3d(materials.add(Color::srgb(0.85, 0.2, 0.15))),
             Transform::from_xyz(0.0, 5.0, 0.0),
         ))
-        .with_child((Camera3d::default(), Transform::from_xyz(-30.0, 45.0, 40.0).looking_at(Vec3::ZERO, Vec3::Y)));
-    commands.spawn((
-        DirectionalLight { illuminance: 9000.0, ..default() },
-        Transform::from_xyz(4.0, 10.0, 2.0).looking_at(Vec3::ZERO, Vec3::Y),
-    ));
+        .with_child((
+            Camera3d::default(),
+            HexTerrainCamera,
+            Transform::from_xyz(-30.0, 45.0, 40.0).looking_at(Vec3::ZERO, Vec3::Y),
+        ));
     commands.spawn((
         Counter,
         Text::new(""),
@@ -57,6 +59,8 @@ fn walk(time: Res<Time>, map: Res<HexMap>, mut walker: Query<&mut Transform, Wit
 fn show_figures(
     streamer: Res<ChunkStreamer>,
     stats: Res<HexTerrainStats>,
+    frame: Res<hex_terrain_game::render_figures::RenderFigures>,
+    props: Query<(), With<HexProp>>,
     mut counter: Query<&mut Text, With<Counter>>,
 ) {
     let mut latencies: Vec<f32> = stats.latencies().collect();
@@ -64,12 +68,17 @@ fn show_figures(
     let at = |p: f32| latencies.get(((latencies.len().max(1) - 1) as f32 * p) as usize).map_or(0.0, |s| s * 1e3);
     for mut text in &mut counter {
         text.0 = format!(
-            "live chunks: {}   chunks built: {}   cancelled: {}\nchunk latency p50 {:.0} ms, p99 {:.0} ms",
+            "live chunks: {}   chunks built: {}   cancelled: {}   props: {}\nchunk latency p50 {:.0} ms, p99 {:.0} ms\n\
+             frame: {} draw calls, {} instances, {} triangles",
             streamer.live_chunks(),
             stats.tasks_started(),
             stats.tasks_cancelled(),
+            props.iter().len(),
             at(0.5),
-            at(0.99)
+            at(0.99),
+            frame.draws,
+            frame.instances,
+            frame.triangles,
         );
     }
 }

@@ -10,4 +10,5 @@ pub mod prelude {
     pub use bevy_hex_terrain::prelude::*;
 }
 
+pub mod render_figures;
 pub mod screenshot;

@@ -3,8 +3,9 @@
 //! where it can go this turn; click a tile to walk there along an A* path (land costs 1,
 //! mountain 3, fording a river 1 more, sea and lakes are impassable); End Turn (button or Enter)
 //! restores movement. G toggles tile outlines, L the movement-cost lens, T the territory tint,
-//! V the fog of war, R regenerates with a new seed, 1-6 switch presets (6: Civ6 Standard, wrapping; P pans east across its seam), F3 shows chunk
-//! boundaries.
+//! V the fog of war, R regenerates with a new seed, 1-6 switch presets (6: Civ6 Standard,
+//! wrapping; P pans east across its seam), F3 shows chunk boundaries; J, K, B, N, O switch
+//! shadows, distance fog, props, water and ambient occlusion (`look.rs`).
 //!
 //! Two players: yours (red) and a rival (blue), each with territory around its units that grows
 //! at the end of each turn. Fog of war shows what your units see (mountains block the view, hills
@@ -16,6 +17,7 @@
 //! saves a picture first. Without the script, `HEXTERRAIN_SCREENSHOT` takes a picture after some
 //! frames.
 
+mod look;
 mod script;
 mod vision;
 
@@ -90,10 +92,19 @@ fn main() -> AppExit {
     app.add_plugins((DefaultPlugins, HexTerrainPlugin::from_asset(PRESETS[preset.clamp(1, PRESETS.len()) - 1])))
         .insert_resource(TerrainAppearance { outlines: true, outline_width: 0.04, fog_of_war, ..default() })
         .insert_resource(Game { turn: 1, ..default() })
-        .add_systems(Startup, setup)
+        .add_systems(Startup, (setup, look::from_env))
         .add_systems(
             Update,
-            (camera_controls, hover, place_units, (click, end_turn, keys).after(hover), walk, panel, chunk_boundaries),
+            (
+                camera_controls,
+                hover,
+                place_units,
+                (click, end_turn, keys).after(hover),
+                walk,
+                panel,
+                chunk_boundaries,
+                look::keys,
+            ),
         )
         .add_systems(
             Update,
@@ -124,11 +135,8 @@ fn setup(mut commands: Commands) {
             // The camera below inherits visibility from the rig.
             Visibility::default(),
         ))
-        .with_child((Camera3d::default(), Transform::default()));
-    commands.spawn((
-        DirectionalLight { illuminance: 9000.0, ..default() },
-        Transform::from_xyz(4.0, 10.0, 2.0).looking_at(Vec3::ZERO, Vec3::Y),
-    ));
+        // The plugin lights what a HexTerrainCamera shows: sun, shadows, distance fog.
+        .with_child((Camera3d::default(), HexTerrainCamera, Transform::default()));
     commands.spawn((
         Panel,
         Text::new(""),

@@ -76,6 +76,16 @@ pub struct Scene {
     /// unbounded map, from a floating origin, over [`FAR_VIEW`] world units; the clear color is
     /// [`HOLE`], so any pixel of it is a hole in the terrain.
     pub far: Option<DVec3>,
+    /// The water surface on (off: the thesis' flat look, which the older scenarios check).
+    pub water: bool,
+    /// Props on.
+    pub props: bool,
+    /// Light the scene with the plugin's sun (the camera is a `HexTerrainCamera`) instead of a
+    /// fixed shadowless light.
+    pub lighting: Option<TerrainLighting>,
+    /// After the first picture: change the settings, let the change show, and take a second
+    /// picture ([`render_pair`]).
+    pub then: Option<fn(&mut HexTerrainSettings, &mut TerrainLighting)>,
 }
 
 /// World units the far camera shows, `x` by `z`.
@@ -108,8 +118,25 @@ pub fn render_with(appearance: TerrainAppearance, name: &str) -> image::RgbImage
 
 /// Renders a scene and returns the screenshot and the counts.
 pub fn render_scene(scene: Scene, name: &str) -> (image::RgbImage, Counts) {
-    let Scene { config, appearance, tiles, deferred, far } = scene;
+    let (img, _, counts) = render_scenes(scene, name);
+    (img, counts)
+}
+
+/// Renders a scene with [`Scene::then`], returning the pictures before and after the change.
+pub fn render_pair(scene: Scene, name: &str) -> (image::RgbImage, image::RgbImage) {
+    assert!(scene.then.is_some(), "a pair needs a change");
+    let (before, after, _) = render_scenes(scene, name);
+    (before, after.expect("a second picture"))
+}
+
+fn render_scenes(scene: Scene, name: &str) -> (image::RgbImage, Option<image::RgbImage>, Counts) {
+    let Scene { config, appearance, tiles, deferred, far, water, props, lighting, then } = scene;
     let config = config.unwrap_or_else(map);
+    let mut settings = HexTerrainSettings::default();
+    settings.water.enabled = water;
+    settings.props.enabled = props;
+    let out_after = Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("{name}_after.png"));
+    let _ = std::fs::remove_file(&out_after);
     let terrain = Terrain::new(config.clone()).unwrap();
     let (center, size) = if far.is_some() { (Vec2::ZERO, FAR_VIEW) } else { view(&terrain) };
     let out = Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("{name}.png"));
@@ -127,7 +154,10 @@ pub fn render_scene(scene: Scene, name: &str) -> (image::RgbImage, Counts) {
     } else {
         app.add_plugins(plugins);
     }
-    app.add_plugins(HexTerrainPlugin::from_config(config))
+    let plugin = HexTerrainPlugin { map: MapSource::Config(Box::new(config)), settings };
+    let sun = lighting.is_some();
+    app.add_plugins(plugin)
+        .insert_resource(lighting.unwrap_or_default())
         .insert_resource(appearance)
         .insert_resource(GlobalAmbientLight { brightness: 600.0, ..default() });
     let camera_bundle = (
@@ -170,7 +200,11 @@ pub fn render_scene(scene: Scene, name: &str) -> (image::RgbImage, Counts) {
                     .looking_at(Vec3::new(center.x, 0.0, center.y), Vec3::NEG_Z),
             ))
             .id();
-        app.world_mut().spawn(light);
+        if sun {
+            app.world_mut().entity_mut(camera).insert(HexTerrainCamera);
+        } else {
+            app.world_mut().spawn(light);
+        }
         camera
     };
     if deferred {
@@ -198,12 +232,49 @@ pub fn render_scene(scene: Scene, name: &str) -> (image::RgbImage, Counts) {
     let flag = done.clone();
     let mut frames = 0;
     let mut ready_frames = 0;
+    // With a change: frames since it was made, and whether the second picture is saved.
+    let mut changed_for: Option<u32> = None;
+    let second: Arc<Mutex<bool>> = Arc::default();
+    let second_saved = second.clone();
+    let after_path = out_after.clone();
     app.add_systems(
         Last,
-        move |mut commands: Commands, mut ready: MessageReader<TerrainReady>, mut exit: MessageWriter<AppExit>| {
+        move |mut commands: Commands,
+              mut ready: MessageReader<TerrainReady>,
+              mut exit: MessageWriter<AppExit>,
+              mut settings: ResMut<HexTerrainSettings>,
+              mut lighting: ResMut<TerrainLighting>| {
             frames += 1;
             if *flag.lock().unwrap() {
-                exit.write(AppExit::Success);
+                let Some(change) = then else {
+                    exit.write(AppExit::Success);
+                    return;
+                };
+                if *second_saved.lock().unwrap() {
+                    exit.write(AppExit::Success);
+                    return;
+                }
+                match changed_for.as_mut() {
+                    None => {
+                        change(&mut settings, &mut lighting);
+                        changed_for = Some(0);
+                    }
+                    Some(n) => {
+                        *n += 1;
+                        if *n == 30 {
+                            let path = after_path.clone();
+                            let saved = second_saved.clone();
+                            commands.spawn(Screenshot::primary_window()).observe(
+                                move |shot: On<ScreenshotCaptured>| {
+                                    let img = shot.image.clone().try_into_dynamic().unwrap().to_rgb8();
+                                    img.save(&path).unwrap();
+                                    *saved.lock().unwrap() = true;
+                                },
+                            );
+                        }
+                    }
+                }
+                assert!(frames < 8000, "no second picture after {frames} frames");
                 return;
             }
             if ready.read().count() > 0 || ready_frames > 0 {
@@ -230,7 +301,8 @@ pub fn render_scene(scene: Scene, name: &str) -> (image::RgbImage, Counts) {
     app.run();
     assert!(*done.lock().unwrap(), "no screenshot was taken");
     let counts = *counts.lock().unwrap();
-    (image::open(&out).unwrap().to_rgb8(), counts)
+    let after = then.map(|_| image::open(&out_after).expect("the second picture").to_rgb8());
+    (image::open(&out).unwrap().to_rgb8(), after, counts)
 }
 
 pub fn rgb(img: &image::RgbImage, (x, y): (u32, u32)) -> [f32; 3] {

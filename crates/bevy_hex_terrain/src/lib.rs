@@ -37,12 +37,16 @@
 pub mod asset;
 #[cfg(feature = "big_space")]
 pub mod far;
+#[cfg(feature = "render")]
+pub mod light;
 pub mod map;
 #[cfg(feature = "render")]
 pub mod material;
 pub mod mesh;
+pub mod props;
 pub mod streaming;
 pub mod tiles;
+pub mod water;
 
 use bevy::app::PluginGroupBuilder;
 use bevy::prelude::*;
@@ -52,28 +56,34 @@ use hex_terrain::MapConfig;
 pub use crate::asset::{HexMapAsset, HexMapLoader, HexMapLoaderError};
 #[cfg(feature = "big_space")]
 pub use crate::far::{HexBigSpacePlugin, HexTerrainGrid};
+#[cfg(feature = "render")]
+pub use crate::light::{HexLightPlugin, HexSun, HexTerrainCamera, TerrainLighting};
 pub use crate::map::{HexMap, HexMapError, HexMapHandle, HexMapPlugin, LoadHexMap, TileHit, TileHitF64};
 #[cfg(feature = "render")]
 pub use crate::material::{HexTerrainMaterial, HexTerrainMaterialPlugin, RenderOrigin, TerrainAppearance};
+pub use crate::props::{HexProp, HexPropsPlugin};
 pub use crate::streaming::{
-    ChunkDespawned, ChunkSpawned, ChunkStreamer, ChunkTask, ChunkThreads, HexChunk, HexStreamingPlugin,
-    HexTerrainAgent, HexTerrainSettings, HexTerrainStats, HexWorldPosition, TerrainReady,
+    ChunkContent, ChunkDespawned, ChunkSpawned, ChunkStreamer, ChunkTask, ChunkThreads, HexChunk, HexStreamingPlugin,
+    HexTerrainAgent, HexTerrainSettings, HexTerrainStats, HexWorldPosition, PropSettings, TerrainReady, WaterSettings,
 };
 pub use crate::tiles::{
     FogState, HexTileStatePlugin, Highlight, TileStateError, TileStateSettings, TileStateStats, TileStates,
 };
+pub use crate::water::{HexWater, HexWaterPlugin};
 
 /// Everything a game usually needs.
 pub mod prelude {
     #[cfg(feature = "big_space")]
     pub use crate::far::{HexBigSpacePlugin, HexTerrainGrid};
     #[cfg(feature = "render")]
+    pub use crate::light::{HexLightPlugin, HexTerrainCamera, TerrainLighting};
+    #[cfg(feature = "render")]
     pub use crate::material::{HexTerrainMaterialPlugin, TerrainAppearance};
     pub use crate::{
-        ChunkDespawned, ChunkSpawned, ChunkStreamer, FogState, HexChunk, HexMap, HexMapError, HexMapPlugin,
+        ChunkDespawned, ChunkSpawned, ChunkStreamer, FogState, HexChunk, HexMap, HexMapError, HexMapPlugin, HexProp,
         HexStreamingPlugin, HexTerrainAgent, HexTerrainPlugin, HexTerrainPlugins, HexTerrainSettings, HexTerrainStats,
-        HexTerrainSystems, HexTileStatePlugin, HexWorldPosition, Highlight, LoadHexMap, MapSource, TerrainReady,
-        TileHit, TileStates,
+        HexTerrainSystems, HexTileStatePlugin, HexWater, HexWorldPosition, Highlight, LoadHexMap, MapSource,
+        PropSettings, TerrainReady, TileHit, TileStates, WaterSettings,
     };
     pub use hex_terrain::hexx::Hex;
     pub use hex_terrain::{Biome, ChunkCoord, MapConfig, MapSize, RiverTile, TileInfo, TileKind};
@@ -91,13 +101,15 @@ pub enum MapSource {
 
 impl Default for MapSource {
     /// An unbounded continent: the thesis' Map0 noise, two inner rings, a maximum elevation of
-    /// four hex radii (Map0's ten makes unit-sized hexes look like needles).
+    /// four hex radii (Map0's ten makes unit-sized hexes look like needles), peaks and hills
+    /// ([`ReliefConfig::MOUNTAINS`](hex_terrain::ReliefConfig::MOUNTAINS)).
     fn default() -> Self {
         let mut config =
             MapConfig { name: "Continent".into(), size: hex_terrain::MapSize::Unbounded, ..MapConfig::default() };
         config.terrain.max_elevation = 4.0;
         config.terrain.inner_rings = 2;
         config.noise.scale = 60.0;
+        config.relief = hex_terrain::ReliefConfig::MOUNTAINS;
         Self::Config(Box::new(config))
     }
 }
@@ -138,9 +150,11 @@ pub enum HexTerrainSystems {
 
 /// The terrain plugins: [`HexMapPlugin`] (the [`HexMap`] resource, map assets, switching),
 /// [`HexStreamingPlugin`] (chunks around agents), [`HexTileStatePlugin`] (per-tile game state:
-/// fog of war, territory, lenses, highlights) and, with the `render` feature,
-/// `HexTerrainMaterialPlugin` (the terrain material, which needs Bevy's `PbrPlugin`). Disable
-/// one with `HexTerrainPlugins::default().build().disable::<…>()`.
+/// fog of war, territory, lenses, highlights), [`HexWaterPlugin`] (the water surface's
+/// entities), [`HexPropsPlugin`] (trees, rocks, reeds) and, with the `render` feature,
+/// `HexTerrainMaterialPlugin` (the terrain and water material, which needs Bevy's `PbrPlugin`)
+/// and `HexLightPlugin` (sun, shadows, fog, occlusion for `HexTerrainCamera`s). Disable one
+/// with `HexTerrainPlugins::default().build().disable::<…>()`.
 #[derive(Debug, Clone, Default)]
 pub struct HexTerrainPlugins {
     /// The map to show.
@@ -162,9 +176,11 @@ impl PluginGroup for HexTerrainPlugins {
         let group = PluginGroupBuilder::start::<Self>()
             .add(HexMapPlugin { map: self.map })
             .add(HexStreamingPlugin { settings: self.settings })
-            .add(HexTileStatePlugin::default());
+            .add(HexTileStatePlugin::default())
+            .add(HexWaterPlugin)
+            .add(HexPropsPlugin);
         #[cfg(feature = "render")]
-        let group = group.add(material::HexTerrainMaterialPlugin);
+        let group = group.add(material::HexTerrainMaterialPlugin).add(light::HexLightPlugin);
         group
     }
 }

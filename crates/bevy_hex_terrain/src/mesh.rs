@@ -31,3 +31,17 @@ pub fn chunk_to_mesh(chunk: ChunkMesh) -> Mesh {
     }
     mesh
 }
+
+/// Builds a Bevy mesh of a chunk's water surface: positions, normals, UVs and, in
+/// `ATTRIBUTE_UV_1`'s first component, the depth of water below each vertex (world units), which
+/// the terrain material's water pass colors by.
+#[must_use]
+pub fn water_to_mesh(water: hex_terrain::WaterBuffers) -> Mesh {
+    let depths: Vec<[f32; 2]> = water.depths.iter().map(|&d| [d, 0.0]).collect();
+    Mesh::new(PrimitiveTopology::TriangleList, RenderAssetUsages::default())
+        .with_inserted_attribute(Mesh::ATTRIBUTE_POSITION, water.positions)
+        .with_inserted_attribute(Mesh::ATTRIBUTE_NORMAL, water.normals)
+        .with_inserted_attribute(Mesh::ATTRIBUTE_UV_0, water.uvs)
+        .with_inserted_attribute(Mesh::ATTRIBUTE_UV_1, depths)
+        .with_inserted_indices(Indices::U32(water.indices))
+}

@@ -48,6 +48,26 @@ pub struct TerrainAppearance {
     pub selected_color: Color,
     /// Tint of reachable tiles; alpha is the strength.
     pub reachable_color: Color,
+    /// Draw the sea floor as a floor (sand near the coast, darker deeper) under the water
+    /// surface. Without a shown water surface
+    /// ([`WaterSettings::enabled`](crate::WaterSettings::enabled) off) or with this off, the sea
+    /// floor is colored as the sea, the thesis' look.
+    pub sea_floor: bool,
+    /// Water color over the shallows, near coasts (linear blend to `deep_water_color`).
+    pub shallow_water_color: Color,
+    /// Water color over the deep sea.
+    pub deep_water_color: Color,
+    /// Foam color at the shore.
+    pub foam_color: Color,
+    /// Sea floor color at the coast (darkening with depth).
+    pub sea_floor_color: Color,
+    /// Depth of water at which it is fully deep (opaque, deep color), a fraction of the sea
+    /// level's height above the lowest floor.
+    pub deep_water: f32,
+    /// Width of the shore foam, in depth of water (world units).
+    pub foam_width: f32,
+    /// Strength of the animated waves' normals, 0 for a still surface.
+    pub waves: f32,
 }
 
 impl Default for TerrainAppearance {
@@ -81,6 +101,14 @@ impl Default for TerrainAppearance {
             hover_color: Color::srgba(1.0, 0.95, 0.55, 0.45),
             selected_color: Color::srgba(1.0, 0.85, 0.25, 0.5),
             reachable_color: Color::srgba(0.35, 0.75, 1.0, 0.4),
+            sea_floor: true,
+            shallow_water_color: Color::srgb(0.09, 0.50, 0.62),
+            deep_water_color: Color::srgb(0.02, 0.10, 0.28),
+            foam_color: Color::srgb(0.93, 0.96, 0.97),
+            sea_floor_color: Color::srgb(0.76, 0.70, 0.52),
+            deep_water: 0.3,
+            foam_width: 0.035,
+            waves: 0.35,
         }
     }
 }

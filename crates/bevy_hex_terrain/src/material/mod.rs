@@ -25,6 +25,7 @@ pub type HexTerrainMaterial = ExtendedMaterial<StandardMaterial, HexTerrainExten
 
 /// The extension part of [`HexTerrainMaterial`].
 #[derive(Asset, AsBindGroup, Reflect, Debug, Clone)]
+#[bind_group_data(HexTerrainKey)]
 pub struct HexTerrainExtension {
     /// Shader parameters.
     #[uniform(100)]
@@ -47,6 +48,23 @@ pub struct HexTerrainExtension {
     /// Owner colors.
     #[uniform(108)]
     pub owners: OwnerColors,
+    /// This instance draws the water surface (transparent, colored by depth) instead of the
+    /// ground. The same parameters and tile states serve both, so fog, borders, highlights and
+    /// outlines lie on the water as on the land.
+    pub water: bool,
+}
+
+/// The pipeline key of [`HexTerrainExtension`]: the ground or the water pass.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct HexTerrainKey {
+    /// The water pass.
+    pub water: bool,
+}
+
+impl From<&HexTerrainExtension> for HexTerrainKey {
+    fn from(ext: &HexTerrainExtension) -> Self {
+        Self { water: ext.water }
+    }
 }
 
 fn shader() -> ShaderRef {
@@ -66,10 +84,13 @@ impl MaterialExtension for HexTerrainExtension {
         _pipeline: &MaterialExtensionPipeline,
         descriptor: &mut RenderPipelineDescriptor,
         _layout: &MeshVertexBufferLayoutRef,
-        _key: MaterialExtensionKey<Self>,
+        key: MaterialExtensionKey<Self>,
     ) -> Result<(), SpecializedMeshPipelineError> {
         if let Some(fragment) = descriptor.fragment.as_mut() {
             fragment.shader_defs.extend(SHADER_DEFS.map(|(name, value)| ShaderDefVal::UInt(name.into(), value)));
+            if key.bind_group_data.water {
+                fragment.shader_defs.push("HEX_WATER".into());
+            }
         }
         Ok(())
     }
@@ -78,6 +99,11 @@ impl MaterialExtension for HexTerrainExtension {
 /// The shared material handle of the chunks.
 #[derive(Resource, Debug, Clone)]
 pub struct HexTerrainMaterialHandle(pub Handle<HexTerrainMaterial>);
+
+/// The shared material handle of the water surfaces ([`HexWater`](crate::HexWater)): the terrain
+/// material's water instance, alpha-blended.
+#[derive(Resource, Debug, Clone)]
+pub struct HexWaterMaterialHandle(pub Handle<HexTerrainMaterial>);
 
 /// The terrain material: registers [`HexTerrainMaterial`], gives every chunk mesh the shared
 /// material and keeps it in step with the map, [`TerrainAppearance`] and the tile state
@@ -137,6 +163,36 @@ fn textures(server: &AssetServer, appearance: &TerrainAppearance) -> [Option<Han
     }
 }
 
+/// The ground and the water instances of the material share everything but the water key and
+/// the base's blending: the water is transparent over the shallows and glossy.
+fn base(water: bool) -> StandardMaterial {
+    if water {
+        StandardMaterial {
+            base_color: Color::WHITE,
+            perceptual_roughness: 0.12,
+            // Water's F0 (about 0.02).
+            reflectance: 0.35,
+            alpha_mode: AlphaMode::Blend,
+            ..default()
+        }
+    } else {
+        StandardMaterial { base_color: Color::WHITE, perceptual_roughness: 0.92, reflectance: 0.2, ..default() }
+    }
+}
+
+/// The appearance the shader draws: textures off on a map whose appearance had to be clamped,
+/// the sea floor drawn as a floor only under a shown water surface.
+fn effective(
+    appearance: &TerrainAppearance,
+    map: &crate::HexMap,
+    settings: &crate::HexTerrainSettings,
+) -> TerrainAppearance {
+    let mut effective = appearance.clone();
+    effective.textures &= !map.appearance_fallback();
+    effective.sea_floor &= settings.water.enabled;
+    effective
+}
+
 #[expect(clippy::too_many_arguments, reason = "a system's parameters")]
 fn create_material(
     mut commands: Commands,
@@ -144,36 +200,41 @@ fn create_material(
     server: Res<AssetServer>,
     map: Res<crate::HexMap>,
     appearance: Res<TerrainAppearance>,
+    settings: Res<crate::HexTerrainSettings>,
     states: Res<TileStates>,
     texture: Res<TileStateTexture>,
     origin: Res<RenderOrigin>,
 ) {
+    let appearance = effective(&appearance, &map, &settings);
     let [sea_texture, land_texture, mountain_texture] = textures(&server, &appearance);
-    let handle = materials.add(ExtendedMaterial {
-        base: StandardMaterial { base_color: Color::WHITE, perceptual_roughness: 0.92, reflectance: 0.2, ..default() },
-        extension: HexTerrainExtension {
-            params: params(map.config(), &appearance, states.window(), *origin),
-            sea_texture,
-            land_texture,
-            mountain_texture,
-            tile_state: texture.handle.clone(),
-            owners: owner_colors(&appearance),
-        },
-    });
+    let extension = HexTerrainExtension {
+        params: params(map.config(), &appearance, states.window(), *origin),
+        sea_texture,
+        land_texture,
+        mountain_texture,
+        tile_state: texture.handle.clone(),
+        owners: owner_colors(&appearance),
+        water: false,
+    };
+    let water = HexTerrainExtension { water: true, ..extension.clone() };
+    let handle = materials.add(ExtendedMaterial { base: base(false), extension });
     commands.insert_resource(HexTerrainMaterialHandle(handle));
+    let handle = materials.add(ExtendedMaterial { base: base(true), extension: water });
+    commands.insert_resource(HexWaterMaterialHandle(handle));
 }
 
-/// Rewrites the material when the map (hot reload, switch), the appearance or the tile state
-/// window change its parameters, and only then (a rewritten material is uploaded again; tile
-/// state changes go straight into the texture); a texture that failed to load switches to flat
-/// colors with a warning.
+/// Rewrites the materials when the map (hot reload, switch), the appearance, the water setting
+/// or the tile state window change their parameters, and only then (a rewritten material is
+/// uploaded again; tile state changes go straight into the texture); a texture that failed to
+/// load switches to flat colors with a warning.
 #[expect(clippy::too_many_arguments, reason = "a system's parameters")]
 fn update_material(
-    handle: Res<HexTerrainMaterialHandle>,
+    handles: (Res<HexTerrainMaterialHandle>, Res<HexWaterMaterialHandle>),
     mut materials: ResMut<Assets<HexTerrainMaterial>>,
     server: Res<AssetServer>,
     map: Res<crate::HexMap>,
     mut appearance: ResMut<TerrainAppearance>,
+    settings: Res<crate::HexTerrainSettings>,
     states: Res<TileStates>,
     texture: Res<TileStateTexture>,
     origin: Res<RenderOrigin>,
@@ -185,36 +246,50 @@ fn update_material(
             appearance.textures = false;
         }
     }
-    let Some(material) = materials.get(&handle.0) else { return };
+    let Some(material) = materials.get(&handles.0.0) else { return };
     let ext = &material.extension;
     let window_moved = ext.params.tile_window != window_param(states.window());
-    if !(map.is_changed() || appearance.is_changed() || texture.is_changed() || origin.is_changed() || window_moved) {
+    let changed = map.is_changed() || appearance.is_changed() || settings.is_changed();
+    if !(changed || texture.is_changed() || origin.is_changed() || window_moved) {
         return;
     }
-    // A map whose appearance had to be clamped is drawn in flat colors.
-    let mut effective = appearance.clone();
-    effective.textures &= !map.appearance_fallback();
+    let effective = effective(&appearance, &map, &settings);
     let params = params(map.config(), &effective, states.window(), *origin);
     let owners = owner_colors(&effective);
     let retexture = effective.textures != ext.sea_texture.is_some();
     if params == ext.params && owners == ext.owners && ext.tile_state == texture.handle && !retexture {
         return;
     }
-    let Some(mut material) = materials.get_mut(&handle.0) else { return };
-    let ext = &mut material.extension;
-    ext.params = params;
-    ext.owners = owners;
-    ext.tile_state = texture.handle.clone();
-    if retexture {
-        [ext.sea_texture, ext.land_texture, ext.mountain_texture] = textures(&server, &effective);
+    let new = if retexture { Some(textures(&server, &effective)) } else { None };
+    for handle in [&handles.0.0, &handles.1.0] {
+        let Some(mut material) = materials.get_mut(handle) else { continue };
+        let ext = &mut material.extension;
+        ext.params = params;
+        ext.owners = owners;
+        ext.tile_state = texture.handle.clone();
+        if let Some(new) = &new {
+            [ext.sea_texture, ext.land_texture, ext.mountain_texture] = new.clone();
+        }
     }
 }
 
 /// Chunks with a mesh and no material yet.
 type Unpainted = (With<crate::HexChunk>, With<Mesh3d>, Without<MeshMaterial3d<HexTerrainMaterial>>);
 
-fn attach_material(mut commands: Commands, handle: Res<HexTerrainMaterialHandle>, chunks: Query<Entity, Unpainted>) {
+/// Water surfaces with no material yet.
+type UnpaintedWater = (With<crate::HexWater>, With<Mesh3d>, Without<MeshMaterial3d<HexTerrainMaterial>>);
+
+fn attach_material(
+    mut commands: Commands,
+    handle: Res<HexTerrainMaterialHandle>,
+    water: Res<HexWaterMaterialHandle>,
+    chunks: Query<Entity, Unpainted>,
+    waters: Query<Entity, UnpaintedWater>,
+) {
     for e in &chunks {
         commands.entity(e).insert(MeshMaterial3d(handle.0.clone()));
+    }
+    for e in &waters {
+        commands.entity(e).insert(MeshMaterial3d(water.0.clone()));
     }
 }

@@ -23,10 +23,12 @@ pub mod flags {
     pub const TERRITORY_TINT: u32 = 32;
     /// Draw the tiles' overlay colors (the lens).
     pub const LENS: u32 = 64;
+    /// Color the sea floor as a floor under a water surface, not as the sea.
+    pub const SEA_FLOOR: u32 = 128;
 }
 
 /// The shader defs every terrain pipeline gets: the flag bits and the owner palette size.
-pub(super) const SHADER_DEFS: [(&str, u32); 8] = [
+pub(super) const SHADER_DEFS: [(&str, u32); 9] = [
     ("HEX_FLAG_OUTLINES", flags::OUTLINES),
     ("HEX_FLAG_TEXTURES", flags::TEXTURES),
     ("HEX_FLAG_POINTY", flags::POINTY),
@@ -34,6 +36,7 @@ pub(super) const SHADER_DEFS: [(&str, u32); 8] = [
     ("HEX_FLAG_BORDERS", flags::BORDERS),
     ("HEX_FLAG_TERRITORY_TINT", flags::TERRITORY_TINT),
     ("HEX_FLAG_LENS", flags::LENS),
+    ("HEX_FLAG_SEA_FLOOR", flags::SEA_FLOOR),
     ("HEX_MAX_OWNERS", MAX_OWNERS as u32),
 ];
 
@@ -58,6 +61,20 @@ pub struct TerrainParams {
     pub outline_color: Vec4,
     /// River and lake water color (linear), on meshes with vertex colors.
     pub water_color: Vec4,
+    /// Water surface color over the shallows (linear).
+    pub shallow_water_color: Vec4,
+    /// Water surface color over the deep (linear).
+    pub deep_water_color: Vec4,
+    /// Shore foam color (linear).
+    pub foam_color: Vec4,
+    /// Sea floor color at the coast (linear).
+    pub sea_floor_color: Vec4,
+    /// Depth of water (world units) at which it is fully deep.
+    pub deep_water: f32,
+    /// Width of the shore foam, in depth of water (world units).
+    pub foam_width: f32,
+    /// Strength of the waves' normals.
+    pub waves: f32,
     /// World height of the sea threshold.
     pub sea_level: f32,
     /// World height of the mountain threshold.
@@ -154,6 +171,7 @@ pub fn params(
         (appearance.borders, flags::BORDERS),
         (appearance.territory_tint, flags::TERRITORY_TINT),
         (appearance.lens, flags::LENS),
+        (appearance.sea_floor, flags::SEA_FLOOR),
     ] {
         if on {
             bits |= bit;
@@ -170,6 +188,13 @@ pub fn params(
         unexplored_color: linear(appearance.unexplored_color),
         outline_color: Vec4::new(0.01, 0.01, 0.01, 0.92),
         water_color: linear(appearance.water_color),
+        shallow_water_color: linear(appearance.shallow_water_color),
+        deep_water_color: linear(appearance.deep_water_color),
+        foam_color: linear(appearance.foam_color),
+        sea_floor_color: linear(appearance.sea_floor_color),
+        deep_water: finite(appearance.deep_water, 0.01, 1.0) * t.sea_threshold * max,
+        foam_width: finite(appearance.foam_width, 0.0, 1e3),
+        waves: finite(appearance.waves, 0.0, 4.0),
         sea_level: t.sea_threshold * max,
         mountain_level: t.mountain_threshold * max,
         blend: config.appearance.blend.clamp(0.0, 1.0) * max,

@@ -1,7 +1,8 @@
 // Hex terrain material: thesis Algorithm 5 (three layers split by the thresholds, blended over
 // the blend distance), flat colors or world-space triplanar textures, tile outlines computed from
 // the world position (no per-vertex data needed, so they are exact on every chunk), a gently
-// animated sea, and the per-tile game state read from the tile state texture: highlights, the
+// animated sea (or, under a water surface, a sea floor), the water surface itself (the HEX_WATER
+// instance: depth colors, shore foam, waves), and the per-tile game state read from the tile state texture: highlights, the
 // lens, territory tint and borders, and fog of war blended across tile borders. Lighting and
 // shadows are StandardMaterial's.
 
@@ -33,6 +34,14 @@ struct TerrainParams {
     unexplored_color: vec4<f32>,
     outline_color: vec4<f32>,
     water_color: vec4<f32>,
+    shallow_water_color: vec4<f32>,
+    deep_water_color: vec4<f32>,
+    foam_color: vec4<f32>,
+    sea_floor_color: vec4<f32>,
+    // Water surface: depth of full deep color, foam width (world units), wave strength.
+    deep_water: f32,
+    foam_width: f32,
+    waves: f32,
     // World heights of the thresholds and the blend distance.
     sea_level: f32,
     mountain_level: f32,
@@ -78,6 +87,7 @@ const FLAG_FOG: u32 = #{HEX_FLAG_FOG}u;
 const FLAG_BORDERS: u32 = #{HEX_FLAG_BORDERS}u;
 const FLAG_TERRITORY_TINT: u32 = #{HEX_FLAG_TERRITORY_TINT}u;
 const FLAG_LENS: u32 = #{HEX_FLAG_LENS}u;
+const FLAG_SEA_FLOOR: u32 = #{HEX_FLAG_SEA_FLOOR}u;
 // Bits of a tile state texel's first channel (tiles/window.rs): fog in bits 0-1, then the
 // highlights.
 const FOG_MASK: u32 = 3u;
@@ -92,6 +102,17 @@ fn triplanar(t: texture_2d<f32>, s: sampler, p: vec3<f32>, n: vec3<f32>) -> vec4
     return textureSample(t, s, p.zx * k) * w.y + textureSample(t, s, p.zy * k) * w.x + textureSample(t, s, p.xy * k) * w.z;
 }
 
+// Under a water surface the sea layer is the sea floor: sand at the coast, darker with depth.
+fn sea_floor(h: f32) -> vec4<f32> {
+    let depth = max(params.sea_level - h, 0.0);
+    let dark = smoothstep(0.0, max(params.deep_water, 1e-3) * 1.5, depth);
+    return vec4<f32>(params.sea_floor_color.rgb * mix(1.0, 0.3, dark), 1.0);
+}
+
+fn has_sea_floor() -> bool {
+    return (params.flags & FLAG_SEA_FLOOR) != 0u;
+}
+
 // Algorithm 5 with linear blending on both sides of each threshold. Textures are sampled in
 // uniform control flow (every fragment samples all three) so their derivatives stay valid.
 fn albedo(p: vec3<f32>, n: vec3<f32>) -> vec4<f32> {
@@ -101,6 +122,9 @@ fn albedo(p: vec3<f32>, n: vec3<f32>) -> vec4<f32> {
     let rock = triplanar(mountain_texture, mountain_sampler, p, n);
     if (params.flags & FLAG_TEXTURES) != 0u {
         layers = array<vec4<f32>, 3>(sea, land, rock);
+    }
+    if has_sea_floor() {
+        layers[0] = sea_floor(p.y);
     }
     let h = p.y;
     var own = 2;
@@ -294,8 +318,71 @@ fn apply_fog(color: vec3<f32>, look: TileLook, p: vec2<f32>) -> vec3<f32> {
     return mix(params.unexplored_color.rgb * mottle, seen, look.explored);
 }
 
+#ifdef HEX_WATER
+#ifndef PREPASS_PIPELINE
+// The water surface's normal: three travelling waves, their slopes tilting the normal.
+fn wave_normal(p: vec2<f32>, t: f32) -> vec3<f32> {
+    let k = 6.2831853 / params.hex_size;
+    let d1 = vec2<f32>(0.8, 0.6);
+    let d2 = vec2<f32>(-0.45, 0.89);
+    let d3 = vec2<f32>(0.96, -0.28);
+    let g = d1 * cos(dot(p, d1) * k * 0.9 + t * 1.1) * 0.5
+        + d2 * cos(dot(p, d2) * k * 1.7 + t * 1.7) * 0.3
+        + d3 * cos(dot(p, d3) * k * 3.1 + t * 2.3) * 0.2;
+    return normalize(vec3<f32>(-g.x * params.waves, 1.0, -g.y * params.waves));
+}
+
+// The water pass: color and opacity by the depth of water below (the mesh's second UV), foam at
+// the shore, moving waves, the tile state (fog, borders, highlights, outlines) as on the ground.
+fn water_fragment(in: VertexOutput, is_front: bool) -> FragmentOutput {
+    var pbr_input = pbr_input_from_standard_material(in, is_front);
+    let p = in.world_position.xyz;
+    let depth = in.uv_b.x;
+    if depth <= 0.0 {
+        discard;
+    }
+    let t = globals.time;
+    let deep = smoothstep(0.0, max(params.deep_water, 1e-3), depth);
+    var color = mix(params.shallow_water_color.rgb, params.deep_water_color.rgb, deep);
+    var alpha = mix(0.62, 0.97, deep);
+    // Foam: a band along the shore, broken by ripples running in.
+    let width = max(params.foam_width, 1e-4);
+    let shore = 1.0 - smoothstep(0.0, width, depth);
+    let q = p.xz + params.origin_offset.xy;
+    let ripple = 0.5 + 0.5 * sin(depth / width * 5.0 - t * 1.8 + 2.0 * sin(q.x * 2.3 + q.y * 1.7));
+    let foam = shore * (0.6 + 0.4 * ripple);
+    color = mix(color, params.foam_color.rgb, foam);
+    alpha = max(alpha, 0.9 * foam);
+    let look = tile_look(p.xz, vec4<f32>(color, alpha));
+    pbr_input.material.base_color = vec4<f32>(look.albedo.rgb, alpha);
+    pbr_input.N = wave_normal(q, t);
+    var out: FragmentOutput;
+    out.color = apply_pbr_lighting(pbr_input);
+    var lit = mix(out.color.rgb, look.border.rgb, look.border.a);
+    lit = mix(lit, params.outline_color.rgb, look.outline);
+    // Unexplored water is as opaque as the unexplored ground.
+    out.color = vec4<f32>(apply_fog(lit, look, p.xz), mix(1.0, alpha, look.explored));
+    out.color = main_pass_post_lighting_processing(pbr_input, out.color);
+    return out;
+}
+#endif
+#endif
+
 @fragment
 fn fragment(in: VertexOutput, @builtin(front_facing) is_front: bool) -> FragmentOutput {
+#ifdef HEX_WATER
+#ifndef PREPASS_PIPELINE
+    return water_fragment(in, is_front);
+#else
+    return ground_fragment(in, is_front);
+#endif
+#else
+    return ground_fragment(in, is_front);
+#endif
+}
+
+// The ground pass.
+fn ground_fragment(in: VertexOutput, is_front: bool) -> FragmentOutput {
     var pbr_input = pbr_input_from_standard_material(in, is_front);
     let p = in.world_position.xyz;
     let n = normalize(in.world_normal);
@@ -310,14 +397,19 @@ fn fragment(in: VertexOutput, @builtin(front_facing) is_front: bool) -> Fragment
     }
     let water = smoothstep(0.2, 0.55, in.color.a);
     color = vec4<f32>(mix(biome, params.water_color.rgb, water), 1.0);
+    if has_sea_floor() {
+        // The sea's biome colors belong to the water surface above; here lies its floor.
+        let under = smoothstep(params.sea_level + 0.5 * params.blend, params.sea_level - 0.5 * params.blend, p.y);
+        color = vec4<f32>(mix(color.rgb, sea_floor(p.y).rgb, under), 1.0);
+    }
 #endif
 
     // A gently moving sea surface: a slow shimmer below sea level. (The deferred prepass has no
     // time uniform bound: there the sea is still.)
 #ifndef PREPASS_PIPELINE
-    var wet = p.y < params.sea_level;
+    var wet = p.y < params.sea_level && !has_sea_floor();
 #ifdef VERTEX_COLORS
-    wet = wet || in.color.a > 0.3;
+    wet = wet || (in.color.a > 0.3 && !has_sea_floor());
 #endif
     if wet {
         let wave = 0.5 + 0.5 * sin(globals.time * 1.3 + p.x * 1.7 + p.z * 1.1) * sin(globals.time * 0.9 - p.z * 1.3);

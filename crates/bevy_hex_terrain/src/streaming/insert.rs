@@ -4,6 +4,7 @@
 use bevy::prelude::*;
 use bevy::tasks::futures::check_ready;
 
+use super::content::ChunkContent;
 use super::{ChunkSpawned, ChunkStreamer, ChunkTask, HexChunk, HexTerrainSettings, HexTerrainStats, TerrainReady};
 use crate::map::HexMap;
 
@@ -33,7 +34,7 @@ pub(crate) fn insert_ready(
     let mut budget = settings.max_inserts_per_frame.max(1);
     let terrain = map.terrain().clone();
     // Meshes inserted this frame, by the chunk of the map they show (wrapping maps share them).
-    let mut inserted: Vec<(hex_terrain::ChunkCoord, Handle<Mesh>, usize, usize)> = Vec::new();
+    let mut inserted: Vec<(hex_terrain::ChunkCoord, Handle<Mesh>, ChunkContent, usize, usize)> = Vec::new();
     for (entity, mut chunk, task) in &mut tasks {
         if budget == 0 {
             break;
@@ -48,10 +49,16 @@ pub(crate) fn insert_ready(
         }
         budget -= 1;
         let handle = meshes.add(build.mesh);
-        inserted.push((terrain.wrap_chunk(chunk.coord).0, handle.clone(), build.vertices, build.mesh_bytes));
+        let content = ChunkContent {
+            water: build.content.water.map(|water| meshes.add(water)),
+            water_triangles: build.content.water_triangles,
+            props: build.content.props,
+        };
+        let canonical = terrain.wrap_chunk(chunk.coord).0;
+        inserted.push((canonical, handle.clone(), content.clone(), build.vertices, build.mesh_bytes));
         // A hot reload may move a chunk's origin (another hex size): place it again.
         chunk.origin = super::tasks::chunk_origin(&terrain, chunk.coord);
-        commands.entity(entity).insert((Mesh3d(handle), Transform::from_translation(chunk.origin.as_vec3())));
+        commands.entity(entity).insert((Mesh3d(handle), content, Transform::from_translation(chunk.origin.as_vec3())));
         chunk.generation = Some(build.generation);
         chunk.vertices = build.vertices;
         chunk.mesh_bytes = build.mesh_bytes;
@@ -65,16 +72,19 @@ pub(crate) fn insert_ready(
     if terrain.wrap().is_some() && !inserted.is_empty() {
         for (entity, mut chunk, task) in &mut tasks {
             let canonical = terrain.wrap_chunk(chunk.coord).0;
-            let Some((_, handle, vertices, mesh_bytes)) = inserted.iter().find(|(c, ..)| *c == canonical) else {
+            let Some((_, handle, content, vertices, mesh_bytes)) = inserted.iter().find(|(c, ..)| *c == canonical)
+            else {
                 continue;
             };
             if chunk.generation == Some(generation) || task.is_some_and(|t| t.generation == generation) {
                 continue;
             }
             chunk.origin = super::tasks::chunk_origin(&terrain, chunk.coord);
-            commands
-                .entity(entity)
-                .insert((Mesh3d(handle.clone()), Transform::from_translation(chunk.origin.as_vec3())));
+            commands.entity(entity).insert((
+                Mesh3d(handle.clone()),
+                content.clone(),
+                Transform::from_translation(chunk.origin.as_vec3()),
+            ));
             chunk.generation = Some(generation);
             chunk.vertices = *vertices;
             chunk.mesh_bytes = *mesh_bytes;

@@ -2,6 +2,7 @@
 //! ([`planner`], a pure function), their meshes built on Bevy's async compute pool ([`tasks`])
 //! and inserted under a per-frame budget ([`insert`]), with figures in [`HexTerrainStats`].
 
+pub mod content;
 pub mod insert;
 pub mod planner;
 pub mod stats;
@@ -11,6 +12,7 @@ use bevy::platform::collections::{HashMap, HashSet};
 use bevy::prelude::*;
 use hex_terrain::ChunkCoord;
 
+pub use content::{ChunkContent, PropSettings, WaterSettings};
 pub use stats::HexTerrainStats;
 pub use tasks::ChunkTask;
 
@@ -65,6 +67,10 @@ pub struct HexTerrainSettings {
     pub max_tasks_in_flight: usize,
     /// Where a chunk's generation runs.
     pub chunk_threads: ChunkThreads,
+    /// The water surface over sea, rivers and lakes.
+    pub water: WaterSettings,
+    /// Trees, rocks and reeds on the tiles.
+    pub props: PropSettings,
 }
 
 impl Default for HexTerrainSettings {
@@ -76,6 +82,8 @@ impl Default for HexTerrainSettings {
             max_inserts_per_frame: 4,
             max_tasks_in_flight: 8,
             chunk_threads: ChunkThreads::default(),
+            water: WaterSettings::default(),
+            props: PropSettings::default(),
         }
     }
 }
@@ -195,6 +203,7 @@ impl Plugin for HexStreamingPlugin {
             .register_type::<HexWorldPosition>()
             .register_type::<HexTerrainSettings>()
             .register_type::<HexChunk>()
+            .register_type::<ChunkContent>()
             .register_type::<ChunkSpawned>()
             .register_type::<ChunkDespawned>()
             .register_type::<TerrainReady>()

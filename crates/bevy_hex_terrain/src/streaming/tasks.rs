@@ -10,6 +10,7 @@ use bevy::prelude::*;
 use bevy::tasks::{AsyncComputeTaskPool, Task};
 use hex_terrain::{ChunkCoord, GenerateOptions, Terrain, Threads};
 
+use super::content::{BuiltContent, ChunkContent};
 use super::planner::{ChunkState, plan};
 use super::{
     ChunkDespawned, ChunkSpawned, ChunkStreamer, ChunkThreads, HexChunk, HexTerrainAgent, HexTerrainSettings,
@@ -24,6 +25,7 @@ pub struct ChunkBuild {
     pub(super) mesh: Mesh,
     pub(super) vertices: usize,
     pub(super) mesh_bytes: usize,
+    pub(super) content: BuiltContent,
 }
 
 /// A chunk mesh being built on the async compute pool.
@@ -72,7 +74,7 @@ pub(crate) fn stream(
         .chunks
         .iter()
         .filter_map(|(&c, &e)| {
-            let (chunk, task, _) = chunks.get(e).ok()?;
+            let (chunk, task, ..) = chunks.get(e).ok()?;
             Some((
                 c,
                 ChunkState {
@@ -86,7 +88,7 @@ pub(crate) fn stream(
 
     for c in plan.drop {
         let Some(e) = streamer.chunks.remove(&c) else { continue };
-        if chunks.get(e).is_ok_and(|(_, task, _)| task.is_some()) {
+        if chunks.get(e).is_ok_and(|(_, task, ..)| task.is_some()) {
             stats.cancelled();
         }
         commands.entity(e).despawn();
@@ -113,9 +115,9 @@ pub(crate) fn stream(
         };
         match twin {
             Twin::Building => continue,
-            Twin::Showing(mesh, vertices, mesh_bytes) => {
+            Twin::Showing(mesh, content, vertices, mesh_bytes) => {
                 let chunk = HexChunk { generation: Some(generation), vertices, mesh_bytes, ..new_chunk(&terrain, c) };
-                let shown = (mesh, chunk, chunk_transform(&terrain, c));
+                let shown = (mesh, content, chunk, chunk_transform(&terrain, c));
                 let e = match streamer.chunks.get(&c) {
                     Some(&e) => commands.entity(e).insert(shown).id(),
                     None => commands.spawn((Name::new(format!("hex chunk {} {}", c.x, c.z)), shown)).id(),
@@ -130,7 +132,7 @@ pub(crate) fn stream(
         }
         started.insert(canonical);
         let task = ChunkTask {
-            task: pool.spawn(build_chunk(terrain.clone(), c, generation, threads)),
+            task: pool.spawn(build_chunk(terrain.clone(), c, generation, threads, settings.clone())),
             generation,
             requested: Instant::now(),
         };
@@ -164,12 +166,16 @@ enum Twin {
     None,
     /// A twin's task builds the current mesh.
     Building,
-    /// A twin shows the current mesh: its handle, vertices and bytes.
-    Showing(Mesh3d, usize, usize),
+    /// A twin shows the current mesh: its handle, content, vertices and bytes.
+    Showing(Mesh3d, ChunkContent, usize, usize),
 }
 
 /// The chunk entities' streaming state, as [`stream`] reads it.
-type ChunkQuery<'w, 's> = Query<'w, 's, (&'static HexChunk, Option<&'static ChunkTask>, Option<&'static Mesh3d>)>;
+type ChunkQuery<'w, 's> = Query<
+    'w,
+    's,
+    (&'static HexChunk, Option<&'static ChunkTask>, Option<&'static Mesh3d>, Option<&'static ChunkContent>),
+>;
 
 /// What `c`'s twins offer, for map generation `generation`.
 fn twin(terrain: &Terrain, streamer: &ChunkStreamer, chunks: &ChunkQuery, c: ChunkCoord, generation: u64) -> Twin {
@@ -182,9 +188,9 @@ fn twin(terrain: &Terrain, streamer: &ChunkStreamer, chunks: &ChunkQuery, c: Chu
         if other == c || terrain.wrap_chunk(other).0 != canonical {
             continue;
         }
-        let Ok((chunk, task, mesh)) = chunks.get(e) else { continue };
+        let Ok((chunk, task, mesh, content)) = chunks.get(e) else { continue };
         if let (true, Some(mesh)) = (chunk.generation == Some(generation), mesh) {
-            return Twin::Showing(mesh.clone(), chunk.vertices, chunk.mesh_bytes);
+            return Twin::Showing(mesh.clone(), content.cloned().unwrap_or_default(), chunk.vertices, chunk.mesh_bytes);
         }
         if task.is_some_and(|t| t.generation == generation) {
             found = Twin::Building;
@@ -209,8 +215,15 @@ fn chunk_transform(terrain: &Terrain, coord: ChunkCoord) -> Transform {
     Transform::from_translation(chunk_origin(terrain, coord).as_vec3())
 }
 
-/// The body of a chunk task: core generation plus the Bevy mesh, off the main thread.
-async fn build_chunk(terrain: Arc<Terrain>, chunk: ChunkCoord, generation: u64, threads: Threads) -> ChunkBuild {
+/// The body of a chunk task: core generation plus the Bevy mesh, the water surface and the
+/// props, off the main thread.
+async fn build_chunk(
+    terrain: Arc<Terrain>,
+    chunk: ChunkCoord,
+    generation: u64,
+    threads: Threads,
+    settings: HexTerrainSettings,
+) -> ChunkBuild {
     let options = GenerateOptions { diagnostics: false, threads };
     let Some(generated) = terrain.chunk_rect(chunk).map(|rect| terrain.generate(rect, options)) else {
         return ChunkBuild {
@@ -218,9 +231,11 @@ async fn build_chunk(terrain: Arc<Terrain>, chunk: ChunkCoord, generation: u64, 
             mesh: Mesh::new(bevy::mesh::PrimitiveTopology::TriangleList, default()),
             vertices: 0,
             mesh_bytes: 0,
+            content: BuiltContent::empty(),
         };
     };
     let vertices = generated.buffers.vertex_count();
     let mesh_bytes = vertices * (12 + 12 + 8) + generated.buffers.indices.len() * 4;
-    ChunkBuild { generation, mesh: chunk_to_mesh(generated), vertices, mesh_bytes }
+    let content = BuiltContent::build(&terrain, &generated, settings.water, settings.props);
+    ChunkBuild { generation, mesh: chunk_to_mesh(generated), vertices, mesh_bytes, content }
 }

@@ -1,0 +1,214 @@
+//! Light and air for the terrain: a directional sun with cascaded shadows fitted to the view of
+//! a strategy camera, distance fog so far terrain fades into the sky, and screen-space ambient
+//! occlusion, each switchable in [`TerrainLighting`] (software renderers and weak GPUs turn
+//! shadows and occlusion off). Cameras opt in with [`HexTerrainCamera`].
+
+use bevy::light::{CascadeShadowConfig, CascadeShadowConfigBuilder};
+use bevy::pbr::{DistanceFog, FogFalloff, ScreenSpaceAmbientOcclusion};
+use bevy::prelude::*;
+
+use crate::HexTerrainSystems;
+
+/// Put on a camera to light and fog the terrain it shows: it gets [`DistanceFog`], an
+/// [`AmbientLight`] and, when asked for, [`ScreenSpaceAmbientOcclusion`]; the sun's shadow
+/// cascades follow the first such camera's height.
+#[derive(Component, Debug, Clone, Copy, Default, Reflect)]
+#[reflect(Component, Default)]
+pub struct HexTerrainCamera;
+
+/// The sun entity the plugin spawns (while [`TerrainLighting::sun`] is on).
+#[derive(Component, Debug, Clone, Copy, Default, Reflect)]
+#[reflect(Component, Default)]
+pub struct HexSun;
+
+/// How the terrain is lit. Changes apply the next frame.
+#[derive(Resource, Debug, Clone, PartialEq, Reflect)]
+#[reflect(Resource, Default)]
+pub struct TerrainLighting {
+    /// Spawn and keep a directional sun ([`HexSun`]) once a [`HexTerrainCamera`] exists. Off,
+    /// light the scene yourself.
+    pub sun: bool,
+    /// Sun height above the horizon, degrees (clamped to `[5, 90]`).
+    pub sun_elevation: f32,
+    /// Sun bearing, degrees clockwise from north (`-z`).
+    pub sun_azimuth: f32,
+    /// Sun illuminance, lux.
+    pub sun_illuminance: f32,
+    /// Sun color.
+    pub sun_color: Color,
+    /// The sun casts shadows.
+    pub shadows: bool,
+    /// Shadow cascades, `1..=4` (each one more shadow pass a frame).
+    pub shadow_cascades: usize,
+    /// Ambient light brightness on terrain cameras.
+    pub ambient_brightness: f32,
+    /// Distance fog on terrain cameras: far terrain fades into `fog_color`.
+    pub fog: bool,
+    /// Fog color, the sky's at the horizon.
+    pub fog_color: Color,
+    /// Where the fog starts and where it is whole, in multiples of the camera's height above
+    /// the ground.
+    pub fog_range: Vec2,
+    /// Screen-space ambient occlusion on terrain cameras (needs depth and normal prepasses and
+    /// turns MSAA off; expensive on software renderers).
+    pub ambient_occlusion: bool,
+}
+
+impl Default for TerrainLighting {
+    fn default() -> Self {
+        Self {
+            sun: true,
+            sun_elevation: 38.0,
+            sun_azimuth: 225.0,
+            sun_illuminance: 9_000.0,
+            sun_color: Color::srgb(1.0, 0.96, 0.88),
+            shadows: true,
+            shadow_cascades: 2,
+            ambient_brightness: 350.0,
+            fog: true,
+            fog_color: Color::srgb(0.70, 0.78, 0.86),
+            fog_range: Vec2::new(1.5, 4.5),
+            ambient_occlusion: false,
+        }
+    }
+}
+
+impl TerrainLighting {
+    /// The direction the sunlight travels (from the sun down to the ground).
+    #[must_use]
+    pub fn sun_direction(&self) -> Vec3 {
+        let elevation = finite(self.sun_elevation, 38.0).clamp(5.0, 90.0).to_radians();
+        let azimuth = finite(self.sun_azimuth, 225.0).to_radians();
+        let to_sun = Vec3::new(azimuth.sin() * elevation.cos(), elevation.sin(), -azimuth.cos() * elevation.cos());
+        -to_sun
+    }
+
+    /// Shadow cascades for a camera `height` above the ground: the first ends a little past
+    /// the point under the middle of the screen, the last where the fog is whole.
+    #[must_use]
+    pub fn cascades(&self, height: f32) -> CascadeShadowConfig {
+        let height = finite(height, 20.0).clamp(1.0, 1e5);
+        let far = height * finite(self.fog_range.y, 6.5).clamp(1.0, 50.0);
+        let count = self.shadow_cascades.clamp(1, 4);
+        CascadeShadowConfigBuilder {
+            num_cascades: count,
+            minimum_distance: 0.1,
+            first_cascade_far_bound: if count == 1 { far } else { (height * 1.6).min(far * 0.5) },
+            maximum_distance: far,
+            overlap_proportion: 0.2,
+        }
+        .build()
+    }
+}
+
+fn finite(v: f32, or: f32) -> f32 {
+    if v.is_finite() { v } else { or }
+}
+
+/// The sun, shadows, fog and occlusion of [`TerrainLighting`] for [`HexTerrainCamera`]s.
+/// Part of [`HexTerrainPlugins`](crate::HexTerrainPlugins) with the `render` feature.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct HexLightPlugin;
+
+impl Plugin for HexLightPlugin {
+    fn build(&self, app: &mut App) {
+        app.init_resource::<TerrainLighting>()
+            .register_type::<TerrainLighting>()
+            .register_type::<HexTerrainCamera>()
+            .register_type::<HexSun>()
+            .add_systems(Update, (update_sun, update_cameras).in_set(HexTerrainSystems::Render));
+    }
+}
+
+/// The height of the first terrain camera above the ground (its `y` above the map's sea level).
+fn camera_height(cameras: &Query<&GlobalTransform, With<HexTerrainCamera>>, map: &crate::HexMap) -> Option<f32> {
+    let sea = map.terrain().sea_level();
+    cameras.iter().next().map(|t| (t.translation().y - sea).max(1.0))
+}
+
+fn update_sun(
+    mut commands: Commands,
+    lighting: Res<TerrainLighting>,
+    map: Res<crate::HexMap>,
+    cameras: Query<&GlobalTransform, With<HexTerrainCamera>>,
+    mut suns: Query<(Entity, &mut DirectionalLight, &mut Transform, &mut CascadeShadowConfig), With<HexSun>>,
+    mut last_height: Local<f32>,
+) {
+    if !lighting.sun {
+        for (e, ..) in &suns {
+            commands.entity(e).despawn();
+        }
+        return;
+    }
+    // The sun lights what terrain cameras show: none yet, no sun (a floating-origin scene
+    // places its own lights in its grid).
+    let Some(height) = camera_height(&cameras, &map) else { return };
+    // Refit the cascades when the camera's height changed by a tenth (zoom), not every frame.
+    let refit = (height / last_height.max(1e-3) - 1.0).abs() > 0.1;
+    let light = DirectionalLight {
+        illuminance: lighting.sun_illuminance.max(0.0),
+        color: lighting.sun_color,
+        shadow_maps_enabled: lighting.shadows,
+        ..default()
+    };
+    let transform = Transform::default().looking_to(lighting.sun_direction(), Vec3::Y);
+    match suns.single_mut() {
+        Ok((_, mut sun, mut t, mut cascades)) => {
+            if lighting.is_changed() {
+                *sun = light;
+                *t = transform;
+            }
+            if refit || lighting.is_changed() {
+                *cascades = lighting.cascades(height);
+                *last_height = height;
+            }
+        }
+        Err(_) => {
+            commands.spawn((Name::new("hex sun"), HexSun, light, transform, lighting.cascades(height)));
+            *last_height = height;
+        }
+    }
+}
+
+fn update_cameras(
+    mut commands: Commands,
+    lighting: Res<TerrainLighting>,
+    map: Res<crate::HexMap>,
+    cameras: Query<
+        (Entity, &GlobalTransform, Option<&DistanceFog>, Has<ScreenSpaceAmbientOcclusion>),
+        With<HexTerrainCamera>,
+    >,
+) {
+    let sea = map.terrain().sea_level();
+    for (e, transform, fog, has_ao) in &cameras {
+        let height = (transform.translation().y - sea).max(1.0);
+        let mut camera = commands.entity(e);
+        if lighting.fog {
+            let range = lighting.fog_range.max(Vec2::ZERO);
+            let falloff = FogFalloff::Linear { start: height * range.x, end: height * range.y.max(range.x + 0.1) };
+            let wanted = DistanceFog {
+                color: lighting.fog_color,
+                directional_light_color: Color::srgba(1.0, 0.95, 0.85, 0.3),
+                directional_light_exponent: 20.0,
+                falloff,
+            };
+            let same = fog.is_some_and(|f| {
+                f.color == wanted.color
+                    && matches!((&f.falloff, &wanted.falloff), (FogFalloff::Linear { start: a, end: b }, FogFalloff::Linear { start: c, end: d }) if (a - c).abs() < 0.05 * c.abs().max(1.0) && (b - d).abs() < 0.05 * d.abs().max(1.0))
+            });
+            if !same {
+                camera.insert(wanted);
+            }
+        } else if fog.is_some() {
+            camera.remove::<DistanceFog>();
+        }
+        if lighting.is_changed() || lighting.is_added() {
+            camera.insert(AmbientLight { brightness: lighting.ambient_brightness, ..default() });
+        }
+        if lighting.ambient_occlusion && !has_ao {
+            camera.insert((ScreenSpaceAmbientOcclusion::default(), Msaa::Off));
+        } else if !lighting.ambient_occlusion && has_ao {
+            camera.remove::<ScreenSpaceAmbientOcclusion>();
+        }
+    }
+}

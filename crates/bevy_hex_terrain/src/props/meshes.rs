@@ -1,0 +1,136 @@
+//! The props' meshes, made in code: a few low-poly, flat-shaded variants of each kind, colored
+//! by vertex so that every prop shares one material (and Bevy batches each variant's props into
+//! instanced draws). A mesh's unit is the prop's scale (see [`hex_terrain::Prop::scale`]): its
+//! foot is at the origin, trees are about 2.2 units tall.
+
+use bevy::prelude::*;
+use hex_terrain::{PROP_VARIANTS, PropKind};
+
+/// A flat-shaded part in one color, placed by `transform`.
+fn part(mesh: Mesh, color: Color, transform: Transform) -> Mesh {
+    let mut mesh = mesh.with_duplicated_vertices().transformed_by(transform);
+    mesh.compute_flat_normals();
+    let n = mesh.count_vertices();
+    let c = color.to_linear().to_f32_array();
+    mesh.insert_attribute(Mesh::ATTRIBUTE_COLOR, vec![c; n]);
+    mesh
+}
+
+/// Merges flat parts into one mesh.
+fn merged(parts: Vec<Mesh>) -> Mesh {
+    let mut parts = parts.into_iter();
+    let mut mesh = parts.next().unwrap_or_else(|| Mesh::from(Cuboid::from_length(0.0)));
+    for p in parts {
+        // Every part comes from `part`: same attributes, same topology.
+        if let Err(e) = mesh.merge(&p) {
+            warn!("prop mesh part not merged: {e}");
+        }
+    }
+    mesh
+}
+
+/// A small deterministic wobble in `[-1, 1]` for vertex `i` of variant `v`.
+fn wobble(v: u8, i: usize, salt: u32) -> f32 {
+    hex_terrain::hash::unit(hex_terrain::hash::hash(salt, &[i64::from(v), i as i64])) * 2.0 - 1.0
+}
+
+/// Moves each vertex of a sphere-like mesh in and out by up to `amount` of its radius.
+fn lumpy(mut mesh: Mesh, v: u8, amount: f32, salt: u32) -> Mesh {
+    if let Some(bevy::mesh::VertexAttributeValues::Float32x3(positions)) = mesh.attribute_mut(Mesh::ATTRIBUTE_POSITION)
+    {
+        for (i, p) in positions.iter_mut().enumerate() {
+            let k = 1.0 + amount * wobble(v, i, salt);
+            *p = [p[0] * k, p[1] * k, p[2] * k];
+        }
+    }
+    mesh
+}
+
+fn ico(radius: f32, subdivisions: u32) -> Mesh {
+    Sphere::new(radius).mesh().ico(subdivisions).unwrap_or_else(|_| Sphere::new(radius).mesh().uv(6, 4))
+}
+
+fn trunk(height: f32, radius: f32) -> Mesh {
+    part(
+        Cylinder::new(radius, height).mesh().resolution(5).build(),
+        Color::srgb(0.36, 0.25, 0.16),
+        Transform::from_xyz(0.0, height * 0.5, 0.0),
+    )
+}
+
+/// A round-crowned tree: a trunk and one or two lumpy crowns.
+fn broadleaf(v: u8) -> Mesh {
+    let greens = [Color::srgb(0.20, 0.42, 0.13), Color::srgb(0.26, 0.47, 0.15), Color::srgb(0.17, 0.36, 0.12)];
+    let green = greens[usize::from(v) % greens.len()];
+    let crown = lumpy(ico(0.7, 1), v, 0.18, 11);
+    let mut parts = vec![trunk(0.9, 0.12), part(crown, green, Transform::from_xyz(0.0, 1.45, 0.0))];
+    if v != 0 {
+        let side = lumpy(ico(0.45, 1), v, 0.2, 12);
+        let x = if v == 1 { 0.4 } else { -0.35 };
+        parts.push(part(side, green.darker(0.04), Transform::from_xyz(x, 1.05, 0.2)));
+    }
+    merged(parts)
+}
+
+/// A conifer: a trunk and stacked cones.
+fn pine(v: u8) -> Mesh {
+    let green = [Color::srgb(0.10, 0.30, 0.17), Color::srgb(0.13, 0.34, 0.19), Color::srgb(0.09, 0.27, 0.15)]
+        [usize::from(v) % 3];
+    let tiers = 2 + u32::from(v % 2);
+    let mut parts = vec![trunk(0.5, 0.09)];
+    for t in 0..tiers {
+        let f = t as f32 / tiers as f32;
+        let radius = 0.62 * (1.0 - 0.55 * f) * (1.0 + 0.08 * wobble(v, t as usize, 13));
+        let height = 1.0 - 0.25 * f;
+        let y = 0.4 + 0.55 * t as f32 + height * 0.5;
+        parts.push(part(
+            Cone::new(radius, height).mesh().resolution(7).build(),
+            green,
+            Transform::from_xyz(0.0, y, 0.0),
+        ));
+    }
+    merged(parts)
+}
+
+/// A boulder: a squashed, lumpy icosahedron, half sunk.
+fn rock(v: u8) -> Mesh {
+    let grey = [Color::srgb(0.45, 0.43, 0.40), Color::srgb(0.52, 0.50, 0.47), Color::srgb(0.40, 0.38, 0.37)]
+        [usize::from(v) % 3];
+    let body = lumpy(ico(0.8, 0), v, 0.3, 21);
+    let squash = Transform::from_xyz(0.0, 0.3, 0.0).with_scale(Vec3::new(1.0, 0.7 + 0.15 * f32::from(v), 0.85));
+    let mut parts = vec![part(body, grey, squash)];
+    if v == 2 {
+        let small = lumpy(ico(0.45, 0), v, 0.3, 22);
+        parts.push(part(small, grey.lighter(0.05), Transform::from_xyz(0.75, 0.15, 0.3)));
+    }
+    merged(parts)
+}
+
+/// A clump of reeds: thin three-sided blades leaning out.
+fn reed(v: u8) -> Mesh {
+    let color = Color::srgb(0.45, 0.55, 0.25);
+    let blades = 5 + usize::from(v) * 2;
+    let parts = (0..blades)
+        .map(|i| {
+            let a = std::f32::consts::TAU * i as f32 / blades as f32 + wobble(v, i, 31);
+            let (x, z) = (0.25 * a.cos(), 0.25 * a.sin());
+            let height = 1.4 + 0.4 * wobble(v, i, 32);
+            let lean = Quat::from_rotation_z(0.2 * a.cos()) * Quat::from_rotation_x(0.2 * a.sin());
+            let t = Transform::from_xyz(x, height * 0.5, z).with_rotation(lean);
+            part(Cone::new(0.05, height).mesh().resolution(3).build(), color, t)
+        })
+        .collect();
+    merged(parts)
+}
+
+/// The mesh of variant `v` (below [`PROP_VARIANTS`]) of a prop kind.
+#[must_use]
+pub fn prop_mesh(kind: PropKind, v: u8) -> Mesh {
+    let v = v % PROP_VARIANTS;
+    match kind {
+        PropKind::Broadleaf => broadleaf(v),
+        PropKind::Pine => pine(v),
+        PropKind::Rock => rock(v),
+        PropKind::Reed => reed(v),
+    }
+}

@@ -1,0 +1,146 @@
+//! Props on the terrain: each chunk's trees, rocks and reeds ([`hex_terrain::Terrain::props`],
+//! placed in the chunk's task) become child entities of the chunk, so they despawn with it.
+//! With Bevy's renderer, every prop of a kind and variant shares one mesh and all share one
+//! vertex-colored material: Bevy batches them into instanced draws (a handful of draws for
+//! thousands of props). Headless, the entities exist without meshes (games and tests can read
+//! them). Under fog of war, props on unexplored tiles are hidden.
+
+#[cfg(feature = "render")]
+pub mod meshes;
+
+use bevy::prelude::*;
+use hex_terrain::{PROP_VARIANTS, Prop, PropKind};
+
+use crate::streaming::ChunkContent;
+use crate::{HexChunk, HexTerrainSettings, HexTerrainSystems, TileStates};
+
+/// A prop entity (a child of its chunk).
+#[derive(Component, Debug, Clone, Copy, PartialEq, Reflect)]
+#[reflect(Component)]
+pub struct HexProp {
+    /// What it is.
+    pub kind: PropKind,
+    /// Which of the kind's meshes.
+    pub variant: u8,
+    /// The tile it stands on (map-local axial coordinate).
+    pub tile: hex_terrain::hexx::Hex,
+}
+
+/// The shared meshes (by kind and variant) and material of the props, with Bevy's renderer.
+#[derive(Resource, Debug, Clone)]
+pub struct PropAssets {
+    /// `meshes[kind as usize][variant]`.
+    pub meshes: Vec<Vec<Handle<Mesh>>>,
+    /// The one material every prop uses (white base, vertex colors).
+    #[cfg(feature = "render")]
+    pub material: Handle<StandardMaterial>,
+}
+
+/// Spawns and despawns the props of loaded chunks ([`HexProp`] children, in
+/// [`HexTerrainSystems::Insert`]) and hides those on unexplored tiles when the appearance draws
+/// fog of war. Part of [`HexTerrainPlugins`](crate::HexTerrainPlugins); works headless.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct HexPropsPlugin;
+
+impl Plugin for HexPropsPlugin {
+    fn build(&self, app: &mut App) {
+        app.register_type::<HexProp>().add_systems(
+            Update,
+            (sync_props, hide_unexplored)
+                .chain()
+                .in_set(HexTerrainSystems::Insert)
+                .after(crate::streaming::insert::insert_ready),
+        );
+        #[cfg(feature = "render")]
+        if app.is_plugin_added::<bevy::pbr::PbrPlugin>() {
+            app.add_systems(Startup, create_assets);
+        }
+    }
+}
+
+#[cfg(feature = "render")]
+fn create_assets(
+    mut commands: Commands,
+    mut meshes: ResMut<Assets<Mesh>>,
+    mut materials: ResMut<Assets<StandardMaterial>>,
+) {
+    let meshes = PropKind::ALL
+        .iter()
+        .map(|&kind| (0..PROP_VARIANTS).map(|v| meshes.add(meshes::prop_mesh(kind, v))).collect())
+        .collect();
+    let material = materials.add(StandardMaterial { perceptual_roughness: 0.9, reflectance: 0.15, ..default() });
+    commands.insert_resource(PropAssets { meshes, material });
+}
+
+/// The props' entities of one chunk.
+fn spawn_props(commands: &mut Commands, chunk: Entity, props: &[Prop], size: f32, assets: Option<&PropAssets>) {
+    commands.entity(chunk).with_children(|children| {
+        for p in props {
+            let transform = Transform::from_translation(Vec3::from_array(p.position))
+                .with_rotation(Quat::from_rotation_y(p.yaw))
+                .with_scale(Vec3::splat(p.scale * size));
+            let prop = HexProp { kind: p.kind, variant: p.variant, tile: p.tile };
+            let mut e = children.spawn((prop, transform, Visibility::default()));
+            #[cfg(feature = "render")]
+            if let Some(assets) = assets {
+                let mesh = assets.meshes[p.kind as usize][usize::from(p.variant % PROP_VARIANTS)].clone();
+                e.insert((Mesh3d(mesh), MeshMaterial3d(assets.material.clone())));
+            }
+            #[cfg(not(feature = "render"))]
+            let _ = (&mut e, assets);
+        }
+    });
+}
+
+/// Keeps each chunk's prop children in step with its [`ChunkContent`] and the settings: a chunk
+/// whose content changed (a new mesh, a hot reload) gets its props anew; turning props off or on
+/// despawns or spawns them everywhere.
+fn sync_props(
+    mut commands: Commands,
+    settings: Res<HexTerrainSettings>,
+    map: Res<crate::HexMap>,
+    assets: Option<Res<PropAssets>>,
+    chunks: Query<(Entity, Ref<ChunkContent>, Option<&Children>), With<HexChunk>>,
+    props: Query<(), With<HexProp>>,
+    mut was_enabled: Local<Option<bool>>,
+) {
+    let enabled = settings.props.enabled;
+    let toggled = *was_enabled != Some(enabled);
+    *was_enabled = Some(enabled);
+    let size = map.config().layout.hex_size;
+    for (chunk, content, children) in &chunks {
+        if !(toggled || content.is_changed()) {
+            continue;
+        }
+        for child in children.into_iter().flatten() {
+            if props.contains(*child) {
+                commands.entity(*child).despawn();
+            }
+        }
+        if enabled {
+            spawn_props(&mut commands, chunk, &content.props, size, assets.as_deref());
+        }
+    }
+}
+
+/// Hides props on unexplored tiles while the terrain draws fog of war, so the fog does not show
+/// the forests it hides.
+fn hide_unexplored(
+    states: Res<TileStates>,
+    #[cfg(feature = "render")] appearance: Option<Res<crate::TerrainAppearance>>,
+    mut props: Query<(Ref<HexProp>, &mut Visibility)>,
+) {
+    #[cfg(feature = "render")]
+    let (fog, fog_changed) = appearance.map_or((false, false), |a| (a.fog_of_war, a.is_changed()));
+    #[cfg(not(feature = "render"))]
+    let (fog, fog_changed) = (false, false);
+    let all = states.is_changed() || fog_changed;
+    for (prop, mut visibility) in &mut props {
+        if !(all || prop.is_added()) {
+            continue;
+        }
+        let hidden = fog && states.visibility(prop.tile) == crate::FogState::Unexplored;
+        let wanted = if hidden { Visibility::Hidden } else { Visibility::Inherited };
+        visibility.set_if_neq(wanted);
+    }
+}

@@ -1,0 +1,158 @@
+//! Water and props in a headless app: each chunk's props are the core's placement (capped,
+//! deterministic), they and the water surfaces are children of their chunk and leave with it, a
+//! long walk keeps their number bounded, and the settings switch them off and on at run time.
+
+mod common;
+
+use bevy::prelude::*;
+use bevy_hex_terrain::prelude::*;
+use bevy_hex_terrain::{ChunkContent, HexTerrainPlugins, PropSettings};
+use common::*;
+use hex_terrain::Terrain;
+
+/// A 40x30 Map0 with forests on its middle land band and rocks on its mountains.
+fn wooded() -> MapConfig {
+    let mut c = MapConfig { size: MapSize::Bounded { x: 40, z: 30 }, chunk_size: (8, 8), ..MapConfig::default() };
+    c.noise.scale = 40.0;
+    c
+}
+
+fn app_with_props(config: MapConfig, radius: u32, props: PropSettings) -> App {
+    let mut s = settings(radius);
+    s.props = props;
+    app_with(HexTerrainPlugins { map: config.into(), settings: s }, None)
+}
+
+/// Every prop entity: its chunk, kind, variant, tile and transform.
+fn props(app: &mut App) -> Vec<(ChunkCoord, HexProp, Transform)> {
+    let mut out: Vec<_> = app
+        .world_mut()
+        .query::<(&HexProp, &Transform, &ChildOf)>()
+        .iter(app.world())
+        .map(|(p, t, parent)| (parent.parent(), *p, *t))
+        .collect::<Vec<_>>()
+        .into_iter()
+        .map(|(chunk, p, t)| (app.world().get::<HexChunk>(chunk).expect("a prop's parent is a chunk").coord, p, t))
+        .collect();
+    out.sort_by(|a, b| {
+        (a.0, a.1.tile.x, a.1.tile.y, a.2.translation.x.to_bits(), a.2.translation.z.to_bits()).cmp(&(
+            b.0,
+            b.1.tile.x,
+            b.1.tile.y,
+            b.2.translation.x.to_bits(),
+            b.2.translation.z.to_bits(),
+        ))
+    });
+    out
+}
+
+fn count<T: Component>(app: &mut App) -> usize {
+    app.world_mut().query_filtered::<(), With<T>>().iter(app.world()).count()
+}
+
+#[test]
+fn props_are_the_cores_capped_placement_and_the_same_every_time() {
+    let cap = 12;
+    let props_settings = PropSettings { max_per_chunk: cap, ..default() };
+    let mut app = app_with_props(wooded(), 8, props_settings);
+    spawn_agent(&mut app, Vec3::ZERO);
+    run_until(&mut app, "terrain ready", ready);
+    app.update();
+    let placed = props(&mut app);
+    assert!(placed.len() > 20, "the wooded map grows props: {}", placed.len());
+    let terrain = Terrain::new(wooded()).unwrap();
+    let size = terrain.config().layout.hex_size;
+    for chunk in terrain.chunks() {
+        let mine: Vec<_> = placed.iter().filter(|(c, ..)| *c == chunk).collect();
+        assert!(mine.len() <= cap, "chunk {chunk:?} has {} props over the cap of {cap}", mine.len());
+        let expected = terrain.props(&terrain.generate_chunk(chunk).unwrap(), cap, 1.0);
+        assert_eq!(mine.len(), expected.len(), "chunk {chunk:?}");
+        for p in &expected {
+            let at = Vec3::from_array(p.position);
+            assert!(
+                mine.iter().any(|(_, prop, t)| prop.tile == p.tile
+                    && prop.kind == p.kind
+                    && t.translation.distance(at) < 1e-5
+                    && (t.scale.x - p.scale * size).abs() < 1e-5),
+                "chunk {chunk:?}: the core's prop {p:?} is not spawned"
+            );
+        }
+    }
+    // The same map in another app: the same props.
+    let mut again = app_with_props(wooded(), 8, props_settings);
+    spawn_agent(&mut again, Vec3::ZERO);
+    run_until(&mut again, "terrain ready", ready);
+    again.update();
+    assert_eq!(placed, props(&mut again));
+    // Water surfaces are children of chunks with sea below them.
+    let waters = count::<HexWater>(&mut app);
+    assert!(waters > 0 && waters <= terrain.chunks().len(), "{waters} water surfaces");
+}
+
+#[test]
+fn walking_keeps_props_and_water_with_their_chunks() {
+    let mut config = unbounded((6, 6));
+    config.noise.scale = 40.0;
+    let cap = 40;
+    let mut app = app_with_props(config, 1, PropSettings { max_per_chunk: cap, ..default() });
+    let agent = spawn_agent(&mut app, Vec3::ZERO);
+    let mut max_entities = 0;
+    let mut settled = Vec::new();
+    for step in 0..240 {
+        let at = Vec3::new(step as f32 * 4.5, 0.0, 0.0);
+        app.world_mut().entity_mut(agent).insert(Transform::from_translation(at));
+        for _ in 0..3 {
+            app.update();
+        }
+        max_entities = max_entities.max(app.world().entities().count_spawned() as usize);
+        if step % 60 == 59 {
+            run_until(&mut app, "terrain ready", ready);
+            app.update();
+            settled.push(app.world().entities().count_spawned() as usize);
+        }
+    }
+    run_until(&mut app, "terrain ready at the end", ready);
+    app.update();
+    let live = app.world().resource::<ChunkStreamer>().live_chunks();
+    // radius + prefetch + hysteresis = 3: at most 49 chunks, each with a water surface and at
+    // most `cap` props.
+    assert!(live <= 49);
+    assert!(max_entities <= 49 * (2 + cap) + 16, "entities peaked at {max_entities}");
+    let (lo, hi) = (settled.iter().min().unwrap(), settled.iter().max().unwrap());
+    assert!(*hi <= 49 * (2 + cap) + 16 && *lo > 0, "settled entity counts {settled:?}");
+    // Every prop and water surface belongs to a live chunk, and every live chunk shows all of
+    // its content: despawned chunks took theirs with them.
+    let expected: usize = app.world_mut().query::<&ChunkContent>().iter(app.world()).map(|c| c.props.len()).sum();
+    assert_eq!(props(&mut app).len(), expected);
+    let wet = app.world_mut().query::<&ChunkContent>().iter(app.world()).filter(|c| c.water.is_some()).count();
+    assert_eq!(count::<HexWater>(&mut app), wet);
+    // Meshes: a terrain and at most a water mesh a chunk (props share a few meshes, headless none).
+    let meshes = app.world().resource::<Assets<Mesh>>().len();
+    assert!(meshes <= 2 * 49, "{meshes} meshes alive: despawned chunks must free theirs");
+}
+
+#[test]
+fn props_and_water_switch_off_and_on_at_run_time() {
+    let mut app = app_with_props(wooded(), 8, PropSettings::default());
+    spawn_agent(&mut app, Vec3::ZERO);
+    run_until(&mut app, "terrain ready", ready);
+    app.update();
+    let (props_on, water_on) = (count::<HexProp>(&mut app), count::<HexWater>(&mut app));
+    assert!(props_on > 0 && water_on > 0);
+    {
+        let mut s = app.world_mut().resource_mut::<HexTerrainSettings>();
+        s.props.enabled = false;
+        s.water.enabled = false;
+    }
+    app.update();
+    app.update();
+    assert_eq!((count::<HexProp>(&mut app), count::<HexWater>(&mut app)), (0, 0));
+    {
+        let mut s = app.world_mut().resource_mut::<HexTerrainSettings>();
+        s.props.enabled = true;
+        s.water.enabled = true;
+    }
+    app.update();
+    app.update();
+    assert_eq!((count::<HexProp>(&mut app), count::<HexWater>(&mut app)), (props_on, water_on));
+}

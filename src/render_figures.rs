@@ -1,0 +1,76 @@
+//! Figures of what a frame draws, for the examples' counters and the tests: instances (visible
+//! mesh entities), triangles, and draws, counted the way Bevy batches the main pass: opaque
+//! entities sharing a mesh and a material are one instanced draw, each transparent entity
+//! (sorted back to front) is a draw of its own. Shadow passes draw again and are not counted.
+
+use bevy::platform::collections::{HashMap, HashSet};
+use bevy::prelude::*;
+
+/// What the last frame drew (see the module docs).
+#[derive(Resource, Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct RenderFigures {
+    /// Draw calls of the main pass (batches).
+    pub draws: usize,
+    /// Visible mesh entities.
+    pub instances: usize,
+    /// Triangles of the visible meshes.
+    pub triangles: usize,
+}
+
+/// Counts [`RenderFigures`] every frame, after visibility is known.
+pub struct RenderFiguresPlugin;
+
+impl Plugin for RenderFiguresPlugin {
+    fn build(&self, app: &mut App) {
+        app.init_resource::<RenderFigures>()
+            .add_systems(PostUpdate, count.after(bevy::camera::visibility::VisibilitySystems::CheckVisibility));
+    }
+}
+
+/// A material handle's identity, whatever its type.
+type MaterialKey = bevy::asset::UntypedAssetId;
+
+fn count(
+    meshes: Res<Assets<Mesh>>,
+    mut figures: ResMut<RenderFigures>,
+    terrain: Query<(
+        &Mesh3d,
+        &ViewVisibility,
+        &MeshMaterial3d<bevy_hex_terrain::HexTerrainMaterial>,
+        Has<bevy_hex_terrain::HexWater>,
+    )>,
+    standard: Query<(&Mesh3d, &ViewVisibility, &MeshMaterial3d<StandardMaterial>)>,
+    mut triangles: Local<HashMap<AssetId<Mesh>, usize>>,
+) {
+    let mut f = RenderFigures::default();
+    let mut batches: HashSet<(AssetId<Mesh>, MaterialKey)> = HashSet::new();
+    let mut add = |mesh: &Mesh3d, material: MaterialKey, transparent: bool| {
+        f.instances += 1;
+        let id = mesh.id();
+        let t = *triangles
+            .entry(id)
+            .or_insert_with(|| meshes.get(id).map_or(0, |m| m.indices().map_or(m.count_vertices(), |i| i.len()) / 3));
+        f.triangles += t;
+        if transparent {
+            f.draws += 1;
+        } else if batches.insert((id, material)) {
+            f.draws += 1;
+        }
+    };
+    // The water surfaces are transparent.
+    for (mesh, visible, material, water) in &terrain {
+        if visible.get() {
+            add(mesh, material.0.id().untyped(), water);
+        }
+    }
+    for (mesh, visible, material) in &standard {
+        if visible.get() {
+            add(mesh, material.0.id().untyped(), false);
+        }
+    }
+    // Meshes change with hot reloads: forget the cache when it grows past what is loaded.
+    if triangles.len() > 4 * meshes.len() + 64 {
+        triangles.clear();
+    }
+    *figures = f;
+}
