@@ -51,9 +51,8 @@ fn count(
             .entry(id)
             .or_insert_with(|| meshes.get(id).map_or(0, |m| m.indices().map_or(m.count_vertices(), |i| i.len()) / 3));
         f.triangles += t;
-        if transparent {
-            f.draws += 1;
-        } else if batches.insert((id, material)) {
+        // A transparent entity is a draw of its own; opaque ones share their batch's.
+        if transparent || batches.insert((id, material)) {
             f.draws += 1;
         }
     };

@@ -170,14 +170,19 @@ fn update_sun(
     }
 }
 
+/// Terrain cameras with the components the plugin manages.
+type TerrainCameras<'w, 's> = Query<
+    'w,
+    's,
+    (Entity, &'static GlobalTransform, Option<&'static DistanceFog>, Has<ScreenSpaceAmbientOcclusion>),
+    With<HexTerrainCamera>,
+>;
+
 fn update_cameras(
     mut commands: Commands,
     lighting: Res<TerrainLighting>,
     map: Res<crate::HexMap>,
-    cameras: Query<
-        (Entity, &GlobalTransform, Option<&DistanceFog>, Has<ScreenSpaceAmbientOcclusion>),
-        With<HexTerrainCamera>,
-    >,
+    cameras: TerrainCameras,
 ) {
     let sea = map.terrain().sea_level();
     for (e, transform, fog, has_ao) in &cameras {

@@ -1,12 +1,12 @@
-//! The water surface's entities: each chunk with water ([`ChunkContent::water`]) gets a
+//! The water surface's entities: each chunk with water ([`ChunkContent::water`](crate::ChunkContent::water)) gets a
 //! [`HexWater`] child showing it, despawned with the chunk. With Bevy's renderer the terrain
 //! material gives it the water look (its water instance: depth colors, shore foam, moving
 //! waves, transparent over the shallows), and it casts no shadow.
 
 use bevy::prelude::*;
 
-use crate::streaming::ChunkContent;
-use crate::{HexChunk, HexTerrainSettings, HexTerrainSystems};
+use crate::streaming::content::{ContentQuery, stale_chunks};
+use crate::{HexTerrainSettings, HexTerrainSystems};
 
 /// A chunk's water surface entity (a child of its chunk).
 #[derive(Component, Debug, Clone, Copy, Default, Reflect)]
@@ -27,26 +27,16 @@ impl Plugin for HexWaterPlugin {
     }
 }
 
-/// Keeps each chunk's water child in step with its [`ChunkContent`] and the settings.
+/// Keeps each chunk's water child in step with its [`ChunkContent`](crate::ChunkContent) and the settings.
 fn sync_water(
     mut commands: Commands,
     settings: Res<HexTerrainSettings>,
-    chunks: Query<(Entity, Ref<ChunkContent>, Option<&Children>), With<HexChunk>>,
+    chunks: ContentQuery,
     waters: Query<(), With<HexWater>>,
     mut was_enabled: Local<Option<bool>>,
 ) {
     let enabled = settings.water.enabled;
-    let toggled = *was_enabled != Some(enabled);
-    *was_enabled = Some(enabled);
-    for (chunk, content, children) in &chunks {
-        if !(toggled || content.is_changed()) {
-            continue;
-        }
-        for child in children.into_iter().flatten() {
-            if waters.contains(*child) {
-                commands.entity(*child).despawn();
-            }
-        }
+    for (chunk, content) in stale_chunks(&mut commands, &chunks, &waters, enabled, &mut was_enabled) {
         let Some(mesh) = content.water.clone().filter(|_| enabled) else { continue };
         commands.entity(chunk).with_children(|c| {
             let mut water = c.spawn((HexWater, Mesh3d(mesh), Transform::IDENTITY, Visibility::default()));

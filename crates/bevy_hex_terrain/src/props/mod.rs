@@ -11,8 +11,8 @@ pub mod meshes;
 use bevy::prelude::*;
 use hex_terrain::{PROP_VARIANTS, Prop, PropKind};
 
-use crate::streaming::ChunkContent;
-use crate::{HexChunk, HexTerrainSettings, HexTerrainSystems, TileStates};
+use crate::streaming::content::{ContentQuery, stale_chunks};
+use crate::{HexTerrainSettings, HexTerrainSystems, TileStates};
 
 /// A prop entity (a child of its chunk).
 #[derive(Component, Debug, Clone, Copy, PartialEq, Reflect)]
@@ -92,7 +92,7 @@ fn spawn_props(commands: &mut Commands, chunk: Entity, props: &[Prop], size: f32
     });
 }
 
-/// Keeps each chunk's prop children in step with its [`ChunkContent`] and the settings: a chunk
+/// Keeps each chunk's prop children in step with its [`ChunkContent`](crate::ChunkContent) and the settings: a chunk
 /// whose content changed (a new mesh, a hot reload) gets its props anew; turning props off or on
 /// despawns or spawns them everywhere.
 fn sync_props(
@@ -100,23 +100,13 @@ fn sync_props(
     settings: Res<HexTerrainSettings>,
     map: Res<crate::HexMap>,
     assets: Option<Res<PropAssets>>,
-    chunks: Query<(Entity, Ref<ChunkContent>, Option<&Children>), With<HexChunk>>,
+    chunks: ContentQuery,
     props: Query<(), With<HexProp>>,
     mut was_enabled: Local<Option<bool>>,
 ) {
     let enabled = settings.props.enabled;
-    let toggled = *was_enabled != Some(enabled);
-    *was_enabled = Some(enabled);
     let size = map.config().layout.hex_size;
-    for (chunk, content, children) in &chunks {
-        if !(toggled || content.is_changed()) {
-            continue;
-        }
-        for child in children.into_iter().flatten() {
-            if props.contains(*child) {
-                commands.entity(*child).despawn();
-            }
-        }
+    for (chunk, content) in stale_chunks(&mut commands, &chunks, &props, enabled, &mut was_enabled) {
         if enabled {
             spawn_props(&mut commands, chunk, &content.props, size, assets.as_deref());
         }

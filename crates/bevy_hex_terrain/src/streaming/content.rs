@@ -82,3 +82,34 @@ impl BuiltContent {
         Self { water, water_triangles, props }
     }
 }
+
+/// Every chunk with its content and children, as the water and prop plugins read them.
+pub(crate) type ContentQuery<'w, 's> =
+    Query<'w, 's, (Entity, Ref<'static, ChunkContent>, Option<&'static Children>), With<super::HexChunk>>;
+
+/// The chunks whose children of one kind (`T`: water, props) must be made anew (all of them
+/// when the kind's switch changed, else those whose content changed), with their content; their
+/// old children of that kind are despawned. `was` remembers the switch between frames.
+pub(crate) fn stale_chunks<'a, T: Component>(
+    commands: &mut Commands,
+    chunks: &'a ContentQuery,
+    children_of_kind: &Query<(), With<T>>,
+    enabled: bool,
+    was: &mut Option<bool>,
+) -> Vec<(Entity, &'a ChunkContent)> {
+    let toggled = *was != Some(enabled);
+    *was = Some(enabled);
+    let mut stale = Vec::new();
+    for (chunk, content, children) in chunks {
+        if !(toggled || content.is_changed()) {
+            continue;
+        }
+        for child in children.into_iter().flatten() {
+            if children_of_kind.contains(*child) {
+                commands.entity(*child).despawn();
+            }
+        }
+        stale.push((chunk, content.into_inner()));
+    }
+    stale
+}
