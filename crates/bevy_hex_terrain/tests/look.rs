@@ -156,3 +156,29 @@ fn props_and_water_switch_off_and_on_at_run_time() {
     app.update();
     assert_eq!((count::<HexProp>(&mut app), count::<HexWater>(&mut app)), (props_on, water_on));
 }
+
+#[test]
+fn a_map_switch_replaces_the_props_with_the_new_maps() {
+    let props_settings = PropSettings { max_per_chunk: 30, ..default() };
+    let mut app = app_with_props(wooded(), 8, props_settings);
+    spawn_agent(&mut app, Vec3::ZERO);
+    run_until(&mut app, "terrain ready", ready);
+    app.update();
+    let before = props(&mut app);
+    let other = MapConfig { seed: 4242, ..wooded() };
+    app.world_mut().write_message(LoadHexMap(other.clone().into()));
+    let generation = app.world().resource::<HexMap>().generation();
+    run_until(&mut app, "the new map ready", |app| {
+        app.world().resource::<HexMap>().generation() > generation && ready(app)
+    });
+    app.update();
+    let after = props(&mut app);
+    assert_ne!(before, after, "another seed grows other props");
+    let terrain = Terrain::new(other).unwrap();
+    let expected: usize = terrain
+        .chunks()
+        .into_iter()
+        .map(|c| terrain.props(&terrain.generate_chunk(c).unwrap(), props_settings.max_per_chunk, 1.0).len())
+        .sum();
+    assert_eq!(after.len(), expected, "the props are the new map's, none of the old map's is left");
+}

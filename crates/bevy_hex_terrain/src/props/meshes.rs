@@ -52,7 +52,7 @@ fn ico(radius: f32, subdivisions: u32) -> Mesh {
 
 fn trunk(height: f32, radius: f32) -> Mesh {
     part(
-        Cylinder::new(radius, height).mesh().resolution(5).build(),
+        Cylinder::new(radius, height).mesh().resolution(4).build(),
         Color::srgb(0.36, 0.25, 0.16),
         Transform::from_xyz(0.0, height * 0.5, 0.0),
     )
@@ -62,10 +62,10 @@ fn trunk(height: f32, radius: f32) -> Mesh {
 fn broadleaf(v: u8) -> Mesh {
     let greens = [Color::srgb(0.20, 0.42, 0.13), Color::srgb(0.26, 0.47, 0.15), Color::srgb(0.17, 0.36, 0.12)];
     let green = greens[usize::from(v) % greens.len()];
-    let crown = lumpy(ico(0.7, 1), v, 0.18, 11);
+    let crown = lumpy(ico(0.72, 0), v, 0.15, 11);
     let mut parts = vec![trunk(0.9, 0.12), part(crown, green, Transform::from_xyz(0.0, 1.45, 0.0))];
     if v != 0 {
-        let side = lumpy(ico(0.45, 1), v, 0.2, 12);
+        let side = lumpy(ico(0.48, 0), v, 0.15, 12);
         let x = if v == 1 { 0.4 } else { -0.35 };
         parts.push(part(side, green.darker(0.04), Transform::from_xyz(x, 1.05, 0.2)));
     }
@@ -84,7 +84,7 @@ fn pine(v: u8) -> Mesh {
         let height = 1.0 - 0.25 * f;
         let y = 0.4 + 0.55 * t as f32 + height * 0.5;
         parts.push(part(
-            Cone::new(radius, height).mesh().resolution(7).build(),
+            Cone::new(radius, height).mesh().resolution(6).build(),
             green,
             Transform::from_xyz(0.0, y, 0.0),
         ));
