@@ -93,7 +93,8 @@ impl Default for MapConfig {
 
 /// Relief after manipulation (see the `relief` module): how far mountain tiles rise to a peak
 /// and land tiles swell into hills, always inside their tile type's height range. All zero
-/// (the default, the thesis' Map0) leaves the manipulated surface as it is.
+/// (the default, the thesis' Map0) leaves the manipulated surface as it is; so does turning
+/// hex unity off (relief shapes tiles inside the ranges hex unity gives them).
 #[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
 #[cfg_attr(feature = "bevy_reflect", derive(bevy_reflect::Reflect))]
 #[serde(default, deny_unknown_fields)]

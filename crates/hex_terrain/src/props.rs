@@ -6,7 +6,8 @@
 //!   (sparse); on a map without a climate, on a band of land elevation (the middle of the land
 //!   range) on about half its tiles. Pines on high or cold ground, broadleaf trees elsewhere.
 //! - **Rocks** on mountain tiles (and rock and snow peak biomes), a few each.
-//! - **Reeds** on land tiles of the coast biome, near the tile's edge.
+//! - **Reeds** on about half the open land tiles (no trees) next to the sea, near the tile's
+//!   edge.
 //!
 //! Each prop stands on the meshed surface ([`Terrain::surface_height`]) at a point drawn inside
 //! its tile; points under the sea, in a river channel or on a lake are skipped. A chunk keeps at
@@ -71,19 +72,23 @@ fn rule(terrain: &Terrain, info: &TileInfo, h: u64) -> Option<(PropKind, u32, f3
     let pick = hash::unit(h);
     let extra = (h >> 8) as u32 % 3;
     let tree = if land > 0.62 { PropKind::Pine } else { PropKind::Broadleaf };
-    match (info.kind, info.biome) {
+    let grows = match (info.kind, info.biome) {
         (TileKind::Sea, _) | (_, Biome::Ocean | Biome::Lake | Biome::Desert | Biome::Snow) => None,
         (TileKind::Mountain, _) | (_, Biome::Rock | Biome::SnowPeak) => Some((PropKind::Rock, 1 + extra, 0.2)),
         (_, Biome::Forest) => Some((tree, 5 + extra, 0.3)),
         (_, Biome::Rainforest) => Some((PropKind::Broadleaf, 7 + extra, 0.32)),
         (_, Biome::Tundra) => (pick < 0.5).then_some((PropKind::Pine, 1 + extra, 0.24)),
         (_, Biome::Hills) => (pick < 0.6).then_some((tree, 2 + extra, 0.27)),
-        (_, Biome::Coast) => Some((PropKind::Reed, 2 + extra, 0.16)),
         (_, Biome::Grassland) if !terrain.config().climate.enabled => {
             ((0.25..0.75).contains(&land) && pick < 0.5).then_some((tree, 4 + extra, 0.3))
         }
         _ => None,
+    };
+    if grows.is_some() || info.kind != TileKind::Land || pick < 0.5 {
+        return grows;
     }
+    let coastal = terrain.neighbors(info.hex).iter().any(|&n| terrain.map_tile_kind(n) == Some(TileKind::Sea));
+    coastal.then_some((PropKind::Reed, 2 + extra, 0.16))
 }
 
 impl Terrain {

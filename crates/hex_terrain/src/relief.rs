@@ -11,6 +11,9 @@
 //! neighboring mountains join into ranges. Land tiles whose noise lies in the upper part of the
 //! land range swell by `hills` the same way (a hill, lower and rounder).
 //!
+//! Relief shapes tiles inside the ranges hex unity puts them in, so it needs hex unity: with hex
+//! unity off (the raw map of the thesis' figures and sharpness baseline) it does nothing.
+//!
 //! Every change is `max(height, profile)` with `profile` inside `[lo, hi]` of the vertex's
 //! kind, so a vertex inside its range stays inside it; border vertices between kinds are not
 //! touched (hex unity keeps them on the threshold). A vertex's profile depends on its position,
@@ -29,7 +32,7 @@ impl Terrain {
     pub(crate) fn relief(&self, h: f32, raw: f32, p: Hex, ring: u32, kinds: &[TileKind]) -> f32 {
         let relief = &self.config.relief;
         let Some(&first) = kinds.first() else { return h };
-        if !relief.any() || kinds.iter().any(|&k| k != first) {
+        if !relief.any() || !self.config.manipulation.hex_unity || kinds.iter().any(|&k| k != first) {
             return h;
         }
         let n = self.lattice.subdivisions();

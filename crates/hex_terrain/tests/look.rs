@@ -140,6 +140,10 @@ proptest! {
                 let kind = t.tile_kind(p.tile);
                 match p.kind {
                     PropKind::Rock => prop_assert!(kind == TileKind::Mountain || t.tile_info(p.tile).biome.is_rocky()),
+                    PropKind::Reed => {
+                        prop_assert_eq!(kind, TileKind::Land);
+                        prop_assert!(t.neighbors(p.tile).iter().any(|&n| t.map_tile_kind(n) == Some(TileKind::Sea)));
+                    }
                     _ => prop_assert_eq!(kind, TileKind::Land),
                 }
                 prop_assert!(p.variant < hex_terrain::PROP_VARIANTS);
@@ -162,6 +166,7 @@ fn wooded_maps_grow_trees_and_mountains_rocks() {
     let m = t.generate_map().unwrap();
     let props = t.props(&m, usize::MAX, 1.0);
     assert!(props.iter().any(|p| p.kind == PropKind::Rock), "no rocks");
+    assert!(props.iter().any(|p| p.kind == PropKind::Reed), "no reeds");
     assert!(props.iter().any(|p| matches!(p.kind, PropKind::Broadleaf | PropKind::Pine)), "no trees");
     assert!(t.props(&m, 0, 1.0).is_empty());
     assert!(t.props(&m, usize::MAX, 0.0).is_empty());
