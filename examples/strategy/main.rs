@@ -126,10 +126,11 @@ fn setup(mut commands: Commands) {
             let (x, z) = f.split_once(',')?;
             Some(Vec3::new(x.trim().parse().ok()?, 0.0, z.trim().parse().ok()?))
         })
-        .unwrap_or(Vec3::new(48.0, 0.0, 40.0));
+        // The opening view: a coast with an inland sea, forest, hills and mountains close by.
+        .unwrap_or(Vec3::new(52.0, 0.0, 52.0));
     commands
         .spawn((
-            Rig { focus, yaw: 0.0, distance: 24.0, target_focus: focus, target_yaw: 0.0, target_distance: 24.0 },
+            Rig { focus, yaw: 0.0, distance: 18.0, target_focus: focus, target_yaw: 0.0, target_distance: 18.0 },
             HexTerrainAgent::default(),
             Transform::from_translation(focus),
             // The camera below inherits visibility from the rig.

@@ -3,7 +3,7 @@
 //! occlusion, each switchable in [`TerrainLighting`] (software renderers and weak GPUs turn
 //! shadows and occlusion off). Cameras opt in with [`HexTerrainCamera`].
 
-use bevy::light::{CascadeShadowConfig, CascadeShadowConfigBuilder};
+use bevy::light::{CascadeShadowConfig, CascadeShadowConfigBuilder, DirectionalLightShadowMap};
 use bevy::pbr::{DistanceFog, FogFalloff, ScreenSpaceAmbientOcclusion};
 use bevy::prelude::*;
 
@@ -40,6 +40,9 @@ pub struct TerrainLighting {
     pub shadows: bool,
     /// Shadow cascades, `1..=4` (each one more shadow pass a frame).
     pub shadow_cascades: usize,
+    /// Width and height of each cascade's shadow map, a power of two in `256..=8192` (Bevy's
+    /// `DirectionalLightShadowMap`, set while the sun is on).
+    pub shadow_map_size: usize,
     /// Ambient light brightness on terrain cameras.
     pub ambient_brightness: f32,
     /// Distance fog on terrain cameras: far terrain fades into `fog_color`.
@@ -64,6 +67,7 @@ impl Default for TerrainLighting {
             sun_color: Color::srgb(1.0, 0.96, 0.88),
             shadows: true,
             shadow_cascades: 2,
+            shadow_map_size: 1024,
             ambient_brightness: 350.0,
             fog: true,
             fog_color: Color::srgb(0.70, 0.78, 0.86),
@@ -129,6 +133,7 @@ fn camera_height(cameras: &Query<&GlobalTransform, With<HexTerrainCamera>>, map:
 fn update_sun(
     mut commands: Commands,
     lighting: Res<TerrainLighting>,
+    mut shadow_map: ResMut<DirectionalLightShadowMap>,
     map: Res<crate::HexMap>,
     cameras: Query<&GlobalTransform, With<HexTerrainCamera>>,
     mut suns: Query<(Entity, &mut DirectionalLight, &mut Transform, &mut CascadeShadowConfig), With<HexSun>>,
@@ -143,6 +148,10 @@ fn update_sun(
     // The sun lights what terrain cameras show: none yet, no sun (a floating-origin scene
     // places its own lights in its grid).
     let Some(height) = camera_height(&cameras, &map) else { return };
+    let size = lighting.shadow_map_size.clamp(256, 8192).next_power_of_two().min(8192);
+    if lighting.is_changed() && shadow_map.size != size {
+        shadow_map.size = size;
+    }
     // Refit the cascades when the camera's height changed by a tenth (zoom), not every frame.
     let refit = (height / last_height.max(1e-3) - 1.0).abs() > 0.1;
     let light = DirectionalLight {

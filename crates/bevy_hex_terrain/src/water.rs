@@ -1,7 +1,7 @@
 //! The water surface's entities: each chunk with water ([`ChunkContent::water`](crate::ChunkContent::water)) gets a
 //! [`HexWater`] child showing it, despawned with the chunk. With Bevy's renderer the terrain
 //! material gives it the water look (its water instance: depth colors, shore foam, moving
-//! waves, transparent over the shallows), and it casts no shadow.
+//! waves, transparent over the shallows), and it neither casts nor receives shadows.
 
 use bevy::prelude::*;
 
@@ -41,7 +41,9 @@ fn sync_water(
         commands.entity(chunk).with_children(|c| {
             let mut water = c.spawn((HexWater, Mesh3d(mesh), Transform::IDENTITY, Visibility::default()));
             #[cfg(feature = "render")]
-            water.insert(bevy::light::NotShadowCaster);
+            // Neither casts nor receives shadows: the sun's shadows lie on the floor beneath, and
+            // the water's fragments skip the shadow lookups (they cover much of the screen).
+            water.insert((bevy::light::NotShadowCaster, bevy::light::NotShadowReceiver));
             #[cfg(not(feature = "render"))]
             let _ = &mut water;
         });

@@ -237,7 +237,9 @@ struct TileLook {
     outline: f32,
 }
 
-fn tile_look(render_p: vec2<f32>, albedo: vec4<f32>) -> TileLook {
+// `tint`: tint owned tiles in their owner's color (the ground; the water keeps its own color and
+// shows territory by the border line alone).
+fn tile_look(render_p: vec2<f32>, albedo: vec4<f32>, tint_owned: bool) -> TileLook {
     var look: TileLook;
     // Hexes relative to the tile nearest the render origin (small numbers, exact), and `base`
     // to make them absolute for the tile state.
@@ -247,7 +249,7 @@ fn tile_look(render_p: vec2<f32>, albedo: vec4<f32>) -> TileLook {
     let texel = tile_texel(h + base);
     let owner = texel.y;
     var color = albedo;
-    if owner != 0u && (params.flags & FLAG_TERRITORY_TINT) != 0u {
+    if owner != 0u && tint_owned && (params.flags & FLAG_TERRITORY_TINT) != 0u {
         color = tint(color, vec4<f32>(owners.colors[owner - 1u].rgb, params.tint_strength));
     }
     let overlay = overlay_of(texel);
@@ -353,7 +355,7 @@ fn water_fragment(in: VertexOutput, is_front: bool) -> FragmentOutput {
     let foam = shore * (0.6 + 0.4 * ripple);
     color = mix(color, params.foam_color.rgb, foam);
     alpha = max(alpha, 0.9 * foam);
-    let look = tile_look(p.xz, vec4<f32>(color, alpha));
+    let look = tile_look(p.xz, vec4<f32>(color, alpha), false);
     pbr_input.material.base_color = vec4<f32>(look.albedo.rgb, alpha);
     pbr_input.N = wave_normal(q, t);
     var out: FragmentOutput;
@@ -417,7 +419,7 @@ fn ground_fragment(in: VertexOutput, is_front: bool) -> FragmentOutput {
     }
 #endif
 
-    let look = tile_look(p.xz, color);
+    let look = tile_look(p.xz, color, true);
     color = look.albedo;
 
 #ifdef VERTEX_COLORS
