@@ -1,6 +1,7 @@
 //! The strategy look in a real renderer (Mesa's software Vulkan under Xvfb in CI): water colored
 //! by depth with a shore between land and sea, props standing where the core places them, the
-//! sun's shadows on the lee side of mountains, and outlines and highlights kept over all of it.
+//! sun's shadows on the lee side of mountains, and outlines, textures and highlights kept over all
+//! of it.
 //! Each scenario runs in a process of its own (see `render.rs`).
 
 #[macro_use]
@@ -39,7 +40,8 @@ fn scenario_water() {
     let config = relief_map();
     let terrain = Terrain::new(config.clone()).unwrap();
     let (center, size) = view(&terrain);
-    let appearance = TerrainAppearance { outlines: true, outline_width: 0.1, ..default() };
+    // Textures on: the relief textures keep working beside the water (which does not use them).
+    let appearance = TerrainAppearance { outlines: true, outline_width: 0.1, textures: true, ..default() };
     let (img, _) = render_scene(
         Scene {
             config: Some(config),
@@ -71,7 +73,7 @@ fn scenario_water() {
     let (shore, ground) = (at(shore_point), at(inland));
     assert!(distance(shore, c) > 0.08, "the shore {shore:?} differs from the coast's water {c:?}");
     assert!(distance(shore, ground) > 0.08, "the shore {shore:?} differs from the land {ground:?}");
-    // Outlines and highlights still show over land and water.
+    // Outlines, textures and highlights still show over land and water.
     let ratio = border_to_center(&img, &terrain);
     assert!(ratio < 0.7, "with outlines, borders are darker than centers over land and water: {ratio}");
     let [r, g, _] = at(center_of(&terrain, hovered(&terrain)));

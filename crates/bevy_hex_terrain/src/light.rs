@@ -133,7 +133,8 @@ fn camera_height(cameras: &Query<&GlobalTransform, With<HexTerrainCamera>>, map:
 fn update_sun(
     mut commands: Commands,
     lighting: Res<TerrainLighting>,
-    mut shadow_map: ResMut<DirectionalLightShadowMap>,
+    // Bevy's light plugin's (absent from a headless app).
+    shadow_map: Option<ResMut<DirectionalLightShadowMap>>,
     map: Res<crate::HexMap>,
     cameras: Query<&GlobalTransform, With<HexTerrainCamera>>,
     mut suns: Query<(Entity, &mut DirectionalLight, &mut Transform, &mut CascadeShadowConfig), With<HexSun>>,
@@ -149,7 +150,7 @@ fn update_sun(
     // places its own lights in its grid).
     let Some(height) = camera_height(&cameras, &map) else { return };
     let size = lighting.shadow_map_size.clamp(256, 8192).next_power_of_two().min(8192);
-    if lighting.is_changed() && shadow_map.size != size {
+    if let Some(mut shadow_map) = shadow_map.filter(|m| lighting.is_changed() && m.size != size) {
         shadow_map.size = size;
     }
     // Refit the cascades when the camera's height changed by a tenth (zoom), not every frame.
