@@ -126,9 +126,9 @@ fn scenario_props() {
     assert!(moved * 20 <= far_from_props.len(), "{moved} of {} prop-free points changed", far_from_props.len());
 }
 
-/// A low sun from the west.
+/// A low sun from the west, with sharp (2048²) shadow maps.
 fn lighting() -> TerrainLighting {
-    TerrainLighting { sun_elevation: 22.0, sun_azimuth: 270.0, fog: false, ..default() }
+    TerrainLighting { sun_elevation: 22.0, sun_azimuth: 270.0, fog: false, shadow_map_size: 2048, ..default() }
 }
 
 fn lighting_direction() -> Vec3 {
