@@ -1,10 +1,6 @@
 //! Chunks: rectangular ranges of tiles in offset coordinates, and which chunks a map has.
 
-use hexx::Hex;
 use serde::{Deserialize, Serialize};
-
-use crate::config::MAX_WORLD_TILE;
-use crate::terrain::Terrain;
 
 /// A rectangle of tiles in offset coordinates `[col, row]`: columns `min[0]..max[0]`, rows
 /// `min[1]..max[1]` (ends exclusive).
@@ -103,67 +99,5 @@ impl ChunkCoord {
     #[must_use]
     pub fn distance(self, other: Self) -> u32 {
         (self.x - other.x).unsigned_abs().max((self.z - other.z).unsigned_abs())
-    }
-}
-
-impl Terrain {
-    /// Chunk size in tiles.
-    #[must_use]
-    pub fn chunk_size(&self) -> (u32, u32) {
-        self.config.chunk_size
-    }
-
-    /// The chunk holding a tile. On a wrapping map, a tile past the map's east or west edge is
-    /// in a chunk placed there (see [`crate::wrap`]).
-    #[must_use]
-    pub fn chunk_of(&self, tile: Hex) -> ChunkCoord {
-        match &self.wrap {
-            Some(w) => w.chunk_of(self.offset_of(tile), self.config.chunk_size.1),
-            None => ChunkCoord::of(self.offset_of(tile), self.config.chunk_size),
-        }
-    }
-
-    /// A chunk's tiles clipped to the map, `None` when it lies outside (or, on an unbounded
-    /// world, past [`MAX_WORLD_TILE`]). On a wrapping map, the tiles of the map's chunk it
-    /// stands for ([`Terrain::wrap_chunk`]): a chunk placed a period east has the same tiles.
-    #[must_use]
-    pub fn chunk_rect(&self, chunk: ChunkCoord) -> Option<TileRect> {
-        let (chunk, _) = self.wrap_chunk(chunk);
-        let (w, h) = (i64::from(self.config.chunk_size.0), i64::from(self.config.chunk_size.1));
-        let far = i64::from(MAX_WORLD_TILE) + w.max(h);
-        if (i64::from(chunk.x) * w).abs() > far || (i64::from(chunk.z) * h).abs() > far {
-            return None;
-        }
-        let rect = chunk.rect(self.config.chunk_size);
-        let world = TileRect { min: [-MAX_WORLD_TILE; 2], max: [MAX_WORLD_TILE; 2] };
-        let rect = rect.intersect(&self.bounds.unwrap_or(world));
-        (!rect.is_empty()).then_some(rect)
-    }
-
-    /// The lattice point a rectangle's mesh positions are relative to: the center of its first
-    /// tile.
-    #[must_use]
-    pub fn rect_origin(&self, rect: TileRect) -> Hex {
-        self.lattice.tile_center(self.tile_from_offset(rect.min))
-    }
-
-    /// World position `[x, y, z]` (computed in f64) of the origin of a chunk's mesh: where its
-    /// entity goes. On a wrapping map, a chunk placed a period east is the same mesh one map
-    /// width further east.
-    #[must_use]
-    pub fn chunk_origin(&self, chunk: ChunkCoord) -> Option<[f64; 3]> {
-        let rect = self.chunk_rect(chunk)?;
-        let [x, z] = self.lattice.world(self.rect_origin(rect));
-        let shift = self.wrap.as_ref().map_or(0.0, |w| w.width * f64::from(self.wrap_chunk(chunk).1));
-        Some([x + shift, 0.0, z])
-    }
-
-    /// Every chunk of a bounded map; empty for an unbounded world.
-    #[must_use]
-    pub fn chunks(&self) -> Vec<ChunkCoord> {
-        let Some(b) = self.bounds else { return Vec::new() };
-        let (w, h) = (self.config.chunk_size.0 as i32, self.config.chunk_size.1 as i32);
-        let (cx, cz) = ((b.max[0] + w - 1) / w, (b.max[1] + h - 1) / h);
-        (0..cz).flat_map(|z| (0..cx).map(move |x| ChunkCoord::new(x, z))).collect()
     }
 }

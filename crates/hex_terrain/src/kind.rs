@@ -1,37 +1,12 @@
-//! Tile types: the thesis' three relief kinds, decided by a tile's center height, and the
-//! height range each kind's vertices keep after manipulation.
+//! Classification, the third stage: a tile's type (the thesis' three relief kinds) decided by
+//! its center height, and the height range each kind's vertices keep after manipulation.
 
-use serde::{Deserialize, Serialize};
+use hexx::Hex;
 
 use crate::config::{ManipulationConfig, TerrainConfig};
-
-/// The type of a tile, decided by the height of its center.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
-#[cfg_attr(feature = "bevy_reflect", derive(bevy_reflect::Reflect))]
-#[repr(u8)]
-pub enum TileKind {
-    /// Center below the sea threshold.
-    Sea = 0,
-    /// Center between the thresholds.
-    Land = 1,
-    /// Center at or above the mountain threshold.
-    Mountain = 2,
-}
-
-impl TileKind {
-    /// All kinds, lowest first.
-    pub const ALL: [Self; 3] = [Self::Sea, Self::Land, Self::Mountain];
-
-    /// Lower-case name.
-    #[must_use]
-    pub fn name(self) -> &'static str {
-        match self {
-            Self::Sea => "sea",
-            Self::Land => "land",
-            Self::Mountain => "mountain",
-        }
-    }
-}
+use crate::geometry::Geometry;
+use crate::heights::HeightField;
+pub use crate::vocab::TileKind;
 
 /// Thresholds and the height ranges of each tile type, in normalised height.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -78,5 +53,21 @@ impl Thresholds {
             TileKind::Land => (self.sea + self.tolerance, self.mountain - self.tolerance),
             TileKind::Mountain => (self.mountain + self.tolerance, 1.0),
         }
+    }
+}
+
+impl Thresholds {
+    /// Type of a tile (by its center), whether or not it is in the map.
+    #[must_use]
+    #[inline]
+    pub fn tile_kind(&self, geometry: &Geometry, heights: &HeightField, tile: Hex) -> TileKind {
+        self.classify(heights.raw_height(geometry, geometry.lattice().tile_center(tile)))
+    }
+
+    /// Type of a tile if it belongs to the map.
+    #[must_use]
+    #[inline]
+    pub fn map_tile_kind(&self, geometry: &Geometry, heights: &HeightField, tile: Hex) -> Option<TileKind> {
+        geometry.contains(tile).then(|| self.tile_kind(geometry, heights, tile))
     }
 }

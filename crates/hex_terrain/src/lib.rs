@@ -1,14 +1,27 @@
 //! Engine-agnostic generator of 3D hexagonal tiled terrain, after the thesis "Applying Perlin
 //! noise on 3D hexagonal tiled maps".
 //!
-//! Heights come from Perlin fBm or a heightmap image, optionally shaped into an island, a
-//! mediterranean, an inland map or a gradient ([`heights`]). Tiles are hexagons cut into a
-//! hex-in-hex lattice ([`lattice`]); each tile's type (sea, land, mountain, [`kind`]) is read
-//! from its center and every other vertex is pulled into that type's height range
-//! ([`manipulate`]), so a tile's type is obvious at a glance. [`mesh`] turns any rectangle of
-//! tiles into buffers; [`query`] answers where things are on the surface. Every stage is a pure function of position, so any
-//! rectangle of tiles (a [`ChunkCoord`] chunk or the whole map) can be generated alone, in any
-//! order, on any thread, and meets its neighbors bit for bit.
+//! [`Terrain::new`] compiles a [`MapConfig`] into a [`Pipeline`] of stage objects, each in its
+//! own module and each taking the stages it depends on as arguments. Every stage is a pure
+//! function of the config and the position, so any rectangle of tiles (a [`ChunkCoord`] chunk or
+//! the whole map) can be generated alone, in any order, on any thread, and meets its neighbors
+//! bit for bit. In the order data flows through them:
+//!
+//! | module | stage |
+//! | --- | --- |
+//! | [`vocab`] | the words every stage uses: [`TileKind`], [`Biome`], [`TileInfo`], [`PropKind`] (imports nothing of the crate) |
+//! | [`config`] | [`MapConfig`] (RON), validation with the field, value and allowed range of every error |
+//! | [`lattice`], [`chunk`], [`wrap`], [`geometry`] | the hex-in-hex lattice, rectangles and chunks, east-west wrapping; [`Geometry`] composes them: where tiles and points are |
+//! | [`heights`] | [`HeightField`]: Perlin fBm or a heightmap, then the shaping filters |
+//! | [`kind`] | [`Thresholds`]: a tile's kind from its center height, each kind's height range |
+//! | [`climate`] | [`ClimateModel`]: temperature, moisture and the biome table |
+//! | [`table`], [`water::hydrology`] | [`TileTable`]: every tile's kind and biome and the water network of a bounded map, computed once |
+//! | [`manipulate`], [`relief`], [`water::channels`], [`vertex`] | the vertex chain [`VertexRules`]: manipulation, relief, carving |
+//! | [`pipeline`] | [`Pipeline`]: the stages compiled from one config, and the questions that combine them |
+//! | [`mesh`] | any rectangle of tiles to [`MeshBuffers`], on all cores or the calling thread |
+//! | [`water::surface`], [`props`] | what stands on a generated chunk: its water surface, its trees, rocks and reeds |
+//! | [`query`], [`metrics`] | the surface under a position and ray casts, in f64; sharpness (thesis eq. 4.1, 7.3) |
+//! | [`terrain`] | [`Terrain`], the facade over all of it |
 //!
 //! ```
 //! use hex_terrain::{MapConfig, Terrain};
@@ -20,38 +33,59 @@
 
 #![cfg_attr(not(test), warn(clippy::unwrap_used))]
 
-pub mod chunk;
-pub mod climate;
+pub mod vocab;
+
 pub mod config;
 pub mod error;
-pub mod hash;
-pub mod heights;
-pub mod kind;
+
+pub mod chunk;
+pub mod geometry;
 pub mod lattice;
-pub mod manipulate;
-pub mod mesh;
-pub mod metrics;
-pub mod props;
-pub mod query;
-pub mod relief;
-pub mod terrain;
 pub mod wrap;
 
+pub mod heights;
+pub mod kind;
+
+pub mod climate;
+pub mod table;
+pub mod water;
+
+pub mod hash;
+pub mod manipulate;
+pub mod relief;
+pub mod vertex;
+
+pub mod pipeline;
+
+pub mod mesh;
+pub mod props;
+
+pub mod metrics;
+pub mod query;
+
+pub mod terrain;
+
 pub use chunk::{ChunkCoord, TileRect};
-pub use climate::{Biome, Climate, Hydrology, RiverTile};
+pub use climate::{Climate, ClimateModel, TileSample};
 pub use config::{
     AppearanceConfig, BiomeRule, ClimateConfig, HeightSourceConfig, LayoutConfig, ManipulationConfig, MapConfig,
     MapFile, MapSize, NoiseConfig, Orientation, PullMode, ReliefConfig, RiverConfig, Shape, TerrainConfig,
 };
 pub use error::{ConfigError, LoadError};
-pub use heights::{HeightImage, ImageError};
+pub use geometry::Geometry;
+pub use heights::{HeightField, HeightImage, ImageError};
 pub use hexx;
-pub use kind::{Thresholds, TileKind};
+pub use kind::Thresholds;
 pub use lattice::Lattice;
-pub use manipulate::VertexSample;
-pub use mesh::{ChunkMesh, Diagnostics, GenerateOptions, MeshBuffers, Threads, WaterBuffers};
+pub use mesh::{ChunkMesh, Diagnostics, GenerateOptions, MeshBuffers, Threads};
 pub use metrics::Sharpness;
-pub use props::{PROP_VARIANTS, Prop, PropKind};
+pub use pipeline::Pipeline;
+pub use props::Prop;
 pub use query::RayHit;
-pub use terrain::{Terrain, TileInfo};
+pub use relief::Relief;
+pub use table::TileTable;
+pub use terrain::Terrain;
+pub use vertex::{Sharing, VertexRules, VertexSample};
+pub use vocab::{Biome, PROP_VARIANTS, PropKind, TileInfo, TileKind};
+pub use water::{Hydrology, RiverTile, WaterBuffers};
 pub use wrap::Wrap;

@@ -1,14 +1,11 @@
-//! Manipulation (thesis sections 5.5-5.6, 6.4): interpolation opens a gap around each
+//! Manipulation, the first step of the vertex chain (thesis sections 5.5-5.6, 6.4): interpolation opens a gap around each
 //! threshold (Algorithm 4), hex unity pulls inner vertices into their tile's range and puts
 //! border vertices between kinds on the threshold (Algorithm 3), and edge/corner correction
 //! clamps border vertices shared by tiles of one kind. After it, every non-border vertex of a
 //! tile lies inside its kind's height range.
 
-use hexx::Hex;
-
 use crate::config::{ManipulationConfig, PullMode};
 use crate::kind::{Thresholds, TileKind};
-use crate::terrain::Terrain;
 
 impl Thresholds {
     /// Algorithm 4 / eq. 5.6 with a gap on both sides of each threshold: sea `[0, s]` maps to
@@ -119,77 +116,6 @@ pub fn manipulate(
         }
     };
     Manipulated { height: out, moved: out != h }
-}
-
-/// One lattice vertex, evaluated.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct VertexSample {
-    /// Normalised height after shaping, before manipulation.
-    pub raw: f32,
-    /// Normalised height after manipulation.
-    pub height: f32,
-    /// Whether hex unity or edge/corner correction moved it.
-    pub moved: bool,
-    /// Ring in its tile (`n` on a border).
-    pub ring: u32,
-    /// Highest kind among the in-map tiles sharing it, or its height's kind outside the map.
-    pub kind: TileKind,
-    /// How much river or lake water covers it, in `[0, 1]` (0 on a map without rivers).
-    pub water: f32,
-}
-
-impl Terrain {
-    /// Evaluates one lattice vertex, computing the kinds of the tiles around it.
-    #[must_use]
-    pub fn vertex(&self, p: Hex) -> VertexSample {
-        self.vertex_with(p, |tile| self.map_tile_kind(tile))
-    }
-
-    /// Evaluates one lattice vertex with tile kinds from `kind_of` (`None` outside the map).
-    #[must_use]
-    #[inline]
-    pub fn vertex_with(&self, p: Hex, kind_of: impl Fn(Hex) -> Option<TileKind>) -> VertexSample {
-        self.border_vertex(self.raw_height(p), p, kind_of)
-    }
-
-    /// Finishes a vertex whose raw height is known, finding the tiles around it.
-    #[inline]
-    pub(crate) fn border_vertex(&self, raw: f32, p: Hex, kind_of: impl Fn(Hex) -> Option<TileKind>) -> VertexSample {
-        let set = self.lattice.tiles_at(p);
-        let mut kinds = [TileKind::Sea; 3];
-        let mut tiles = [Hex::ZERO; 3];
-        let mut len = 0;
-        for &tile in set.tiles() {
-            if let Some(kind) = kind_of(tile) {
-                kinds[len] = kind;
-                tiles[len] = tile;
-                len += 1;
-            }
-        }
-        let s = self.finish_vertex(raw, p, set.ring, &kinds[..len]);
-        self.carve(p, &tiles[..len], &kinds[..len], s)
-    }
-
-    /// Applies manipulation and relief to lattice point `p` of raw height `raw` at `ring`,
-    /// shared by the in-map tiles of `kinds`.
-    #[inline(always)]
-    pub(crate) fn finish_vertex(&self, raw: f32, p: Hex, ring: u32, kinds: &[TileKind]) -> VertexSample {
-        let n = self.lattice.subdivisions();
-        let Manipulated { height, moved } = if self.config.manipulation.any() {
-            manipulate(&self.thresholds, &self.config.manipulation, raw, ring, n, kinds)
-        } else {
-            Manipulated { height: raw, moved: false }
-        };
-        let kind = kinds.iter().copied().max().unwrap_or_else(|| self.thresholds.classify(raw));
-        let height = self.relief(height, raw, p, ring, kinds);
-        VertexSample { raw, height, moved, ring, kind, water: 0.0 }
-    }
-
-    /// World height of the manipulated surface at a lattice point.
-    #[must_use]
-    pub fn vertex_elevation(&self, p: Hex) -> f32 {
-        self.vertex(p).height * self.config.terrain.max_elevation
-    }
 }
 
 #[cfg(test)]

@@ -9,40 +9,19 @@
 //! - **Reeds** on about half the open land tiles (no trees) next to the sea, near the tile's
 //!   edge.
 //!
-//! Each prop stands on the meshed surface ([`Terrain::surface_height`]) at a point drawn inside
+//! Each prop stands on the meshed surface ([`surface_height`]) at a point drawn inside
 //! its tile; points under the sea, in a river channel or on a lake are skipped. A chunk keeps at
 //! most `max_per_chunk` props: over the cap, those with the lowest hash priority stay, so the
 //! thinning is as deterministic as the placement.
 
 use hexx::Hex;
 
-use crate::climate::Biome;
 use crate::hash;
-use crate::kind::TileKind;
 use crate::mesh::ChunkMesh;
-use crate::terrain::{Terrain, TileInfo};
-
-/// What a prop is: which family of meshes draws it.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
-#[cfg_attr(feature = "bevy_reflect", derive(bevy_reflect::Reflect))]
-pub enum PropKind {
-    /// A round-crowned tree.
-    Broadleaf,
-    /// A conifer.
-    Pine,
-    /// A boulder.
-    Rock,
-    /// A clump of reeds.
-    Reed,
-}
-
-impl PropKind {
-    /// Every kind, in order.
-    pub const ALL: [Self; 4] = [Self::Broadleaf, Self::Pine, Self::Rock, Self::Reed];
-}
-
-/// How many mesh variants each prop kind has; [`Prop::variant`] is below it.
-pub const PROP_VARIANTS: u8 = 3;
+use crate::pipeline::Pipeline;
+use crate::query::surface_height;
+use crate::vocab::{Biome, TileInfo, TileKind};
+pub use crate::vocab::{PROP_VARIANTS, PropKind};
 
 /// One prop of a chunk.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -64,9 +43,9 @@ pub struct Prop {
 }
 
 /// What a tile grows: the kind, how many, and their size in hex radii.
-fn rule(terrain: &Terrain, info: &TileInfo, h: u64) -> Option<(PropKind, u32, f32)> {
-    let t = terrain.thresholds();
-    let max = terrain.config().terrain.max_elevation.max(f32::MIN_POSITIVE);
+fn rule(pipeline: &Pipeline, info: &TileInfo, h: u64) -> Option<(PropKind, u32, f32)> {
+    let t = pipeline.thresholds();
+    let max = pipeline.max_elevation().max(f32::MIN_POSITIVE);
     // Where the tile's center lies in the land range, 0 at the sea threshold, 1 at the mountains.
     let land = ((info.elevation / max - t.sea) / (t.mountain - t.sea).max(f32::EPSILON)).clamp(0.0, 1.0);
     let pick = hash::unit(h);
@@ -79,7 +58,7 @@ fn rule(terrain: &Terrain, info: &TileInfo, h: u64) -> Option<(PropKind, u32, f3
         (_, Biome::Rainforest) => Some((PropKind::Broadleaf, 7 + extra, 0.32)),
         (_, Biome::Tundra) => (pick < 0.5).then_some((PropKind::Pine, 1 + extra, 0.24)),
         (_, Biome::Hills) => (pick < 0.6).then_some((tree, 2 + extra, 0.27)),
-        (_, Biome::Grassland) if !terrain.config().climate.enabled => {
+        (_, Biome::Grassland) if !pipeline.climate().is_enabled() => {
             ((0.25..0.75).contains(&land) && pick < 0.5).then_some((tree, 4 + extra, 0.3))
         }
         _ => None,
@@ -87,87 +66,87 @@ fn rule(terrain: &Terrain, info: &TileInfo, h: u64) -> Option<(PropKind, u32, f3
     if grows.is_some() || info.kind != TileKind::Land || pick < 0.5 {
         return grows;
     }
-    let coastal = terrain.neighbors(info.hex).iter().any(|&n| terrain.map_tile_kind(n) == Some(TileKind::Sea));
+    let geometry = pipeline.geometry();
+    let coastal = geometry.neighbors(info.hex).iter().any(|&n| pipeline.map_tile_kind(n) == Some(TileKind::Sea));
     coastal.then_some((PropKind::Reed, 2 + extra, 0.16))
 }
 
-impl Terrain {
-    /// The props of a generated chunk (see the module docs), at most `max_per_chunk`, with
-    /// `density` (in `[0, 1]`, clamped) the share of each tile's props that stand.
-    #[must_use]
-    pub fn props(&self, chunk: &ChunkMesh, max_per_chunk: usize, density: f32) -> Vec<Prop> {
-        let density = if density.is_finite() { density.clamp(0.0, 1.0) } else { 0.0 };
-        let mut props = Vec::new();
-        let mut priority = Vec::new();
-        if max_per_chunk == 0 || density == 0.0 {
-            return props;
+/// The props of a generated chunk (see the module docs), at most `max_per_chunk`, with
+/// `density` (in `[0, 1]`, clamped) the share of each tile's props that stand.
+#[must_use]
+pub fn props(pipeline: &Pipeline, chunk: &ChunkMesh, max_per_chunk: usize, density: f32) -> Vec<Prop> {
+    let density = if density.is_finite() { density.clamp(0.0, 1.0) } else { 0.0 };
+    let mut props = Vec::new();
+    let mut priority = Vec::new();
+    if max_per_chunk == 0 || density == 0.0 {
+        return props;
+    }
+    let geometry = pipeline.geometry();
+    let origin = geometry.rect_origin(chunk.rect);
+    let lattice = geometry.lattice();
+    let size = geometry.hex_size();
+    let sea = f64::from(pipeline.sea_level());
+    let seed = pipeline.config().seed;
+    for (info, offset) in chunk.tiles.iter().zip(chunk.rect.iter()) {
+        if !info.in_map || info.lake.is_some() {
+            continue;
         }
-        let origin = self.rect_origin(chunk.rect);
-        let lattice = self.lattice();
-        let size = f64::from(self.config().layout.hex_size);
-        let sea = f64::from(self.sea_level());
-        for (info, offset) in chunk.tiles.iter().zip(chunk.rect.iter()) {
-            if !info.in_map || info.lake.is_some() {
+        let tile = geometry.tile_from_offset(offset);
+        let key = geometry.wrap_tile(tile);
+        let h = hash::hash(seed, &[i64::from(key.x), i64::from(key.y), 0x9e0]);
+        let Some((kind, count, scale)) = rule(pipeline, info, h) else { continue };
+        let center = lattice.tile_center(tile);
+        let [cx, cz] = lattice.world(center);
+        let [lx, lz] = lattice.world(center - origin);
+        for i in 0..count {
+            let r = hash::hash(seed, &[i64::from(key.x), i64::from(key.y), i64::from(i)]);
+            let u = |k: u32| f64::from(hash::unit(hash::hash(seed, &[r as i64, i64::from(k)])));
+            if u(0) >= f64::from(density) {
                 continue;
             }
-            let tile = self.tile_from_offset(offset);
-            let key = self.wrap_tile(tile);
-            let seed = self.config().seed;
-            let h = hash::hash(seed, &[i64::from(key.x), i64::from(key.y), 0x9e0]);
-            let Some((kind, count, scale)) = rule(self, info, h) else { continue };
-            let center = lattice.tile_center(tile);
-            let [cx, cz] = lattice.world(center);
-            let [lx, lz] = lattice.world(center - origin);
-            for i in 0..count {
-                let r = hash::hash(seed, &[i64::from(key.x), i64::from(key.y), i64::from(i)]);
-                let u = |k: u32| f64::from(hash::unit(hash::hash(seed, &[r as i64, i64::from(k)])));
-                if u(0) >= f64::from(density) {
-                    continue;
-                }
-                // Inside the tile's inscribed circle (reeds in its outer band, near the shore).
-                let (inner, outer) = if kind == PropKind::Reed { (0.55, 0.82) } else { (0.0, 0.78) };
-                let radius = size * 0.866 * (inner + (outer - inner) * u(1).sqrt());
-                let angle = std::f64::consts::TAU * u(2);
-                let (dx, dz) = (radius * angle.cos(), radius * angle.sin());
-                let (x, z) = (cx + dx, cz + dz);
-                if self.is_wet_at(tile, x, z) {
-                    continue;
-                }
-                let y = self.surface_height(x, z);
-                if y <= sea + 0.02 * size {
-                    continue;
-                }
-                props.push(Prop {
-                    kind,
-                    variant: (u(3) * f64::from(PROP_VARIANTS)) as u8 % PROP_VARIANTS,
-                    position: [(lx + dx) as f32, y as f32, (lz + dz) as f32],
-                    yaw: (std::f64::consts::TAU * u(4)) as f32,
-                    scale: scale * (0.75 + 0.5 * u(5) as f32),
-                    tile: key,
-                });
-                priority.push(hash::unit(r));
+            // Inside the tile's inscribed circle (reeds in its outer band, near the shore).
+            let (inner, outer) = if kind == PropKind::Reed { (0.55, 0.82) } else { (0.0, 0.78) };
+            let radius = size * 0.866 * (inner + (outer - inner) * u(1).sqrt());
+            let angle = std::f64::consts::TAU * u(2);
+            let (dx, dz) = (radius * angle.cos(), radius * angle.sin());
+            let (x, z) = (cx + dx, cz + dz);
+            if is_wet_at(pipeline, tile, x, z) {
+                continue;
             }
-        }
-        if props.len() > max_per_chunk {
-            let mut order: Vec<usize> = (0..props.len()).collect();
-            order.sort_by(|&a, &b| priority[a].total_cmp(&priority[b]).then(a.cmp(&b)));
-            let mut keep = vec![false; props.len()];
-            for &i in &order[..max_per_chunk] {
-                keep[i] = true;
+            let y = surface_height(pipeline, x, z);
+            if y <= sea + 0.02 * size {
+                continue;
             }
-            let mut k = keep.iter();
-            props.retain(|_| k.next().copied().unwrap_or(false));
+            props.push(Prop {
+                kind,
+                variant: (u(3) * f64::from(PROP_VARIANTS)) as u8 % PROP_VARIANTS,
+                position: [(lx + dx) as f32, y as f32, (lz + dz) as f32],
+                yaw: (std::f64::consts::TAU * u(4)) as f32,
+                scale: scale * (0.75 + 0.5 * u(5) as f32),
+                tile: key,
+            });
+            priority.push(hash::unit(r));
         }
-        props
     }
+    if props.len() > max_per_chunk {
+        let mut order: Vec<usize> = (0..props.len()).collect();
+        order.sort_by(|&a, &b| priority[a].total_cmp(&priority[b]).then(a.cmp(&b)));
+        let mut keep = vec![false; props.len()];
+        for &i in &order[..max_per_chunk] {
+            keep[i] = true;
+        }
+        let mut k = keep.iter();
+        props.retain(|_| k.next().copied().unwrap_or(false));
+    }
+    props
+}
 
-    /// Whether river or lake water covers world `(x, z)` of `tile` (the lattice triangle's
-    /// corners' water cover).
-    fn is_wet_at(&self, tile: Hex, x: f64, z: f64) -> bool {
-        if !self.tile_is_wet(tile) {
-            return false;
-        }
-        let (tri, _) = self.lattice().triangle_at(x, z);
-        tri.iter().any(|&p| self.water_profile(tile, p) > 0.05)
+/// Whether river or lake water covers world `(x, z)` of `tile` (the lattice triangle's
+/// corners' water cover).
+fn is_wet_at(pipeline: &Pipeline, tile: Hex, x: f64, z: f64) -> bool {
+    if !pipeline.tile_is_wet(tile) {
+        return false;
     }
+    let (tri, _) = pipeline.geometry().lattice().triangle_at(x, z);
+    tri.iter().any(|&p| pipeline.water_cover(tile, p) > 0.05)
 }

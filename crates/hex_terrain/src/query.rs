@@ -1,16 +1,15 @@
-//! Surface queries: the tile under a world position, a tile's center on the surface, the
+//! Surface queries, read from the pipeline: the tile under a world position, a tile's center on the surface, the
 //! surface height as meshed, and ray casts against the real surface. All are answered from the
-//! config, so they hold for tiles whose chunk was never generated.
+//! stages, so they hold for tiles whose chunk was never generated.
 //!
 //! Positions are f64 world coordinates, so the answers stay exact far from the world's origin
 //! (an f32 coordinate a million units out is only good to an eighth of a unit). On a wrapping
-//! map the tiles they return are the map's own ([`Terrain::wrap_tile`]) and the heights those of
+//! map the tiles they return are the map's own ([`Geometry::wrap_tile`](crate::geometry::Geometry::wrap_tile)) and the heights those of
 //! the map's surface placed again: a position one map width east is the same place.
 
 use hexx::Hex;
 
-use crate::config::Orientation;
-use crate::terrain::Terrain;
+use crate::pipeline::Pipeline;
 
 /// A ray hitting the terrain surface.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -23,106 +22,83 @@ pub struct RayHit {
     pub tile: Hex,
 }
 
-const SQRT_3: f64 = 1.732_050_807_568_877_2;
-
-/// Most marching steps of one [`Terrain::raycast`], each half a lattice step: a ray that stays
+/// Most marching steps of one [`raycast`], each half a lattice step: a ray that stays
 /// inside the relief is followed for 2^18 hex sizes at the default ring count.
 pub const MAX_RAY_STEPS: u32 = 1 << 20;
 
-impl Terrain {
-    /// The tile under world `(x, z)` (the map's own tile on a wrapping map).
-    #[must_use]
-    pub fn tile_at(&self, x: f64, z: f64) -> Hex {
-        self.wrap_tile(self.unwrapped_tile_at(x, z))
-    }
+/// World position of a tile's center on the surface (for a tile past a wrapping map's edge,
+/// where it is drawn there).
+#[must_use]
+pub fn tile_center(pipeline: &Pipeline, tile: Hex) -> [f64; 3] {
+    let lattice = pipeline.geometry().lattice();
+    let p = lattice.tile_center(tile);
+    let [x, z] = lattice.world(p);
+    [x, f64::from(pipeline.vertex_elevation(p)), z]
+}
 
-    /// The tile under world `(x, z)` of the plane, not wrapped: on a wrapping map, a position
-    /// one map width east gives the tile one map width east.
-    #[must_use]
-    pub fn unwrapped_tile_at(&self, x: f64, z: f64) -> Hex {
-        // Axial coordinates and cube rounding in f64 (hexx's layout works in f32, which loses
-        // whole tiles far out).
-        let s = f64::from(self.config.layout.hex_size);
-        let (q, r) = match self.config.layout.orientation {
-            Orientation::Flat => (2.0 / 3.0 * x / s, (-x / 3.0 + SQRT_3 / 3.0 * z) / s),
-            Orientation::Pointy => ((SQRT_3 / 3.0 * x - z / 3.0) / s, 2.0 / 3.0 * z / s),
-        };
-        crate::lattice::cube_round(q, r)
-    }
+/// World height of the surface (as meshed) at world `(x, z)`.
+#[must_use]
+pub fn surface_height(pipeline: &Pipeline, x: f64, z: f64) -> f64 {
+    let (tri, w) = pipeline.geometry().lattice().triangle_at(x, z);
+    tri.iter().zip(w).map(|(&p, w)| w * f64::from(pipeline.vertex_elevation(p))).sum()
+}
 
-    /// World position of a tile's center on the surface (for a tile past a wrapping map's
-    /// edge, where it is drawn there).
-    #[must_use]
-    pub fn tile_center(&self, tile: Hex) -> [f64; 3] {
-        let p = self.lattice.tile_center(tile);
-        let [x, z] = self.lattice.world(p);
-        [x, f64::from(self.vertex_elevation(p)), z]
+/// First hit of a ray on the surface within `max_distance`, marching at a fraction of a lattice
+/// step and refining by bisection. Any `max_distance` is fine (`f32::MAX` for no limit): the
+/// march covers only the part of the ray between the highest and the lowest possible surface,
+/// and gives up after [`MAX_RAY_STEPS`] steps.
+#[must_use]
+pub fn raycast(pipeline: &Pipeline, origin: [f64; 3], direction: [f64; 3], max_distance: f64) -> Option<RayHit> {
+    let len = (direction[0].powi(2) + direction[1].powi(2) + direction[2].powi(2)).sqrt();
+    if len.is_nan() || len <= 0.0 || max_distance.is_nan() || origin.iter().any(|v| !v.is_finite()) {
+        return None;
     }
-
-    /// World height of the surface (as meshed) at world `(x, z)`.
-    #[must_use]
-    pub fn surface_height(&self, x: f64, z: f64) -> f64 {
-        let (tri, w) = self.lattice.triangle_at(x, z);
-        tri.iter().zip(w).map(|(&p, w)| w * f64::from(self.vertex_elevation(p))).sum()
+    // March in f64, so a step stays a step however far along the ray.
+    let d = direction.map(|v| v / len);
+    let o = origin;
+    let at = |t: f64| [o[0] + d[0] * t, o[1] + d[1] * t, o[2] + d[2] * t];
+    let above = |t: f64| {
+        let p = at(t);
+        p[1] - surface_height(pipeline, p[0], p[2])
+    };
+    // The surface lies between 0 and the maximum elevation: skip down to the top quickly
+    // when looking from far above, and stop below the bottom.
+    let top = f64::from(pipeline.max_elevation());
+    if o[1] > top && d[1] >= 0.0 {
+        return None;
     }
-
-    /// First hit of a ray on the surface within `max_distance`, marching at a fraction of a
-    /// lattice step and refining by bisection. Any `max_distance` is fine (`f32::MAX` for no
-    /// limit): the march covers only the part of the ray between the highest and the lowest
-    /// possible surface, and gives up after [`MAX_RAY_STEPS`] steps.
-    #[must_use]
-    pub fn raycast(&self, origin: [f64; 3], direction: [f64; 3], max_distance: f64) -> Option<RayHit> {
-        let len = (direction[0].powi(2) + direction[1].powi(2) + direction[2].powi(2)).sqrt();
-        if len.is_nan() || len <= 0.0 || max_distance.is_nan() || origin.iter().any(|v| !v.is_finite()) {
+    let t0 = if o[1] > top { (o[1] - top) / -d[1] } else { 0.0 };
+    let mut end = max_distance;
+    if d[1] < 0.0 {
+        end = end.min(o[1].max(0.0) / -d[1] + 1.0);
+    }
+    let step = pipeline.geometry().step() * 0.5;
+    let mut prev = above(t0);
+    if prev < 0.0 {
+        return None;
+    }
+    let mut t = t0;
+    for _ in 0..MAX_RAY_STEPS {
+        if t >= end {
+            break;
+        }
+        let next = (t + step).min(end);
+        let h = above(next);
+        if h <= 0.0 {
+            let (mut lo, mut hi) = (t, next);
+            for _ in 0..32 {
+                let mid = 0.5 * (lo + hi);
+                if above(mid) > 0.0 { lo = mid } else { hi = mid }
+            }
+            let point = at(hi);
+            return Some(RayHit { point, distance: hi, tile: pipeline.geometry().tile_at(point[0], point[2]) });
+        }
+        prev = h;
+        t = next;
+        // A ray going up and already above every possible height never comes back.
+        if d[1] >= 0.0 && at(t)[1] > top && prev > 0.0 {
             return None;
         }
-        // March in f64, so a step stays a step however far along the ray.
-        let d = direction.map(|v| v / len);
-        let o = origin;
-        let at = |t: f64| [o[0] + d[0] * t, o[1] + d[1] * t, o[2] + d[2] * t];
-        let above = |t: f64| {
-            let p = at(t);
-            p[1] - self.surface_height(p[0], p[2])
-        };
-        // The surface lies between 0 and the maximum elevation: skip down to the top quickly
-        // when looking from far above, and stop below the bottom.
-        let top = f64::from(self.config.terrain.max_elevation);
-        if o[1] > top && d[1] >= 0.0 {
-            return None;
-        }
-        let t0 = if o[1] > top { (o[1] - top) / -d[1] } else { 0.0 };
-        let mut end = max_distance;
-        if d[1] < 0.0 {
-            end = end.min(o[1].max(0.0) / -d[1] + 1.0);
-        }
-        let step = f64::from(self.config.layout.hex_size) / f64::from(self.lattice.subdivisions()) * 0.5;
-        let mut prev = above(t0);
-        if prev < 0.0 {
-            return None;
-        }
-        let mut t = t0;
-        for _ in 0..MAX_RAY_STEPS {
-            if t >= end {
-                break;
-            }
-            let next = (t + step).min(end);
-            let h = above(next);
-            if h <= 0.0 {
-                let (mut lo, mut hi) = (t, next);
-                for _ in 0..32 {
-                    let mid = 0.5 * (lo + hi);
-                    if above(mid) > 0.0 { lo = mid } else { hi = mid }
-                }
-                let point = at(hi);
-                return Some(RayHit { point, distance: hi, tile: self.tile_at(point[0], point[2]) });
-            }
-            prev = h;
-            t = next;
-            // A ray going up and already above every possible height never comes back.
-            if d[1] >= 0.0 && at(t)[1] > top && prev > 0.0 {
-                return None;
-            }
-        }
-        None
     }
+    None
 }

@@ -1,4 +1,4 @@
-//! Relief (after manipulation): mountain tiles rise to a peak and hills swell, inside their
+//! Relief, the step of the vertex chain after manipulation: mountain tiles rise to a peak and hills swell, inside their
 //! tile type's height range, so a mountain reads as a mountain and not as a grey plateau.
 //!
 //! Manipulation leaves a mountain tile's inner vertices wherever the noise put them, clamped
@@ -21,37 +21,67 @@
 
 use hexx::Hex;
 
+use crate::config::MapConfig;
+use crate::geometry::Geometry;
 use crate::hash;
-use crate::kind::TileKind;
-use crate::terrain::Terrain;
+use crate::kind::Thresholds;
+use crate::vocab::TileKind;
 
-impl Terrain {
+/// The relief of a map: how high peaks, ridges and hills rise (see the module docs).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Relief {
+    peaks: f32,
+    ridges: f32,
+    hills: f32,
+    /// Relief is on (some peaks or hills, and hex unity).
+    active: bool,
+    thresholds: Thresholds,
+    seed: u32,
+    subdivisions: u32,
+}
+
+impl Relief {
+    /// The relief of a validated config.
+    #[must_use]
+    pub fn new(config: &MapConfig, thresholds: Thresholds) -> Self {
+        let r = &config.relief;
+        Self {
+            peaks: r.peaks,
+            ridges: r.ridges,
+            hills: r.hills,
+            active: r.any() && config.manipulation.hex_unity,
+            thresholds,
+            seed: config.seed,
+            subdivisions: config.subdivisions(),
+        }
+    }
+
     /// Applies relief to a manipulated height `h` (raw height `raw`) of lattice point `p` at
     /// `ring`, shared by tiles of `kinds`. The identity when the config's relief is off.
+    #[must_use]
     #[inline]
-    pub(crate) fn relief(&self, h: f32, raw: f32, p: Hex, ring: u32, kinds: &[TileKind]) -> f32 {
-        let relief = &self.config.relief;
+    pub fn apply(&self, geometry: &Geometry, h: f32, raw: f32, p: Hex, ring: u32, kinds: &[TileKind]) -> f32 {
         let Some(&first) = kinds.first() else { return h };
-        if !relief.any() || !self.config.manipulation.hex_unity || kinds.iter().any(|&k| k != first) {
+        if !self.active || kinds.iter().any(|&k| k != first) {
             return h;
         }
-        let n = self.lattice.subdivisions();
+        let n = self.subdivisions;
         let (lo, hi) = self.thresholds.range(first);
         let amount = match first {
-            TileKind::Mountain => relief.peaks,
+            TileKind::Mountain => self.peaks,
             TileKind::Land => {
                 // Hills where the noise is in the upper half of the land range, fading in.
                 let (s, m) = (self.thresholds.sea, self.thresholds.mountain);
                 let x = ((raw - (s + m) * 0.5) / ((m - s) * 0.5)).clamp(0.0, 1.0);
-                relief.hills * x * x * (3.0 - 2.0 * x)
+                self.hills * x * x * (3.0 - 2.0 * x)
             }
             TileKind::Sea => return h,
         };
         if amount <= 0.0 || hi <= lo {
             return h;
         }
-        let q = self.wrap_point(p);
-        let jitter = hash::unit(hash::hash(self.config.seed, &[i64::from(q.x), i64::from(q.y), 0x7e1e]));
+        let q = geometry.wrap_point(p);
+        let jitter = hash::unit(hash::hash(self.seed, &[i64::from(q.x), i64::from(q.y), 0x7e1e]));
         let profile = if ring < n {
             1.0 - ring as f32 / n as f32
         } else if first == TileKind::Mountain {
@@ -60,7 +90,7 @@ impl Terrain {
         } else {
             return h;
         };
-        let lift = amount * profile * (1.0 - relief.ridges * jitter);
+        let lift = amount * profile * (1.0 - self.ridges * jitter);
         h.max(lo + (hi - lo) * lift.clamp(0.0, 1.0))
     }
 }

@@ -22,7 +22,6 @@ use hexx::Hex;
 use crate::chunk::ChunkCoord;
 use crate::config::Orientation;
 use crate::lattice::Lattice;
-use crate::terrain::Terrain;
 
 /// The period of a wrapping map in the coordinates each stage uses.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -124,70 +123,3 @@ impl Wrap {
         ChunkCoord::new(k * self.chunk_columns + local / self.chunk_width, row.div_euclid(chunk_height as i32))
     }
 }
-
-impl Terrain {
-    /// The wrap of an east-west wrapping map, `None` otherwise.
-    #[must_use]
-    pub fn wrap(&self) -> Option<&Wrap> {
-        self.wrap.as_ref()
-    }
-
-    /// The tile of the map a tile stands for: on a wrapping map, the tile of the same row whose
-    /// column is the tile's column modulo the width; the tile itself otherwise.
-    #[must_use]
-    #[inline]
-    pub fn wrap_tile(&self, tile: Hex) -> Hex {
-        match &self.wrap {
-            Some(w) => {
-                let k = w.tile_period(self.offset_of(tile)[0]);
-                if k == 0 { tile } else { tile - w.tile_shift * k }
-            }
-            None => tile,
-        }
-    }
-
-    /// The canonical lattice point of a lattice point (itself unless the map wraps).
-    #[must_use]
-    #[inline]
-    pub fn wrap_point(&self, p: Hex) -> Hex {
-        self.wrap.as_ref().map_or(p, |w| w.point(p))
-    }
-
-    /// The chunk of the map a chunk stands for (itself unless the map wraps), and how many
-    /// periods east of it the chunk is placed.
-    #[must_use]
-    pub fn wrap_chunk(&self, chunk: ChunkCoord) -> (ChunkCoord, i32) {
-        self.wrap.as_ref().map_or((chunk, 0), |w| w.chunk(chunk))
-    }
-
-    /// Hex distance between two tiles, the short way round on a wrapping map.
-    #[must_use]
-    pub fn distance(&self, a: Hex, b: Hex) -> u32 {
-        let (a, b) = (self.wrap_tile(a), self.wrap_tile(b));
-        match &self.wrap {
-            Some(w) => [-1, 0, 1].iter().map(|&k| a.unsigned_distance_to(b + w.tile_shift * k)).min().unwrap_or(0),
-            None => a.unsigned_distance_to(b),
-        }
-    }
-
-    /// The copy of a tile nearest another tile: on a wrapping map, of the tile and the tiles a
-    /// whole number of map widths east or west of it, the one nearest `near` (where a path from
-    /// `near` goes the short way round, across the seam if that is shorter); the tile itself
-    /// otherwise.
-    #[must_use]
-    pub fn tile_near(&self, tile: Hex, near: Hex) -> Hex {
-        let Some(w) = &self.wrap else { return tile };
-        let tile = self.wrap_tile(tile);
-        let k = w.tile_period(self.offset_of(near)[0]);
-        (k - 1..=k + 1).map(|k| tile + w.tile_shift * k).min_by_key(|t| t.unsigned_distance_to(near)).unwrap_or(tile)
-    }
-
-    /// The six neighbors of a tile, each wrapped into the map on a wrapping map.
-    #[must_use]
-    pub fn neighbors(&self, tile: Hex) -> [Hex; 6] {
-        tile.all_neighbors().map(|nb| self.wrap_tile(nb))
-    }
-}
-
-#[cfg(test)]
-mod tests;

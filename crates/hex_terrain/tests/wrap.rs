@@ -165,7 +165,7 @@ proptest! {
         let (mut seam, mut elsewhere) = (0.0_f64, 0.0_f64);
         for k in 0..steps {
             let (p, q) = (start + Hex::new(k, 0), start + Hex::new(k + 1, 0));
-            let d = (t.noise_height(q) - t.noise_height(p)).abs();
+            let d = (t.source_height(q) - t.source_height(p)).abs();
             if wrap.point_period(p) == wrap.point_period(q) { elsewhere = elsewhere.max(d) } else { seam = seam.max(d) }
         }
         prop_assert!(seam <= 2.0 * elsewhere + 1e-12, "step {} across the seam, at most {} elsewhere", seam, elsewhere);

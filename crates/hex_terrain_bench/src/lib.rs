@@ -119,7 +119,7 @@ pub fn hexx_columns(terrain: &Terrain) -> usize {
                 .map(|oc| {
                     let hex = terrain.tile_from_offset(oc);
                     let center = terrain.lattice().tile_center(hex);
-                    (hex, terrain.noise_height(center) as f32 * max_elevation)
+                    (hex, terrain.source_height(center) as f32 * max_elevation)
                 })
                 .collect();
             let mesh = HeightMapMeshBuilder::new(terrain.layout(), &heights).build();

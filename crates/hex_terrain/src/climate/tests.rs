@@ -1,13 +1,6 @@
 use super::*;
+use crate::Terrain;
 use crate::config::{BiomeRule, MapConfig};
-
-#[test]
-fn vertex_colors_do_not_depend_on_the_order_of_the_tiles() {
-    let a = [Biome::Forest, Biome::Desert, Biome::Coast];
-    let b = [Biome::Coast, Biome::Forest, Biome::Desert];
-    assert_eq!(Terrain::vertex_color(&a, 0.3), Terrain::vertex_color(&b, 0.3));
-    assert_eq!(Terrain::vertex_color(&[Biome::Snow], 1.0), [238, 242, 246, 255]);
-}
 
 #[test]
 fn the_default_table_covers_both_kinds_once() {

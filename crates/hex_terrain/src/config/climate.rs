@@ -4,8 +4,7 @@
 use serde::{Deserialize, Serialize};
 
 use super::NoiseConfig;
-use crate::climate::Biome;
-use crate::kind::TileKind;
+use crate::vocab::{Biome, TileKind};
 
 /// Temperature, moisture and biomes. Off by default: the thesis' maps have relief types only.
 ///

@@ -1,4 +1,4 @@
-//! Heights: where every vertex's raw (unmanipulated) height comes from.
+//! Heights, the second stage: where every vertex's raw (unmanipulated) height comes from.
 //!
 //! The source is Perlin fBm ([`Fbm`], thesis Algorithm 2) or a greyscale heightmap
 //! ([`HeightImage`], the thesis' filter use), then a shaping filter of thesis section 7.1
@@ -13,74 +13,155 @@ pub use fbm::{FastPerlin, Fbm};
 pub use image::{HeightImage, ImageError, MAX_IMAGE_PIXELS, MAX_PNG_BYTES, remap_sea_level};
 pub use shape::ShapeBounds;
 
+use std::sync::Arc;
+
 use hexx::Hex;
 
-use crate::terrain::Terrain;
+use crate::config::{HeightSourceConfig, MapConfig, Shape};
+use crate::error::ConfigError;
+use crate::geometry::Geometry;
 
-impl Terrain {
+/// The height field of a map: its source (fBm or a decoded heightmap) and its shaping filter.
+/// Every method takes the map's [`Geometry`], which says where a lattice point is.
+#[derive(Debug, Clone)]
+pub struct HeightField {
+    fbm: Fbm,
+    /// The decoded heightmap and the image's sea level, for an `Image` source.
+    image: Option<(Arc<HeightImage>, f64)>,
+    shape: Shape,
+    shape_bounds: Option<ShapeBounds>,
+    /// Whether a shaping filter changes heights (a bounded map with a shape other than `None`).
+    shaping: bool,
+    sea_threshold: f64,
+}
+
+impl HeightField {
+    /// The height field of a validated config over `geometry`; `image` is the decoded
+    /// heightmap of an `Image` source (ignored for a `Noise` source).
+    ///
+    /// # Errors
+    /// `source.path` when an `Image` source has no image.
+    pub fn new(config: &MapConfig, geometry: &Geometry, image: Option<Arc<HeightImage>>) -> Result<Self, ConfigError> {
+        let image = match &config.source {
+            HeightSourceConfig::Noise => None,
+            HeightSourceConfig::Image { path, sea_level } => Some((
+                image.ok_or_else(|| {
+                    ConfigError::new("source.path", format!("{path:?}"), "a decoded heightmap image".into())
+                })?,
+                f64::from(*sea_level),
+            )),
+        };
+        let fbm = match geometry.wrap() {
+            Some(w) => Fbm::wrapped(config.seed, &config.noise, w.width / geometry.hex_size()),
+            None => Fbm::new(config.seed, &config.noise),
+        };
+        let shape_bounds = geometry.bounds().map(|rect| {
+            let (mut min_x, mut max_x, mut min_z, mut max_z) = (f64::MAX, f64::MIN, f64::MAX, f64::MIN);
+            let corners = [
+                rect.min,
+                [rect.max[0] - 1, rect.min[1]],
+                [rect.min[0], rect.max[1] - 1],
+                [rect.max[0] - 1, rect.max[1] - 1],
+            ];
+            let lattice = geometry.lattice();
+            // Both parities of the first and last columns/rows, so the zig-zag is covered.
+            for [c, r] in corners {
+                for (dc, dr) in [(0, 0), (1, 0), (-1, 0), (0, 1), (0, -1)] {
+                    let oc = [c + dc, r + dr];
+                    if rect.contains(oc) {
+                        let [x, z] = lattice.world(lattice.tile_center(geometry.tile_from_offset(oc)));
+                        min_x = min_x.min(x);
+                        max_x = max_x.max(x);
+                        min_z = min_z.min(z);
+                        max_z = max_z.max(z);
+                    }
+                }
+            }
+            let step = lattice.steps().0[0].abs().max(lattice.steps().1[0].abs());
+            let min_u = if max_x > min_x { step / (max_x - min_x) } else { 1.0 };
+            ShapeBounds { min_x, max_x, min_z, max_z, min_u }
+        });
+        Ok(Self {
+            fbm,
+            image,
+            shape: config.shape.clone(),
+            shaping: shape_bounds.is_some() && config.shape != Shape::None,
+            shape_bounds,
+            sea_threshold: f64::from(config.terrain.sea_threshold),
+        })
+    }
+
+    /// The fBm height source.
+    #[must_use]
+    pub fn fbm(&self) -> &Fbm {
+        &self.fbm
+    }
+
     /// Normalised height after shaping, before manipulation, at a lattice point.
     #[must_use]
     #[inline]
-    pub fn raw_height(&self, p: Hex) -> f32 {
-        self.shaped(self.noise_height(p), p)
+    pub fn raw_height(&self, geometry: &Geometry, p: Hex) -> f32 {
+        self.shaped(geometry, self.source_height(geometry, p), p)
     }
 
     /// Applies the shaping filter to a bare source height at lattice point `p`.
+    #[must_use]
     #[inline]
-    pub(crate) fn shaped(&self, noise: f64, p: Hex) -> f32 {
+    pub fn shaped(&self, geometry: &Geometry, source: f64, p: Hex) -> f32 {
         if self.shaping {
-            let [x, z] = self.lattice.world(self.wrap_point(p));
-            shape::apply(&self.config.shape, self.shape_bounds.as_ref(), noise, x, z) as f32
+            let [x, z] = geometry.lattice().world(geometry.wrap_point(p));
+            shape::apply(&self.shape, self.shape_bounds.as_ref(), source, x, z) as f32
         } else {
-            noise as f32
+            source as f32
         }
     }
 
     /// Bare source height (fBm or heightmap, no shaping) at a lattice point.
     #[must_use]
     #[inline]
-    pub fn noise_height(&self, p: Hex) -> f64 {
+    pub fn source_height(&self, geometry: &Geometry, p: Hex) -> f64 {
         if let Some((image, sea_level)) = &self.image {
-            return self.image_height(image, *sea_level, p);
+            return self.image_height(geometry, image, *sea_level, p);
         }
-        let [ux, uz] = self.noise_position(p);
+        let [ux, uz] = self.noise_position(geometry, p);
         self.fbm.sample(ux, uz)
     }
 
     /// Whether heights come from fBm (rather than a heightmap image).
-    pub(crate) fn samples_noise(&self) -> bool {
+    #[must_use]
+    pub fn samples_noise(&self) -> bool {
         self.image.is_none()
     }
 
     /// Source heights of many lattice points (batched for the noise).
-    pub(crate) fn base_heights(&self, points: &[Hex], out: &mut [f64]) {
+    pub fn source_heights(&self, geometry: &Geometry, points: &[Hex], out: &mut [f64]) {
         if let Some((image, sea_level)) = &self.image {
             for (p, o) in points.iter().zip(out) {
-                *o = self.image_height(image, *sea_level, *p);
+                *o = self.image_height(geometry, image, *sea_level, *p);
             }
         } else {
             const STEP: usize = 256;
             let mut positions = [[0.0; 2]; STEP];
             for (points, out) in points.chunks(STEP).zip(out.chunks_mut(STEP)) {
                 for (position, &p) in positions.iter_mut().zip(points) {
-                    *position = self.noise_position(p);
+                    *position = self.noise_position(geometry, p);
                 }
                 self.fbm.sample_many(&positions[..points.len()], out);
             }
         }
     }
 
-    fn image_height(&self, image: &HeightImage, sea_level: f64, p: Hex) -> f64 {
-        let [x, z] = self.lattice.world(self.wrap_point(p));
+    fn image_height(&self, geometry: &Geometry, image: &HeightImage, sea_level: f64, p: Hex) -> f64 {
+        let [x, z] = geometry.lattice().world(geometry.wrap_point(p));
         let (u, v) = self.shape_bounds.map_or((0.5, 0.5), |b| b.normalise(x, z));
-        remap_sea_level(image.sample(u, v), sea_level, f64::from(self.config.terrain.sea_threshold))
+        remap_sea_level(image.sample(u, v), sea_level, self.sea_threshold)
     }
 
     /// Where a lattice point samples the noise: its world position in hex radii, shifted by the
     /// map's offset (on a wrapping map, the position of its canonical point).
     #[must_use]
     #[inline]
-    pub fn noise_position(&self, p: Hex) -> [f64; 2] {
-        self.lattice.unit(self.wrap_point(p) + self.origin_lattice)
+    pub fn noise_position(&self, geometry: &Geometry, p: Hex) -> [f64; 2] {
+        geometry.lattice().unit(geometry.wrap_point(p) + geometry.origin_lattice())
     }
 }

@@ -11,17 +11,19 @@ use hexx::Hex;
 
 use super::grid::{GridShape, Owner, Points, TEMPLATE_MAX};
 use super::parallel::{BATCH, Outputs, Split, in_batches};
-use super::{Buffers, ChunkMesh, Diagnostics, GenerateOptions, Threads};
+use super::{Buffers, ChunkMesh, Diagnostics, GenerateOptions, Threads, vertex_color};
 use crate::chunk::TileRect;
-use crate::climate::{Biome, TileSample};
-use crate::kind::TileKind;
+use crate::climate::TileSample;
+use crate::geometry::Geometry;
 use crate::lattice::Lattice;
-use crate::manipulate::VertexSample;
-use crate::terrain::{Terrain, TileInfo};
+use crate::pipeline::Pipeline;
+use crate::vertex::{Sharing, VertexSample};
+use crate::vocab::{Biome, TileInfo, TileKind};
 
 /// A generation of one rectangle of tiles.
 pub(super) struct Job<'a> {
-    pub terrain: &'a Terrain,
+    pub pipeline: &'a Pipeline,
+    pub geometry: &'a Geometry,
     pub lattice: &'a Lattice,
     /// The tiles (clipped to the map).
     rect: TileRect,
@@ -32,7 +34,7 @@ pub(super) struct Job<'a> {
     offsets: [Vec<isize>; 2],
     pub split: Split,
     diagnostics: bool,
-    /// The lattice point positions are relative to ([`Terrain::rect_origin`]).
+    /// The lattice point positions are relative to ([`Geometry::rect_origin`]).
     origin: Hex,
 }
 
@@ -62,23 +64,35 @@ impl Kinds {
 
     /// Kind of a tile, `None` outside the map; every vertex of the job lies in a tile of `halo`.
     #[inline]
-    fn get(&self, terrain: &Terrain, tile: Hex) -> Option<TileKind> {
-        let oc = terrain.offset_of(tile);
-        if self.halo.contains(oc) { self.kinds[self.index(oc)] } else { terrain.map_tile_kind(tile) }
+    fn get(&self, pipeline: &Pipeline, tile: Hex) -> Option<TileKind> {
+        let oc = pipeline.geometry().offset_of(tile);
+        if self.halo.contains(oc) { self.kinds[self.index(oc)] } else { pipeline.map_tile_kind(tile) }
     }
 }
 
 impl<'a> Job<'a> {
-    pub fn new(terrain: &'a Terrain, rect: TileRect, options: GenerateOptions) -> Self {
-        let rect = terrain.bounds().map_or(rect, |b| rect.intersect(&b));
-        let lattice = terrain.lattice();
+    pub fn new(pipeline: &'a Pipeline, rect: TileRect, options: GenerateOptions) -> Self {
+        let geometry = pipeline.geometry();
+        let rect = geometry.bounds().map_or(rect, |b| rect.intersect(&b));
+        let lattice = geometry.lattice();
         let n = lattice.subdivisions() as usize;
         let split = Split(options.threads == Threads::Pool && rect.len() * 3 * n * n > Split::MIN_POINTS);
-        let tiles: Vec<Hex> = rect.iter().map(|oc| terrain.tile_from_offset(oc)).collect();
+        let tiles: Vec<Hex> = rect.iter().map(|oc| geometry.tile_from_offset(oc)).collect();
         let shape = GridShape::around(lattice, &tiles);
         let offsets = shape.template_offsets(lattice);
-        let origin = terrain.rect_origin(rect);
-        Self { terrain, lattice, rect, tiles, shape, offsets, split, diagnostics: options.diagnostics, origin }
+        let origin = geometry.rect_origin(rect);
+        Self {
+            pipeline,
+            geometry,
+            lattice,
+            rect,
+            tiles,
+            shape,
+            offsets,
+            split,
+            diagnostics: options.diagnostics,
+            origin,
+        }
     }
 
     /// The lattice points the job evaluates: its vertices, then the one-step halo.
@@ -91,7 +105,7 @@ impl<'a> Job<'a> {
     pub fn run(self) -> ChunkMesh {
         let (points, out, kinds) = self.split.in_pool(|| self.prelude());
         let Buffers { mut b, mut raws, mut moved, mut rings, mut heights } =
-            out.fit(points.owned, self.diagnostics, self.terrain.has_vertex_colors());
+            out.fit(points.owned, self.diagnostics, self.pipeline.has_vertex_colors());
         // Every pass from here on, in one visit to the thread pool.
         self.split.in_pool(|| {
             let outputs = Outputs {
@@ -117,6 +131,7 @@ impl<'a> Job<'a> {
             );
         });
 
+        let table = self.pipeline.table();
         let tiles = self
             .tiles
             .iter()
@@ -128,8 +143,8 @@ impl<'a> Job<'a> {
                 elevation: heights[points.grid.slot(self.lattice.tile_center(hex))],
                 in_map: true,
                 biome: kinds.biomes.get(t).map_or(Biome::of_kind(kind), |b| b.0),
-                river_flow: self.terrain.river_flow(hex),
-                lake: self.terrain.lake(hex),
+                river_flow: table.map_or(0.0, |t| t.river_flow(self.geometry, hex)),
+                lake: table.and_then(|t| t.lake(self.geometry, hex)),
             })
             .collect();
         let diagnostics = self.diagnostics.then(|| {
@@ -156,7 +171,7 @@ impl<'a> Job<'a> {
                             self.tiles.len() * self.lattice.triangles_per_tile() * 3,
                             self.shape.len(),
                             self.diagnostics,
-                            self.terrain.has_vertex_colors(),
+                            self.pipeline.has_vertex_colors(),
                         )
                     },
                 )
@@ -180,8 +195,8 @@ impl<'a> Job<'a> {
             .iter()
             .filter(|&[c, r]| c == c0 || c == c1 || r == r0 || r == r1)
             .map(|oc| {
-                let tile = self.terrain.tile_from_offset(oc);
-                tile.all_neighbors().iter().filter(|&&nb| !rect.contains(self.terrain.offset_of(nb))).count()
+                let tile = self.geometry.tile_from_offset(oc);
+                tile.all_neighbors().iter().filter(|&&nb| !rect.contains(self.geometry.offset_of(nb))).count()
             })
             .sum();
         self.lattice.mesh_vertex_count(rect.len(), outline)
@@ -191,7 +206,7 @@ impl<'a> Job<'a> {
     fn noise_at(&self, points: &[Hex]) -> Vec<f64> {
         let mut out = vec![0.0; points.len()];
         self.split.for_each_chunk(&mut out, BATCH, 1, |k, chunk| {
-            self.terrain.base_heights(&points[k * BATCH..k * BATCH + chunk.len()], chunk);
+            self.pipeline.heights().source_heights(self.geometry, &points[k * BATCH..k * BATCH + chunk.len()], chunk);
         });
         out
     }
@@ -199,44 +214,50 @@ impl<'a> Job<'a> {
     /// Kinds of the tiles and of the ring around them (`None` outside the map), from one sample
     /// at each center: every vertex evaluated lies in one of those tiles.
     fn kinds(&self) -> Kinds {
-        let terrain = self.terrain;
-        let colors = terrain.has_vertex_colors();
+        let pipeline = self.pipeline;
+        let geometry = self.geometry;
+        let heights = pipeline.heights();
+        let table = pipeline.table();
+        let colors = pipeline.has_vertex_colors();
         // Without a precomputed table, a tile's biome needs its neighbors' kinds: two rings.
-        let local_biomes = colors && terrain.table.is_none();
+        let local_biomes = colors && table.is_none();
         let halo = self.rect.grow(if local_biomes { 2 } else { 1 });
-        let tiles: Vec<Hex> = halo.iter().map(|oc| terrain.tile_from_offset(oc)).collect();
+        let tiles: Vec<Hex> = halo.iter().map(|oc| geometry.tile_from_offset(oc)).collect();
         let centers: Vec<Hex> = tiles.iter().map(|&t| self.lattice.tile_center(t)).collect();
         let noise = self.noise_at(&centers);
-        let raws = self.split.map(tiles.len(), |k| terrain.shaped(noise[k], centers[k]));
-        let kinds =
-            self.split.map(tiles.len(), |k| terrain.contains(tiles[k]).then(|| terrain.thresholds().classify(raws[k])));
+        let raws = self.split.map(tiles.len(), |k| heights.shaped(geometry, noise[k], centers[k]));
+        let kinds = self
+            .split
+            .map(tiles.len(), |k| geometry.contains(tiles[k]).then(|| pipeline.thresholds().classify(raws[k])));
         let mut out =
             Kinds { halo, kinds, around: Vec::new(), biomes: Vec::new(), wet: Vec::new(), center_noise: Vec::new() };
         out.center_noise = self.rect.iter().map(|oc| noise[out.index(oc)]).collect();
         out.around = self
             .tiles
             .iter()
-            .map(|&t| (out.get(terrain, t).unwrap_or(TileKind::Sea), t.all_neighbors().map(|nb| out.get(terrain, nb))))
+            .map(|&t| {
+                (out.get(pipeline, t).unwrap_or(TileKind::Sea), t.all_neighbors().map(|nb| out.get(pipeline, nb)))
+            })
             .collect();
-        if terrain.hydrology().is_some() {
+        if pipeline.water_table().is_some() {
             out.wet = self
                 .tiles
                 .iter()
-                .map(|&t| (terrain.tile_is_wet(t), t.all_neighbors().map(|nb| terrain.tile_is_wet(nb))))
+                .map(|&t| (pipeline.tile_is_wet(t), t.all_neighbors().map(|nb| pipeline.tile_is_wet(nb))))
                 .collect();
         }
         if colors {
             let biome = |t: Hex| -> Option<Biome> {
-                if !terrain.contains(t) {
+                if !geometry.contains(t) {
                     return None;
                 }
-                if terrain.table.is_some() {
-                    return Some(terrain.tile_biome(t));
+                if table.is_some() {
+                    return Some(pipeline.tile_biome(t));
                 }
-                let i = out.index(terrain.offset_of(t));
+                let i = out.index(geometry.offset_of(t));
                 let kind = out.kinds[i].unwrap_or(TileKind::Sea);
-                let sample = TileSample::new(raws[i], kind, t.all_neighbors().map(|nb| out.get(terrain, nb)));
-                Some(terrain.biome_of(t, &sample, false))
+                let sample = TileSample::new(raws[i], kind, t.all_neighbors().map(|nb| out.get(pipeline, nb)));
+                Some(pipeline.climate().biome_of(geometry, heights, t, &sample, false))
             };
             out.biomes =
                 self.tiles.iter().map(|&t| (biome(t).unwrap_or(Biome::Ocean), t.all_neighbors().map(biome))).collect();
@@ -247,8 +268,9 @@ impl<'a> Job<'a> {
     /// Height-source samples of a batch of owned points; a tile's center (template point 0)
     /// takes the sample already taken for its tile's kind.
     fn batch_noise(&self, points: &[Hex], owners: &[Owner], center_noise: &[f64], out: &mut [f64]) {
-        if !self.terrain.samples_noise() {
-            self.terrain.base_heights(points, out);
+        let heights = self.pipeline.heights();
+        if !heights.samples_noise() {
+            heights.source_heights(self.geometry, points, out);
             return;
         }
         let mut positions = [[0.0; 2]; BATCH];
@@ -256,11 +278,11 @@ impl<'a> Job<'a> {
         let mut len = 0;
         for (&p, owner) in points.iter().zip(owners) {
             if owner.k != 0 {
-                positions[len] = self.terrain.noise_position(p);
+                positions[len] = heights.noise_position(self.geometry, p);
                 len += 1;
             }
         }
-        self.terrain.fbm().sample_many(&positions[..len], &mut sampled[..len]);
+        heights.fbm().sample_many(&positions[..len], &mut sampled[..len]);
         let mut next = sampled.iter();
         for (o, owner) in out.iter_mut().zip(owners) {
             *o = if owner.k == 0 { center_noise[owner.tile as usize] } else { next.next().copied().unwrap_or(0.0) };
@@ -269,12 +291,16 @@ impl<'a> Job<'a> {
 
     /// The tiles' own vertices: their tiles are known, so no lookup is needed.
     fn owned_pass(&self, points: &Points, kinds: &Kinds, outputs: Outputs<'_>) {
-        let terrain = self.terrain;
+        let pipeline = self.pipeline;
+        let geometry = self.geometry;
+        let heights = pipeline.heights();
+        let rules = pipeline.vertex_rules();
+        let water = pipeline.water_table();
         let lattice = self.lattice;
         let n = lattice.subdivisions();
         let template = lattice.template();
-        let max_elevation = terrain.config().terrain.max_elevation;
-        let uv_scale = 0.5 / f64::from(terrain.config().layout.hex_size);
+        let max_elevation = pipeline.max_elevation();
+        let uv_scale = 0.5 / geometry.hex_size();
         // UVs are world-space modulo whole texture repeats: the origin's fraction plus the
         // local offset, so they stay small (and exact) anywhere in the world.
         let [ox, oz] = lattice.world(self.origin);
@@ -295,7 +321,7 @@ impl<'a> Job<'a> {
                 let Owner { tile, k } = points.owner[start + j];
                 let k = usize::from(k);
                 let ring = template[k].ring;
-                let raw = terrain.shaped(noise[j], p);
+                let raw = heights.shaped(geometry, noise[j], p);
                 let (own, around) = &kinds.around[tile as usize];
                 let hex = self.tiles[tile as usize];
                 let mut hexes = [hex; 3];
@@ -312,19 +338,20 @@ impl<'a> Job<'a> {
                         }
                     }
                 }
-                let mut s = terrain.finish_vertex(raw, p, ring, &sharing[..len]);
-                if let Some((own_wet, around_wet)) = kinds.wet.get(tile as usize)
-                    && (*own_wet || dirs[1..len].iter().any(|&d| around_wet[d]))
-                {
-                    s = terrain.carve(p, &hexes[..len], &sharing[..len], s);
-                }
+                // Only points of wet tiles are carved: the others read no water.
+                let wet = kinds
+                    .wet
+                    .get(tile as usize)
+                    .is_some_and(|(own_wet, around_wet)| *own_wet || dirs[1..len].iter().any(|&d| around_wet[d]));
+                let shared = Sharing { tiles: &hexes[..len], kinds: &sharing[..len] };
+                let s = rules.finish(geometry, water.filter(|_| wet), raw, p, ring, shared);
                 if !o.colors.is_empty() {
                     let (own_biome, around_biomes) = &kinds.biomes[tile as usize];
                     let mut biomes = [*own_biome; 3];
                     for (b, &d) in biomes.iter_mut().zip(&dirs).skip(1).take(len - 1) {
                         *b = around_biomes[d].unwrap_or(*own_biome);
                     }
-                    o.colors[j] = Terrain::vertex_color(&biomes[..len], s.water);
+                    o.colors[j] = vertex_color(&biomes[..len], s.water);
                 }
                 let height = s.height * max_elevation;
                 // Relative to the origin from the integer lattice offset: exact however far out.
@@ -349,7 +376,10 @@ impl<'a> Job<'a> {
     fn halo_vertex(&self, points: &Points, kinds: &Kinds, p: Hex, raw: f32) -> VertexSample {
         let n = self.lattice.subdivisions();
         let template = self.lattice.template();
-        let kind_of = |tile: Hex| kinds.get(self.terrain, tile);
+        let pipeline = self.pipeline;
+        let rules = pipeline.vertex_rules();
+        let water = pipeline.water_table();
+        let kind_of = |tile: Hex| kinds.get(pipeline, tile);
         let slot = points.grid.slot(p);
         for (d, step) in points.grid.around(p).into_iter().enumerate() {
             let i = points.grid.slots[slot.wrapping_add_signed(step)] as usize;
@@ -372,24 +402,25 @@ impl<'a> Job<'a> {
                         len += 1;
                     }
                 }
-                let s = self.terrain.finish_vertex(raw, p, set.ring, &sharing[..len]);
-                return self.terrain.carve(p, &hexes[..len], &sharing[..len], s);
+                let shared = Sharing { tiles: &hexes[..len], kinds: &sharing[..len] };
+                return rules.finish(self.geometry, water, raw, p, set.ring, shared);
             }
         }
-        self.terrain.border_vertex(raw, p, kind_of)
+        rules.finish_at(self.geometry, water, raw, p, kind_of)
     }
 
     /// The halo's heights, for the normals of border vertices.
     fn halo_pass(&self, points: &Points, kinds: &Kinds) -> Vec<f32> {
         let halo = &points.lattice[points.owned..];
-        let max_elevation = self.terrain.config().terrain.max_elevation;
+        let heights = self.pipeline.heights();
+        let max_elevation = self.pipeline.max_elevation();
         let mut out = vec![0.0_f32; halo.len()];
         self.split.for_each_chunk(&mut out, BATCH, 1, |c, out| {
             let pts = &halo[c * BATCH..c * BATCH + out.len()];
             let mut noise = [0.0; BATCH];
-            self.terrain.base_heights(pts, &mut noise[..pts.len()]);
+            heights.source_heights(self.geometry, pts, &mut noise[..pts.len()]);
             for ((h, &p), &noise) in out.iter_mut().zip(pts).zip(&noise) {
-                *h = self.halo_vertex(points, kinds, p, self.terrain.shaped(noise, p)).height * max_elevation;
+                *h = self.halo_vertex(points, kinds, p, heights.shaped(self.geometry, noise, p)).height * max_elevation;
             }
         });
         out

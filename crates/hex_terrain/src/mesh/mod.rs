@@ -2,26 +2,54 @@
 //!
 //! | file | stage |
 //! | --- | --- |
-//! | `mod.rs` | the public buffers ([`MeshBuffers`], [`ChunkMesh`], [`Diagnostics`]) and options ([`GenerateOptions`]) |
-//! | `generate.rs` | the `Terrain` methods that generate (`generate_chunk`, `generate_map`, `generate_rect`, `generate`) |
+//! | `mod.rs` | the public buffers ([`MeshBuffers`], [`ChunkMesh`], [`Diagnostics`]), options ([`GenerateOptions`]), [`generate`] and [`vertex_color`] |
 //! | `grid.rs` | the point grid: lattice coordinates to point indices, and the enumeration of a rectangle's points |
 //! | `job.rs` | one generation as a job whose passes are methods: tile kinds, owned vertices, halo, indices |
 //! | `normals.rs` | the normals pass |
 //! | `parallel.rs` | the parallel policy: batches, pool entry, disjoint output slices |
-//! | `water.rs` | the water surface over a generated chunk ([`WaterBuffers`]) |
 
-mod generate;
 mod grid;
 mod job;
 mod normals;
 mod parallel;
-mod water;
 
 use hexx::Hex;
-pub use water::{WaterBuffers, water_surface};
 
 use crate::chunk::TileRect;
-use crate::terrain::TileInfo;
+use crate::pipeline::Pipeline;
+use crate::vocab::{Biome, TileInfo};
+
+/// Generates the mesh of any rectangle of tiles (clipped to the map), with the halo it needs:
+/// the result for a tile does not depend on which rectangle it was generated in, nor on the
+/// options (diagnostics, and where the work runs).
+#[must_use]
+pub fn generate(pipeline: &Pipeline, rect: TileRect, options: GenerateOptions) -> ChunkMesh {
+    job::Job::new(pipeline, rect, options).run()
+}
+
+/// The lattice points generation evaluates for `rect`, enumerated as generation does: its
+/// vertices, then the one-step halo that normals need. For benchmarks (the noise floor).
+#[cfg(feature = "bench")]
+#[must_use]
+pub fn mesh_points(pipeline: &Pipeline, rect: TileRect) -> Vec<Hex> {
+    job::Job::new(pipeline, rect, GenerateOptions::default()).points()
+}
+
+/// The color of a vertex shared by tiles of `biomes`: their colors averaged (integer
+/// arithmetic, so the order of the tiles does not matter), the water cover in alpha.
+#[must_use]
+#[inline]
+pub fn vertex_color(biomes: &[Biome], water: f32) -> [u8; 4] {
+    let mut sum = [0_u32; 3];
+    for b in biomes {
+        for (s, c) in sum.iter_mut().zip(b.color()) {
+            *s += u32::from(c);
+        }
+    }
+    let n = biomes.len().max(1) as u32;
+    let avg = sum.map(|s| ((s + n / 2) / n) as u8);
+    [avg[0], avg[1], avg[2], (water.clamp(0.0, 1.0) * 255.0).round() as u8]
+}
 
 /// Plain vertex and index buffers, ready for any renderer.
 ///

@@ -144,3 +144,11 @@ fn normals_come_from_the_six_lattice_neighbors() {
         }
     }
 }
+
+#[test]
+fn vertex_colors_do_not_depend_on_the_order_of_the_tiles() {
+    let a = [crate::Biome::Forest, crate::Biome::Desert, crate::Biome::Coast];
+    let b = [crate::Biome::Coast, crate::Biome::Forest, crate::Biome::Desert];
+    assert_eq!(vertex_color(&a, 0.3), vertex_color(&b, 0.3));
+    assert_eq!(vertex_color(&[crate::Biome::Snow], 1.0), [238, 242, 246, 255]);
+}

@@ -6,9 +6,10 @@ fn config(relief: ReliefConfig) -> MapConfig {
     c
 }
 
-/// Relief lifts mountain centers (the plateau becomes a peak) and changes nothing when off.
+/// Relief lifts mountain centers (the plateau becomes a peak) and changes nothing without hex
+/// unity.
 #[test]
-fn relief_raises_mountain_centers_and_is_off_by_default() {
+fn relief_raises_mountain_centers_and_needs_hex_unity() {
     let flat = Terrain::new(config(ReliefConfig::default())).unwrap();
     let peaked = Terrain::new(config(ReliefConfig::MOUNTAINS)).unwrap();
     let (a, b) = (flat.generate_map().unwrap(), peaked.generate_map().unwrap());
@@ -29,8 +30,11 @@ fn relief_raises_mountain_centers_and_is_off_by_default() {
     assert!(mountains > 10, "{mountains} mountains");
     assert!(raised * 2 > mountains, "{raised} of {mountains} mountain centers raised");
     assert_ne!(a.buffers.positions, b.buffers.positions);
-    let off = Terrain::new(MapConfig { size: MapSize::Bounded { x: 40, z: 30 }, ..MapConfig::default() }).unwrap();
-    let mut map0 = MapConfig { size: MapSize::Bounded { x: 40, z: 30 }, ..MapConfig::default() };
-    map0.relief = ReliefConfig::default();
-    assert_eq!(off.generate_map().unwrap(), Terrain::new(map0).unwrap().generate_map().unwrap());
+    // Relief shapes tiles inside the ranges hex unity gives them: without hex unity it is off.
+    let mut raw_flat = config(ReliefConfig::default());
+    raw_flat.manipulation.hex_unity = false;
+    let mut raw_peaked = config(ReliefConfig::MOUNTAINS);
+    raw_peaked.manipulation.hex_unity = false;
+    let (c, d) = (Terrain::new(raw_flat).unwrap(), Terrain::new(raw_peaked).unwrap());
+    assert_eq!(c.generate_map().unwrap(), d.generate_map().unwrap());
 }

@@ -1,6 +1,7 @@
 use super::*;
 use crate::chunk::ChunkCoord;
 use crate::config::Shape;
+use crate::config::{MapSize, Orientation};
 
 fn terrain() -> Terrain {
     Terrain::new(MapConfig::default()).unwrap()

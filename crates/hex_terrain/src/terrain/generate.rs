@@ -1,9 +1,10 @@
-//! The generation methods of [`Terrain`]: every way to turn tiles into a [`ChunkMesh`].
+//! The generation methods of [`Terrain`]: every way to turn tiles into a [`ChunkMesh`], and the
+//! props of a generated chunk.
 
-use super::job::Job;
-use super::{ChunkMesh, GenerateOptions};
+use super::Terrain;
 use crate::chunk::{ChunkCoord, TileRect};
-use crate::terrain::Terrain;
+use crate::mesh::{self, ChunkMesh, GenerateOptions};
+use crate::props::{self, Prop};
 
 impl Terrain {
     /// Generates a chunk on the calling thread (a chunk is the unit of parallel work of a
@@ -31,7 +32,7 @@ impl Terrain {
     /// buffers are the same bits whatever the options.
     #[must_use]
     pub fn generate(&self, rect: TileRect, options: GenerateOptions) -> ChunkMesh {
-        Job::new(self, rect, options).run()
+        mesh::generate(&self.pipeline, rect, options)
     }
 
     /// The lattice points generation evaluates for `rect`, enumerated as generation does: its
@@ -39,6 +40,13 @@ impl Terrain {
     #[cfg(feature = "bench")]
     #[must_use]
     pub fn mesh_points(&self, rect: TileRect) -> Vec<hexx::Hex> {
-        Job::new(self, rect, GenerateOptions::default()).points()
+        mesh::mesh_points(&self.pipeline, rect)
+    }
+
+    /// The props of a generated chunk (see [`crate::props`]), at most `max_per_chunk`, with
+    /// `density` (in `[0, 1]`, clamped) the share of each tile's props that stand.
+    #[must_use]
+    pub fn props(&self, chunk: &ChunkMesh, max_per_chunk: usize, density: f32) -> Vec<Prop> {
+        props::props(&self.pipeline, chunk, max_per_chunk, density)
     }
 }

@@ -1,4 +1,4 @@
-//! The water surface over a generated chunk: a separate mesh at sea level over the sea, and
+//! The water surface, the last stage of a chunk's water: over a generated chunk, a separate mesh at sea level over the sea, and
 //! over river channels and lakes a sheet a little above their carved beds, with the depth of
 //! water below each vertex, from which a renderer colors shallows and deeps and draws the shore.
 //!
@@ -9,8 +9,7 @@
 //! (river or lake) a sheet that follows the floor, raised by the water cover at each vertex
 //! times the river depth (so it meets dry banks at depth 0). Dry triangles make nothing.
 
-use super::{ChunkMesh, MeshBuffers};
-use crate::terrain::Terrain;
+use crate::mesh::MeshBuffers;
 
 /// The water surface of a chunk, positions relative to the chunk's origin like its terrain.
 #[derive(Debug, Clone, Default, PartialEq)]
@@ -50,24 +49,9 @@ enum Surface {
     River,
 }
 
-impl Terrain {
-    /// World height of the sea surface: the sea threshold times the maximum elevation (the
-    /// height of every border vertex between sea and land tiles).
-    #[must_use]
-    pub fn sea_level(&self) -> f32 {
-        self.thresholds().sea * self.config().terrain.max_elevation
-    }
-
-    /// The water surface over a generated chunk (see the module docs); `river_depth` is the
-    /// height of river and lake water over a fully covered vertex, in world units. Empty for a
-    /// dry chunk.
-    #[must_use]
-    pub fn water_surface(&self, chunk: &ChunkMesh, river_depth: f32) -> WaterBuffers {
-        water_surface(&chunk.buffers, self.sea_level(), river_depth)
-    }
-}
-
-/// [`Terrain::water_surface`] from the buffers and the sea level.
+/// The water surface over a chunk's buffers (see the module docs), with the sea at `sea_level`
+/// and river and lake water `river_depth` over a fully covered vertex, in world units. Empty
+/// for a dry chunk.
 #[must_use]
 pub fn water_surface(b: &MeshBuffers, sea_level: f32, river_depth: f32) -> WaterBuffers {
     let cover = |i: usize| b.colors.get(i).map_or(0.0, |c| f32::from(c[3]) / 255.0);

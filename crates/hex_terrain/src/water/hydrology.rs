@@ -1,4 +1,5 @@
-//! Rivers and lakes of a bounded map, at the tile level, from the tiles' center heights.
+//! The water network, built with the per-map tile table: rivers and lakes of a bounded map,
+//! at the tile level, from the tiles' center heights.
 //!
 //! Priority-flood (Barnes, Lehman and Mulla, 2014): the sea and the map's edge tiles are the
 //! outlets; tiles are taken lowest water level first, and each tile reached from one already
@@ -23,9 +24,8 @@ use std::collections::BinaryHeap;
 use hexx::Hex;
 use serde::{Deserialize, Serialize};
 
-use super::table::TileTable;
-use crate::kind::TileKind;
-use crate::terrain::Terrain;
+use crate::config::RiverConfig;
+use crate::vocab::TileKind;
 
 /// No downstream tile: the tile is sea (an outlet).
 const OUTLET: u8 = 6;
@@ -84,20 +84,27 @@ impl PartialOrd for Entry {
 }
 
 impl Hydrology {
-    /// Builds the network from the table's center heights and each tile's rain.
-    pub(crate) fn build(terrain: &Terrain, table: &TileTable, tiles: &[Hex], rain: &[f32]) -> Self {
-        let config = &terrain.config().rivers;
-        let count = tiles.len();
-        let neighbor = |i: usize, d: usize| table.index(terrain, tiles[i].all_neighbors()[d]);
-        let mut level = table.raw.clone();
+    /// Builds the network of a map's tiles (indices `0..raw.len()`) from their center heights
+    /// `raw`, their kinds, each tile's rain, and `neighbor(i, d)`: the tile in direction `d`
+    /// (`Hex::all_neighbors` order) of tile `i`, `None` off the map.
+    pub(crate) fn build(
+        config: &RiverConfig,
+        raw: &[f32],
+        kinds: &[TileKind],
+        rain: &[f32],
+        neighbor: impl Fn(usize, usize) -> Option<usize>,
+    ) -> Self {
+        let neighbor = &neighbor;
+        let count = raw.len();
+        let mut level = raw.to_vec();
         let mut down = vec![OUTLET; count];
         let mut taken = vec![false; count];
         let mut heap = BinaryHeap::new();
         let mut seq = 0_u32;
         for i in 0..count {
             let off_map = (0..6).find(|&d| neighbor(i, d).is_none());
-            if table.kinds[i] == TileKind::Sea || off_map.is_some() {
-                if table.kinds[i] != TileKind::Sea {
+            if kinds[i] == TileKind::Sea || off_map.is_some() {
+                if kinds[i] != TileKind::Sea {
                     down[i] = off_map.unwrap_or(0) as u8;
                 }
                 taken[i] = true;
@@ -129,10 +136,9 @@ impl Hydrology {
                 flow[j] += flow[i];
             }
         }
-        let (lake, spill) =
-            Self::lakes(config.lakes, config.min_lake_depth, &table.raw, &level, &table.kinds, &order, |i| {
-                (0..6).filter_map(move |d| neighbor(i, d))
-            });
+        let (lake, spill) = Self::lakes(config.lakes, config.min_lake_depth, raw, &level, kinds, &order, |i| {
+            (0..6).filter_map(move |d| neighbor(i, d))
+        });
         let mut hydrology =
             Self { level, down, flow, lake, spill, channels: vec![[0.0; 6]; count], threshold: config.threshold };
         let width = |flow: f32| config.width * (flow / config.threshold).sqrt().clamp(1.0, 2.0);
@@ -229,64 +235,5 @@ impl Hydrology {
     /// Downstream direction of tile `i` (`None` for sea).
     pub(crate) fn down(&self, i: usize) -> Option<usize> {
         (self.down[i] < OUTLET).then_some(usize::from(self.down[i]))
-    }
-}
-
-impl Terrain {
-    /// The map's water network: `None` on a map without rivers.
-    #[must_use]
-    pub fn hydrology(&self) -> Option<&Hydrology> {
-        self.table.as_ref()?.hydrology.as_ref()
-    }
-
-    /// The river on a tile, if one runs through it.
-    #[must_use]
-    pub fn river(&self, tile: Hex) -> Option<RiverTile> {
-        let table = self.table.as_ref()?;
-        let h = table.hydrology.as_ref()?;
-        let i = table.index(self, tile)?;
-        if !h.river_at(i) {
-            return None;
-        }
-        let tile = self.wrap_tile(tile);
-        let neighbors = self.neighbors(tile);
-        let downstream = h.down(i).map(|d| neighbors[d]).filter(|&nb| self.contains(nb));
-        let upstream = (0..6)
-            .filter(|&d| {
-                table.index(self, neighbors[d]).is_some_and(|j| h.river_at(j) && h.down(j) == Some((d + 3) % 6))
-            })
-            .map(|d| neighbors[d])
-            .collect();
-        Some(RiverTile { hex: tile, flow: h.flow(i), level: h.level(i), downstream, upstream })
-    }
-
-    /// The lake a tile belongs to (an id, 0 for the first lake), if it is a lake tile.
-    #[must_use]
-    pub fn lake(&self, tile: Hex) -> Option<u32> {
-        let table = self.table.as_ref()?;
-        table.hydrology.as_ref()?.lake_of(table.index(self, tile)?)
-    }
-
-    /// Every river tile of the map, row by row.
-    #[must_use]
-    pub fn rivers(&self) -> Vec<RiverTile> {
-        self.tiles().filter_map(|t| self.river(t)).collect()
-    }
-
-    /// Water level of a tile (the filled surface, normalised), on a map with rivers.
-    #[must_use]
-    pub fn water_level(&self, tile: Hex) -> Option<f32> {
-        let table = self.table.as_ref()?;
-        Some(table.hydrology.as_ref()?.level(table.index(self, tile)?))
-    }
-}
-
-impl Terrain {
-    /// Water a river on a tile carries, 0 when no river runs through it.
-    #[must_use]
-    pub fn river_flow(&self, tile: Hex) -> f32 {
-        let Some(table) = &self.table else { return 0.0 };
-        let (Some(h), Some(i)) = (&table.hydrology, table.index(self, tile)) else { return 0.0 };
-        if h.river_at(i) { h.flow(i) } else { 0.0 }
     }
 }

@@ -1,0 +1,230 @@
+//! The compiled pipeline: a validated config turned into its stage objects, in the order data
+//! flows through them. [`Geometry`] (where tiles and points are), [`HeightField`] (the raw height
+//! of a point), [`Thresholds`] (a tile's kind), [`ClimateModel`] (temperature, moisture,
+//! biomes), the [`TileTable`] of a bounded map with climate or rivers (every tile's kind, biome
+//! and the water network, computed once), and [`VertexRules`] (the vertex chain: manipulation,
+//! relief, carving). Each stage takes the stages it needs as arguments; the pipeline holds them
+//! and answers the questions that combine them (a tile's kind, biome or info, a vertex).
+//!
+//! The consumers (the mesh job, queries, props, the water surface) read a `&Pipeline`;
+//! [`Terrain`](crate::Terrain) is the facade over all of it.
+
+use std::sync::Arc;
+
+use hexx::Hex;
+
+use crate::climate::{ClimateModel, TileSample};
+use crate::config::{HeightSourceConfig, MAX_WATER_TILES, MapConfig};
+use crate::error::ConfigError;
+use crate::geometry::Geometry;
+use crate::heights::{HeightField, HeightImage};
+use crate::kind::Thresholds;
+use crate::table::TileTable;
+use crate::vertex::{VertexRules, VertexSample};
+use crate::vocab::{Biome, TileInfo, TileKind};
+use crate::water::channels;
+
+/// A validated config compiled into its stages. Cheap to share between threads.
+#[derive(Debug, Clone)]
+pub struct Pipeline {
+    config: MapConfig,
+    geometry: Geometry,
+    heights: HeightField,
+    thresholds: Thresholds,
+    climate: ClimateModel,
+    /// Per-tile data of a bounded map with climate or rivers, computed once.
+    table: Option<Arc<TileTable>>,
+    vertex: VertexRules,
+}
+
+impl Pipeline {
+    /// Validates `config`, loads the heightmap of an `Image` source from its path, and compiles.
+    ///
+    /// # Errors
+    /// The first invalid field of the config, or `source.path` when the image cannot be read.
+    pub fn new(config: MapConfig) -> Result<Self, ConfigError> {
+        config.validate()?;
+        let image = match &config.source {
+            HeightSourceConfig::Noise => None,
+            HeightSourceConfig::Image { path, .. } => {
+                Some(Arc::new(HeightImage::load(std::path::Path::new(path)).map_err(|e| {
+                    ConfigError::new("source.path", format!("{path:?}"), format!("a readable 8 or 16 bit PNG ({e})"))
+                })?))
+            }
+        };
+        Self::compile(config, image)
+    }
+
+    /// Validates `config` and compiles it with the heightmap of an `Image` source already
+    /// decoded; `image` is ignored for a `Noise` source.
+    ///
+    /// # Errors
+    /// The first invalid field of the config, or `source.path` when an `Image` source has no
+    /// image.
+    pub fn with_image(config: MapConfig, image: Option<Arc<HeightImage>>) -> Result<Self, ConfigError> {
+        config.validate()?;
+        Self::compile(config, image)
+    }
+
+    /// Builds the stages of a validated config, each from the ones before it.
+    fn compile(config: MapConfig, image: Option<Arc<HeightImage>>) -> Result<Self, ConfigError> {
+        let geometry = Geometry::new(&config);
+        let heights = HeightField::new(&config, &geometry, image)?;
+        let thresholds = Thresholds::new(&config.terrain, &config.manipulation);
+        let climate = ClimateModel::new(&config, &geometry, thresholds);
+        // Rivers need the whole map's table; a climate alone uses it on maps up to the size
+        // rivers allow, and computes biomes chunk by chunk on larger ones.
+        let bounds = geometry.bounds();
+        let tiles = bounds.map_or(u64::MAX, |b| b.len() as u64);
+        let table = bounds
+            .filter(|_| config.rivers.enabled || (config.climate.enabled && tiles <= MAX_WATER_TILES))
+            .map(|rect| Arc::new(TileTable::build(&geometry, &heights, &thresholds, &climate, &config.rivers, rect)));
+        let vertex = VertexRules::new(&config, thresholds);
+        Ok(Self { config, geometry, heights, thresholds, climate, table, vertex })
+    }
+
+    /// The config it was compiled from.
+    #[must_use]
+    pub fn config(&self) -> &MapConfig {
+        &self.config
+    }
+
+    /// Geometry: lattice, layout, bounds, wrap, chunking.
+    #[must_use]
+    pub fn geometry(&self) -> &Geometry {
+        &self.geometry
+    }
+
+    /// The height field.
+    #[must_use]
+    pub fn heights(&self) -> &HeightField {
+        &self.heights
+    }
+
+    /// Thresholds and type ranges in effect.
+    #[must_use]
+    pub fn thresholds(&self) -> &Thresholds {
+        &self.thresholds
+    }
+
+    /// The climate.
+    #[must_use]
+    pub fn climate(&self) -> &ClimateModel {
+        &self.climate
+    }
+
+    /// The per-tile table of a bounded map with climate or rivers.
+    #[must_use]
+    pub fn table(&self) -> Option<&TileTable> {
+        self.table.as_deref()
+    }
+
+    /// The tile table of a map with rivers (what carving reads), `None` on a map without.
+    #[must_use]
+    #[inline]
+    pub fn water_table(&self) -> Option<&TileTable> {
+        self.table().filter(|t| t.hydrology().is_some())
+    }
+
+    /// The vertex chain.
+    #[must_use]
+    pub fn vertex_rules(&self) -> &VertexRules {
+        &self.vertex
+    }
+
+    /// World height of the highest possible surface.
+    #[must_use]
+    pub fn max_elevation(&self) -> f32 {
+        self.config.terrain.max_elevation
+    }
+
+    /// Type of a tile (by its center), whether or not it is in the map.
+    #[must_use]
+    #[inline]
+    pub fn tile_kind(&self, tile: Hex) -> TileKind {
+        self.thresholds.tile_kind(&self.geometry, &self.heights, tile)
+    }
+
+    /// Type of a tile if it belongs to the map.
+    #[must_use]
+    #[inline]
+    pub fn map_tile_kind(&self, tile: Hex) -> Option<TileKind> {
+        self.thresholds.map_tile_kind(&self.geometry, &self.heights, tile)
+    }
+
+    /// A tile's biome: from the table when the map has one, else from its center sample.
+    #[must_use]
+    pub fn tile_biome(&self, tile: Hex) -> Biome {
+        if let Some(biome) = self.table().and_then(|t| t.biome(&self.geometry, tile)) {
+            return biome;
+        }
+        self.climate.biome_of(&self.geometry, &self.heights, tile, &self.tile_sample(tile), false)
+    }
+
+    /// The center sample of a tile and its neighbors' kinds.
+    #[must_use]
+    pub fn tile_sample(&self, tile: Hex) -> TileSample {
+        TileSample::of(&self.geometry, &self.heights, &self.thresholds, tile)
+    }
+
+    /// Evaluates one lattice vertex, computing the kinds of the tiles around it.
+    #[must_use]
+    pub fn vertex(&self, p: Hex) -> VertexSample {
+        self.vertex.evaluate(&self.geometry, &self.heights, self.water_table(), p, |t| self.map_tile_kind(t))
+    }
+
+    /// World height of the finished surface at a lattice point.
+    #[must_use]
+    pub fn vertex_elevation(&self, p: Hex) -> f32 {
+        self.vertex(p).height * self.max_elevation()
+    }
+
+    /// Type, center elevation, membership, biome, river and lake of a tile.
+    #[must_use]
+    pub fn tile_info(&self, tile: Hex) -> TileInfo {
+        let sample = self.vertex(self.geometry.lattice().tile_center(tile));
+        self.info_of(tile, self.thresholds.classify(sample.raw), sample.height * self.max_elevation())
+    }
+
+    /// A tile's info from its kind and center elevation.
+    #[must_use]
+    pub fn info_of(&self, tile: Hex, kind: TileKind, elevation: f32) -> TileInfo {
+        let table = self.table();
+        TileInfo {
+            hex: tile,
+            kind,
+            elevation,
+            in_map: self.geometry.contains(tile),
+            biome: self.tile_biome(tile),
+            river_flow: table.map_or(0.0, |t| t.river_flow(&self.geometry, tile)),
+            lake: table.and_then(|t| t.lake(&self.geometry, tile)),
+        }
+    }
+
+    /// Whether any water (a lake, or a river channel) lies on a tile.
+    #[must_use]
+    #[inline]
+    pub fn tile_is_wet(&self, tile: Hex) -> bool {
+        self.water_table().is_some_and(|t| channels::is_wet(&self.geometry, t, tile))
+    }
+
+    /// How much of a channel or lake covers lattice point `p` of `tile` (see
+    /// [`channels::cover`]).
+    #[must_use]
+    pub fn water_cover(&self, tile: Hex, p: Hex) -> f32 {
+        self.water_table().map_or(0.0, |t| channels::cover(&self.geometry, t, tile, p))
+    }
+
+    /// Whether meshes carry a color per vertex (climate or rivers on).
+    #[must_use]
+    pub fn has_vertex_colors(&self) -> bool {
+        self.config.climate.enabled || self.config.rivers.enabled
+    }
+
+    /// World height of the sea surface: the sea threshold times the maximum elevation (the
+    /// height of every border vertex between sea and land tiles).
+    #[must_use]
+    pub fn sea_level(&self) -> f32 {
+        self.thresholds.sea * self.max_elevation()
+    }
+}

@@ -1,0 +1,172 @@
+//! The per-map tile table, a stage of bounded maps with climate or rivers: each tile's center
+//! height and kind, the water network and every tile's biome, computed once when the map is
+//! compiled. Chunks read it, so a non-local feature (a river drains a whole basin) is the same in
+//! every chunk and in the whole map.
+
+use hexx::Hex;
+
+use crate::chunk::TileRect;
+use crate::climate::{Climate, ClimateModel, TileSample};
+use crate::config::RiverConfig;
+use crate::geometry::Geometry;
+use crate::heights::HeightField;
+use crate::kind::Thresholds;
+use crate::vocab::{Biome, TileKind};
+use crate::water::hydrology::{Hydrology, RiverTile};
+
+/// Per-tile data of a bounded map, row by row.
+#[derive(Debug, Clone)]
+pub struct TileTable {
+    rect: TileRect,
+    raw: Vec<f32>,
+    kinds: Vec<TileKind>,
+    biomes: Vec<Biome>,
+    hydrology: Option<Hydrology>,
+}
+
+impl TileTable {
+    /// Row-major index of an in-map tile (any copy of it on a wrapping map).
+    #[must_use]
+    #[inline]
+    pub fn index(&self, geometry: &Geometry, tile: Hex) -> Option<usize> {
+        self.index_of(geometry.offset_of(geometry.wrap_tile(tile)))
+    }
+
+    /// Row-major index of an offset coordinate in the map.
+    #[must_use]
+    #[inline]
+    pub fn index_of(&self, [c, r]: [i32; 2]) -> Option<usize> {
+        let rect = self.rect;
+        rect.contains([c, r]).then(|| (r - rect.min[1]) as usize * self.cols() + (c - rect.min[0]) as usize)
+    }
+
+    /// Number of columns.
+    #[inline]
+    fn cols(&self) -> usize {
+        (self.rect.max[0] - self.rect.min[0]) as usize
+    }
+
+    /// Builds the table of the tiles of `rect`: one height sample a tile, then the water
+    /// network (when `rivers` is on) and the biomes.
+    #[must_use]
+    pub fn build(
+        geometry: &Geometry,
+        heights: &HeightField,
+        thresholds: &Thresholds,
+        climate: &ClimateModel,
+        rivers: &RiverConfig,
+        rect: TileRect,
+    ) -> Self {
+        let tiles: Vec<Hex> = rect.iter().map(|oc| geometry.tile_from_offset(oc)).collect();
+        let centers: Vec<Hex> = tiles.iter().map(|&t| geometry.lattice().tile_center(t)).collect();
+        let mut source = vec![0.0; centers.len()];
+        heights.source_heights(geometry, &centers, &mut source);
+        let raw: Vec<f32> = source.iter().zip(&centers).map(|(&n, &p)| heights.shaped(geometry, n, p)).collect();
+        let kinds: Vec<TileKind> = raw.iter().map(|&h| thresholds.classify(h)).collect();
+        let mut table = Self { rect, raw, kinds, biomes: Vec::new(), hydrology: None };
+        let samples: Vec<TileSample> = tiles.iter().enumerate().map(|(i, &t)| table.sample(geometry, i, t)).collect();
+        // Each land tile's climate, once: rain and biome both read it.
+        let climates: Vec<Option<Climate>> = tiles
+            .iter()
+            .zip(&samples)
+            .map(|(&t, s)| climate.climate_for_biome(geometry, heights, t, s, false))
+            .collect();
+        if rivers.enabled {
+            let sea = thresholds.sea;
+            let rain: Vec<f32> = samples
+                .iter()
+                .zip(&climates)
+                .map(|(s, c)| {
+                    // Wetter and higher tiles get more rain (air rising over relief rains out), so
+                    // rivers rise on high, wet ground; the floor makes every land tile add water,
+                    // so flow grows strictly downstream.
+                    let relief = 0.5 + ((s.raw - sea) / (1.0 - sea).max(f32::EPSILON)).clamp(0.0, 1.0);
+                    match (s.kind, c) {
+                        (TileKind::Sea, _) => 0.0,
+                        (_, Some(c)) => (0.05 + 0.95 * c.moisture) * relief,
+                        (_, None) => relief,
+                    }
+                })
+                .collect();
+            let neighbor = |i: usize, d: usize| table.index(geometry, tiles[i].all_neighbors()[d]);
+            table.hydrology = Some(Hydrology::build(rivers, &table.raw, &table.kinds, &rain, neighbor));
+        }
+        table.biomes = samples
+            .iter()
+            .zip(climates)
+            .enumerate()
+            .map(|(i, (s, climate_of))| {
+                let lake = table.hydrology.as_ref().is_some_and(|h| h.lake_of(i).is_some());
+                climate.biome_from(s, lake, climate_of)
+            })
+            .collect();
+        table
+    }
+
+    /// Tile `i`'s sample, its neighbors' kinds read from the table.
+    fn sample(&self, geometry: &Geometry, i: usize, tile: Hex) -> TileSample {
+        let neighbors = tile.all_neighbors().map(|nb| self.index(geometry, nb).map(|j| self.kinds[j]));
+        TileSample::new(self.raw[i], self.kinds[i], neighbors)
+    }
+
+    /// The biome of an in-map tile.
+    #[must_use]
+    pub fn biome(&self, geometry: &Geometry, tile: Hex) -> Option<Biome> {
+        self.index(geometry, tile).map(|i| self.biomes[i])
+    }
+
+    /// The map's water network: `None` on a map without rivers.
+    #[must_use]
+    pub fn hydrology(&self) -> Option<&Hydrology> {
+        self.hydrology.as_ref()
+    }
+
+    /// The water network and the index of an in-map tile in it.
+    #[must_use]
+    #[inline]
+    pub fn water_at(&self, geometry: &Geometry, tile: Hex) -> Option<(&Hydrology, usize)> {
+        Some((self.hydrology.as_ref()?, self.index(geometry, tile)?))
+    }
+
+    /// The river on a tile, if one runs through it.
+    #[must_use]
+    pub fn river(&self, geometry: &Geometry, tile: Hex) -> Option<RiverTile> {
+        let (h, i) = self.water_at(geometry, tile)?;
+        if !h.river_at(i) {
+            return None;
+        }
+        let tile = geometry.wrap_tile(tile);
+        let neighbors = geometry.neighbors(tile);
+        let downstream = h.down(i).map(|d| neighbors[d]).filter(|&nb| geometry.contains(nb));
+        let upstream = (0..6)
+            .filter(|&d| {
+                self.index(geometry, neighbors[d]).is_some_and(|j| h.river_at(j) && h.down(j) == Some((d + 3) % 6))
+            })
+            .map(|d| neighbors[d])
+            .collect();
+        Some(RiverTile { hex: tile, flow: h.flow(i), level: h.level(i), downstream, upstream })
+    }
+
+    /// Water a river on a tile carries, 0 when no river runs through it.
+    #[must_use]
+    pub fn river_flow(&self, geometry: &Geometry, tile: Hex) -> f32 {
+        match self.water_at(geometry, tile) {
+            Some((h, i)) if h.river_at(i) => h.flow(i),
+            _ => 0.0,
+        }
+    }
+
+    /// The lake a tile belongs to (an id, 0 for the first lake), if it is a lake tile.
+    #[must_use]
+    pub fn lake(&self, geometry: &Geometry, tile: Hex) -> Option<u32> {
+        let (h, i) = self.water_at(geometry, tile)?;
+        h.lake_of(i)
+    }
+
+    /// Water level of a tile (the filled surface, normalised), on a map with rivers.
+    #[must_use]
+    pub fn water_level(&self, geometry: &Geometry, tile: Hex) -> Option<f32> {
+        let (h, i) = self.water_at(geometry, tile)?;
+        Some(h.level(i))
+    }
+}

@@ -1,0 +1,310 @@
+//! [`Terrain`]: the facade games, the CLI and the plugin call. It holds the compiled
+//! [`Pipeline`] and answers from its stages; this folder holds all of its methods, by topic:
+//! `mod.rs` (compiling, the stages, tiles), `water.rs` (rivers, lakes, the water surface),
+//! `generate.rs` (meshes, props), `surface.rs` (positions, heights, rays).
+
+mod generate;
+mod surface;
+mod water;
+
+use std::sync::Arc;
+
+use hexx::{Hex, HexLayout};
+
+pub use crate::geometry::{OFFSET_MODE, hex_orientation};
+pub use crate::vocab::TileInfo;
+
+use crate::chunk::{ChunkCoord, TileRect};
+use crate::climate::{Climate, ClimateModel};
+use crate::config::MapConfig;
+use crate::error::ConfigError;
+use crate::geometry::Geometry;
+use crate::heights::{Fbm, HeightField, HeightImage};
+use crate::kind::{Thresholds, TileKind};
+use crate::lattice::Lattice;
+use crate::pipeline::Pipeline;
+use crate::vertex::VertexSample;
+use crate::vocab::Biome;
+use crate::wrap::Wrap;
+
+/// A map config compiled into pure functions of position. Cheap to share between threads.
+///
+/// ```
+/// use hex_terrain::{MapConfig, Terrain, TileKind};
+///
+/// let terrain = Terrain::new(MapConfig::default()).unwrap();
+/// let tile = terrain.tile_at(3.0, 2.0);
+/// let info = terrain.tile_info(tile);
+/// let (lo, hi) = terrain.thresholds().range(info.kind);
+/// let max = terrain.config().terrain.max_elevation;
+/// assert!(info.elevation >= lo * max - 1e-4 && info.elevation <= hi * max + 1e-4);
+/// ```
+#[derive(Debug, Clone)]
+pub struct Terrain {
+    pipeline: Arc<Pipeline>,
+}
+
+impl Terrain {
+    /// Validates `config` and prepares the generator (loading the heightmap of an `Image`
+    /// source from its path).
+    ///
+    /// # Errors
+    /// The first invalid field of the config.
+    pub fn new(config: MapConfig) -> Result<Self, ConfigError> {
+        Ok(Self { pipeline: Arc::new(Pipeline::new(config)?) })
+    }
+
+    /// Like [`Terrain::new`], with the heightmap of an `Image` source already decoded (from an
+    /// asset, say); `image` is ignored for a `Noise` source.
+    ///
+    /// # Errors
+    /// The first invalid field of the config, or `source.path` when an `Image` source has no
+    /// image.
+    pub fn with_image(config: MapConfig, image: Option<Arc<HeightImage>>) -> Result<Self, ConfigError> {
+        Ok(Self { pipeline: Arc::new(Pipeline::with_image(config, image)?) })
+    }
+
+    /// The compiled stages, for code that composes them itself (a new stage takes the ones it
+    /// needs as arguments).
+    #[must_use]
+    pub fn pipeline(&self) -> &Pipeline {
+        &self.pipeline
+    }
+
+    /// The config it was built from.
+    #[must_use]
+    pub fn config(&self) -> &MapConfig {
+        self.pipeline.config()
+    }
+
+    /// The geometry stage: lattice, layout, bounds, wrap, chunking.
+    #[must_use]
+    pub fn geometry(&self) -> &Geometry {
+        self.pipeline.geometry()
+    }
+
+    /// The height field stage.
+    #[must_use]
+    pub fn heights(&self) -> &HeightField {
+        self.pipeline.heights()
+    }
+
+    /// The climate stage.
+    #[must_use]
+    pub fn climate(&self) -> &ClimateModel {
+        self.pipeline.climate()
+    }
+
+    /// The vertex lattice.
+    #[must_use]
+    pub fn lattice(&self) -> &Lattice {
+        self.geometry().lattice()
+    }
+
+    /// Thresholds and type ranges in effect.
+    #[must_use]
+    pub fn thresholds(&self) -> &Thresholds {
+        self.pipeline.thresholds()
+    }
+
+    /// hexx layout of the tiles in world `(x, z)` (hexx's `y` is world `z`).
+    #[must_use]
+    pub fn layout(&self) -> &HexLayout {
+        self.geometry().layout()
+    }
+
+    /// The fBm height source.
+    #[must_use]
+    pub fn fbm(&self) -> &Fbm {
+        self.heights().fbm()
+    }
+
+    /// The map's tiles in offset coordinates, `None` for an unbounded world.
+    #[must_use]
+    pub fn bounds(&self) -> Option<TileRect> {
+        self.geometry().bounds()
+    }
+
+    /// The wrap of an east-west wrapping map, `None` otherwise.
+    #[must_use]
+    pub fn wrap(&self) -> Option<&Wrap> {
+        self.geometry().wrap()
+    }
+
+    /// Tile at offset coordinate `[col, row]`.
+    #[must_use]
+    pub fn tile_from_offset(&self, offset: [i32; 2]) -> Hex {
+        self.geometry().tile_from_offset(offset)
+    }
+
+    /// Offset coordinate `[col, row]` of a tile.
+    #[must_use]
+    pub fn offset_of(&self, tile: Hex) -> [i32; 2] {
+        self.geometry().offset_of(tile)
+    }
+
+    /// Whether a tile belongs to the map: on a wrapping map, every tile of the map's rows (a
+    /// tile past the east or west edge is a tile of the map again, see [`Terrain::wrap_tile`]).
+    #[must_use]
+    pub fn contains(&self, tile: Hex) -> bool {
+        self.geometry().contains(tile)
+    }
+
+    /// Every tile of a bounded map, row by row; empty for an unbounded world.
+    pub fn tiles(&self) -> impl Iterator<Item = Hex> + '_ {
+        self.geometry().tiles()
+    }
+
+    /// The tile of the map a tile stands for: on a wrapping map, the tile of the same row whose
+    /// column is the tile's column modulo the width; the tile itself otherwise.
+    #[must_use]
+    pub fn wrap_tile(&self, tile: Hex) -> Hex {
+        self.geometry().wrap_tile(tile)
+    }
+
+    /// The canonical lattice point of a lattice point (itself unless the map wraps).
+    #[must_use]
+    pub fn wrap_point(&self, p: Hex) -> Hex {
+        self.geometry().wrap_point(p)
+    }
+
+    /// The chunk of the map a chunk stands for (itself unless the map wraps), and how many
+    /// periods east of it the chunk is placed.
+    #[must_use]
+    pub fn wrap_chunk(&self, chunk: ChunkCoord) -> (ChunkCoord, i32) {
+        self.geometry().wrap_chunk(chunk)
+    }
+
+    /// Hex distance between two tiles, the short way round on a wrapping map.
+    #[must_use]
+    pub fn distance(&self, a: Hex, b: Hex) -> u32 {
+        self.geometry().distance(a, b)
+    }
+
+    /// The copy of a tile nearest another tile: on a wrapping map, of the tile and the tiles a
+    /// whole number of map widths east or west of it, the one nearest `near` (where a path from
+    /// `near` goes the short way round, across the seam if that is shorter); the tile itself
+    /// otherwise.
+    #[must_use]
+    pub fn tile_near(&self, tile: Hex, near: Hex) -> Hex {
+        self.geometry().tile_near(tile, near)
+    }
+
+    /// The six neighbors of a tile, each wrapped into the map on a wrapping map.
+    #[must_use]
+    pub fn neighbors(&self, tile: Hex) -> [Hex; 6] {
+        self.geometry().neighbors(tile)
+    }
+
+    /// Chunk size in tiles.
+    #[must_use]
+    pub fn chunk_size(&self) -> (u32, u32) {
+        self.geometry().chunk_size()
+    }
+
+    /// The chunk holding a tile. On a wrapping map, a tile past the map's east or west edge is
+    /// in a chunk placed there (see [`crate::wrap`]).
+    #[must_use]
+    pub fn chunk_of(&self, tile: Hex) -> ChunkCoord {
+        self.geometry().chunk_of(tile)
+    }
+
+    /// A chunk's tiles clipped to the map, `None` when it lies outside (or, on an unbounded
+    /// world, past [`crate::config::MAX_WORLD_TILE`]). On a wrapping map, the tiles of the
+    /// map's chunk it stands for ([`Terrain::wrap_chunk`]): a chunk placed a period east has
+    /// the same tiles.
+    #[must_use]
+    pub fn chunk_rect(&self, chunk: ChunkCoord) -> Option<TileRect> {
+        self.geometry().chunk_rect(chunk)
+    }
+
+    /// The lattice point a rectangle's mesh positions are relative to: the center of its first
+    /// tile.
+    #[must_use]
+    pub fn rect_origin(&self, rect: TileRect) -> Hex {
+        self.geometry().rect_origin(rect)
+    }
+
+    /// World position `[x, y, z]` (computed in f64) of the origin of a chunk's mesh: where its
+    /// entity goes. On a wrapping map, a chunk placed a period east is the same mesh one map
+    /// width further east.
+    #[must_use]
+    pub fn chunk_origin(&self, chunk: ChunkCoord) -> Option<[f64; 3]> {
+        self.geometry().chunk_origin(chunk)
+    }
+
+    /// Every chunk of a bounded map; empty for an unbounded world.
+    #[must_use]
+    pub fn chunks(&self) -> Vec<ChunkCoord> {
+        self.geometry().chunks()
+    }
+
+    /// Normalised height after shaping, before manipulation, at a lattice point.
+    #[must_use]
+    pub fn raw_height(&self, p: Hex) -> f32 {
+        self.heights().raw_height(self.geometry(), p)
+    }
+
+    /// Bare source height (fBm or heightmap, no shaping) at a lattice point.
+    #[must_use]
+    pub fn source_height(&self, p: Hex) -> f64 {
+        self.heights().source_height(self.geometry(), p)
+    }
+
+    /// Where a lattice point samples the noise: its world position in hex radii, shifted by the
+    /// map's offset (on a wrapping map, the position of its canonical point).
+    #[must_use]
+    pub fn noise_position(&self, p: Hex) -> [f64; 2] {
+        self.heights().noise_position(self.geometry(), p)
+    }
+
+    /// Type of a tile (by its center), whether or not it is in the map.
+    #[must_use]
+    pub fn tile_kind(&self, tile: Hex) -> TileKind {
+        self.pipeline.tile_kind(tile)
+    }
+
+    /// Type of a tile if it belongs to the map.
+    #[must_use]
+    pub fn map_tile_kind(&self, tile: Hex) -> Option<TileKind> {
+        self.pipeline.map_tile_kind(tile)
+    }
+
+    /// Type, center elevation, membership, biome, river and lake of a tile.
+    #[must_use]
+    pub fn tile_info(&self, tile: Hex) -> TileInfo {
+        self.pipeline.tile_info(tile)
+    }
+
+    /// Temperature and moisture of a tile, `None` when the map has no climate.
+    #[must_use]
+    pub fn tile_climate(&self, tile: Hex) -> Option<Climate> {
+        let climate = self.climate();
+        climate
+            .is_enabled()
+            .then(|| climate.climate_of(self.geometry(), self.heights(), tile, &self.pipeline.tile_sample(tile)))
+    }
+
+    /// A tile's biome (from the relief kind alone when the map has no climate; lake tiles are
+    /// [`Biome::Lake`] whether or not it has).
+    #[must_use]
+    pub fn tile_biome(&self, tile: Hex) -> Biome {
+        self.pipeline.tile_biome(tile)
+    }
+
+    /// Evaluates one lattice vertex through the vertex chain, computing the kinds of the tiles
+    /// around it.
+    #[must_use]
+    pub fn vertex(&self, p: Hex) -> VertexSample {
+        self.pipeline.vertex(p)
+    }
+
+    /// World height of the finished surface at a lattice point.
+    #[must_use]
+    pub fn vertex_elevation(&self, p: Hex) -> f32 {
+        self.pipeline.vertex_elevation(p)
+    }
+}
+
+#[cfg(test)]
+mod tests;

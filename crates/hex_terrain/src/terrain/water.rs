@@ -1,0 +1,99 @@
+//! The water methods of [`Terrain`]: rivers, lakes, channel cover, vertex colors and the water
+//! surface of a chunk.
+
+use hexx::Hex;
+
+use super::Terrain;
+use crate::mesh::{self, ChunkMesh};
+use crate::vocab::Biome;
+use crate::water::{self, Hydrology, RiverTile, WaterBuffers};
+
+impl Terrain {
+    /// The map's water network: `None` on a map without rivers.
+    #[must_use]
+    pub fn hydrology(&self) -> Option<&Hydrology> {
+        self.pipeline.table()?.hydrology()
+    }
+
+    /// The river on a tile, if one runs through it.
+    #[must_use]
+    pub fn river(&self, tile: Hex) -> Option<RiverTile> {
+        self.pipeline.table()?.river(self.geometry(), tile)
+    }
+
+    /// Water a river on a tile carries, 0 when no river runs through it.
+    #[must_use]
+    pub fn river_flow(&self, tile: Hex) -> f32 {
+        self.pipeline.table().map_or(0.0, |t| t.river_flow(self.geometry(), tile))
+    }
+
+    /// The lake a tile belongs to (an id, 0 for the first lake), if it is a lake tile.
+    #[must_use]
+    pub fn lake(&self, tile: Hex) -> Option<u32> {
+        self.pipeline.table()?.lake(self.geometry(), tile)
+    }
+
+    /// Every river tile of the map, row by row.
+    #[must_use]
+    pub fn rivers(&self) -> Vec<RiverTile> {
+        self.tiles().filter_map(|t| self.river(t)).collect()
+    }
+
+    /// Water level of a tile (the filled surface, normalised), on a map with rivers.
+    #[must_use]
+    pub fn water_level(&self, tile: Hex) -> Option<f32> {
+        self.pipeline.table()?.water_level(self.geometry(), tile)
+    }
+
+    /// How much of a channel or lake covers lattice point `p` of `tile`: 1 on a lake tile and on
+    /// a channel's middle line, falling smoothly to 0 at the channel's half-width.
+    #[must_use]
+    pub fn water_cover(&self, tile: Hex, p: Hex) -> f32 {
+        self.pipeline.water_cover(tile, p)
+    }
+
+    /// Whether any water (a lake, or a river channel) lies on a tile: every point of a dry tile
+    /// has a water cover of 0.
+    #[must_use]
+    pub fn tile_is_wet(&self, tile: Hex) -> bool {
+        self.pipeline.tile_is_wet(tile)
+    }
+
+    /// Whether meshes carry a color per vertex (climate or rivers on).
+    #[must_use]
+    pub fn has_vertex_colors(&self) -> bool {
+        self.pipeline.has_vertex_colors()
+    }
+
+    /// The color of a vertex shared by tiles of `biomes`: their colors averaged (integer
+    /// arithmetic, so the order of the tiles does not matter), the water cover in alpha.
+    #[must_use]
+    pub fn vertex_color(biomes: &[Biome], water: f32) -> [u8; 4] {
+        mesh::vertex_color(biomes, water)
+    }
+
+    /// Color of the lattice point `p` evaluated on its own: [`Terrain::vertex_color`] of the
+    /// in-map tiles holding it and its water cover.
+    #[must_use]
+    pub fn point_color(&self, p: Hex) -> [u8; 4] {
+        let set = self.lattice().tiles_at(p);
+        let biomes: Vec<Biome> =
+            set.tiles().iter().filter(|&&t| self.contains(t)).map(|&t| self.tile_biome(t)).collect();
+        mesh::vertex_color(&biomes, self.vertex(p).water)
+    }
+
+    /// World height of the sea surface: the sea threshold times the maximum elevation (the
+    /// height of every border vertex between sea and land tiles).
+    #[must_use]
+    pub fn sea_level(&self) -> f32 {
+        self.pipeline.sea_level()
+    }
+
+    /// The water surface over a generated chunk (see [`crate::water::surface`]); `river_depth`
+    /// is the height of river and lake water over a fully covered vertex, in world units. Empty
+    /// for a dry chunk.
+    #[must_use]
+    pub fn water_surface(&self, chunk: &ChunkMesh, river_depth: f32) -> WaterBuffers {
+        water::water_surface(&chunk.buffers, self.sea_level(), river_depth)
+    }
+}

@@ -1,0 +1,172 @@
+//! The vertex chain: what turns a lattice point's raw height and the tiles that share it into a
+//! finished vertex. Manipulation first ([`crate::manipulate`]: interpolation, hex unity, edge and
+//! corner correction), then relief ([`crate::relief`]: peaks, ridges, hills), then carving
+//! (river channels and lakes, from [`crate::water::channels`]). Every step keeps a non-border
+//! vertex inside its tile kind's range.
+//!
+//! The one-vertex evaluator ([`VertexRules::evaluate`], which finds the tiles around a point
+//! itself) and the mesh job (which knows them from its tile grid and feeds them in) both call
+//! [`VertexRules::finish`], so a vertex is the same bits whichever path computed it.
+
+use hexx::Hex;
+
+use crate::config::{ManipulationConfig, MapConfig};
+use crate::geometry::Geometry;
+use crate::heights::HeightField;
+use crate::kind::{Thresholds, TileKind};
+use crate::manipulate::{Manipulated, manipulate};
+use crate::relief::Relief;
+use crate::table::TileTable;
+use crate::water::channels;
+
+/// One lattice vertex, evaluated.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct VertexSample {
+    /// Normalised height after shaping, before manipulation.
+    pub raw: f32,
+    /// Normalised height after manipulation, relief and carving.
+    pub height: f32,
+    /// Whether hex unity, edge/corner correction or carving moved it.
+    pub moved: bool,
+    /// Ring in its tile (`n` on a border).
+    pub ring: u32,
+    /// Highest kind among the in-map tiles sharing it, or its height's kind outside the map.
+    pub kind: TileKind,
+    /// How much river or lake water covers it, in `[0, 1]` (0 on a map without rivers).
+    pub water: f32,
+}
+
+/// The in-map tiles sharing a lattice point and their kinds (same order; one tile for an inner
+/// point, up to three on a border, none outside the map).
+#[derive(Debug, Clone, Copy)]
+pub struct Sharing<'a> {
+    /// The tiles.
+    pub tiles: &'a [Hex],
+    /// Their kinds.
+    pub kinds: &'a [TileKind],
+}
+
+/// The rules of the vertex chain of a map.
+#[derive(Debug, Clone)]
+pub struct VertexRules {
+    thresholds: Thresholds,
+    manipulation: ManipulationConfig,
+    relief: Relief,
+    subdivisions: u32,
+    /// How deep channels carve, as a fraction of the way to the bottom of the kind's range.
+    carve: f32,
+}
+
+impl VertexRules {
+    /// The rules of a validated config.
+    #[must_use]
+    pub fn new(config: &MapConfig, thresholds: Thresholds) -> Self {
+        Self {
+            thresholds,
+            manipulation: config.manipulation.clone(),
+            relief: Relief::new(config, thresholds),
+            subdivisions: config.subdivisions(),
+            carve: config.rivers.carve,
+        }
+    }
+
+    /// Evaluates lattice point `p` on its own: its raw height from the height field, the tiles
+    /// around it from the lattice, their kinds from `kind_of` (`None` outside the map), their
+    /// water from `water` (the tile table of a map with rivers).
+    #[must_use]
+    #[inline]
+    pub fn evaluate(
+        &self,
+        geometry: &Geometry,
+        heights: &HeightField,
+        water: Option<&TileTable>,
+        p: Hex,
+        kind_of: impl Fn(Hex) -> Option<TileKind>,
+    ) -> VertexSample {
+        self.finish_at(geometry, water, heights.raw_height(geometry, p), p, kind_of)
+    }
+
+    /// Finishes lattice point `p` of raw height `raw`, finding the tiles around it.
+    #[must_use]
+    #[inline]
+    pub fn finish_at(
+        &self,
+        geometry: &Geometry,
+        water: Option<&TileTable>,
+        raw: f32,
+        p: Hex,
+        kind_of: impl Fn(Hex) -> Option<TileKind>,
+    ) -> VertexSample {
+        let set = geometry.lattice().tiles_at(p);
+        let mut kinds = [TileKind::Sea; 3];
+        let mut tiles = [Hex::ZERO; 3];
+        let mut len = 0;
+        for &tile in set.tiles() {
+            if let Some(kind) = kind_of(tile) {
+                kinds[len] = kind;
+                tiles[len] = tile;
+                len += 1;
+            }
+        }
+        let sharing = Sharing { tiles: &tiles[..len], kinds: &kinds[..len] };
+        self.finish(geometry, water, raw, p, set.ring, sharing)
+    }
+
+    /// The chain: manipulation, relief and carving of lattice point `p` of raw height `raw` at
+    /// `ring`, shared by the in-map tiles of `sharing`. Carving reads `water` (none: no carving;
+    /// a caller that knows no tile holding `p` is wet may pass none).
+    #[must_use]
+    #[inline(always)]
+    pub fn finish(
+        &self,
+        geometry: &Geometry,
+        water: Option<&TileTable>,
+        raw: f32,
+        p: Hex,
+        ring: u32,
+        sharing: Sharing<'_>,
+    ) -> VertexSample {
+        let kinds = sharing.kinds;
+        let Manipulated { height, moved } = if self.manipulation.any() {
+            manipulate(&self.thresholds, &self.manipulation, raw, ring, self.subdivisions, kinds)
+        } else {
+            Manipulated { height: raw, moved: false }
+        };
+        let kind = kinds.iter().copied().max().unwrap_or_else(|| self.thresholds.classify(raw));
+        let height = self.relief.apply(geometry, height, raw, p, ring, kinds);
+        let s = VertexSample { raw, height, moved, ring, kind, water: 0.0 };
+        match water {
+            Some(table) if table.hydrology().is_some() => self.carve(geometry, table, p, sharing, s),
+            _ => s,
+        }
+    }
+
+    /// Carves a vertex at `p`: lowers it by the water cover towards the bottom of its kind's
+    /// range, only where every tile sharing it is of one kind (a border vertex between kinds
+    /// stays on its threshold).
+    #[inline]
+    fn carve(
+        &self,
+        geometry: &Geometry,
+        table: &TileTable,
+        p: Hex,
+        sharing: Sharing<'_>,
+        mut s: VertexSample,
+    ) -> VertexSample {
+        let Some(&first) = sharing.kinds.first() else { return s };
+        if sharing.kinds.iter().any(|&k| k != first) {
+            return s;
+        }
+        let f = sharing.tiles.iter().map(|&t| channels::cover(geometry, table, t, p)).fold(0.0_f32, f32::max);
+        if f > 0.0 {
+            let lo = self.thresholds.range(first).0;
+            if s.height > lo {
+                let carved = s.height - f * self.carve * (s.height - lo);
+                s.moved |= carved != s.height;
+                s.height = carved.max(lo);
+            }
+            s.water = f;
+        }
+        s
+    }
+}

@@ -1,0 +1,190 @@
+//! The vocabulary every stage speaks: what a tile is ([`TileKind`], [`Biome`]), what a game
+//! reads of one ([`TileInfo`]) and what stands on it ([`PropKind`]). A leaf: it imports nothing
+//! of the crate, so every stage can use it without depending on another stage.
+
+use hexx::Hex;
+use serde::{Deserialize, Serialize};
+
+/// The type of a tile, decided by the height of its center.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
+#[cfg_attr(feature = "bevy_reflect", derive(bevy_reflect::Reflect))]
+#[repr(u8)]
+pub enum TileKind {
+    /// Center below the sea threshold.
+    Sea = 0,
+    /// Center between the thresholds.
+    Land = 1,
+    /// Center at or above the mountain threshold.
+    Mountain = 2,
+}
+
+impl TileKind {
+    /// All kinds, lowest first.
+    pub const ALL: [Self; 3] = [Self::Sea, Self::Land, Self::Mountain];
+
+    /// Lower-case name.
+    #[must_use]
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Sea => "sea",
+            Self::Land => "land",
+            Self::Mountain => "mountain",
+        }
+    }
+}
+
+/// A tile's biome: the relief kind refined by climate and water.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
+#[cfg_attr(feature = "bevy_reflect", derive(bevy_reflect::Reflect))]
+#[repr(u8)]
+pub enum Biome {
+    /// Deep sea, away from land.
+    Ocean = 0,
+    /// Shallow sea next to land.
+    Coast,
+    /// Water above sea level, filling a depression.
+    Lake,
+    /// Hot and dry land.
+    Desert,
+    /// Dry or temperate open land.
+    Plains,
+    /// Temperate, moist open land.
+    Grassland,
+    /// Temperate, wet land.
+    Forest,
+    /// Hot, wet land.
+    Rainforest,
+    /// Cold land.
+    Tundra,
+    /// The coldest land.
+    Snow,
+    /// High land (the upper part of the land range).
+    Hills,
+    /// Bare mountains.
+    Rock,
+    /// Cold mountains.
+    SnowPeak,
+}
+
+impl Biome {
+    /// Every biome, in discriminant order.
+    pub const ALL: [Self; 13] = [
+        Self::Ocean,
+        Self::Coast,
+        Self::Lake,
+        Self::Desert,
+        Self::Plains,
+        Self::Grassland,
+        Self::Forest,
+        Self::Rainforest,
+        Self::Tundra,
+        Self::Snow,
+        Self::Hills,
+        Self::Rock,
+        Self::SnowPeak,
+    ];
+
+    /// Lower-case name.
+    #[must_use]
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Ocean => "ocean",
+            Self::Coast => "coast",
+            Self::Lake => "lake",
+            Self::Desert => "desert",
+            Self::Plains => "plains",
+            Self::Grassland => "grassland",
+            Self::Forest => "forest",
+            Self::Rainforest => "rainforest",
+            Self::Tundra => "tundra",
+            Self::Snow => "snow",
+            Self::Hills => "hills",
+            Self::Rock => "rock",
+            Self::SnowPeak => "snow peak",
+        }
+    }
+
+    /// Its color in the meshes' vertex colors and the CLI's renders (sRGB).
+    #[must_use]
+    pub fn color(self) -> [u8; 3] {
+        match self {
+            Self::Ocean => [30, 66, 128],
+            Self::Coast => [62, 136, 182],
+            Self::Lake => [52, 118, 176],
+            Self::Desert => [224, 202, 142],
+            Self::Plains => [184, 182, 98],
+            Self::Grassland => [104, 164, 66],
+            Self::Forest => [42, 110, 50],
+            Self::Rainforest => [22, 88, 42],
+            Self::Tundra => [150, 148, 122],
+            Self::Snow => [238, 242, 246],
+            Self::Hills => [138, 142, 82],
+            Self::Rock => [122, 112, 104],
+            Self::SnowPeak => [228, 234, 242],
+        }
+    }
+
+    /// Whether it is water (ocean, coast, lake).
+    #[must_use]
+    pub fn is_water(self) -> bool {
+        matches!(self, Self::Ocean | Self::Coast | Self::Lake)
+    }
+
+    /// Whether the biome is bare rock or a snow peak (the mountain biomes).
+    #[must_use]
+    pub fn is_rocky(self) -> bool {
+        matches!(self, Self::Rock | Self::SnowPeak)
+    }
+
+    /// The biome a tile of `kind` has when the map has no climate.
+    #[must_use]
+    pub fn of_kind(kind: TileKind) -> Self {
+        match kind {
+            TileKind::Sea => Self::Ocean,
+            TileKind::Land => Self::Grassland,
+            TileKind::Mountain => Self::Rock,
+        }
+    }
+}
+
+/// What a prop is: which family of meshes draws it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+#[cfg_attr(feature = "bevy_reflect", derive(bevy_reflect::Reflect))]
+pub enum PropKind {
+    /// A round-crowned tree.
+    Broadleaf,
+    /// A conifer.
+    Pine,
+    /// A boulder.
+    Rock,
+    /// A clump of reeds.
+    Reed,
+}
+
+impl PropKind {
+    /// Every kind, in order.
+    pub const ALL: [Self; 4] = [Self::Broadleaf, Self::Pine, Self::Rock, Self::Reed];
+}
+
+/// How many mesh variants each prop kind has; [`Prop::variant`] is below it.
+pub const PROP_VARIANTS: u8 = 3;
+
+/// What a game needs to know about one tile.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[cfg_attr(feature = "bevy_reflect", derive(bevy_reflect::Reflect))]
+pub struct TileInfo {
+    /// Axial coordinate, map-local (the map's first tile is `Hex::ZERO`).
+    pub hex: Hex,
+    /// Type by center height.
+    pub kind: TileKind,
+    /// World height of the tile's center on the manipulated surface.
+    pub elevation: f32,
+    /// Whether the tile belongs to the map (always true for an unbounded world).
+    pub in_map: bool,
+    /// Biome (from the kind alone when the map has no climate).
+    pub biome: Biome,
+    /// Water a river on the tile carries, 0 without a river.
+    pub river_flow: f32,
+    /// The lake the tile belongs to, if it is a lake tile.
+    pub lake: Option<u32>,
+}

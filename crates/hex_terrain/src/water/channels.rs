@@ -1,0 +1,52 @@
+//! River channels and lakes as the mesh sees them: how much water covers a lattice point of a
+//! tile. A river tile's channel runs from its center to the middle of each edge its river
+//! crosses, as wide as the upstream tile's flow says; a lake tile is covered whole. The vertex
+//! chain ([`crate::vertex`]) carves by it, the mesh colors by it, props stay off it.
+//!
+//! A point's cover is read from the tiles that hold it, each from its own channels, so the two
+//! tiles on either side of a river's edge agree on it whichever chunk evaluates it.
+
+use hexx::Hex;
+
+use crate::geometry::Geometry;
+use crate::table::TileTable;
+
+/// How much of a channel or lake covers lattice point `p` of `tile`: 1 on a lake tile and on
+/// a channel's middle line, falling smoothly to 0 at the channel's half-width; 0 on a map
+/// without rivers.
+#[must_use]
+pub fn cover(geometry: &Geometry, table: &TileTable, tile: Hex, p: Hex) -> f32 {
+    let Some((h, i)) = table.water_at(geometry, tile) else { return 0.0 };
+    if h.lake_of(i).is_some() {
+        return 1.0;
+    }
+    let channels = h.channels(i);
+    if channels.iter().all(|&w| w == 0.0) {
+        return 0.0;
+    }
+    let lattice = geometry.lattice();
+    let center = lattice.tile_center(tile);
+    let step = geometry.step();
+    let [px, pz] = lattice.world(p - center);
+    let mut best = 0.0_f64;
+    for (nb, &w) in tile.all_neighbors().iter().zip(channels) {
+        if w == 0.0 {
+            continue;
+        }
+        let [ex, ez] = lattice.world(lattice.tile_center(*nb) - center);
+        let (mx, mz) = (ex * 0.5, ez * 0.5);
+        let t = ((px * mx + pz * mz) / (mx * mx + mz * mz)).clamp(0.0, 1.0);
+        let (dx, dz) = (px - t * mx, pz - t * mz);
+        let x = ((dx * dx + dz * dz).sqrt() / (step * f64::from(w))).min(1.0);
+        best = best.max(1.0 - x * x * (3.0 - 2.0 * x));
+    }
+    best as f32
+}
+
+/// Whether any water (a lake, or a river channel) lies on a tile: every point of a dry tile has
+/// a cover of 0.
+#[must_use]
+pub fn is_wet(geometry: &Geometry, table: &TileTable, tile: Hex) -> bool {
+    let Some((h, i)) = table.water_at(geometry, tile) else { return false };
+    h.lake_of(i).is_some() || h.channels(i).iter().any(|&w| w > 0.0)
+}
