@@ -166,7 +166,7 @@ impl PropKind {
     pub const ALL: [Self; 4] = [Self::Broadleaf, Self::Pine, Self::Rock, Self::Reed];
 }
 
-/// How many mesh variants each prop kind has; [`Prop::variant`] is below it.
+/// How many mesh variants each prop kind has; a prop's [`variant`](crate::props::Prop::variant) is below it.
 pub const PROP_VARIANTS: u8 = 3;
 
 /// What a game needs to know about one tile.
