@@ -79,7 +79,7 @@ fn show_position(
     let Ok((cell, transform, parent)) = flyer.single() else { return };
     let Ok(grid) = grids.get(parent.parent()) else { return };
     let at = grid.grid_position_double(cell, transform);
-    let tile = map.tile_at_f64(at);
+    let Some(tile) = map.tile_at_f64(at) else { return };
     for mut text in &mut counter {
         text.0 = format!(
             "camera x {:.3}  z {:.3}  (cell {} {})\ntile under it {} {}   live chunks {}",

@@ -52,7 +52,11 @@ fn setup(mut commands: Commands, mut meshes: ResMut<Assets<Mesh>>, mut materials
 fn walk(time: Res<Time>, map: Res<HexMap>, mut walker: Query<&mut Transform, With<Walker>>) {
     for mut t in &mut walker {
         t.translation.x += SPEED * time.delta_secs();
-        t.translation.y = map.surface_height(t.translation) + 0.9;
+        // The world ends 2^24 tiles out: the walker stops at its edge.
+        match map.surface_height(t.translation) {
+            Some(y) => t.translation.y = y + 0.9,
+            None => t.translation.x -= SPEED * time.delta_secs(),
+        }
     }
 }
 

@@ -21,7 +21,7 @@ fn far_map() -> MapConfig {
 
 /// The tile under the camera gets a blue lens overlay.
 fn lens_tile(terrain: &Terrain) -> Hex {
-    terrain.tile_at(FAR.x, FAR.z)
+    terrain.tile_at(FAR.x, FAR.z).unwrap()
 }
 
 fn write_lens(terrain: &Terrain, states: &mut TileStates) {
@@ -48,11 +48,11 @@ fn scenario_far() {
     let terrain = Terrain::new(far_map()).unwrap();
     let c = terrain.config().clone();
     let (s, m, b) = (c.terrain.sea_threshold, c.terrain.mountain_threshold, c.appearance.blend);
-    let center = terrain.unwrapped_tile_at(FAR.x, FAR.z);
+    let center = terrain.unwrapped_tile_at(FAR.x, FAR.z).unwrap();
     let lens = lens_tile(&terrain);
     let mut seen = [0; 3];
     for tile in center.range(20) {
-        let [x, y, z] = terrain.tile_center(tile);
+        let [x, y, z] = terrain.tile_center(tile).unwrap();
         let local = Vec3::new((x - FAR.x) as f32, y as f32, (z - FAR.z) as f32);
         if local.x.abs() > FAR_VIEW.x / 2.0 - 1.0 || local.z.abs() > FAR_VIEW.y / 2.0 - 1.0 {
             continue;
@@ -62,7 +62,7 @@ fn scenario_far() {
             assert!(at[2] > at[0] + 0.3 && at[2] > at[1] + 0.2, "the lensed tile under the camera is {at:?}");
             continue;
         }
-        let info = terrain.tile_info(tile);
+        let info = terrain.tile_info(tile).unwrap();
         let h = info.elevation / c.terrain.max_elevation;
         if (h - s).abs() > b && (h - m).abs() > b {
             assert_kind_color(tile, info.kind, at);

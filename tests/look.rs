@@ -27,7 +27,7 @@ fn relief_map() -> MapConfig {
 }
 
 fn center_of(terrain: &Terrain, h: Hex) -> Vec3 {
-    DVec3::from_array(terrain.tile_center(h)).as_vec3()
+    DVec3::from_array(terrain.tile_center(h).unwrap()).as_vec3()
 }
 
 fn distance(a: [f32; 3], b: [f32; 3]) -> f32 {
@@ -56,9 +56,9 @@ fn scenario_water() {
     );
     let at = |p: Vec3| rgb(&img, pixel(center, size, p));
     let sea = terrain.sea_level();
-    let depth = |h: Hex| sea - terrain.tile_info(h).elevation;
+    let depth = |h: Hex| sea - terrain.tile_info(h).unwrap().elevation;
     let coastal = |h: &Hex| h.all_neighbors().iter().any(|n| terrain.map_tile_kind(*n) == Some(TileKind::Land));
-    let seas: Vec<Hex> = terrain.tiles().filter(|&t| terrain.tile_kind(t) == TileKind::Sea).collect();
+    let seas: Vec<Hex> = terrain.tiles().filter(|&t| terrain.tile_kind(t).unwrap() == TileKind::Sea).collect();
     let deep = *seas.iter().max_by(|a, b| depth(**a).total_cmp(&depth(**b))).unwrap();
     let coast = *seas.iter().filter(|h| coastal(h)).min_by(|a, b| depth(**a).total_cmp(&depth(**b))).unwrap();
     assert!(depth(deep) > 2.0 * depth(coast), "the test map has deep and shallow sea");
@@ -151,7 +151,7 @@ fn scenario_shadows() {
     );
     let mountains: Vec<Vec3> = terrain
         .tiles()
-        .filter(|&t| terrain.tile_kind(t) == TileKind::Mountain)
+        .filter(|&t| terrain.tile_kind(t).unwrap() == TileKind::Mountain)
         .map(|t| center_of(&terrain, t))
         .collect();
     assert!(mountains.len() > 5, "the test map has mountains");
@@ -164,7 +164,7 @@ fn scenario_shadows() {
             f64::from(center.x) + (f64::from(x) / f64::from(WIDTH) - 0.5) * f64::from(size.x),
             f64::from(center.y) + (f64::from(y) / f64::from(HEIGHT) - 0.5) * f64::from(size.y),
         );
-        let ground = terrain.surface_height(wx, wz) + 0.05 * f64::from(hex);
+        let ground = terrain.surface_height(wx, wz).unwrap() + 0.05 * f64::from(hex);
         terrain.raycast([wx, ground, wz], toward_sun, 50.0).is_some()
     };
     let b = |p: &image::Rgb<u8>| p.0.iter().map(|&c| f32::from(c)).sum::<f32>() / (3.0 * 255.0);
@@ -175,7 +175,7 @@ fn scenario_shadows() {
             center.x + (x as f32 / WIDTH as f32 - 0.5) * size.x,
             center.y + (y as f32 / HEIGHT as f32 - 0.5) * size.y,
         );
-        if !terrain.contains(terrain.tile_at(f64::from(world.x), f64::from(world.y))) {
+        if !terrain.contains(terrain.tile_at(f64::from(world.x), f64::from(world.y)).unwrap()) {
             continue;
         }
         let off = b(unlit.get_pixel(x, y));

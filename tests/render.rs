@@ -28,11 +28,11 @@ fn scenario_biomes() {
     let terrain = Terrain::new(wet_map()).unwrap();
     let (center, size) = view(&terrain);
     let (img, _) = render_scene(Scene { config: Some(wet_map()), ..default() }, "biomes");
-    let at = |h: Hex| rgb(&img, pixel(center, size, DVec3::from_array(terrain.tile_center(h)).as_vec3()));
+    let at = |h: Hex| rgb(&img, pixel(center, size, DVec3::from_array(terrain.tile_center(h).unwrap()).as_vec3()));
     let mut classes = std::collections::BTreeSet::new();
     // With two inner rings the center and the first ring take the tile's own color, so a
     // center pixel shows its biome unblended.
-    for (hex, biome) in terrain.tiles().map(|t| (t, terrain.tile_biome(t))) {
+    for (hex, biome) in terrain.tiles().map(|t| (t, terrain.tile_biome(t).unwrap())) {
         if terrain.river(hex).is_some() {
             continue;
         }
@@ -126,7 +126,7 @@ fn scenario_textures_and_highlights() {
     let mut tinted = selected.clone();
     tinted.push(hovered);
     assert_type_colors(&img, &terrain, &tinted);
-    let at = |h: Hex| rgb(&img, pixel(center, size, DVec3::from_array(terrain.tile_center(h)).as_vec3()));
+    let at = |h: Hex| rgb(&img, pixel(center, size, DVec3::from_array(terrain.tile_center(h).unwrap()).as_vec3()));
     let [r, g, _] = at(hovered);
     assert!(r > g * 0.8, "the hovered land tile is tinted warm: {:?}", at(hovered));
     for h in selected {

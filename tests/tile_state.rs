@@ -91,8 +91,10 @@ fn scenario_fog() {
         .collect();
     let mut soft = 0;
     for &(a, b) in &pairs {
-        let (pa, pb) =
-            (DVec3::from_array(terrain.tile_center(a)).as_vec3(), DVec3::from_array(terrain.tile_center(b)).as_vec3());
+        let (pa, pb) = (
+            DVec3::from_array(terrain.tile_center(a).unwrap()).as_vec3(),
+            DVec3::from_array(terrain.tile_center(b).unwrap()).as_vec3(),
+        );
         let samples: Vec<f32> = (0..=40).map(|k| brightness(at(pa.lerp(pb, k as f32 / 40.0)))).collect();
         let (lo, hi) =
             (samples[..10].iter().copied().fold(f32::MAX, f32::min), samples[30..].iter().copied().fold(0.0, f32::max));
@@ -131,8 +133,8 @@ fn scenario_borders() {
             }
             // The middle of the border band, inside `a`, 0.175 radii from the shared edge.
             let (pa, pb) = (
-                DVec3::from_array(terrain.tile_center(a)).as_vec3(),
-                DVec3::from_array(terrain.tile_center(b)).as_vec3(),
+                DVec3::from_array(terrain.tile_center(a).unwrap()).as_vec3(),
+                DVec3::from_array(terrain.tile_center(b).unwrap()).as_vec3(),
             );
             let mid = (pa + pb) / 2.0;
             let c = at(mid + (pa - mid).normalize() * 0.175);
@@ -191,7 +193,7 @@ fn five_hundred_highlighted_tiles_are_all_tinted() {
     let tint = TerrainAppearance::default().reachable_color.to_srgba();
     let tint = [tint.red, tint.green, tint.blue];
     for t in terrain.tiles() {
-        let p = pixel(center, size, DVec3::from_array(terrain.tile_center(t)).as_vec3());
+        let p = pixel(center, size, DVec3::from_array(terrain.tile_center(t).unwrap()).as_vec3());
         let (before, after) = (rgb(&plain, p), rgb(&lit, p));
         if tinted.contains(&t) {
             assert!(

@@ -261,7 +261,7 @@ pub(crate) fn cost(map: &HexMap, tile: Hex) -> Option<u32> {
     if !map.contains(tile) || map.lake(tile).is_some() {
         return None;
     }
-    match map.tile_kind(tile) {
+    match map.tile_kind(tile)? {
         TileKind::Sea => None,
         TileKind::Land => Some(1),
         TileKind::Mountain => Some(3),
@@ -340,11 +340,13 @@ fn place_units(
     if game.spawned {
         for (_, mut unit, mut t) in &mut units {
             let tile = if cost(&map, unit.tile).is_some() { Some(unit.tile) } else { land_near(unit.tile, &taken) };
-            if let Some(tile) = tile {
+            if let Some(tile) = tile
+                && let Some(center) = map.tile_center(tile)
+            {
                 unit.tile = tile;
                 unit.path.clear();
                 taken.push(tile);
-                t.translation = map.wrap_near(map.tile_center(tile), focus) + Vec3::Y * 0.6;
+                t.translation = map.wrap_near(center, focus) + Vec3::Y * 0.6;
                 vision::claim(&map, &mut states, unit.player, tile, vision::HOME_RADIUS - 1);
             }
         }
@@ -353,7 +355,7 @@ fn place_units(
         return;
     }
     let mesh = meshes.add(Capsule3d::new(0.3, 0.6));
-    let home = map.tile_at(focus);
+    let Some(home) = map.tile_at(focus) else { return };
     // The rival starts on the first land tile of the ring at RIVAL_DISTANCE, searching from the
     // east.
     let rival_home = home.ring(RIVAL_DISTANCE).find(|&t| cost(&map, t) == Some(1)).unwrap_or(home);
@@ -362,6 +364,7 @@ fn place_units(
     for (player, near, colors) in [(vision::HUMAN, home, &human[..]), (vision::RIVAL, rival_home, &rival[..])] {
         for (i, &color) in colors.iter().enumerate() {
             let Some(tile) = land_near(near, &taken) else { break };
+            let Some(center) = map.tile_center(tile) else { break };
             taken.push(tile);
             let radius = if i == 0 { vision::HOME_RADIUS } else { vision::HOME_RADIUS - 1 };
             vision::claim(&map, &mut states, player, tile, radius);
@@ -369,7 +372,7 @@ fn place_units(
                 Unit { player, tile, moves_left: MOVES, path: Vec::new() },
                 Mesh3d(mesh.clone()),
                 MeshMaterial3d(materials.add(color)),
-                Transform::from_translation(map.wrap_near(map.tile_center(tile), focus) + Vec3::Y * 0.6),
+                Transform::from_translation(map.wrap_near(center, focus) + Vec3::Y * 0.6),
             ));
         }
     }
@@ -406,7 +409,8 @@ fn click(
             let spent = path_cost(&map, &path);
             if spent <= unit.moves_left {
                 unit.moves_left -= spent;
-                unit.path = path.iter().skip(1).map(|&t| map.tile_center(t) + Vec3::Y * 0.6).collect();
+                unit.path =
+                    path.iter().skip(1).filter_map(|&t| map.tile_center(t)).map(|c| c + Vec3::Y * 0.6).collect();
                 unit.tile = map.wrap_tile(goal);
             }
         }
@@ -498,7 +502,9 @@ fn walk(time: Res<Time>, map: Res<HexMap>, rigs: Query<&Rig>, mut units: Query<(
             unit.path.remove(0);
         } else {
             t.translation += to.normalize() * step;
-            t.translation.y = map.surface_height(t.translation) + 0.6;
+            if let Some(y) = map.surface_height(t.translation) {
+                t.translation.y = y + 0.6;
+            }
         }
     }
 }
@@ -523,7 +529,7 @@ fn panel(
             None => "nobody's",
         };
         s += &format!("\nTerritory: {owner}");
-        let info = map.tile_info(tile);
+        let Some(info) = map.tile_info(tile) else { return };
         s += &format!(
             "\nTile ({}, {})  {} ({})  elevation {:.2}",
             tile.x,
@@ -565,7 +571,7 @@ fn chunk_boundaries(game: Res<Game>, map: Res<HexMap>, streamer: Res<ChunkStream
             [rect.min[0], rect.max[1] - 1],
         ]
         .map(|oc| {
-            let [x, _, z] = terrain.tile_center(terrain.tile_from_offset(oc));
+            let [x, _, z] = terrain.tile_center(terrain.tile_from_offset(oc)).unwrap_or_default();
             Vec3::new((x + shift) as f32, top, z as f32)
         });
         for k in 0..4 {

@@ -49,7 +49,9 @@ fn check_vision(
 ) -> Result<(), String> {
     let mut sight = HashSet::new();
     for (_, unit, t, _) in units.iter().filter(|(_, u, ..)| u.player == HUMAN) {
-        sight.extend(vision::sight(map, map.tile_at(t.translation)));
+        if let Some(tile) = map.tile_at(t.translation) {
+            sight.extend(vision::sight(map, tile));
+        }
         if owned && states.owner(unit.tile) != Some(HUMAN) {
             return Err(format!("the human unit's tile {:?} belongs to nobody", unit.tile));
         }
@@ -66,7 +68,7 @@ fn check_vision(
         if owned && states.owner(unit.tile) != Some(RIVAL) {
             return Err(format!("the rival unit's tile {:?} is owned by {:?}", unit.tile, states.owner(unit.tile)));
         }
-        let in_sight = sight.contains(&map.tile_at(t.translation));
+        let in_sight = map.tile_at(t.translation).is_some_and(|tile| sight.contains(&tile));
         if in_sight != (*visibility != Visibility::Hidden) {
             return Err(format!("rival unit on {:?}: in sight {in_sight}, shown {:?}", unit.tile, visibility));
         }
@@ -141,7 +143,7 @@ pub fn script(
             if across_the_seam() {
                 // The reach crosses the seam: go to a tile on the other side of it.
                 let side = east_half(&map, start);
-                options.retain(|&t| east_half(&map, t) != side && map.distance(t, start) <= MOVES);
+                options.retain(|&t| east_half(&map, t) != side && map.distance(t, start).is_some_and(|d| d <= MOVES));
                 if options.is_empty() || map.terrain().wrap().is_none() {
                     fail(format!("the reach of the unit on {start:?} does not cross the seam"), &mut exit);
                     return;
@@ -173,7 +175,7 @@ pub fn script(
                 fail(format!("moves left {} after spending {}", unit.moves_left, s.expected_cost), &mut exit);
                 return;
             }
-            let ground = map.tile_center(target).y + 0.6;
+            let Some(ground) = map.tile_center(target).map(|c| c.y + 0.6) else { return };
             if (t.translation.y - ground).abs() > 0.05 {
                 fail(format!("unit at height {} instead of {ground}", t.translation.y), &mut exit);
                 return;
@@ -218,7 +220,8 @@ pub fn script(
                 return;
             }
             let settled = units.iter().all(|(_, u, t, _)| {
-                cost(&map, u.tile).is_some() && (t.translation.y - (map.tile_center(u.tile).y + 0.6)).abs() < 0.05
+                cost(&map, u.tile).is_some()
+                    && map.tile_center(u.tile).is_some_and(|c| (t.translation.y - (c.y + 0.6)).abs() < 0.05)
             });
             if !settled {
                 return;

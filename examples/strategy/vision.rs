@@ -24,12 +24,12 @@ pub const HOME_RADIUS: u32 = 3;
 /// mountains block the view behind them (the mountain itself is seen).
 pub fn sight(map: &HexMap, from: Hex) -> HashSet<Hex> {
     let bonus = match (map.tile_kind(from), map.biome(from)) {
-        (TileKind::Mountain, _) => 2,
-        (_, Biome::Hills) => 1,
+        (Some(TileKind::Mountain), _) => 2,
+        (_, Some(Biome::Hills)) => 1,
         _ => 0,
     };
     let range = SIGHT + bonus;
-    let blocks = |h: Hex| h != from && map.tile_kind(h) == TileKind::Mountain;
+    let blocks = |h: Hex| h != from && map.tile_kind(h) == Some(TileKind::Mountain);
     let mut seen: HashSet<Hex> = range_fov(from, range, blocks).into_iter().collect();
     let faces: Vec<Hex> = seen
         .iter()
@@ -52,7 +52,7 @@ pub fn update_fog(
     mut seen_from: Local<Vec<Hex>>,
 ) {
     let mut from: Vec<Hex> =
-        units.iter().filter(|(u, ..)| u.player == HUMAN).map(|(_, t, _)| map.tile_at(t.translation)).collect();
+        units.iter().filter(|(u, ..)| u.player == HUMAN).filter_map(|(_, t, _)| map.tile_at(t.translation)).collect();
     from.sort_unstable_by_key(|h| (h.x, h.y));
     if from != *seen_from || map.is_changed() {
         seen_from.clone_from(&from);
@@ -65,7 +65,8 @@ pub fn update_fog(
         }
     }
     for (unit, t, mut visibility) in &mut units {
-        let shown = unit.player == HUMAN || states.visibility(map.tile_at(t.translation)) == FogState::Visible;
+        let shown = unit.player == HUMAN
+            || map.tile_at(t.translation).is_some_and(|tile| states.visibility(tile) == FogState::Visible);
         visibility.set_if_neq(if shown { Visibility::Inherited } else { Visibility::Hidden });
     }
 }

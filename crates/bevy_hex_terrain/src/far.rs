@@ -52,15 +52,17 @@ fn position(grid: &Grid, cell: &CellCoord, transform: &Transform) -> DVec3 {
 
 /// Queries in `big_space`'s convention: positions as a cell of a grid and a small offset in it.
 impl HexMap {
-    /// The tile under a position given as a cell of `grid` and an offset from its center.
+    /// The tile under a position given as a cell of `grid` and an offset from its center;
+    /// `None` past the world's edge.
     #[must_use]
-    pub fn tile_at_cell(&self, grid: &Grid, cell: &CellCoord, offset: Vec3) -> Hex {
+    pub fn tile_at_cell(&self, grid: &Grid, cell: &CellCoord, offset: Vec3) -> Option<Hex> {
         self.tile_at_f64(position(grid, cell, &Transform::from_translation(offset)))
     }
 
-    /// Height of the surface under a position given as a cell of `grid` and an offset.
+    /// Height of the surface under a position given as a cell of `grid` and an offset; `None`
+    /// past the world's edge.
     #[must_use]
-    pub fn surface_height_at_cell(&self, grid: &Grid, cell: &CellCoord, offset: Vec3) -> f64 {
+    pub fn surface_height_at_cell(&self, grid: &Grid, cell: &CellCoord, offset: Vec3) -> Option<f64> {
         self.surface_height_f64(position(grid, cell, &Transform::from_translation(offset)))
     }
 
@@ -79,10 +81,10 @@ impl HexMap {
     }
 
     /// Where a tile's center on the surface lies in `grid`: its cell and the offset in it (where
-    /// a unit standing on the tile goes).
+    /// a unit standing on the tile goes); `None` for a tile past the world's edge.
     #[must_use]
-    pub fn tile_center_in_grid(&self, grid: &Grid, tile: Hex) -> (CellCoord, Vec3) {
-        grid.translation_to_grid(self.tile_center_f64(tile))
+    pub fn tile_center_in_grid(&self, grid: &Grid, tile: Hex) -> Option<(CellCoord, Vec3)> {
+        self.tile_center_f64(tile).map(|center| grid.translation_to_grid(center))
     }
 }
 
@@ -137,7 +139,8 @@ fn follow_floating_origin(
     let Ok((cell, parent)) = origins.single() else { return };
     let Ok(grid) = grids.get(parent.parent()) else { return };
     let at = grid.cell_to_float(cell);
-    let origin = crate::material::RenderOrigin::at(map.terrain(), at.x, at.z);
+    // Past the world's edge there is no terrain to measure: keep the last origin.
+    let Some(origin) = crate::material::RenderOrigin::at(map.terrain(), at.x, at.z) else { return };
     if *render != origin {
         *render = origin;
     }

@@ -127,7 +127,7 @@ fn state_outlives_streaming_and_the_window_follows_the_chunks() {
     let home = Hex::new(2, 3);
     app.world_mut().resource_mut::<TileStates>().set_owner(home, Some(3)).unwrap();
     // Far away: the home chunk unloads and the window moves with the chunks.
-    let far = app.world().resource::<HexMap>().tile_center(Hex::new(3000, -1000));
+    let far = app.world().resource::<HexMap>().tile_center(Hex::new(3000, -1000)).unwrap();
     app.world_mut().entity_mut(agent).insert(Transform::from_translation(far));
     let home_chunk = app.world().resource::<HexMap>().chunk_of(home);
     settle(&mut app, "chunks far away", |app| {

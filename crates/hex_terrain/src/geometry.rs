@@ -114,21 +114,52 @@ impl Geometry {
         Hex::from_offset_coordinates(offset, OFFSET_MODE, self.layout.orientation)
     }
 
-    /// Offset coordinate `[col, row]` of a tile.
+    /// Offset coordinate `[col, row]` of a tile (for a tile past the world, see
+    /// [`Geometry::in_world`], the nearest coordinate `i32` holds).
     #[must_use]
     #[inline]
     pub fn offset_of(&self, tile: Hex) -> [i32; 2] {
-        tile.to_offset_coordinates(OFFSET_MODE, self.layout.orientation)
+        self.wide_offset(tile).map(|v| v.clamp(i64::from(i32::MIN), i64::from(i32::MAX)) as i32)
+    }
+
+    /// Offset coordinate of any tile, exact (hexx's conversion overflows near `i32::MAX`).
+    #[inline]
+    fn wide_offset(&self, tile: Hex) -> [i64; 2] {
+        let (x, y) = (i64::from(tile.x), i64::from(tile.y));
+        match self.layout.orientation {
+            HexOrientation::Flat => [x, y + (x - (x & 1)) / 2],
+            HexOrientation::Pointy => [x + (y - (y & 1)) / 2, y],
+        }
+    }
+
+    /// Whether a tile is in the world: its offset column and row in
+    /// `-MAX_WORLD_TILE..MAX_WORLD_TILE` ([`MAX_WORLD_TILE`]). Every tile of a bounded map is,
+    /// and every tile a position of a wrapping map stands for. The queries answer `None` for the
+    /// tiles past it: they have no chunk, and their lattice coordinates would not fit `i32`.
+    #[must_use]
+    #[inline]
+    pub fn in_world(&self, tile: Hex) -> bool {
+        let m = i64::from(MAX_WORLD_TILE);
+        self.wide_offset(tile).iter().all(|c| (-m..m).contains(c))
+    }
+
+    /// Whether a lattice point is in the world: the tile nearest it is
+    /// ([`Geometry::in_world`]). Computed in f64, so any point answers.
+    #[must_use]
+    pub fn point_in_world(&self, p: Hex) -> bool {
+        let [q, r] = self.lattice.fract_tile(p);
+        self.in_world(cube_round(q, r))
     }
 
     /// Whether a tile belongs to the map: on a wrapping map, every tile of the map's rows (a
-    /// tile past the east or west edge is a tile of the map again, see [`Geometry::wrap_tile`]).
+    /// tile past the east or west edge is a tile of the map again, see [`Geometry::wrap_tile`])
+    /// within the world; on an unbounded map, every tile of the world ([`Geometry::in_world`]).
     #[must_use]
     #[inline]
     pub fn contains(&self, tile: Hex) -> bool {
         match (self.bounds, &self.wrap) {
-            (None, _) => true,
-            (Some(b), Some(_)) => (b.min[1]..b.max[1]).contains(&self.offset_of(tile)[1]),
+            (None, _) => self.in_world(tile),
+            (Some(b), Some(_)) => (b.min[1]..b.max[1]).contains(&self.offset_of(tile)[1]) && self.in_world(tile),
             (Some(b), None) => b.contains(self.offset_of(tile)),
         }
     }
@@ -144,6 +175,7 @@ impl Geometry {
     #[inline]
     pub fn wrap_tile(&self, tile: Hex) -> Hex {
         match &self.wrap {
+            Some(_) if !self.in_world(tile) => tile,
             Some(w) => {
                 let k = w.tile_period(self.offset_of(tile)[0]);
                 if k == 0 { tile } else { tile - w.tile_shift * k }
@@ -152,11 +184,17 @@ impl Geometry {
         }
     }
 
-    /// The canonical lattice point of a lattice point (itself unless the map wraps).
+    /// The canonical lattice point of a lattice point (itself unless the map wraps, and for a
+    /// point past the world).
     #[must_use]
     #[inline]
     pub fn wrap_point(&self, p: Hex) -> Hex {
-        self.wrap.as_ref().map_or(p, |w| w.point(p))
+        match &self.wrap {
+            // Lattice points of the world are within 2^30 (see `in_world`); past it the shift
+            // could overflow, and there is no map to wrap into.
+            Some(w) if p.x.unsigned_abs() < 1 << 30 && p.y.unsigned_abs() < 1 << 30 => w.point(p),
+            _ => p,
+        }
     }
 
     /// The chunk of the map a chunk stands for (itself unless the map wraps), and how many
@@ -166,36 +204,52 @@ impl Geometry {
         self.wrap.as_ref().map_or((chunk, 0), |w| w.chunk(chunk))
     }
 
-    /// Hex distance between two tiles, the short way round on a wrapping map.
+    /// Hex distance between two tiles, the short way round on a wrapping map; `None` when
+    /// either is past the world ([`Geometry::in_world`]).
     #[must_use]
-    pub fn distance(&self, a: Hex, b: Hex) -> u32 {
+    pub fn distance(&self, a: Hex, b: Hex) -> Option<u32> {
+        if !self.in_world(a) || !self.in_world(b) {
+            return None;
+        }
         let (a, b) = (self.wrap_tile(a), self.wrap_tile(b));
         match &self.wrap {
-            Some(w) => [-1, 0, 1].iter().map(|&k| a.unsigned_distance_to(b + w.tile_shift * k)).min().unwrap_or(0),
-            None => a.unsigned_distance_to(b),
+            Some(w) => [-1, 0, 1].iter().map(|&k| a.unsigned_distance_to(b + w.tile_shift * k)).min(),
+            None => Some(a.unsigned_distance_to(b)),
         }
     }
 
     /// The copy of a tile nearest another tile: on a wrapping map, of the tile and the tiles a
     /// whole number of map widths east or west of it, the one nearest `near`; the tile itself
-    /// otherwise.
+    /// otherwise (and for tiles past the world).
     #[must_use]
     pub fn tile_near(&self, tile: Hex, near: Hex) -> Hex {
         let Some(w) = &self.wrap else { return tile };
+        if !self.in_world(tile) || !self.in_world(near) {
+            return tile;
+        }
         let tile = self.wrap_tile(tile);
         let k = w.tile_period(self.offset_of(near)[0]);
         (k - 1..=k + 1).map(|k| tile + w.tile_shift * k).min_by_key(|t| t.unsigned_distance_to(near)).unwrap_or(tile)
     }
 
-    /// The six neighbors of a tile, each wrapped into the map on a wrapping map.
+    /// The six neighbors of a tile, each wrapped into the map on a wrapping map; `None` for a
+    /// tile past the world ([`Geometry::in_world`]).
     #[must_use]
-    pub fn neighbors(&self, tile: Hex) -> [Hex; 6] {
+    pub fn neighbors(&self, tile: Hex) -> Option<[Hex; 6]> {
+        self.in_world(tile).then(|| tile.all_neighbors().map(|nb| self.wrap_tile(nb)))
+    }
+
+    /// The six neighbors of a tile of the world, wrapped (for the stages, which only ask about
+    /// tiles of the map).
+    #[inline]
+    pub(crate) fn wrapped_neighbors(&self, tile: Hex) -> [Hex; 6] {
         tile.all_neighbors().map(|nb| self.wrap_tile(nb))
     }
 
-    /// The tile under world `(x, z)` of the plane, not wrapped.
+    /// The tile under world `(x, z)` of the plane, not wrapped; `None` past the world (or for a
+    /// position that is not finite).
     #[must_use]
-    pub fn unwrapped_tile_at(&self, x: f64, z: f64) -> Hex {
+    pub fn unwrapped_tile_at(&self, x: f64, z: f64) -> Option<Hex> {
         // Axial coordinates and cube rounding in f64 (hexx's layout works in f32, which loses
         // whole tiles far out).
         let s = self.hex_size;
@@ -203,13 +257,33 @@ impl Geometry {
             Orientation::Flat => (2.0 / 3.0 * x / s, (-x / 3.0 + SQRT_3 / 3.0 * z) / s),
             Orientation::Pointy => ((SQRT_3 / 3.0 * x - z / 3.0) / s, 2.0 / 3.0 * z / s),
         };
-        cube_round(q, r)
+        // Far enough past the world to be out, near enough for `i32`; NaN is out too.
+        let limit = 4.0 * f64::from(MAX_WORLD_TILE);
+        if !(q.abs() < limit && r.abs() < limit) {
+            return None;
+        }
+        let tile = cube_round(q, r);
+        self.in_world(tile).then_some(tile)
     }
 
-    /// The tile under world `(x, z)` (the map's own tile on a wrapping map).
+    /// The position of the map's own copy of world `(x, z)`: on a wrapping map, `x` reduced to
+    /// one period (exactly: the remainder of a float division has no rounding error), so every
+    /// finite position east or west answers with the map's tile; `(x, z)` itself otherwise.
     #[must_use]
-    pub fn tile_at(&self, x: f64, z: f64) -> Hex {
-        self.wrap_tile(self.unwrapped_tile_at(x, z))
+    #[inline]
+    pub fn wrap_position(&self, x: f64, z: f64) -> (f64, f64) {
+        match &self.wrap {
+            Some(w) if x.is_finite() => (x % w.width, z),
+            _ => (x, z),
+        }
+    }
+
+    /// The tile under world `(x, z)` (the map's own tile on a wrapping map, for any finite
+    /// `x`); `None` past the world.
+    #[must_use]
+    pub fn tile_at(&self, x: f64, z: f64) -> Option<Hex> {
+        let (x, z) = self.wrap_position(x, z);
+        self.unwrapped_tile_at(x, z).map(|t| self.wrap_tile(t))
     }
 
     /// The chunk holding a tile. On a wrapping map, a tile past the map's east or west edge is
@@ -217,6 +291,13 @@ impl Geometry {
     #[must_use]
     pub fn chunk_of(&self, tile: Hex) -> ChunkCoord {
         match &self.wrap {
+            // Past the world: a chunk past it too, which has no tiles.
+            _ if !self.in_world(tile) => {
+                let [col, row] = self.wide_offset(tile);
+                let (w, h) = (i64::from(self.chunk_size.0), i64::from(self.chunk_size.1));
+                let fit = |v: i64| v.clamp(i64::from(i32::MIN), i64::from(i32::MAX)) as i32;
+                ChunkCoord::new(fit(col.div_euclid(w)), fit(row.div_euclid(h)))
+            }
             Some(w) => w.chunk_of(self.offset_of(tile), self.chunk_size.1),
             None => ChunkCoord::of(self.offset_of(tile), self.chunk_size),
         }
@@ -244,6 +325,64 @@ impl Geometry {
     #[must_use]
     pub fn rect_origin(&self, rect: TileRect) -> Hex {
         self.lattice.tile_center(self.tile_from_offset(rect.min))
+    }
+
+    /// How far, in world units, a horizontal vertex position of a mesh of `rect` can lie from
+    /// its exact place once brought into the world frame in f64 (mesh origin plus position):
+    /// positions are f32 relative to the origin ([`Geometry::rect_origin`]), so the bound is
+    /// half an f32 ulp of the farthest vertex from it, per axis, plus the f64 rounding of the
+    /// sum. It grows with the rectangle's extent, not with its distance from the world's
+    /// origin. Two copies of a vertex shared by meshes of `a` and `b` agree within
+    /// `position_error(a) + position_error(b)`.
+    #[must_use]
+    pub fn position_error(&self, rect: TileRect) -> f64 {
+        let Some((rx, rz, o)) = self.reach(rect) else { return 0.0 };
+        Self::error_of(rx, rz, o)
+    }
+
+    /// The bound of [`Geometry::position_error`] from the reach of the vertices from the origin
+    /// per axis and the origin's distance from the world's origin.
+    fn error_of(rx: f64, rz: f64, origin: f64) -> f64 {
+        let half_ulp = |r: f64| if r > 0.0 { (r.log2().floor() - 24.0).exp2() } else { 0.0 };
+        half_ulp(rx).hypot(half_ulp(rz)) + 4.0 * f64::EPSILON * (origin + rx.max(rz))
+    }
+
+    /// How far a mesh of `rect`'s vertices reach from its origin in x and z, and the origin's
+    /// largest coordinate; `None` for an empty rectangle.
+    fn reach(&self, rect: TileRect) -> Option<(f64, f64, f64)> {
+        if rect.is_empty() {
+            return None;
+        }
+        let origin = self.rect_origin(rect);
+        let (mut rx, mut rz) = (0.0_f64, 0.0_f64);
+        // The farthest vertices belong to tiles on the rectangle's edge; every vertex of a tile
+        // lies within a hex radius of its center.
+        let [c0, r0] = rect.min;
+        let [c1, r1] = [rect.max[0] - 1, rect.max[1] - 1];
+        let edge = (c0..=c1).flat_map(|c| [[c, r0], [c, r1]]).chain((r0..=r1).flat_map(|r| [[c0, r], [c1, r]]));
+        for oc in edge {
+            let [x, z] = self.lattice.world(self.lattice.tile_center(self.tile_from_offset(oc)) - origin);
+            rx = rx.max(x.abs() + self.hex_size);
+            rz = rz.max(z.abs() + self.hex_size);
+        }
+        let [ox, oz] = self.lattice.world(origin);
+        Some((rx, rz, ox.abs().max(oz.abs())))
+    }
+
+    /// The largest [`Geometry::position_error`] of a chunk of this geometry (a chunk's tiles,
+    /// clipped to the map, anywhere in the world), in world units. A wrapping map's chunk placed
+    /// periods east adds `2^-50` of its distance from the world's origin.
+    #[must_use]
+    pub fn chunk_position_error(&self) -> f64 {
+        // Odd columns and rows are shoved, so a chunk's shape depends on the parity of its
+        // first column and row; the farthest origin adds the f64 rounding of the sum.
+        let [x, z] = self.lattice.world(self.lattice.tile_center(self.tile_from_offset([MAX_WORLD_TILE; 2])));
+        let far = x.abs().max(z.abs());
+        [[0, 0], [1, 0], [0, 1], [1, 1]]
+            .into_iter()
+            .filter_map(|min| self.reach(TileRect::new(min, [self.chunk_size.0, self.chunk_size.1])))
+            .map(|(rx, rz, _)| Self::error_of(rx, rz, far))
+            .fold(0.0, f64::max)
     }
 
     /// World position `[x, y, z]` (computed in f64) of the origin of a chunk's mesh: where its

@@ -184,7 +184,7 @@ impl Lattice {
     }
 
     /// Fractional axial tile coordinates of a lattice point.
-    fn fract_tile(&self, p: Hex) -> [f64; 2] {
+    pub(crate) fn fract_tile(&self, p: Hex) -> [f64; 2] {
         let (i, j) = (f64::from(p.x), f64::from(p.y));
         let d = 3.0 * f64::from(self.n);
         match self.orientation {

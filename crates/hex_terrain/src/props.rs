@@ -67,7 +67,8 @@ fn rule(pipeline: &Pipeline, info: &TileInfo, h: u64) -> Option<(PropKind, u32, 
         return grows;
     }
     let geometry = pipeline.geometry();
-    let coastal = geometry.neighbors(info.hex).iter().any(|&n| pipeline.map_tile_kind(n) == Some(TileKind::Sea));
+    let coastal =
+        geometry.wrapped_neighbors(info.hex).iter().any(|&n| pipeline.map_tile_kind(n) == Some(TileKind::Sea));
     coastal.then_some((PropKind::Reed, 2 + extra, 0.16))
 }
 
@@ -113,7 +114,7 @@ pub fn props(pipeline: &Pipeline, chunk: &ChunkMesh, max_per_chunk: usize, densi
             if is_wet_at(pipeline, tile, x, z) {
                 continue;
             }
-            let y = surface_height(pipeline, x, z);
+            let Some(y) = surface_height(pipeline, x, z) else { continue };
             if y <= sea + 0.02 * size {
                 continue;
             }

@@ -27,43 +27,60 @@ pub struct RayHit {
 pub const MAX_RAY_STEPS: u32 = 1 << 20;
 
 /// World position of a tile's center on the surface (for a tile past a wrapping map's edge,
-/// where it is drawn there).
+/// where it is drawn there); `None` for a tile past the world
+/// ([`Geometry::in_world`](crate::geometry::Geometry::in_world)).
 #[must_use]
-pub fn tile_center(pipeline: &Pipeline, tile: Hex) -> [f64; 3] {
+pub fn tile_center(pipeline: &Pipeline, tile: Hex) -> Option<[f64; 3]> {
+    if !pipeline.geometry().in_world(tile) {
+        return None;
+    }
     let lattice = pipeline.geometry().lattice();
     let p = lattice.tile_center(tile);
     let [x, z] = lattice.world(p);
-    [x, f64::from(pipeline.vertex_elevation(p)), z]
+    Some([x, f64::from(pipeline.vertex_elevation(p)), z])
 }
 
-/// World height of the surface (as meshed) at world `(x, z)`.
+/// World height of the surface (as meshed) at world `(x, z)`; `None` past the world. On a
+/// wrapping map, any finite `x` answers: the position is reduced to the map's period first
+/// ([`Geometry::wrap_position`](crate::geometry::Geometry::wrap_position)).
 #[must_use]
-pub fn surface_height(pipeline: &Pipeline, x: f64, z: f64) -> f64 {
-    let (tri, w) = pipeline.geometry().lattice().triangle_at(x, z);
-    tri.iter().zip(w).map(|(&p, w)| w * f64::from(pipeline.vertex_elevation(p))).sum()
+pub fn surface_height(pipeline: &Pipeline, x: f64, z: f64) -> Option<f64> {
+    let geometry = pipeline.geometry();
+    let (x, z) = geometry.wrap_position(x, z);
+    // The three corners of the triangle are at most one tile from the tile under it.
+    geometry.unwrapped_tile_at(x, z)?;
+    let (tri, w) = geometry.lattice().triangle_at(x, z);
+    Some(tri.iter().zip(w).map(|(&p, w)| w * f64::from(pipeline.vertex_elevation(p))).sum())
 }
 
 /// First hit of a ray on the surface within `max_distance`, marching at a fraction of a lattice
 /// step and refining by bisection. Any `max_distance` is fine (`f32::MAX` for no limit): the
 /// march covers only the part of the ray between the highest and the lowest possible surface,
-/// and gives up after [`MAX_RAY_STEPS`] steps.
+/// and gives up after [`MAX_RAY_STEPS`] steps or where the ray leaves the world. On a wrapping
+/// map the ray's origin is first moved by whole periods next to the map (exactly), and the hit
+/// moved back, so a ray a billion units east hits what one over the map does.
 #[must_use]
 pub fn raycast(pipeline: &Pipeline, origin: [f64; 3], direction: [f64; 3], max_distance: f64) -> Option<RayHit> {
     let len = (direction[0].powi(2) + direction[1].powi(2) + direction[2].powi(2)).sqrt();
-    if len.is_nan() || len <= 0.0 || max_distance.is_nan() || origin.iter().any(|v| !v.is_finite()) {
+    if !len.is_finite() || len <= 0.0 || max_distance.is_nan() || origin.iter().any(|v| !v.is_finite()) {
         return None;
     }
+    let geometry = pipeline.geometry();
     // March in f64, so a step stays a step however far along the ray.
     let d = direction.map(|v| v / len);
-    let o = origin;
+    let (x, _) = geometry.wrap_position(origin[0], origin[2]);
+    let shift = origin[0] - x;
+    let o = [x, origin[1], origin[2]];
     let at = |t: f64| [o[0] + d[0] * t, o[1] + d[1] * t, o[2] + d[2] * t];
     let above = |t: f64| {
         let p = at(t);
-        p[1] - surface_height(pipeline, p[0], p[2])
+        surface_height(pipeline, p[0], p[2]).map(|h| p[1] - h)
     };
     // The surface lies between 0 and the maximum elevation: skip down to the top quickly
-    // when looking from far above, and stop below the bottom.
-    let top = f64::from(pipeline.max_elevation());
+    // when looking from far above, and stop below the bottom. The top is raised by a margin:
+    // a vertex at the maximum elevation may round an f32 ulp above it (and the interpolation
+    // an f64 ulp more), and a march that starts inside the surface misses it.
+    let top = f64::from(pipeline.max_elevation()) * (1.0 + 8.0 * f64::from(f32::EPSILON)) + 1e-12;
     if o[1] > top && d[1] >= 0.0 {
         return None;
     }
@@ -72,8 +89,8 @@ pub fn raycast(pipeline: &Pipeline, origin: [f64; 3], direction: [f64; 3], max_d
     if d[1] < 0.0 {
         end = end.min(o[1].max(0.0) / -d[1] + 1.0);
     }
-    let step = pipeline.geometry().step() * 0.5;
-    let mut prev = above(t0);
+    let step = geometry.step() * 0.5;
+    let mut prev = above(t0)?;
     if prev < 0.0 {
         return None;
     }
@@ -83,15 +100,16 @@ pub fn raycast(pipeline: &Pipeline, origin: [f64; 3], direction: [f64; 3], max_d
             break;
         }
         let next = (t + step).min(end);
-        let h = above(next);
+        let h = above(next)?;
         if h <= 0.0 {
             let (mut lo, mut hi) = (t, next);
             for _ in 0..32 {
                 let mid = 0.5 * (lo + hi);
-                if above(mid) > 0.0 { lo = mid } else { hi = mid }
+                if above(mid).is_some_and(|h| h > 0.0) { lo = mid } else { hi = mid }
             }
-            let point = at(hi);
-            return Some(RayHit { point, distance: hi, tile: pipeline.geometry().tile_at(point[0], point[2]) });
+            let [px, py, pz] = at(hi);
+            let tile = geometry.tile_at(px, pz)?;
+            return Some(RayHit { point: [px + shift, py, pz], distance: hi, tile });
         }
         prev = h;
         t = next;

@@ -136,7 +136,7 @@ impl TileTable {
             return None;
         }
         let tile = geometry.wrap_tile(tile);
-        let neighbors = geometry.neighbors(tile);
+        let neighbors = geometry.wrapped_neighbors(tile);
         let downstream = h.down(i).map(|d| neighbors[d]).filter(|&nb| geometry.contains(nb));
         let upstream = (0..6)
             .filter(|&d| {

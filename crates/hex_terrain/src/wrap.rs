@@ -112,7 +112,8 @@ impl Wrap {
     #[must_use]
     pub fn chunk(&self, chunk: ChunkCoord) -> (ChunkCoord, i32) {
         let k = chunk.x.div_euclid(self.chunk_columns);
-        (ChunkCoord::new(chunk.x - k * self.chunk_columns, chunk.z), k)
+        // `chunk.x.rem_euclid` without the product, which overflows for the westmost chunks.
+        (ChunkCoord::new(chunk.x.rem_euclid(self.chunk_columns), chunk.z), k)
     }
 
     /// The chunk holding offset coordinate `[col, row]` (any column).

@@ -28,7 +28,7 @@ fn pixels_below_sea_level_become_sea_tiles() {
     let t = Terrain::with_image(config, Some(image.clone())).unwrap();
     let b = t.bounds().unwrap();
     // The image spans the tile centers' extent.
-    let centers: Vec<[f64; 3]> = t.tiles().map(|h| t.tile_center(h)).collect();
+    let centers: Vec<[f64; 3]> = t.tiles().map(|h| t.tile_center(h).unwrap()).collect();
     let extent = |axis: usize| {
         let lo = centers.iter().map(|c| c[axis]).fold(f64::MAX, f64::min);
         let hi = centers.iter().map(|c| c[axis]).fold(f64::MIN, f64::max);
@@ -39,8 +39,8 @@ fn pixels_below_sea_level_become_sea_tiles() {
     for oc in b.iter() {
         let tile = t.tile_from_offset(oc);
         // Where the tile center falls on the image.
-        let [x, _, z] = t.tile_center(tile);
-        let kind = t.tile_kind(tile);
+        let [x, _, z] = t.tile_center(tile).unwrap();
+        let kind = t.tile_kind(tile).unwrap();
         // Sample the image as the source does (u over x extent, v over z extent).
         let u = (x - min_x) / (max_x - min_x);
         let v = (z - min_z) / (max_z - min_z);

@@ -196,18 +196,20 @@ proptest! {
         }
         let mut seen: HashMap<Hex, VertexBits> = HashMap::new();
         let mut tiles = 0;
-        // Positions are relative to each mesh's origin: in one frame, within 1e-5 lattice steps.
-        let step = f64::from(t.config().layout.hex_size) / f64::from(t.lattice().subdivisions());
+        // Positions are relative to each mesh's origin: in one frame, within the two meshes'
+        // position errors.
+        let whole_error = t.geometry().position_error(rect);
         for chunk in chunks {
             let Some(rect_c) = t.chunk_rect(chunk) else { continue };
             let m = t.generate(rect_c.intersect(&rect), GenerateOptions::DIAGNOSTICS);
+            let tolerance = t.geometry().position_error(rect_c.intersect(&rect)) + whole_error;
             tiles += m.tiles.len();
             for (i, p) in lattice(&m).iter().enumerate() {
                 let bits = vertex_bits(&m, i);
                 let w = whole_index[p];
                 prop_assert_eq!(bits, vertex_bits(&whole, w), "chunk {:?} vertex {:?} differs from the whole", chunk, p);
                 let ([x, z], [wx, wz]) = (world_xz(&m, i), world_xz(&whole, w));
-                prop_assert!((x - wx).abs().max((z - wz).abs()) <= 1e-5 * step, "vertex {:?} at {:?} vs {:?}", p, (x, z), (wx, wz));
+                prop_assert!((x - wx).hypot(z - wz) <= tolerance, "vertex {:?} at {:?} vs {:?}", p, (x, z), (wx, wz));
                 prop_assert!(uv_gap(m.buffers.uvs[i], whole.buffers.uvs[w]) < 1e-4, "uv of {:?}", p);
                 if let Some(prev) = seen.insert(*p, bits) {
                     prop_assert_eq!(prev, bits, "seam vertex {:?} differs between chunks", p);

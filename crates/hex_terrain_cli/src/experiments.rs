@@ -348,7 +348,8 @@ fn outside_range(terrain: &Terrain, mesh: &hex_terrain::ChunkMesh) -> usize {
                 return false;
             }
             let tile = terrain.lattice().tiles_at(p).tiles()[0];
-            let (lo, hi) = terrain.thresholds().range(terrain.tile_kind(tile));
+            let Some(kind) = terrain.tile_kind(tile) else { return true };
+            let (lo, hi) = terrain.thresholds().range(kind);
             let h = mesh.buffers.positions[i][1] / max_e;
             h < lo - eps || h > hi + eps
         })

@@ -52,7 +52,7 @@ fn center_pixels(terrain: &Terrain, mesh: &hex_terrain::ChunkMesh, width: u32) -
     }
     let scale = (width - 1) as f32 / (max_x - min_x);
     move |hex| {
-        let [x, _, z] = terrain.tile_center(hex).map(|v| v as f32);
+        let [x, _, z] = terrain.tile_center(hex).unwrap().map(|v| v as f32);
         (((x - min_x) * scale).round() as u32, ((z - min_z) * scale).round() as u32)
     }
 }
@@ -162,7 +162,7 @@ fn tile_image_puts_sea_where_the_image_is_below_sea_level() {
         let mesh = terrain.generate_map().unwrap();
         let (mut min_x, mut max_x, mut min_z, mut max_z) = (f64::MAX, f64::MIN, f64::MAX, f64::MIN);
         for t in &mesh.tiles {
-            let [x, _, z] = terrain.tile_center(t.hex);
+            let [x, _, z] = terrain.tile_center(t.hex).unwrap();
             min_x = min_x.min(x);
             max_x = max_x.max(x);
             min_z = min_z.min(z);
@@ -170,7 +170,7 @@ fn tile_image_puts_sea_where_the_image_is_below_sea_level() {
         }
         let (mut sea, mut dry) = (0, 0);
         for t in &mesh.tiles {
-            let [x, _, z] = terrain.tile_center(t.hex);
+            let [x, _, z] = terrain.tile_center(t.hex).unwrap();
             // The hill's value under the tile center, from the geometry of the picture.
             let (u, v) = ((x - min_x) / (max_x - min_x) * 2.0 - 1.0, (z - min_z) / (max_z - min_z) * 2.0 - 1.0);
             let value = (1.0 - (u * u + v * v).sqrt() / 1.2).max(0.0);

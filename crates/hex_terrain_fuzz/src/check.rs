@@ -25,13 +25,13 @@ pub fn check_terrain(terrain: &Terrain, mesh: &ChunkMesh) {
     for info in &mesh.tiles {
         assert!(info.elevation.is_finite() && (0.0..=top * 1.0001 + 1e-3).contains(&info.elevation));
         let top = f64::from(top);
-        let [x, y, z] = terrain.tile_center(info.hex);
+        let [x, y, z] = terrain.tile_center(info.hex).expect("a generated tile is in the world");
         assert!(x.is_finite() && y.is_finite() && z.is_finite(), "tile center of {:?}", info.hex);
-        assert!(terrain.surface_height(x, z).is_finite(), "surface height at {x}, {z}");
+        assert!(terrain.surface_height(x, z).is_some_and(f64::is_finite), "surface height at {x}, {z}");
         if let Some(hit) = terrain.raycast([x, top + 10.0, z], [0.3, -1.0, 0.2], f64::MAX) {
             assert!(hit.point.iter().all(|v| v.is_finite()) && hit.distance.is_finite(), "{hit:?}");
         }
-        let _ = terrain.tile_at(x, z);
+        assert!(terrain.tile_at(x, z).is_some(), "no tile under the center of {:?}", info.hex);
     }
 }
 

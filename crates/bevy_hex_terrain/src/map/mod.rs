@@ -111,16 +111,18 @@ impl HexMap {
     }
 
     /// The tile under a world position (its `y` is ignored); on a wrapping map, the map's own
-    /// tile (a position one map width east is the same tile).
+    /// tile (a position one map width east is the same tile). `None` past the world's edge
+    /// ([`hex_terrain::config::MAX_WORLD_TILE`] tiles from the origin), which a wrapping map has
+    /// only north and south.
     #[must_use]
-    pub fn tile_at(&self, world: Vec3) -> Hex {
+    pub fn tile_at(&self, world: Vec3) -> Option<Hex> {
         self.tile_at_f64(world.as_dvec3())
     }
 
     /// [`tile_at`](Self::tile_at) for an f64 world position, exact however far from the origin
     /// (with the `big_space` feature, `Grid::grid_position_double` gives an entity's).
     #[must_use]
-    pub fn tile_at_f64(&self, world: DVec3) -> Hex {
+    pub fn tile_at_f64(&self, world: DVec3) -> Option<Hex> {
         self.terrain.tile_at(world.x, world.z)
     }
 
@@ -140,15 +142,16 @@ impl HexMap {
         Some(TileHitF64 { tile: hit.tile, point: DVec3::from_array(hit.point), distance: hit.distance })
     }
 
-    /// Type, center elevation, map membership, biome, river flow and lake of a tile.
+    /// Type, center elevation, map membership, biome, river flow and lake of a tile; `None`
+    /// for a tile past the world's edge (so is every tile query's answer).
     #[must_use]
-    pub fn tile_info(&self, tile: Hex) -> TileInfo {
+    pub fn tile_info(&self, tile: Hex) -> Option<TileInfo> {
         self.terrain.tile_info(tile)
     }
 
     /// A tile's biome (from its type alone when the map has no climate).
     #[must_use]
-    pub fn biome(&self, tile: Hex) -> Biome {
+    pub fn biome(&self, tile: Hex) -> Option<Biome> {
         self.terrain.tile_biome(tile)
     }
 
@@ -166,44 +169,46 @@ impl HexMap {
 
     /// Type of a tile.
     #[must_use]
-    pub fn tile_kind(&self, tile: Hex) -> TileKind {
+    pub fn tile_kind(&self, tile: Hex) -> Option<TileKind> {
         self.terrain.tile_kind(tile)
     }
 
     /// World position of a tile's center on the surface: where a unit standing on it goes.
     #[must_use]
-    pub fn tile_center(&self, tile: Hex) -> Vec3 {
-        self.tile_center_f64(tile).as_vec3()
+    pub fn tile_center(&self, tile: Hex) -> Option<Vec3> {
+        self.tile_center_f64(tile).map(DVec3::as_vec3)
     }
 
     /// [`tile_center`](Self::tile_center) in f64, exact however far from the origin.
     #[must_use]
-    pub fn tile_center_f64(&self, tile: Hex) -> DVec3 {
-        DVec3::from_array(self.terrain.tile_center(tile))
+    pub fn tile_center_f64(&self, tile: Hex) -> Option<DVec3> {
+        self.terrain.tile_center(tile).map(DVec3::from_array)
     }
 
-    /// Height of the surface at a world position (its `y` is ignored).
+    /// Height of the surface at a world position (its `y` is ignored); `None` past the world's
+    /// edge.
     #[must_use]
-    pub fn surface_height(&self, world: Vec3) -> f32 {
-        self.surface_height_f64(world.as_dvec3()) as f32
+    pub fn surface_height(&self, world: Vec3) -> Option<f32> {
+        self.surface_height_f64(world.as_dvec3()).map(|h| h as f32)
     }
 
     /// [`surface_height`](Self::surface_height) at an f64 world position.
     #[must_use]
-    pub fn surface_height_f64(&self, world: DVec3) -> f64 {
+    pub fn surface_height_f64(&self, world: DVec3) -> Option<f64> {
         self.terrain.surface_height(world.x, world.z)
     }
 
     /// The six neighbors of a tile (some may lie outside a bounded map; on a wrapping map,
     /// neighbors across the seam are the map's own tiles on the other side).
     #[must_use]
-    pub fn neighbors(&self, tile: Hex) -> [Hex; 6] {
+    pub fn neighbors(&self, tile: Hex) -> Option<[Hex; 6]> {
         self.terrain.neighbors(tile)
     }
 
-    /// Hex distance between two tiles, the short way round on a wrapping map.
+    /// Hex distance between two tiles, the short way round on a wrapping map; `None` when
+    /// either is past the world's edge.
     #[must_use]
-    pub fn distance(&self, a: Hex, b: Hex) -> u32 {
+    pub fn distance(&self, a: Hex, b: Hex) -> Option<u32> {
         self.terrain.distance(a, b)
     }
 
@@ -231,7 +236,7 @@ impl HexMap {
         position + Vec3::X * (k * width)
     }
 
-    /// Whether a tile belongs to the map (always, for an unbounded world).
+    /// Whether a tile belongs to the map (every tile of the world, for an unbounded one).
     #[must_use]
     pub fn contains(&self, tile: Hex) -> bool {
         self.terrain.contains(tile)

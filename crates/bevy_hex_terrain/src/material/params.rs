@@ -120,12 +120,13 @@ pub struct RenderOrigin {
 }
 
 impl RenderOrigin {
-    /// The render origin of a frame whose origin is at world `(x, z)` (in f64).
+    /// The render origin of a frame whose origin is at world `(x, z)` (in f64); `None` past the
+    /// world's edge.
     #[must_use]
-    pub fn at(terrain: &hex_terrain::Terrain, x: f64, z: f64) -> Self {
-        let tile = terrain.unwrapped_tile_at(x, z);
-        let [cx, _, cz] = terrain.tile_center(tile);
-        Self { tile: IVec2::new(tile.x, tile.y), offset: Vec2::new((x - cx) as f32, (z - cz) as f32) }
+    pub fn at(terrain: &hex_terrain::Terrain, x: f64, z: f64) -> Option<Self> {
+        let tile = terrain.unwrapped_tile_at(x, z)?;
+        let [cx, _, cz] = terrain.tile_center(tile)?;
+        Some(Self { tile: IVec2::new(tile.x, tile.y), offset: Vec2::new((x - cx) as f32, (z - cz) as f32) })
     }
 }
 

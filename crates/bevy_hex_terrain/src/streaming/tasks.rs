@@ -63,11 +63,12 @@ pub(crate) fn stream(
     streamer.chunks.retain(|_, e| chunks.contains(*e));
     let agents: Vec<(ChunkCoord, u32)> = agents
         .iter()
-        .map(|(t, a, world)| {
+        .filter_map(|(t, a, world)| {
             let p = world.map_or_else(|| t.translation().as_dvec3(), |w| w.0);
             // The tile of the plane (not wrapped): on a wrapping map the agent's chunk is the copy
-            // under it, east or west of the map.
-            (terrain.chunk_of(terrain.unwrapped_tile_at(p.x, p.z)), a.radius.unwrap_or(settings.load_radius))
+            // under it, east or west of the map. An agent past the world's edge loads nothing.
+            let tile = terrain.unwrapped_tile_at(p.x, p.z)?;
+            Some((terrain.chunk_of(tile), a.radius.unwrap_or(settings.load_radius)))
         })
         .collect();
     let existing: HashMap<ChunkCoord, ChunkState> = streamer

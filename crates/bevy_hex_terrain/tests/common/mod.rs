@@ -41,9 +41,11 @@ pub fn spawn_agent(app: &mut App, at: Vec3) -> Entity {
     app.world_mut().spawn((HexTerrainAgent::default(), Transform::from_translation(at))).id()
 }
 
-/// Updates until `done` holds, letting the task pool work between frames.
+/// Updates until `done` holds, letting the task pool work between frames. The frame cap (20
+/// seconds of sleep at the least) only catches a hang: a slow machine takes more frames, never
+/// a different answer.
 pub fn run_until(app: &mut App, what: &str, mut done: impl FnMut(&mut App) -> bool) {
-    for _ in 0..3000 {
+    for _ in 0..20_000 {
         app.update();
         if done(app) {
             return;
@@ -74,5 +76,5 @@ pub fn window(center: ChunkCoord, r: i32) -> HashSet<ChunkCoord> {
 
 pub fn agent_chunk(app: &App, at: Vec3) -> ChunkCoord {
     let map = app.world().resource::<HexMap>();
-    map.chunk_of(map.tile_at(at))
+    map.chunk_of(map.tile_at(at).unwrap())
 }

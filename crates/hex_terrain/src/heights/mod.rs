@@ -162,6 +162,14 @@ impl HeightField {
     #[must_use]
     #[inline]
     pub fn noise_position(&self, geometry: &Geometry, p: Hex) -> [f64; 2] {
-        geometry.lattice().unit(geometry.wrap_point(p) + geometry.origin_lattice())
+        let (p, o) = (geometry.wrap_point(p), geometry.origin_lattice());
+        match (p.x.checked_add(o.x), p.y.checked_add(o.y)) {
+            (Some(x), Some(y)) => geometry.lattice().unit(Hex::new(x, y)),
+            // A point past the world (whose sum overflows `i32`): the same position in f64.
+            _ => {
+                let ([px, pz], [ox, oz]) = (geometry.lattice().unit(p), geometry.lattice().unit(o));
+                [px + ox, pz + oz]
+            }
+        }
     }
 }

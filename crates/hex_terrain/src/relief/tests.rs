@@ -16,12 +16,12 @@ fn relief_raises_mountain_centers_and_needs_hex_unity() {
     let mut raised = 0;
     let mut mountains = 0;
     for tile in flat.tiles() {
-        if flat.tile_kind(tile) != TileKind::Mountain {
+        if flat.tile_kind(tile).unwrap() != TileKind::Mountain {
             continue;
         }
         mountains += 1;
         let center = flat.lattice().tile_center(tile);
-        let (h0, h1) = (flat.vertex(center).height, peaked.vertex(center).height);
+        let (h0, h1) = (flat.vertex(center).unwrap().height, peaked.vertex(center).unwrap().height);
         assert!(h1 >= h0);
         if h1 > h0 + 0.02 {
             raised += 1;

@@ -8,10 +8,15 @@ use crate::props::{self, Prop};
 
 impl Terrain {
     /// Generates a chunk on the calling thread (a chunk is the unit of parallel work of a
-    /// streaming caller), `None` when it lies outside a bounded map.
+    /// streaming caller), `None` when it lies outside a bounded map. Its
+    /// [`ChunkMesh::origin`] is [`Terrain::chunk_origin`]: on a wrapping map, a chunk placed
+    /// periods east of the map is the map's chunk's mesh with its origin there.
     #[must_use]
     pub fn generate_chunk(&self, chunk: ChunkCoord) -> Option<ChunkMesh> {
-        self.chunk_rect(chunk).map(|rect| self.generate(rect, GenerateOptions::CURRENT_THREAD))
+        let rect = self.chunk_rect(chunk)?;
+        let mut mesh = self.generate(rect, GenerateOptions::CURRENT_THREAD);
+        mesh.origin = self.chunk_origin(chunk)?;
+        Some(mesh)
     }
 
     /// Generates a bounded map in one mesh on all cores, `None` for an unbounded world.

@@ -175,9 +175,17 @@ impl Terrain {
         self.geometry().wrap_chunk(chunk)
     }
 
-    /// Hex distance between two tiles, the short way round on a wrapping map.
+    /// Whether a tile is in the world (see [`Geometry::in_world`]): every query about a tile
+    /// past it answers `None`.
     #[must_use]
-    pub fn distance(&self, a: Hex, b: Hex) -> u32 {
+    pub fn in_world(&self, tile: Hex) -> bool {
+        self.geometry().in_world(tile)
+    }
+
+    /// Hex distance between two tiles, the short way round on a wrapping map; `None` when
+    /// either is past the world.
+    #[must_use]
+    pub fn distance(&self, a: Hex, b: Hex) -> Option<u32> {
         self.geometry().distance(a, b)
     }
 
@@ -190,9 +198,10 @@ impl Terrain {
         self.geometry().tile_near(tile, near)
     }
 
-    /// The six neighbors of a tile, each wrapped into the map on a wrapping map.
+    /// The six neighbors of a tile, each wrapped into the map on a wrapping map; `None` for a
+    /// tile past the world.
     #[must_use]
-    pub fn neighbors(&self, tile: Hex) -> [Hex; 6] {
+    pub fn neighbors(&self, tile: Hex) -> Option<[Hex; 6]> {
         self.geometry().neighbors(tile)
     }
 
@@ -258,51 +267,52 @@ impl Terrain {
         self.heights().noise_position(self.geometry(), p)
     }
 
-    /// Type of a tile (by its center), whether or not it is in the map.
+    /// Type of a tile (by its center), whether or not it is in the map; `None` past the world.
     #[must_use]
-    pub fn tile_kind(&self, tile: Hex) -> TileKind {
-        self.pipeline.tile_kind(tile)
+    pub fn tile_kind(&self, tile: Hex) -> Option<TileKind> {
+        self.in_world(tile).then(|| self.pipeline.tile_kind(tile))
     }
 
     /// Type of a tile if it belongs to the map.
     #[must_use]
     pub fn map_tile_kind(&self, tile: Hex) -> Option<TileKind> {
-        self.pipeline.map_tile_kind(tile)
+        self.in_world(tile).then(|| self.pipeline.map_tile_kind(tile)).flatten()
     }
 
-    /// Type, center elevation, membership, biome, river and lake of a tile.
+    /// Type, center elevation, membership, biome, river and lake of a tile; `None` past the
+    /// world.
     #[must_use]
-    pub fn tile_info(&self, tile: Hex) -> TileInfo {
-        self.pipeline.tile_info(tile)
+    pub fn tile_info(&self, tile: Hex) -> Option<TileInfo> {
+        self.in_world(tile).then(|| self.pipeline.tile_info(tile))
     }
 
-    /// Temperature and moisture of a tile, `None` when the map has no climate.
+    /// Temperature and moisture of a tile, `None` when the map has no climate or the tile is
+    /// past the world.
     #[must_use]
     pub fn tile_climate(&self, tile: Hex) -> Option<Climate> {
         let climate = self.climate();
-        climate
-            .is_enabled()
+        (climate.is_enabled() && self.in_world(tile))
             .then(|| climate.climate_of(self.geometry(), self.heights(), tile, &self.pipeline.tile_sample(tile)))
     }
 
     /// A tile's biome (from the relief kind alone when the map has no climate; lake tiles are
-    /// [`Biome::Lake`] whether or not it has).
+    /// [`Biome::Lake`] whether or not it has); `None` past the world.
     #[must_use]
-    pub fn tile_biome(&self, tile: Hex) -> Biome {
-        self.pipeline.tile_biome(tile)
+    pub fn tile_biome(&self, tile: Hex) -> Option<Biome> {
+        self.in_world(tile).then(|| self.pipeline.tile_biome(tile))
     }
 
     /// Evaluates one lattice vertex through the vertex chain, computing the kinds of the tiles
-    /// around it.
+    /// around it; `None` for a point past the world ([`Geometry::point_in_world`]).
     #[must_use]
-    pub fn vertex(&self, p: Hex) -> VertexSample {
-        self.pipeline.vertex(p)
+    pub fn vertex(&self, p: Hex) -> Option<VertexSample> {
+        self.geometry().point_in_world(p).then(|| self.pipeline.vertex(p))
     }
 
-    /// World height of the finished surface at a lattice point.
+    /// World height of the finished surface at a lattice point; `None` past the world.
     #[must_use]
-    pub fn vertex_elevation(&self, p: Hex) -> f32 {
-        self.pipeline.vertex_elevation(p)
+    pub fn vertex_elevation(&self, p: Hex) -> Option<f32> {
+        self.geometry().point_in_world(p).then(|| self.pipeline.vertex_elevation(p))
     }
 }
 

@@ -7,29 +7,31 @@ use super::Terrain;
 use crate::query::{self, RayHit};
 
 impl Terrain {
-    /// The tile under world `(x, z)` (the map's own tile on a wrapping map).
+    /// The tile under world `(x, z)` (the map's own tile on a wrapping map, for any finite
+    /// `x`); `None` past the world.
     #[must_use]
-    pub fn tile_at(&self, x: f64, z: f64) -> Hex {
+    pub fn tile_at(&self, x: f64, z: f64) -> Option<Hex> {
         self.geometry().tile_at(x, z)
     }
 
     /// The tile under world `(x, z)` of the plane, not wrapped: on a wrapping map, a position
-    /// one map width east gives the tile one map width east.
+    /// one map width east gives the tile one map width east. `None` past the world.
     #[must_use]
-    pub fn unwrapped_tile_at(&self, x: f64, z: f64) -> Hex {
+    pub fn unwrapped_tile_at(&self, x: f64, z: f64) -> Option<Hex> {
         self.geometry().unwrapped_tile_at(x, z)
     }
 
     /// World position of a tile's center on the surface (for a tile past a wrapping map's
-    /// edge, where it is drawn there).
+    /// edge, where it is drawn there); `None` past the world.
     #[must_use]
-    pub fn tile_center(&self, tile: Hex) -> [f64; 3] {
+    pub fn tile_center(&self, tile: Hex) -> Option<[f64; 3]> {
         query::tile_center(&self.pipeline, tile)
     }
 
-    /// World height of the surface (as meshed) at world `(x, z)`.
+    /// World height of the surface (as meshed) at world `(x, z)`; `None` past the world (see
+    /// [`query::surface_height`]).
     #[must_use]
-    pub fn surface_height(&self, x: f64, z: f64) -> f64 {
+    pub fn surface_height(&self, x: f64, z: f64) -> Option<f64> {
         query::surface_height(&self.pipeline, x, z)
     }
 

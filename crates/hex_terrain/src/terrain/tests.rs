@@ -15,9 +15,9 @@ fn tile_at_inverts_tile_center() {
         c.layout.hex_size = 2.5;
         let t = Terrain::new(c).unwrap();
         for tile in t.tiles() {
-            let [x, _, z] = t.tile_center(tile);
-            assert_eq!(t.tile_at(x, z), tile);
-            assert_eq!(t.tile_at(x + 1.0, z - 0.5), tile, "within the hex radius");
+            let [x, _, z] = t.tile_center(tile).unwrap();
+            assert_eq!(t.tile_at(x, z).unwrap(), tile);
+            assert_eq!(t.tile_at(x + 1.0, z - 0.5).unwrap(), tile, "within the hex radius");
         }
     }
 }
@@ -29,8 +29,8 @@ fn offset_shifts_the_window_over_one_world() {
     let map1 = Terrain::new(c).unwrap();
     // Map1's first column is the world's column 30, which Map0 computes too.
     for row in 0..30 {
-        let a = map0.tile_kind(map0.tile_from_offset([30, row]));
-        let b = map1.tile_kind(map1.tile_from_offset([0, row]));
+        let a = map0.tile_kind(map0.tile_from_offset([30, row])).unwrap();
+        let b = map1.tile_kind(map1.tile_from_offset([0, row])).unwrap();
         assert_eq!(a, b);
     }
 }
@@ -61,7 +61,7 @@ fn island_has_sea_all_around() {
     for oc in b.iter() {
         let edge = oc[0] == 0 || oc[1] == 0 || oc[0] == b.max[0] - 1 || oc[1] == b.max[1] - 1;
         if edge {
-            assert_eq!(t.tile_kind(t.tile_from_offset(oc)), TileKind::Sea, "{oc:?}");
+            assert_eq!(t.tile_kind(t.tile_from_offset(oc)).unwrap(), TileKind::Sea, "{oc:?}");
         }
     }
 }
@@ -70,8 +70,8 @@ fn island_has_sea_all_around() {
 fn surface_height_matches_vertices_and_raycast_hits_it() {
     let t = terrain();
     for tile in t.tiles().step_by(37) {
-        let [x, y, z] = t.tile_center(tile);
-        assert!((t.surface_height(x, z) - y).abs() < 1e-3);
+        let [x, y, z] = t.tile_center(tile).unwrap();
+        assert!((t.surface_height(x, z).unwrap() - y).abs() < 1e-3);
         let hit = t.raycast([x + 3.0, 50.0, z - 2.0], [-3.0, -(50.0 - y), 2.0], 200.0).unwrap();
         assert_eq!(hit.tile, tile, "ray aimed at the center of {tile:?}");
         assert!((hit.point[1] - y).abs() < 0.05);
@@ -90,9 +90,12 @@ fn raycasts_end_whatever_their_length_and_the_hex_size() {
     let t = Terrain::new(config).unwrap();
     // Horizontal just above the relief: never hits, and ends after the step cap.
     assert!(t.raycast([0.0, 1.5, 0.0], [1.0, 0.0, 0.0], f64::MAX).is_none());
-    // From far above and far out, aimed down: hits.
-    let hit = t.raycast([3000.0, 1e6, 3000.0], [0.0, -1.0, 0.0], f64::MAX).unwrap();
-    assert!((hit.point[1] - t.surface_height(3000.0, 3000.0)).abs() < 1e-3, "{hit:?}");
+    // From far above and far out (the world of 10^-4-unit hexes ends 2,516 units out), aimed
+    // down: hits; past the world's edge: no surface, no hit.
+    let hit = t.raycast([2000.0, 1e6, 2000.0], [0.0, -1.0, 0.0], f64::MAX).unwrap();
+    assert!((hit.point[1] - t.surface_height(2000.0, 2000.0).unwrap()).abs() < 1e-3, "{hit:?}");
+    assert!(t.raycast([3000.0, 1e6, 3000.0], [0.0, -1.0, 0.0], f64::MAX).is_none());
+    assert!(t.surface_height(3000.0, 3000.0).is_none());
     // Going up from above every height: no hit at once.
     assert!(t.raycast([0.0, 2.0, 0.0], [0.1, 1.0, 0.0], f64::MAX).is_none());
 }

@@ -18,18 +18,27 @@ impl Terrain {
     /// The river on a tile, if one runs through it.
     #[must_use]
     pub fn river(&self, tile: Hex) -> Option<RiverTile> {
+        if !self.in_world(tile) {
+            return None;
+        }
         self.pipeline.table()?.river(self.geometry(), tile)
     }
 
     /// Water a river on a tile carries, 0 when no river runs through it.
     #[must_use]
     pub fn river_flow(&self, tile: Hex) -> f32 {
-        self.pipeline.table().map_or(0.0, |t| t.river_flow(self.geometry(), tile))
+        match self.pipeline.table() {
+            Some(t) if self.in_world(tile) => t.river_flow(self.geometry(), tile),
+            _ => 0.0,
+        }
     }
 
     /// The lake a tile belongs to (an id, 0 for the first lake), if it is a lake tile.
     #[must_use]
     pub fn lake(&self, tile: Hex) -> Option<u32> {
+        if !self.in_world(tile) {
+            return None;
+        }
         self.pipeline.table()?.lake(self.geometry(), tile)
     }
 
@@ -42,6 +51,9 @@ impl Terrain {
     /// Water level of a tile (the filled surface, normalised), on a map with rivers.
     #[must_use]
     pub fn water_level(&self, tile: Hex) -> Option<f32> {
+        if !self.in_world(tile) {
+            return None;
+        }
         self.pipeline.table()?.water_level(self.geometry(), tile)
     }
 
@@ -49,6 +61,9 @@ impl Terrain {
     /// a channel's middle line, falling smoothly to 0 at the channel's half-width.
     #[must_use]
     pub fn water_cover(&self, tile: Hex, p: Hex) -> f32 {
+        if !self.in_world(tile) || !self.geometry().point_in_world(p) {
+            return 0.0;
+        }
         self.pipeline.water_cover(tile, p)
     }
 
@@ -56,7 +71,7 @@ impl Terrain {
     /// has a water cover of 0.
     #[must_use]
     pub fn tile_is_wet(&self, tile: Hex) -> bool {
-        self.pipeline.tile_is_wet(tile)
+        self.in_world(tile) && self.pipeline.tile_is_wet(tile)
     }
 
     /// Whether meshes carry a color per vertex (climate or rivers on).
@@ -73,13 +88,16 @@ impl Terrain {
     }
 
     /// Color of the lattice point `p` evaluated on its own: [`Terrain::vertex_color`] of the
-    /// in-map tiles holding it and its water cover.
+    /// in-map tiles holding it and its water cover; `None` past the world.
     #[must_use]
-    pub fn point_color(&self, p: Hex) -> [u8; 4] {
+    pub fn point_color(&self, p: Hex) -> Option<[u8; 4]> {
+        if !self.geometry().point_in_world(p) {
+            return None;
+        }
         let set = self.lattice().tiles_at(p);
         let biomes: Vec<Biome> =
-            set.tiles().iter().filter(|&&t| self.contains(t)).map(|&t| self.tile_biome(t)).collect();
-        mesh::vertex_color(&biomes, self.vertex(p).water)
+            set.tiles().iter().filter(|&&t| self.contains(t)).map(|&t| self.pipeline.tile_biome(t)).collect();
+        Some(mesh::vertex_color(&biomes, self.pipeline.vertex(p).water))
     }
 
     /// World height of the sea surface: the sea threshold times the maximum elevation (the

@@ -1,0 +1,249 @@
+//! The promises at the edges, property-based over random valid configs: a wrapped chunk's
+//! origin, rays at the top of the relief, the f32 bound on positions for any chunk size and
+//! ring count, queries past the world's edge, and wrapping maps far east and west.
+
+use hex_terrain::config::MAX_WORLD_TILE;
+use hex_terrain::hexx::Hex;
+use hex_terrain::{ChunkCoord, GenerateOptions, MapConfig, MapSize, NoiseConfig, Orientation, Shape, Terrain};
+use proptest::prelude::*;
+
+prop_compose! {
+    /// Any layout: 1-16 inner rings, chunks up to 128x8 (or 8x128), bounded or not, wrapping
+    /// or not, both orientations.
+    fn config()(
+        seed in any::<u32>(),
+        inner_rings in 1u32..=16,
+        pointy in any::<bool>(),
+        hex_size in 0.25f32..4.0,
+        chunk in prop_oneof![(1u32..=128, 1u32..=8), (1u32..=8, 1u32..=128), (1u32..=24, 1u32..=24)],
+        size in 0usize..3,
+        columns in 2u32..12,
+        rows in 1u32..6,
+        offset in (-1000i32..1000, -1000i32..1000),
+        max_elevation in 0.5f32..100.0,
+    ) -> MapConfig {
+        let mut c = MapConfig {
+            seed,
+            offset,
+            noise: NoiseConfig { octaves: 3, ..NoiseConfig::default() },
+            chunk_size: chunk,
+            ..MapConfig::default()
+        };
+        c.terrain.inner_rings = inner_rings;
+        c.terrain.max_elevation = max_elevation;
+        c.layout.orientation = if pointy { Orientation::Pointy } else { Orientation::Flat };
+        c.layout.hex_size = hex_size;
+        match size {
+            0 => c.size = MapSize::Unbounded,
+            1 => c.size = MapSize::Bounded { x: 2 * columns, z: rows },
+            _ => {
+                c.size = MapSize::Bounded { x: 2 * columns.max(2), z: rows };
+                c.wrap = true;
+            }
+        }
+        c
+    }
+}
+
+/// Tiles that are not in any world: near `i32`'s ends, and just past `MAX_WORLD_TILE`.
+fn hostile_tiles(t: &Terrain) -> Vec<Hex> {
+    let m = MAX_WORLD_TILE;
+    let mut tiles = vec![
+        Hex::new(1 << 30, -(1 << 30)),
+        Hex::new(i32::MAX, 0),
+        Hex::new(i32::MIN, i32::MAX),
+        Hex::new(i32::MAX, i32::MAX),
+        Hex::new(i32::MIN, i32::MIN),
+        Hex::new(0, i32::MIN),
+    ];
+    tiles.extend([[m, 0], [-m - 1, 0], [0, m], [0, -m - 1], [m, m]].map(|oc| t.tile_from_offset(oc)));
+    tiles
+}
+
+/// Positions past every world (and not finite).
+const HOSTILE: [f64; 8] = [1e9, -1e9, 1e10, 1e15, -1e300, f64::MAX, f64::INFINITY, f64::NAN];
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 24, ..ProptestConfig::default() })]
+
+    /// Every vertex of a chunk, brought into the world frame in f64, lies within the stated
+    /// bound of its exact position, and the vertices two neighboring chunks share within the
+    /// sum of their bounds: for any ring count and chunk size, next to the origin and at the
+    /// last chunk of the world.
+    #[test]
+    fn positions_keep_the_stated_bound(config in config()) {
+        let t = Terrain::new(config).unwrap();
+        let g = t.geometry();
+        let (w, h) = t.chunk_size();
+        let last = ChunkCoord::new(MAX_WORLD_TILE / w as i32 - 1, -(MAX_WORLD_TILE / h as i32));
+        let chunks: Vec<ChunkCoord> = if t.bounds().is_some() {
+            t.chunks().into_iter().take(2).collect()
+        } else {
+            vec![ChunkCoord::new(0, 0), ChunkCoord::new(1, 0), last]
+        };
+        let bound = g.chunk_position_error();
+        let mut seen = std::collections::HashMap::new();
+        for chunk in chunks {
+            let Some(rect) = t.chunk_rect(chunk) else { continue };
+            let m = t.generate(rect, GenerateOptions::DIAGNOSTICS);
+            let error = g.position_error(rect);
+            prop_assert!(error <= bound);
+            let lattice = &m.diagnostics.as_ref().unwrap().lattice;
+            for (pos, &p) in m.buffers.positions.iter().zip(lattice) {
+                let (x, z) = (m.origin[0] + f64::from(pos[0]), m.origin[2] + f64::from(pos[2]));
+                let [ex, ez] = t.lattice().world(p);
+                prop_assert!((x - ex).hypot(z - ez) <= error, "vertex {:?} of {:?}: {} off, bound {}", p, chunk, (x - ex).hypot(z - ez), error);
+                if let Some((sx, sz, serror)) = seen.insert(p, (x, z, error)) {
+                    let gap: f64 = (x - sx).hypot(z - sz);
+                    prop_assert!(gap <= error + serror, "shared vertex {:?}: {} apart", p, gap);
+                }
+            }
+        }
+    }
+
+    /// A wrapped copy of a chunk is the map's chunk's mesh with its origin where the copy
+    /// goes: `generate_chunk(..).origin` is `chunk_origin`, a whole number of map widths east.
+    #[test]
+    fn wrapped_chunks_report_their_own_origin(config in config(), k in -1000i32..1000) {
+        let mut config = config;
+        if !config.wrap {
+            config.size = MapSize::Bounded { x: 8, z: 3 };
+            config.wrap = true;
+        }
+        let t = Terrain::new(config).unwrap();
+        let wrap = *t.wrap().unwrap();
+        for chunk in t.chunks() {
+            let copy = ChunkCoord::new(chunk.x + k * wrap.chunk_columns(), chunk.z);
+            let (a, b) = (t.generate_chunk(chunk).unwrap(), t.generate_chunk(copy).unwrap());
+            prop_assert_eq!(&a.buffers, &b.buffers);
+            prop_assert_eq!(Some(b.origin), t.chunk_origin(copy));
+            prop_assert_eq!(b.origin[0], a.origin[0] + wrap.width * f64::from(k));
+            prop_assert_eq!(Some(a.origin), t.chunk_origin(chunk));
+        }
+    }
+
+    /// Every tile query about a tile past the world answers `None` (or "nothing there"), and
+    /// every position query past it too: no panic (the tests run with overflow checks), no
+    /// made-up tile.
+    #[test]
+    fn nothing_past_the_world(config in config()) {
+        let t = Terrain::new(config).unwrap();
+        for tile in hostile_tiles(&t) {
+            prop_assert!(!t.in_world(tile), "{:?}", tile);
+            prop_assert_eq!(t.tile_info(tile), None);
+            prop_assert_eq!(t.tile_center(tile), None);
+            prop_assert_eq!(t.tile_kind(tile), None);
+            prop_assert_eq!(t.map_tile_kind(tile), None);
+            prop_assert_eq!(t.tile_biome(tile), None);
+            prop_assert_eq!(t.tile_climate(tile), None);
+            prop_assert_eq!(t.neighbors(tile), None);
+            prop_assert_eq!(t.distance(tile, Hex::ZERO), None);
+            prop_assert_eq!(t.river(tile), None);
+            prop_assert_eq!(t.lake(tile), None);
+            prop_assert_eq!(t.water_level(tile), None);
+            prop_assert_eq!(t.river_flow(tile), 0.0);
+            prop_assert!(!t.tile_is_wet(tile));
+            prop_assert!(!t.contains(tile) || t.wrap().is_some());
+            prop_assert_eq!(t.tile_near(tile, Hex::ZERO), tile);
+            let rect = t.chunk_rect(t.chunk_of(tile));
+            prop_assert!(rect.is_none_or(|r| !r.contains(t.offset_of(tile))), "{:?} is in no chunk's tiles", tile);
+        }
+        // Lattice points past the world (2^30 steps are more than 2^24 tiles of 17 steps).
+        for p in [Hex::new(i32::MAX, 0), Hex::new(i32::MIN, i32::MAX), Hex::new(1 << 30, -(1 << 30)), Hex::new(0, 1 << 30)] {
+            prop_assert!(!t.geometry().point_in_world(p));
+            prop_assert!(t.vertex(p).is_none() && t.vertex_elevation(p).is_none() && t.point_color(p).is_none());
+            prop_assert_eq!(t.water_cover(Hex::ZERO, p), 0.0);
+            // The noise field itself goes on: a real height, not an overflow.
+            prop_assert!(t.raw_height(p).is_finite() && t.source_height(p).is_finite());
+        }
+        let z_in_map = if t.bounds().is_some() { 0.5 } else { 1e9 };
+        for x in HOSTILE {
+            for (x, z) in [(x, z_in_map), (0.0, x), (x, x)] {
+                let wraps = t.wrap().is_some() && x.is_finite() && z == z_in_map;
+                prop_assert_eq!(t.tile_at(x, z).is_some(), wraps, "tile_at({}, {})", x, z);
+                prop_assert_eq!(t.unwrapped_tile_at(x, z), None, "unwrapped_tile_at({}, {})", x, z);
+                prop_assert_eq!(t.surface_height(x, z).is_some(), wraps);
+                prop_assert_eq!(t.raycast([x, 200.0, z], [0.0, -1.0, 0.0], f64::MAX).is_some(), wraps);
+                // Aimed far out from inside: a hit, if any, is on a tile of the world.
+                let hit = t.raycast([0.0, 200.0, 0.0], [x, -1.0, z], f64::MAX);
+                prop_assert!(hit.is_none_or(|h| t.in_world(h.tile) && h.point.iter().all(|v| v.is_finite())));
+            }
+        }
+    }
+
+    /// A ray straight down from above hits the surface everywhere, also where the surface is at
+    /// the maximum elevation (a gradient map's top row), at the height the surface query gives.
+    #[test]
+    fn rays_from_above_hit_the_top_of_the_relief(config in config(), pointy in any::<bool>(), max_elevation in 0.5f32..100.0) {
+        let mut config = config;
+        config.size = MapSize::Bounded { x: 1 + config.chunk_size.0 % 6, z: 3 + config.chunk_size.1 % 4 };
+        config.wrap = false;
+        config.shape = Shape::Gradient;
+        config.terrain.max_elevation = max_elevation;
+        config.layout.orientation = if pointy { Orientation::Pointy } else { Orientation::Flat };
+        let t = Terrain::new(config).unwrap();
+        let tiles: Vec<Hex> = t.tiles().collect();
+        for tile in tiles {
+            let center = t.tile_center(tile).unwrap();
+            for (dx, dz) in [(0.0, 0.0), (0.21, 0.13), (-0.3, 0.05), (0.05, -0.33)] {
+                let s = f64::from(t.config().layout.hex_size);
+                let (x, z) = (center[0] + dx * s, center[2] + dz * s);
+                let y = t.surface_height(x, z).unwrap();
+                let hit = t.raycast([x, f64::from(max_elevation) * 3.0 + 1.0, z], [0.0, -1.0, 0.0], f64::MAX);
+                let hit = hit.ok_or_else(|| TestCaseError::fail(format!("ray down at ({x}, {z}) missed the surface at {y}")))?;
+                prop_assert!((hit.point[1] - y).abs() <= 1e-6 * f64::from(max_elevation).max(1.0), "{:?} vs {}", hit, y);
+            }
+        }
+    }
+
+    /// On a wrapping map every finite position answers with the map's own tile, however far
+    /// east or west: the tile, the surface height and a ray down equal those one period's worth
+    /// of positions away, next to the map.
+    #[test]
+    fn wrapping_maps_wrap_at_any_distance(config in config(), east in prop_oneof![Just(1e10), Just(-1e10), Just(3.7e15), Just(-1e300), Just(f64::MAX), 1e6f64..1e12], zf in 0.0f64..1.0) {
+        let mut config = config;
+        if !config.wrap {
+            config.size = MapSize::Bounded { x: 4, z: 1 };
+            config.wrap = true;
+        }
+        let t = Terrain::new(config).unwrap();
+        let width = t.wrap().unwrap().width;
+        let rows = t.bounds().unwrap().max[1];
+        // A z inside the map's rows.
+        let bottom = t.tile_center(t.tile_from_offset([1, rows - 1])).unwrap()[2];
+        let z = zf * bottom;
+        let near = east % width;
+        let tile = t.tile_at(east, z).ok_or_else(|| TestCaseError::fail(format!("no tile at {east}")))?;
+        prop_assert!(t.contains(tile) && t.bounds().unwrap().contains(t.offset_of(tile)), "{:?} is not a tile of the map", tile);
+        prop_assert_eq!(Some(tile), t.tile_at(near, z));
+        prop_assert_eq!(t.surface_height(east, z), t.surface_height(near, z));
+        let top = f64::from(t.config().terrain.max_elevation) + 5.0;
+        let (far_hit, near_hit) = (
+            t.raycast([east, top, z], [0.0, -1.0, 0.0], f64::MAX).unwrap(),
+            t.raycast([near, top, z], [0.0, -1.0, 0.0], f64::MAX).unwrap(),
+        );
+        prop_assert_eq!(far_hit.tile, near_hit.tile);
+        prop_assert_eq!(far_hit.point[1], near_hit.point[1]);
+        prop_assert_eq!(far_hit.point[0], near_hit.point[0] + (east - near));
+    }
+}
+
+/// The cases the issue reported, by name: a one-column gradient map whose top surface rounds
+/// above the maximum elevation, and a wrapping map asked ten billion units east.
+#[test]
+fn the_reported_cases_hold() {
+    let mut c = MapConfig { size: MapSize::Bounded { x: 1, z: 3 }, shape: Shape::Gradient, ..MapConfig::default() };
+    c.layout.orientation = Orientation::Pointy;
+    let t = Terrain::new(c).unwrap();
+    for tile in t.tiles().collect::<Vec<_>>() {
+        let [x, _, z] = t.tile_center(tile).unwrap();
+        assert!(t.raycast([x, 50.0, z], [0.0, -1.0, 0.0], f64::MAX).is_some(), "{tile:?}");
+    }
+    let t =
+        Terrain::new(MapConfig { size: MapSize::Bounded { x: 4, z: 1 }, wrap: true, ..MapConfig::default() }).unwrap();
+    let tile = t.tile_at(1e10, 0.0).unwrap();
+    assert!(t.bounds().unwrap().contains(t.offset_of(tile)), "{tile:?}");
+    let unbounded = Terrain::new(MapConfig { size: MapSize::Unbounded, ..MapConfig::default() }).unwrap();
+    assert_eq!(unbounded.tile_info(Hex::new(1 << 30, -(1 << 30))), None);
+    assert_eq!(unbounded.surface_height(1e9, 1e9), None);
+}
