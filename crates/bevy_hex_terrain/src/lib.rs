@@ -67,7 +67,8 @@ pub use crate::streaming::{
     HexTerrainAgent, HexTerrainSettings, HexTerrainStats, HexWorldPosition, PropSettings, TerrainReady, WaterSettings,
 };
 pub use crate::tiles::{
-    FogState, HexTileStatePlugin, Highlight, TileStateError, TileStateSettings, TileStateStats, TileStates,
+    FogState, HexTileStatePlugin, Highlight, SaveError, TileStateError, TileStateSave, TileStateSettings,
+    TileStateStats, TileStates,
 };
 pub use crate::water::{HexWater, HexWaterPlugin};
 
@@ -83,7 +84,7 @@ pub mod prelude {
         ChunkDespawned, ChunkSpawned, ChunkStreamer, FogState, HexChunk, HexMap, HexMapError, HexMapPlugin, HexProp,
         HexStreamingPlugin, HexTerrainAgent, HexTerrainPlugin, HexTerrainPlugins, HexTerrainSettings, HexTerrainStats,
         HexTerrainSystems, HexTileStatePlugin, HexWater, HexWorldPosition, Highlight, LoadHexMap, MapSource,
-        PropSettings, TerrainReady, TileHit, TileStates, WaterSettings,
+        PropSettings, SaveError, TerrainReady, TileHit, TileStateSave, TileStates, WaterSettings,
     };
     pub use hex_terrain::hexx::Hex;
     pub use hex_terrain::{Biome, ChunkCoord, MapConfig, MapSize, RiverTile, TileInfo, TileKind};

@@ -203,3 +203,131 @@ fn a_hot_reload_keeps_the_state_and_another_map_clears_it() {
     assert_eq!(states.stored_tiles(), 0);
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// What the GPU texture holds, rebuilt on the CPU from every upload the plugin packs.
+#[derive(Resource, Default, Debug, PartialEq)]
+struct TextureMirror {
+    texture: u64,
+    size: UVec2,
+    texels: Vec<[u16; 4]>,
+}
+
+fn mirror_uploads(upload: Res<TileStateUpload>, mut mirror: ResMut<TextureMirror>) {
+    if !upload.is_changed() || upload.size == UVec2::ZERO {
+        return;
+    }
+    if upload.size != mirror.size || upload.texture != mirror.texture {
+        *mirror = TextureMirror {
+            texture: upload.texture,
+            size: upload.size,
+            texels: vec![[0; 4]; (upload.size.x * upload.size.y) as usize],
+        };
+    }
+    let mut data = upload.data.iter();
+    for span in &upload.spans {
+        let start = (span.y * mirror.size.x + span.x) as usize;
+        for texel in &mut mirror.texels[start..start + span.z as usize] {
+            *texel = *data.next().unwrap();
+        }
+    }
+}
+
+fn with_mirror(mut app: App) -> App {
+    app.init_resource::<TextureMirror>().add_systems(Last, mirror_uploads);
+    app
+}
+
+/// A tile's state as the public API reads it: fog, owner, overlay, each highlight.
+type TileState = (Hex, FogState, Option<u8>, Option<Color>, [bool; 3]);
+
+/// Every tile's state, read through the public API.
+fn every_state(app: &App) -> Vec<TileState> {
+    let (map, states) = (app.world().resource::<HexMap>(), app.world().resource::<TileStates>());
+    map.terrain()
+        .tiles()
+        .map(|t| {
+            let lit = Highlight::ALL.map(|h| states.is_highlighted(t, h));
+            (t, states.visibility(t), states.owner(t), states.overlay(t), lit)
+        })
+        .collect()
+}
+
+#[test]
+fn a_save_mid_game_loads_into_a_fresh_app_bit_for_bit() {
+    // A wrapping 40x30 map: highlights across the seam are the map's own tiles.
+    let config = MapConfig { wrap: true, ..bounded(40, 30) };
+    let mut app = with_mirror(headless(config.clone(), None));
+    settle(&mut app, "the map", idle);
+    // Some turns of a game: fog follows a unit east, owners grow, a lens overlay, highlights.
+    let terrain = app.world().resource::<HexMap>().terrain().clone();
+    for turn in 0..12 {
+        let here = terrain.tile_from_offset([3 * turn, 10 + turn % 3]);
+        let mut states = app.world_mut().resource_mut::<TileStates>();
+        states.hide_visible();
+        for tile in here.range(3) {
+            let _ = states.set_visibility(tile, FogState::Visible);
+        }
+        for tile in here.range(1) {
+            let _ = states.set_owner(tile, Some(1 + (turn % 5) as u8));
+        }
+        let _ = states.set_overlay(here, Some(Color::srgba(0.2, 0.8, 0.1, 0.5)));
+        states.replace_highlight(Highlight::Reachable, here.range(2));
+        let _ = states.set_highlight(here, Highlight::Selected, true);
+        app.update();
+    }
+    // One east of the east edge: the map's tile in column 0.
+    let seam = terrain.tile_from_offset([40, 4]);
+    app.world_mut().resource_mut::<TileStates>().set_highlight(seam, Highlight::Hovered, true).unwrap();
+    app.update();
+    let states = app.world().resource::<TileStates>();
+    let (ron, bytes) = (states.save_ron(&config), states.save_bytes(&config));
+    assert!(states.stored_tiles() > 100, "a game's worth of state: {}", states.stored_tiles());
+    println!("save of {} tiles: binary {} bytes, RON {} bytes", states.stored_tiles(), bytes.len(), ron.len());
+    assert!(bytes.len() < ron.len() / 3, "binary {} bytes, RON {}", bytes.len(), ron.len());
+    let before = every_state(&app);
+    let window = states.window();
+    let highlighted: Vec<Vec<Hex>> = Highlight::ALL.map(|h| sorted(states.highlighted(h))).to_vec();
+
+    for encoding in ["ron", "binary"] {
+        let mut fresh = with_mirror(headless(config.clone(), None));
+        settle(&mut fresh, "the fresh map", idle);
+        let mut states = fresh.world_mut().resource_mut::<TileStates>();
+        match encoding {
+            "ron" => states.load_ron(&config, &ron).unwrap(),
+            _ => states.load_bytes(&config, &bytes).unwrap(),
+        }
+        fresh.update();
+        assert_eq!(every_state(&fresh), before, "{encoding}: every tile's state");
+        let states = fresh.world().resource::<TileStates>();
+        assert_eq!(Highlight::ALL.map(|h| sorted(states.highlighted(h))).to_vec(), highlighted, "{encoding}");
+        assert_eq!(states.window(), window, "{encoding}: the same window");
+        assert_eq!(states.save_bytes(&config), bytes, "{encoding}: saved again, the same bytes");
+        let (a, b) = (app.world().resource::<TextureMirror>(), fresh.world().resource::<TextureMirror>());
+        assert_eq!((a.size, &a.texels), (b.size, &b.texels), "{encoding}: the uploaded texture window");
+        assert!(a.texels.iter().any(|t| *t != [0; 4]), "the texture holds the game's state");
+    }
+
+    // A save of another map and a damaged file are refused, and change nothing.
+    let mut fresh = headless(config.clone(), None);
+    settle(&mut fresh, "a third map", idle);
+    let other = MapConfig { seed: config.seed + 1, ..config.clone() };
+    let mut states = fresh.world_mut().resource_mut::<TileStates>();
+    states.set_owner(seam, Some(7)).unwrap();
+    let err = states.load_bytes(&other, &bytes).unwrap_err();
+    assert!(err.to_string().contains("another map") && err.to_string().contains("seed"), "{err}");
+    let mut damaged = bytes.clone();
+    let middle = damaged.len() / 2;
+    damaged[middle] ^= 0x40;
+    let err = states.load_bytes(&config, &damaged).unwrap_err();
+    assert!(err.to_string().contains("corrupted"), "{err}");
+    let err = states.load_ron(&config, &ron[..ron.len() / 2]).unwrap_err();
+    assert!(err.to_string().contains("line"), "{err}");
+    assert_eq!(states.stored_tiles(), 1);
+    assert_eq!(states.owner(seam), Some(7), "a refused load changes nothing");
+}
+
+fn sorted(tiles: impl Iterator<Item = Hex>) -> Vec<Hex> {
+    let mut v: Vec<Hex> = tiles.collect();
+    v.sort_unstable_by_key(|h| (h.x, h.y));
+    v
+}

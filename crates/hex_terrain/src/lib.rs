@@ -22,6 +22,7 @@
 //! | [`water::surface`], [`props`] | what stands on a generated chunk: its water surface, its trees, rocks and reeds |
 //! | [`query`], [`metrics`] | the surface under a position and ray casts, in f64; sharpness (thesis eq. 4.1, 7.3) |
 //! | [`terrain`] | [`Terrain`], the facade over all of it |
+//! | [`save`] | what a game writes on the tiles ([`FogState`], owners, overlays, [`Highlight`]s) as a [`TileStateSave`] file: RON or compact binary, checked against the map |
 //!
 //! ```
 //! use hex_terrain::{MapConfig, Terrain};
@@ -65,6 +66,8 @@ pub mod query;
 
 pub mod terrain;
 
+pub mod save;
+
 pub use chunk::{ChunkCoord, TileRect};
 pub use climate::{Climate, ClimateModel, TileSample};
 pub use config::{
@@ -83,6 +86,7 @@ pub use pipeline::Pipeline;
 pub use props::Prop;
 pub use query::RayHit;
 pub use relief::Relief;
+pub use save::{FogState, Highlight, SaveError, TileStateSave};
 pub use table::TileTable;
 pub use terrain::Terrain;
 pub use vertex::{Sharing, VertexRules, VertexSample};

@@ -12,6 +12,7 @@
 
 use std::sync::Arc;
 
+use hex_terrain::save::{SaveError, TileStateSave};
 use hex_terrain::{GenerateOptions, HeightImage, HeightSourceConfig, MapConfig, MapFile, MapSize, Terrain, TileRect};
 
 mod check;
@@ -83,6 +84,65 @@ pub fn map_asset(data: &[u8]) {
         },
     };
     build(file.config, image);
+}
+
+/// Tile state save: the bytes as a binary save, as the same bytes with their length and
+/// checksum made right (so the fuzzer reaches the CBOR decoder behind the CRC), and as RON text;
+/// each save read is checked against a 12x9 map (wrapping when the first byte is odd). A save
+/// that reads must encode back to itself in both encodings; a refused one must say why.
+pub fn tile_save(data: &[u8]) {
+    let config = MapConfig {
+        size: MapSize::Bounded { x: 12, z: 9 },
+        wrap: data.first().is_some_and(|b| b & 1 == 1),
+        ..MapConfig::default()
+    };
+    read_save(TileStateSave::from_bytes(data), &config);
+    if data.len() >= 20 {
+        let mut sealed = data.to_vec();
+        let payload = (data.len() - 20) as u64;
+        sealed[..4].copy_from_slice(&hex_terrain::save::SAVE_MAGIC);
+        sealed[8..16].copy_from_slice(&payload.to_le_bytes());
+        let n = sealed.len();
+        let crc = hex_terrain::save::crc32(&sealed[..n - 4]);
+        sealed[n - 4..].copy_from_slice(&crc.to_le_bytes());
+        read_save(TileStateSave::from_bytes(&sealed), &config);
+    }
+    if let Ok(text) = std::str::from_utf8(data) {
+        read_save(TileStateSave::from_ron(text), &config);
+    }
+}
+
+fn read_save(read: Result<TileStateSave, SaveError>, config: &MapConfig) {
+    let save = match read {
+        Ok(save) => save,
+        Err(error) => return check_save_error(&error),
+    };
+    assert_eq!(TileStateSave::from_bytes(&save.to_bytes()).as_ref(), Ok(&save), "binary round trip");
+    assert_eq!(TileStateSave::from_ron(&save.to_ron()).as_ref(), Ok(&save), "RON round trip");
+    match save.check(config) {
+        Ok(()) => {
+            let bounds = config.size.bounds().expect("a bounded map");
+            for tile in &save.tiles {
+                assert!((0..bounds.0 as i32).contains(&tile.at.0) && (0..bounds.1 as i32).contains(&tile.at.1));
+                assert!(tile.owner.is_none_or(|o| (1..=hex_terrain::save::MAX_OWNERS).contains(&o)));
+            }
+        }
+        Err(error) => check_save_error(&error),
+    }
+}
+
+/// Panics unless a refused save says why: malformed RON with its line and column, the tile and
+/// the allowed range, the field of another map.
+pub fn check_save_error(error: &SaveError) {
+    let text = error.to_string();
+    match error {
+        SaveError::Syntax { line, column, .. } => {
+            assert!(*line >= 1 && *column >= 1 && text.contains(&format!("line {line}, column {column}")), "{text}");
+        }
+        SaveError::Tile { index, .. } => assert!(text.contains(&format!("tile {index}")), "{text}"),
+        SaveError::OtherMap { field, .. } => assert!(text.contains(field), "{text}"),
+        _ => assert!(!text.is_empty()),
+    }
 }
 
 /// Builds the terrain of a valid config and generates at most [`MAX_TILES`] tiles of it: the

@@ -33,6 +33,11 @@ fn heightmap_corpus() {
 }
 
 #[test]
+fn tile_save_corpus() {
+    replay("tile_save", hex_terrain_fuzz::tile_save);
+}
+
+#[test]
 fn map_asset_corpus() {
     replay("map_asset", hex_terrain_fuzz::map_asset);
 }

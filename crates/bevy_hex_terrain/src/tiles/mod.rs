@@ -13,6 +13,7 @@ mod tests;
 
 use bevy::prelude::*;
 
+pub use hex_terrain::save::{SaveError, TileStateSave};
 pub use state::{FogState, Highlight, MAX_OWNERS, TileStateError, TileStates};
 pub use window::{TEXEL_BYTES, Texel, TileStateUpload};
 

@@ -3,51 +3,19 @@
 
 use bevy::platform::collections::HashSet;
 use bevy::prelude::*;
-use hex_terrain::TileRect;
 use hex_terrain::hexx::{Hex, HexOrientation};
-use hex_terrain::terrain::OFFSET_MODE;
+use hex_terrain::save::{SaveError, SavedMap, SavedTile, TileStateSave};
+use hex_terrain::terrain::{OFFSET_MODE, hex_orientation};
+use hex_terrain::{MapConfig, TileRect};
 
 use super::store::TileStore;
 use super::window::{Texel, TexelWindow, TileStateUpload};
 
-/// Highest owner id: owners are `1..=MAX_OWNERS` (Civilization VI's largest map has 12
-/// civilizations and 16 city-states).
-pub const MAX_OWNERS: u8 = 64;
+pub use hex_terrain::save::{FogState, Highlight, MAX_OWNERS};
 
-/// What a player knows of a tile.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, Reflect)]
-pub enum FogState {
-    /// Never seen: drawn dark, without terrain detail.
-    #[default]
-    Unexplored,
-    /// Seen before, not now: drawn desaturated.
-    Explored,
-    /// In sight: drawn in full color.
-    Visible,
-}
-
-/// A tile tint; a tile may carry several.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Reflect)]
-pub enum Highlight {
-    /// The tile under the cursor.
-    Hovered,
-    /// Selected tiles (a unit's tile, a city's).
-    Selected,
-    /// Tiles a unit can reach, or any other set the game shows.
-    Reachable,
-}
-
-impl Highlight {
-    /// Every highlight.
-    pub const ALL: [Self; 3] = [Self::Hovered, Self::Selected, Self::Reachable];
-
-    const fn bit(self) -> u16 {
-        match self {
-            Self::Hovered => 1 << 2,
-            Self::Selected => 1 << 3,
-            Self::Reachable => 1 << 4,
-        }
-    }
+/// A highlight's bit in a texel's first word.
+const fn bit(highlight: Highlight) -> u16 {
+    1 << (2 + highlight as u16)
 }
 
 /// A write [`TileStates`] refused; the state is unchanged.
@@ -104,6 +72,10 @@ pub struct TileStates {
     wrap: bool,
     #[reflect(ignore)]
     window: TexelWindow,
+    /// The tiles in sight, so [`TileStates::hide_visible`] touches only them (a game's explored
+    /// tiles grow all game long; its visible ones do not).
+    #[reflect(ignore)]
+    visible: HashSet<IVec2>,
     writes: u64,
 }
 
@@ -116,6 +88,7 @@ impl Default for TileStates {
             orientation: HexOrientation::Flat,
             wrap: false,
             window: TexelWindow::new(IVec2::ZERO, UVec2::ONE),
+            visible: HashSet::default(),
             writes: 0,
         }
     }
@@ -151,7 +124,7 @@ impl TileStates {
     /// Whether a tile carries a highlight.
     #[must_use]
     pub fn is_highlighted(&self, tile: Hex, highlight: Highlight) -> bool {
-        self.texel(tile)[0] & highlight.bit() != 0
+        self.texel(tile)[0] & bit(highlight) != 0
     }
 
     /// The tiles carrying a highlight.
@@ -170,14 +143,14 @@ impl TileStates {
     }
 
     /// Makes every visible tile explored (the start of a sight update: the game then marks what
-    /// its units see now as visible).
+    /// its units see now as visible). Its cost is the number of visible tiles, however many have
+    /// been explored.
     pub fn hide_visible(&mut self) {
-        for (oc, old) in self.tiles.stored() {
-            if old[0] & FOG_MASK == FogState::Visible as u16 {
-                let mut texel = old;
-                texel[0] = (texel[0] & !FOG_MASK) | FogState::Explored as u16;
-                self.store(oc, old, texel);
-            }
+        for oc in std::mem::take(&mut self.visible) {
+            let old = self.tiles.get(oc);
+            let mut texel = old;
+            texel[0] = (texel[0] & !FOG_MASK) | FogState::Explored as u16;
+            self.store(oc, old, texel);
         }
     }
 
@@ -230,7 +203,7 @@ impl TileStates {
         let set = &mut self.highlighted[highlight as usize];
         let changed = if on { set.insert(tile) } else { set.remove(&tile) };
         if changed {
-            let bit = highlight.bit();
+            let bit = bit(highlight);
             self.update(oc, |t| t[0] = if on { t[0] | bit } else { t[0] & !bit });
         }
         Ok(())
@@ -250,7 +223,7 @@ impl TileStates {
             }
         }
         let old = std::mem::take(&mut self.highlighted[highlight as usize]);
-        let bit = highlight.bit();
+        let bit = bit(highlight);
         for &tile in old.difference(&new) {
             self.update(self.offset_of(tile), |t| t[0] &= !bit);
         }
@@ -270,6 +243,7 @@ impl TileStates {
     pub fn clear(&mut self) {
         self.tiles = TileStore::new(self.bounds);
         self.highlighted = Default::default();
+        self.visible.clear();
         self.window.clear();
     }
 
@@ -345,8 +319,90 @@ impl TileStates {
             return;
         }
         self.writes += 1;
+        if texel[0] & FOG_MASK == FogState::Visible as u16 {
+            self.visible.insert(oc);
+        } else if old[0] & FOG_MASK == FogState::Visible as u16 {
+            self.visible.remove(&oc);
+        }
         self.tiles.set(oc, texel);
         self.window.write(oc, texel);
+    }
+
+    /// The state of every tile, as a save of `config`'s map (the map these states follow): the
+    /// tiles not in the default state, row by row. Write it with
+    /// [`TileStateSave::to_ron`] or [`TileStateSave::to_bytes`]; [`TileStates::load`] reads it
+    /// back bit for bit.
+    #[must_use]
+    pub fn save(&self, config: &MapConfig) -> TileStateSave {
+        let mut stored = self.tiles.stored();
+        stored.sort_unstable_by_key(|(oc, _)| (oc.y, oc.x));
+        let tiles = stored
+            .into_iter()
+            .map(|(oc, [t0, owner, rg, ba])| SavedTile {
+                at: (oc.x, oc.y),
+                fog: match t0 & FOG_MASK {
+                    0 => FogState::Unexplored,
+                    1 => FogState::Explored,
+                    _ => FogState::Visible,
+                },
+                owner: (owner != 0).then_some(owner as u8),
+                overlay: (rg != 0 || ba != 0).then_some([rg as u8, (rg >> 8) as u8, ba as u8, (ba >> 8) as u8]),
+                highlights: Highlight::ALL.into_iter().filter(|&h| t0 & bit(h) != 0).collect(),
+            })
+            .collect();
+        TileStateSave { version: hex_terrain::save::SAVE_VERSION, map: SavedMap::of(config), tiles }
+    }
+
+    /// Replaces every tile's state with a save's, after checking it against `config`'s map
+    /// ([`TileStateSave::check`]: the same map, a format this version reads, every tile on the
+    /// map). The texture is uploaded again after `Update`, as for any write.
+    ///
+    /// # Errors
+    /// The save's first problem ([`SaveError`]); then nothing changes.
+    pub fn load(&mut self, config: &MapConfig, save: &TileStateSave) -> Result<(), SaveError> {
+        save.check(config)?;
+        let bounds = config.size.bounds().map(|(x, z)| TileRect::new([0, 0], [x, z]));
+        self.set_map(bounds, hex_orientation(config.layout.orientation), config.wrap && bounds.is_some(), false);
+        for tile in &save.tiles {
+            let oc = IVec2::new(tile.at.0, tile.at.1);
+            let highlights = tile.highlights.iter().fold(0, |b, &h| b | bit(h));
+            let [r, g, b, a] = tile.overlay.unwrap_or([0; 4]).map(u16::from);
+            let texel = [tile.fog as u16 | highlights, u16::from(tile.owner.unwrap_or(0)), r | g << 8, b | a << 8];
+            self.store(oc, [0; 4], texel);
+            for h in tile.highlights.iter().copied() {
+                let hex = Hex::from_offset_coordinates(oc.to_array(), OFFSET_MODE, self.orientation);
+                self.highlighted[h as usize].insert(hex);
+            }
+        }
+        Ok(())
+    }
+
+    /// [`TileStates::save`] as RON text.
+    #[must_use]
+    pub fn save_ron(&self, config: &MapConfig) -> String {
+        self.save(config).to_ron()
+    }
+
+    /// [`TileStates::save`] as compact binary (CBOR with a header and a CRC-32).
+    #[must_use]
+    pub fn save_bytes(&self, config: &MapConfig) -> Vec<u8> {
+        self.save(config).to_bytes()
+    }
+
+    /// [`TileStates::load`] from RON text.
+    ///
+    /// # Errors
+    /// Malformed RON (with the line and column) or the save's first problem; nothing changes.
+    pub fn load_ron(&mut self, config: &MapConfig, text: &str) -> Result<(), SaveError> {
+        self.load(config, &TileStateSave::from_ron(text)?)
+    }
+
+    /// [`TileStates::load`] from compact binary.
+    ///
+    /// # Errors
+    /// A damaged file ([`SaveError::Corrupt`]) or the save's first problem; nothing changes.
+    pub fn load_bytes(&mut self, config: &MapConfig, bytes: &[u8]) -> Result<(), SaveError> {
+        self.load(config, &TileStateSave::from_bytes(bytes)?)
     }
 
     /// Follows a new map shape: `bounds` (None: unbounded), orientation and east-west wrap. With
@@ -357,6 +413,7 @@ impl TileStates {
         self.orientation = orientation;
         self.wrap = wrap;
         self.tiles = TileStore::new(bounds);
+        self.visible.clear();
         if !keep {
             self.highlighted = Default::default();
             self.window.clear();
@@ -367,6 +424,9 @@ impl TileStates {
             let tile = Hex::from_offset_coordinates(oc.to_array(), OFFSET_MODE, old_orientation);
             if let Ok(oc) = self.check(tile) {
                 self.tiles.set(oc, texel);
+                if texel[0] & FOG_MASK == FogState::Visible as u16 {
+                    self.visible.insert(oc);
+                }
             }
         }
         for set in &mut self.highlighted {

@@ -13,7 +13,7 @@ use crate::vocab::{Biome, TileKind};
 ///
 /// let config = MapConfig::from_ron("(size: Bounded(x: 24, z: 16), climate: (enabled: true))").unwrap();
 /// let terrain = Terrain::new(config).unwrap();
-/// let info = terrain.tile_info(terrain.tile_from_offset([5, 5]));
+/// let info = terrain.tile_info(terrain.tile_from_offset([5, 5])).unwrap();
 /// assert!(Biome::ALL.contains(&info.biome));
 /// ```
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]

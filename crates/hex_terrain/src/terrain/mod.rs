@@ -33,8 +33,8 @@ use crate::wrap::Wrap;
 /// use hex_terrain::{MapConfig, Terrain, TileKind};
 ///
 /// let terrain = Terrain::new(MapConfig::default()).unwrap();
-/// let tile = terrain.tile_at(3.0, 2.0);
-/// let info = terrain.tile_info(tile);
+/// let tile = terrain.tile_at(3.0, 2.0).unwrap();
+/// let info = terrain.tile_info(tile).unwrap();
 /// let (lo, hi) = terrain.thresholds().range(info.kind);
 /// let max = terrain.config().terrain.max_elevation;
 /// assert!(info.elevation >= lo * max - 1e-4 && info.elevation <= hi * max + 1e-4);

@@ -1,0 +1,371 @@
+//! Saved tile state: what a game writes on the map's tiles (fog of war, owners, lens overlays,
+//! highlights) as a file a later version of the crate reads back. Two encodings of one
+//! [`TileStateSave`]: RON for people and tools, and a compact binary for games (a header, CBOR,
+//! and a CRC-32 that catches a corrupted file). Bevy-free, so it is fuzzed with the core; the
+//! plugin's `TileStates` converts to and from it.
+//!
+//! A save names the map it belongs to ([`SavedMap`]: seed, size, wrap, orientation, offset), and
+//! [`TileStateSave::check`] refuses one of another map, of a newer format, or with a tile that
+//! is not on the map, naming what is wrong, before anything is changed.
+
+use serde::{Deserialize, Serialize};
+
+use crate::config::{MAX_WORLD_TILE, MapConfig, MapSize, Orientation};
+
+/// The format version this crate writes; it reads every version up to it.
+pub const SAVE_VERSION: u32 = 1;
+
+/// Highest owner id: owners are `1..=MAX_OWNERS` (Civilization VI's largest map has 12
+/// civilizations and 16 city-states).
+pub const MAX_OWNERS: u8 = 64;
+
+/// First bytes of a binary save.
+pub const SAVE_MAGIC: [u8; 4] = *b"HXTS";
+
+/// Most tiles a save may hold: every tile of the largest bounded map the stores keep densely
+/// (a hostile file cannot make a load allocate more).
+pub const MAX_SAVED_TILES: usize = 1 << 22;
+
+/// What a player knows of a tile.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, Serialize, Deserialize)]
+#[cfg_attr(feature = "bevy_reflect", derive(bevy_reflect::Reflect))]
+#[repr(u8)]
+pub enum FogState {
+    /// Never seen: drawn dark, without terrain detail.
+    #[default]
+    Unexplored = 0,
+    /// Seen before, not now: drawn desaturated.
+    Explored = 1,
+    /// In sight: drawn in full color.
+    Visible = 2,
+}
+
+/// A tile tint; a tile may carry several.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[cfg_attr(feature = "bevy_reflect", derive(bevy_reflect::Reflect))]
+#[repr(u8)]
+pub enum Highlight {
+    /// The tile under the cursor.
+    Hovered = 0,
+    /// Selected tiles (a unit's tile, a city's).
+    Selected = 1,
+    /// Tiles a unit can reach, or any other set the game shows.
+    Reachable = 2,
+}
+
+impl Highlight {
+    /// Every highlight.
+    pub const ALL: [Self; 3] = [Self::Hovered, Self::Selected, Self::Reachable];
+}
+
+/// The map a save belongs to: what decides which tile an offset coordinate is and what lies
+/// there. A save of a map whose seed, size, wrap, orientation or offset differ is refused.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct SavedMap {
+    /// The map's seed.
+    pub seed: u32,
+    /// Its size.
+    pub size: MapSize,
+    /// Whether it wraps east to west.
+    pub wrap: bool,
+    /// Its tiles' orientation.
+    pub orientation: Orientation,
+    /// Its offset in the world, in tiles.
+    pub offset: (i32, i32),
+}
+
+impl SavedMap {
+    /// The identity of a config's map.
+    #[must_use]
+    pub fn of(config: &MapConfig) -> Self {
+        Self {
+            seed: config.seed,
+            size: config.size,
+            wrap: config.wrap,
+            orientation: config.layout.orientation,
+            offset: config.offset,
+        }
+    }
+
+    /// The first field that differs from another map's, with both values.
+    fn difference(&self, other: &Self) -> Option<(&'static str, String, String)> {
+        let d =
+            |field, a: &dyn std::fmt::Debug, b: &dyn std::fmt::Debug| Some((field, format!("{a:?}"), format!("{b:?}")));
+        if self.seed != other.seed {
+            return d("seed", &self.seed, &other.seed);
+        }
+        if self.size != other.size {
+            return d("size", &self.size, &other.size);
+        }
+        if self.wrap != other.wrap {
+            return d("wrap", &self.wrap, &other.wrap);
+        }
+        if self.orientation != other.orientation {
+            return d("layout.orientation", &self.orientation, &other.orientation);
+        }
+        if self.offset != other.offset {
+            return d("offset", &self.offset, &other.offset);
+        }
+        None
+    }
+}
+
+/// One tile's saved state; fields left out of a RON save take their defaults (unexplored,
+/// nobody's, no overlay, no highlight).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct SavedTile {
+    /// Offset coordinate `(column, row)` of the tile (the map's own tile on a wrapping map).
+    pub at: (i32, i32),
+    /// What the player knows of it.
+    #[serde(default)]
+    pub fog: FogState,
+    /// Its owner, `1..=MAX_OWNERS`.
+    #[serde(default)]
+    pub owner: Option<u8>,
+    /// Its overlay color, sRGB bytes `[r, g, b, a]` (the alpha is the strength).
+    #[serde(default)]
+    pub overlay: Option<[u8; 4]>,
+    /// The highlights it carries, each at most once.
+    #[serde(default)]
+    pub highlights: Vec<Highlight>,
+}
+
+/// Every tile's state the game wrote, for one map: the tiles in another state than the default,
+/// row by row.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct TileStateSave {
+    /// Format version ([`SAVE_VERSION`] when written by this crate).
+    pub version: u32,
+    /// The map it belongs to.
+    pub map: SavedMap,
+    /// The tiles not in the default state.
+    pub tiles: Vec<SavedTile>,
+}
+
+/// A save that cannot be read, or does not fit the map; nothing was changed.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum SaveError {
+    /// Malformed RON, with where.
+    #[error("the save is not valid RON: line {line}, column {column}: {message}")]
+    Syntax {
+        /// Line, from 1.
+        line: usize,
+        /// Column, from 1.
+        column: usize,
+        /// What the parser expected.
+        message: String,
+    },
+    /// A binary save that is damaged: wrong magic, truncated, a checksum that does not match, or
+    /// a payload that does not decode.
+    #[error("the save is corrupted: {0}")]
+    Corrupt(String),
+    /// A format this version cannot read.
+    #[error("the save is format version {found}: this version reads versions 1..={SAVE_VERSION}")]
+    Version {
+        /// The save's version.
+        found: u32,
+    },
+    /// A save of another map.
+    #[error("the save is of another map: its {field} is {saved}, this map's is {current}")]
+    OtherMap {
+        /// The config field that differs.
+        field: &'static str,
+        /// The saved value.
+        saved: String,
+        /// This map's value.
+        current: String,
+    },
+    /// A saved tile that cannot be on the map or holds an impossible state.
+    #[error("tile {index} of the save, at column {} row {}: {problem}", .at.0, .at.1)]
+    Tile {
+        /// Its index in the save's tile list.
+        index: usize,
+        /// Its offset coordinate.
+        at: (i32, i32),
+        /// What is wrong, with the allowed range.
+        problem: String,
+    },
+    /// More tiles than any map holds.
+    #[error("the save holds {count} tiles: at most {MAX_SAVED_TILES} are allowed")]
+    TooManyTiles {
+        /// The tiles it holds.
+        count: usize,
+    },
+}
+
+/// The CRC-32 (IEEE) binary saves end with, of the bytes before it.
+#[must_use]
+pub fn crc32(bytes: &[u8]) -> u32 {
+    crc32fast::hash(bytes)
+}
+
+/// A tile as the binary payload stores it: `(column, row, fog, owner, highlight bits,
+/// overlay)`, an array in CBOR rather than a map with field names.
+type PackedTile = (i32, i32, u8, u8, u8, Option<[u8; 4]>);
+
+/// The binary payload.
+#[derive(Serialize, Deserialize)]
+struct Packed {
+    map: SavedMap,
+    tiles: Vec<PackedTile>,
+}
+
+/// Header: magic, version (u32 LE), payload length (u64 LE); then the payload and a CRC-32
+/// (u32 LE) of everything before it.
+const HEADER: usize = 4 + 4 + 8;
+
+impl TileStateSave {
+    /// The save as RON text.
+    #[must_use]
+    pub fn to_ron(&self) -> String {
+        let config = ron::ser::PrettyConfig::new().depth_limit(3).struct_names(false);
+        ron::ser::to_string_pretty(self, config).expect("a tile state save always serialises")
+    }
+
+    /// Reads a RON save (it is not checked against a map: see [`TileStateSave::check`]).
+    ///
+    /// # Errors
+    /// [`SaveError::Syntax`] with the line and column, [`SaveError::TooManyTiles`].
+    pub fn from_ron(text: &str) -> Result<Self, SaveError> {
+        let save: Self = ron::from_str(text).map_err(|e| SaveError::Syntax {
+            line: e.span.start.line,
+            column: e.span.start.col,
+            message: e.code.to_string(),
+        })?;
+        if save.tiles.len() > MAX_SAVED_TILES {
+            return Err(SaveError::TooManyTiles { count: save.tiles.len() });
+        }
+        Ok(save)
+    }
+
+    /// The save as compact binary: [`SAVE_MAGIC`], the version, the payload's length, the
+    /// payload (CBOR, RFC 8949: a tile is an array of six small numbers), and a CRC-32 of all of
+    /// it, so a damaged file is refused rather than read as other state.
+    #[must_use]
+    pub fn to_bytes(&self) -> Vec<u8> {
+        let packed = Packed {
+            map: self.map.clone(),
+            tiles: self
+                .tiles
+                .iter()
+                .map(|t| {
+                    let bits = t.highlights.iter().fold(0u8, |b, &h| b | 1 << h as u8);
+                    (t.at.0, t.at.1, t.fog as u8, t.owner.unwrap_or(0), bits, t.overlay)
+                })
+                .collect(),
+        };
+        let mut payload = Vec::new();
+        ciborium::into_writer(&packed, &mut payload).expect("writing to a Vec cannot fail");
+        let mut out = Vec::with_capacity(HEADER + payload.len() + 4);
+        out.extend_from_slice(&SAVE_MAGIC);
+        out.extend_from_slice(&self.version.to_le_bytes());
+        out.extend_from_slice(&(payload.len() as u64).to_le_bytes());
+        out.extend_from_slice(&payload);
+        let crc = crc32fast::hash(&out);
+        out.extend_from_slice(&crc.to_le_bytes());
+        out
+    }
+
+    /// Reads a binary save (not checked against a map: see [`TileStateSave::check`]).
+    ///
+    /// # Errors
+    /// [`SaveError::Corrupt`] (magic, length, checksum or payload), [`SaveError::Version`] for
+    /// a newer format, [`SaveError::TooManyTiles`].
+    pub fn from_bytes(bytes: &[u8]) -> Result<Self, SaveError> {
+        let corrupt = |why: String| Err(SaveError::Corrupt(why));
+        if bytes.len() < HEADER + 4 {
+            return corrupt(format!("{} bytes, shorter than the {}-byte header and checksum", bytes.len(), HEADER + 4));
+        }
+        if bytes[..4] != SAVE_MAGIC {
+            return corrupt(format!("it starts with {:?}, not {:?}", &bytes[..4], SAVE_MAGIC));
+        }
+        let version = u32::from_le_bytes(bytes[4..8].try_into().expect("4 bytes"));
+        let length = u64::from_le_bytes(bytes[8..16].try_into().expect("8 bytes"));
+        let expected = bytes.len() - HEADER - 4;
+        if length != expected as u64 {
+            return corrupt(format!("the header gives a {length}-byte payload, the file holds {expected} bytes"));
+        }
+        let (body, crc) = bytes.split_at(bytes.len() - 4);
+        let (stored, computed) = (u32::from_le_bytes(crc.try_into().expect("4 bytes")), crc32fast::hash(body));
+        if stored != computed {
+            return corrupt(format!("checksum {stored:#010x}, the contents give {computed:#010x}"));
+        }
+        if version == 0 || version > SAVE_VERSION {
+            return Err(SaveError::Version { found: version });
+        }
+        let packed: Packed = match ciborium::from_reader(&body[HEADER..]) {
+            Ok(p) => p,
+            Err(e) => return corrupt(format!("the payload does not decode: {e}")),
+        };
+        if packed.tiles.len() > MAX_SAVED_TILES {
+            return Err(SaveError::TooManyTiles { count: packed.tiles.len() });
+        }
+        let mut tiles = Vec::with_capacity(packed.tiles.len());
+        for (index, (col, row, fog, owner, bits, overlay)) in packed.tiles.into_iter().enumerate() {
+            let bad = |problem: String| SaveError::Tile { index, at: (col, row), problem };
+            let fog = match fog {
+                0 => FogState::Unexplored,
+                1 => FogState::Explored,
+                2 => FogState::Visible,
+                f => {
+                    return Err(bad(format!("fog state {f}: 0 (unexplored), 1 (explored) or 2 (visible) are allowed")));
+                }
+            };
+            if bits >> Highlight::ALL.len() != 0 {
+                return Err(bad(format!(
+                    "highlight bits {bits:#b}: only the lowest {} are allowed",
+                    Highlight::ALL.len()
+                )));
+            }
+            let highlights = Highlight::ALL.into_iter().filter(|&h| bits & (1 << h as u8) != 0).collect();
+            tiles.push(SavedTile { at: (col, row), fog, owner: (owner != 0).then_some(owner), overlay, highlights });
+        }
+        Ok(Self { version, map: packed.map, tiles })
+    }
+
+    /// Checks the save against the map it is to be loaded into: its version, that it is of
+    /// this map ([`SavedMap`]), and that every tile is on the map, listed once, with an owner in
+    /// `1..=MAX_OWNERS` and each highlight at most once.
+    ///
+    /// # Errors
+    /// The first problem found, naming the field or the tile.
+    pub fn check(&self, config: &MapConfig) -> Result<(), SaveError> {
+        if self.version == 0 || self.version > SAVE_VERSION {
+            return Err(SaveError::Version { found: self.version });
+        }
+        if let Some((field, saved, current)) = self.map.difference(&SavedMap::of(config)) {
+            return Err(SaveError::OtherMap { field, saved, current });
+        }
+        if self.tiles.len() > MAX_SAVED_TILES {
+            return Err(SaveError::TooManyTiles { count: self.tiles.len() });
+        }
+        let (columns, rows) = match config.size.bounds() {
+            Some((x, z)) => (0..x as i32, 0..z as i32),
+            None => (-MAX_WORLD_TILE..MAX_WORLD_TILE, -MAX_WORLD_TILE..MAX_WORLD_TILE),
+        };
+        let mut seen = std::collections::HashSet::with_capacity(self.tiles.len());
+        for (index, tile) in self.tiles.iter().enumerate() {
+            let bad = |problem: String| Err(SaveError::Tile { index, at: tile.at, problem });
+            let (col, row) = tile.at;
+            if !columns.contains(&col) || !rows.contains(&row) {
+                return bad(format!(
+                    "not on the map: columns {}..{} and rows {}..{} are allowed",
+                    columns.start, columns.end, rows.start, rows.end
+                ));
+            }
+            if !seen.insert(tile.at) {
+                return bad("listed twice: each tile at most once".into());
+            }
+            if let Some(owner) = tile.owner.filter(|o| !(1..=MAX_OWNERS).contains(o)) {
+                return bad(format!("owner {owner}: owners are 1..={MAX_OWNERS} (None for nobody)"));
+            }
+            if let Some(h) = Highlight::ALL.iter().find(|h| tile.highlights.iter().filter(|x| x == h).count() > 1) {
+                return bad(format!("highlight {h:?} listed twice: each at most once"));
+            }
+        }
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests;
