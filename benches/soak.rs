@@ -27,7 +27,7 @@ use bevy::window::ExitCondition;
 use bevy::winit::WinitPlugin;
 use bevy_hex_terrain::material::HexTerrainMaterial;
 use bevy_hex_terrain::prelude::*;
-use bevy_hex_terrain::{ChunkTask, HexTerrainSettings};
+use bevy_hex_terrain::{ChunkContent, ChunkTask, HexTerrainSettings};
 
 /// Tiles around the agent in sight: the fog follows it.
 const SIGHT: u32 = 3;
@@ -65,6 +65,10 @@ struct Sample {
     live: usize,
     water: usize,
     props: usize,
+    /// Props the live chunks place (their content): every prop entity must be one of them.
+    placed: usize,
+    /// Props whose parent is not a live chunk.
+    orphans: usize,
     stored: usize,
 }
 
@@ -72,6 +76,10 @@ fn sample(app: &mut App, reloads: u32) -> Sample {
     let tasks = app.world_mut().query::<&ChunkTask>().iter(app.world()).count();
     let water = app.world_mut().query::<&HexWater>().iter(app.world()).count();
     let props = app.world_mut().query::<&HexProp>().iter(app.world()).count();
+    let placed = app.world_mut().query::<&ChunkContent>().iter(app.world()).map(|c| c.props.len()).sum();
+    let mut parents = app.world_mut().query_filtered::<&ChildOf, With<HexProp>>();
+    let parents: Vec<Entity> = parents.iter(app.world()).map(ChildOf::parent).collect();
+    let orphans = parents.iter().filter(|&&p| app.world().get::<HexChunk>(p).is_none()).count();
     let world = app.world();
     Sample {
         chunks: world.resource::<HexTerrainStats>().meshes_inserted(),
@@ -85,6 +93,8 @@ fn sample(app: &mut App, reloads: u32) -> Sample {
         live: world.resource::<ChunkStreamer>().live_chunks(),
         water,
         props,
+        placed,
+        orphans,
         stored: world.resource::<TileStates>().stored_tiles(),
     }
 }
@@ -285,7 +295,16 @@ fn main() {
     }
     let bound =
         |what: &str, w: usize, e: usize, slack: usize| (e > w + slack).then(|| format!("{what} grew from {w} to {e}"));
-    failures.extend(bound("entities", warm.entities as usize, end.entities as usize, 16));
+    // Props follow the landscape (a forest holds more than a sea, and every reload is another
+    // seed): what must hold is that every prop belongs to a live chunk's content, and that the
+    // other entities stay flat.
+    let others = |s: &Sample| s.entities as usize - s.props - s.water;
+    failures.extend(bound("entities other than props and water", others(&warm), others(&end), 16));
+    for (when, s) in &samples {
+        if s.props != s.placed || s.orphans != 0 {
+            failures.push(format!("{when}: {} props for {} placed, {} without a chunk", s.props, s.placed, s.orphans));
+        }
+    }
     failures.extend(bound("mesh assets", warm.meshes, end.meshes, 16));
     failures.extend(bound("material assets", warm.materials, end.materials, 0));
     if end.tasks != 0 {

@@ -134,8 +134,10 @@ fn follow_floating_origin(
     map: Res<HexMap>,
     grids: Query<&Grid>,
     origins: Query<(&CellCoord, &ChildOf), With<FloatingOrigin>>,
-    mut render: ResMut<crate::material::RenderOrigin>,
+    render: Option<ResMut<crate::material::RenderOrigin>>,
 ) {
+    // Headless (the material plugin off) there is no shader to tell.
+    let Some(mut render) = render else { return };
     let Ok((cell, parent)) = origins.single() else { return };
     let Ok(grid) = grids.get(parent.parent()) else { return };
     let at = grid.cell_to_float(cell);

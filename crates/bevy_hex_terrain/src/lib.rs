@@ -3,8 +3,9 @@
 //!
 //! `app.add_plugins(HexTerrainPlugin::default())` adds [`HexTerrainPlugins`]: the [`HexMap`]
 //! resource and its map assets ([`HexMapPlugin`]), chunk streaming around every
-//! [`HexTerrainAgent`] ([`HexStreamingPlugin`]) and, with the `render` feature, the terrain
-//! material (`HexTerrainMaterialPlugin`). Pick a map file with [`HexTerrainPlugin::from_asset`],
+//! [`HexTerrainAgent`] ([`HexStreamingPlugin`]), with the `picking` feature a `bevy_picking`
+//! backend whose pointer events carry the tile (`HexPickingPlugin`) and, with the `render`
+//! feature, the terrain material (`HexTerrainMaterialPlugin`). Pick a map file with [`HexTerrainPlugin::from_asset`],
 //! switch maps at run time with the [`LoadHexMap`] message. Heights, tile types and meshes come
 //! from the Bevy-free [`hex_terrain`] crate, so [`HexMap`]'s queries hold for tiles whose chunk
 //! is not loaded.
@@ -43,6 +44,8 @@ pub mod map;
 #[cfg(feature = "render")]
 pub mod material;
 pub mod mesh;
+#[cfg(feature = "picking")]
+pub mod picking;
 pub mod props;
 pub mod streaming;
 pub mod tiles;
@@ -61,6 +64,8 @@ pub use crate::light::{HexLightPlugin, HexSun, HexTerrainCamera, TerrainLighting
 pub use crate::map::{HexMap, HexMapError, HexMapHandle, HexMapPlugin, LoadHexMap, TileHit, TileHitF64};
 #[cfg(feature = "render")]
 pub use crate::material::{HexTerrainMaterial, HexTerrainMaterialPlugin, RenderOrigin, TerrainAppearance};
+#[cfg(feature = "picking")]
+pub use crate::picking::{HexPick, HexPickingCamera, HexPickingPlugin, HexPickingSettings};
 pub use crate::props::{HexProp, HexPropsPlugin};
 pub use crate::streaming::{
     ChunkContent, ChunkDespawned, ChunkSpawned, ChunkStreamer, ChunkTask, ChunkThreads, HexChunk, HexStreamingPlugin,
@@ -80,6 +85,8 @@ pub mod prelude {
     pub use crate::light::{HexLightPlugin, HexTerrainCamera, TerrainLighting};
     #[cfg(feature = "render")]
     pub use crate::material::{HexTerrainMaterialPlugin, TerrainAppearance};
+    #[cfg(feature = "picking")]
+    pub use crate::picking::{HexPick, HexPickingPlugin};
     pub use crate::{
         ChunkDespawned, ChunkSpawned, ChunkStreamer, FogState, HexChunk, HexMap, HexMapError, HexMapPlugin, HexProp,
         HexStreamingPlugin, HexTerrainAgent, HexTerrainPlugin, HexTerrainPlugins, HexTerrainSettings, HexTerrainStats,
@@ -180,6 +187,8 @@ impl PluginGroup for HexTerrainPlugins {
             .add(HexTileStatePlugin::default())
             .add(HexWaterPlugin)
             .add(HexPropsPlugin);
+        #[cfg(feature = "picking")]
+        let group = group.add(picking::HexPickingPlugin::default());
         #[cfg(feature = "render")]
         let group = group.add(material::HexTerrainMaterialPlugin).add(light::HexLightPlugin);
         group

@@ -53,6 +53,44 @@ pub fn surface_height(pipeline: &Pipeline, x: f64, z: f64) -> Option<f64> {
     Some(tri.iter().zip(w).map(|(&p, w)| w * f64::from(pipeline.vertex_elevation(p))).sum())
 }
 
+/// The last few lattice vertices' elevations a ray march asked for.
+#[derive(Default)]
+struct Corners {
+    points: [Option<(Hex, f32)>; 12],
+    next: usize,
+}
+
+impl Corners {
+    fn elevation(&mut self, pipeline: &Pipeline, p: Hex) -> f32 {
+        if let Some((_, h)) = self.points.iter().flatten().find(|(q, _)| *q == p) {
+            return *h;
+        }
+        let h = pipeline.vertex_elevation(p);
+        self.points[self.next] = Some((p, h));
+        self.next = (self.next + 1) % self.points.len();
+        h
+    }
+}
+
+/// Upward unit normal of the surface (as meshed: the flat lattice triangle under the point) at
+/// world `(x, z)`; `None` past the world.
+#[must_use]
+pub fn surface_normal(pipeline: &Pipeline, x: f64, z: f64) -> Option<[f64; 3]> {
+    let geometry = pipeline.geometry();
+    let (x, z) = geometry.wrap_position(x, z);
+    geometry.unwrapped_tile_at(x, z)?;
+    let (tri, _) = geometry.lattice().triangle_at(x, z);
+    let [a, b, c] = tri.map(|p| {
+        let [wx, wz] = geometry.lattice().world(p);
+        [wx, f64::from(pipeline.vertex_elevation(p)), wz]
+    });
+    let (u, v) = ([b[0] - a[0], b[1] - a[1], b[2] - a[2]], [c[0] - a[0], c[1] - a[1], c[2] - a[2]]);
+    let n = [u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]];
+    let len = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
+    let sign = if n[1] < 0.0 { -1.0 } else { 1.0 };
+    (len > 0.0).then(|| n.map(|v| sign * v / len))
+}
+
 /// First hit of a ray on the surface within `max_distance`, marching at a fraction of a lattice
 /// step and refining by bisection. Any `max_distance` is fine (`f32::MAX` for no limit): the
 /// march covers only the part of the ray between the highest and the lowest possible surface,
@@ -72,9 +110,17 @@ pub fn raycast(pipeline: &Pipeline, origin: [f64; 3], direction: [f64; 3], max_d
     let shift = origin[0] - x;
     let o = [x, origin[1], origin[2]];
     let at = |t: f64| [o[0] + d[0] * t, o[1] + d[1] * t, o[2] + d[2] * t];
+    // Consecutive samples (half a lattice step apart, then the bisection) fall in the same few
+    // triangles: their vertices' heights are kept, not evaluated again.
+    let cache = std::cell::RefCell::new(Corners::default());
     let above = |t: f64| {
         let p = at(t);
-        surface_height(pipeline, p[0], p[2]).map(|h| p[1] - h)
+        let (x, z) = geometry.wrap_position(p[0], p[2]);
+        geometry.unwrapped_tile_at(x, z)?;
+        let (tri, w) = geometry.lattice().triangle_at(x, z);
+        let mut cache = cache.borrow_mut();
+        let h: f64 = tri.iter().zip(w).map(|(&q, w)| w * f64::from(cache.elevation(pipeline, q))).sum();
+        Some(p[1] - h)
     };
     // The surface lies between 0 and the maximum elevation: skip down to the top quickly
     // when looking from far above, and stop below the bottom. The top is raised by a margin:

@@ -222,18 +222,23 @@ impl TileStateSave {
         ron::ser::to_string_pretty(self, config).expect("a tile state save always serialises")
     }
 
-    /// Reads a RON save (it is not checked against a map: see [`TileStateSave::check`]).
+    /// Reads a RON save (it is not checked against a map: see [`TileStateSave::check`]); each
+    /// tile's highlights come back in [`Highlight::ALL`]'s order.
     ///
     /// # Errors
     /// [`SaveError::Syntax`] with the line and column, [`SaveError::TooManyTiles`].
     pub fn from_ron(text: &str) -> Result<Self, SaveError> {
-        let save: Self = ron::from_str(text).map_err(|e| SaveError::Syntax {
+        let mut save: Self = ron::from_str(text).map_err(|e| SaveError::Syntax {
             line: e.span.start.line,
             column: e.span.start.col,
             message: e.code.to_string(),
         })?;
         if save.tiles.len() > MAX_SAVED_TILES {
             return Err(SaveError::TooManyTiles { count: save.tiles.len() });
+        }
+        // Highlights in one order (the binary form keeps a set of bits).
+        for tile in &mut save.tiles {
+            tile.highlights.sort_by_key(|&h| h as u8);
         }
         Ok(save)
     }

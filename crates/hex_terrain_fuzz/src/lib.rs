@@ -89,14 +89,15 @@ pub fn map_asset(data: &[u8]) {
 /// Tile state save: the bytes as a binary save, as the same bytes with their length and
 /// checksum made right (so the fuzzer reaches the CBOR decoder behind the CRC), and as RON text;
 /// each save read is checked against a 12x9 map (wrapping when the first byte is odd). A save
-/// that reads must encode back to itself in both encodings; a refused one must say why.
+/// read from binary must encode back to the same save, and one that passes the check must in
+/// both encodings; a refused one must say why.
 pub fn tile_save(data: &[u8]) {
     let config = MapConfig {
         size: MapSize::Bounded { x: 12, z: 9 },
         wrap: data.first().is_some_and(|b| b & 1 == 1),
         ..MapConfig::default()
     };
-    read_save(TileStateSave::from_bytes(data), &config);
+    read_save(TileStateSave::from_bytes(data), &config, true);
     if data.len() >= 20 {
         let mut sealed = data.to_vec();
         let payload = (data.len() - 20) as u64;
@@ -105,22 +106,28 @@ pub fn tile_save(data: &[u8]) {
         let n = sealed.len();
         let crc = hex_terrain::save::crc32(&sealed[..n - 4]);
         sealed[n - 4..].copy_from_slice(&crc.to_le_bytes());
-        read_save(TileStateSave::from_bytes(&sealed), &config);
+        read_save(TileStateSave::from_bytes(&sealed), &config, true);
     }
     if let Ok(text) = std::str::from_utf8(data) {
-        read_save(TileStateSave::from_ron(text), &config);
+        read_save(TileStateSave::from_ron(text), &config, false);
     }
 }
 
-fn read_save(read: Result<TileStateSave, SaveError>, config: &MapConfig) {
+fn read_save(read: Result<TileStateSave, SaveError>, config: &MapConfig, binary: bool) {
     let save = match read {
         Ok(save) => save,
         Err(error) => return check_save_error(&error),
     };
-    assert_eq!(TileStateSave::from_bytes(&save.to_bytes()).as_ref(), Ok(&save), "binary round trip");
-    assert_eq!(TileStateSave::from_ron(&save.to_ron()).as_ref(), Ok(&save), "RON round trip");
+    let round_trip = |save: &TileStateSave| {
+        assert_eq!(TileStateSave::from_bytes(&save.to_bytes()).as_ref(), Ok(save), "binary round trip");
+        assert_eq!(TileStateSave::from_ron(&save.to_ron()).as_ref(), Ok(save), "RON round trip");
+    };
+    if binary {
+        round_trip(&save);
+    }
     match save.check(config) {
         Ok(()) => {
+            round_trip(&save);
             let bounds = config.size.bounds().expect("a bounded map");
             for tile in &save.tiles {
                 assert!((0..bounds.0 as i32).contains(&tile.at.0) && (0..bounds.1 as i32).contains(&tile.at.1));

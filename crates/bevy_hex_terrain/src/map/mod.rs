@@ -198,6 +198,13 @@ impl HexMap {
         self.terrain.surface_height(world.x, world.z)
     }
 
+    /// Upward unit normal of the surface (as meshed) at an f64 world position; `None` past the
+    /// world's edge.
+    #[must_use]
+    pub fn surface_normal_f64(&self, world: DVec3) -> Option<DVec3> {
+        self.terrain.surface_normal(world.x, world.z).map(DVec3::from_array)
+    }
+
     /// The six neighbors of a tile (some may lie outside a bounded map; on a wrapping map,
     /// neighbors across the seam are the map's own tiles on the other side).
     #[must_use]

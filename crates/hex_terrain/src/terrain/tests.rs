@@ -99,3 +99,19 @@ fn raycasts_end_whatever_their_length_and_the_hex_size() {
     // Going up from above every height: no hit at once.
     assert!(t.raycast([0.0, 2.0, 0.0], [0.1, 1.0, 0.0], f64::MAX).is_none());
 }
+
+#[test]
+fn surface_normals_are_unit_upward_and_follow_the_slope() {
+    let t = Terrain::new(MapConfig { size: MapSize::Bounded { x: 12, z: 10 }, ..MapConfig::default() }).unwrap();
+    for (x, z) in [(0.3, 0.2), (5.1, 4.7), (10.0, 8.2), (3.3, 11.9)] {
+        let n = t.surface_normal(x, z).unwrap();
+        let len = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
+        assert!((len - 1.0).abs() < 1e-9 && n[1] > 0.0, "{n:?}");
+        // Moving a little along the slope's downhill direction lowers the surface.
+        let (dx, dz) = (n[0] * 1e-3, n[2] * 1e-3);
+        if n[1] < 0.999 {
+            assert!(t.surface_height(x + dx, z + dz).unwrap() <= t.surface_height(x, z).unwrap() + 1e-9);
+        }
+    }
+    assert_eq!(t.surface_normal(1e300, 0.0), None);
+}
