@@ -143,7 +143,7 @@ fn a_chunk_observer_gets_the_click_with_its_tile_and_pickable_ignore_removes_hit
     assert!(point_at(&mut app, x, z).is_empty());
 }
 
-/// A million units out, with big_space: the floating origin's cell is the render frame's
+/// A million units out, with `big_space`: the floating origin's cell is the render frame's
 /// origin, and the hit's tile is the one under the pointer's f64 position.
 #[cfg(feature = "big_space")]
 #[test]
