@@ -25,6 +25,10 @@ use std::cmp::Reverse;
 use std::collections::{BinaryHeap, HashMap, HashSet};
 
 use bevy::input::mouse::AccumulatedMouseScroll;
+use bevy::picking::PickingSystems;
+use bevy::picking::backend::HitData;
+use bevy::picking::events::{Click, Move, Out, Over, Pointer};
+use bevy::picking::pointer::PointerButton;
 use bevy::prelude::*;
 use hex_terrain_game::prelude::*;
 use hexx::algorithms::a_star;
@@ -95,23 +99,22 @@ fn main() -> AppExit {
         .add_systems(Startup, (setup, look::from_env))
         .add_systems(
             Update,
-            (
-                camera_controls,
-                hover,
-                place_units,
-                (click, end_turn, keys).after(hover),
-                walk,
-                panel,
-                chunk_boundaries,
-                look::keys,
-            ),
+            (camera_controls, place_units, (end_turn, keys), walk, panel, chunk_boundaries, look::keys),
         )
         .add_systems(
             Update,
             (vision::update_fog, vision::highlight, vision::paint_lens).after(HexTerrainSystems::Render).after(walk),
-        );
+        )
+        // The pointer through the terrain's picking backend: its events carry the tile.
+        .add_observer(hover::<Over>)
+        .add_observer(hover::<Move>)
+        .add_observer(leave)
+        .add_observer(click);
     if scripted {
-        app.init_resource::<script::Script>().add_systems(PreUpdate, script::script.after(bevy::input::InputSystems));
+        app.init_resource::<script::Script>()
+            .init_resource::<script::ScriptedPointer>()
+            .add_systems(PreUpdate, script::script.after(bevy::input::InputSystems))
+            .add_systems(PreUpdate, script::drive_pointer.after(script::script).before(PickingSystems::ProcessInput));
     } else {
         app.add_plugins(hex_terrain_game::screenshot::ScreenshotModePlugin);
     }
@@ -238,21 +241,39 @@ fn camera_controls(
     }
 }
 
-fn hover(
-    windows: Query<&Window>,
-    cameras: Query<(&Camera, &GlobalTransform)>,
+/// A pointer event that carries the terrain hit it is about.
+trait TerrainHit {
+    fn terrain_hit(&self) -> &HitData;
+}
+
+impl TerrainHit for Over {
+    fn terrain_hit(&self) -> &HitData {
+        &self.hit
+    }
+}
+
+impl TerrainHit for Move {
+    fn terrain_hit(&self) -> &HitData {
+        &self.hit
+    }
+}
+
+/// The hovered tile: the tile the terrain picking backend reports under the pointer.
+fn hover<E: TerrainHit + std::fmt::Debug + Clone + Reflect>(
+    pointer: On<Pointer<E>>,
     map: Res<HexMap>,
     mut game: ResMut<Game>,
-    script: Option<Res<script::Script>>,
 ) {
-    // A scripted run points at tiles itself.
-    if script.is_some() {
-        return;
+    if let Some(pick) = pointer.event.terrain_hit().extra_as::<HexPick>() {
+        game.hovered = Some(pick.tile).filter(|&t| map.contains(t));
     }
-    let Some(cursor) = windows.iter().next().and_then(Window::cursor_position) else { return };
-    let Some((camera, at)) = cameras.iter().next() else { return };
-    let Ok(ray) = camera.viewport_to_world(at, cursor) else { return };
-    game.hovered = map.raycast(ray, 2000.0).map(|hit| hit.tile).filter(|&t| map.contains(t));
+}
+
+/// The pointer left the terrain (a chunk it was over).
+fn leave(pointer: On<Pointer<Out>>, mut game: ResMut<Game>) {
+    if pointer.hit.extra_as::<HexPick>().is_some() {
+        game.hovered = None;
+    }
 }
 
 /// Movement cost of entering a tile: land 1, mountain 3; sea, lakes and outside the map
@@ -379,16 +400,13 @@ fn place_units(
     game.spawned = true;
 }
 
-fn click(
-    mouse: Res<ButtonInput<MouseButton>>,
-    map: Res<HexMap>,
-    mut game: ResMut<Game>,
-    mut units: Query<(Entity, &mut Unit)>,
-) {
-    if !mouse.just_pressed(MouseButton::Left) {
+/// A click on the terrain: select the human unit on the tile, or move the selected unit there.
+fn click(pointer: On<Pointer<Click>>, map: Res<HexMap>, mut game: ResMut<Game>, mut units: Query<(Entity, &mut Unit)>) {
+    if pointer.button != PointerButton::Primary {
         return;
     }
-    let Some(tile) = game.hovered else { return };
+    let Some(tile) = pointer.hit.extra_as::<HexPick>().map(|p| p.tile).filter(|&t| map.contains(t)) else { return };
+    game.hovered = Some(tile);
     let occupied: HashSet<Hex> = units.iter().map(|(_, u)| u.tile).collect();
     if let Some((e, _)) = units.iter().find(|(_, u)| u.tile == tile && u.player == vision::HUMAN) {
         game.selected = Some(e);

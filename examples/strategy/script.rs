@@ -5,6 +5,7 @@
 
 use std::collections::HashSet;
 
+use bevy::picking::pointer::{Location, PointerAction, PointerButton, PointerId, PointerInput};
 use bevy::prelude::*;
 use bevy::render::view::screenshot::{Screenshot, ScreenshotCaptured};
 use hex_terrain_game::prelude::*;
@@ -12,6 +13,52 @@ use hexx::algorithms::a_star;
 
 use crate::vision::{self, HUMAN, RIVAL};
 use crate::{Game, MOVES, Unit, cost, path_cost, step_cost};
+
+/// The mouse as the script moves it: to a tile's center on screen, then a press and a release,
+/// one frame each, as `PointerInput` messages; the terrain picking backend turns them into the
+/// `Pointer<Click>` the game observes.
+#[derive(Resource, Default)]
+pub struct ScriptedPointer {
+    tile: Option<Hex>,
+    phase: u8,
+}
+
+impl ScriptedPointer {
+    /// Clicks a tile, starting next frame.
+    fn click(&mut self, tile: Hex) {
+        *self = Self { tile: Some(tile), phase: 0 };
+    }
+}
+
+/// Moves the mouse pointer over the scripted tile and clicks it.
+pub fn drive_pointer(
+    mut pointer: ResMut<ScriptedPointer>,
+    map: Res<HexMap>,
+    cameras: Query<(&Camera, &GlobalTransform)>,
+    windows: Query<Entity, With<bevy::window::PrimaryWindow>>,
+    mut input: MessageWriter<PointerInput>,
+) {
+    let Some(tile) = pointer.tile else { return };
+    let (Some((camera, at)), Ok(window)) = (cameras.iter().next(), windows.single()) else { return };
+    let Some(target) = bevy::camera::RenderTarget::Window(bevy::window::WindowRef::Primary).normalize(Some(window))
+    else {
+        return;
+    };
+    // On a wrapping map, the copy of the tile on screen (the camera may look at the seam).
+    let center = map.tile_center(tile).map(|c| map.wrap_near(c, at.translation()));
+    let Some(position) = center.and_then(|c| camera.world_to_viewport(at, c).ok()) else { return };
+    let location = Location { target, position };
+    let action = match pointer.phase {
+        0 => PointerAction::Move { delta: Vec2::ZERO },
+        1 => PointerAction::Press(PointerButton::Primary),
+        _ => PointerAction::Release(PointerButton::Primary),
+    };
+    input.write(PointerInput::new(PointerId::Mouse, location, action));
+    pointer.phase += 1;
+    if pointer.phase == 3 {
+        pointer.tile = None;
+    }
+}
 
 /// A scripted turn for tests: select a unit, move it, end the turn, check the state.
 #[derive(Resource, Default)]
@@ -82,16 +129,15 @@ pub fn script(
     mut commands: Commands,
     mut s: ResMut<Script>,
     appearance: Res<TerrainAppearance>,
-    mut game: ResMut<Game>,
+    game: Res<Game>,
     map: Res<HexMap>,
     states: Res<TileStates>,
     units: Query<(Entity, &Unit, &Transform, &Visibility)>,
-    mut mouse: ResMut<ButtonInput<MouseButton>>,
+    mut pointer: ResMut<ScriptedPointer>,
     mut keys: ResMut<ButtonInput<KeyCode>>,
     mut exit: MessageWriter<AppExit>,
 ) {
     s.frame += 1;
-    mouse.release(MouseButton::Left);
     for key in [KeyCode::Enter, KeyCode::KeyG, KeyCode::KeyR, KeyCode::KeyL] {
         keys.release(key);
     }
@@ -117,8 +163,7 @@ pub fn script(
                 .collect();
             let Some((_, unit, ..)) = units.iter().find(|(_, u, ..)| u.player == HUMAN) else { return };
             s.start = Some(unit.tile);
-            game.hovered = Some(unit.tile);
-            mouse.press(MouseButton::Left);
+            pointer.click(unit.tile);
             s.step = 1;
         }
         // Selected: pick the reachable tile farthest along (cost > 1 if any) and click it.
@@ -160,8 +205,7 @@ pub fn script(
             }
             s.expected_cost = path_cost(&map, &path);
             s.target = Some(target);
-            game.hovered = Some(target);
-            mouse.press(MouseButton::Left);
+            pointer.click(target);
             s.step = 2;
         }
         // Wait for the walk to end, check, then end the turn.
