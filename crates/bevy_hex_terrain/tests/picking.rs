@@ -41,14 +41,20 @@ fn app(config: MapConfig) -> App {
     app.add_plugins((MinimalPlugins, AssetPlugin::default(), TransformPlugin, PickingPlugin, InteractionPlugin));
     let settings = HexTerrainSettings { load_radius: 1, ..default() };
     app.add_plugins(HexTerrainPlugins { map: config.into(), settings }.build().disable::<HexTerrainMaterialPlugin>());
-    app.init_resource::<PointerRay>().init_resource::<Hits>().init_resource::<Clicks>();
+    app.init_resource::<Clicks>();
+    add_pointer(&mut app);
+    app.world_mut().spawn((HexTerrainAgent::default(), Transform::default()));
+    app
+}
+
+/// The synthetic pointer, the system casting its ray and the collection of its hits.
+fn add_pointer(app: &mut App) {
+    app.init_resource::<PointerRay>().init_resource::<Hits>();
     app.add_systems(PreUpdate, cast.after(PickingSystems::ProcessInput).before(PickingSystems::Backend));
     app.add_systems(Last, |mut reader: MessageReader<PointerHits>, mut hits: ResMut<Hits>| {
         hits.0 = reader.read().filter(|h| h.pointer == POINTER).flat_map(|h| h.picks.clone()).collect();
     });
-    app.world_mut().spawn((HexTerrainAgent::default(), Transform::default()));
     app.world_mut().spawn(POINTER);
-    app
 }
 
 /// The synthetic pointer: its ray, for the first camera, as `RayMap::repopulate` would insert a
@@ -160,12 +166,7 @@ fn picking_is_exact_a_million_units_out_with_big_space() {
     let settings = HexTerrainSettings { load_radius: 1, ..default() };
     app.add_plugins(HexTerrainPlugins { map: config.into(), settings }.build().disable::<HexTerrainMaterialPlugin>());
     app.add_plugins(HexBigSpacePlugin);
-    app.init_resource::<PointerRay>().init_resource::<Hits>();
-    app.add_systems(PreUpdate, cast.after(PickingSystems::ProcessInput).before(PickingSystems::Backend));
-    app.add_systems(Last, |mut reader: MessageReader<PointerHits>, mut hits: ResMut<Hits>| {
-        hits.0 = reader.read().filter(|h| h.pointer == POINTER).flat_map(|h| h.picks.clone()).collect();
-    });
-    app.world_mut().spawn(POINTER);
+    add_pointer(&mut app);
     let far = DVec3::new(1.0e6 + 0.37, 0.0, -1.0e6 - 0.21);
     let mut camera_cell = CellCoord::default();
     let mut commands = app.world_mut().commands();

@@ -45,12 +45,18 @@ pub fn tile_center(pipeline: &Pipeline, tile: Hex) -> Option<[f64; 3]> {
 /// ([`Geometry::wrap_position`](crate::geometry::Geometry::wrap_position)).
 #[must_use]
 pub fn surface_height(pipeline: &Pipeline, x: f64, z: f64) -> Option<f64> {
+    interpolate(pipeline, x, z, |p| pipeline.vertex_elevation(p))
+}
+
+/// The surface height at world `(x, z)` from the elevations of the lattice triangle's corners
+/// under it, which `elevation` gives; `None` past the world.
+fn interpolate(pipeline: &Pipeline, x: f64, z: f64, mut elevation: impl FnMut(Hex) -> f32) -> Option<f64> {
     let geometry = pipeline.geometry();
     let (x, z) = geometry.wrap_position(x, z);
     // The three corners of the triangle are at most one tile from the tile under it.
     geometry.unwrapped_tile_at(x, z)?;
     let (tri, w) = geometry.lattice().triangle_at(x, z);
-    Some(tri.iter().zip(w).map(|(&p, w)| w * f64::from(pipeline.vertex_elevation(p))).sum())
+    Some(tri.iter().zip(w).map(|(&p, w)| w * f64::from(elevation(p))).sum())
 }
 
 /// The last few lattice vertices' elevations a ray march asked for.
@@ -115,12 +121,8 @@ pub fn raycast(pipeline: &Pipeline, origin: [f64; 3], direction: [f64; 3], max_d
     let cache = std::cell::RefCell::new(Corners::default());
     let above = |t: f64| {
         let p = at(t);
-        let (x, z) = geometry.wrap_position(p[0], p[2]);
-        geometry.unwrapped_tile_at(x, z)?;
-        let (tri, w) = geometry.lattice().triangle_at(x, z);
         let mut cache = cache.borrow_mut();
-        let h: f64 = tri.iter().zip(w).map(|(&q, w)| w * f64::from(cache.elevation(pipeline, q))).sum();
-        Some(p[1] - h)
+        interpolate(pipeline, p[0], p[2], |q| cache.elevation(pipeline, q)).map(|h| p[1] - h)
     };
     // The surface lies between 0 and the maximum elevation: skip down to the top quickly
     // when looking from far above, and stop below the bottom. The top is raised by a margin:
