@@ -49,11 +49,11 @@ const PRESETS: [&str; 6] = [
 
 /// The camera's pivot on the ground; the streaming agent.
 #[derive(Component)]
-struct Rig {
+pub(crate) struct Rig {
     focus: Vec3,
     yaw: f32,
     distance: f32,
-    target_focus: Vec3,
+    pub(crate) target_focus: Vec3,
     target_yaw: f32,
     target_distance: f32,
 }
@@ -93,23 +93,30 @@ fn main() -> AppExit {
     let mut app = App::new();
     // HEXTERRAIN_FOG=off starts without the fog of war (V toggles it).
     let fog_of_war = std::env::var("HEXTERRAIN_FOG").map_or(true, |v| v != "off");
-    app.add_plugins((DefaultPlugins, HexTerrainPlugin::from_asset(PRESETS[preset.clamp(1, PRESETS.len()) - 1])))
-        .insert_resource(TerrainAppearance { outlines: true, outline_width: 0.04, fog_of_war, ..default() })
-        .insert_resource(Game { turn: 1, ..default() })
-        .add_systems(Startup, (setup, look::from_env))
-        .add_systems(
-            Update,
-            (camera_controls, place_units, (end_turn, keys), walk, panel, chunk_boundaries, look::keys),
-        )
-        .add_systems(
-            Update,
-            (vision::update_fog, vision::highlight, vision::paint_lens).after(HexTerrainSystems::Render).after(walk),
-        )
-        // The pointer through the terrain's picking backend: its events carry the tile.
-        .add_observer(hover::<Over>)
-        .add_observer(hover::<Move>)
-        .add_observer(leave)
-        .add_observer(click);
+    // The minimap sits in the bottom right corner, above the help line.
+    let minimap = MinimapSettings { margin: Vec2::new(12.0, 48.0), ..default() };
+    app.add_plugins((
+        DefaultPlugins,
+        HexTerrainPlugin::from_asset(PRESETS[preset.clamp(1, PRESETS.len()) - 1]),
+        HexMinimapPlugin { settings: minimap },
+    ))
+    .insert_resource(TerrainAppearance { outlines: true, outline_width: 0.04, fog_of_war, ..default() })
+    .insert_resource(Game { turn: 1, ..default() })
+    .add_systems(Startup, (setup, look::from_env))
+    .add_systems(
+        Update,
+        (follow_minimap, camera_controls, place_units, (end_turn, keys), walk, panel, chunk_boundaries, look::keys)
+            .chain(),
+    )
+    .add_systems(
+        Update,
+        (vision::update_fog, vision::highlight, vision::paint_lens).after(HexTerrainSystems::Render).after(walk),
+    )
+    // The pointer through the terrain's picking backend: its events carry the tile.
+    .add_observer(hover::<Over>)
+    .add_observer(hover::<Move>)
+    .add_observer(leave)
+    .add_observer(click);
     if scripted {
         app.init_resource::<script::Script>()
             .init_resource::<script::ScriptedPointer>()
@@ -169,6 +176,15 @@ fn setup(mut commands: Commands) {
             BackgroundColor(Color::srgb(0.15, 0.2, 0.3)),
         ))
         .with_child((Text::new("End Turn"), TextFont::from_font_size(16.0)));
+}
+
+/// A press or drag on the minimap sends the camera there.
+fn follow_minimap(mut go: MessageReader<MinimapNavigate>, mut rigs: Query<&mut Rig>) {
+    for go in go.read() {
+        for mut rig in &mut rigs {
+            rig.target_focus = Vec3::new(go.world.x as f32, 0.0, go.world.y as f32);
+        }
+    }
 }
 
 fn camera_controls(

@@ -1,32 +1,50 @@
 //! The scripted turn (`HEXTERRAIN_SCRIPT=1`): select a unit, move it, end the turn, regenerate,
-//! checking the game state, the fog of war and the territory on the way. With
+//! press on the minimap, checking the game state, the fog of war, the territory and the camera
+//! on the way. With
 //! `HEXTERRAIN_SCRIPT=seam`, on a wrapping map with the camera on its seam, the unit's reach
 //! must cross the seam and the move goes to a tile on the other side, the short way.
 
 use std::collections::HashSet;
 
+use bevy::ecs::system::SystemParam;
 use bevy::picking::pointer::{Location, PointerAction, PointerButton, PointerId, PointerInput};
 use bevy::prelude::*;
 use bevy::render::view::screenshot::{Screenshot, ScreenshotCaptured};
+use bevy::ui::UiGlobalTransform;
 use hex_terrain_game::prelude::*;
 use hexx::algorithms::a_star;
 
 use crate::vision::{self, HUMAN, RIVAL};
-use crate::{Game, MOVES, Unit, cost, path_cost, step_cost};
+use crate::{Game, MOVES, Rig, Unit, cost, path_cost, step_cost};
+use hex_terrain_game::{HexMinimap, MinimapPicture};
 
 /// The mouse as the script moves it: to a tile's center on screen, then a press and a release,
 /// one frame each, as `PointerInput` messages; the terrain picking backend turns them into the
 /// `Pointer<Click>` the game observes.
 #[derive(Resource, Default)]
 pub struct ScriptedPointer {
-    tile: Option<Hex>,
+    target: Option<PointAt>,
     phase: u8,
+}
+
+/// Where the scripted pointer goes.
+#[derive(Clone, Copy)]
+enum PointAt {
+    /// A tile's center on the terrain.
+    Tile(Hex),
+    /// A position in the window (logical pixels).
+    Screen(Vec2),
 }
 
 impl ScriptedPointer {
     /// Clicks a tile, starting next frame.
     fn click(&mut self, tile: Hex) {
-        *self = Self { tile: Some(tile), phase: 0 };
+        *self = Self { target: Some(PointAt::Tile(tile)), phase: 0 };
+    }
+
+    /// Clicks a position in the window, starting next frame.
+    fn click_screen(&mut self, position: Vec2) {
+        *self = Self { target: Some(PointAt::Screen(position)), phase: 0 };
     }
 }
 
@@ -38,15 +56,21 @@ pub fn drive_pointer(
     windows: Query<Entity, With<bevy::window::PrimaryWindow>>,
     mut input: MessageWriter<PointerInput>,
 ) {
-    let Some(tile) = pointer.tile else { return };
+    let Some(point_at) = pointer.target else { return };
     let (Some((camera, at)), Ok(window)) = (cameras.iter().next(), windows.single()) else { return };
     let Some(target) = bevy::camera::RenderTarget::Window(bevy::window::WindowRef::Primary).normalize(Some(window))
     else {
         return;
     };
-    // On a wrapping map, the copy of the tile on screen (the camera may look at the seam).
-    let center = map.tile_center(tile).map(|c| map.wrap_near(c, at.translation()));
-    let Some(position) = center.and_then(|c| camera.world_to_viewport(at, c).ok()) else { return };
+    let position = match point_at {
+        // On a wrapping map, the copy of the tile on screen (the camera may look at the seam).
+        PointAt::Tile(tile) => map
+            .tile_center(tile)
+            .map(|c| map.wrap_near(c, at.translation()))
+            .and_then(|c| camera.world_to_viewport(at, c).ok()),
+        PointAt::Screen(position) => Some(position),
+    };
+    let Some(position) = position else { return };
     let location = Location { target, position };
     let action = match pointer.phase {
         0 => PointerAction::Move { delta: Vec2::ZERO },
@@ -56,7 +80,34 @@ pub fn drive_pointer(
     input.write(PointerInput::new(PointerId::Mouse, location, action));
     pointer.phase += 1;
     if pointer.phase == 3 {
-        pointer.tile = None;
+        pointer.target = None;
+    }
+}
+
+/// The minimap as the script sees it: its picture, its node on screen and the camera rig.
+#[derive(SystemParam)]
+pub struct MinimapProbe<'w, 's> {
+    picture: Res<'w, MinimapPicture>,
+    nodes: Query<'w, 's, (&'static ComputedNode, &'static UiGlobalTransform), With<HexMinimap>>,
+    rigs: Query<'w, 's, &'static Rig>,
+}
+
+impl MinimapProbe<'_, '_> {
+    /// The window position (logical pixels) of a pixel showing `tile` on the minimap.
+    fn screen_of(&self, tile: Hex) -> Option<Vec2> {
+        let minimap = self.picture.minimap()?;
+        let pixels = minimap.pixels_of(tile);
+        let i = *pixels.get(pixels.len() / 2)?;
+        let [w, h] = minimap.size();
+        let (node, transform) = self.nodes.single().ok()?;
+        let scale = node.inverse_scale_factor();
+        let on_node = Vec2::new(((i % w) as f32 + 0.5) / w as f32, ((i / w) as f32 + 0.5) / h as f32) - 0.5;
+        Some(transform.translation * scale + on_node * node.size() * scale)
+    }
+
+    /// Where the camera is going.
+    fn camera_target(&self) -> Option<Vec3> {
+        self.rigs.iter().next().map(|r| r.target_focus)
     }
 }
 
@@ -73,6 +124,9 @@ pub struct Script {
     seen: HashSet<Hex>,
     /// Tiles the human player owned before the turn ended.
     owned: usize,
+    /// The tile pressed on the minimap, and the selection then (the press must not reach the
+    /// terrain behind the minimap).
+    minimap: Option<(Hex, Option<Entity>)>,
 }
 
 /// Whether the script crosses a wrapping map's seam (`HEXTERRAIN_SCRIPT=seam`).
@@ -134,6 +188,7 @@ pub fn script(
     states: Res<TileStates>,
     units: Query<(Entity, &Unit, &Transform, &Visibility)>,
     mut pointer: ResMut<ScriptedPointer>,
+    minimap: MinimapProbe,
     mut keys: ResMut<ButtonInput<KeyCode>>,
     mut exit: MessageWriter<AppExit>,
 ) {
@@ -291,10 +346,40 @@ pub fn script(
             }
             s.step = 5;
         }
-        5 => {
+        // A press on the minimap, on a tile across the map from the camera, sends it there.
+        5 if minimap.picture.minimap().is_some() && !minimap.picture.is_building() => {
+            let (Some(bounds), Some(focus)) = (map.terrain().bounds(), minimap.camera_target()) else { return };
+            let here = map.tile_at(focus).unwrap_or_default();
+            let row = bounds.max[1] / 2;
+            let far = [bounds.max[0] / 4, 3 * bounds.max[0] / 4]
+                .map(|col| map.terrain().tile_from_offset([col, row]))
+                .into_iter()
+                .max_by_key(|&t| map.distance(t, here))
+                .unwrap_or_default();
+            let Some(position) = minimap.screen_of(far) else {
+                fail(format!("tile {far:?} is not on the minimap"), &mut exit);
+                return;
+            };
+            s.minimap = Some((far, game.selected));
+            pointer.click_screen(position);
+            s.step = 6;
+        }
+        6 => {
+            let (Some((tile, selected)), Some(target)) = (s.minimap, minimap.camera_target()) else { return };
+            if map.tile_at(target) != Some(tile) {
+                return;
+            }
+            if game.selected != selected {
+                fail("the press on the minimap reached the terrain behind it".into(), &mut exit);
+                return;
+            }
+            println!("SCRIPT: a press on the minimap sent the camera to {tile:?}");
+            s.step = 7;
+        }
+        7 if s.frame.is_multiple_of(5) => {
             println!(
                 "SCRIPT OK: unit moved {:?} -> {:?} for {} moves{}; turn {}; fog and territory checked; outlines \
-                 off; lens on; regenerated, units on land",
+                 off; lens on; regenerated, units on land; the minimap moved the camera",
                 s.start,
                 s.target,
                 s.expected_cost,
@@ -311,11 +396,11 @@ pub fn script(
                             exit.write(AppExit::Success);
                         },
                     );
-                    s.step = 6;
+                    s.step = 8;
                 }
                 None => {
                     exit.write(AppExit::Success);
-                    s.step = 6;
+                    s.step = 8;
                 }
             }
         }

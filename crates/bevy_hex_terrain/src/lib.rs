@@ -44,6 +44,8 @@ pub mod map;
 #[cfg(feature = "render")]
 pub mod material;
 pub mod mesh;
+#[cfg(feature = "minimap")]
+pub mod minimap;
 #[cfg(feature = "picking")]
 pub mod picking;
 pub mod props;
@@ -64,6 +66,11 @@ pub use crate::light::{HexLightPlugin, HexSun, HexTerrainCamera, TerrainLighting
 pub use crate::map::{HexMap, HexMapError, HexMapHandle, HexMapPlugin, LoadHexMap, TileHit, TileHitF64};
 #[cfg(feature = "render")]
 pub use crate::material::{HexTerrainMaterial, HexTerrainMaterialPlugin, RenderOrigin, TerrainAppearance};
+#[cfg(feature = "minimap")]
+pub use crate::minimap::{
+    HexMinimap, HexMinimapCamera, HexMinimapPlugin, HexMinimapSystems, MinimapCorner, MinimapNavigate, MinimapPicture,
+    MinimapSettings,
+};
 #[cfg(feature = "picking")]
 pub use crate::picking::{HexPick, HexPickingCamera, HexPickingPlugin, HexPickingSettings};
 pub use crate::props::{HexProp, HexPropsPlugin};
@@ -72,8 +79,8 @@ pub use crate::streaming::{
     HexTerrainAgent, HexTerrainSettings, HexTerrainStats, HexWorldPosition, PropSettings, TerrainReady, WaterSettings,
 };
 pub use crate::tiles::{
-    FogState, HexTileStatePlugin, Highlight, SaveError, TileStateError, TileStateSave, TileStateSettings,
-    TileStateStats, TileStates,
+    FogState, HexTileStatePlugin, HexTileStateSystems, Highlight, SaveError, TileStateError, TileStateSave,
+    TileStateSettings, TileStateStats, TileStates,
 };
 pub use crate::water::{HexWater, HexWaterPlugin};
 
@@ -85,6 +92,8 @@ pub mod prelude {
     pub use crate::light::{HexLightPlugin, HexTerrainCamera, TerrainLighting};
     #[cfg(feature = "render")]
     pub use crate::material::{HexTerrainMaterialPlugin, TerrainAppearance};
+    #[cfg(feature = "minimap")]
+    pub use crate::minimap::{HexMinimapPlugin, MinimapNavigate, MinimapSettings};
     #[cfg(feature = "picking")]
     pub use crate::picking::{HexPick, HexPickingPlugin};
     pub use crate::{

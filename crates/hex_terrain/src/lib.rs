@@ -22,6 +22,7 @@
 //! | [`water::surface`], [`props`] | what stands on a generated chunk: its water surface, its trees, rocks and reeds |
 //! | [`query`], [`metrics`] | the surface under a position and ray casts, in f64; sharpness (thesis eq. 4.1, 7.3) |
 //! | [`terrain`] | [`Terrain`], the facade over all of it |
+//! | [`minimap`] | a top-down picture of the map for a minimap: each pixel's tile, the tiles' colors, rivers, fog of war and owners, repainted per tile |
 //! | [`save`] | what a game writes on the tiles ([`FogState`], owners, overlays, [`Highlight`]s) as a [`TileStateSave`] file: RON or compact binary, checked against the map |
 //!
 //! ```
@@ -63,6 +64,8 @@ pub mod props;
 
 pub mod metrics;
 pub mod query;
+
+pub mod minimap;
 
 pub mod terrain;
 

@@ -19,6 +19,14 @@ pub use window::{TEXEL_BYTES, Texel, TileStateUpload};
 
 use crate::{ChunkStreamer, HexMap, HexTerrainSystems};
 
+/// The tile state plugin's systems in `PostUpdate`, public so a system reading this frame's
+/// [`TileStates::changed_tiles`] can run before them.
+#[derive(SystemSet, Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum HexTileStateSystems {
+    /// Packs the changed rows for the GPU and starts the next frame's list of changed tiles.
+    Pack,
+}
+
 /// Parameters of the tile state store.
 #[derive(Resource, Debug, Clone, Reflect)]
 #[reflect(Resource)]
@@ -77,7 +85,7 @@ impl Plugin for HexTileStatePlugin {
             // Placed before `Startup`, so the material starts with the window's texture.
             .add_systems(PreStartup, (follow_map, follow_chunks).chain())
             .add_systems(Update, (follow_map, follow_chunks).chain().in_set(HexTerrainSystems::Tiles))
-            .add_systems(PostUpdate, pack_upload);
+            .add_systems(PostUpdate, pack_upload.in_set(HexTileStateSystems::Pack));
     }
 }
 
@@ -151,8 +159,10 @@ fn follow_chunks(
     }
 }
 
-/// Packs the rows changed this frame for the GPU; a frame without changes touches nothing.
+/// Packs the rows changed this frame for the GPU (a frame without changes touches nothing) and
+/// starts the next frame's list of changed tiles.
 fn pack_upload(mut states: ResMut<TileStates>, mut upload: ResMut<TileStateUpload>, mut stats: ResMut<TileStateStats>) {
+    states.bypass_change_detection().clear_journal();
     if !states.has_upload() {
         if stats.last_upload_bytes != 0 {
             stats.last_upload_bytes = 0;

@@ -77,8 +77,15 @@ pub struct TileStates {
     /// tiles grow all game long; its visible ones do not).
     #[reflect(ignore)]
     visible: HashSet<IVec2>,
+    /// The tiles written since the journal was last cleared (after `PostUpdate`), for systems
+    /// following the state incrementally; `None` once everything may have changed.
+    #[reflect(ignore)]
+    journal: Option<Vec<IVec2>>,
     writes: u64,
 }
+
+/// Most tiles [`TileStates::changed_tiles`] lists in a frame; past it, it answers "everything".
+const JOURNAL_LIMIT: usize = 1 << 16;
 
 impl Default for TileStates {
     fn default() -> Self {
@@ -90,6 +97,7 @@ impl Default for TileStates {
             wrap: false,
             window: TexelWindow::new(IVec2::ZERO, UVec2::ONE),
             visible: HashSet::default(),
+            journal: None,
             writes: 0,
         }
     }
@@ -246,6 +254,7 @@ impl TileStates {
         self.highlighted = Default::default();
         self.visible.clear();
         self.window.clear();
+        self.journal = None;
     }
 
     /// Writes made so far (a write that changes nothing is not counted).
@@ -327,6 +336,34 @@ impl TileStates {
         }
         self.tiles.set(oc, texel);
         self.window.write(oc, texel);
+        if let Some(journal) = &mut self.journal {
+            if journal.len() < JOURNAL_LIMIT {
+                journal.push(oc);
+            } else {
+                self.journal = None;
+            }
+        }
+    }
+
+    /// The tiles whose state was written this frame (each at least once, maybe more), for a
+    /// system that follows the state without reading every tile (the minimap); `None` when every
+    /// tile may have changed (another map, a load, a clear, or more writes than it keeps). Read it
+    /// in `PostUpdate` before [`HexTileStateSystems::Pack`](super::HexTileStateSystems::Pack),
+    /// which starts the next frame's list.
+    #[must_use]
+    pub fn changed_tiles(&self) -> Option<impl Iterator<Item = Hex> + '_> {
+        let orientation = self.orientation;
+        self.journal
+            .as_ref()
+            .map(move |j| j.iter().map(move |oc| Hex::from_offset_coordinates(oc.to_array(), OFFSET_MODE, orientation)))
+    }
+
+    /// Starts a new list of written tiles.
+    pub(crate) fn clear_journal(&mut self) {
+        match &mut self.journal {
+            Some(journal) => journal.clear(),
+            None => self.journal = Some(Vec::new()),
+        }
     }
 
     /// Follows a new map shape: `bounds` (None: unbounded), orientation and east-west wrap. With
@@ -338,6 +375,7 @@ impl TileStates {
         self.wrap = wrap;
         self.tiles = TileStore::new(bounds);
         self.visible.clear();
+        self.journal = None;
         if !keep {
             self.highlighted = Default::default();
             self.window.clear();

@@ -1,0 +1,204 @@
+//! Headless `App` tests of the minimap (`HexMinimapPlugin`): the image's pixels have the tiles'
+//! colors and unexplored tiles are black; a `TileStates` write changes, in the next frame,
+//! exactly the pixels of the tiles it touches (and of their neighbors' borders), as a full paint
+//! would; a press on a minimap pixel sends the camera to that pixel's tile.
+
+#![cfg(feature = "minimap")]
+
+use bevy::asset::AssetPlugin;
+use bevy::camera::NormalizedRenderTarget;
+use bevy::picking::backend::{HitData, PointerHits};
+use bevy::picking::pointer::{Location, PointerAction, PointerButton, PointerId, PointerInput};
+use bevy::picking::{InteractionPlugin, PickingPlugin, PickingSystems};
+use bevy::prelude::*;
+use bevy_hex_terrain::hex_terrain;
+use bevy_hex_terrain::hex_terrain::minimap::TileLook;
+use bevy_hex_terrain::prelude::*;
+use bevy_hex_terrain::{HexMinimap, MinimapPicture};
+
+mod common;
+
+use common::run_until;
+
+const POINTER: PointerId = PointerId::Touch(3);
+
+/// Where on the minimap node the synthetic pointer is (`-0.5..0.5`), if on it.
+#[derive(Resource, Default)]
+struct OnMinimap(Option<Vec2>);
+
+/// Every `MinimapNavigate` received.
+#[derive(Resource, Default)]
+struct Navigations(Vec<MinimapNavigate>);
+
+fn app(config: MapConfig) -> App {
+    let mut app = App::new();
+    app.add_plugins((MinimalPlugins, AssetPlugin::default(), TransformPlugin, PickingPlugin, InteractionPlugin));
+    app.init_asset::<Image>();
+    let settings = HexTerrainSettings { load_radius: 1, ..default() };
+    app.add_plugins(HexTerrainPlugins { map: config.into(), settings }.build().disable::<HexTerrainMaterialPlugin>());
+    app.add_plugins(HexMinimapPlugin::default());
+    app.init_resource::<OnMinimap>().init_resource::<Navigations>();
+    // The UI backend's hit, as Bevy's reports it: the node and the position on it.
+    app.add_systems(
+        PreUpdate,
+        (|on: Res<OnMinimap>, nodes: Query<Entity, With<HexMinimap>>, mut hits: MessageWriter<PointerHits>| {
+            let (Some(at), Ok(node)) = (on.0, nodes.single()) else { return };
+            let hit = HitData::new(node, 0.0, Some(at.extend(0.0)), None);
+            hits.write(PointerHits::new(POINTER, vec![(node, hit)], 10.0));
+        })
+        .in_set(PickingSystems::Backend),
+    );
+    app.add_systems(Last, |mut read: MessageReader<MinimapNavigate>, mut all: ResMut<Navigations>| {
+        all.0.extend(read.read().copied());
+    });
+    app.world_mut().spawn(POINTER);
+    app.world_mut().spawn((HexTerrainAgent::default(), Transform::default()));
+    app
+}
+
+fn config() -> MapConfig {
+    MapConfig { size: MapSize::Bounded { x: 30, z: 20 }, ..MapConfig::default() }
+}
+
+fn built(app: &mut App) -> bool {
+    app.world().resource::<MinimapPicture>().minimap().is_some()
+}
+
+/// The image the node shows.
+fn image(app: &App) -> Vec<u8> {
+    let handle = app.world().resource::<MinimapPicture>().image().clone();
+    app.world().resource::<Assets<Image>>().get(&handle).unwrap().data.clone().unwrap()
+}
+
+fn look(states: &TileStates, t: Hex) -> TileLook {
+    TileLook { fog: states.visibility(t), owner: states.owner(t) }
+}
+
+#[test]
+fn pixels_have_the_tiles_colors_and_unexplored_tiles_are_black() {
+    let mut app = app(config());
+    run_until(&mut app, "the minimap's picture", built);
+    app.update();
+    let map = app.world().resource::<HexMap>().clone();
+    let settings = app.world().resource::<MinimapSettings>().clone();
+    let minimap = app.world().resource::<MinimapPicture>().minimap().unwrap().clone();
+    let [w, h] = minimap.size();
+    assert!(w <= settings.size.x && h <= settings.size.y && (w == settings.size.x || h == settings.size.y));
+    // Nothing explored yet: every pixel on the map is black.
+    let rgba = image(&app);
+    assert_eq!(rgba.len(), (w * h * 4) as usize);
+    let tiles: Vec<Hex> = map.terrain().tiles().collect();
+    for &t in &tiles {
+        for &i in minimap.pixels_of(t) {
+            assert_eq!(&rgba[i as usize * 4..i as usize * 4 + 4], &[0, 0, 0, 255], "tile {t:?}");
+        }
+    }
+    // A set of tiles in sight: their pixels take their type's color (no climate, no rivers).
+    let shown: Vec<Hex> = tiles.iter().copied().step_by(7).collect();
+    let mut states = app.world_mut().resource_mut::<TileStates>();
+    for &t in &shown {
+        states.set_visibility(t, FogState::Visible).unwrap();
+    }
+    app.update();
+    let rgba = image(&app);
+    let style = settings.style();
+    for &t in &shown {
+        let kind = map.tile_kind(t).unwrap();
+        for &i in minimap.pixels_of(t) {
+            assert_eq!(&rgba[i as usize * 4..i as usize * 4 + 3], &style.kind_colors[kind as usize][..], "tile {t:?}");
+        }
+    }
+}
+
+#[test]
+fn a_write_changes_exactly_the_affected_pixels_in_the_next_frame() {
+    let mut app = app(config());
+    run_until(&mut app, "the minimap's picture", built);
+    {
+        let mut states = app.world_mut().resource_mut::<TileStates>();
+        for tile in map_tiles(&config()) {
+            states.set_visibility(tile, FogState::Visible).unwrap();
+        }
+    }
+    app.update();
+    app.update();
+    let minimap = app.world().resource::<MinimapPicture>().minimap().unwrap().clone();
+    let before = image(&app);
+    let repainted = app.world().resource::<MinimapPicture>().repainted_pixels();
+    // A frame without writes repaints nothing.
+    app.update();
+    assert_eq!(app.world().resource::<MinimapPicture>().repainted_pixels(), repainted);
+    assert_eq!(image(&app), before);
+
+    let tile = Hex::new(12, 3);
+    {
+        let mut states = app.world_mut().resource_mut::<TileStates>();
+        states.set_owner(tile, Some(2)).unwrap();
+        states.set_visibility(tile.all_neighbors()[0], FogState::Explored).unwrap();
+    }
+    app.update();
+    let after = image(&app);
+    let states = app.world().resource::<TileStates>();
+    assert_eq!(after, minimap.paint(|t| look(states, t)), "the repaint equals a full paint");
+    let mut near: Vec<u32> = minimap.pixels_of(tile).to_vec();
+    for n in tile.all_neighbors() {
+        near.extend_from_slice(minimap.pixels_of(n));
+    }
+    let changed: Vec<usize> =
+        (0..after.len() / 4).filter(|&i| after[i * 4..i * 4 + 4] != before[i * 4..i * 4 + 4]).collect();
+    assert!(!changed.is_empty());
+    for i in &changed {
+        assert!(near.contains(&(*i as u32)), "pixel {i} changed, away from the written tiles");
+    }
+    // Every pixel of the owned tile took its owner's tint or border.
+    for &i in minimap.pixels_of(tile) {
+        assert!(changed.contains(&(i as usize)), "pixel {i} of the owned tile did not change");
+    }
+    // The neighbor made explored is dimmed everywhere.
+    for &i in minimap.pixels_of(tile.all_neighbors()[0]) {
+        assert!(changed.contains(&(i as usize)));
+    }
+}
+
+#[test]
+fn a_press_on_the_minimap_sends_the_camera_to_that_tile() {
+    let mut app = app(config());
+    run_until(&mut app, "the minimap's picture", built);
+    let map = app.world().resource::<HexMap>().clone();
+    let minimap = app.world().resource::<MinimapPicture>().minimap().unwrap().clone();
+    let [w, h] = minimap.size();
+    for tile in [Hex::new(3, 2), Hex::new(20, -4), Hex::new(29, -10)] {
+        assert!(map.contains(tile));
+        let i = minimap.pixels_of(tile)[minimap.pixels_of(tile).len() / 2];
+        let (px, py) = (i % w, i / w);
+        let at = Vec2::new((px as f32 + 0.5) / w as f32 - 0.5, (py as f32 + 0.5) / h as f32 - 0.5);
+        app.world_mut().resource_mut::<OnMinimap>().0 = Some(at);
+        app.world_mut().resource_mut::<Navigations>().0.clear();
+        app.update();
+        for action in [PointerAction::Press(PointerButton::Primary), PointerAction::Release(PointerButton::Primary)] {
+            app.world_mut().write_message(PointerInput::new(POINTER, location(), action));
+            app.update();
+        }
+        let went = app.world().resource::<Navigations>().0.clone();
+        assert_eq!(went.len(), 1, "one navigation for {tile:?}: {went:?}");
+        assert_eq!(went[0].tile, tile);
+        let world = Vec3::new(went[0].world.x as f32, 0.0, went[0].world.y as f32);
+        assert_eq!(map.tile_at(world), Some(tile), "the world position is on the tile");
+    }
+    // Off the node: nothing.
+    app.world_mut().resource_mut::<OnMinimap>().0 = None;
+    app.world_mut().resource_mut::<Navigations>().0.clear();
+    for action in [PointerAction::Press(PointerButton::Primary), PointerAction::Release(PointerButton::Primary)] {
+        app.world_mut().write_message(PointerInput::new(POINTER, location(), action));
+        app.update();
+    }
+    assert!(app.world().resource::<Navigations>().0.is_empty());
+}
+
+fn location() -> Location {
+    Location { target: NormalizedRenderTarget::None { width: 640, height: 480 }, position: Vec2::new(600.0, 440.0) }
+}
+
+fn map_tiles(config: &MapConfig) -> Vec<Hex> {
+    hex_terrain::Terrain::new(config.clone()).unwrap().tiles().collect()
+}

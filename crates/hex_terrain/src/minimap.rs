@@ -1,0 +1,565 @@
+//! A top-down picture of a map, for a minimap: which tile every pixel shows, the tiles' biome or
+//! type colors with rivers and lakes, and a game's per-tile state painted over them (fog of war,
+//! owners' tint and borders). A change of state repaints only the pixels of the tiles it touches
+//! (and of their neighbors, whose borders depend on it), so a game that writes a few tiles a
+//! turn never redraws the picture. [`Minimap::outline`] gives the pixels of a polygon's edges (a
+//! camera's view on the ground).
+//!
+//! A bounded map is shown whole; a wrapping map's picture spans exactly one period east-west, so
+//! it wraps as the map does (a pixel past its east edge is the pixel at its west edge); an
+//! unbounded world is shown in a rectangle of tiles the caller chooses (around the camera).
+//! Pixels are square: row 0 is the north edge (smallest world z), column 0 the west edge.
+//!
+//! ```
+//! use hex_terrain::minimap::{Minimap, MinimapStyle, TileLook};
+//! use hex_terrain::{MapConfig, MapSize, Terrain};
+//!
+//! let terrain = Terrain::new(MapConfig { size: MapSize::Bounded { x: 40, z: 24 }, ..MapConfig::default() }).unwrap();
+//! let minimap = Minimap::new(&terrain, terrain.bounds().unwrap(), [160, 160], MinimapStyle::default()).unwrap();
+//! let rgba = minimap.paint(|_| TileLook::VISIBLE);
+//! assert_eq!(rgba.len(), (minimap.size()[0] * minimap.size()[1] * 4) as usize);
+//! ```
+
+use hexx::Hex;
+
+use crate::chunk::TileRect;
+use crate::save::FogState;
+use crate::terrain::Terrain;
+use crate::vocab::TileKind;
+
+/// No tile: a pixel off the map.
+const NONE: u32 = u32::MAX;
+
+/// The state of a tile the picture shows: what the player knows of it and who owns it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct TileLook {
+    /// Fog of war: unexplored tiles are drawn in [`MinimapStyle::unexplored`], explored ones
+    /// dimmed.
+    pub fog: FogState,
+    /// The owner (`1..=`[`MAX_OWNERS`](crate::save::MAX_OWNERS)), tinting the tile and drawing
+    /// a border along its edges with other owners or nobody.
+    pub owner: Option<u8>,
+}
+
+impl TileLook {
+    /// A visible tile nobody owns: the map as generated.
+    pub const VISIBLE: Self = Self { fog: FogState::Visible, owner: None };
+}
+
+/// How the picture is drawn. Colors are sRGB bytes.
+#[derive(Debug, Clone, PartialEq)]
+pub struct MinimapStyle {
+    /// Colors of sea, land and mountain tiles on maps without climate (on maps with it, each
+    /// biome's [`Biome::color`](crate::Biome::color)).
+    pub kind_colors: [[u8; 3]; 3],
+    /// Color of rivers and lakes.
+    pub water_color: [u8; 3],
+    /// Width of a river line, a fraction of the hex radius (at least about a pixel is drawn).
+    pub river_width: f64,
+    /// Pixels off the map.
+    pub background: [u8; 4],
+    /// Draw fog of war (off: every tile as visible).
+    pub fog_of_war: bool,
+    /// Unexplored tiles.
+    pub unexplored: [u8; 4],
+    /// Brightness of explored tiles not in sight, `0..=1` (they are also half desaturated).
+    pub explored_brightness: f32,
+    /// Owner colors: owner `n` takes entry `n - 1` (entries repeat past the list's end).
+    pub owner_colors: Vec<[u8; 3]>,
+    /// How much an owned tile takes its owner's color, `0..=1`.
+    pub territory_tint: f32,
+    /// Width of the border line inside an owned tile's edges with another owner or nobody, a
+    /// fraction of the hex radius (0: none).
+    pub border_width: f64,
+}
+
+impl Default for MinimapStyle {
+    fn default() -> Self {
+        Self {
+            kind_colors: [[28, 87, 184], [77, 153, 51], [158, 153, 148]],
+            water_color: [52, 118, 176],
+            river_width: 0.22,
+            background: [12, 14, 18, 255],
+            fog_of_war: true,
+            unexplored: [0, 0, 0, 255],
+            explored_brightness: 0.55,
+            owner_colors: vec![
+                [220, 50, 47],
+                [38, 139, 210],
+                [240, 200, 40],
+                [133, 153, 0],
+                [211, 54, 130],
+                [42, 161, 152],
+                [203, 75, 22],
+                [108, 113, 196],
+            ],
+            territory_tint: 0.35,
+            border_width: 0.28,
+        }
+    }
+}
+
+/// The picture of a rectangle of tiles: the pixels' tiles, edges and base colors, computed once;
+/// painting applies the tiles' [`TileLook`]s.
+#[derive(Debug, Clone)]
+pub struct Minimap {
+    terrain: Terrain,
+    style: MinimapStyle,
+    region: TileRect,
+    size: [u32; 2],
+    /// World `(x, z)` of the north-west corner of pixel `(0, 0)`.
+    origin: [f64; 2],
+    /// World units a pixel.
+    step: f64,
+    /// Whether the picture spans one period of a wrapping map.
+    wraps: bool,
+    /// Per pixel: the index of its tile in the region, or [`NONE`].
+    pixel_tile: Vec<u32>,
+    /// Per pixel: the neighbor slot (`0..6`, in [`Hex::all_neighbors`] order) of the tile edge
+    /// nearest to it, and its distance to that edge in hex radii.
+    pixel_edge: Vec<(u8, f32)>,
+    /// Per pixel: its color before any tile state.
+    base: Vec<[u8; 4]>,
+    /// Per region tile: the indices of its six neighbors in the region (wrapped), or [`NONE`].
+    neighbors: Vec<[u32; 6]>,
+    /// Per region tile: where its pixels start in `tile_pixels` (one more entry at the end).
+    tile_start: Vec<u32>,
+    /// The pixels of every tile, tile after tile.
+    tile_pixels: Vec<u32>,
+}
+
+impl Minimap {
+    /// The picture of `region` (offset coordinates; clipped to a bounded map's tiles), at most
+    /// `max_size` pixels (each side at least 1): the largest that fits with square pixels. On a
+    /// wrapping map a region spanning the map's width is drawn over exactly one period. `None`
+    /// when no tile of the region is on the map.
+    #[must_use]
+    pub fn new(terrain: &Terrain, region: TileRect, max_size: [u32; 2], style: MinimapStyle) -> Option<Self> {
+        let region = clip(region, terrain.bounds())?;
+        let geometry = terrain.geometry();
+        let lattice = geometry.lattice();
+        let center = |tile: Hex| lattice.world(lattice.tile_center(tile));
+        let s = geometry.hex_size();
+        let half = match terrain.layout().orientation {
+            hexx::HexOrientation::Flat => [s, s * 3f64.sqrt() / 2.0],
+            hexx::HexOrientation::Pointy => [s * 3f64.sqrt() / 2.0, s],
+        };
+        // The world box of the region: its edge tiles' centers, grown by a tile's half extents.
+        let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
+        let [w, h] = [region.max[0] - region.min[0], region.max[1] - region.min[1]];
+        for col in region.min[0]..region.max[0] {
+            for row in [region.min[1], region.min[1] + 1, region.max[1] - 2, region.max[1] - 1] {
+                for (axis, c) in center(terrain.tile_from_offset([col, row.clamp(region.min[1], region.max[1] - 1)]))
+                    .into_iter()
+                    .enumerate()
+                {
+                    lo[axis] = lo[axis].min(c - half[axis]);
+                    hi[axis] = hi[axis].max(c + half[axis]);
+                }
+            }
+        }
+        for row in region.min[1]..region.max[1] {
+            for col in [region.min[0], region.min[0] + 1, region.max[0] - 2, region.max[0] - 1] {
+                for (axis, c) in center(terrain.tile_from_offset([col.clamp(region.min[0], region.max[0] - 1), row]))
+                    .into_iter()
+                    .enumerate()
+                {
+                    lo[axis] = lo[axis].min(c - half[axis]);
+                    hi[axis] = hi[axis].max(c + half[axis]);
+                }
+            }
+        }
+        let period = terrain.wrap().filter(|wrap| w >= wrap.columns).map(|wrap| wrap.width);
+        let [mw, mh] = max_size.map(|m| f64::from(m.clamp(1, 1 << 14)));
+        let extent = [period.unwrap_or(hi[0] - lo[0]), hi[1] - lo[1]];
+        let mut step = (extent[0] / mw).max(extent[1] / mh);
+        let mut width = (extent[0] / step).ceil().clamp(1.0, mw);
+        if let Some(period) = period {
+            // Exactly one period across, so the picture wraps as the map does: the strip starts
+            // half a column west of the first column's center.
+            width = (period / step).round().clamp(1.0, mw);
+            step = period / width;
+            let first = center(terrain.tile_from_offset([region.min[0], region.min[1]]))[0];
+            let column = period / f64::from(w);
+            lo[0] = first - column / 2.0;
+        }
+        let height = (extent[1] / step).ceil().clamp(1.0, mh);
+        let size = [width as u32, height as u32];
+        let directions = neighbor_directions(terrain);
+        let apothem = directions[0].1;
+
+        let index = |tile: Hex| {
+            let [col, row] = terrain.offset_of(tile);
+            region.contains([col, row]).then(|| ((row - region.min[1]) * w + (col - region.min[0])) as u32)
+        };
+        let tiles: Vec<Hex> =
+            (0..w * h).map(|i| terrain.tile_from_offset([region.min[0] + i % w, region.min[1] + i / w])).collect();
+        let neighbors: Vec<[u32; 6]> = tiles
+            .iter()
+            .map(|&t| {
+                t.all_neighbors()
+                    .map(|n| if terrain.contains(n) { index(terrain.wrap_tile(n)).unwrap_or(NONE) } else { NONE })
+            })
+            .collect();
+        let colors: Vec<[u8; 3]> = tiles.iter().map(|&t| tile_color(terrain, &style, t)).collect();
+        let rivers: Vec<Vec<usize>> = tiles.iter().map(|&t| river_slots(terrain, t)).collect();
+        let river_half = (style.river_width * s / 2.0).max(0.6 * step).min(0.5 * apothem);
+
+        let pixels = (size[0] * size[1]) as usize;
+        let (mut pixel_tile, mut pixel_edge, mut base) =
+            (vec![NONE; pixels], vec![(0u8, 0f32); pixels], vec![style.background; pixels]);
+        for py in 0..size[1] {
+            for px in 0..size[0] {
+                let i = (py * size[0] + px) as usize;
+                let x = lo[0] + (f64::from(px) + 0.5) * step;
+                let z = lo[1] + (f64::from(py) + 0.5) * step;
+                let (Some(tile), Some(own)) = (geometry.unwrapped_tile_at(x, z), geometry.tile_at(x, z)) else {
+                    continue;
+                };
+                let Some(t) = index(own).filter(|_| terrain.contains(own)) else { continue };
+                let c = center(tile);
+                let d = [x - c[0], z - c[1]];
+                let (slot, distance) = directions
+                    .iter()
+                    .enumerate()
+                    .map(|(k, &(n, a))| (k, a - (d[0] * n[0] + d[1] * n[1])))
+                    .fold((0, f64::INFINITY), |best, e| if e.1 < best.1 { e } else { best });
+                pixel_tile[i] = t;
+                pixel_edge[i] = (slot as u8, (distance / s) as f32);
+                let mut color = colors[t as usize];
+                if rivers[t as usize]
+                    .iter()
+                    .any(|&k| segment_distance(d, directions[k].0, directions[k].1) < river_half)
+                {
+                    color = style.water_color;
+                }
+                base[i] = [color[0], color[1], color[2], 255];
+            }
+        }
+        let mut tile_start = vec![0u32; tiles.len() + 1];
+        for &t in pixel_tile.iter().filter(|&&t| t != NONE) {
+            tile_start[t as usize + 1] += 1;
+        }
+        for k in 1..tile_start.len() {
+            tile_start[k] += tile_start[k - 1];
+        }
+        let mut fill = tile_start.clone();
+        let mut tile_pixels = vec![0u32; *tile_start.last().unwrap_or(&0) as usize];
+        for (i, &t) in pixel_tile.iter().enumerate().filter(|(_, t)| **t != NONE) {
+            tile_pixels[fill[t as usize] as usize] = i as u32;
+            fill[t as usize] += 1;
+        }
+        Some(Self {
+            terrain: terrain.clone(),
+            style,
+            region,
+            size,
+            origin: lo,
+            step,
+            wraps: period.is_some(),
+            pixel_tile,
+            pixel_edge,
+            base,
+            neighbors,
+            tile_start,
+            tile_pixels,
+        })
+    }
+
+    /// The picture's size in pixels.
+    #[must_use]
+    pub fn size(&self) -> [u32; 2] {
+        self.size
+    }
+
+    /// The tiles shown (offset coordinates).
+    #[must_use]
+    pub fn region(&self) -> TileRect {
+        self.region
+    }
+
+    /// World units a pixel.
+    #[must_use]
+    pub fn step(&self) -> f64 {
+        self.step
+    }
+
+    /// Whether the picture wraps east-west (it spans one period of a wrapping map).
+    #[must_use]
+    pub fn wraps(&self) -> bool {
+        self.wraps
+    }
+
+    /// The style it is drawn with.
+    #[must_use]
+    pub fn style(&self) -> &MinimapStyle {
+        &self.style
+    }
+
+    /// World `(x, z)` at fractional pixel coordinates (`(0, 0)` is the north-west corner of the
+    /// first pixel, `(0.5, 0.5)` its center).
+    #[must_use]
+    pub fn pixel_to_world(&self, px: f64, py: f64) -> [f64; 2] {
+        [self.origin[0] + px * self.step, self.origin[1] + py * self.step]
+    }
+
+    /// Fractional pixel coordinates of world `(x, z)`; on a wrapping picture, `x` of any copy of
+    /// the map lands in `0..width`.
+    #[must_use]
+    pub fn world_to_pixel(&self, x: f64, z: f64) -> [f64; 2] {
+        let mut px = (x - self.origin[0]) / self.step;
+        if self.wraps {
+            px = px.rem_euclid(f64::from(self.size[0]));
+        }
+        [px, (z - self.origin[1]) / self.step]
+    }
+
+    /// The tile a pixel shows (the map's own tile), `None` off the map or the picture.
+    #[must_use]
+    pub fn tile_at_pixel(&self, px: u32, py: u32) -> Option<Hex> {
+        if px >= self.size[0] || py >= self.size[1] {
+            return None;
+        }
+        let t = self.pixel_tile[(py * self.size[0] + px) as usize];
+        (t != NONE).then(|| self.tile(t))
+    }
+
+    /// The pixels showing a tile (indices `y * width + x`; the map's own tile on a wrapping map;
+    /// empty for a tile not in the picture or smaller than a pixel).
+    #[must_use]
+    pub fn pixels_of(&self, tile: Hex) -> &[u32] {
+        self.index(tile).map_or(&[], |t| {
+            &self.tile_pixels[self.tile_start[t as usize] as usize..self.tile_start[t as usize + 1] as usize]
+        })
+    }
+
+    /// The whole picture, RGBA8 sRGB rows north to south, with each tile's look.
+    #[must_use]
+    pub fn paint(&self, look: impl Fn(Hex) -> TileLook) -> Vec<u8> {
+        let looks: Vec<TileLook> = (0..self.neighbors.len() as u32).map(|t| look(self.tile(t))).collect();
+        let mut rgba = vec![0u8; self.base.len() * 4];
+        for (i, px) in rgba.chunks_exact_mut(4).enumerate() {
+            px.copy_from_slice(&self.pixel(i, |t| looks[t as usize]));
+        }
+        rgba
+    }
+
+    /// Repaints in `rgba` (a picture from [`paint`](Self::paint)) the pixels of `tiles` and of
+    /// their neighbors (whose borders depend on them) with each tile's look; returns how many
+    /// pixels were written. The result equals a full [`paint`](Self::paint) with the same looks.
+    ///
+    /// # Panics
+    /// If `rgba` is not the picture's size (width × height × 4 bytes).
+    pub fn repaint(
+        &self,
+        tiles: impl IntoIterator<Item = Hex>,
+        look: impl Fn(Hex) -> TileLook,
+        rgba: &mut [u8],
+    ) -> usize {
+        assert_eq!(rgba.len(), self.base.len() * 4, "the picture is {}x{} RGBA8", self.size[0], self.size[1]);
+        let mut dirty: Vec<u32> = Vec::new();
+        for tile in tiles {
+            if let Some(t) = self.index(tile) {
+                dirty.push(t);
+                dirty.extend(self.neighbors[t as usize].iter().copied().filter(|&n| n != NONE));
+            }
+        }
+        dirty.sort_unstable();
+        dirty.dedup();
+        // The looks needed: the dirty tiles' and their neighbors'.
+        let mut needed: Vec<u32> = dirty.clone();
+        for &t in &dirty {
+            needed.extend(self.neighbors[t as usize].iter().copied().filter(|&n| n != NONE));
+        }
+        needed.sort_unstable();
+        needed.dedup();
+        let looks: Vec<TileLook> = needed.iter().map(|&t| look(self.tile(t))).collect();
+        let look_of = |t: u32| looks[needed.binary_search(&t).unwrap_or_default()];
+        let mut written = 0;
+        for &t in &dirty {
+            for &i in &self.tile_pixels[self.tile_start[t as usize] as usize..self.tile_start[t as usize + 1] as usize]
+            {
+                let i = i as usize;
+                rgba[i * 4..i * 4 + 4].copy_from_slice(&self.pixel(i, look_of));
+                written += 1;
+            }
+        }
+        written
+    }
+
+    /// The pixels on the edges of a polygon of world `(x, z)` points (a camera's view on the
+    /// ground), each once: clipped to the picture, and wrapped east-west on a wrapping picture.
+    /// Non-finite points give nothing.
+    #[must_use]
+    pub fn outline(&self, polygon: &[[f64; 2]]) -> Vec<u32> {
+        if polygon.len() < 2 || polygon.iter().flatten().any(|v| !v.is_finite()) {
+            return Vec::new();
+        }
+        let [w, h] = self.size.map(f64::from);
+        let mut points: Vec<[f64; 2]> = polygon
+            .iter()
+            .map(|&[x, z]| [(x - self.origin[0]) / self.step, (z - self.origin[1]) / self.step])
+            .collect();
+        if self.wraps {
+            // One shift for the whole polygon, so its edges stay whole across the seam.
+            let shift = (points[0][0] / w).floor() * w;
+            points.iter_mut().for_each(|p| p[0] -= shift);
+        }
+        let mut out = Vec::new();
+        for k in 0..points.len() {
+            let (a, b) = (points[k], points[(k + 1) % points.len()]);
+            let x_range = if self.wraps { [f64::NEG_INFINITY, f64::INFINITY] } else { [0.0, w] };
+            let Some((a, b)) = clip_segment(a, b, x_range, [0.0, h]) else { continue };
+            // Sample the segment at least twice a pixel; a segment is at most a few picture
+            // widths long (the polygon's far corners may be far out).
+            let steps = ((b[0] - a[0]).abs().max((b[1] - a[1]).abs()) * 2.0).ceil().clamp(1.0, 8.0 * (w + h));
+            for s in 0..=steps as u32 {
+                let f = f64::from(s) / steps;
+                let (x, y) = (a[0] + (b[0] - a[0]) * f, a[1] + (b[1] - a[1]) * f);
+                let (mut px, py) = (x.floor(), y.floor().min(h - 1.0));
+                if self.wraps {
+                    px = px.rem_euclid(w);
+                }
+                let px = px.min(w - 1.0);
+                if px >= 0.0 && py >= 0.0 {
+                    out.push((py as u32) * self.size[0] + px as u32);
+                }
+            }
+        }
+        out.sort_unstable();
+        out.dedup();
+        out
+    }
+
+    /// The color of pixel `i`.
+    fn pixel(&self, i: usize, look_of: impl Fn(u32) -> TileLook) -> [u8; 4] {
+        let t = self.pixel_tile[i];
+        if t == NONE {
+            return self.style.background;
+        }
+        let style = &self.style;
+        let look = look_of(t);
+        if style.fog_of_war && look.fog == FogState::Unexplored {
+            return style.unexplored;
+        }
+        let mut c = self.base[i].map(f32::from);
+        if let Some(owner) = look.owner {
+            let color = self.owner_color(owner).map(f32::from);
+            let (slot, distance) = self.pixel_edge[i];
+            let across = self.neighbors[t as usize][slot as usize];
+            let border =
+                f64::from(distance) < style.border_width && (across == NONE || look_of(across).owner != Some(owner));
+            let tint = if border { 1.0 } else { style.territory_tint.clamp(0.0, 1.0) };
+            for k in 0..3 {
+                c[k] += (color[k] - c[k]) * tint;
+            }
+        }
+        if style.fog_of_war && look.fog == FogState::Explored {
+            let luma = 0.3 * c[0] + 0.59 * c[1] + 0.11 * c[2];
+            let b = style.explored_brightness.clamp(0.0, 1.0);
+            for v in &mut c[..3] {
+                *v = (0.5 * (*v + luma)) * b;
+            }
+        }
+        [c[0].round() as u8, c[1].round() as u8, c[2].round() as u8, 255]
+    }
+
+    fn owner_color(&self, owner: u8) -> [u8; 3] {
+        let colors = &self.style.owner_colors;
+        if colors.is_empty() { [255, 255, 255] } else { colors[(usize::from(owner).max(1) - 1) % colors.len()] }
+    }
+
+    fn tile(&self, t: u32) -> Hex {
+        let w = self.region.max[0] - self.region.min[0];
+        let t = t as i32;
+        self.terrain.tile_from_offset([self.region.min[0] + t % w, self.region.min[1] + t / w])
+    }
+
+    fn index(&self, tile: Hex) -> Option<u32> {
+        if !self.terrain.in_world(tile) {
+            return None;
+        }
+        let [col, row] = self.terrain.offset_of(self.terrain.wrap_tile(tile));
+        let w = self.region.max[0] - self.region.min[0];
+        self.region.contains([col, row]).then(|| ((row - self.region.min[1]) * w + (col - self.region.min[0])) as u32)
+    }
+}
+
+/// `region` inside a bounded map's tiles; `None` when nothing is left.
+fn clip(region: TileRect, bounds: Option<TileRect>) -> Option<TileRect> {
+    let r = match bounds {
+        Some(b) => TileRect {
+            min: [region.min[0].max(b.min[0]), region.min[1].max(b.min[1])],
+            max: [region.max[0].min(b.max[0]), region.max[1].min(b.max[1])],
+        },
+        None => region,
+    };
+    (r.max[0] > r.min[0] && r.max[1] > r.min[1]).then_some(r)
+}
+
+/// The unit vector toward each neighbor's center (in [`Hex::all_neighbors`] order) and the
+/// distance from a tile's center to that edge.
+fn neighbor_directions(terrain: &Terrain) -> [([f64; 2], f64); 6] {
+    let lattice = terrain.lattice();
+    let center = lattice.world(lattice.tile_center(Hex::ZERO));
+    Hex::ZERO.all_neighbors().map(|n| {
+        let c = lattice.world(lattice.tile_center(n));
+        let d = [c[0] - center[0], c[1] - center[1]];
+        let len = d[0].hypot(d[1]);
+        ([d[0] / len, d[1] / len], len / 2.0)
+    })
+}
+
+/// Distance of local point `d` to the segment from the tile's center to the midpoint of the edge
+/// in direction `n` (`length` away).
+fn segment_distance(d: [f64; 2], n: [f64; 2], length: f64) -> f64 {
+    let along = (d[0] * n[0] + d[1] * n[1]).clamp(0.0, length);
+    (d[0] - n[0] * along).hypot(d[1] - n[1] * along)
+}
+
+/// The tile's color before any state: lakes in water, a biome's color on maps with climate or
+/// rivers, the tile type's color otherwise.
+fn tile_color(terrain: &Terrain, style: &MinimapStyle, tile: Hex) -> [u8; 3] {
+    if terrain.lake(tile).is_some() {
+        return style.water_color;
+    }
+    if terrain.has_vertex_colors()
+        && let Some(biome) = terrain.tile_biome(tile)
+    {
+        return biome.color();
+    }
+    style.kind_colors[terrain.tile_kind(tile).unwrap_or(TileKind::Sea) as usize]
+}
+
+/// The neighbor slots a tile's river runs to: downstream and every upstream neighbor.
+fn river_slots(terrain: &Terrain, tile: Hex) -> Vec<usize> {
+    let Some(river) = terrain.river(tile) else { return Vec::new() };
+    let neighbors = tile.all_neighbors().map(|n| terrain.wrap_tile(n));
+    river
+        .downstream
+        .into_iter()
+        .chain(river.upstream.iter().copied())
+        .filter_map(|to| neighbors.iter().position(|&n| n == terrain.wrap_tile(to)))
+        .collect()
+}
+
+/// The part of segment `a`-`b` inside `x` × `y` (Liang-Barsky); `None` when it misses.
+fn clip_segment(a: [f64; 2], b: [f64; 2], x: [f64; 2], y: [f64; 2]) -> Option<([f64; 2], [f64; 2])> {
+    let d = [b[0] - a[0], b[1] - a[1]];
+    let (mut t0, mut t1) = (0.0f64, 1.0f64);
+    for (p, q) in [(-d[0], a[0] - x[0]), (d[0], x[1] - a[0]), (-d[1], a[1] - y[0]), (d[1], y[1] - a[1])] {
+        if p == 0.0 {
+            if q < 0.0 {
+                return None;
+            }
+        } else {
+            let r = q / p;
+            if p < 0.0 {
+                t0 = t0.max(r);
+            } else {
+                t1 = t1.min(r);
+            }
+        }
+    }
+    (t0 <= t1).then(|| ([a[0] + d[0] * t0, a[1] + d[1] * t0], [a[0] + d[0] * t1, a[1] + d[1] * t1]))
+}
