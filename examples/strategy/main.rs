@@ -280,6 +280,10 @@ fn hover<E: TerrainHit + std::fmt::Debug + Clone + Reflect>(
     map: Res<HexMap>,
     mut game: ResMut<Game>,
 ) {
+    // A hit on a prop bubbles up to its chunk: act on the first.
+    if pointer.entity != pointer.original_event_target() {
+        return;
+    }
     if let Some(pick) = pointer.event.terrain_hit().extra_as::<HexPick>() {
         game.hovered = Some(pick.tile).filter(|&t| map.contains(t));
     }
@@ -287,7 +291,7 @@ fn hover<E: TerrainHit + std::fmt::Debug + Clone + Reflect>(
 
 /// The pointer left the terrain (a chunk it was over).
 fn leave(pointer: On<Pointer<Out>>, mut game: ResMut<Game>) {
-    if pointer.hit.extra_as::<HexPick>().is_some() {
+    if pointer.entity == pointer.original_event_target() && pointer.hit.extra_as::<HexPick>().is_some() {
         game.hovered = None;
     }
 }
@@ -418,7 +422,8 @@ fn place_units(
 
 /// A click on the terrain: select the human unit on the tile, or move the selected unit there.
 fn click(pointer: On<Pointer<Click>>, map: Res<HexMap>, mut game: ResMut<Game>, mut units: Query<(Entity, &mut Unit)>) {
-    if pointer.button != PointerButton::Primary {
+    // A click on a prop bubbles up to its chunk: act on the first.
+    if pointer.button != PointerButton::Primary || pointer.entity != pointer.original_event_target() {
         return;
     }
     let Some(tile) = pointer.hit.extra_as::<HexPick>().map(|p| p.tile).filter(|&t| map.contains(t)) else { return };

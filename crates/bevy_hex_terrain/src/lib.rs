@@ -72,7 +72,7 @@ pub use crate::minimap::{
     MinimapSettings,
 };
 #[cfg(feature = "picking")]
-pub use crate::picking::{HexPick, HexPickingCamera, HexPickingPlugin, HexPickingSettings};
+pub use crate::picking::{HexPick, HexPickingCamera, HexPickingPlugin, HexPickingSettings, HexPickingStats};
 pub use crate::props::{HexProp, HexPropsPlugin};
 pub use crate::streaming::{
     ChunkContent, ChunkDespawned, ChunkSpawned, ChunkStreamer, ChunkTask, ChunkThreads, HexChunk, HexStreamingPlugin,

@@ -20,11 +20,19 @@
 //! # App::new().add_observer(on_click);
 //! ```
 //!
-//! A chunk with [`Pickable::IGNORE`] is not hit; an entity in front of the terrain that another
-//! backend reports (a unit, with `MeshPickingPlugin`) comes first by Bevy's depth order and
-//! blocks the terrain behind it unless its `Pickable` says otherwise. Only loaded chunks are hit:
-//! a ray to a chunk not streamed in reports nothing.
+//! What stands on the terrain is hit too, before the ground behind it: a prop ([`HexProp`]: a
+//! tree, a rock, reeds; its mesh's bounding box, or a unit box when it has no mesh) is reported
+//! on the prop entity with the tile it stands on, and the sea's water surface ([`HexWater`]) on
+//! the water entity with the tile under the surface point. Both are children of their chunk, so
+//! Bevy's event bubbling brings their events to observers on the chunk too (a global observer
+//! sees each step: compare `event_target()` with `original_event_target()` to act once). A
+//! hidden prop (under fog of war) is not hit; a chunk, prop or water surface with
+//! [`Pickable::IGNORE`] is not hit (the ray goes on to what is behind it); an entity in front of
+//! the terrain that another backend reports (a unit, with `MeshPickingPlugin`) comes first by
+//! Bevy's depth order and blocks the terrain behind it unless its `Pickable` says otherwise.
+//! Only loaded chunks are hit: a ray to a chunk not streamed in reports nothing.
 
+use bevy::camera::primitives::MeshAabb;
 use bevy::ecs::system::SystemParam;
 use bevy::math::DVec3;
 use bevy::picking::Pickable;
@@ -36,7 +44,9 @@ use hex_terrain::ChunkCoord;
 use hex_terrain::hexx::Hex;
 
 use crate::map::HexMap;
+use crate::props::HexProp;
 use crate::streaming::ChunkStreamer;
+use crate::water::HexWater;
 
 /// The extra data of every terrain hit ([`HitData::extra_as`]): the tile under the pointer.
 #[derive(Debug, Clone, Copy, PartialEq, Reflect)]
@@ -68,6 +78,17 @@ impl Default for HexPickingSettings {
     }
 }
 
+/// Figures of the picking backend: how many pointer rays it cast and the time it took (what a
+/// pick costs in a game, props and water surfaces included).
+#[derive(Resource, Debug, Clone, Default, Reflect)]
+#[reflect(Resource)]
+pub struct HexPickingStats {
+    /// Pointer rays cast since the start.
+    pub picks: u64,
+    /// Time spent casting them.
+    pub time: std::time::Duration,
+}
+
 /// Marks a camera that picks the terrain when [`HexPickingSettings::require_markers`] is on.
 #[derive(Component, Debug, Clone, Copy, Default, Reflect)]
 #[reflect(Component, Default)]
@@ -90,7 +111,9 @@ impl Plugin for HexPickingPlugin {
         app.insert_resource(self.settings.clone())
             .init_resource::<RayMap>()
             .add_message::<PointerHits>()
+            .init_resource::<HexPickingStats>()
             .register_type::<HexPickingSettings>()
+            .register_type::<HexPickingStats>()
             .register_type::<HexPickingCamera>()
             .add_systems(PreUpdate, pick_terrain.in_set(PickingSystems::Backend));
     }
@@ -127,13 +150,131 @@ impl FrameOrigin<'_, '_> {
     }
 }
 
-/// What a ray can hit: the map, the loaded chunks and their `Pickable`s, in the render frame.
+/// What a ray can hit: the map, the loaded chunks, what stands on them and their `Pickable`s, in
+/// the render frame.
 #[derive(SystemParam)]
 struct Targets<'w, 's> {
     map: Res<'w, HexMap>,
     streamer: Res<'w, ChunkStreamer>,
     pickables: Query<'w, 's, &'static Pickable>,
     frame: FrameOrigin<'w, 's>,
+    children: Query<'w, 's, &'static Children>,
+    props: Query<'w, 's, (&'static HexProp, &'static GlobalTransform, &'static Visibility, Option<&'static Mesh3d>)>,
+    water: Query<'w, 's, &'static Visibility, With<HexWater>>,
+    meshes: Option<Res<'w, Assets<Mesh>>>,
+}
+
+impl Targets<'_, '_> {
+    /// Whether an entity takes hits (no `Pickable`, or a hoverable one).
+    fn hoverable(&self, entity: Entity) -> bool {
+        !self.pickables.get(entity).is_ok_and(|p| !p.is_hoverable)
+    }
+
+    /// The nearest prop or sea surface the render-frame ray meets before `limit`: its entity,
+    /// depth, normal and pick.
+    fn standing(
+        &self,
+        origin: Vec3,
+        direction: Vec3,
+        offset: DVec3,
+        limit: f32,
+        boxes: &mut MeshBoxes,
+    ) -> Option<(Entity, f32, Vec3, HexPick)> {
+        let map = &self.map;
+        let terrain = map.terrain();
+        let mut best: Option<(Entity, f32, Vec3, HexPick)> = None;
+        // The sea's surface, where the ground lies under it.
+        let sea = f64::from(terrain.sea_level()) - offset.y;
+        if direction.y < 0.0 {
+            let t = ((sea - f64::from(origin.y)) / f64::from(direction.y)) as f32;
+            let at = (origin + direction * t).as_dvec3() + DVec3::new(offset.x, 0.0, offset.z);
+            let world = DVec3::new(at.x, terrain.sea_level().into(), at.z);
+            if t >= 0.0
+                && t < limit
+                && let Some(tile) =
+                    map.tile_at_f64(world).filter(|&t| map.tile_kind(t) == Some(hex_terrain::TileKind::Sea))
+                && let Some(water) =
+                    self.chunk_child(world, |e| self.water.get(e).is_ok_and(|v| v != Visibility::Hidden))
+            {
+                let chunk = map.chunk_of(map.terrain().unwrapped_tile_at(world.x, world.z)?);
+                best = Some((water, t, Vec3::Y, HexPick { tile, chunk, world }));
+            }
+        }
+        // Props of the chunks the ray crosses below the top of the relief and its props.
+        let max = terrain.config().terrain.max_elevation * 2.0 + 4.0 * terrain.config().layout.hex_size;
+        let (low, high) = (-offset.y as f32 - 1.0, max - offset.y as f32);
+        let span = |y: f32| if direction.y.abs() < 1e-9 { 0.0 } else { (y - origin.y) / direction.y };
+        let (mut t0, mut t1) = (span(high).min(span(low)).max(0.0), span(high).max(span(low)));
+        if direction.y.abs() < 1e-9 {
+            (t0, t1) = (0.0, limit);
+        }
+        let t1 = t1.min(limit.min(best.map_or(f32::MAX, |b| b.1)));
+        let step = terrain.config().layout.hex_size.max(1e-3);
+        let mut chunks: Vec<ChunkCoord> = Vec::new();
+        let samples = (((t1 - t0) / step).ceil() as u32).min(4096);
+        for k in 0..=samples {
+            let p = (origin + direction * (t0 + (t1 - t0) * k as f32 / samples.max(1) as f32)).as_dvec3() + offset;
+            if let Some(tile) = terrain.unwrapped_tile_at(p.x, p.z) {
+                for t in std::iter::once(tile).chain(tile.all_neighbors()) {
+                    let c = map.chunk_of(t);
+                    if !chunks.contains(&c) {
+                        chunks.push(c);
+                    }
+                }
+            }
+        }
+        for chunk in chunks {
+            let Some(entity) = self.streamer.entity(chunk).filter(|_| self.streamer.is_chunk_loaded(chunk)) else {
+                continue;
+            };
+            let Ok(children) = self.children.get(entity) else { continue };
+            for &child in children {
+                let Ok((prop, transform, visibility, mesh)) = self.props.get(child) else { continue };
+                if *visibility == Visibility::Hidden || !self.hoverable(child) {
+                    continue;
+                }
+                let (min, max) = mesh.and_then(|m| self.mesh_box(&m.0, boxes)).unwrap_or(UNIT_BOX);
+                let inverse = transform.affine().inverse();
+                let (o, d) = (inverse.transform_point3(origin), inverse.transform_vector3(direction));
+                let Some(t) = slab(o, d, min, max).filter(|&t| t < best.map_or(limit, |b| b.1)) else { continue };
+                let world = (origin + direction * t).as_dvec3() + offset;
+                best = Some((child, t, (-direction).normalize_or_zero(), HexPick { tile: prop.tile, chunk, world }));
+            }
+        }
+        best
+    }
+
+    /// The bounding box of a prop mesh, computed once a mesh.
+    fn mesh_box(&self, mesh: &Handle<Mesh>, boxes: &mut MeshBoxes) -> Option<(Vec3, Vec3)> {
+        if let Some(&b) = boxes.get(&mesh.id()) {
+            return Some(b);
+        }
+        let aabb = self.meshes.as_ref()?.get(mesh)?.compute_aabb()?;
+        let b = (Vec3::from(aabb.min()), Vec3::from(aabb.max()));
+        boxes.insert(mesh.id(), b);
+        Some(b)
+    }
+
+    /// The child of the loaded chunk under `world` that `wanted` accepts and takes hits.
+    fn chunk_child(&self, world: DVec3, wanted: impl Fn(Entity) -> bool) -> Option<Entity> {
+        let chunk = self.map.chunk_of(self.map.terrain().unwrapped_tile_at(world.x, world.z)?);
+        let entity = self.streamer.entity(chunk).filter(|_| self.streamer.is_chunk_loaded(chunk))?;
+        self.children.get(entity).ok()?.iter().find(|&e| wanted(e) && self.hoverable(e))
+    }
+}
+
+/// The bounding boxes of the prop meshes seen so far (props share a few meshes).
+type MeshBoxes = bevy::platform::collections::HashMap<AssetId<Mesh>, (Vec3, Vec3)>;
+
+/// A prop without a mesh (headless): a unit box standing on its position, in its scale.
+const UNIT_BOX: (Vec3, Vec3) = (Vec3::new(-0.5, 0.0, -0.5), Vec3::new(0.5, 1.0, 0.5));
+
+/// The entry depth of a ray into a box (0 when it starts inside), if it meets it.
+fn slab(origin: Vec3, direction: Vec3, min: Vec3, max: Vec3) -> Option<f32> {
+    let inv = direction.recip();
+    let (a, b) = ((min - origin) * inv, (max - origin) * inv);
+    let (near, far) = (a.min(b).max_element().max(0.0), a.max(b).min_element());
+    (near <= far && far.is_finite() && near.is_finite()).then_some(near)
 }
 
 /// Casts every pointer's ray on the terrain and reports the hit on the chunk showing it.
@@ -143,10 +284,14 @@ fn pick_terrain(
     cameras: Query<(&Camera, Has<HexPickingCamera>)>,
     targets: Targets,
     mut hits: MessageWriter<PointerHits>,
+    mut boxes: Local<MeshBoxes>,
+    mut stats: ResMut<HexPickingStats>,
 ) {
-    if !settings.enabled {
+    if !settings.enabled || rays.map.is_empty() {
         return;
     }
+    let start = std::time::Instant::now();
+    let mut picks = 0;
     let (map, streamer, pickables) = (&targets.map, &targets.streamer, &targets.pickables);
     let offset = targets.frame.world();
     for (&id, ray) in rays.iter() {
@@ -154,14 +299,19 @@ fn pick_terrain(
         if !camera.is_active || (settings.require_markers && !marked) {
             continue;
         }
+        picks += 1;
         let (origin, direction) = (ray.origin.as_dvec3() + offset, ray.direction.as_dvec3());
-        let Some(pick) = pick(map, streamer, origin, direction, settings.max_distance) else { continue };
-        if pickables.get(pick.0).is_ok_and(|p| !p.is_hoverable) {
-            continue;
-        }
-        let (entity, depth, normal, data) = pick;
+        let ground = pick(map, streamer, origin, direction, settings.max_distance)
+            .filter(|p| !pickables.get(p.0).is_ok_and(|p| !p.is_hoverable));
+        let limit = ground.map_or(settings.max_distance, |g| g.1);
+        let standing = targets.standing(ray.origin, *ray.direction, offset, limit, &mut boxes);
+        let Some((entity, depth, normal, data)) = standing.or(ground) else { continue };
         let hit = HitData::new_with_extra(id.camera, depth, Some((data.world - offset).as_vec3()), Some(normal), data);
         hits.write(PointerHits::new(id.pointer, vec![(entity, hit)], camera.order as f32));
+    }
+    if picks > 0 {
+        stats.picks += picks;
+        stats.time += start.elapsed();
     }
 }
 

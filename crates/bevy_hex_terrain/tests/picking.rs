@@ -36,10 +36,17 @@ struct Hits(Vec<(Entity, HitData)>);
 #[derive(Resource, Default)]
 struct Clicks(Vec<(Entity, Hex)>);
 
+/// The ground alone: no water surface, no props (the tests of what stands on it turn them on).
 fn app(config: MapConfig) -> App {
+    let mut settings = HexTerrainSettings { load_radius: 1, ..default() };
+    settings.water.enabled = false;
+    settings.props.enabled = false;
+    app_with(config, settings)
+}
+
+fn app_with(config: MapConfig, settings: HexTerrainSettings) -> App {
     let mut app = App::new();
     app.add_plugins((MinimalPlugins, AssetPlugin::default(), TransformPlugin, PickingPlugin, InteractionPlugin));
-    let settings = HexTerrainSettings { load_radius: 1, ..default() };
     app.add_plugins(HexTerrainPlugins { map: config.into(), settings }.build().disable::<HexTerrainMaterialPlugin>());
     app.init_resource::<Clicks>();
     add_pointer(&mut app);
@@ -147,6 +154,75 @@ fn a_chunk_observer_gets_the_click_with_its_tile_and_pickable_ignore_removes_hit
     // Off: nothing.
     app.world_mut().resource_mut::<bevy_hex_terrain::HexPickingSettings>().enabled = false;
     assert!(point_at(&mut app, x, z).is_empty());
+}
+
+/// A ray down onto a prop hits the prop (its unit box: headless props have no mesh) before the
+/// ground, on the prop entity, with the tile it stands on; a hidden prop or one with
+/// `Pickable::IGNORE` lets the ray through to the ground. A ray onto the sea hits its water
+/// surface at sea level, on the water entity, unless that is ignored.
+#[test]
+fn props_and_the_sea_surface_come_before_the_ground() {
+    let mut app = app_with(map_config(), HexTerrainSettings { load_radius: 1, ..default() });
+    app.world_mut().spawn((Camera::default(), Transform::from_xyz(0.0, 50.0, 0.0)));
+    run_until(&mut app, "the chunks around the agent", loaded);
+    app.update();
+    let map = app.world().resource::<HexMap>().clone();
+    let props: Vec<(Entity, HexProp, Vec3, Vec3)> = app
+        .world_mut()
+        .query::<(Entity, &HexProp, &GlobalTransform)>()
+        .iter(app.world())
+        .map(|(e, p, t)| (e, *p, t.translation(), t.scale()))
+        .collect();
+    assert!(props.len() > 10, "{} props", props.len());
+    let mut checked = 0;
+    for &(entity, prop, at, scale) in props.iter().step_by(props.len() / 8) {
+        // Straight down onto the prop's middle: the top of its box.
+        let hits = point_at(&mut app, at.x, at.z);
+        assert_eq!(hits.len(), 1);
+        let (hit_entity, hit) = &hits[0];
+        if *hit_entity != entity {
+            // Another prop's box stands in the way; it must be one.
+            assert!(app.world().entity(*hit_entity).contains::<HexProp>(), "{hit_entity} for the prop {entity}");
+            continue;
+        }
+        let pick = hit.extra_as::<HexPick>().unwrap();
+        assert_eq!(pick.tile, prop.tile, "the tile the prop stands on");
+        let top = at.y + scale.y;
+        assert!((hit.position.unwrap().y - top).abs() < 1e-3, "{:?} at the top of the box {top}", hit.position);
+        assert!(hit.depth < 80.0 - at.y, "before the ground");
+        // Ignored, then hidden: the ground behind it.
+        app.world_mut().entity_mut(entity).insert(Pickable::IGNORE);
+        let through = point_at(&mut app, at.x, at.z);
+        assert!(through.iter().all(|(e, _)| *e != entity), "an ignored prop is not hit");
+        app.world_mut().entity_mut(entity).remove::<Pickable>().insert(Visibility::Hidden);
+        let through = point_at(&mut app, at.x, at.z);
+        assert!(through.iter().all(|(e, _)| *e != entity), "a hidden prop is not hit");
+        app.world_mut().entity_mut(entity).insert(Visibility::Inherited);
+        checked += 1;
+    }
+    assert!(checked >= 3, "{checked} props checked");
+
+    // The sea: a sea tile's center, straight down.
+    let sea = map.terrain().tiles().find(|&t| {
+        map.tile_kind(t) == Some(TileKind::Sea) && {
+            let c = map.tile_center(t).unwrap();
+            c.x.abs() < 8.0 && c.z.abs() < 8.0
+        }
+    });
+    let Some(sea) = sea else { panic!("no sea tile near the agent") };
+    let c = map.tile_center(sea).unwrap();
+    let hits = point_at(&mut app, c.x, c.z);
+    assert_eq!(hits.len(), 1);
+    let (water, hit) = &hits[0];
+    assert!(app.world().entity(*water).contains::<HexWater>(), "the sea's surface is hit");
+    assert_eq!(hit.extra_as::<HexPick>().unwrap().tile, sea);
+    let level = map.terrain().sea_level();
+    assert!((hit.position.unwrap().y - level).abs() < 1e-3, "at sea level {level}: {:?}", hit.position);
+    app.world_mut().entity_mut(*water).insert(Pickable::IGNORE);
+    let hits = point_at(&mut app, c.x, c.z);
+    assert_eq!(hits.len(), 1);
+    assert!(app.world().entity(hits[0].0).contains::<HexChunk>(), "through an ignored surface, the floor");
+    assert!(hits[0].1.position.unwrap().y < level);
 }
 
 /// A million units out, with `big_space`: the floating origin's cell is the render frame's
