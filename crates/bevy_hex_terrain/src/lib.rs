@@ -73,7 +73,7 @@ pub use crate::minimap::{
 };
 #[cfg(feature = "picking")]
 pub use crate::picking::{HexPick, HexPickingCamera, HexPickingPlugin, HexPickingSettings, HexPickingStats};
-pub use crate::props::{HexProp, HexPropsPlugin};
+pub use crate::props::{HexProp, HexPropStats, HexPropsPlugin};
 pub use crate::streaming::{
     ChunkContent, ChunkDespawned, ChunkSpawned, ChunkStreamer, ChunkTask, ChunkThreads, HexChunk, HexStreamingPlugin,
     HexTerrainAgent, HexTerrainSettings, HexTerrainStats, HexWorldPosition, PropSettings, TerrainReady, WaterSettings,

@@ -182,3 +182,54 @@ fn a_map_switch_replaces_the_props_with_the_new_maps() {
         .sum();
     assert_eq!(after.len(), expected, "the props are the new map's, none of the old map's is left");
 }
+
+/// Under fog of war, props on unexplored tiles are hidden and show once their tile is explored;
+/// a frame looks only at the props of the tiles written in it (a hover's highlight touches a
+/// tile's props, not the map's), and switching the fog off shows them all.
+#[cfg(feature = "render")]
+#[test]
+fn props_hide_under_fog_and_a_write_looks_only_at_its_tiles_props() {
+    let mut app = app_with_props(wooded(), 1, PropSettings::default());
+    app.insert_resource(TerrainAppearance { fog_of_war: true, ..default() });
+    spawn_agent(&mut app, Vec3::ZERO);
+    run_until(&mut app, "the chunks around the agent", |app| {
+        let streamer = app.world().resource::<ChunkStreamer>();
+        streamer.wanted().next().is_some() && streamer.wanted().all(|(c, _)| streamer.is_chunk_loaded(c))
+    });
+    app.update();
+    let shown = |app: &mut App| -> Vec<(Hex, bool)> {
+        app.world_mut()
+            .query::<(&HexProp, &Visibility)>()
+            .iter(app.world())
+            .map(|(p, v)| (p.tile, *v != Visibility::Hidden))
+            .collect()
+    };
+    let all = shown(&mut app);
+    assert!(all.len() > 20, "{} props", all.len());
+    assert!(all.iter().all(|(_, s)| !s), "nothing explored: every prop hidden");
+    // The tile with the most props is explored: its props show, the others stay hidden.
+    let mut per_tile: std::collections::HashMap<Hex, usize> = std::collections::HashMap::new();
+    for (t, _) in &all {
+        *per_tile.entry(*t).or_default() += 1;
+    }
+    let (&tile, &n) = per_tile.iter().max_by_key(|(t, n)| (**n, t.x, t.y)).unwrap();
+    app.world_mut().resource_mut::<TileStates>().set_visibility(tile, FogState::Explored).unwrap();
+    app.update();
+    for (t, s) in shown(&mut app) {
+        assert_eq!(s, t == tile, "prop on {t:?}");
+    }
+    // A highlight on that tile: only its props are looked at.
+    let before = app.world().resource::<bevy_hex_terrain::HexPropStats>().fog_checks;
+    app.world_mut().resource_mut::<TileStates>().set_highlight(tile, Highlight::Hovered, true).unwrap();
+    app.update();
+    let checked = app.world().resource::<bevy_hex_terrain::HexPropStats>().fog_checks - before;
+    assert_eq!(checked, n as u64, "the hovered tile's {n} props, not the map's {}", all.len());
+    // A frame without writes looks at none.
+    let before = app.world().resource::<bevy_hex_terrain::HexPropStats>().fog_checks;
+    app.update();
+    assert_eq!(app.world().resource::<bevy_hex_terrain::HexPropStats>().fog_checks, before);
+    // Fog off: every prop shows.
+    app.world_mut().resource_mut::<TerrainAppearance>().fog_of_war = false;
+    app.update();
+    assert!(shown(&mut app).iter().all(|(_, s)| *s));
+}

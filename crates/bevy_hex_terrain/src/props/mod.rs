@@ -11,7 +11,11 @@ pub mod meshes;
 use bevy::prelude::*;
 use hex_terrain::{PROP_VARIANTS, Prop, PropKind};
 
+use bevy::platform::collections::HashMap;
+use hex_terrain::hexx::Hex;
+
 use crate::streaming::content::{ContentQuery, stale_chunks};
+use crate::tiles::HexTileStateSystems;
 use crate::{HexTerrainSettings, HexTerrainSystems, TileStates};
 
 /// A prop entity (a child of its chunk).
@@ -44,12 +48,19 @@ pub struct HexPropsPlugin;
 
 impl Plugin for HexPropsPlugin {
     fn build(&self, app: &mut App) {
-        app.register_type::<HexProp>().add_systems(
-            Update,
-            (sync_props, hide_unexplored)
-                .chain()
-                .in_set(HexTerrainSystems::Insert)
-                .after(crate::streaming::insert::insert_ready),
+        app.register_type::<HexProp>()
+            .register_type::<HexPropStats>()
+            .init_resource::<HexPropStats>()
+            .add_systems(
+                Update,
+                sync_props.in_set(HexTerrainSystems::Insert).after(crate::streaming::insert::insert_ready),
+            )
+            // After every game system's writes of the frame, before their list starts again.
+            .add_systems(PostUpdate, hide_unexplored.before(HexTileStateSystems::Pack));
+        #[cfg(feature = "render")]
+        app.configure_sets(
+            PostUpdate,
+            HexTileStateSystems::Pack.before(bevy::camera::visibility::VisibilitySystems::VisibilityPropagate),
         );
         #[cfg(feature = "render")]
         if app.is_plugin_added::<bevy::pbr::PbrPlugin>() {
@@ -113,24 +124,79 @@ fn sync_props(
     }
 }
 
+/// Figures of the props.
+#[derive(Resource, Debug, Clone, Default, Reflect)]
+#[reflect(Resource)]
+pub struct HexPropStats {
+    /// Props whose tile's fog was looked at since the start: a frame adds only the props new in
+    /// it and those on tiles whose state was written in it (every prop when the fog is switched
+    /// or another map is loaded).
+    pub fog_checks: u64,
+}
+
+/// The props standing on each tile (the map's own tile), for the fog to find them.
+#[derive(Default)]
+struct PropsByTile {
+    tiles: HashMap<Hex, Vec<Entity>>,
+    of: HashMap<Entity, Hex>,
+}
+
 /// Hides props on unexplored tiles while the terrain draws fog of war, so the fog does not show
-/// the forests it hides.
+/// the forests it hides. Only new props and the props of tiles written this frame
+/// ([`TileStates::changed_tiles`]) are looked at: a hover moving the highlight every frame
+/// touches a few props, not every prop of the map.
 fn hide_unexplored(
     states: Res<TileStates>,
     #[cfg(feature = "render")] appearance: Option<Res<crate::TerrainAppearance>>,
-    mut props: Query<(Ref<HexProp>, &mut Visibility)>,
+    added: Query<(Entity, &HexProp), Added<HexProp>>,
+    mut removed: RemovedComponents<HexProp>,
+    mut visibilities: Query<(&HexProp, &mut Visibility)>,
+    mut index: Local<PropsByTile>,
+    mut stats: ResMut<HexPropStats>,
 ) {
     #[cfg(feature = "render")]
     let (fog, fog_changed) = appearance.map_or((false, false), |a| (a.fog_of_war, a.is_changed()));
     #[cfg(not(feature = "render"))]
     let (fog, fog_changed) = (false, false);
-    let all = states.is_changed() || fog_changed;
-    for (prop, mut visibility) in &mut props {
-        if !(all || prop.is_added()) {
-            continue;
+    let index = &mut *index;
+    for e in removed.read() {
+        if let Some(tile) = index.of.remove(&e)
+            && let Some(list) = index.tiles.get_mut(&tile)
+        {
+            list.retain(|&p| p != e);
+            if list.is_empty() {
+                index.tiles.remove(&tile);
+            }
         }
-        let hidden = fog && states.visibility(prop.tile) == crate::FogState::Unexplored;
-        let wanted = if hidden { Visibility::Hidden } else { Visibility::Inherited };
-        visibility.set_if_neq(wanted);
     }
+    let mut checks = 0u64;
+    let mut check = |e: Entity, visibilities: &mut Query<(&HexProp, &mut Visibility)>| {
+        let Ok((prop, mut visibility)) = visibilities.get_mut(e) else { return };
+        checks += 1;
+        let hidden = fog && states.visibility(prop.tile) == crate::FogState::Unexplored;
+        visibility.set_if_neq(if hidden { Visibility::Hidden } else { Visibility::Inherited });
+    };
+    for (e, prop) in &added {
+        let tile = states.wrap_tile(prop.tile);
+        index.tiles.entry(tile).or_default().push(e);
+        index.of.insert(e, tile);
+        check(e, &mut visibilities);
+    }
+    let changed = if fog_changed { None } else { states.changed_tiles() };
+    match changed {
+        None if fog_changed || states.is_changed() => {
+            for &e in index.of.keys() {
+                check(e, &mut visibilities);
+            }
+        }
+        None => {}
+        Some(tiles) => {
+            for tile in tiles {
+                for &e in index.tiles.get(&tile).into_iter().flatten() {
+                    check(e, &mut visibilities);
+                }
+            }
+        }
+    }
+    stats.fog_checks += checks;
 }
