@@ -22,8 +22,9 @@ pub struct RayHit {
     pub tile: Hex,
 }
 
-/// Most marching steps of one [`raycast`], each half a lattice step: a ray that stays
-/// inside the relief is followed for 2^18 hex sizes at the default ring count.
+/// Most marching steps of one [`raycast`], each to the next lattice line the ray crosses (a
+/// few a lattice step): a ray that stays inside the relief is followed for about 2^17 hex
+/// sizes at the default ring count.
 pub const MAX_RAY_STEPS: u32 = 1 << 20;
 
 /// World position of a tile's center on the surface (for a tile past a wrapping map's edge,
@@ -97,8 +98,9 @@ pub fn surface_normal(pipeline: &Pipeline, x: f64, z: f64) -> Option<[f64; 3]> {
     (len > 0.0).then(|| n.map(|v| sign * v / len))
 }
 
-/// First hit of a ray on the surface within `max_distance`, marching at a fraction of a lattice
-/// step and refining by bisection. Any `max_distance` is fine (`f32::MAX` for no limit): the
+/// First hit of a ray on the surface within `max_distance`, marching from one lattice line the
+/// ray crosses to the next (the surface is flat on each lattice triangle, so no hit lies between
+/// two such points unseen) and refining by bisection. Any `max_distance` is fine (`f32::MAX` for no limit): the
 /// march covers only the part of the ray between the highest and the lowest possible surface,
 /// and gives up after [`MAX_RAY_STEPS`] steps or where the ray leaves the world. On a wrapping
 /// map the ray's origin is first moved by whole periods next to the map (exactly), and the hit
@@ -116,7 +118,7 @@ pub fn raycast(pipeline: &Pipeline, origin: [f64; 3], direction: [f64; 3], max_d
     let shift = origin[0] - x;
     let o = [x, origin[1], origin[2]];
     let at = |t: f64| [o[0] + d[0] * t, o[1] + d[1] * t, o[2] + d[2] * t];
-    // Consecutive samples (half a lattice step apart, then the bisection) fall in the same few
+    // Consecutive samples (a lattice line apart, then the bisection) fall in the same few
     // triangles: their vertices' heights are kept, not evaluated again.
     let cache = std::cell::RefCell::new(Corners::default());
     let above = |t: f64| {
@@ -137,7 +139,33 @@ pub fn raycast(pipeline: &Pipeline, origin: [f64; 3], direction: [f64; 3], max_d
     if d[1] < 0.0 {
         end = end.min(o[1].max(0.0) / -d[1] + 1.0);
     }
-    let step = geometry.step() * 0.5;
+    // The surface is flat on each lattice triangle, so along the ray the height above it is
+    // linear between two crossings of lattice lines (the lines of constant i, j and i + j of the
+    // lattice coordinates): the march goes from crossing to crossing, and a ray that grazes a
+    // peak between two crossings cannot be missed.
+    let (sa, sb) = geometry.lattice().steps();
+    let det = sa[0] * sb[1] - sb[0] * sa[1];
+    let lattice = |x: f64, z: f64| [(x * sb[1] - z * sb[0]) / det, (sa[0] * z - sa[1] * x) / det];
+    let (f0, df) = (lattice(o[0], o[2]), lattice(d[0], d[2]));
+    let lines = [(f0[0], df[0]), (f0[1], df[1]), (f0[0] + f0[1], df[0] + df[1])];
+    let next_line = |t: f64| {
+        let mut best = f64::INFINITY;
+        for &(g0, dg) in &lines {
+            if dg.abs() < 1e-12 {
+                continue;
+            }
+            let v = g0 + dg * t;
+            let mut k = if dg > 0.0 { v.floor() + 1.0 } else { v.ceil() - 1.0 };
+            let mut tk = (k - g0) / dg;
+            if tk <= t {
+                // Rounding put `t` just short of the line it stands on: the one after.
+                k += dg.signum();
+                tk = (k - g0) / dg;
+            }
+            best = best.min(tk);
+        }
+        best
+    };
     let mut prev = above(t0)?;
     if prev < 0.0 {
         return None;
@@ -147,7 +175,11 @@ pub fn raycast(pipeline: &Pipeline, origin: [f64; 3], direction: [f64; 3], max_d
         if t >= end {
             break;
         }
-        let next = (t + step).min(end);
+        let next = next_line(t).min(end);
+        // No progress (or NaN): the ray has left what f64 can follow.
+        if next.partial_cmp(&t) != Some(std::cmp::Ordering::Greater) {
+            break;
+        }
         let h = above(next)?;
         if h <= 0.0 {
             let (mut lo, mut hi) = (t, next);
