@@ -99,6 +99,8 @@ pub fn props(pipeline: &Pipeline, chunk: &ChunkMesh, max_per_chunk: usize, densi
         let center = lattice.tile_center(tile);
         let [cx, cz] = lattice.world(center);
         let [lx, lz] = lattice.world(center - origin);
+        // Whether any water runs on the tile: asked once a tile, not once a prop.
+        let wet = pipeline.tile_is_wet(tile);
         for i in 0..count {
             let r = hash::hash(seed, &[i64::from(key.x), i64::from(key.y), i64::from(i)]);
             let u = |k: u32| f64::from(hash::unit(hash::hash(seed, &[r as i64, i64::from(k)])));
@@ -111,7 +113,7 @@ pub fn props(pipeline: &Pipeline, chunk: &ChunkMesh, max_per_chunk: usize, densi
             let angle = std::f64::consts::TAU * u(2);
             let (dx, dz) = (radius * angle.cos(), radius * angle.sin());
             let (x, z) = (cx + dx, cz + dz);
-            if is_wet_at(pipeline, tile, x, z) {
+            if wet && is_wet_at(pipeline, tile, x, z) {
                 continue;
             }
             let Some(y) = surface_height(pipeline, x, z) else { continue };
@@ -142,12 +144,9 @@ pub fn props(pipeline: &Pipeline, chunk: &ChunkMesh, max_per_chunk: usize, densi
     props
 }
 
-/// Whether river or lake water covers world `(x, z)` of `tile` (the lattice triangle's
+/// Whether river or lake water covers world `(x, z)` of a wet `tile` (the lattice triangle's
 /// corners' water cover).
 fn is_wet_at(pipeline: &Pipeline, tile: Hex, x: f64, z: f64) -> bool {
-    if !pipeline.tile_is_wet(tile) {
-        return false;
-    }
     let (tri, _) = pipeline.geometry().lattice().triangle_at(x, z);
     tri.iter().any(|&p| pipeline.water_cover(tile, p) > 0.05)
 }
