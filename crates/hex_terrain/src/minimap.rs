@@ -147,26 +147,16 @@ impl Minimap {
         // The world box of the region: its edge tiles' centers, grown by a tile's half extents.
         let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
         let [w, h] = [region.max[0] - region.min[0], region.max[1] - region.min[1]];
-        for col in region.min[0]..region.max[0] {
-            for row in [region.min[1], region.min[1] + 1, region.max[1] - 2, region.max[1] - 1] {
-                for (axis, c) in center(terrain.tile_from_offset([col, row.clamp(region.min[1], region.max[1] - 1)]))
-                    .into_iter()
-                    .enumerate()
-                {
-                    lo[axis] = lo[axis].min(c - half[axis]);
-                    hi[axis] = hi[axis].max(c + half[axis]);
-                }
+        // The band of the two outer rows and columns (odd columns or rows are shoved half a
+        // tile): the tiles whose extents can reach the box's edges.
+        let edge = |v: i32, min: i32, max: i32| v < min + 2 || v >= max - 2;
+        for [col, row] in region.iter() {
+            if !edge(col, region.min[0], region.max[0]) && !edge(row, region.min[1], region.max[1]) {
+                continue;
             }
-        }
-        for row in region.min[1]..region.max[1] {
-            for col in [region.min[0], region.min[0] + 1, region.max[0] - 2, region.max[0] - 1] {
-                for (axis, c) in center(terrain.tile_from_offset([col.clamp(region.min[0], region.max[0] - 1), row]))
-                    .into_iter()
-                    .enumerate()
-                {
-                    lo[axis] = lo[axis].min(c - half[axis]);
-                    hi[axis] = hi[axis].max(c + half[axis]);
-                }
+            for (axis, c) in center(terrain.tile_from_offset([col, row])).into_iter().enumerate() {
+                lo[axis] = lo[axis].min(c - half[axis]);
+                hi[axis] = hi[axis].max(c + half[axis]);
             }
         }
         let period = terrain.wrap().filter(|wrap| w >= wrap.columns).map(|wrap| wrap.width);
@@ -188,10 +178,7 @@ impl Minimap {
         let directions = neighbor_directions(terrain);
         let apothem = directions[0].1;
 
-        let index = |tile: Hex| {
-            let [col, row] = terrain.offset_of(tile);
-            region.contains([col, row]).then(|| ((row - region.min[1]) * w + (col - region.min[0])) as u32)
-        };
+        let index = |tile: Hex| index_in(terrain, region, tile);
         let tiles: Vec<Hex> =
             (0..w * h).map(|i| terrain.tile_from_offset([region.min[0] + i % w, region.min[1] + i / w])).collect();
         let neighbors: Vec<[u32; 6]> = tiles
@@ -479,10 +466,16 @@ impl Minimap {
         if !self.terrain.in_world(tile) {
             return None;
         }
-        let [col, row] = self.terrain.offset_of(self.terrain.wrap_tile(tile));
-        let w = self.region.max[0] - self.region.min[0];
-        self.region.contains([col, row]).then(|| ((row - self.region.min[1]) * w + (col - self.region.min[0])) as u32)
+        index_in(&self.terrain, self.region, self.terrain.wrap_tile(tile))
     }
+}
+
+/// The index of a tile of the map (its own tile on a wrapping map) in `region`, row after row,
+/// if it is in it.
+fn index_in(terrain: &Terrain, region: TileRect, tile: Hex) -> Option<u32> {
+    let [col, row] = terrain.offset_of(tile);
+    let w = region.max[0] - region.min[0];
+    region.contains([col, row]).then(|| ((row - region.min[1]) * w + (col - region.min[0])) as u32)
 }
 
 /// `region` inside a bounded map's tiles; `None` when nothing is left.
