@@ -20,12 +20,14 @@
 //! assert_eq!(rgba.len(), (minimap.size()[0] * minimap.size()[1] * 4) as usize);
 //! ```
 
+mod build;
+mod outline;
+
 use hexx::Hex;
 
 use crate::chunk::TileRect;
 use crate::save::FogState;
 use crate::terrain::Terrain;
-use crate::vocab::TileKind;
 
 /// No tile: a pixel off the map.
 const NONE: u32 = u32::MAX;
@@ -129,130 +131,6 @@ pub struct Minimap {
 }
 
 impl Minimap {
-    /// The picture of `region` (offset coordinates; clipped to a bounded map's tiles), at most
-    /// `max_size` pixels (each side at least 1): the largest that fits with square pixels. On a
-    /// wrapping map a region spanning the map's width is drawn over exactly one period. `None`
-    /// when no tile of the region is on the map.
-    #[must_use]
-    pub fn new(terrain: &Terrain, region: TileRect, max_size: [u32; 2], style: MinimapStyle) -> Option<Self> {
-        let region = clip(region, terrain.bounds())?;
-        let geometry = terrain.geometry();
-        let lattice = geometry.lattice();
-        let center = |tile: Hex| lattice.world(lattice.tile_center(tile));
-        let s = geometry.hex_size();
-        let half = match terrain.layout().orientation {
-            hexx::HexOrientation::Flat => [s, s * 3f64.sqrt() / 2.0],
-            hexx::HexOrientation::Pointy => [s * 3f64.sqrt() / 2.0, s],
-        };
-        // The world box of the region: its edge tiles' centers, grown by a tile's half extents.
-        let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
-        let [w, h] = [region.max[0] - region.min[0], region.max[1] - region.min[1]];
-        // The band of the two outer rows and columns (odd columns or rows are shoved half a
-        // tile): the tiles whose extents can reach the box's edges.
-        let edge = |v: i32, min: i32, max: i32| v < min + 2 || v >= max - 2;
-        for [col, row] in region.iter() {
-            if !edge(col, region.min[0], region.max[0]) && !edge(row, region.min[1], region.max[1]) {
-                continue;
-            }
-            for (axis, c) in center(terrain.tile_from_offset([col, row])).into_iter().enumerate() {
-                lo[axis] = lo[axis].min(c - half[axis]);
-                hi[axis] = hi[axis].max(c + half[axis]);
-            }
-        }
-        let period = terrain.wrap().filter(|wrap| w >= wrap.columns).map(|wrap| wrap.width);
-        let [mw, mh] = max_size.map(|m| f64::from(m.clamp(1, 1 << 14)));
-        let extent = [period.unwrap_or(hi[0] - lo[0]), hi[1] - lo[1]];
-        let mut step = (extent[0] / mw).max(extent[1] / mh);
-        let mut width = (extent[0] / step).ceil().clamp(1.0, mw);
-        if let Some(period) = period {
-            // Exactly one period across, so the picture wraps as the map does: the strip starts
-            // half a column west of the first column's center.
-            width = (period / step).round().clamp(1.0, mw);
-            step = period / width;
-            let first = center(terrain.tile_from_offset([region.min[0], region.min[1]]))[0];
-            let column = period / f64::from(w);
-            lo[0] = first - column / 2.0;
-        }
-        let height = (extent[1] / step).ceil().clamp(1.0, mh);
-        let size = [width as u32, height as u32];
-        let directions = neighbor_directions(terrain);
-        let apothem = directions[0].1;
-
-        let index = |tile: Hex| index_in(terrain, region, tile);
-        let tiles: Vec<Hex> =
-            (0..w * h).map(|i| terrain.tile_from_offset([region.min[0] + i % w, region.min[1] + i / w])).collect();
-        let neighbors: Vec<[u32; 6]> = tiles
-            .iter()
-            .map(|&t| {
-                t.all_neighbors()
-                    .map(|n| if terrain.contains(n) { index(terrain.wrap_tile(n)).unwrap_or(NONE) } else { NONE })
-            })
-            .collect();
-        let colors: Vec<[u8; 3]> = tiles.iter().map(|&t| tile_color(terrain, &style, t)).collect();
-        let rivers: Vec<Vec<usize>> = tiles.iter().map(|&t| river_slots(terrain, t)).collect();
-        let river_half = (style.river_width * s / 2.0).max(0.6 * step).min(0.5 * apothem);
-
-        let pixels = (size[0] * size[1]) as usize;
-        let (mut pixel_tile, mut pixel_edge, mut base) =
-            (vec![NONE; pixels], vec![(0u8, 0f32); pixels], vec![style.background; pixels]);
-        for py in 0..size[1] {
-            for px in 0..size[0] {
-                let i = (py * size[0] + px) as usize;
-                let x = lo[0] + (f64::from(px) + 0.5) * step;
-                let z = lo[1] + (f64::from(py) + 0.5) * step;
-                let (Some(tile), Some(own)) = (geometry.unwrapped_tile_at(x, z), geometry.tile_at(x, z)) else {
-                    continue;
-                };
-                let Some(t) = index(own).filter(|_| terrain.contains(own)) else { continue };
-                let c = center(tile);
-                let d = [x - c[0], z - c[1]];
-                let (slot, distance) = directions
-                    .iter()
-                    .enumerate()
-                    .map(|(k, &(n, a))| (k, a - (d[0] * n[0] + d[1] * n[1])))
-                    .fold((0, f64::INFINITY), |best, e| if e.1 < best.1 { e } else { best });
-                pixel_tile[i] = t;
-                pixel_edge[i] = (slot as u8, (distance / s) as f32);
-                let mut color = colors[t as usize];
-                if rivers[t as usize]
-                    .iter()
-                    .any(|&k| segment_distance(d, directions[k].0, directions[k].1) < river_half)
-                {
-                    color = style.water_color;
-                }
-                base[i] = [color[0], color[1], color[2], 255];
-            }
-        }
-        let mut tile_start = vec![0u32; tiles.len() + 1];
-        for &t in pixel_tile.iter().filter(|&&t| t != NONE) {
-            tile_start[t as usize + 1] += 1;
-        }
-        for k in 1..tile_start.len() {
-            tile_start[k] += tile_start[k - 1];
-        }
-        let mut fill = tile_start.clone();
-        let mut tile_pixels = vec![0u32; *tile_start.last().unwrap_or(&0) as usize];
-        for (i, &t) in pixel_tile.iter().enumerate().filter(|(_, t)| **t != NONE) {
-            tile_pixels[fill[t as usize] as usize] = i as u32;
-            fill[t as usize] += 1;
-        }
-        Some(Self {
-            terrain: terrain.clone(),
-            style,
-            region,
-            size,
-            origin: lo,
-            step,
-            wraps: period.is_some(),
-            pixel_tile,
-            pixel_edge,
-            base,
-            neighbors,
-            tile_start,
-            tile_pixels,
-        })
-    }
-
     /// The picture's size in pixels.
     #[must_use]
     pub fn size(&self) -> [u32; 2] {
@@ -374,50 +252,6 @@ impl Minimap {
         written
     }
 
-    /// The pixels on the edges of a polygon of world `(x, z)` points (a camera's view on the
-    /// ground), each once: clipped to the picture, and wrapped east-west on a wrapping picture.
-    /// Non-finite points give nothing.
-    #[must_use]
-    pub fn outline(&self, polygon: &[[f64; 2]]) -> Vec<u32> {
-        if polygon.len() < 2 || polygon.iter().flatten().any(|v| !v.is_finite()) {
-            return Vec::new();
-        }
-        let [w, h] = self.size.map(f64::from);
-        let mut points: Vec<[f64; 2]> = polygon
-            .iter()
-            .map(|&[x, z]| [(x - self.origin[0]) / self.step, (z - self.origin[1]) / self.step])
-            .collect();
-        if self.wraps {
-            // One shift for the whole polygon, so its edges stay whole across the seam.
-            let shift = (points[0][0] / w).floor() * w;
-            points.iter_mut().for_each(|p| p[0] -= shift);
-        }
-        let mut out = Vec::new();
-        for k in 0..points.len() {
-            let (a, b) = (points[k], points[(k + 1) % points.len()]);
-            let x_range = if self.wraps { [f64::NEG_INFINITY, f64::INFINITY] } else { [0.0, w] };
-            let Some((a, b)) = clip_segment(a, b, x_range, [0.0, h]) else { continue };
-            // Sample the segment at least twice a pixel; a segment is at most a few picture
-            // widths long (the polygon's far corners may be far out).
-            let steps = ((b[0] - a[0]).abs().max((b[1] - a[1]).abs()) * 2.0).ceil().clamp(1.0, 8.0 * (w + h));
-            for s in 0..=steps as u32 {
-                let f = f64::from(s) / steps;
-                let (x, y) = (a[0] + (b[0] - a[0]) * f, a[1] + (b[1] - a[1]) * f);
-                let (mut px, py) = (x.floor(), y.floor().min(h - 1.0));
-                if self.wraps {
-                    px = px.rem_euclid(w);
-                }
-                let px = px.min(w - 1.0);
-                if px >= 0.0 && py >= 0.0 {
-                    out.push((py as u32) * self.size[0] + px as u32);
-                }
-            }
-        }
-        out.sort_unstable();
-        out.dedup();
-        out
-    }
-
     /// The color of pixel `i`.
     fn pixel(&self, i: usize, look_of: impl Fn(u32) -> TileLook) -> [u8; 4] {
         let t = self.pixel_tile[i];
@@ -476,83 +310,4 @@ fn index_in(terrain: &Terrain, region: TileRect, tile: Hex) -> Option<u32> {
     let [col, row] = terrain.offset_of(tile);
     let w = region.max[0] - region.min[0];
     region.contains([col, row]).then(|| ((row - region.min[1]) * w + (col - region.min[0])) as u32)
-}
-
-/// `region` inside a bounded map's tiles; `None` when nothing is left.
-fn clip(region: TileRect, bounds: Option<TileRect>) -> Option<TileRect> {
-    let r = match bounds {
-        Some(b) => TileRect {
-            min: [region.min[0].max(b.min[0]), region.min[1].max(b.min[1])],
-            max: [region.max[0].min(b.max[0]), region.max[1].min(b.max[1])],
-        },
-        None => region,
-    };
-    (r.max[0] > r.min[0] && r.max[1] > r.min[1]).then_some(r)
-}
-
-/// The unit vector toward each neighbor's center (in [`Hex::all_neighbors`] order) and the
-/// distance from a tile's center to that edge.
-fn neighbor_directions(terrain: &Terrain) -> [([f64; 2], f64); 6] {
-    let lattice = terrain.lattice();
-    let center = lattice.world(lattice.tile_center(Hex::ZERO));
-    Hex::ZERO.all_neighbors().map(|n| {
-        let c = lattice.world(lattice.tile_center(n));
-        let d = [c[0] - center[0], c[1] - center[1]];
-        let len = d[0].hypot(d[1]);
-        ([d[0] / len, d[1] / len], len / 2.0)
-    })
-}
-
-/// Distance of local point `d` to the segment from the tile's center to the midpoint of the edge
-/// in direction `n` (`length` away).
-fn segment_distance(d: [f64; 2], n: [f64; 2], length: f64) -> f64 {
-    let along = (d[0] * n[0] + d[1] * n[1]).clamp(0.0, length);
-    (d[0] - n[0] * along).hypot(d[1] - n[1] * along)
-}
-
-/// The tile's color before any state: lakes in water, a biome's color on maps with climate or
-/// rivers, the tile type's color otherwise.
-fn tile_color(terrain: &Terrain, style: &MinimapStyle, tile: Hex) -> [u8; 3] {
-    if terrain.lake(tile).is_some() {
-        return style.water_color;
-    }
-    if terrain.has_vertex_colors()
-        && let Some(biome) = terrain.tile_biome(tile)
-    {
-        return biome.color();
-    }
-    style.kind_colors[terrain.tile_kind(tile).unwrap_or(TileKind::Sea) as usize]
-}
-
-/// The neighbor slots a tile's river runs to: downstream and every upstream neighbor.
-fn river_slots(terrain: &Terrain, tile: Hex) -> Vec<usize> {
-    let Some(river) = terrain.river(tile) else { return Vec::new() };
-    let neighbors = tile.all_neighbors().map(|n| terrain.wrap_tile(n));
-    river
-        .downstream
-        .into_iter()
-        .chain(river.upstream.iter().copied())
-        .filter_map(|to| neighbors.iter().position(|&n| n == terrain.wrap_tile(to)))
-        .collect()
-}
-
-/// The part of segment `a`-`b` inside `x` × `y` (Liang-Barsky); `None` when it misses.
-fn clip_segment(a: [f64; 2], b: [f64; 2], x: [f64; 2], y: [f64; 2]) -> Option<([f64; 2], [f64; 2])> {
-    let d = [b[0] - a[0], b[1] - a[1]];
-    let (mut t0, mut t1) = (0.0f64, 1.0f64);
-    for (p, q) in [(-d[0], a[0] - x[0]), (d[0], x[1] - a[0]), (-d[1], a[1] - y[0]), (d[1], y[1] - a[1])] {
-        if p == 0.0 {
-            if q < 0.0 {
-                return None;
-            }
-        } else {
-            let r = q / p;
-            if p < 0.0 {
-                t0 = t0.max(r);
-            } else {
-                t1 = t1.min(r);
-            }
-        }
-    }
-    (t0 <= t1).then(|| ([a[0] + d[0] * t0, a[1] + d[1] * t0], [a[0] + d[0] * t1, a[1] + d[1] * t1]))
 }
