@@ -1,13 +1,13 @@
 //! A minimap (the `minimap` cargo feature): a top-down picture of the map in a Bevy UI node, from
-//! the core's [`Minimap`] picture, drawn with the tiles' biome or type colors, rivers and lakes,
-//! the owners' tint and borders and fog of war from [`TileStates`] (unexplored black, explored
+//! the core's [`Minimap`](hex_terrain::minimap::Minimap) picture, drawn with the tiles' biome or type colors, rivers and lakes,
+//! the owners' tint and borders and fog of war from [`TileStates`](crate::TileStates) (unexplored black, explored
 //! dim), and the camera's view as an outline. A bounded map is shown whole (a wrapping one over
 //! one period, so the picture wraps); an unbounded world in a rectangle of tiles around the
 //! camera, rebuilt when the camera leaves its middle.
 //!
 //! The picture is built on the async compute pool when the map or the style changes (the old
-//! one stays until the new one is ready) and then only repainted where [`TileStates`] was
-//! written this frame ([`TileStates::changed_tiles`]): the tiles written and their neighbors.
+//! one stays until the new one is ready) and then only repainted where [`TileStates`](crate::TileStates) was
+//! written this frame ([`TileStates::changed_tiles`](crate::TileStates::changed_tiles)): the tiles written and their neighbors.
 //! Pressing or dragging on the node sends a [`MinimapNavigate`] message with the tile and the
 //! world position under the pointer; the game's camera code moves there:
 //!
@@ -80,7 +80,7 @@ pub struct MinimapSettings {
     pub unexplored_color: Color,
     /// Brightness of explored tiles not in sight, `0..=1`.
     pub explored_brightness: f32,
-    /// Draw fog of war from [`TileStates::visibility`] (off: every tile in full color).
+    /// Draw fog of war from [`TileStates::visibility`](crate::TileStates::visibility) (off: every tile in full color).
     pub fog_of_war: bool,
     /// Owner colors: owner `n` takes entry `n - 1` (the terrain material's palette when the
     /// `render` feature has it).
