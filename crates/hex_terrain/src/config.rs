@@ -7,11 +7,17 @@ use crate::error::LoadError;
 
 mod climate;
 mod file;
+mod setup;
 mod validate;
 
 pub use climate::{BiomeRule, ClimateConfig, MAX_BIOME_RULES, MAX_WATER_TILES, RiverConfig};
 
 pub use file::MapFile;
+pub use setup::{
+    MAX_PER_PLAYER, MAX_PLAYERS, MAX_SETUP_DISTANCE, MAX_SETUP_RINGS, MAX_SETUP_RULES, MAX_SETUP_TILES, MAX_YIELD,
+    Place, ResourceClass, ResourceRule, SetupConfig, StartOn, ValueWeights, WonderConfig, WonderRule, YieldTable,
+    Yields,
+};
 pub use validate::{
     MAX_CHUNK_BYTES, MAX_CHUNK_SIDE, MAX_INNER_RINGS, MAX_MAP_BYTES, MAX_OCTAVES, MAX_OFFSET, MAX_WORLD_TILE,
     MIN_WRAP_COLUMNS,
@@ -66,6 +72,9 @@ pub struct MapConfig {
     pub rivers: RiverConfig,
     /// Peaks on mountains and swells on hills, inside their ranges (off by default: Map0).
     pub relief: ReliefConfig,
+    /// Game setup: start positions, resources, natural wonders and the fairness report (off by
+    /// default; see [`SetupConfig`]).
+    pub setup: Option<SetupConfig>,
 }
 
 impl Default for MapConfig {
@@ -87,6 +96,7 @@ impl Default for MapConfig {
             climate: ClimateConfig::default(),
             rivers: RiverConfig::default(),
             relief: ReliefConfig::default(),
+            setup: None,
         }
     }
 }

@@ -21,6 +21,7 @@
 //! | [`mesh`] | any rectangle of tiles to [`MeshBuffers`], on all cores or the calling thread |
 //! | [`water::surface`], [`props`] | what stands on a generated chunk: its water surface, its trees, rocks and reeds |
 //! | [`query`], [`metrics`] | the surface under a position and ray casts, in f64; sharpness (thesis eq. 4.1, 7.3) |
+//! | [`setup`] | [`Setup`]: a game on the map: start positions in regions of equal fertility, resources, natural wonders, and the fairness report (after the terrain; it changes no height) |
 //! | [`terrain`] | [`Terrain`], the facade over all of it |
 //! | [`minimap`] | a top-down picture of the map for a minimap: each pixel's tile, the tiles' colors, rivers, fog of war and owners, repainted per tile |
 //! | [`save`] | what a game writes on the tiles ([`FogState`], owners, overlays, [`Highlight`]s) as a [`TileStateSave`] file: RON or compact binary, checked against the map |
@@ -67,6 +68,8 @@ pub mod query;
 
 pub mod minimap;
 
+pub mod setup;
+
 pub mod terrain;
 
 pub mod save;
@@ -75,7 +78,9 @@ pub use chunk::{ChunkCoord, TileRect};
 pub use climate::{Climate, ClimateModel, TileSample};
 pub use config::{
     AppearanceConfig, BiomeRule, ClimateConfig, HeightSourceConfig, LayoutConfig, ManipulationConfig, MapConfig,
-    MapFile, MapSize, NoiseConfig, Orientation, PullMode, ReliefConfig, RiverConfig, Shape, TerrainConfig,
+    MapFile, MapSize, NoiseConfig, Orientation, Place, PullMode, ReliefConfig, ResourceClass, ResourceRule,
+    RiverConfig, SetupConfig, Shape, StartOn, TerrainConfig, ValueWeights, WonderConfig, WonderRule, YieldTable,
+    Yields,
 };
 pub use error::{ConfigError, LoadError};
 pub use geometry::Geometry;
@@ -90,6 +95,7 @@ pub use props::Prop;
 pub use query::RayHit;
 pub use relief::Relief;
 pub use save::{FogState, Highlight, SaveError, TileStateSave};
+pub use setup::{PlacedResource, PlacedWonder, Setup, SetupReport, SetupTimings, StartReport, TileSetup};
 pub use table::TileTable;
 pub use terrain::Terrain;
 pub use vertex::{Sharing, VertexRules, VertexSample};

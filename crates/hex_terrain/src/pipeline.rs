@@ -19,6 +19,7 @@ use crate::error::ConfigError;
 use crate::geometry::Geometry;
 use crate::heights::{HeightField, HeightImage};
 use crate::kind::Thresholds;
+use crate::setup::{Setup, Stages};
 use crate::table::TileTable;
 use crate::vertex::{VertexRules, VertexSample};
 use crate::vocab::{Biome, TileInfo, TileKind};
@@ -35,6 +36,8 @@ pub struct Pipeline {
     /// Per-tile data of a bounded map with climate or rivers, computed once.
     table: Option<Arc<TileTable>>,
     vertex: VertexRules,
+    /// The game setup of a map whose config asks for one, placed once.
+    setup: Option<Arc<Setup>>,
 }
 
 impl Pipeline {
@@ -80,7 +83,30 @@ impl Pipeline {
             .filter(|_| config.rivers.enabled || (config.climate.enabled && tiles <= MAX_WATER_TILES))
             .map(|rect| Arc::new(TileTable::build(&geometry, &heights, &thresholds, &climate, &config.rivers, rect)));
         let vertex = VertexRules::new(&config, thresholds);
-        Ok(Self { config, geometry, heights, thresholds, climate, table, vertex })
+        let mut pipeline = Self { config, geometry, heights, thresholds, climate, table, vertex, setup: None };
+        if let Some(setup) = &pipeline.config.setup {
+            let placed = Setup::build(pipeline.stages(), setup, pipeline.config.seed)?;
+            pipeline.setup = Some(Arc::new(placed));
+        }
+        Ok(pipeline)
+    }
+
+    /// The terrain stages a later stage (the game setup) reads.
+    #[must_use]
+    pub fn stages(&self) -> Stages<'_> {
+        Stages {
+            geometry: &self.geometry,
+            heights: &self.heights,
+            thresholds: &self.thresholds,
+            climate: &self.climate,
+            table: self.table(),
+        }
+    }
+
+    /// The game setup, when the config asks for one.
+    #[must_use]
+    pub fn setup(&self) -> Option<&Setup> {
+        self.setup.as_deref()
     }
 
     /// The config it was compiled from.

@@ -320,7 +320,8 @@ pub fn run(o: &Options) -> CliResult<()> {
         for (suffix, config) in [("raw", raw(m)), ("tiled", m.clone())] {
             let t = build(config)?;
             let mesh = map_with_diagnostics(&t).ok_or("bounded")?;
-            let img = render::render(&t, &mesh, &render::Options { width: o.width, outlines: false })?;
+            let img =
+                render::render(&t, &mesh, &render::Options { width: o.width, outlines: false, marks: Vec::new() })?;
             render::save(&img, &images.join(format!("map{i:02}_{suffix}.png")))?;
         }
         let _ = writeln!(md, "| {} | ![](images/map{i:02}_raw.png) | ![](images/map{i:02}_tiled.png) |", m.name);

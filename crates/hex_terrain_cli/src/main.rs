@@ -90,6 +90,22 @@ enum Command {
         /// Map config (RON).
         map: PathBuf,
     },
+    /// Place a game on the map (start positions, resources, natural wonders) and print the
+    /// fairness report; with --output, render the map with them marked.
+    Setup {
+        /// Map config (RON); its `setup` section, or the default setup when it has none.
+        map: PathBuf,
+        /// Number of players (overrides the map's setup).
+        #[arg(long)]
+        players: Option<u32>,
+        /// Render the map with starts (white), resources (bonus green, strategic red, luxury
+        /// violet) and wonders (gold) marked (PNG).
+        #[arg(short, long)]
+        output: Option<PathBuf>,
+        /// Image width in pixels.
+        #[arg(long, default_value_t = 1024)]
+        width: u32,
+    },
     /// Write the tileable sea, grass and mountain textures of the material's texture mode.
     Textures {
         /// Output folder.
@@ -190,7 +206,7 @@ fn run(cli: Cli) -> CliResult<()> {
             let t = terrain(config, raw)?;
             let mesh = whole_map(&t)?;
             let spinner = (mesh.buffers.triangle_count() > 2_000_000).then(|| busy("rendering".into()));
-            let img = render::render(&t, &mesh, &render::Options { width, outlines })?;
+            let img = render::render(&t, &mesh, &render::Options { width, outlines, marks: Vec::new() })?;
             if let Some(s) = spinner {
                 s.finish_and_clear();
             }
@@ -235,7 +251,7 @@ fn run(cli: Cli) -> CliResult<()> {
                 }
                 Some("png") => {
                     let mesh = whole_map(&t)?;
-                    let img = render::render(&t, &mesh, &render::Options { width, outlines })?;
+                    let img = render::render(&t, &mesh, &render::Options { width, outlines, marks: Vec::new() })?;
                     render::save(&img, &output)
                 }
                 _ => Err(format!("{}: the output must end in .ron or .png", output.display())),
@@ -257,6 +273,10 @@ fn run(cli: Cli) -> CliResult<()> {
             result
         }
         Command::Stats { map } => stats(&map),
+        Command::Setup { map, players, output, width } => {
+            check_width(width)?;
+            setup(&map, players, output.as_deref(), width)
+        }
         Command::Textures { out, size } => textures::write(&out, size),
         Command::Experiments { out, maps, rings, runs, max_hexes, width } => {
             check_width(width)?;
@@ -310,6 +330,42 @@ fn stats(path: &Path) -> CliResult<()> {
     );
     println!("  mesh (eq. 7.3)   {:.3}   measured directly {:.3}", s.weighted_mesh, s.mesh_average);
     Ok(())
+}
+
+fn setup(path: &Path, players: Option<u32>, output: Option<&Path>, width: u32) -> CliResult<()> {
+    let mut config = load(path)?;
+    let mut setup = config.setup.take().unwrap_or_default();
+    if let Some(n) = players {
+        setup.players = n;
+    }
+    config.setup = Some(setup);
+    let start = Instant::now();
+    let t = Terrain::new(config).map_err(|e| format!("{}: {e}", path.display()))?;
+    let elapsed = start.elapsed();
+    let setup = t.setup().ok_or("the map has no setup")?;
+    println!("{} ({}): {} players", t.config().name, path.display(), setup.starts().len());
+    print!("{}", setup.report());
+    println!("map and setup compiled in {:.1} ms", elapsed.as_secs_f64() * 1e3);
+    let Some(output) = output else { return Ok(()) };
+    let mesh = whole_map(&t)?;
+    let mut marks = Vec::new();
+    let center = |tile| t.tile_center(tile).map(|c| [c[0], c[2]]);
+    for r in setup.resources() {
+        let color = match r.class {
+            hex_terrain::ResourceClass::Bonus => [90, 220, 90],
+            hex_terrain::ResourceClass::Strategic => [230, 70, 60],
+            hex_terrain::ResourceClass::Luxury => [190, 110, 240],
+        };
+        marks.extend(center(r.tile).map(|at| render::Mark { at, radius: 0.4, color }));
+    }
+    for w in setup.wonders() {
+        marks.extend(center(w.tile).map(|at| render::Mark { at, radius: 0.7, color: [250, 200, 40] }));
+    }
+    for &s in setup.starts() {
+        marks.extend(center(s).map(|at| render::Mark { at, radius: 1.1, color: [250, 250, 250] }));
+    }
+    let img = render::render(&t, &mesh, &render::Options { width, outlines: false, marks })?;
+    render::save(&img, output)
 }
 
 fn main() -> ExitCode {

@@ -26,6 +26,18 @@ pub struct Options {
     pub width: u32,
     /// Whether to darken tile borders.
     pub outlines: bool,
+    /// Markers drawn over the map (starts, resources, wonders).
+    pub marks: Vec<Mark>,
+}
+
+/// A marker over the map: a disc at a world position, with a dark rim.
+pub struct Mark {
+    /// World `x` and `z` of its center.
+    pub at: [f64; 2],
+    /// Radius in hex radii.
+    pub radius: f32,
+    /// Fill color (sRGB).
+    pub color: [u8; 3],
 }
 
 fn layer(kind: TileKind) -> [f32; 3] {
@@ -169,6 +181,22 @@ pub fn render(terrain: &Terrain, mesh: &ChunkMesh, options: &Options) -> CliResu
     let mut img = RgbImage::new(options.width, height);
     for (dst, src) in img.pixels_mut().zip(pixels) {
         *dst = src;
+    }
+    let origin = mesh.origin;
+    for mark in &options.marks {
+        let [cx, cy] = project([(mark.at[0] - origin[0]) as f32, 0.0, (mark.at[1] - origin[2]) as f32]);
+        let r = (mark.radius * config.layout.hex_size * scale).max(2.0);
+        let (x0, x1) = ((cx - r - 1.0).floor().max(0.0) as u32, ((cx + r + 1.0).ceil() as u32).min(img.width() - 1));
+        let (y0, y1) = ((cy - r - 1.0).floor().max(0.0) as u32, ((cy + r + 1.0).ceil() as u32).min(img.height() - 1));
+        for py in y0..=y1 {
+            for px in x0..=x1 {
+                let d = ((px as f32 - cx).powi(2) + (py as f32 - cy).powi(2)).sqrt();
+                if d <= r {
+                    let rim = d > r - (r * 0.3).max(1.0);
+                    img.put_pixel(px, py, Rgb(if rim { [16, 16, 16] } else { mark.color }));
+                }
+            }
+        }
     }
     Ok(img)
 }

@@ -202,7 +202,11 @@ impl MapConfig {
                 check(finite_in(f64::from(max), 0.0, 1.0) && max > min, "shape.max", max, format!("({min}, 1]"))?;
             }
         }
-        self.validate_climate()
+        self.validate_climate()?;
+        match &self.setup {
+            Some(setup) => setup.validate(self.size.bounds()),
+            None => Ok(()),
+        }
     }
 }
 

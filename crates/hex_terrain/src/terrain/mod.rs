@@ -1,9 +1,11 @@
 //! [`Terrain`]: the facade games, the CLI and the plugin call. It holds the compiled
 //! [`Pipeline`] and answers from its stages; this folder holds all of its methods, by topic:
 //! `mod.rs` (compiling, the stages, tiles), `water.rs` (rivers, lakes, the water surface),
-//! `generate.rs` (meshes, props), `surface.rs` (positions, heights, rays).
+//! `generate.rs` (meshes, props), `surface.rs` (positions, heights, rays), `setup.rs` (the game
+//! setup: starts, resources, wonders).
 
 mod generate;
+mod setup;
 mod surface;
 mod water;
 

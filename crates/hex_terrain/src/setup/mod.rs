@@ -1,0 +1,445 @@
+//! Game setup, a stage after the terrain: the players' start positions, resources and natural
+//! wonders, and a fairness report, from the map's [`SetupConfig`], computed once for the whole
+//! map (or the `area` of an unbounded one) when the map is compiled, so every chunk and every
+//! query reads the same placement whatever the chunk order or thread count.
+//!
+//! In the order data flows through it:
+//!
+//! | module | step |
+//! | --- | --- |
+//! | [`survey`] | every tile's type, biome, river, coast, yields, movement cost, neighbors |
+//! | `regions` | regions of equal fertility, one a player (Civilization V's and Unciv's division) |
+//! | `starts` | the best start of each region at the minimum distance, then moves that narrow the spread |
+//! | `paths` | path costs over land, the land each start reaches first, land masses |
+//! | `placement` | wonders (rarest first), resources (guaranteed ones, then by density), normalisation of weak starts |
+//! | [`report`] | the fairness report |
+//!
+//! The terrain is not changed: what the setup places lies on the tiles the generator made, so
+//! every invariant of the terrain holds with a setup as without.
+
+use std::time::{Duration, Instant};
+
+use hexx::Hex;
+
+use crate::chunk::TileRect;
+use crate::config::{ResourceClass, SetupConfig};
+use crate::error::ConfigError;
+use crate::geometry::Geometry;
+
+mod paths;
+mod placement;
+mod regions;
+pub mod report;
+mod starts;
+pub mod survey;
+
+pub use placement::{SetupNote, Shortfall};
+pub use report::{SetupReport, StartReport};
+pub use survey::Stages;
+
+use survey::{NONE, Survey};
+
+/// A resource on the map.
+#[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "bevy_reflect", derive(bevy_reflect::Reflect))]
+pub struct PlacedResource {
+    /// Its tile (map-local axial).
+    pub tile: Hex,
+    /// Its rule's index in `setup.resources`.
+    pub rule: u32,
+    /// Its rule's name.
+    pub name: String,
+    /// Bonus, strategic or luxury.
+    pub class: ResourceClass,
+    /// Whether normalisation added it near a weak start.
+    pub added: bool,
+}
+
+/// A natural wonder on the map.
+#[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "bevy_reflect", derive(bevy_reflect::Reflect))]
+pub struct PlacedWonder {
+    /// Its tile (map-local axial).
+    pub tile: Hex,
+    /// Its rule's index in `setup.wonders.list`.
+    pub rule: u32,
+    /// Its name.
+    pub name: String,
+}
+
+/// A region of equal fertility: a rectangle of offset coordinates (on a wrapping map its
+/// columns may run across the seam: `columns[1]` is then past the map's width, and columns are
+/// taken modulo the width).
+#[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "bevy_reflect", derive(bevy_reflect::Reflect))]
+pub struct SetupRegion {
+    /// First column and one past the last.
+    pub columns: [i32; 2],
+    /// First row and one past the last.
+    pub rows: [i32; 2],
+    /// Its tiles' fertility (their value, open ocean not counted).
+    pub fertility: f32,
+}
+
+/// What the setup placed on one tile.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TileSetup<'a> {
+    /// The player starting here.
+    pub start: Option<u32>,
+    /// The resource on it.
+    pub resource: Option<&'a PlacedResource>,
+    /// The natural wonder on it.
+    pub wonder: Option<&'a PlacedWonder>,
+    /// Its region.
+    pub region: u32,
+}
+
+/// How long each part of the setup took.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct SetupTimings {
+    /// Reading every tile.
+    pub survey: Duration,
+    /// Ring values and regions.
+    pub regions: Duration,
+    /// Choosing and refining the starts.
+    pub starts: Duration,
+    /// Wonders and resources.
+    pub placement: Duration,
+    /// Normalising weak starts.
+    pub normalize: Duration,
+    /// The report (path costs between starts, land masses).
+    pub report: Duration,
+}
+
+impl SetupTimings {
+    /// The whole setup.
+    #[must_use]
+    pub fn total(&self) -> Duration {
+        self.survey + self.regions + self.starts + self.placement + self.normalize + self.report
+    }
+}
+
+/// The setup of a game on a map (see the module docs).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Setup {
+    rect: TileRect,
+    cols: usize,
+    starts: Vec<Hex>,
+    regions: Vec<SetupRegion>,
+    region_of: Vec<u32>,
+    resources: Vec<PlacedResource>,
+    wonders: Vec<PlacedWonder>,
+    resource_at: Vec<u32>,
+    wonder_at: Vec<u32>,
+    start_at: Vec<u32>,
+    report: SetupReport,
+}
+
+impl Setup {
+    /// Places the setup on the terrain's `stages`, drawing with `seed` (the map's).
+    ///
+    /// # Errors
+    /// `setup.players` or `setup.min_distance` when the starts do not fit, `setup.area` when an
+    /// unbounded map has none.
+    pub fn build(stages: Stages, config: &SetupConfig, seed: u32) -> Result<Self, ConfigError> {
+        Self::build_timed(stages, config, seed).map(|(setup, _)| setup)
+    }
+
+    /// As [`Setup::build`], with the time each part took.
+    ///
+    /// # Errors
+    /// As [`Setup::build`].
+    pub fn build_timed(stages: Stages, config: &SetupConfig, seed: u32) -> Result<(Self, SetupTimings), ConfigError> {
+        let geometry = stages.geometry;
+        let mut timings = SetupTimings::default();
+        let mut clock = Instant::now();
+        let mut lap = |slot: &mut Duration| {
+            let now = Instant::now();
+            *slot = now - clock;
+            clock = now;
+        };
+        let rect = config.area.or(geometry.bounds()).ok_or_else(|| {
+            ConfigError::new("setup.area", "None".into(), "a rectangle of tiles on an unbounded map".into())
+        })?;
+        let survey = Survey::new(stages, config, rect);
+        lap(&mut timings.survey);
+
+        let weights = config.value;
+        let value: Vec<f32> = survey.yields.iter().map(|&y| weights.of(y)).collect();
+        let mut ring = Vec::new();
+        let scores: Vec<f32> = (0..survey.len())
+            .map(|i| {
+                survey.range(geometry, i, config.rings, &mut ring);
+                ring.iter().map(|&j| value[j as usize]).sum()
+            })
+            .collect();
+        let fertility: Vec<f32> = (0..survey.len())
+            .map(|i| if survey.biomes[i] == crate::vocab::Biome::Ocean { 0.0 } else { value[i] })
+            .collect();
+        let division = regions::divide(&survey, &fertility, config.players as usize);
+        lap(&mut timings.regions);
+
+        let guaranteed: Vec<&crate::config::ResourceRule> =
+            config.resources.iter().filter(|r| r.per_player > 0).collect();
+        let missing: Vec<u32> = (0..survey.len())
+            .map(|i| {
+                if !survey.eligible[i] || guaranteed.is_empty() {
+                    return 0;
+                }
+                survey.range(geometry, i, config.rings, &mut ring);
+                ring.retain(|&j| j as usize != i);
+                unmet(&survey, &ring, &guaranteed)
+            })
+            .collect();
+        let chooser = starts::Chooser {
+            survey: &survey,
+            geometry,
+            config,
+            scores: &scores,
+            division: &division,
+            missing: &missing,
+        };
+        let mut starts = chooser.place()?;
+        chooser.refine(&mut starts);
+        lap(&mut timings.starts);
+
+        let rings: Vec<Vec<u32>> = starts
+            .iter()
+            .map(|&s| {
+                let mut r = Vec::new();
+                survey.range(geometry, s, config.rings, &mut r);
+                r
+            })
+            .collect();
+        let reach = paths::reach(&survey, &starts);
+        let extra: Vec<f32> = reach.iter().map(|&r| weights.reach * r as f32).collect();
+        let placer = placement::Placer { survey: &survey, geometry, config, seed, starts: &starts, rings: &rings };
+        let mut placed = placer.place();
+        lap(&mut timings.placement);
+        if config.normalize {
+            placer.normalize(&mut placed, &extra);
+        }
+        lap(&mut timings.normalize);
+
+        let values = placer.values(&placed, &extra);
+        let (mass, sizes) = paths::land_masses(&survey);
+        let costs: Vec<Vec<Option<u32>>> = starts
+            .iter()
+            .map(|&s| {
+                let c = paths::costs(&survey, &[s]);
+                starts.iter().map(|&t| (c.dist[t] != paths::FAR).then_some(c.dist[t])).collect()
+            })
+            .collect();
+        let n = starts.len();
+        let mut reports = Vec::with_capacity(n);
+        for (p, &s) in starts.iter().enumerate() {
+            let mut yields = crate::config::Yields::default();
+            for &j in &rings[p] {
+                yields += placer.yields(&placed, j as usize);
+            }
+            let near = |j: &&u32| placed.resource[**j as usize] != NONE;
+            let nearest_rival = (0..n)
+                .filter(|&q| q != p)
+                .filter_map(|q| costs[p][q].map(|c| (q as u32, c)))
+                .min_by_key(|&(q, c)| (c, q));
+            reports.push(StartReport {
+                player: p as u32,
+                tile: survey.tiles[s],
+                offset: survey.offset(s),
+                region: division.region_of[s],
+                value: values[p],
+                yields,
+                resources: rings[p].iter().filter(near).count() as u32,
+                added: rings[p].iter().filter(near).filter(|&&j| placed.added[j as usize]).count() as u32,
+                reach: reach[p],
+                land_area: if mass[s] == NONE { 0 } else { sizes[mass[s] as usize] },
+                nearest_rival,
+            });
+        }
+        let unreachable = (0..n)
+            .flat_map(|a| (a + 1..n).map(move |b| (a, b)))
+            .filter(|&(a, b)| costs[a][b].is_none())
+            .map(|(a, b)| (a as u32, b as u32))
+            .collect();
+        let spread = starts::spread(&values);
+
+        let mut resources = Vec::new();
+        let mut resource_at = vec![NONE; survey.len()];
+        let mut wonders = Vec::new();
+        let mut wonder_at = vec![NONE; survey.len()];
+        for i in 0..survey.len() {
+            if placed.resource[i] != NONE {
+                let rule = placed.resource[i];
+                let r = &config.resources[rule as usize];
+                resource_at[i] = resources.len() as u32;
+                resources.push(PlacedResource {
+                    tile: survey.tiles[i],
+                    rule,
+                    name: r.name.clone(),
+                    class: r.class,
+                    added: placed.added[i],
+                });
+            }
+            if placed.wonder[i] != NONE {
+                let rule = placed.wonder[i];
+                wonder_at[i] = wonders.len() as u32;
+                wonders.push(PlacedWonder {
+                    tile: survey.tiles[i],
+                    rule,
+                    name: config.wonders.list[rule as usize].name.clone(),
+                });
+            }
+        }
+        let mut start_at = vec![NONE; survey.len()];
+        for (p, &s) in starts.iter().enumerate() {
+            start_at[s] = p as u32;
+        }
+        let report = SetupReport {
+            starts: reports,
+            spread,
+            bound: config.fairness,
+            within_bound: spread <= config.fairness,
+            costs,
+            unreachable,
+            shortfalls: placed.shortfalls,
+            notes: placed.notes,
+            resources: resources.len() as u32,
+            wonders: wonders.len() as u32,
+        };
+        let cols = survey.cols as i32;
+        let regions = division
+            .regions
+            .iter()
+            .map(|r| {
+                let first = rect.min[0] + ((r.cols[0] + division.cut) as i32 % cols.max(1));
+                SetupRegion {
+                    columns: [first, first + (r.cols[1] - r.cols[0]) as i32],
+                    rows: [rect.min[1] + r.rows[0] as i32, rect.min[1] + r.rows[1] as i32],
+                    fertility: r.fertility,
+                }
+            })
+            .collect();
+        let setup = Self {
+            rect,
+            cols: survey.cols,
+            starts: starts.iter().map(|&s| survey.tiles[s]).collect(),
+            regions,
+            region_of: division.region_of,
+            resources,
+            wonders,
+            resource_at,
+            wonder_at,
+            start_at,
+            report,
+        };
+        lap(&mut timings.report);
+        Ok((setup, timings))
+    }
+
+    /// Index of a tile of the area (any copy of it on a wrapping map).
+    #[inline]
+    fn index(&self, geometry: &Geometry, tile: Hex) -> Option<usize> {
+        if !geometry.in_world(tile) {
+            return None;
+        }
+        let [c, r] = geometry.offset_of(geometry.wrap_tile(tile));
+        self.rect
+            .contains([c, r])
+            .then(|| (r - self.rect.min[1]) as usize * self.cols + (c - self.rect.min[0]) as usize)
+    }
+
+    /// The tiles the setup placed on.
+    #[must_use]
+    pub fn area(&self) -> TileRect {
+        self.rect
+    }
+
+    /// The start tiles, in player order.
+    #[must_use]
+    pub fn starts(&self) -> &[Hex] {
+        &self.starts
+    }
+
+    /// The regions, in order (region `k` is where player `k` was first placed).
+    #[must_use]
+    pub fn regions(&self) -> &[SetupRegion] {
+        &self.regions
+    }
+
+    /// Every resource, in tile order (row by row).
+    #[must_use]
+    pub fn resources(&self) -> &[PlacedResource] {
+        &self.resources
+    }
+
+    /// Every natural wonder, in tile order.
+    #[must_use]
+    pub fn wonders(&self) -> &[PlacedWonder] {
+        &self.wonders
+    }
+
+    /// The fairness report.
+    #[must_use]
+    pub fn report(&self) -> &SetupReport {
+        &self.report
+    }
+
+    /// What lies on a tile (any copy of it on a wrapping map); `None` outside the area.
+    #[must_use]
+    pub fn at(&self, geometry: &Geometry, tile: Hex) -> Option<TileSetup<'_>> {
+        let i = self.index(geometry, tile)?;
+        let get = |at: &[u32]| (at[i] != NONE).then_some(at[i] as usize);
+        Some(TileSetup {
+            start: get(&self.start_at).map(|p| p as u32),
+            resource: get(&self.resource_at).map(|k| &self.resources[k]),
+            wonder: get(&self.wonder_at).map(|k| &self.wonders[k]),
+            region: self.region_of[i],
+        })
+    }
+
+    /// The resource on a tile.
+    #[must_use]
+    pub fn resource(&self, geometry: &Geometry, tile: Hex) -> Option<&PlacedResource> {
+        self.at(geometry, tile)?.resource
+    }
+
+    /// The natural wonder on a tile.
+    #[must_use]
+    pub fn wonder(&self, geometry: &Geometry, tile: Hex) -> Option<&PlacedWonder> {
+        self.at(geometry, tile)?.wonder
+    }
+
+    /// The player starting on a tile.
+    #[must_use]
+    pub fn start(&self, geometry: &Geometry, tile: Hex) -> Option<u32> {
+        self.at(geometry, tile)?.start
+    }
+
+    /// The region of a tile.
+    #[must_use]
+    pub fn region(&self, geometry: &Geometry, tile: Hex) -> Option<u32> {
+        self.at(geometry, tile).map(|t| t.region)
+    }
+}
+
+/// How many of the guaranteed resources could not be given tiles of `ring`, one a tile: the
+/// rules with the fewest tiles they may lie on choose first, each the tiles fewest other rules
+/// want (a greedy matching, exact for the few rules a table guarantees in all but rare cases).
+fn unmet(survey: &Survey, ring: &[u32], rules: &[&crate::config::ResourceRule]) -> u32 {
+    let fits = |r: &crate::config::ResourceRule, j: u32| placement::allowed(survey, j as usize, &r.on);
+    let wanted = |j: u32| rules.iter().filter(|r| fits(r, j)).count();
+    let mut order: Vec<usize> = (0..rules.len()).collect();
+    order.sort_by_key(|&k| (ring.iter().filter(|&&j| fits(rules[k], j)).count(), k));
+    let mut used = vec![false; ring.len()];
+    let mut unmet = 0;
+    for k in order {
+        let mut options: Vec<usize> = (0..ring.len()).filter(|&x| !used[x] && fits(rules[k], ring[x])).collect();
+        options.sort_by_key(|&x| (wanted(ring[x]), x));
+        let take = options.len().min(rules[k].per_player as usize);
+        for &x in &options[..take] {
+            used[x] = true;
+        }
+        unmet += rules[k].per_player - take as u32;
+    }
+    unmet
+}

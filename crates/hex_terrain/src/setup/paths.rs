@@ -1,0 +1,103 @@
+//! Paths over land: path costs from starts (Dijkstra over the movement costs, across the seam
+//! on a wrapping map), the land each start reaches before any rival, and the land masses.
+
+use std::cmp::Reverse;
+use std::collections::BinaryHeap;
+
+use super::survey::{NONE, Survey};
+
+/// Unreached.
+pub(crate) const FAR: u32 = u32::MAX;
+
+/// Path cost from `sources` to every tile (entering a tile costs its movement cost; impassable
+/// tiles are never entered). Each tile also gets the source nearest it, and whether two
+/// sources reach it at the same cost (contested).
+pub(crate) struct Costs {
+    pub dist: Vec<u32>,
+    pub owner: Vec<u32>,
+    pub contested: Vec<bool>,
+}
+
+/// Dijkstra from several sources at once; `sources[k]` is owner `k`.
+pub(crate) fn costs(survey: &Survey, sources: &[usize]) -> Costs {
+    let n = survey.len();
+    let mut dist = vec![FAR; n];
+    let mut owner = vec![NONE; n];
+    let mut contested = vec![false; n];
+    let mut heap = BinaryHeap::new();
+    for (k, &s) in sources.iter().enumerate() {
+        if dist[s] == 0 {
+            contested[s] = true;
+            continue;
+        }
+        dist[s] = 0;
+        owner[s] = k as u32;
+        heap.push(Reverse((0u32, s as u32)));
+    }
+    while let Some(Reverse((d, u))) = heap.pop() {
+        let u = u as usize;
+        if d > dist[u] {
+            continue;
+        }
+        for &v in &survey.neighbors[u] {
+            if v == NONE {
+                continue;
+            }
+            let v = v as usize;
+            let c = survey.cost[v];
+            if c == 0 {
+                continue;
+            }
+            let nd = d + c;
+            if nd < dist[v] {
+                dist[v] = nd;
+                owner[v] = owner[u];
+                contested[v] = contested[u];
+                heap.push(Reverse((nd, v as u32)));
+            } else if nd == dist[v] && (owner[v] != owner[u] || contested[u]) {
+                contested[v] = true;
+            }
+        }
+    }
+    Costs { dist, owner, contested }
+}
+
+/// How many passable tiles each of `sources` reaches at a lower path cost than any other.
+pub(crate) fn reach(survey: &Survey, sources: &[usize]) -> Vec<u32> {
+    let c = costs(survey, sources);
+    let mut reach = vec![0; sources.len()];
+    for i in 0..survey.len() {
+        if c.dist[i] != FAR && !c.contested[i] {
+            reach[c.owner[i] as usize] += 1;
+        }
+    }
+    reach
+}
+
+/// The land mass (connected passable tiles) of each tile, `NONE` for impassable ones, and the
+/// size of each mass.
+pub(crate) fn land_masses(survey: &Survey) -> (Vec<u32>, Vec<u32>) {
+    let mut mass = vec![NONE; survey.len()];
+    let mut sizes = Vec::new();
+    let mut stack = Vec::new();
+    for start in 0..survey.len() {
+        if survey.cost[start] == 0 || mass[start] != NONE {
+            continue;
+        }
+        let id = sizes.len() as u32;
+        let mut size = 0;
+        mass[start] = id;
+        stack.push(start);
+        while let Some(u) = stack.pop() {
+            size += 1;
+            for &v in &survey.neighbors[u] {
+                if v != NONE && survey.cost[v as usize] > 0 && mass[v as usize] == NONE {
+                    mass[v as usize] = id;
+                    stack.push(v as usize);
+                }
+            }
+        }
+        sizes.push(size);
+    }
+    (mass, sizes)
+}

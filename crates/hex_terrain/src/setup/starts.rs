@@ -1,0 +1,234 @@
+//! Start positions: in each region of equal fertility the best tile a start may stand on (the
+//! value of the tiles within its rings, a little less the farther it is from the region's
+//! fertile middle, so neighbors do not crowd a shared border) that keeps its distance from the
+//! starts already chosen; then moves that narrow the spread of the starts' values, each kept
+//! only if it does, a bounded number of times.
+
+use std::collections::BTreeSet;
+
+use super::paths;
+use super::regions::Division;
+use super::survey::Survey;
+use crate::config::SetupConfig;
+use crate::error::ConfigError;
+use crate::geometry::Geometry;
+
+/// How much a start's rank falls from a region's fertile middle to its farthest corner.
+const CENTER_BIAS: f32 = 0.3;
+/// How much a start's rank falls for each guaranteed resource its rings have no tile for.
+const MISSING_PENALTY: f32 = 0.15;
+
+/// What choosing starts reads.
+pub(crate) struct Chooser<'a> {
+    pub survey: &'a Survey,
+    pub geometry: &'a Geometry,
+    pub config: &'a SetupConfig,
+    /// Each tile's ring value (the value of the tiles within the rings), for eligible tiles.
+    pub scores: &'a [f32],
+    pub division: &'a Division,
+    /// For each tile, how many guaranteed resources (rules with `per_player > 0`) have fewer
+    /// tiles they may lie on within its rings than a player is guaranteed.
+    pub missing: &'a [u32],
+}
+
+impl Chooser<'_> {
+    /// Whether tile `i` is at least the minimum distance from every start but `skip`.
+    fn far_enough(&self, i: usize, starts: &[usize], skip: Option<usize>) -> bool {
+        let tile = self.survey.tiles[i];
+        starts.iter().enumerate().filter(|&(k, _)| Some(k) != skip).all(|(_, &s)| {
+            self.geometry.distance(tile, self.survey.tiles[s]).is_some_and(|d| d >= self.config.min_distance)
+        })
+    }
+
+    /// The starts, one a region where the region has room, in region order.
+    ///
+    /// # Errors
+    /// `setup.players` when the area has fewer tiles a start may stand on than players,
+    /// `setup.min_distance` when the starts do not fit that far apart.
+    pub fn place(&self) -> Result<Vec<usize>, ConfigError> {
+        let survey = self.survey;
+        let n = self.config.players as usize;
+        let eligible: Vec<usize> = (0..survey.len()).filter(|&i| survey.eligible[i]).collect();
+        if eligible.len() < n {
+            return Err(ConfigError::new(
+                "setup.players",
+                n.to_string(),
+                format!(
+                    "at most {} on this map: the tiles a start may stand on (land, not mountain, not lake, {:?})",
+                    eligible.len(),
+                    self.config.start_on
+                ),
+            ));
+        }
+        let ranks = self.ranks();
+        let mut by_region: Vec<Vec<usize>> = vec![Vec::new(); self.division.regions.len()];
+        for &i in &eligible {
+            by_region[self.division.region_of[i] as usize].push(i);
+        }
+        let mut starts = Vec::with_capacity(n);
+        let mut missing = 0;
+        for tiles in &by_region {
+            match best(tiles.iter().copied().filter(|&i| self.far_enough(i, &starts, None)), &ranks) {
+                Some(i) => starts.push(i),
+                None => missing += 1,
+            }
+        }
+        for _ in 0..missing {
+            if let Some(i) = best(eligible.iter().copied().filter(|&i| self.far_enough(i, &starts, None)), self.scores)
+            {
+                starts.push(i);
+            }
+        }
+        if starts.len() == n {
+            return Ok(starts);
+        }
+        // Regions leave gaps: spread the starts as far apart as they go (each next start the
+        // tile farthest from those chosen, the best on a tie).
+        let mut spread = vec![best(eligible.iter().copied(), self.scores).unwrap_or(eligible[0])];
+        let mut nearest: Vec<u32> = vec![u32::MAX; survey.len()];
+        while spread.len() < n {
+            let last = survey.tiles[spread[spread.len() - 1]];
+            for &i in &eligible {
+                let d = self.geometry.distance(last, survey.tiles[i]).unwrap_or(0);
+                nearest[i] = nearest[i].min(d);
+            }
+            let next = eligible.iter().copied().max_by(|&a, &b| {
+                nearest[a].cmp(&nearest[b]).then(self.scores[a].total_cmp(&self.scores[b])).then(b.cmp(&a))
+            });
+            spread.push(next.unwrap_or(eligible[0]));
+        }
+        let apart = (0..n)
+            .flat_map(|a| (a + 1..n).map(move |b| (a, b)))
+            .map(|(a, b)| self.geometry.distance(survey.tiles[spread[a]], survey.tiles[spread[b]]).unwrap_or(0))
+            .min()
+            .unwrap_or(u32::MAX);
+        if apart >= self.config.min_distance {
+            return Ok(spread);
+        }
+        Err(ConfigError::new(
+            "setup.min_distance",
+            self.config.min_distance.to_string(),
+            format!(
+                "at most {apart} for {n} starts on this map (the farthest apart {n} starts found on its {} tiles a \
+                 start may stand on), or fewer players",
+                eligible.len()
+            ),
+        ))
+    }
+
+    /// Each eligible tile's rank: its score, less up to [`CENTER_BIAS`] of it by its distance
+    /// from its region's fertility-weighted middle.
+    fn ranks(&self) -> Vec<f32> {
+        let survey = self.survey;
+        let d = self.division;
+        let cols = survey.cols;
+        let local = |i: usize| ((i % cols + cols - d.cut) % cols, i / cols);
+        let mut middle = vec![[0.0f64; 3]; d.regions.len()];
+        for i in 0..survey.len() {
+            let (c, r) = local(i);
+            let w = f64::from(self.scores[i].max(0.0));
+            let m = &mut middle[d.region_of[i] as usize];
+            m[0] += w * c as f64;
+            m[1] += w * r as f64;
+            m[2] += w;
+        }
+        (0..survey.len())
+            .map(|i| {
+                let k = d.region_of[i] as usize;
+                let region = &d.regions[k];
+                let m = middle[k];
+                let (c, r) = local(i);
+                let (mc, mr) = if m[2] > 0.0 {
+                    (m[0] / m[2], m[1] / m[2])
+                } else {
+                    ((region.cols[0] + region.cols[1]) as f64 / 2.0, (region.rows[0] + region.rows[1]) as f64 / 2.0)
+                };
+                let half =
+                    ((region.cols[1] - region.cols[0]).max(region.rows[1] - region.rows[0]) as f64 / 2.0).max(1.0);
+                let off = ((c as f64 - mc).powi(2) + (r as f64 - mr).powi(2)).sqrt() / half;
+                let missing = 1.0 - MISSING_PENALTY * self.missing[i] as f32;
+                self.scores[i] * (1.0 - CENTER_BIAS * off.min(1.0) as f32) * missing.max(0.0)
+            })
+            .collect()
+    }
+
+    /// The starts' values from their ring scores and the land each reaches first.
+    pub fn values(&self, starts: &[usize]) -> Vec<f32> {
+        let reach = paths::reach(self.survey, starts);
+        starts.iter().zip(reach).map(|(&s, r)| self.scores[s] + self.config.value.reach * r as f32).collect()
+    }
+
+    /// Moves starts inside their regions while that narrows the spread of their values, at
+    /// most `2 * players + 8` tries.
+    pub fn refine(&self, starts: &mut [usize]) {
+        let n = starts.len();
+        let bound = self.config.fairness;
+        let mut values = self.values(starts);
+        let mut tried = BTreeSet::new();
+        let mut exhausted = vec![false; n];
+        for _ in 0..2 * n + 8 {
+            let now = spread(&values);
+            if now <= bound {
+                return;
+            }
+            let mut sorted = values.clone();
+            sorted.sort_by(f32::total_cmp);
+            let target = sorted[n / 2];
+            let Some(p) = (0..n)
+                .filter(|&p| !exhausted[p])
+                .max_by(|&a, &b| (values[a] - target).abs().total_cmp(&(values[b] - target).abs()).then(b.cmp(&a)))
+            else {
+                return;
+            };
+            let reach_part = values[p] - self.scores[starts[p]];
+            let region = self.division.region_of[starts[p]];
+            let candidate = (0..self.survey.len())
+                .filter(|&i| {
+                    self.survey.eligible[i]
+                        && self.division.region_of[i] == region
+                        && i != starts[p]
+                        && self.missing[i] <= self.missing[starts[p]]
+                        && !tried.contains(&(p, i))
+                        && self.far_enough(i, starts, Some(p))
+                })
+                .min_by(|&a, &b| {
+                    let miss = |i: usize| (self.scores[i] + reach_part - target).abs();
+                    miss(a).total_cmp(&miss(b)).then(a.cmp(&b))
+                });
+            let Some(c) = candidate else {
+                exhausted[p] = true;
+                continue;
+            };
+            tried.insert((p, c));
+            let old = starts[p];
+            starts[p] = c;
+            let moved = self.values(starts);
+            if spread(&moved) < now {
+                values = moved;
+            } else {
+                starts[p] = old;
+            }
+        }
+    }
+}
+
+/// `max / min - 1` of some values (infinite when the least is not above 0, 0 for none).
+pub(crate) fn spread(values: &[f32]) -> f32 {
+    let max = values.iter().copied().fold(f32::NEG_INFINITY, f32::max);
+    let min = values.iter().copied().fold(f32::INFINITY, f32::min);
+    if values.is_empty() {
+        0.0
+    } else if min <= 0.0 {
+        if max <= 0.0 { 0.0 } else { f32::INFINITY }
+    } else {
+        max / min - 1.0
+    }
+}
+
+/// The tile of `tiles` with the highest `key`, the first on a tie.
+fn best(tiles: impl Iterator<Item = usize>, key: &[f32]) -> Option<usize> {
+    tiles.fold(None, |best: Option<usize>, i| match best {
+        Some(b) if key[b] >= key[i] => Some(b),
+        _ => Some(i),
+    })
+}

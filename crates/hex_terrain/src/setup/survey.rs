@@ -1,0 +1,177 @@
+//! The survey: what the setup needs to know of every tile of its area, read once from the
+//! terrain's stages (type, biome, river, coast, yields, value, movement cost, neighbors).
+
+use hexx::Hex;
+use rayon::prelude::*;
+
+use crate::chunk::TileRect;
+use crate::climate::{ClimateModel, TileSample};
+use crate::config::{SetupConfig, StartOn, Yields};
+use crate::geometry::Geometry;
+use crate::heights::HeightField;
+use crate::kind::Thresholds;
+use crate::table::TileTable;
+use crate::vocab::{Biome, TileKind};
+
+/// No neighbor (past the area's edge).
+pub(crate) const NONE: u32 = u32::MAX;
+
+/// The terrain stages the setup reads: it takes them as arguments, like every stage.
+#[derive(Clone, Copy)]
+pub struct Stages<'a> {
+    /// Where tiles are.
+    pub geometry: &'a Geometry,
+    /// Raw heights.
+    pub heights: &'a HeightField,
+    /// Tile types.
+    pub thresholds: &'a Thresholds,
+    /// Biomes.
+    pub climate: &'a ClimateModel,
+    /// The per-map table (biomes, rivers and lakes of a bounded map), if the map has one.
+    pub table: Option<&'a TileTable>,
+}
+
+/// Every tile of the setup's area, row by row.
+#[derive(Debug, Clone)]
+pub(crate) struct Survey {
+    /// The area, offset coordinates.
+    pub rect: TileRect,
+    /// Columns of the area.
+    pub cols: usize,
+    /// Whether the area is a whole wrapping map (its columns continue across the seam).
+    pub wraps: bool,
+    /// Each tile (map-local axial).
+    pub tiles: Vec<Hex>,
+    pub kinds: Vec<TileKind>,
+    pub biomes: Vec<Biome>,
+    pub river: Vec<bool>,
+    /// Land next to the sea.
+    pub coast: Vec<bool>,
+    /// Yields of the terrain alone.
+    pub yields: Vec<Yields>,
+    /// Movement cost of entering it, 0 impassable.
+    pub cost: Vec<u32>,
+    /// Whether a start may stand on it.
+    pub eligible: Vec<bool>,
+    /// The six neighbors' indices ([`NONE`] past the edge).
+    pub neighbors: Vec<[u32; 6]>,
+}
+
+impl Survey {
+    /// Surveys `rect` (in the map) with the setup's tables.
+    pub fn new(stages: Stages, config: &SetupConfig, rect: TileRect) -> Self {
+        let geometry = stages.geometry;
+        let cols = (rect.max[0] - rect.min[0]) as usize;
+        let wraps = geometry.wrap().is_some() && geometry.bounds() == Some(rect);
+        let tiles: Vec<Hex> = rect.iter().map(|oc| geometry.tile_from_offset(oc)).collect();
+        // One tile type a tile; the heavy part (an fBm sample each), on all cores in tile order.
+        let kinds: Vec<TileKind> = tiles
+            .par_iter()
+            .map(|&t| stages.thresholds.map_tile_kind(geometry, stages.heights, t).unwrap_or(TileKind::Sea))
+            .collect();
+        let biomes: Vec<Biome> = tiles
+            .par_iter()
+            .zip(&kinds)
+            .map(|(&t, &kind)| match stages.table.and_then(|table| table.biome(geometry, t)) {
+                Some(biome) => biome,
+                None if stages.climate.is_enabled() => {
+                    let sample = TileSample::of(geometry, stages.heights, stages.thresholds, t);
+                    stages.climate.biome_of(geometry, stages.heights, t, &sample, false)
+                }
+                None => Biome::of_kind(kind),
+            })
+            .collect();
+        let river: Vec<bool> =
+            tiles.iter().map(|&t| stages.table.is_some_and(|table| table.river_flow(geometry, t) > 0.0)).collect();
+        let mut survey = Self {
+            rect,
+            cols,
+            wraps,
+            tiles,
+            kinds,
+            biomes,
+            river,
+            coast: Vec::new(),
+            yields: Vec::new(),
+            cost: Vec::new(),
+            eligible: Vec::new(),
+            neighbors: Vec::new(),
+        };
+        survey.neighbors = survey
+            .tiles
+            .iter()
+            .map(|&t| t.all_neighbors().map(|n| survey.index(geometry, n).map_or(NONE, |j| j as u32)))
+            .collect();
+        survey.coast = (0..survey.len())
+            .map(|i| {
+                survey.kinds[i] != TileKind::Sea
+                    && survey.neighbors[i].iter().any(|&j| {
+                        j != NONE
+                            && survey.kinds[j as usize] == TileKind::Sea
+                            && survey.biomes[j as usize] != Biome::Lake
+                    })
+            })
+            .collect();
+        let table = &config.yields;
+        survey.yields = (0..survey.len())
+            .map(|i| {
+                let mut y = table.biome(survey.biomes[i]);
+                if let Some(k) = table.kinds.get(&survey.kinds[i]) {
+                    y += *k;
+                }
+                if survey.river[i] {
+                    y += table.river;
+                }
+                if survey.coast[i] {
+                    y += table.coast;
+                }
+                y
+            })
+            .collect();
+        survey.cost = survey.biomes.iter().map(|&b| config.cost(b)).collect();
+        survey.eligible = (0..survey.len())
+            .map(|i| {
+                let land = survey.kinds[i] == TileKind::Land && !survey.biomes[i].is_water() && survey.cost[i] > 0;
+                land && match config.start_on {
+                    StartOn::Land => true,
+                    StartOn::Coast => survey.coast[i],
+                    StartOn::River => survey.river[i],
+                    StartOn::CoastOrRiver => survey.coast[i] || survey.river[i],
+                }
+            })
+            .collect();
+        survey
+    }
+
+    /// Number of tiles.
+    pub fn len(&self) -> usize {
+        self.tiles.len()
+    }
+
+    /// Index of a tile of the area (any copy of it on a wrapping map).
+    pub fn index(&self, geometry: &Geometry, tile: Hex) -> Option<usize> {
+        if !geometry.in_world(tile) {
+            return None;
+        }
+        let [c, r] = geometry.offset_of(geometry.wrap_tile(tile));
+        self.rect
+            .contains([c, r])
+            .then(|| (r - self.rect.min[1]) as usize * self.cols + (c - self.rect.min[0]) as usize)
+    }
+
+    /// Offset coordinate of tile `i`.
+    pub fn offset(&self, i: usize) -> [i32; 2] {
+        [self.rect.min[0] + (i % self.cols) as i32, self.rect.min[1] + (i / self.cols) as i32]
+    }
+
+    /// The tiles within `radius` of tile `i` (itself included), each once, in a fixed order.
+    pub fn range(&self, geometry: &Geometry, i: usize, radius: u32, out: &mut Vec<u32>) {
+        out.clear();
+        out.extend(self.tiles[i].range(radius).filter_map(|t| self.index(geometry, t)).map(|j| j as u32));
+        // On a wrapping map narrower than the range, two copies of a tile fall in it.
+        if self.wraps && self.cols < 2 * radius as usize + 1 {
+            out.sort_unstable();
+            out.dedup();
+        }
+    }
+}
