@@ -180,15 +180,24 @@ impl Setup {
         lap(&mut timings.regions);
 
         let guaranteed: Vec<&crate::config::ResourceRule> =
-            config.resources.iter().filter(|r| r.per_player > 0).collect();
+            config.resources.iter().filter(|r| r.per_player > 0).take(64).collect();
+        // Which guaranteed rules each tile may hold, one bit a rule (at most 64 rules).
+        let fits: Vec<u64> = (0..survey.len())
+            .map(|i| {
+                guaranteed
+                    .iter()
+                    .enumerate()
+                    .fold(0, |m, (k, r)| if placement::allowed(&survey, i, &r.on) { m | 1 << k } else { m })
+            })
+            .collect();
         let missing: Vec<u32> = (0..survey.len())
             .map(|i| {
                 if !survey.eligible[i] || guaranteed.is_empty() {
                     return 0;
                 }
                 survey.range(geometry, i, config.rings, &mut ring);
-                ring.retain(|&j| j as usize != i);
-                unmet(&survey, &ring, &guaranteed)
+                ring.retain(|&j| j as usize != i && fits[j as usize] != 0);
+                unmet(&ring, &fits, &guaranteed)
             })
             .collect();
         let chooser = starts::Chooser {
@@ -425,16 +434,18 @@ impl Setup {
 /// How many of the guaranteed resources could not be given tiles of `ring`, one a tile: the
 /// rules with the fewest tiles they may lie on choose first, each the tiles fewest other rules
 /// want (a greedy matching, exact for the few rules a table guarantees in all but rare cases).
-fn unmet(survey: &Survey, ring: &[u32], rules: &[&crate::config::ResourceRule]) -> u32 {
-    let fits = |r: &crate::config::ResourceRule, j: u32| placement::allowed(survey, j as usize, &r.on);
-    let wanted = |j: u32| rules.iter().filter(|r| fits(r, j)).count();
+/// `fits[j]` has bit `k` set when tile `j` may hold `rules[k]`.
+fn unmet(ring: &[u32], fits: &[u64], rules: &[&crate::config::ResourceRule]) -> u32 {
+    let mask = |x: usize| fits[ring[x] as usize];
     let mut order: Vec<usize> = (0..rules.len()).collect();
-    order.sort_by_key(|&k| (ring.iter().filter(|&&j| fits(rules[k], j)).count(), k));
+    order.sort_by_key(|&k| ((0..ring.len()).filter(|&x| mask(x) >> k & 1 == 1).count(), k));
     let mut used = vec![false; ring.len()];
     let mut unmet = 0;
+    let mut options = Vec::new();
     for k in order {
-        let mut options: Vec<usize> = (0..ring.len()).filter(|&x| !used[x] && fits(rules[k], ring[x])).collect();
-        options.sort_by_key(|&x| (wanted(ring[x]), x));
+        options.clear();
+        options.extend((0..ring.len()).filter(|&x| !used[x] && mask(x) >> k & 1 == 1));
+        options.sort_by_key(|&x| (mask(x).count_ones(), x));
         let take = options.len().min(rules[k].per_player as usize);
         for &x in &options[..take] {
             used[x] = true;

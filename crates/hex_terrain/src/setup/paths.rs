@@ -1,9 +1,6 @@
 //! Paths over land: path costs from starts (Dijkstra over the movement costs, across the seam
 //! on a wrapping map), the land each start reaches before any rival, and the land masses.
 
-use std::cmp::Reverse;
-use std::collections::BinaryHeap;
-
 use super::survey::{NONE, Survey};
 
 /// Unreached.
@@ -18,13 +15,17 @@ pub(crate) struct Costs {
     pub contested: Vec<bool>,
 }
 
-/// Dijkstra from several sources at once; `sources[k]` is owner `k`.
+/// Dijkstra from several sources at once; `sources[k]` is owner `k`. Movement costs are small
+/// integers, so the queue is a ring of buckets, one a cost (Dial's algorithm): linear in the
+/// tiles, and the order tiles settle in is fixed by the costs and the tile order alone.
 pub(crate) fn costs(survey: &Survey, sources: &[usize]) -> Costs {
     let n = survey.len();
     let mut dist = vec![FAR; n];
     let mut owner = vec![NONE; n];
     let mut contested = vec![false; n];
-    let mut heap = BinaryHeap::new();
+    let ring = survey.cost.iter().copied().max().unwrap_or(0) as usize + 1;
+    let mut buckets: Vec<Vec<u32>> = vec![Vec::new(); ring];
+    let mut queued = 0usize;
     for (k, &s) in sources.iter().enumerate() {
         if dist[s] == 0 {
             contested[s] = true;
@@ -32,32 +33,46 @@ pub(crate) fn costs(survey: &Survey, sources: &[usize]) -> Costs {
         }
         dist[s] = 0;
         owner[s] = k as u32;
-        heap.push(Reverse((0u32, s as u32)));
+        buckets[0].push(s as u32);
+        queued += 1;
     }
-    while let Some(Reverse((d, u))) = heap.pop() {
-        let u = u as usize;
-        if d > dist[u] {
-            continue;
-        }
-        for &v in &survey.neighbors[u] {
-            if v == NONE {
+    let mut d = 0u32;
+    while queued > 0 {
+        let slot = d as usize % ring;
+        let mut bucket = std::mem::take(&mut buckets[slot]);
+        queued -= bucket.len();
+        for &u in &bucket {
+            let u = u as usize;
+            if dist[u] != d {
                 continue;
             }
-            let v = v as usize;
-            let c = survey.cost[v];
-            if c == 0 {
-                continue;
-            }
-            let nd = d + c;
-            if nd < dist[v] {
-                dist[v] = nd;
-                owner[v] = owner[u];
-                contested[v] = contested[u];
-                heap.push(Reverse((nd, v as u32)));
-            } else if nd == dist[v] && (owner[v] != owner[u] || contested[u]) {
-                contested[v] = true;
+            for &v in &survey.neighbors[u] {
+                if v == NONE {
+                    continue;
+                }
+                let v = v as usize;
+                let c = survey.cost[v];
+                if c == 0 {
+                    continue;
+                }
+                let nd = d + c;
+                if nd < dist[v] {
+                    dist[v] = nd;
+                    owner[v] = owner[u];
+                    contested[v] = contested[u];
+                    buckets[nd as usize % ring].push(v as u32);
+                    queued += 1;
+                } else if nd == dist[v] && (owner[v] != owner[u] || contested[u]) {
+                    contested[v] = true;
+                }
             }
         }
+        bucket.clear();
+        // Keep the allocation for the bucket's next turn, unless it filled again meanwhile.
+        if buckets[slot].is_empty() {
+            buckets[slot] = bucket;
+        }
+        d += 1;
     }
     Costs { dist, owner, contested }
 }

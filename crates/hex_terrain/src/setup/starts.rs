@@ -61,14 +61,13 @@ impl Chooser<'_> {
             ));
         }
         let ranks = self.ranks();
-        let mut by_region: Vec<Vec<usize>> = vec![Vec::new(); self.division.regions.len()];
-        for &i in &eligible {
-            by_region[self.division.region_of[i] as usize].push(i);
-        }
+        let by_region = self.by_region();
         let mut starts = Vec::with_capacity(n);
         let mut missing = 0;
         for tiles in &by_region {
-            match best(tiles.iter().copied().filter(|&i| self.far_enough(i, &starts, None)), &ranks) {
+            let mut order = tiles.clone();
+            order.sort_by(|&a, &b| ranks[b].total_cmp(&ranks[a]).then(a.cmp(&b)));
+            match order.into_iter().find(|&i| self.far_enough(i, &starts, None)) {
                 Some(i) => starts.push(i),
                 None => missing += 1,
             }
@@ -114,6 +113,15 @@ impl Chooser<'_> {
                 eligible.len()
             ),
         ))
+    }
+
+    /// The tiles a start may stand on, region by region.
+    fn by_region(&self) -> Vec<Vec<usize>> {
+        let mut by_region: Vec<Vec<usize>> = vec![Vec::new(); self.division.regions.len()];
+        for i in (0..self.survey.len()).filter(|&i| self.survey.eligible[i]) {
+            by_region[self.division.region_of[i] as usize].push(i);
+        }
+        by_region
     }
 
     /// Each eligible tile's rank: its score, less up to [`CENTER_BIAS`] of it by its distance
@@ -166,6 +174,7 @@ impl Chooser<'_> {
         let mut values = self.values(starts);
         let mut tried = BTreeSet::new();
         let mut exhausted = vec![false; n];
+        let by_region = self.by_region();
         for _ in 0..2 * n + 8 {
             let now = spread(&values);
             if now <= bound {
@@ -181,20 +190,17 @@ impl Chooser<'_> {
                 return;
             };
             let reach_part = values[p] - self.scores[starts[p]];
-            let region = self.division.region_of[starts[p]];
-            let candidate = (0..self.survey.len())
-                .filter(|&i| {
-                    self.survey.eligible[i]
-                        && self.division.region_of[i] == region
-                        && i != starts[p]
-                        && self.missing[i] <= self.missing[starts[p]]
-                        && !tried.contains(&(p, i))
-                        && self.far_enough(i, starts, Some(p))
-                })
-                .min_by(|&a, &b| {
-                    let miss = |i: usize| (self.scores[i] + reach_part - target).abs();
-                    miss(a).total_cmp(&miss(b)).then(a.cmp(&b))
-                });
+            let region = self.division.region_of[starts[p]] as usize;
+            // Nearest the target first; the distance to the other starts is asked only of
+            // those in turn, as it is the dearer test.
+            let miss = |i: usize| (self.scores[i] + reach_part - target).abs();
+            let mut options: Vec<usize> = by_region[region]
+                .iter()
+                .copied()
+                .filter(|&i| i != starts[p] && self.missing[i] <= self.missing[starts[p]] && !tried.contains(&(p, i)))
+                .collect();
+            options.sort_by(|&a, &b| miss(a).total_cmp(&miss(b)).then(a.cmp(&b)));
+            let candidate = options.into_iter().find(|&i| self.far_enough(i, starts, Some(p)));
             let Some(c) = candidate else {
                 exhausted[p] = true;
                 continue;

@@ -1,0 +1,60 @@
+//! The whole game setup (starts, normalisation, resources, wonders, report) on Civ6 Huge
+//! (106x66, climate and rivers) with 12 players, each part's median over 21 runs, beside the
+//! figures Unciv published for its huge maps (it runs on the JVM: they cannot run in this
+//! process, so they are printed as published, with where they come from).
+//!
+//! `cargo bench -p hex_terrain_bench --bench setup`
+
+use std::time::Duration;
+
+use hex_terrain::{MapConfig, Setup, SetupConfig, SetupTimings, Terrain};
+
+const RUNS: usize = 21;
+
+fn median(mut v: Vec<Duration>) -> Duration {
+    v.sort_unstable();
+    v[v.len() / 2]
+}
+
+fn ms(d: Duration) -> String {
+    format!("{:8.2} ms", d.as_secs_f64() * 1e3)
+}
+
+fn main() {
+    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../../assets/maps/civ6/huge.map.ron");
+    let config = MapConfig::load(path).expect("the Huge preset");
+    let terrain = Terrain::new(config.clone()).expect("a valid config");
+    let setup = SetupConfig { players: 12, ..SetupConfig::default() };
+    let mut runs: Vec<SetupTimings> = Vec::with_capacity(RUNS);
+    let mut last = None;
+    for _ in 0..RUNS {
+        let (placed, timings) =
+            Setup::build_timed(terrain.pipeline().stages(), &setup, config.seed).expect("12 starts fit on Huge");
+        runs.push(timings);
+        last = Some(placed);
+    }
+    let part = |f: fn(&SetupTimings) -> Duration| median(runs.iter().map(f).collect());
+    println!("game setup, {} ({} tiles), 12 players: median of {RUNS} runs", config.name, 106 * 66);
+    println!("  survey (every tile's type, biome, yields)  {}", ms(part(|t| t.survey)));
+    println!("  ring values and regions                   {}", ms(part(|t| t.regions)));
+    println!("  starts (placement and refinement)         {}", ms(part(|t| t.starts)));
+    println!("  wonders and resources                     {}", ms(part(|t| t.placement)));
+    println!("  normalisation                             {}", ms(part(|t| t.normalize)));
+    println!("  report (path costs, land masses)          {}", ms(part(|t| t.report)));
+    println!("  whole setup                               {}", ms(part(SetupTimings::total)));
+    if let Some(placed) = last {
+        let r = placed.report();
+        println!(
+            "  spread {:.1} % (bound {:.0} %), {} resources, {} wonders, {} shortfalls",
+            r.spread * 100.0,
+            r.bound * 100.0,
+            r.resources,
+            r.wonders,
+            r.shortfalls.len()
+        );
+    }
+    println!("Unciv, as published (huge maps, its own machines):");
+    println!("  start placement, Huge, 9 civs + 18 city-states: 1055 ms (3314 ms before)   yairm210/Unciv#4620");
+    println!("  regions, Huge, 10 civs: 69.5 ms + 28.1 ms to assign them               yairm210/Unciv#5556");
+    println!("  spreadResources, Huge hexagonal Pangaea: 516 ms                        yairm210/Unciv#4805");
+}
