@@ -91,7 +91,7 @@ pub use lattice::Lattice;
 pub use mesh::{ChunkMesh, Diagnostics, GenerateOptions, MeshBuffers, Threads};
 pub use metrics::Sharpness;
 pub use pipeline::Pipeline;
-pub use props::Prop;
+pub use props::{Marker, MarkerKind, Prop};
 pub use query::RayHit;
 pub use relief::Relief;
 pub use save::{FogState, Highlight, SaveError, TileStateSave};

@@ -1,4 +1,5 @@
-//! Props: where trees, rocks and reeds stand on a chunk, decided tile by tile from a hash of
+//! Props: where trees, rocks and reeds stand on a chunk (and the game setup's markers:
+//! starts, resources, wonders), decided tile by tile from a hash of
 //! the tile, so the same map always has the same props, whichever chunk, thread or order
 //! generates them, and a tile's props never depend on its neighbors' chunks.
 //!
@@ -16,6 +17,7 @@
 
 use hexx::Hex;
 
+use crate::config::ResourceClass;
 use crate::hash;
 use crate::mesh::ChunkMesh;
 use crate::pipeline::Pipeline;
@@ -149,4 +151,63 @@ pub fn props(pipeline: &Pipeline, chunk: &ChunkMesh, max_per_chunk: usize, densi
 fn is_wet_at(pipeline: &Pipeline, tile: Hex, x: f64, z: f64) -> bool {
     let (tri, _) = pipeline.geometry().lattice().triangle_at(x, z);
     tri.iter().any(|&p| pipeline.water_cover(tile, p) > 0.05)
+}
+
+/// What a setup marker shows.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[cfg_attr(feature = "bevy_reflect", derive(bevy_reflect::Reflect))]
+pub enum MarkerKind {
+    /// A player's start (0 is the first player).
+    Start(u32),
+    /// A resource: its class and its rule's index in `setup.resources`.
+    Resource(ResourceClass, u32),
+    /// A natural wonder: its rule's index in `setup.wonders.list`.
+    Wonder(u32),
+}
+
+/// A marker of the game setup on a chunk: a start, a resource or a natural wonder, at its
+/// tile's center.
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "bevy_reflect", derive(bevy_reflect::Reflect))]
+pub struct Marker {
+    /// What it shows.
+    pub kind: MarkerKind,
+    /// The tile (map-local axial, the map's own copy on a wrapping map).
+    pub tile: Hex,
+    /// Its foot, relative to the chunk's origin like the chunk's mesh: on the surface at the
+    /// tile's center, or on the water of a sea or lake tile.
+    pub position: [f32; 3],
+}
+
+/// The setup's markers on a generated chunk, in tile order; none without a setup. They come
+/// from the setup placed once for the whole map, so every chunk, whichever order they are
+/// generated in, shows the same markers as the whole map.
+#[must_use]
+pub fn markers(pipeline: &Pipeline, chunk: &ChunkMesh) -> Vec<Marker> {
+    let Some(setup) = pipeline.setup() else { return Vec::new() };
+    let geometry = pipeline.geometry();
+    let lattice = geometry.lattice();
+    let origin = geometry.rect_origin(chunk.rect);
+    let sea = f64::from(pipeline.sea_level());
+    let mut out = Vec::new();
+    for (info, offset) in chunk.tiles.iter().zip(chunk.rect.iter()) {
+        if !info.in_map {
+            continue;
+        }
+        let tile = geometry.tile_from_offset(offset);
+        let Some(at) = setup.at(geometry, tile) else { continue };
+        let kind = match (at.start, at.resource, at.wonder) {
+            (Some(p), _, _) => MarkerKind::Start(p),
+            (_, _, Some(w)) => MarkerKind::Wonder(w.rule),
+            (_, Some(r), _) => MarkerKind::Resource(r.class, r.rule),
+            _ => continue,
+        };
+        let center = lattice.tile_center(tile);
+        let [x, z] = lattice.world(center);
+        let [lx, lz] = lattice.world(center - origin);
+        let ground = surface_height(pipeline, x, z).unwrap_or(sea);
+        let y = if info.biome.is_water() { ground.max(sea) } else { ground };
+        out.push(Marker { kind, tile: geometry.wrap_tile(tile), position: [lx as f32, y as f32, lz as f32] });
+    }
+    out
 }

@@ -320,6 +320,20 @@ fn stats(path: &Path) -> CliResult<()> {
             mesh.tiles.iter().filter(|t| t.lake.is_some()).count()
         );
     }
+    match t.setup() {
+        Some(setup) => {
+            let r = setup.report();
+            println!(
+                "setup: {} players, spread {:.1} % (bound {:.1} %), {} resources, {} wonders",
+                setup.starts().len(),
+                r.spread * 100.0,
+                r.bound * 100.0,
+                r.resources,
+                r.wonders
+            );
+        }
+        None => println!("setup: none (`hexterrain setup {}` places a game with the default setup)", path.display()),
+    }
     println!("mesh: {} vertices, {} triangles", mesh.buffers.vertex_count(), mesh.buffers.triangle_count());
     println!("generation: {:.2} ms", elapsed.as_secs_f64() * 1e3);
     println!("sharpness (% of max elevation):");

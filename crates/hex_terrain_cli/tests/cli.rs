@@ -394,3 +394,41 @@ fn stats_and_render_show_biomes_rivers_and_lakes() {
     }
     assert!(matched * 10 >= total * 9, "{matched} of {total} tiles drawn in their biome's color");
 }
+
+#[test]
+fn setup_prints_a_row_a_player_and_marks_the_starts() {
+    let duel = repo().join("assets/maps/civ6/duel.map.ron");
+    let duel = duel.to_str().unwrap();
+    let out = ok(&["setup", duel, "--players", "4"]);
+    let rows: Vec<&str> =
+        out.lines().filter(|l| l.trim_start().chars().next().is_some_and(|c| c.is_ascii_digit())).collect();
+    assert_eq!(rows.len(), 4, "{out}");
+    for (i, row) in rows.iter().enumerate() {
+        assert!(row.trim_start().starts_with(&(i + 1).to_string()), "{row}");
+    }
+    assert!(out.contains("spread") && out.contains("bound"), "{out}");
+    // The same starts as the library's, with the same config.
+    let mut config = MapConfig::load(duel).unwrap();
+    config.setup = Some(hex_terrain::SetupConfig { players: 4, ..Default::default() });
+    let terrain = Terrain::new(config).unwrap();
+    let setup = terrain.setup().unwrap();
+    for (row, &start) in rows.iter().zip(setup.starts()) {
+        let [c, r] = terrain.offset_of(start);
+        assert!(row.contains(&format!("({c}, {r})")), "{row} is not at ({c}, {r})");
+    }
+    // The picture has a white start marker at each start's center.
+    let png = tmp("setup.png");
+    ok(&["setup", duel, "--players", "4", "-o", png.to_str().unwrap(), "--width", "800"]);
+    let img = image::open(&png).unwrap().to_rgb8();
+    let mesh = terrain.generate_map().unwrap();
+    let at = center_pixels(&terrain, &mesh, 800);
+    for &s in setup.starts() {
+        let (x, y) = at(s);
+        assert_eq!(img.get_pixel(x, y).0, [250, 250, 250], "no start marker at {s:?}");
+    }
+    // `stats` mentions the setup; a setup that cannot fit is an error naming the field.
+    assert!(ok(&["stats", duel]).contains("setup: none"));
+    let crowded = small_map("crowded.map.ron", "setup: Some((players: 12, min_distance: 20))");
+    fails(&["setup", crowded.to_str().unwrap()], &["setup.min_distance"]);
+    fails(&["setup", duel, "--players", "99"], &["setup.players", "1..=32"]);
+}

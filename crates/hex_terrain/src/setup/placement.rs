@@ -206,7 +206,7 @@ impl Placer<'_> {
                     self.put(p, r, j, false, &mut scratch);
                     found += 1;
                 }
-                if found < rule.per_player && !tiles[r].is_empty() {
+                if found < rule.per_player {
                     p.shortfalls.push(Shortfall {
                         player: player as u32,
                         resource: rule.name.clone(),

@@ -54,4 +54,11 @@ impl Terrain {
     pub fn props(&self, chunk: &ChunkMesh, max_per_chunk: usize, density: f32) -> Vec<Prop> {
         props::props(&self.pipeline, chunk, max_per_chunk, density)
     }
+
+    /// The game setup's markers (starts, resources, wonders) on a generated chunk (see
+    /// [`props::markers`]); none without a setup.
+    #[must_use]
+    pub fn markers(&self, chunk: &ChunkMesh) -> Vec<props::Marker> {
+        props::markers(&self.pipeline, chunk)
+    }
 }
