@@ -7,7 +7,9 @@
 //! wrapping; P pans east across its seam), F3 shows chunk boundaries; J, K, B, N, O switch
 //! shadows, distance fog, props, water and ambient occlusion (`look.rs`).
 //!
-//! Two players: yours (red) and a rival (blue), each with territory around its units that grows
+//! Two players: yours (red) and a rival (blue), at the starts the map's game setup chose (the
+//! World preset has one: regions of equal fertility, resources and wonders, shown as gems and
+//! obelisks; F opens the fairness report), each with territory around its units that grows
 //! at the end of each turn. Fog of war shows what your units see (mountains block the view, hills
 //! and mountains see farther); rival units out of sight are hidden. All of it is per-tile state
 //! ([`TileStates`]) the terrain shader draws: no mesh is rebuilt.
@@ -83,6 +85,10 @@ pub(crate) struct Game {
 #[derive(Component)]
 struct Panel;
 
+/// The fairness report of the map's game setup (F).
+#[derive(Component)]
+struct ReportPanel;
+
 #[derive(Component)]
 struct EndTurnButton;
 
@@ -105,7 +111,16 @@ fn main() -> AppExit {
     .add_systems(Startup, (setup, look::from_env))
     .add_systems(
         Update,
-        (follow_minimap, camera_controls, place_units, (end_turn, keys), walk, panel, chunk_boundaries, look::keys)
+        (
+            follow_minimap,
+            camera_controls,
+            place_units,
+            (end_turn, keys),
+            walk,
+            (panel, report_panel),
+            chunk_boundaries,
+            look::keys,
+        )
             .chain(),
     )
     .add_systems(
@@ -154,10 +169,27 @@ fn setup(mut commands: Commands) {
         TextFont::from_font_size(16.0),
         Node { position_type: PositionType::Absolute, top: px(10.0), left: px(10.0), ..default() },
     ));
+    // HEXTERRAIN_REPORT=1 starts with the fairness report open (F toggles it).
+    let report =
+        if std::env::var_os("HEXTERRAIN_REPORT").is_some() { Visibility::Inherited } else { Visibility::Hidden };
+    commands.spawn((
+        ReportPanel,
+        Text::new(""),
+        TextFont::from_font_size(12.0),
+        report,
+        BackgroundColor(Color::srgba(0.05, 0.06, 0.09, 0.85)),
+        Node {
+            position_type: PositionType::Absolute,
+            top: px(56.0),
+            right: px(10.0),
+            padding: UiRect::all(px(8.0)),
+            ..default()
+        },
+    ));
     commands.spawn((
         Text::new(
             "WASD/arrows/edge pan, wheel zoom, Q/E rotate, click unit then tile, Enter end turn, G outlines, \
-             L lens, T tint, V fog, R new seed, 1-6 presets (6 wraps), P pan east, F3 chunks",
+             L lens, T tint, V fog, F fairness report, R new seed, 1-6 presets (6 wraps), P pan east, F3 chunks",
         ),
         TextFont::from_font_size(13.0),
         Node { position_type: PositionType::Absolute, bottom: px(8.0), left: px(10.0), ..default() },
@@ -362,7 +394,7 @@ fn place_units(
     map: Res<HexMap>,
     mut game: ResMut<Game>,
     mut states: ResMut<TileStates>,
-    rigs: Query<&Rig>,
+    mut rigs: Query<(&mut Rig, &mut Transform), Without<Unit>>,
     mut units: Query<(Entity, &mut Unit, &mut Transform)>,
     mut meshes: ResMut<Assets<Mesh>>,
     mut materials: ResMut<Assets<StandardMaterial>>,
@@ -370,7 +402,19 @@ fn place_units(
     if ready.read().count() == 0 {
         return;
     }
-    let focus = rigs.iter().next().map_or(Vec3::ZERO, |r| r.focus);
+    // A map with a game setup puts the players on its starts, the camera over yours.
+    let starts = map.setup().map(|s| s.starts().to_vec()).filter(|s| s.len() >= 2);
+    if !game.spawned
+        && let Some(center) = starts.as_ref().and_then(|s| map.tile_center(s[0]))
+    {
+        for (mut rig, mut t) in &mut rigs {
+            let focus = Vec3::new(center.x, 0.0, center.z);
+            rig.focus = focus;
+            rig.target_focus = focus;
+            t.translation = focus;
+        }
+    }
+    let focus = rigs.iter().next().map_or(Vec3::ZERO, |(r, _)| r.focus);
     let land_near = |from: Hex, taken: &[Hex]| {
         (0..40u32)
             .flat_map(|r| from.ring(r))
@@ -397,9 +441,13 @@ fn place_units(
     }
     let mesh = meshes.add(Capsule3d::new(0.3, 0.6));
     let Some(home) = map.tile_at(focus) else { return };
-    // The rival starts on the first land tile of the ring at RIVAL_DISTANCE, searching from the
-    // east.
-    let rival_home = home.ring(RIVAL_DISTANCE).find(|&t| cost(&map, t) == Some(1)).unwrap_or(home);
+    // Without a setup, the rival starts on the first land tile of the ring at RIVAL_DISTANCE,
+    // searching from the east.
+    let rival_home = match &starts {
+        Some(s) => s[1],
+        None => home.ring(RIVAL_DISTANCE).find(|&t| cost(&map, t) == Some(1)).unwrap_or(home),
+    };
+    let home = starts.as_ref().map_or(home, |s| s[0]);
     let human = [Color::srgb(0.85, 0.2, 0.15), Color::srgb(0.9, 0.75, 0.1), Color::srgb(0.95, 0.45, 0.1)];
     let rival = [Color::srgb(0.15, 0.35, 0.9), Color::srgb(0.2, 0.7, 0.85)];
     for (player, near, colors) in [(vision::HUMAN, home, &human[..]), (vision::RIVAL, rival_home, &rival[..])] {
@@ -493,6 +541,7 @@ fn keys(
     map: Res<HexMap>,
     mut load: MessageWriter<LoadHexMap>,
     mut game: ResMut<Game>,
+    mut report: Query<&mut Visibility, With<ReportPanel>>,
 ) {
     if keys.just_pressed(KeyCode::KeyG) {
         appearance.outlines = !appearance.outlines;
@@ -508,6 +557,11 @@ fn keys(
     }
     if keys.just_pressed(KeyCode::F3) {
         game.show_chunks = !game.show_chunks;
+    }
+    if keys.just_pressed(KeyCode::KeyF) {
+        for mut v in &mut report {
+            v.toggle_inherited_hidden();
+        }
     }
     if keys.just_pressed(KeyCode::KeyP) {
         game.auto_pan = !game.auto_pan;
@@ -583,12 +637,35 @@ fn panel(
         if let Some(lake) = info.lake {
             s += &format!("\nLake {lake} (impassable)");
         }
+        if let Some(r) = map.resource(tile) {
+            s += &format!("\nResource: {} ({})", r.name, r.class.name());
+        }
+        if let Some(w) = map.wonder(tile) {
+            s += &format!("\nNatural wonder: {}", w.name);
+        }
+        if let Some(p) = map.start(tile) {
+            s += &format!("\nStart of player {}", p + 1);
+        }
     }
     if let Some(unit) = game.selected.and_then(|e| units.get(e).ok()) {
         s += &format!("\nSelected unit: {} of {MOVES} moves left", unit.moves_left);
     }
     for mut t in &mut text {
         t.0.clone_from(&s);
+    }
+}
+
+/// Writes the setup's fairness report into its panel when the map changes.
+fn report_panel(map: Res<HexMap>, mut text: Query<&mut Text, With<ReportPanel>>) {
+    if !map.is_changed() {
+        return;
+    }
+    let report = match map.setup() {
+        Some(setup) => format!("Fairness report ({} players)\n{}", setup.starts().len(), setup.report()),
+        None => "This map has no game setup (the World preset has one).".to_owned(),
+    };
+    for mut t in &mut text {
+        t.0.clone_from(&report);
     }
 }
 

@@ -103,7 +103,10 @@ pub mod prelude {
         PropSettings, SaveError, TerrainReady, TileHit, TileStateSave, TileStates, WaterSettings,
     };
     pub use hex_terrain::hexx::Hex;
-    pub use hex_terrain::{Biome, ChunkCoord, MapConfig, MapSize, RiverTile, TileInfo, TileKind};
+    pub use hex_terrain::{
+        Biome, ChunkCoord, MapConfig, MapSize, PlacedResource, PlacedWonder, ResourceClass, RiverTile, Setup,
+        SetupConfig, TileInfo, TileKind,
+    };
 }
 
 /// Where the map comes from.

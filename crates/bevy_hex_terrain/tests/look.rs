@@ -233,3 +233,59 @@ fn props_hide_under_fog_and_a_write_looks_only_at_its_tiles_props() {
     app.update();
     assert!(shown(&mut app).iter().all(|(_, s)| *s));
 }
+
+/// A map with a game setup: every loaded chunk's resources and wonders are props on exactly the
+/// setup's tiles (a gem of the resource's class, an obelisk), `HexMap` answers the setup's
+/// queries, and under fog of war a resource on an unexplored tile is hidden like a tree.
+#[cfg(feature = "render")]
+#[test]
+fn the_setups_resources_and_wonders_stand_on_their_tiles_and_hide_under_fog() {
+    let mut config = wooded();
+    config.setup = Some(SetupConfig { players: 2, min_distance: 8, ..default() });
+    let mut app = app_with_props(config.clone(), 8, PropSettings::default());
+    app.insert_resource(TerrainAppearance { fog_of_war: true, ..default() });
+    spawn_agent(&mut app, Vec3::ZERO);
+    run_until(&mut app, "every chunk", |app| {
+        let streamer = app.world().resource::<ChunkStreamer>();
+        streamer.wanted().next().is_some() && streamer.wanted().all(|(c, _)| streamer.is_chunk_loaded(c))
+    });
+    app.update();
+    let terrain = Terrain::new(config).unwrap();
+    let setup = terrain.setup().unwrap();
+    assert!(!setup.resources().is_empty());
+    let map = app.world().resource::<HexMap>();
+    assert_eq!(map.setup(), Some(setup));
+    for r in setup.resources() {
+        assert_eq!(map.resource(r.tile), Some(r));
+    }
+    for (p, &s) in setup.starts().iter().enumerate() {
+        assert_eq!(map.start(s), Some(p as u32));
+    }
+    let markers: Vec<(HexProp, bool)> = app
+        .world_mut()
+        .query::<(&HexProp, &Visibility)>()
+        .iter(app.world())
+        .filter(|(p, _)| matches!(p.kind, hex_terrain::PropKind::Resource | hex_terrain::PropKind::Wonder))
+        .map(|(p, v)| (*p, *v == Visibility::Hidden))
+        .collect();
+    let mut got: Vec<(i32, i32, u8)> = markers.iter().map(|(p, _)| (p.tile.x, p.tile.y, p.variant)).collect();
+    got.sort_unstable();
+    let mut want: Vec<(i32, i32, u8)> = setup
+        .resources()
+        .iter()
+        .map(|r| (r.tile.x, r.tile.y, r.class as u8))
+        .chain(setup.wonders().iter().map(|w| (w.tile.x, w.tile.y, 0)))
+        .collect();
+    want.sort_unstable();
+    assert_eq!(got, want, "the spawned markers are the setup's resources and wonders");
+    assert!(markers.iter().all(|(_, hidden)| *hidden), "nothing explored: every marker hidden");
+    let tile = setup.resources()[0].tile;
+    app.world_mut().resource_mut::<TileStates>().set_visibility(tile, FogState::Explored).unwrap();
+    app.update();
+    let shown = app
+        .world_mut()
+        .query::<(&HexProp, &Visibility)>()
+        .iter(app.world())
+        .any(|(p, v)| p.kind == hex_terrain::PropKind::Resource && p.tile == tile && *v != Visibility::Hidden);
+    assert!(shown, "the resource on the explored tile shows");
+}

@@ -211,3 +211,25 @@ pub fn markers(pipeline: &Pipeline, chunk: &ChunkMesh) -> Vec<Marker> {
     }
     out
 }
+
+/// The resource and wonder markers of a chunk as props ([`PropKind::Resource`], whose variant is
+/// the resource's class, and [`PropKind::Wonder`]), so a renderer draws and fogs them as it
+/// does trees; starts are left to the game (it puts its units there). The yaw comes from a hash
+/// of the tile, like every prop's.
+#[must_use]
+pub fn marker_props(pipeline: &Pipeline, markers: &[Marker]) -> Vec<Prop> {
+    let seed = pipeline.config().seed;
+    markers
+        .iter()
+        .filter_map(|m| {
+            let (kind, variant, scale) = match m.kind {
+                MarkerKind::Start(_) => return None,
+                MarkerKind::Resource(class, _) => (PropKind::Resource, class as u8, 0.4),
+                MarkerKind::Wonder(_) => (PropKind::Wonder, 0, 0.7),
+            };
+            let h = hash::hash(seed, &[i64::from(m.tile.x), i64::from(m.tile.y), 0x3a4]);
+            let yaw = (std::f64::consts::TAU * f64::from(hash::unit(h))) as f32;
+            Some(Prop { kind, variant, position: m.position, yaw, scale, tile: m.tile })
+        })
+        .collect()
+}

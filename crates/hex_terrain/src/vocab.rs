@@ -159,11 +159,16 @@ pub enum PropKind {
     Rock,
     /// A clump of reeds.
     Reed,
+    /// A game setup's resource marker: its variant is the resource's class (0 bonus, 1
+    /// strategic, 2 luxury).
+    Resource,
+    /// A game setup's natural wonder marker.
+    Wonder,
 }
 
 impl PropKind {
     /// Every kind, in order.
-    pub const ALL: [Self; 4] = [Self::Broadleaf, Self::Pine, Self::Rock, Self::Reed];
+    pub const ALL: [Self; 6] = [Self::Broadleaf, Self::Pine, Self::Rock, Self::Reed, Self::Resource, Self::Wonder];
 }
 
 /// How many mesh variants each prop kind has; a prop's [`variant`](crate::props::Prop::variant) is below it.

@@ -9,7 +9,9 @@ use std::sync::Arc;
 use bevy::math::{DVec3, Ray3d};
 use bevy::prelude::*;
 use hex_terrain::hexx::Hex;
-use hex_terrain::{Biome, ChunkCoord, MapConfig, RiverTile, Terrain, TileInfo, TileKind};
+use hex_terrain::{
+    Biome, ChunkCoord, MapConfig, PlacedResource, PlacedWonder, RiverTile, Setup, Terrain, TileInfo, TileKind,
+};
 
 pub use apply::{HexMapHandle, HexMapPlugin, LoadHexMap};
 
@@ -99,6 +101,32 @@ impl HexMap {
     pub fn replace(&mut self, terrain: Terrain) {
         self.reload(terrain);
         self.map_id += 1;
+    }
+
+    /// The game setup (start positions, resources, natural wonders, the fairness report) when
+    /// the map's config has a `setup`; placed once when the map is compiled, the same in every
+    /// chunk.
+    #[must_use]
+    pub fn setup(&self) -> Option<&Setup> {
+        self.terrain.setup()
+    }
+
+    /// The resource on a tile (any copy of it on a wrapping map).
+    #[must_use]
+    pub fn resource(&self, tile: Hex) -> Option<&PlacedResource> {
+        self.terrain.resource(tile)
+    }
+
+    /// The natural wonder on a tile.
+    #[must_use]
+    pub fn wonder(&self, tile: Hex) -> Option<&PlacedWonder> {
+        self.terrain.wonder(tile)
+    }
+
+    /// The player starting on a tile (0 is the first).
+    #[must_use]
+    pub fn start(&self, tile: Hex) -> Option<u32> {
+        self.terrain.start(tile)
     }
 
     /// A new config of the same map (hot reload): a new generation, the same [`map_id`](Self::map_id).

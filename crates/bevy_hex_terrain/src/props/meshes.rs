@@ -123,6 +123,36 @@ fn reed(v: u8) -> Mesh {
     merged(parts)
 }
 
+/// A resource marker: a cut gem on a short stand, in its class's color (bonus green, strategic
+/// rust red, luxury violet), big enough to read at a strategic zoom.
+fn resource(v: u8) -> Mesh {
+    let color = [Color::srgb(0.45, 0.78, 0.22), Color::srgb(0.78, 0.30, 0.18), Color::srgb(0.62, 0.32, 0.86)]
+        [usize::from(v) % 3];
+    let stand = part(
+        Cylinder::new(0.35, 0.25).mesh().resolution(6).build(),
+        Color::srgb(0.85, 0.80, 0.66),
+        Transform::from_xyz(0.0, 0.12, 0.0),
+    );
+    let gem = part(ico(0.55, 0), color, Transform::from_xyz(0.0, 0.95, 0.0).with_scale(Vec3::new(1.0, 1.35, 1.0)));
+    merged(vec![stand, gem])
+}
+
+/// A natural wonder marker: a golden obelisk on a stepped white plinth.
+fn wonder() -> Mesh {
+    let stone = Color::srgb(0.92, 0.90, 0.84);
+    let gold = Color::srgb(0.95, 0.74, 0.22);
+    merged(vec![
+        part(Cuboid::new(1.3, 0.2, 1.3).mesh().build(), stone, Transform::from_xyz(0.0, 0.1, 0.0)),
+        part(Cuboid::new(0.9, 0.2, 0.9).mesh().build(), stone, Transform::from_xyz(0.0, 0.3, 0.0)),
+        part(Cuboid::new(0.38, 1.9, 0.38).mesh().build(), gold, Transform::from_xyz(0.0, 1.35, 0.0)),
+        part(
+            Cone::new(0.27, 0.45).mesh().resolution(4).build(),
+            gold.lighter(0.1),
+            Transform::from_xyz(0.0, 2.52, 0.0).with_rotation(Quat::from_rotation_y(std::f32::consts::FRAC_PI_4)),
+        ),
+    ])
+}
+
 /// The mesh of variant `v` (below [`PROP_VARIANTS`]) of a prop kind.
 #[must_use]
 pub fn prop_mesh(kind: PropKind, v: u8) -> Mesh {
@@ -132,5 +162,7 @@ pub fn prop_mesh(kind: PropKind, v: u8) -> Mesh {
         PropKind::Pine => pine(v),
         PropKind::Rock => rock(v),
         PropKind::Reed => reed(v),
+        PropKind::Resource => resource(v),
+        PropKind::Wonder => wonder(),
     }
 }

@@ -3,7 +3,9 @@
 //! With Bevy's renderer, every prop of a kind and variant shares one mesh and all share one
 //! vertex-colored material: Bevy batches them into instanced draws (a handful of draws for
 //! thousands of props). Headless, the entities exist without meshes (games and tests can read
-//! them). Under fog of war, props on unexplored tiles are hidden.
+//! them). The game setup's resources and natural wonders ([`hex_terrain::Terrain::marker_props`])
+//! are props too ([`PropKind::Resource`], [`PropKind::Wonder`]): drawn, picked and hidden by fog
+//! the same way. Under fog of war, props on unexplored tiles are hidden.
 
 #[cfg(feature = "render")]
 pub mod meshes;

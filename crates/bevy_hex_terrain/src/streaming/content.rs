@@ -78,7 +78,11 @@ impl BuiltContent {
         let surface = terrain.water_surface(chunk, if depth.is_finite() { depth } else { 0.0 });
         let water_triangles = surface.triangle_count();
         let water = (!surface.is_empty()).then(|| crate::mesh::water_to_mesh(surface));
-        let props = terrain.props(chunk, props.max_per_chunk, props.density).into();
+        // Trees, rocks and reeds (thinned to the cap), then the game setup's resources and
+        // wonders (never thinned).
+        let mut all = terrain.props(chunk, props.max_per_chunk, props.density);
+        all.extend(terrain.marker_props(chunk));
+        let props = all.into();
         Self { water, water_triangles, props }
     }
 }

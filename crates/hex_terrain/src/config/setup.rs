@@ -266,14 +266,15 @@ pub enum Place {
 /// Bonus, strategic or luxury, as in Civilization.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Default, Serialize, Deserialize)]
 #[cfg_attr(feature = "bevy_reflect", derive(bevy_reflect::Reflect))]
+#[repr(u8)]
 pub enum ResourceClass {
     /// More food or production on its tile.
     #[default]
-    Bonus,
+    Bonus = 0,
     /// Needed for units and buildings.
-    Strategic,
+    Strategic = 1,
     /// Traded, keeps people happy.
-    Luxury,
+    Luxury = 2,
 }
 
 impl ResourceClass {

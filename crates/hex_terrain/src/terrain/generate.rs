@@ -61,4 +61,11 @@ impl Terrain {
     pub fn markers(&self, chunk: &ChunkMesh) -> Vec<props::Marker> {
         props::markers(&self.pipeline, chunk)
     }
+
+    /// The setup's resource and wonder markers of a chunk as props (see
+    /// [`props::marker_props`]); none without a setup.
+    #[must_use]
+    pub fn marker_props(&self, chunk: &ChunkMesh) -> Vec<Prop> {
+        props::marker_props(&self.pipeline, &props::markers(&self.pipeline, chunk))
+    }
 }
