@@ -623,10 +623,10 @@ fn panel(
         };
         s += &format!("\nTerritory: {owner}");
         let Some(info) = map.tile_info(tile) else { return };
+        // Offset coordinates (column, row), as the fairness report gives them.
+        let [col, row] = map.terrain().offset_of(tile);
         s += &format!(
-            "\nTile ({}, {})  {} ({})  elevation {:.2}",
-            tile.x,
-            tile.y,
+            "\nTile ({col}, {row})  {} ({})  elevation {:.2}",
             info.biome.name(),
             info.kind.name(),
             info.elevation
