@@ -39,11 +39,11 @@ fn sync_water(
     for (chunk, content) in stale_chunks(&mut commands, &chunks, &waters, enabled, &mut was_enabled) {
         let Some(mesh) = content.water.clone().filter(|_| enabled) else { continue };
         commands.entity(chunk).with_children(|c| {
-            let mut water = c.spawn((HexWater, Mesh3d(mesh), Transform::IDENTITY, Visibility::default()));
+            let mut water = c.spawn((HexWater, Mesh3d(mesh), Transform::IDENTITY));
             #[cfg(feature = "render")]
             // Neither casts nor receives shadows: the sun's shadows lie on the floor beneath, and
             // the water's fragments skip the shadow lookups (they cover much of the screen).
-            water.insert((bevy::light::NotShadowCaster, bevy::light::NotShadowReceiver));
+            water.insert((Visibility::default(), bevy::light::NotShadowCaster, bevy::light::NotShadowReceiver));
             #[cfg(not(feature = "render"))]
             let _ = &mut water;
         });

@@ -407,6 +407,7 @@ fn bad_setup_fields_are_named_with_the_allowed_range() {
         field("(size: Bounded(x: 10, z: 10), setup: Some((area: Some((min: (0, 0), max: (11, 5))))))"),
         "setup.area"
     );
+    assert_eq!(field("(size: Bounded(x: 1024, z: 512), setup: Some(()))"), "setup.area");
     // An unknown biome is malformed RON, with its line and column.
     let e = MapConfig::from_ron("(\n  setup: Some((\n    costs: {Swamp: 2},\n  )),\n)").unwrap_err();
     assert!(matches!(e, hex_terrain::LoadError::Ron(_)), "{e:?}");

@@ -8,17 +8,17 @@
 //! the same way. Under fog of war, props on unexplored tiles are hidden.
 
 #[cfg(feature = "render")]
+mod fog;
+#[cfg(feature = "render")]
 pub mod meshes;
 
 use bevy::prelude::*;
-use hex_terrain::{PROP_VARIANTS, Prop, PropKind};
-
-use bevy::platform::collections::HashMap;
-use hex_terrain::hexx::Hex;
+#[cfg(feature = "render")]
+use hex_terrain::PROP_VARIANTS;
+use hex_terrain::{Prop, PropKind};
 
 use crate::streaming::content::{ContentQuery, stale_chunks};
-use crate::tiles::HexTileStateSystems;
-use crate::{HexTerrainSettings, HexTerrainSystems, TileStates};
+use crate::{HexTerrainSettings, HexTerrainSystems};
 
 /// A prop entity (a child of its chunk).
 #[derive(Component, Debug, Clone, Copy, PartialEq, Reflect)]
@@ -57,12 +57,14 @@ impl Plugin for HexPropsPlugin {
                 Update,
                 sync_props.in_set(HexTerrainSystems::Insert).after(crate::streaming::insert::insert_ready),
             )
-            // After every game system's writes of the frame, before their list starts again.
-            .add_systems(PostUpdate, hide_unexplored.before(HexTileStateSystems::Pack));
+            ;
+        // After every game system's writes of the frame, before their list starts again.
+        #[cfg(feature = "render")]
+        app.add_systems(PostUpdate, fog::hide_unexplored.before(crate::tiles::HexTileStateSystems::Pack));
         #[cfg(feature = "render")]
         app.configure_sets(
             PostUpdate,
-            HexTileStateSystems::Pack.before(bevy::camera::visibility::VisibilitySystems::VisibilityPropagate),
+            crate::tiles::HexTileStateSystems::Pack.before(bevy::camera::visibility::VisibilitySystems::VisibilityPropagate),
         );
         #[cfg(feature = "render")]
         if app.is_plugin_added::<bevy::pbr::PbrPlugin>() {
@@ -93,7 +95,10 @@ fn spawn_props(commands: &mut Commands, chunk: Entity, props: &[Prop], size: f32
                 .with_rotation(Quat::from_rotation_y(p.yaw))
                 .with_scale(Vec3::splat(p.scale * size));
             let prop = HexProp { kind: p.kind, variant: p.variant, tile: p.tile };
-            let mut e = children.spawn((prop, transform, Visibility::default()));
+            let mut e = children.spawn((prop, transform));
+            // Headless there is no visibility (and no fog to hide props under).
+            #[cfg(feature = "render")]
+            e.insert(Visibility::default());
             #[cfg(feature = "render")]
             if let Some(assets) = assets {
                 let mesh = assets.meshes[p.kind as usize][usize::from(p.variant % PROP_VARIANTS)].clone();
@@ -134,71 +139,4 @@ pub struct HexPropStats {
     /// it and those on tiles whose state was written in it (every prop when the fog is switched
     /// or another map is loaded).
     pub fog_checks: u64,
-}
-
-/// The props standing on each tile (the map's own tile), for the fog to find them.
-#[derive(Default)]
-struct PropsByTile {
-    tiles: HashMap<Hex, Vec<Entity>>,
-    of: HashMap<Entity, Hex>,
-}
-
-/// Hides props on unexplored tiles while the terrain draws fog of war, so the fog does not show
-/// the forests it hides. Only new props and the props of tiles written this frame
-/// ([`TileStates::changed_tiles`]) are looked at: a hover moving the highlight every frame
-/// touches a few props, not every prop of the map.
-fn hide_unexplored(
-    states: Res<TileStates>,
-    #[cfg(feature = "render")] appearance: Option<Res<crate::TerrainAppearance>>,
-    added: Query<(Entity, &HexProp), Added<HexProp>>,
-    mut removed: RemovedComponents<HexProp>,
-    mut visibilities: Query<(&HexProp, &mut Visibility)>,
-    mut index: Local<PropsByTile>,
-    mut stats: ResMut<HexPropStats>,
-) {
-    #[cfg(feature = "render")]
-    let (fog, fog_changed) = appearance.map_or((false, false), |a| (a.fog_of_war, a.is_changed()));
-    #[cfg(not(feature = "render"))]
-    let (fog, fog_changed) = (false, false);
-    let index = &mut *index;
-    for e in removed.read() {
-        if let Some(tile) = index.of.remove(&e)
-            && let Some(list) = index.tiles.get_mut(&tile)
-        {
-            list.retain(|&p| p != e);
-            if list.is_empty() {
-                index.tiles.remove(&tile);
-            }
-        }
-    }
-    let mut checks = 0u64;
-    let mut check = |e: Entity, visibilities: &mut Query<(&HexProp, &mut Visibility)>| {
-        let Ok((prop, mut visibility)) = visibilities.get_mut(e) else { return };
-        checks += 1;
-        let hidden = fog && states.visibility(prop.tile) == crate::FogState::Unexplored;
-        visibility.set_if_neq(if hidden { Visibility::Hidden } else { Visibility::Inherited });
-    };
-    for (e, prop) in &added {
-        let tile = states.wrap_tile(prop.tile);
-        index.tiles.entry(tile).or_default().push(e);
-        index.of.insert(e, tile);
-        check(e, &mut visibilities);
-    }
-    let changed = if fog_changed { None } else { states.changed_tiles() };
-    match changed {
-        None if fog_changed || states.is_changed() => {
-            for &e in index.of.keys() {
-                check(e, &mut visibilities);
-            }
-        }
-        None => {}
-        Some(tiles) => {
-            for tile in tiles {
-                for &e in index.tiles.get(&tile).into_iter().flatten() {
-                    check(e, &mut visibilities);
-                }
-            }
-        }
-    }
-    stats.fog_checks += checks;
 }

@@ -535,7 +535,12 @@ impl SetupConfig {
                 "None".into(),
                 "a rectangle of tiles, e.g. Some((min: (0, 0), max: (80, 50))), on an unbounded map".into(),
             )),
-            (None, Some(_)) => Ok(()),
+            (None, Some((x, z))) => check(
+                u64::from(x) * u64::from(z) <= MAX_SETUP_TILES,
+                "setup.area",
+                format!("None (the whole map: {} tiles)", u64::from(x) * u64::from(z)),
+                format!("a rectangle of at most {MAX_SETUP_TILES} tiles on a map larger than that"),
+            ),
             (Some(a), b) => {
                 let value = format!("(min: {:?}, max: {:?})", a.min, a.max);
                 check(!a.is_empty(), "setup.area", &value, "a rectangle with max above min in both columns and rows")?;
