@@ -10,6 +10,8 @@ use hex_terrain::{
 };
 use proptest::prelude::*;
 
+mod common;
+
 fn terrain_config() -> impl Strategy<Value = TerrainConfig> {
     (0.05f32..0.45, 0.1f32..0.5, 0.0f32..1.0, 1u32..4, prop_oneof![Just(0.0f32), 0.1f32..50.0]).prop_map(
         |(sea, gap, tol_frac, inner_rings, max_elevation)| {
@@ -92,27 +94,8 @@ prop_compose! {
         }
         c.layout.orientation = if pointy { Orientation::Pointy } else { Orientation::Flat };
         c.layout.hex_size = hex_size;
-        if wrap {
-            c = wrapping(c);
-        }
-        c
+        common::wrapping(c, wrap)
     }
-}
-
-/// The config made a valid wrapping map: bounded, at least four columns, an even number of
-/// them for flat tiles, no gradient.
-fn wrapping(mut c: MapConfig) -> MapConfig {
-    let (x, z) = c.size.bounds().unwrap_or((8, 6));
-    let mut x = x.max(hex_terrain::config::MIN_WRAP_COLUMNS);
-    if c.layout.orientation == Orientation::Flat {
-        x += x % 2;
-    }
-    c.size = MapSize::Bounded { x, z };
-    if c.shape == Shape::Gradient {
-        c.shape = Shape::None;
-    }
-    c.wrap = true;
-    c
 }
 
 /// The area compared: the whole bounded map, or a 3x3-chunk window of an unbounded world.

@@ -10,6 +10,8 @@ use hex_terrain::{
 };
 use proptest::prelude::*;
 
+mod common;
+
 prop_compose! {
     fn config()(
         seed in any::<u32>(),
@@ -24,7 +26,7 @@ prop_compose! {
         chunk in (3u32..9, 3u32..9),
         scale in 4.0f64..40.0,
     ) -> MapConfig {
-        let mut c = MapConfig { seed, size: MapSize::Bounded { x: size.0 + size.0 % 2, z: size.1 }, shape, chunk_size: chunk, ..MapConfig::default() };
+        let mut c = MapConfig { seed, size: MapSize::Bounded { x: size.0, z: size.1 }, shape, chunk_size: chunk, ..MapConfig::default() };
         c.terrain.inner_rings = rings;
         c.noise.scale = scale;
         c.layout.orientation = if pointy { Orientation::Pointy } else { Orientation::Flat };
@@ -35,8 +37,7 @@ prop_compose! {
         if rivers {
             c.rivers = RiverConfig { enabled: true, threshold: 3.0, ..RiverConfig::default() };
         }
-        c.wrap = wrap;
-        c
+        common::wrapping(c, wrap)
     }
 }
 

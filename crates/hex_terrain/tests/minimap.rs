@@ -11,6 +11,8 @@ use hex_terrain::save::FogState;
 use hex_terrain::{MapConfig, MapSize, Orientation, RiverConfig, Terrain, TileKind, TileRect};
 use proptest::prelude::*;
 
+mod common;
+
 prop_compose! {
     fn config()(
         seed in any::<u32>(),
@@ -24,20 +26,14 @@ prop_compose! {
         rivers in any::<bool>(),
     ) -> MapConfig {
         let mut c = MapConfig { seed, ..MapConfig::default() };
-        if !unbounded {
-            // Flat wrapping maps need an even width.
-            c.size = MapSize::Bounded { x: columns + u32::from(wrap && !pointy && columns % 2 == 1), z: rows };
-            c.wrap = wrap;
-        } else {
-            c.size = MapSize::Unbounded;
-        }
+        c.size = if unbounded { MapSize::Unbounded } else { MapSize::Bounded { x: columns, z: rows } };
         c.layout.orientation = if pointy { Orientation::Pointy } else { Orientation::Flat };
         c.layout.hex_size = hex_size;
         c.climate.enabled = climate;
         if rivers && !unbounded {
             c.rivers = RiverConfig { enabled: true, threshold: 2.0, ..RiverConfig::default() };
         }
-        c
+        common::wrapping(c, wrap && !unbounded)
     }
 }
 

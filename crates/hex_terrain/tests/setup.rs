@@ -15,6 +15,8 @@ use hex_terrain::{
 };
 use proptest::prelude::*;
 
+mod common;
+
 fn maps_dir() -> std::path::PathBuf {
     std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../assets/maps")
 }
@@ -232,15 +234,8 @@ fn arb_map() -> impl Strategy<Value = MapConfig> {
     )
         .prop_map(
             |((x, z, seed, wrap, water), (players, rings, distance, on, fairness, normalize, per, wonders))| {
-                // A wrapping map of flat tiles has an even number of columns.
-                let x = if wrap { x & !1 } else { x };
-                let mut config = MapConfig {
-                    seed,
-                    size: MapSize::Bounded { x, z },
-                    wrap,
-                    chunk_size: (8, 8),
-                    ..MapConfig::default()
-                };
+                let mut config =
+                    MapConfig { seed, size: MapSize::Bounded { x, z }, chunk_size: (8, 8), ..MapConfig::default() };
                 config.climate.enabled = water > 0;
                 config.rivers.enabled = water > 1;
                 let mut setup = SetupConfig {
@@ -257,7 +252,7 @@ fn arb_map() -> impl Strategy<Value = MapConfig> {
                 }
                 setup.wonders.count = wonders;
                 config.setup = Some(setup);
-                config
+                common::wrapping(config, wrap)
             },
         )
 }

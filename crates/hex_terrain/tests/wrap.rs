@@ -8,6 +8,8 @@ use hex_terrain::{
 };
 use proptest::prelude::*;
 
+mod common;
+
 prop_compose! {
     fn wrapping_config()(
         seed in any::<u32>(),
@@ -44,7 +46,8 @@ prop_compose! {
         if rivers {
             c.rivers = RiverConfig { enabled: true, threshold: 2.0, ..RiverConfig::default() };
         }
-        c
+        // Already a valid width; the shared rules keep it so if they change.
+        common::wrapping(c, true)
     }
 }
 

@@ -50,21 +50,18 @@ pub struct HexPropsPlugin;
 
 impl Plugin for HexPropsPlugin {
     fn build(&self, app: &mut App) {
-        app.register_type::<HexProp>()
-            .register_type::<HexPropStats>()
-            .init_resource::<HexPropStats>()
-            .add_systems(
-                Update,
-                sync_props.in_set(HexTerrainSystems::Insert).after(crate::streaming::insert::insert_ready),
-            )
-            ;
+        app.register_type::<HexProp>().register_type::<HexPropStats>().init_resource::<HexPropStats>().add_systems(
+            Update,
+            sync_props.in_set(HexTerrainSystems::Insert).after(crate::streaming::insert::insert_ready),
+        );
         // After every game system's writes of the frame, before their list starts again.
         #[cfg(feature = "render")]
         app.add_systems(PostUpdate, fog::hide_unexplored.before(crate::tiles::HexTileStateSystems::Pack));
         #[cfg(feature = "render")]
         app.configure_sets(
             PostUpdate,
-            crate::tiles::HexTileStateSystems::Pack.before(bevy::camera::visibility::VisibilitySystems::VisibilityPropagate),
+            crate::tiles::HexTileStateSystems::Pack
+                .before(bevy::camera::visibility::VisibilitySystems::VisibilityPropagate),
         );
         #[cfg(feature = "render")]
         if app.is_plugin_added::<bevy::pbr::PbrPlugin>() {
