@@ -15,7 +15,10 @@ fn headless(map: impl Into<MapSource>, asset_dir: Option<&std::path::Path>) -> A
     app.add_plugins((MinimalPlugins, AssetPlugin { file_path, ..default() }, TransformPlugin));
     let settings = HexTerrainSettings { load_radius: 1, max_inserts_per_frame: 16, ..default() };
     let plugins = HexTerrainPlugins { map: map.into(), settings };
+    #[cfg(feature = "render")]
     app.add_plugins(plugins.build().disable::<HexTerrainMaterialPlugin>());
+    #[cfg(not(feature = "render"))]
+    app.add_plugins(plugins);
     app
 }
 

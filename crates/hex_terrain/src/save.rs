@@ -40,6 +40,20 @@ pub enum FogState {
     Visible = 2,
 }
 
+impl FogState {
+    /// The state a fog value stands for (`0` unexplored, `1` explored, `2` visible), `None` for
+    /// any other value: the one decoding of fog bits for saves, texels and tools.
+    #[must_use]
+    pub fn from_bits(bits: u8) -> Option<Self> {
+        match bits {
+            0 => Some(Self::Unexplored),
+            1 => Some(Self::Explored),
+            2 => Some(Self::Visible),
+            _ => None,
+        }
+    }
+}
+
 /// A tile tint; a tile may carry several.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
 #[cfg_attr(feature = "bevy_reflect", derive(bevy_reflect::Reflect))]
@@ -308,13 +322,8 @@ impl TileStateSave {
         let mut tiles = Vec::with_capacity(packed.tiles.len());
         for (index, (col, row, fog, owner, bits, overlay)) in packed.tiles.into_iter().enumerate() {
             let bad = |problem: String| SaveError::Tile { index, at: (col, row), problem };
-            let fog = match fog {
-                0 => FogState::Unexplored,
-                1 => FogState::Explored,
-                2 => FogState::Visible,
-                f => {
-                    return Err(bad(format!("fog state {f}: 0 (unexplored), 1 (explored) or 2 (visible) are allowed")));
-                }
+            let Some(fog) = FogState::from_bits(fog) else {
+                return Err(bad(format!("fog state {fog}: 0 (unexplored), 1 (explored) or 2 (visible) are allowed")));
             };
             if bits >> Highlight::ALL.len() != 0 {
                 return Err(bad(format!(

@@ -109,11 +109,8 @@ impl TileStates {
     /// What the player knows of a tile.
     #[must_use]
     pub fn visibility(&self, tile: Hex) -> FogState {
-        match self.texel(tile)[0] & FOG_MASK {
-            0 => FogState::Unexplored,
-            1 => FogState::Explored,
-            _ => FogState::Visible,
-        }
+        // The two fog bits hold 0, 1 or 2: any other value is never written.
+        FogState::from_bits((self.texel(tile)[0] & FOG_MASK) as u8).unwrap_or(FogState::Visible)
     }
 
     /// The owner of a tile (`1..=MAX_OWNERS`), if any.

@@ -24,12 +24,16 @@ pub fn settings(radius: u32) -> HexTerrainSettings {
     }
 }
 
-/// A headless app: the terrain plugins without the material.
+/// A headless app: the terrain plugins without the material (which the headless build,
+/// `--no-default-features`, does not have).
 pub fn app_with(plugins: HexTerrainPlugins, asset_dir: Option<&std::path::Path>) -> App {
     let mut app = App::new();
     let assets = AssetPlugin { file_path: asset_dir.map_or("assets".into(), |d| d.display().to_string()), ..default() };
     app.add_plugins((MinimalPlugins, assets, TransformPlugin));
+    #[cfg(feature = "render")]
     app.add_plugins(plugins.build().disable::<HexTerrainMaterialPlugin>());
+    #[cfg(not(feature = "render"))]
+    app.add_plugins(plugins);
     app
 }
 

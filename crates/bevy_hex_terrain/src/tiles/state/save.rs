@@ -22,11 +22,7 @@ impl TileStates {
             .into_iter()
             .map(|(oc, [t0, owner, rg, ba])| SavedTile {
                 at: (oc.x, oc.y),
-                fog: match t0 & FOG_MASK {
-                    0 => FogState::Unexplored,
-                    1 => FogState::Explored,
-                    _ => FogState::Visible,
-                },
+                fog: FogState::from_bits((t0 & FOG_MASK) as u8).unwrap_or(FogState::Visible),
                 owner: (owner != 0).then_some(owner as u8),
                 overlay: (rg != 0 || ba != 0).then_some([rg as u8, (rg >> 8) as u8, ba as u8, (ba >> 8) as u8]),
                 highlights: Highlight::ALL.into_iter().filter(|&h| t0 & bit(h) != 0).collect(),
