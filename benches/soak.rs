@@ -48,7 +48,7 @@ fn status_kib(key: &str) -> u64 {
 struct Errors(Vec<String>);
 
 fn collect_errors(mut reader: MessageReader<HexMapError>, mut errors: ResMut<Errors>) {
-    errors.0.extend(reader.read().map(|e| e.message.clone()));
+    errors.0.extend(reader.read().map(ToString::to_string));
 }
 
 /// One sample of the counts that must stay flat.

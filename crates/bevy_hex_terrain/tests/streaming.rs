@@ -222,12 +222,16 @@ fn hot_reload_regenerates_every_chunk_and_a_bad_edit_keeps_the_terrain() {
     let second = meshed_chunks(&mut app);
     assert!(second.iter().all(|(c, h)| first[c] != *h), "new meshes replaced the old ones");
 
-    // A broken edit: logged and reported, the terrain stays.
+    // A broken edit: logged and reported, the terrain stays. The report is typed: malformed
+    // RON, the file, the line and the column.
     write(&dir, "test.map.ron", "(seed: 7, size: Bounded(x: 16, z: 16), chunk_size: (8, 8)");
     app.world().resource::<AssetServer>().reload("test.map.ron");
+    let mut malformed = None;
     run_until(&mut app, "the error report", |app| {
         let messages = app.world().resource::<Messages<HexMapError>>();
-        messages.get_cursor().read(messages).next().is_some()
+        let found = messages.get_cursor().read(messages).find(|m| matches!(m, HexMapError::Malformed { .. })).cloned();
+        malformed = malformed.take().or(found);
+        malformed.is_some()
     });
     for _ in 0..10 {
         app.update();
@@ -236,19 +240,30 @@ fn hot_reload_regenerates_every_chunk_and_a_bad_edit_keeps_the_terrain() {
     assert_eq!(map.generation(), reloaded);
     assert_eq!(map.config().seed, 6);
     assert_eq!(meshed_chunks(&mut app), second, "the terrain is unchanged");
+    match malformed {
+        Some(HexMapError::Malformed { map, line, column, .. }) => {
+            assert_eq!(map, "map test.map.ron");
+            assert_eq!(line, 1);
+            assert!(column > 1, "column {column}");
+        }
+        other => panic!("not a malformed-file error: {other:?}"),
+    }
 
     // An out-of-range value is refused the same way, naming the field.
     write(&dir, "test.map.ron", "(seed: 8, size: Bounded(x: 16, z: 16), noise: (octaves: 0))");
     app.world().resource::<AssetServer>().reload("test.map.ron");
     let mut message = String::new();
+    let mut field = None;
     run_until(&mut app, "the error report", |app| {
         let messages = app.world().resource::<Messages<HexMapError>>();
-        if let Some(m) = messages.get_cursor().read(messages).find(|m| m.message.contains("octaves")) {
-            message = m.message.clone();
+        if let Some(m) = messages.get_cursor().read(messages).find(|m| m.to_string().contains("octaves")) {
+            message = m.to_string();
+            field = m.field().map(String::from);
         }
         !message.is_empty()
     });
     assert!(message.contains("noise.octaves"), "{message}");
+    assert_eq!(field.as_deref(), Some("noise.octaves"), "typed: the field");
     assert_eq!(app.world().resource::<HexMap>().config().seed, 6);
 
     // An out-of-range blend only affects looks: the map applies, clamped, with the flat-color
@@ -302,7 +317,7 @@ fn generation(app: &App) -> u64 {
 
 fn errors(app: &App) -> Vec<String> {
     let messages = app.world().resource::<Messages<HexMapError>>();
-    messages.get_cursor().read(messages).map(|m| m.message.clone()).collect()
+    messages.get_cursor().read(messages).map(ToString::to_string).collect()
 }
 
 #[test]
@@ -437,7 +452,7 @@ fn keep_errors(app: &mut App) {
     app.init_resource::<AllErrors>().add_systems(
         Last,
         |mut r: MessageReader<HexMapError>, mut all: ResMut<AllErrors>| {
-            all.0.extend(r.read().map(|e| e.message.clone()));
+            all.0.extend(r.read().map(ToString::to_string));
         },
     );
 }

@@ -9,7 +9,7 @@ use std::sync::Arc;
 use hex_terrain::{HeightImage, MapConfig, Terrain};
 
 use super::{HexMap, HexMapError};
-use crate::asset::{HexMapAsset, HexMapLoader};
+use crate::asset::{HexMapAsset, HexMapLoader, HexMapLoaderError};
 use crate::{HexTerrainSystems, MapSource};
 
 /// The map asset the plugin follows, when the map comes from a file. Switch maps with
@@ -89,10 +89,25 @@ impl Plugin for HexMapPlugin {
 }
 
 /// Reports a map that could not be applied; the terrain stays as it was.
-fn refuse(errors: &mut MessageWriter<HexMapError>, what: &str, why: impl std::fmt::Display) {
-    let message = format!("{what} not applied, keeping the current terrain: {why}");
-    error!("{message}");
-    errors.write(HexMapError { message });
+fn refuse(errors: &mut MessageWriter<HexMapError>, error: HexMapError) {
+    error!("{error}");
+    errors.write(error);
+}
+
+/// The error of a failed map file load: the loader's own error when it is one, typed.
+fn load_failure(failure: &AssetLoadFailedEvent<HexMapAsset>) -> HexMapError {
+    let map = format!("map {}", failure.path);
+    if let bevy::asset::AssetLoadError::AssetLoaderError(e) = &failure.error
+        && let Some(e) = e.error().downcast_ref::<HexMapLoaderError>()
+    {
+        return match e {
+            HexMapLoaderError::Map(e) => HexMapError::load(&map, e),
+            other => HexMapError::Unreadable { map, message: other.to_string() },
+        };
+    }
+    // The message, without the backtrace Bevy appends when `RUST_BACKTRACE` is set.
+    let message = failure.error.to_string().lines().next().unwrap_or_default().to_owned();
+    HexMapError::Unreadable { map, message }
 }
 
 /// Handles [`LoadHexMap`]: a config applies at once, a file is loaded and applied by
@@ -113,7 +128,7 @@ fn load_requested(
                 handle.0 = None;
                 map.replace(terrain);
             }
-            Err(e) => refuse(&mut errors, "map config", e),
+            Err(e) => refuse(&mut errors, HexMapError::invalid("map config", &e)),
         },
     }
 }
@@ -133,7 +148,7 @@ fn apply_asset(
     mut failures: MessageReader<AssetLoadFailedEvent<HexMapAsset>>,
     mut errors: MessageWriter<HexMapError>,
     mut refused: Local<Option<AssetId<HexMapAsset>>>,
-    mut last_failure: Local<Option<String>>,
+    mut last_failure: Local<Option<HexMapError>>,
 ) {
     let Some(handle) = &handle.0 else {
         events.clear();
@@ -141,11 +156,10 @@ fn apply_asset(
         return;
     };
     for failure in failures.read() {
-        // The loader's message, without the backtrace Bevy appends when `RUST_BACKTRACE` is set.
-        let why = failure.error.to_string().lines().next().unwrap_or_default().to_owned();
-        if failure.id == handle.id() && last_failure.as_deref() != Some(why.as_str()) {
-            refuse(&mut errors, &format!("map {}", failure.path), &why);
-            *last_failure = Some(why);
+        let error = load_failure(failure);
+        if failure.id == handle.id() && last_failure.as_ref() != Some(&error) {
+            refuse(&mut errors, error.clone());
+            *last_failure = Some(error);
         }
     }
     let changed = events.read().any(|e| match e {
@@ -187,7 +201,8 @@ fn apply_asset(
         }
         Err(e) => {
             *refused = Some(handle.id());
-            refuse(&mut errors, "map", e);
+            let map = handle.path().map_or_else(|| "map".into(), |p| format!("map {p}"));
+            refuse(&mut errors, HexMapError::invalid(&map, &e));
         }
     }
 }
