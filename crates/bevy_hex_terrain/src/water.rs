@@ -11,6 +11,8 @@ use crate::{HexTerrainSettings, HexTerrainSystems};
 /// A chunk's water surface entity (a child of its chunk).
 #[derive(Component, Debug, Clone, Copy, Default, Reflect)]
 #[reflect(Component, Default)]
+#[require(Transform)]
+#[cfg_attr(feature = "render", require(Visibility))]
 pub struct HexWater;
 
 /// Spawns and despawns the water surfaces of loaded chunks, in [`HexTerrainSystems::Insert`].
@@ -39,11 +41,11 @@ fn sync_water(
     for (chunk, content) in stale_chunks(&mut commands, &chunks, &waters, enabled, &mut was_enabled) {
         let Some(mesh) = content.water.clone().filter(|_| enabled) else { continue };
         commands.entity(chunk).with_children(|c| {
-            let mut water = c.spawn((HexWater, Mesh3d(mesh), Transform::IDENTITY));
+            let mut water = c.spawn((HexWater, Mesh3d(mesh)));
             #[cfg(feature = "render")]
             // Neither casts nor receives shadows: the sun's shadows lie on the floor beneath, and
             // the water's fragments skip the shadow lookups (they cover much of the screen).
-            water.insert((Visibility::default(), bevy::light::NotShadowCaster, bevy::light::NotShadowReceiver));
+            water.insert((bevy::light::NotShadowCaster, bevy::light::NotShadowReceiver));
             #[cfg(not(feature = "render"))]
             let _ = &mut water;
         });

@@ -575,3 +575,25 @@ fn climate_and_river_maps_give_biomes_rivers_lakes_and_vertex_colors() {
     }
     assert!(wet > 0, "no vertex shows river or lake water");
 }
+
+/// The plugin's components bring what they need (`#[require]`): an agent spawned alone has a
+/// transform, and every chunk, water surface and prop has a transform (and, with the renderer,
+/// a visibility) without the plugin or the game inserting them.
+#[test]
+fn components_bring_what_they_need() {
+    let mut app = app(MapConfig { size: MapSize::Bounded { x: 16, z: 16 }, chunk_size: (8, 8), ..default() }, 2);
+    let agent = app.world_mut().spawn(HexTerrainAgent::default()).id();
+    assert!(app.world().get::<Transform>(agent).is_some(), "an agent alone has a transform");
+    run_until(&mut app, "terrain ready", ready);
+    app.update();
+    let world = app.world_mut();
+    let chunks: Vec<Entity> = world.query_filtered::<Entity, With<HexChunk>>().iter(world).collect();
+    let waters: Vec<Entity> = world.query_filtered::<Entity, With<HexWater>>().iter(world).collect();
+    let props: Vec<Entity> = world.query_filtered::<Entity, With<HexProp>>().iter(world).collect();
+    assert!(!chunks.is_empty() && !waters.is_empty(), "{} chunks, {} waters", chunks.len(), waters.len());
+    for e in chunks.iter().chain(&waters).chain(&props) {
+        assert!(world.get::<Transform>(*e).is_some(), "{e:?} has no transform");
+        #[cfg(feature = "render")]
+        assert!(world.get::<Visibility>(*e).is_some(), "{e:?} has no visibility");
+    }
+}

@@ -23,6 +23,8 @@ use crate::{HexTerrainSettings, HexTerrainSystems};
 /// A prop entity (a child of its chunk).
 #[derive(Component, Debug, Clone, Copy, PartialEq, Reflect)]
 #[reflect(Component)]
+#[require(Transform)]
+#[cfg_attr(feature = "render", require(Visibility))]
 pub struct HexProp {
     /// What it is.
     pub kind: PropKind,
@@ -93,9 +95,6 @@ fn spawn_props(commands: &mut Commands, chunk: Entity, props: &[Prop], size: f32
                 .with_scale(Vec3::splat(p.scale * size));
             let prop = HexProp { kind: p.kind, variant: p.variant, tile: p.tile };
             let mut e = children.spawn((prop, transform));
-            // Headless there is no visibility (and no fog to hide props under).
-            #[cfg(feature = "render")]
-            e.insert(Visibility::default());
             #[cfg(feature = "render")]
             if let Some(assets) = assets {
                 let mesh = assets.meshes[p.kind as usize][usize::from(p.variant % PROP_VARIANTS)].clone();

@@ -25,6 +25,7 @@ use crate::HexTerrainSystems;
 /// world origin.
 #[derive(Component, Debug, Clone, Copy, Default, Reflect)]
 #[reflect(Component, Default)]
+#[require(Transform)]
 pub struct HexTerrainAgent {
     /// Chunk radius kept around this agent, overriding [`HexTerrainSettings::load_radius`].
     pub radius: Option<u32>,
@@ -91,6 +92,8 @@ impl Default for HexTerrainSettings {
 /// A terrain chunk entity.
 #[derive(Component, Debug, Clone, Reflect)]
 #[reflect(Component)]
+#[require(Transform)]
+#[cfg_attr(feature = "render", require(Visibility))]
 pub struct HexChunk {
     /// Chunk column and row. On a wrapping map, chunks past the map's east or west edge have
     /// their own coordinates and show the mesh of the map's chunk they stand for
