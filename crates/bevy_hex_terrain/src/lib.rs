@@ -109,8 +109,10 @@ pub mod prelude {
     };
 }
 
-/// Where the map comes from.
-#[derive(Debug, Clone)]
+/// Where the map comes from. Reflected as an opaque value (its config is boxed): inspectors show
+/// it by `Debug`.
+#[derive(Debug, Clone, Reflect)]
+#[reflect(opaque, Debug, Clone)]
 pub enum MapSource {
     /// A config given in code.
     Config(Box<MapConfig>),

@@ -28,7 +28,7 @@ impl HexMapHandle {
 /// Asks the plugin to show another map: a map file (applied once loaded, then hot-reloaded) or
 /// a config. The current terrain stays until the new map is valid; a bad one is reported as
 /// [`HexMapError`].
-#[derive(Message, Debug, Clone)]
+#[derive(Message, Debug, Clone, Reflect)]
 pub struct LoadHexMap(pub MapSource);
 
 /// The map: [`HexMap`], the `*.map.ron` asset loader, hot reload, [`LoadHexMap`] and
@@ -65,6 +65,7 @@ impl Plugin for HexMapPlugin {
             .add_message::<HexMapError>()
             .add_message::<LoadHexMap>()
             .register_type::<HexMapError>()
+            .register_type::<LoadHexMap>()
             // A new config must be in place before chunks are requested against it, and a
             // chunk must be requested before its mesh can be inserted.
             .configure_sets(
