@@ -383,22 +383,29 @@ fn reachable(map: &HexMap, start: Hex, budget: u32, blocked: &HashSet<Hex>) -> H
     best.into_keys().map(|t| map.wrap_tile(t)).filter(|&t| t != start).collect()
 }
 
-/// Puts three units of yours on land near the camera and two rival units [`RIVAL_DISTANCE`]
-/// tiles away once the terrain exists, each player claiming territory around its units; after a
+/// Where units are placed (the map, its tile states) and the assets new ones are made of.
+#[derive(bevy::ecs::system::SystemParam)]
+struct UnitGround<'w> {
+    map: Res<'w, HexMap>,
+    states: ResMut<'w, TileStates>,
+    meshes: ResMut<'w, Assets<Mesh>>,
+    materials: ResMut<'w, Assets<StandardMaterial>>,
+}
+
+/// Puts three units of yours and two rival units on the map's game setup starts (on a map
+/// without one, near the camera and [`RIVAL_DISTANCE`] tiles away) once the terrain exists,
+/// each player claiming territory around its units, the camera over yours; after a
 /// regeneration, puts every unit back on land and claims again (another map starts with no
 /// territory).
-#[expect(clippy::too_many_arguments, reason = "a system's parameters")]
 fn place_units(
     mut commands: Commands,
     mut ready: MessageReader<TerrainReady>,
-    map: Res<HexMap>,
     mut game: ResMut<Game>,
-    mut states: ResMut<TileStates>,
     mut rigs: Query<(&mut Rig, &mut Transform), Without<Unit>>,
     mut units: Query<(Entity, &mut Unit, &mut Transform)>,
-    mut meshes: ResMut<Assets<Mesh>>,
-    mut materials: ResMut<Assets<StandardMaterial>>,
+    ground: UnitGround,
 ) {
+    let UnitGround { map, mut states, mut meshes, mut materials } = ground;
     if ready.read().count() == 0 {
         return;
     }

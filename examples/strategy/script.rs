@@ -177,21 +177,27 @@ fn check_vision(
     Ok(())
 }
 
+/// What the script looks at: the game, the map, the tile states, the look and the units.
+#[derive(bevy::ecs::system::SystemParam)]
+pub struct Observed<'w, 's> {
+    appearance: Res<'w, TerrainAppearance>,
+    game: Res<'w, Game>,
+    map: Res<'w, HexMap>,
+    states: Res<'w, TileStates>,
+    units: Query<'w, 's, (Entity, &'static Unit, &'static Transform, &'static Visibility)>,
+}
+
 /// Plays the scripted turn, a step once the previous one shows its effect.
-#[expect(clippy::too_many_arguments, reason = "a system's parameters")]
 pub fn script(
     mut commands: Commands,
     mut s: ResMut<Script>,
-    appearance: Res<TerrainAppearance>,
-    game: Res<Game>,
-    map: Res<HexMap>,
-    states: Res<TileStates>,
-    units: Query<(Entity, &Unit, &Transform, &Visibility)>,
+    observed: Observed,
     mut pointer: ResMut<ScriptedPointer>,
     minimap: MinimapProbe,
     mut keys: ResMut<ButtonInput<KeyCode>>,
     mut exit: MessageWriter<AppExit>,
 ) {
+    let Observed { appearance, game, map, states, units } = observed;
     s.frame += 1;
     for key in [KeyCode::Enter, KeyCode::KeyG, KeyCode::KeyR, KeyCode::KeyL] {
         keys.release(key);

@@ -140,7 +140,15 @@ fn load_requested(
 /// Bevy announces one reload twice (`Modified`, then `LoadedWithDependencies`), and retries a
 /// failed reload once: the same content applies once, and the same failure of the same file is
 /// reported once (until the file next loads).
-#[expect(clippy::too_many_arguments, reason = "a system's parameters")]
+/// What `apply_asset` remembers between frames.
+#[derive(Default)]
+struct Applied {
+    /// The asset last refused (applied again only when it changes).
+    refused: Option<AssetId<HexMapAsset>>,
+    /// The failure last reported (reported again only when it differs).
+    last_failure: Option<HexMapError>,
+}
+
 fn apply_asset(
     mut map: ResMut<HexMap>,
     handle: Res<HexMapHandle>,
@@ -148,9 +156,9 @@ fn apply_asset(
     mut events: MessageReader<AssetEvent<HexMapAsset>>,
     mut failures: MessageReader<AssetLoadFailedEvent<HexMapAsset>>,
     mut errors: MessageWriter<HexMapError>,
-    mut refused: Local<Option<AssetId<HexMapAsset>>>,
-    mut last_failure: Local<Option<HexMapError>>,
+    mut memory: Local<Applied>,
 ) {
+    let Applied { refused, last_failure } = &mut *memory;
     let Some(handle) = &handle.0 else {
         events.clear();
         failures.clear();

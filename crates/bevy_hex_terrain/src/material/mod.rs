@@ -193,18 +193,25 @@ fn effective(
     effective
 }
 
-#[expect(clippy::too_many_arguments, reason = "a system's parameters")]
+/// What the materials are made from besides the appearance: the map, the settings, the tile
+/// state window and texture, the render origin and the asset server (for the textures).
+#[derive(bevy::ecs::system::SystemParam)]
+struct MaterialSources<'w> {
+    server: Res<'w, AssetServer>,
+    map: Res<'w, crate::HexMap>,
+    settings: Res<'w, crate::HexTerrainSettings>,
+    states: Res<'w, TileStates>,
+    texture: Res<'w, TileStateTexture>,
+    origin: Res<'w, RenderOrigin>,
+}
+
 fn create_material(
     mut commands: Commands,
     mut materials: ResMut<Assets<HexTerrainMaterial>>,
-    server: Res<AssetServer>,
-    map: Res<crate::HexMap>,
+    sources: MaterialSources,
     appearance: Res<TerrainAppearance>,
-    settings: Res<crate::HexTerrainSettings>,
-    states: Res<TileStates>,
-    texture: Res<TileStateTexture>,
-    origin: Res<RenderOrigin>,
 ) {
+    let MaterialSources { server, map, settings, states, texture, origin } = sources;
     let appearance = effective(&appearance, &map, &settings);
     let [sea_texture, land_texture, mountain_texture] = textures(&server, &appearance);
     let extension = HexTerrainExtension {
@@ -227,19 +234,14 @@ fn create_material(
 /// or the tile state window change their parameters, and only then (a rewritten material is
 /// uploaded again; tile state changes go straight into the texture); a texture that failed to
 /// load switches to flat colors with a warning.
-#[expect(clippy::too_many_arguments, reason = "a system's parameters")]
 fn update_material(
     handles: (Res<HexTerrainMaterialHandle>, Res<HexWaterMaterialHandle>),
     mut materials: ResMut<Assets<HexTerrainMaterial>>,
-    server: Res<AssetServer>,
-    map: Res<crate::HexMap>,
+    sources: MaterialSources,
     mut appearance: ResMut<TerrainAppearance>,
-    settings: Res<crate::HexTerrainSettings>,
-    states: Res<TileStates>,
-    texture: Res<TileStateTexture>,
-    origin: Res<RenderOrigin>,
     mut failed: MessageReader<bevy::asset::AssetLoadFailedEvent<Image>>,
 ) {
+    let MaterialSources { server, map, settings, states, texture, origin } = sources;
     for failure in failed.read() {
         if appearance.textures && appearance.texture_paths.iter().any(|p| failure.path.path().ends_with(p)) {
             warn!("terrain texture {} could not be loaded ({}); using flat colors", failure.path, failure.error);

@@ -5,23 +5,20 @@ use bevy::prelude::*;
 use bevy::tasks::futures::check_ready;
 
 use super::content::ChunkContent;
-use super::{ChunkSpawned, ChunkStreamer, ChunkTask, HexChunk, HexTerrainSettings, HexTerrainStats, TerrainReady};
-use crate::map::HexMap;
+use super::state::StreamState;
+use super::{ChunkSpawned, ChunkStreamer, ChunkTask, HexChunk, TerrainReady};
 
 /// Inserts finished meshes, at most [`HexTerrainSettings::max_inserts_per_frame`] a frame,
 /// and reports [`TerrainReady`] when these inserts make every wanted chunk current.
-#[expect(clippy::too_many_arguments, reason = "a system's parameters")]
 pub(crate) fn insert_ready(
     mut commands: Commands,
-    mut streamer: ResMut<ChunkStreamer>,
-    mut stats: ResMut<HexTerrainStats>,
-    map: Res<HexMap>,
-    settings: Res<HexTerrainSettings>,
+    state: StreamState,
     mut meshes: ResMut<Assets<Mesh>>,
     mut tasks: Query<(Entity, &mut HexChunk, Option<&mut ChunkTask>)>,
     mut spawned: MessageWriter<ChunkSpawned>,
     mut ready: MessageWriter<TerrainReady>,
 ) {
+    let StreamState { mut streamer, mut stats, map, settings } = state;
     let generation = map.generation();
     if streamer.current_generation != generation {
         streamer.current_generation = generation;

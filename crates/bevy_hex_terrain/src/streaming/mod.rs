@@ -5,6 +5,7 @@
 pub mod content;
 pub mod insert;
 pub mod planner;
+mod state;
 pub mod stats;
 pub mod tasks;
 

@@ -12,11 +12,11 @@ use hex_terrain::{ChunkCoord, GenerateOptions, Terrain, Threads};
 
 use super::content::{BuiltContent, ChunkContent};
 use super::planner::{ChunkState, plan};
+use super::state::StreamState;
 use super::{
     ChunkDespawned, ChunkSpawned, ChunkStreamer, ChunkThreads, HexChunk, HexTerrainAgent, HexTerrainSettings,
-    HexTerrainStats, HexWorldPosition,
+    HexWorldPosition,
 };
-use crate::map::HexMap;
 use crate::mesh::chunk_to_mesh;
 
 /// What a chunk task returns.
@@ -42,18 +42,15 @@ pub struct ChunkTask {
 
 /// Plans the frame ([`plan`]) and applies it: despawns dropped chunks, spawns missing ones and
 /// starts their tasks. An outdated chunk keeps showing its old mesh until the new one arrives.
-#[expect(clippy::too_many_arguments, reason = "a system's parameters")]
 pub(crate) fn stream(
     mut commands: Commands,
-    mut streamer: ResMut<ChunkStreamer>,
-    mut stats: ResMut<HexTerrainStats>,
-    map: Res<HexMap>,
-    settings: Res<HexTerrainSettings>,
+    state: StreamState,
     agents: Query<(&GlobalTransform, &HexTerrainAgent, Option<&HexWorldPosition>)>,
     chunks: ChunkQuery,
     mut despawned: MessageWriter<ChunkDespawned>,
     mut spawned: MessageWriter<ChunkSpawned>,
 ) {
+    let StreamState { mut streamer, mut stats, map, settings } = state;
     if map.is_waiting_for_asset() {
         return;
     }
