@@ -14,8 +14,11 @@ use bevy::ui::UiGlobalTransform;
 use hex_terrain_game::prelude::*;
 use hexx::algorithms::a_star;
 
+use crate::Game;
+use crate::movement::{MOVES, cost, path_cost, step_cost};
+use crate::rig::Rig;
+use crate::units::Unit;
 use crate::vision::{self, HUMAN, RIVAL};
-use crate::{Game, MOVES, Rig, Unit, cost, path_cost, step_cost};
 use hex_terrain_game::{HexMinimap, MinimapPicture};
 
 /// The mouse as the script moves it: to a tile's center on screen, then a press and a release,
@@ -175,6 +178,19 @@ fn check_vision(
         }
     }
     Ok(())
+}
+
+/// Plays the scripted turn (`HEXTERRAIN_SCRIPT`): its state, the pointer it drives, its systems
+/// before the game's input is read.
+pub struct ScriptPlugin;
+
+impl Plugin for ScriptPlugin {
+    fn build(&self, app: &mut App) {
+        app.init_resource::<Script>()
+            .init_resource::<ScriptedPointer>()
+            .add_systems(PreUpdate, script.after(bevy::input::InputSystems))
+            .add_systems(PreUpdate, drive_pointer.after(script).before(bevy::picking::PickingSystems::ProcessInput));
+    }
 }
 
 /// What the script looks at: the game, the map, the tile states, the look and the units.

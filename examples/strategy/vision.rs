@@ -9,7 +9,9 @@ use bevy::prelude::*;
 use hex_terrain_game::prelude::*;
 use hexx::algorithms::range_fov;
 
-use crate::{Game, Unit, cost};
+use crate::Game;
+use crate::movement::cost;
+use crate::units::Unit;
 
 /// The human player (the fog shows what this player's units see).
 pub const HUMAN: u8 = 1;
