@@ -474,14 +474,8 @@ impl SetupConfig {
         )?;
         for (i, r) in self.resources.iter().enumerate() {
             let field = |name: &str| format!("setup.resources[{i}].{name}");
-            check(!r.name.trim().is_empty(), &field("name"), format!("{:?}", r.name), "a name")?;
-            check(
-                !self.resources[..i].iter().any(|o| o.name == r.name),
-                &field("name"),
-                format!("{:?}", r.name),
-                "a name no other resource has",
-            )?;
-            check(!r.on.is_empty(), &field("on"), "[]", "at least one biome or tile type")?;
+            let earlier = self.resources[..i].iter().map(|o| o.name.as_str());
+            check_named(&field, &r.name, earlier, &r.on, "resource")?;
             check(finite_in(f64::from(r.density), 0.0, 1.0), &field("density"), r.density, "[0, 1]")?;
             check(
                 (1..=MAX_SETUP_DISTANCE).contains(&r.spacing),
@@ -519,14 +513,8 @@ impl SetupConfig {
         )?;
         for (i, r) in wonders.list.iter().enumerate() {
             let field = |name: &str| format!("setup.wonders.list[{i}].{name}");
-            check(!r.name.trim().is_empty(), &field("name"), format!("{:?}", r.name), "a name")?;
-            check(
-                !wonders.list[..i].iter().any(|o| o.name == r.name),
-                &field("name"),
-                format!("{:?}", r.name),
-                "a name no other wonder has",
-            )?;
-            check(!r.on.is_empty(), &field("on"), "[]", "at least one biome or tile type")?;
+            let earlier = wonders.list[..i].iter().map(|o| o.name.as_str());
+            check_named(&field, &r.name, earlier, &r.on, "wonder")?;
             check_yields(&field("yields"), r.yields)?;
         }
         match (self.area, bounds) {
@@ -570,6 +558,20 @@ impl SetupConfig {
             }
         }
     }
+}
+
+/// Checks a resource's or wonder's name (given, not taken by an `earlier` one of its `kind`)
+/// and that it may lie somewhere.
+fn check_named<'a>(
+    field: &dyn Fn(&str) -> String,
+    name: &str,
+    mut earlier: impl Iterator<Item = &'a str>,
+    on: &[Place],
+    kind: &str,
+) -> Result<(), ConfigError> {
+    check(!name.trim().is_empty(), &field("name"), format!("{name:?}"), "a name")?;
+    check(!earlier.any(|o| o == name), &field("name"), format!("{name:?}"), format!("a name no other {kind} has"))?;
+    check(!on.is_empty(), &field("on"), "[]", "at least one biome or tile type")
 }
 
 /// Checks one entry of yields.

@@ -123,7 +123,6 @@ impl SetupTimings {
 #[derive(Debug, Clone, PartialEq)]
 pub struct Setup {
     rect: TileRect,
-    cols: usize,
     starts: Vec<Hex>,
     regions: Vec<SetupRegion>,
     region_of: Vec<u32>,
@@ -330,7 +329,6 @@ impl Setup {
             .collect();
         let setup = Self {
             rect,
-            cols: survey.cols,
             starts: starts.iter().map(|&s| survey.tiles[s]).collect(),
             regions,
             region_of: division.region_of,
@@ -348,13 +346,7 @@ impl Setup {
     /// Index of a tile of the area (any copy of it on a wrapping map).
     #[inline]
     fn index(&self, geometry: &Geometry, tile: Hex) -> Option<usize> {
-        if !geometry.in_world(tile) {
-            return None;
-        }
-        let [c, r] = geometry.offset_of(geometry.wrap_tile(tile));
-        self.rect
-            .contains([c, r])
-            .then(|| (r - self.rect.min[1]) as usize * self.cols + (c - self.rect.min[0]) as usize)
+        survey::area_index(self.rect, geometry, tile)
     }
 
     /// The tiles the setup placed on.

@@ -150,13 +150,7 @@ impl Survey {
 
     /// Index of a tile of the area (any copy of it on a wrapping map).
     pub fn index(&self, geometry: &Geometry, tile: Hex) -> Option<usize> {
-        if !geometry.in_world(tile) {
-            return None;
-        }
-        let [c, r] = geometry.offset_of(geometry.wrap_tile(tile));
-        self.rect
-            .contains([c, r])
-            .then(|| (r - self.rect.min[1]) as usize * self.cols + (c - self.rect.min[0]) as usize)
+        area_index(self.rect, geometry, tile)
     }
 
     /// Offset coordinate of tile `i`.
@@ -174,4 +168,15 @@ impl Survey {
             out.dedup();
         }
     }
+}
+
+/// Row-major index in `rect` of a tile (any copy of it on a wrapping map); `None` outside it or
+/// past the world. The survey and the placed setup both address tiles by it.
+pub(crate) fn area_index(rect: TileRect, geometry: &Geometry, tile: Hex) -> Option<usize> {
+    if !geometry.in_world(tile) {
+        return None;
+    }
+    let [c, r] = geometry.offset_of(geometry.wrap_tile(tile));
+    let cols = (rect.max[0] - rect.min[0]) as usize;
+    rect.contains([c, r]).then(|| (r - rect.min[1]) as usize * cols + (c - rect.min[0]) as usize)
 }
