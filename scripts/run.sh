@@ -7,4 +7,4 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/setup.sh
 source scripts/env.sh
-cargo run --example strategy
+cargo run -p bevy_hex_terrain --features "$HEXTERRAIN_FEATURES" --example strategy

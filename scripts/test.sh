@@ -15,5 +15,5 @@ if [ -z "${DISPLAY:-}" ] && [ -z "${WAYLAND_DISPLAY:-}" ] && command -v xvfb-run
   exec xvfb-run -a -s "-screen 0 1280x720x24" "$0" "$@"
 fi
 source scripts/env.sh
-cargo test --workspace --doc
-cargo nextest run --workspace --no-fail-fast
+cargo test --workspace --features "$HEXTERRAIN_FEATURES" --doc
+cargo nextest run --workspace --features "$HEXTERRAIN_FEATURES" --no-fail-fast

@@ -134,7 +134,7 @@ fn backend(n: usize) -> (f64, usize) {
     struct Rays(Vec<Ray3d>, usize);
     let mut app = App::new();
     app.add_plugins((MinimalPlugins, AssetPlugin::default(), TransformPlugin, PickingPlugin, InteractionPlugin));
-    let settings = HexTerrainSettings { load_radius: 3, max_inserts_per_frame: 64, ..default() };
+    let settings = HexStreamingSettings { load_radius: 3, max_inserts_per_frame: 64, ..default() };
     let map = MapConfig { size: MapSize::Unbounded, ..MapConfig::default() };
     app.add_plugins(HexTerrainPlugins { map: map.into(), settings }.build().disable::<HexTerrainMaterialPlugin>());
     app.insert_resource(Rays(rays(n, [-30.0, 30.0, -30.0, 30.0]), 0));

@@ -69,7 +69,7 @@ fn walk(seconds: u32, threads: ChunkThreads) -> Walk {
     let config = MapConfig { size: MapSize::Unbounded, chunk_size: (16, 16), ..MapConfig::default() };
     let chunk_width = 16.0 * 1.5 * config.layout.hex_size;
     let mut app = App::new();
-    let settings = HexTerrainSettings { chunk_threads: threads, ..HexTerrainSettings::default() };
+    let settings = HexStreamingSettings { chunk_threads: threads, ..HexStreamingSettings::default() };
     app.add_plugins((MinimalPlugins, AssetPlugin::default(), TransformPlugin))
         .add_plugins(HexTerrainPlugins { map: config.into(), settings }.build().disable::<HexTerrainMaterialPlugin>())
         .init_resource::<FrameTimes>()

@@ -1,29 +1,42 @@
 //! A Bevy plugin generating 3D hexagonal tiled terrain for turn-based strategy games, after the
-//! thesis "Applying Perlin noise on 3D hexagonal tiled maps".
+//! thesis "Applying Perlin noise on 3D hexagonal tiled maps". Heights, tile types and meshes come
+//! from the Bevy-free [`hex_terrain`] crate, so [`HexMap`]'s queries hold for tiles whose chunk is
+//! not loaded.
 //!
-//! `app.add_plugins(HexTerrainPlugin::default())` adds [`HexTerrainPlugins`]: the [`HexMap`]
-//! resource and its map assets ([`HexMapPlugin`]), chunk streaming around every
-//! [`HexTerrainAgent`] ([`HexStreamingPlugin`]), with the `picking` feature a `bevy_picking`
-//! backend whose pointer events carry the tile (`HexPickingPlugin`) and, with the `render`
-//! feature, the terrain material (`HexTerrainMaterialPlugin`). Pick a map file with [`HexTerrainPlugin::from_asset`],
-//! switch maps at run time with the [`LoadHexMap`] message. Heights, tile types and meshes come
-//! from the Bevy-free [`hex_terrain`] crate, so [`HexMap`]'s queries hold for tiles whose chunk
-//! is not loaded.
+//! `app.add_plugins(HexTerrainPlugins::from_asset("maps/island.map.ron"))` adds every plugin;
+//! each owns its settings resource and runs in the public [`HexTerrainSystems`] sets, in the
+//! order data flows through them:
+//!
+//! | set | plugin | what it does | its settings |
+//! | --- | --- | --- | --- |
+//! | [`Map`](HexTerrainSystems::Map) | [`HexMapPlugin`] | loads `*.map.ron` assets (hot reload, [`LoadHexMap`]) into the [`HexMap`] resource; a bad file is a [`HexMapError`] and the old map stays | [`MapSource`] |
+//! | [`Stream`](HexTerrainSystems::Stream) | [`HexStreamingPlugin`] | keeps [`HexChunk`]s around every [`HexTerrainAgent`], each built on the async compute pool from a snapshot of the settings below | [`HexStreamingSettings`] |
+//! | [`Insert`](HexTerrainSystems::Insert) | [`HexStreamingPlugin`] | inserts finished meshes and their [`ChunkContent`] under a per-frame budget, sends [`ChunkSpawned`], [`TerrainReady`] | |
+//! | [`Children`](HexTerrainSystems::Children) | [`HexWaterPlugin`], [`HexPropsPlugin`] | spawn each chunk's [`HexWater`] surface and [`HexProp`]s from its content | [`WaterSettings`], [`PropSettings`] |
+//! | [`Tiles`](HexTerrainSystems::Tiles) | [`HexTileStatePlugin`] | keeps the [`TileStates`] window (fog of war, owners, lens, highlights) on the map; packs changed rows in `PostUpdate` | [`TileStateSettings`], [`TileStateStyle`] |
+//! | [`Render`](HexTerrainSystems::Render) | `HexTerrainMaterialPlugin`, `HexLightPlugin` (`render`) | the terrain and water material and its tile state texture; the sun, fog and ambient light of `HexTerrainCamera`s | `TerrainMaterialSettings`, `TerrainLighting` |
+//!
+//! Besides them: with the `picking` feature `HexPickingPlugin`, a `bevy_picking` backend whose
+//! hits carry the tile (`HexPick`);
+//! with `minimap` `HexMinimapPlugin`; with `big_space` `HexBigSpacePlugin` (floating origin).
 //!
 //! ```no_run
 //! use bevy::prelude::*;
 //! use bevy_hex_terrain::prelude::*;
 //!
 //! App::new()
-//!     .add_plugins((DefaultPlugins, HexTerrainPlugin::from_asset("maps/island.map.ron")))
+//!     .add_plugins((DefaultPlugins, HexTerrainPlugins::from_asset("maps/island.map.ron")))
 //!     .add_systems(Startup, |mut commands: Commands| {
-//!         commands.spawn((Camera3d::default(), HexTerrainAgent::default(),
+//!         // A terrain camera (it brings its `Camera3d`, distance fog and ambient light) that
+//!         // keeps terrain streamed around itself.
+//!         commands.spawn((HexTerrainCamera, HexTerrainAgent::default(),
 //!             Transform::from_xyz(0.0, 30.0, 30.0).looking_at(Vec3::ZERO, Vec3::Y)));
 //!     })
 //!     .run();
 //! ```
 //!
-//! A headless app (a server, a test) streams meshes without the material:
+//! A headless app (a server, a test) streams meshes without the material (or builds the crate
+//! with `default-features = false`, which has no renderer at all):
 //!
 //! ```no_run
 //! use bevy::prelude::*;
@@ -35,23 +48,23 @@
 //! app.add_plugins(HexTerrainPlugins::default().build().disable::<HexTerrainMaterialPlugin>());
 //! ```
 
-pub mod asset;
+mod asset;
 #[cfg(feature = "big_space")]
-pub mod far;
+mod far;
 #[cfg(feature = "render")]
-pub mod light;
-pub mod map;
+mod light;
+mod map;
 #[cfg(feature = "render")]
-pub mod material;
-pub mod mesh;
+mod material;
+mod mesh;
 #[cfg(feature = "minimap")]
-pub mod minimap;
+mod minimap;
 #[cfg(feature = "picking")]
-pub mod picking;
-pub mod props;
-pub mod streaming;
-pub mod tiles;
-pub mod water;
+mod picking;
+mod props;
+mod streaming;
+mod tiles;
+mod water;
 
 use bevy::app::PluginGroupBuilder;
 use bevy::prelude::*;
@@ -63,9 +76,12 @@ pub use crate::asset::{HexMapAsset, HexMapLoader, HexMapLoaderError};
 pub use crate::far::{HexBigSpacePlugin, HexTerrainGrid};
 #[cfg(feature = "render")]
 pub use crate::light::{HexLightPlugin, HexSun, HexTerrainCamera, TerrainLighting};
-pub use crate::map::{HexMap, HexMapError, HexMapHandle, HexMapPlugin, LoadHexMap, TileHit, TileHitF64};
+pub use crate::map::{HexMap, HexMapError, HexMapHandle, HexMapPlugin, LoadHexMap, MapSource, TileHit, TileHitF64};
 #[cfg(feature = "render")]
-pub use crate::material::{HexTerrainMaterial, HexTerrainMaterialPlugin, RenderOrigin, TerrainAppearance};
+pub use crate::material::{
+    HexTerrainExtension, HexTerrainKey, HexTerrainMaterial, HexTerrainMaterialPlugin, OwnerColors, RenderOrigin,
+    TerrainMaterialSettings, TerrainParams,
+};
 #[cfg(feature = "minimap")]
 pub use crate::minimap::{
     HexMinimap, HexMinimapCamera, HexMinimapPlugin, HexMinimapSystems, MinimapCorner, MinimapNavigate, MinimapPicture,
@@ -73,16 +89,16 @@ pub use crate::minimap::{
 };
 #[cfg(feature = "picking")]
 pub use crate::picking::{HexPick, HexPickingCamera, HexPickingPlugin, HexPickingSettings, HexPickingStats};
-pub use crate::props::{HexProp, HexPropStats, HexPropsPlugin};
+pub use crate::props::{HexProp, HexPropStats, HexPropsPlugin, PropAssets, PropSettings};
 pub use crate::streaming::{
     ChunkContent, ChunkDespawned, ChunkSpawned, ChunkStreamer, ChunkTask, ChunkThreads, HexChunk, HexStreamingPlugin,
-    HexTerrainAgent, HexTerrainSettings, HexTerrainStats, HexWorldPosition, PropSettings, TerrainReady, WaterSettings,
+    HexStreamingSettings, HexTerrainAgent, HexTerrainStats, HexWorldPosition, TerrainReady,
 };
 pub use crate::tiles::{
-    FogState, HexTileStatePlugin, HexTileStateSystems, Highlight, SaveError, TileStateError, TileStateSave,
-    TileStateSettings, TileStateStats, TileStates,
+    FogState, HexTileStatePlugin, HexTileStateSystems, Highlight, MAX_OWNERS, SaveError, Texel, TileStateError,
+    TileStateSave, TileStateSettings, TileStateStats, TileStateStyle, TileStateUpload, TileStates,
 };
-pub use crate::water::{HexWater, HexWaterPlugin};
+pub use crate::water::{HexWater, HexWaterPlugin, WaterSettings};
 
 /// Everything a game usually needs.
 pub mod prelude {
@@ -91,67 +107,23 @@ pub mod prelude {
     #[cfg(feature = "render")]
     pub use crate::light::{HexLightPlugin, HexTerrainCamera, TerrainLighting};
     #[cfg(feature = "render")]
-    pub use crate::material::{HexTerrainMaterialPlugin, TerrainAppearance};
+    pub use crate::material::{HexTerrainMaterialPlugin, TerrainMaterialSettings};
     #[cfg(feature = "minimap")]
     pub use crate::minimap::{HexMinimapPlugin, MinimapNavigate, MinimapSettings};
     #[cfg(feature = "picking")]
     pub use crate::picking::{HexPick, HexPickingPlugin};
     pub use crate::{
-        ChunkDespawned, ChunkSpawned, ChunkStreamer, FogState, HexChunk, HexMap, HexMapError, HexMapPlugin, HexProp,
-        HexStreamingPlugin, HexTerrainAgent, HexTerrainPlugin, HexTerrainPlugins, HexTerrainSettings, HexTerrainStats,
-        HexTerrainSystems, HexTileStatePlugin, HexWater, HexWorldPosition, Highlight, LoadHexMap, MapSource,
-        PropSettings, SaveError, TerrainReady, TileHit, TileStateSave, TileStates, WaterSettings,
+        ChunkContent, ChunkDespawned, ChunkSpawned, ChunkStreamer, FogState, HexChunk, HexMap, HexMapError,
+        HexMapPlugin, HexProp, HexPropsPlugin, HexStreamingPlugin, HexStreamingSettings, HexTerrainAgent,
+        HexTerrainPlugins, HexTerrainStats, HexTerrainSystems, HexTileStatePlugin, HexWater, HexWaterPlugin,
+        HexWorldPosition, Highlight, LoadHexMap, MapSource, PropSettings, SaveError, TerrainReady, TileHit,
+        TileStateSave, TileStateStyle, TileStates, WaterSettings,
     };
     pub use hex_terrain::hexx::Hex;
     pub use hex_terrain::{
         Biome, ChunkCoord, MapConfig, MapSize, PlacedResource, PlacedWonder, ResourceClass, RiverTile, Setup,
         SetupConfig, TileInfo, TileKind,
     };
-}
-
-/// Where the map comes from. Reflected as an opaque value (its config is boxed): inspectors show
-/// it by `Debug`.
-#[derive(Debug, Clone, Reflect)]
-#[reflect(opaque, Debug, Clone)]
-pub enum MapSource {
-    /// A config given in code.
-    Config(Box<MapConfig>),
-    /// A RON asset path (e.g. `maps/island.map.ron`), hot-reloaded when the asset server
-    /// watches files.
-    Asset(String),
-}
-
-impl Default for MapSource {
-    /// An unbounded continent: the thesis' Map0 noise, two inner rings, a maximum elevation of
-    /// four hex radii (Map0's ten makes unit-sized hexes look like needles), peaks and hills
-    /// ([`ReliefConfig::MOUNTAINS`](hex_terrain::ReliefConfig::MOUNTAINS)).
-    fn default() -> Self {
-        let mut config =
-            MapConfig { name: "Continent".into(), size: hex_terrain::MapSize::Unbounded, ..MapConfig::default() };
-        config.terrain.max_elevation = 4.0;
-        config.terrain.inner_rings = 2;
-        config.noise.scale = 60.0;
-        config.relief = hex_terrain::ReliefConfig::MOUNTAINS;
-        Self::Config(Box::new(config))
-    }
-}
-
-impl From<&str> for MapSource {
-    fn from(path: &str) -> Self {
-        Self::Asset(path.to_owned())
-    }
-}
-
-impl From<String> for MapSource {
-    fn from(path: String) -> Self {
-        Self::Asset(path)
-    }
-}
-
-impl From<MapConfig> for MapSource {
-    fn from(config: MapConfig) -> Self {
-        Self::Config(Box::new(config))
-    }
 }
 
 /// The system sets of the plugins, run in this order in `Update`.
@@ -161,35 +133,54 @@ pub enum HexTerrainSystems {
     Map,
     /// Decides the wanted chunks around agents, starts tasks, despawns far chunks.
     Stream,
-    /// Inserts finished chunk meshes under the per-frame budget.
+    /// Inserts finished chunk meshes and their [`ChunkContent`] under the per-frame budget.
     Insert,
+    /// Spawns and despawns the chunks' children from their [`ChunkContent`]: water surfaces
+    /// ([`HexWaterPlugin`]) and props ([`HexPropsPlugin`]).
+    Children,
     /// Keeps the [`TileStates`] window on the map and around the loaded chunks.
     Tiles,
-    /// Updates the terrain material (hot reload, appearance, tile state texture) and gives new
-    /// chunk meshes their material.
+    /// Updates the terrain material (hot reload, its settings, the tile state style, the water's
+    /// look, the tile state texture), gives new chunk meshes their material, and lights the
+    /// terrain cameras.
     Render,
 }
 
 /// The terrain plugins: [`HexMapPlugin`] (the [`HexMap`] resource, map assets, switching),
 /// [`HexStreamingPlugin`] (chunks around agents), [`HexTileStatePlugin`] (per-tile game state:
 /// fog of war, territory, lenses, highlights), [`HexWaterPlugin`] (the water surface's
-/// entities), [`HexPropsPlugin`] (trees, rocks, reeds) and, with the `render` feature,
-/// `HexTerrainMaterialPlugin` (the terrain and water material, which needs Bevy's `PbrPlugin`)
-/// and `HexLightPlugin` (sun, shadows, fog, occlusion for `HexTerrainCamera`s). Disable one
-/// with `HexTerrainPlugins::default().build().disable::<…>()`.
+/// entities), [`HexPropsPlugin`] (trees, rocks, reeds), with the `picking` feature
+/// `HexPickingPlugin` and, with the `render` feature, `HexTerrainMaterialPlugin` (the terrain
+/// and water material, which needs Bevy's `PbrPlugin`) and `HexLightPlugin` (sun, shadows, fog
+/// for `HexTerrainCamera`s). Add it after `DefaultPlugins`. Each plugin owns its settings
+/// resource (insert yours to change them); disable one with
+/// `HexTerrainPlugins::default().build().disable::<…>()`.
 #[derive(Debug, Clone, Default)]
 pub struct HexTerrainPlugins {
     /// The map to show.
     pub map: MapSource,
     /// Streaming parameters.
-    pub settings: HexTerrainSettings,
+    pub settings: HexStreamingSettings,
 }
 
 impl HexTerrainPlugins {
-    /// The plugins showing a map config (a path or a config).
+    /// The plugins showing a map (an asset path or a config).
     #[must_use]
     pub fn new(map: impl Into<MapSource>) -> Self {
-        Self { map: map.into(), settings: HexTerrainSettings::default() }
+        Self { map: map.into(), settings: HexStreamingSettings::default() }
+    }
+
+    /// The plugins showing the map config at an asset path (hot-reloaded when the asset server
+    /// watches files).
+    #[must_use]
+    pub fn from_asset(path: impl Into<String>) -> Self {
+        Self::new(MapSource::Asset(path.into()))
+    }
+
+    /// The plugins showing a config given in code.
+    #[must_use]
+    pub fn from_config(config: MapConfig) -> Self {
+        Self::new(config)
     }
 }
 
@@ -206,35 +197,5 @@ impl PluginGroup for HexTerrainPlugins {
         #[cfg(feature = "render")]
         let group = group.add(material::HexTerrainMaterialPlugin).add(light::HexLightPlugin);
         group
-    }
-}
-
-/// The one-line entry: adds every plugin of [`HexTerrainPlugins`]. Add it after
-/// `DefaultPlugins`.
-#[derive(Debug, Clone, Default)]
-pub struct HexTerrainPlugin {
-    /// The map to show.
-    pub map: MapSource,
-    /// Streaming parameters.
-    pub settings: HexTerrainSettings,
-}
-
-impl HexTerrainPlugin {
-    /// The plugin showing the map config at an asset path.
-    #[must_use]
-    pub fn from_asset(path: impl Into<String>) -> Self {
-        Self { map: MapSource::Asset(path.into()), ..default() }
-    }
-
-    /// The plugin showing a config given in code.
-    #[must_use]
-    pub fn from_config(config: MapConfig) -> Self {
-        Self { map: MapSource::Config(Box::new(config)), ..default() }
-    }
-}
-
-impl Plugin for HexTerrainPlugin {
-    fn build(&self, app: &mut App) {
-        app.add_plugins(HexTerrainPlugins { map: self.map.clone(), settings: self.settings.clone() });
     }
 }

@@ -1,20 +1,43 @@
 //! Light and air for the terrain: a directional sun with cascaded shadows fitted to the view of
-//! a strategy camera, distance fog so far terrain fades into the sky, and screen-space ambient
-//! occlusion, each switchable in [`TerrainLighting`] (software renderers and weak GPUs turn
-//! shadows and occlusion off). Cameras opt in with [`HexTerrainCamera`].
+//! a strategy camera, and distance fog so far terrain fades into the sky, each switchable in
+//! [`TerrainLighting`] (software renderers and weak GPUs turn shadows off). Cameras opt in with
+//! [`HexTerrainCamera`], which brings its fog and ambient light as components of its own.
 
 use bevy::light::{CascadeShadowConfig, CascadeShadowConfigBuilder, DirectionalLightShadowMap};
-use bevy::pbr::{DistanceFog, FogFalloff, ScreenSpaceAmbientOcclusion};
+use bevy::pbr::{DistanceFog, FogFalloff};
 use bevy::prelude::*;
 
 use crate::HexTerrainSystems;
 
-/// Put on a camera to light and fog the terrain it shows: it gets [`DistanceFog`], an
-/// [`AmbientLight`] and, when asked for, [`ScreenSpaceAmbientOcclusion`]; the sun's shadow
-/// cascades follow the first such camera's height.
+/// Put on a camera to light and fog the terrain it shows. It requires a [`Camera3d`], a
+/// [`DistanceFog`] and an [`AmbientLight`], components of the camera that you see and may
+/// override: while [`TerrainLighting::fog`] is on, the plugin fits the fog's falloff to the
+/// camera's height above the sea and its color to [`TerrainLighting::fog_color`] (off, it
+/// removes the fog); it sets the ambient light's brightness when [`TerrainLighting`] changes.
+/// The sun's shadow cascades follow the first such camera's height.
+///
+/// Screen-space ambient occlusion is the camera's too: add Bevy's
+/// `ScreenSpaceAmbientOcclusion` and `Msaa::Off` (which it needs) to it.
 #[derive(Component, Debug, Clone, Copy, Default, Reflect)]
 #[reflect(Component, Default)]
+#[require(Camera3d, DistanceFog = HexTerrainCamera::fog(), AmbientLight = HexTerrainCamera::ambient())]
 pub struct HexTerrainCamera;
+
+impl HexTerrainCamera {
+    /// The fog a terrain camera starts with: [`TerrainLighting`]'s default color, fitted to a
+    /// camera 20 units above the sea (the plugin refits it from the first frame).
+    #[must_use]
+    pub fn fog() -> DistanceFog {
+        TerrainLighting::default().fog_for(20.0)
+    }
+
+    /// The ambient light a terrain camera starts with ([`TerrainLighting::ambient_brightness`]'s
+    /// default).
+    #[must_use]
+    pub fn ambient() -> AmbientLight {
+        AmbientLight { brightness: TerrainLighting::default().ambient_brightness, ..default() }
+    }
+}
 
 /// The sun entity the plugin spawns (while [`TerrainLighting::sun`] is on).
 #[derive(Component, Debug, Clone, Copy, Default, Reflect)]
@@ -45,16 +68,14 @@ pub struct TerrainLighting {
     pub shadow_map_size: usize,
     /// Ambient light brightness on terrain cameras.
     pub ambient_brightness: f32,
-    /// Distance fog on terrain cameras: far terrain fades into `fog_color`.
+    /// Distance fog on terrain cameras, fitted to their height: far terrain fades into
+    /// `fog_color`. Off, the plugin removes their [`DistanceFog`] and leaves fog to you.
     pub fog: bool,
     /// Fog color, the sky's at the horizon.
     pub fog_color: Color,
     /// Where the fog starts and where it is whole, in multiples of the camera's height above
     /// the ground.
     pub fog_range: Vec2,
-    /// Screen-space ambient occlusion on terrain cameras (needs depth and normal prepasses and
-    /// turns MSAA off; expensive on software renderers).
-    pub ambient_occlusion: bool,
 }
 
 impl Default for TerrainLighting {
@@ -72,7 +93,6 @@ impl Default for TerrainLighting {
             fog: true,
             fog_color: Color::srgb(0.70, 0.78, 0.86),
             fog_range: Vec2::new(1.5, 4.5),
-            ambient_occlusion: false,
         }
     }
 }
@@ -85,6 +105,19 @@ impl TerrainLighting {
         let azimuth = finite(self.sun_azimuth, 225.0).to_radians();
         let to_sun = Vec3::new(azimuth.sin() * elevation.cos(), elevation.sin(), -azimuth.cos() * elevation.cos());
         -to_sun
+    }
+
+    /// The distance fog for a camera `height` above the sea: it starts and is whole at
+    /// [`fog_range`](Self::fog_range) times the height.
+    #[must_use]
+    pub fn fog_for(&self, height: f32) -> DistanceFog {
+        let range = self.fog_range.max(Vec2::ZERO);
+        DistanceFog {
+            color: self.fog_color,
+            directional_light_color: Color::srgba(1.0, 0.95, 0.85, 0.3),
+            directional_light_exponent: 20.0,
+            falloff: FogFalloff::Linear { start: height * range.x, end: height * range.y.max(range.x + 0.1) },
+        }
     }
 
     /// Shadow cascades for a camera `height` above the ground: the first ends a little past
@@ -180,14 +213,34 @@ fn update_sun(
     }
 }
 
-/// Terrain cameras with the components the plugin manages.
+/// Terrain cameras with the components the plugin fits.
 type TerrainCameras<'w, 's> = Query<
     'w,
     's,
-    (Entity, &'static GlobalTransform, Option<&'static DistanceFog>, Has<ScreenSpaceAmbientOcclusion>),
-    With<HexTerrainCamera>,
+    (
+        Entity,
+        Ref<'static, HexTerrainCamera>,
+        &'static GlobalTransform,
+        Option<&'static DistanceFog>,
+        Option<&'static AmbientLight>,
+    ),
 >;
 
+/// Whether two fogs are the same but for a twentieth of their falloff distances (a camera
+/// moving a little does not rewrite its fog every frame).
+fn same_fog(a: &DistanceFog, b: &DistanceFog) -> bool {
+    let close = |x: f32, y: f32| (x - y).abs() < 0.05 * y.abs().max(1.0);
+    a.color == b.color
+        && match (&a.falloff, &b.falloff) {
+            (FogFalloff::Linear { start: s0, end: e0 }, FogFalloff::Linear { start: s1, end: e1 }) => {
+                close(*s0, *s1) && close(*e0, *e1)
+            }
+            _ => false,
+        }
+}
+
+/// Fits each terrain camera's fog to its height (or removes it while the fog is off) and sets
+/// its ambient brightness when the camera is new or the lighting changes.
 fn update_cameras(
     mut commands: Commands,
     lighting: Res<TerrainLighting>,
@@ -195,35 +248,20 @@ fn update_cameras(
     cameras: TerrainCameras,
 ) {
     let sea = map.terrain().sea_level();
-    for (e, transform, fog, has_ao) in &cameras {
+    for (e, camera, transform, fog, ambient) in &cameras {
         let height = (transform.translation().y - sea).max(1.0);
-        let mut camera = commands.entity(e);
         if lighting.fog {
-            let range = lighting.fog_range.max(Vec2::ZERO);
-            let falloff = FogFalloff::Linear { start: height * range.x, end: height * range.y.max(range.x + 0.1) };
-            let wanted = DistanceFog {
-                color: lighting.fog_color,
-                directional_light_color: Color::srgba(1.0, 0.95, 0.85, 0.3),
-                directional_light_exponent: 20.0,
-                falloff,
-            };
-            let same = fog.is_some_and(|f| {
-                f.color == wanted.color
-                    && matches!((&f.falloff, &wanted.falloff), (FogFalloff::Linear { start: a, end: b }, FogFalloff::Linear { start: c, end: d }) if (a - c).abs() < 0.05 * c.abs().max(1.0) && (b - d).abs() < 0.05 * d.abs().max(1.0))
-            });
-            if !same {
-                camera.insert(wanted);
+            let wanted = lighting.fog_for(height);
+            if !fog.is_some_and(|f| same_fog(f, &wanted)) {
+                commands.entity(e).insert(wanted);
             }
         } else if fog.is_some() {
-            camera.remove::<DistanceFog>();
+            commands.entity(e).remove::<DistanceFog>();
         }
-        if lighting.is_changed() || lighting.is_added() {
-            camera.insert(AmbientLight { brightness: lighting.ambient_brightness, ..default() });
-        }
-        if lighting.ambient_occlusion && !has_ao {
-            camera.insert((ScreenSpaceAmbientOcclusion::default(), Msaa::Off));
-        } else if !lighting.ambient_occlusion && has_ao {
-            camera.remove::<ScreenSpaceAmbientOcclusion>();
+        // A new camera, or new lighting: a brightness set on the camera in between is kept.
+        let fresh = camera.is_added() || lighting.is_changed();
+        if fresh && ambient.is_none_or(|a| a.brightness != lighting.ambient_brightness) {
+            commands.entity(e).insert(AmbientLight { brightness: lighting.ambient_brightness, ..default() });
         }
     }
 }

@@ -1,36 +1,4 @@
-//! A [`bevy_picking`](bevy::picking) backend for the terrain (the `picking` cargo feature):
-//! every pointer's ray from Bevy's [`RayMap`] is cast on the real surface with the core's exact
-//! ray cast (the answer [`HexMap::raycast`] gives, in f64, so it holds far from the origin and
-//! with `big_space`), and the hit is reported as [`PointerHits`] on the chunk entity showing it,
-//! with the depth, the position, the surface normal and, as the hit's extra data, a [`HexPick`]:
-//! the tile. Bevy's hover and pointer events do the rest: an observer on chunks (or a global
-//! one) receives `Pointer<Over>`, `Pointer<Move>`, `Pointer<Click>`, `Pointer<Drag>` and the
-//! others, and reads the tile from the event's hit:
-//!
-//! ```no_run
-//! use bevy::picking::events::{Click, Pointer};
-//! use bevy::prelude::*;
-//! use bevy_hex_terrain::HexPick;
-//!
-//! fn on_click(click: On<Pointer<Click>>) {
-//!     if let Some(pick) = click.hit.extra_as::<HexPick>() {
-//!         info!("clicked tile {:?}", pick.tile);
-//!     }
-//! }
-//! # App::new().add_observer(on_click);
-//! ```
-//!
-//! What stands on the terrain is hit too, before the ground behind it: a prop ([`HexProp`]: a
-//! tree, a rock, reeds; its mesh's bounding box, or a unit box when it has no mesh) is reported
-//! on the prop entity with the tile it stands on, and the sea's water surface ([`HexWater`]) on
-//! the water entity with the tile under the surface point. Both are children of their chunk, so
-//! Bevy's event bubbling brings their events to observers on the chunk too (a global observer
-//! sees each step: compare `event_target()` with `original_event_target()` to act once). A
-//! hidden prop (under fog of war) is not hit; a chunk, prop or water surface with
-//! [`Pickable::IGNORE`] is not hit (the ray goes on to what is behind it); an entity in front of
-//! the terrain that another backend reports (a unit, with `MeshPickingPlugin`) comes first by
-//! Bevy's depth order and blocks the terrain behind it unless its `Pickable` says otherwise.
-//! Only loaded chunks are hit: a ray to a chunk not streamed in reports nothing.
+//! The terrain's `bevy_picking` backend (the `picking` feature): see [`HexPickingPlugin`].
 
 use bevy::camera::primitives::MeshAabb;
 use bevy::ecs::system::SystemParam;
@@ -97,6 +65,40 @@ pub struct HexPickingCamera;
 /// The terrain picking backend: [`HexPickingSettings`] and a system in
 /// [`PickingSystems::Backend`]. Part of [`HexTerrainPlugins`](crate::HexTerrainPlugins); Bevy's
 /// picking plugins (in `DefaultPlugins`) turn its hits into pointer events.
+///
+/// A [`bevy_picking`](bevy::picking) backend for the terrain (the `picking` cargo feature):
+/// every pointer's ray from Bevy's [`RayMap`] is cast on the real surface with the core's exact
+/// ray cast (the answer [`HexMap::raycast`] gives, in f64, so it holds far from the origin and
+/// with `big_space`), and the hit is reported as [`PointerHits`] on the chunk entity showing it,
+/// with the depth, the position, the surface normal and, as the hit's extra data, a [`HexPick`]:
+/// the tile. Bevy's hover and pointer events do the rest: an observer on chunks (or a global
+/// one) receives `Pointer<Over>`, `Pointer<Move>`, `Pointer<Click>`, `Pointer<Drag>` and the
+/// others, and reads the tile from the event's hit:
+///
+/// ```no_run
+/// use bevy::picking::events::{Click, Pointer};
+/// use bevy::prelude::*;
+/// use bevy_hex_terrain::HexPick;
+///
+/// fn on_click(click: On<Pointer<Click>>) {
+///     if let Some(pick) = click.hit.extra_as::<HexPick>() {
+///         info!("clicked tile {:?}", pick.tile);
+///     }
+/// }
+/// # App::new().add_observer(on_click);
+/// ```
+///
+/// What stands on the terrain is hit too, before the ground behind it: a prop ([`HexProp`]: a
+/// tree, a rock, reeds; its mesh's bounding box, or a unit box when it has no mesh) is reported
+/// on the prop entity with the tile it stands on, and the sea's water surface ([`HexWater`]) on
+/// the water entity with the tile under the surface point. Both are children of their chunk, so
+/// Bevy's event bubbling brings their events to observers on the chunk too (a global observer
+/// sees each step: compare `event_target()` with `original_event_target()` to act once). A
+/// hidden prop (under fog of war) is not hit; a chunk, prop or water surface with
+/// [`Pickable::IGNORE`] is not hit (the ray goes on to what is behind it); an entity in front of
+/// the terrain that another backend reports (a unit, with `MeshPickingPlugin`) comes first by
+/// Bevy's depth order and blocks the terrain behind it unless its `Pickable` says otherwise.
+/// Only loaded chunks are hit: a ray to a chunk not streamed in reports nothing.
 #[derive(Debug, Clone, Default)]
 pub struct HexPickingPlugin {
     /// The backend's settings (the [`HexPickingSettings`] resource).

@@ -18,9 +18,9 @@ fn wooded() -> MapConfig {
 }
 
 fn app_with_props(config: MapConfig, radius: u32, props: PropSettings) -> App {
-    let mut s = settings(radius);
-    s.props = props;
-    app_with(HexTerrainPlugins { map: config.into(), settings: s }, None)
+    let mut app = app_with(HexTerrainPlugins { map: config.into(), settings: settings(radius) }, None);
+    app.insert_resource(props);
+    app
 }
 
 /// Every prop entity: its chunk, kind, variant, tile and transform.
@@ -131,6 +131,56 @@ fn walking_keeps_props_and_water_with_their_chunks() {
     assert!(meshes <= 2 * 49, "{meshes} meshes alive: despawned chunks must free theirs");
 }
 
+/// Chunk tasks build what the water and props plugins ask for, from their settings when the
+/// task starts: without the plugins, no water surface and no props are built at all; a new
+/// density applies to the chunks built after it.
+#[test]
+fn tasks_build_what_the_plugins_and_their_settings_ask_for() {
+    let contents = |app: &mut App| -> Vec<(usize, bool)> {
+        let mut all: Vec<_> = app
+            .world_mut()
+            .query::<(&HexChunk, &ChunkContent)>()
+            .iter(app.world())
+            .map(|(chunk, c)| ((chunk.coord.x, chunk.coord.z), (c.props.len(), c.water.is_some())))
+            .collect();
+        all.sort_unstable_by_key(|(coord, _)| *coord);
+        all.into_iter().map(|(_, c)| c).collect()
+    };
+    let plugins = HexTerrainPlugins { map: wooded().into(), settings: settings(8) };
+    #[cfg(feature = "render")]
+    let group = plugins.build().disable::<HexTerrainMaterialPlugin>();
+    #[cfg(not(feature = "render"))]
+    let group = plugins.build();
+    let mut bare = App::new();
+    bare.add_plugins((MinimalPlugins, AssetPlugin::default(), TransformPlugin));
+    bare.add_plugins(group.disable::<HexWaterPlugin>().disable::<HexPropsPlugin>());
+    spawn_agent(&mut bare, Vec3::ZERO);
+    run_until(&mut bare, "terrain ready without water and props", ready);
+    let bare = contents(&mut bare);
+    assert!(!bare.is_empty());
+    assert!(bare.iter().all(|&(props, water)| props == 0 && !water), "{bare:?}");
+
+    let mut app = app_with_props(wooded(), 8, PropSettings::default());
+    spawn_agent(&mut app, Vec3::ZERO);
+    run_until(&mut app, "terrain ready", ready);
+    let full = contents(&mut app);
+    assert_eq!(full.len(), bare.len());
+    assert!(full.iter().any(|&(_, water)| water) && full.iter().any(|&(props, _)| props > 0));
+    // Half the density, then a new map generation (a reload of the same map) rebuilds every
+    // chunk with it: fewer props, the same water.
+    app.world_mut().resource_mut::<PropSettings>().density = 0.5;
+    let generation = app.world().resource::<HexMap>().generation();
+    app.world_mut().write_message(LoadHexMap(wooded().into()));
+    run_until(&mut app, "terrain ready again", |app| {
+        app.world().resource::<HexMap>().generation() > generation && ready(app)
+    });
+    let thinned = contents(&mut app);
+    assert_eq!(thinned.len(), full.len());
+    let (before, after): (usize, usize) = (full.iter().map(|c| c.0).sum(), thinned.iter().map(|c| c.0).sum());
+    assert!(after < before && after > 0, "{after} props at half the density, {before} at the full one");
+    assert!(thinned.iter().zip(&full).all(|(a, b)| a.1 == b.1));
+}
+
 #[test]
 fn props_and_water_switch_off_and_on_at_run_time() {
     let mut app = app_with_props(wooded(), 8, PropSettings::default());
@@ -139,19 +189,13 @@ fn props_and_water_switch_off_and_on_at_run_time() {
     app.update();
     let (props_on, water_on) = (count::<HexProp>(&mut app), count::<HexWater>(&mut app));
     assert!(props_on > 0 && water_on > 0);
-    {
-        let mut s = app.world_mut().resource_mut::<HexTerrainSettings>();
-        s.props.enabled = false;
-        s.water.enabled = false;
-    }
+    app.world_mut().resource_mut::<PropSettings>().enabled = false;
+    app.world_mut().resource_mut::<WaterSettings>().enabled = false;
     app.update();
     app.update();
     assert_eq!((count::<HexProp>(&mut app), count::<HexWater>(&mut app)), (0, 0));
-    {
-        let mut s = app.world_mut().resource_mut::<HexTerrainSettings>();
-        s.props.enabled = true;
-        s.water.enabled = true;
-    }
+    app.world_mut().resource_mut::<PropSettings>().enabled = true;
+    app.world_mut().resource_mut::<WaterSettings>().enabled = true;
     app.update();
     app.update();
     assert_eq!((count::<HexProp>(&mut app), count::<HexWater>(&mut app)), (props_on, water_on));
@@ -190,7 +234,7 @@ fn a_map_switch_replaces_the_props_with_the_new_maps() {
 #[test]
 fn props_hide_under_fog_and_a_write_looks_only_at_its_tiles_props() {
     let mut app = app_with_props(wooded(), 1, PropSettings::default());
-    app.insert_resource(TerrainAppearance { fog_of_war: true, ..default() });
+    app.insert_resource(TileStateStyle { fog_of_war: true, ..default() });
     spawn_agent(&mut app, Vec3::ZERO);
     run_until(&mut app, "the chunks around the agent", |app| {
         let streamer = app.world().resource::<ChunkStreamer>();
@@ -229,7 +273,7 @@ fn props_hide_under_fog_and_a_write_looks_only_at_its_tiles_props() {
     app.update();
     assert_eq!(app.world().resource::<bevy_hex_terrain::HexPropStats>().fog_checks, before);
     // Fog off: every prop shows.
-    app.world_mut().resource_mut::<TerrainAppearance>().fog_of_war = false;
+    app.world_mut().resource_mut::<TileStateStyle>().fog_of_war = false;
     app.update();
     assert!(shown(&mut app).iter().all(|(_, s)| *s));
 }
@@ -243,7 +287,7 @@ fn the_setups_resources_and_wonders_stand_on_their_tiles_and_hide_under_fog() {
     let mut config = wooded();
     config.setup = Some(SetupConfig { players: 2, min_distance: 8, ..default() });
     let mut app = app_with_props(config.clone(), 8, PropSettings::default());
-    app.insert_resource(TerrainAppearance { fog_of_war: true, ..default() });
+    app.insert_resource(TileStateStyle { fog_of_war: true, ..default() });
     spawn_agent(&mut app, Vec3::ZERO);
     run_until(&mut app, "every chunk", |app| {
         let streamer = app.world().resource::<ChunkStreamer>();

@@ -34,9 +34,11 @@ fn app(config: MapConfig) -> App {
     let mut app = App::new();
     app.add_plugins((MinimalPlugins, AssetPlugin::default(), TransformPlugin, PickingPlugin, InteractionPlugin));
     app.init_asset::<Image>();
-    let settings = HexTerrainSettings { load_radius: 1, ..default() };
+    let settings = HexStreamingSettings { load_radius: 1, ..default() };
     app.add_plugins(HexTerrainPlugins { map: config.into(), settings }.build().disable::<HexTerrainMaterialPlugin>());
     app.add_plugins(HexMinimapPlugin::default());
+    // The minimap draws fog of war as the terrain does: while the tile states' style has it on.
+    app.insert_resource(TileStateStyle { fog_of_war: true, ..default() });
     app.init_resource::<OnMinimap>().init_resource::<Navigations>();
     // The UI backend's hit, as Bevy's reports it: the node and the position on it.
     app.add_systems(

@@ -16,7 +16,7 @@ use bevy::picking::pointer::{Location, PointerAction, PointerButton, PointerId, 
 use bevy::picking::{InteractionPlugin, Pickable, PickingPlugin, PickingSystems};
 use bevy::prelude::*;
 use bevy_hex_terrain::prelude::*;
-use bevy_hex_terrain::{HexPick, HexTerrainSettings};
+use bevy_hex_terrain::{HexPick, HexStreamingSettings};
 
 mod common;
 
@@ -38,13 +38,13 @@ struct Clicks(Vec<(Entity, Hex)>);
 
 /// The ground alone: no water surface, no props (the tests of what stands on it turn them on).
 fn app(config: MapConfig) -> App {
-    let mut settings = HexTerrainSettings { load_radius: 1, ..default() };
-    settings.water.enabled = false;
-    settings.props.enabled = false;
-    app_with(config, settings)
+    let mut app = app_with(config, HexStreamingSettings { load_radius: 1, ..default() });
+    app.insert_resource(WaterSettings { enabled: false, ..default() });
+    app.insert_resource(PropSettings { enabled: false, ..default() });
+    app
 }
 
-fn app_with(config: MapConfig, settings: HexTerrainSettings) -> App {
+fn app_with(config: MapConfig, settings: HexStreamingSettings) -> App {
     let mut app = App::new();
     app.add_plugins((MinimalPlugins, AssetPlugin::default(), TransformPlugin, PickingPlugin, InteractionPlugin));
     app.add_plugins(HexTerrainPlugins { map: config.into(), settings }.build().disable::<HexTerrainMaterialPlugin>());
@@ -162,7 +162,7 @@ fn a_chunk_observer_gets_the_click_with_its_tile_and_pickable_ignore_removes_hit
 /// surface at sea level, on the water entity, unless that is ignored.
 #[test]
 fn props_and_the_sea_surface_come_before_the_ground() {
-    let mut app = app_with(map_config(), HexTerrainSettings { load_radius: 1, ..default() });
+    let mut app = app_with(map_config(), HexStreamingSettings { load_radius: 1, ..default() });
     app.world_mut().spawn((Camera::default(), Transform::from_xyz(0.0, 50.0, 0.0)));
     run_until(&mut app, "the chunks around the agent", loaded);
     app.update();
@@ -239,7 +239,7 @@ fn picking_is_exact_a_million_units_out_with_big_space() {
     let input = bevy::input::InputPlugin;
     app.add_plugins((MinimalPlugins, AssetPlugin::default(), input, PickingPlugin, InteractionPlugin));
     app.add_plugins(BigSpaceDefaultPlugins);
-    let settings = HexTerrainSettings { load_radius: 1, ..default() };
+    let settings = HexStreamingSettings { load_radius: 1, ..default() };
     app.add_plugins(HexTerrainPlugins { map: config.into(), settings }.build().disable::<HexTerrainMaterialPlugin>());
     app.add_plugins(HexBigSpacePlugin);
     add_pointer(&mut app);

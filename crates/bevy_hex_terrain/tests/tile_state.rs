@@ -4,8 +4,8 @@
 
 use bevy::asset::AssetPlugin;
 use bevy::prelude::*;
+use bevy_hex_terrain::TileStateUpload;
 use bevy_hex_terrain::prelude::*;
-use bevy_hex_terrain::tiles::TileStateUpload;
 use bevy_hex_terrain::{HexMapAsset, HexMapHandle, TileStateStats};
 
 /// The terrain plugins headless (no material), streaming two chunks around agents.
@@ -13,7 +13,7 @@ fn headless(map: impl Into<MapSource>, asset_dir: Option<&std::path::Path>) -> A
     let mut app = App::new();
     let file_path = asset_dir.map_or("assets".into(), |d| d.display().to_string());
     app.add_plugins((MinimalPlugins, AssetPlugin { file_path, ..default() }, TransformPlugin));
-    let settings = HexTerrainSettings { load_radius: 1, max_inserts_per_frame: 16, ..default() };
+    let settings = HexStreamingSettings { load_radius: 1, max_inserts_per_frame: 16, ..default() };
     let plugins = HexTerrainPlugins { map: map.into(), settings };
     #[cfg(feature = "render")]
     app.add_plugins(plugins.build().disable::<HexTerrainMaterialPlugin>());

@@ -8,9 +8,10 @@ use std::sync::Arc;
 
 use hex_terrain::{HeightImage, MapConfig, Terrain};
 
+use super::MapSource;
 use super::{HexMap, HexMapError};
+use crate::HexTerrainSystems;
 use crate::asset::{HexMapAsset, HexMapLoader, HexMapLoaderError};
-use crate::{HexTerrainSystems, MapSource};
 
 /// The map asset the plugin follows, when the map comes from a file. Switch maps with
 /// [`LoadHexMap`]; this resource only says which asset is followed.
@@ -74,6 +75,7 @@ impl Plugin for HexMapPlugin {
                     HexTerrainSystems::Map,
                     HexTerrainSystems::Stream,
                     HexTerrainSystems::Insert,
+                    HexTerrainSystems::Children,
                     HexTerrainSystems::Tiles,
                     HexTerrainSystems::Render,
                 )

@@ -3,6 +3,7 @@
 //! `apply.rs`) keeps it in step with map assets, hot reloads and [`LoadHexMap`] requests.
 
 mod apply;
+mod source;
 
 use std::sync::Arc;
 
@@ -14,6 +15,7 @@ use hex_terrain::{
 };
 
 pub use apply::{HexMapHandle, HexMapPlugin, LoadHexMap};
+pub use source::MapSource;
 
 /// The active map: its config, layout and tile queries.
 ///

@@ -3,21 +3,22 @@
 //! does, in flat colors or textures, and draws tile outlines and highlights. The same shader
 //! serves forward and deferred cameras.
 
-use crate::tiles::TileStates;
-pub use appearance::TerrainAppearance;
+use crate::tiles::{TileStateStyle, TileStates};
+use crate::water::WaterSettings;
 use bevy::asset::{AssetPath, embedded_asset, embedded_path};
 use bevy::image::{ImageAddressMode, ImageLoaderSettings, ImageSampler, ImageSamplerDescriptor};
 use bevy::mesh::MeshVertexBufferLayoutRef;
 use bevy::pbr::{ExtendedMaterial, MaterialExtension, MaterialExtensionKey, MaterialExtensionPipeline};
 use bevy::prelude::*;
 use bevy::render::render_resource::{AsBindGroup, RenderPipelineDescriptor, SpecializedMeshPipelineError};
-use bevy::shader::{ShaderDefVal, ShaderRef};
-pub use params::{OwnerColors, RenderOrigin, TerrainParams, flags, owner_colors, params};
-use params::{SHADER_DEFS, window_param};
-pub use tile_texture::TileStateTexture;
+use bevy::shader::{ShaderDefVal, ShaderRef, load_shader_library};
+use params::{Look, SHADER_DEFS, owner_colors, params, window_param};
+pub use params::{OwnerColors, RenderOrigin, TerrainParams};
+pub use settings::TerrainMaterialSettings;
+use tile_texture::TileStateTexture;
 
-mod appearance;
 mod params;
+mod settings;
 mod tile_texture;
 
 /// The chunk material.
@@ -106,8 +107,9 @@ pub struct HexTerrainMaterialHandle(pub Handle<HexTerrainMaterial>);
 pub struct HexWaterMaterialHandle(pub Handle<HexTerrainMaterial>);
 
 /// The terrain material: registers [`HexTerrainMaterial`], gives every chunk mesh the shared
-/// material and keeps it in step with the map, [`TerrainAppearance`] and the tile state
-/// texture, into which it copies [`TileStates`]' changes (`tile_texture.rs`).
+/// material and keeps it in step with the map, its [`TerrainMaterialSettings`], the
+/// [`TileStateStyle`], the [`WaterSettings`] and the tile state texture, into which it copies
+/// [`TileStates`]' changes (`tile_texture.rs`).
 /// Needs Bevy's `PbrPlugin` (in `DefaultPlugins`); a headless app disables this plugin.
 #[derive(Debug, Clone, Copy, Default)]
 pub struct HexTerrainMaterialPlugin;
@@ -125,10 +127,16 @@ impl Plugin for HexTerrainMaterialPlugin {
             panic!("HexTerrainMaterialPlugin needs HexTileStatePlugin: add HexTerrainPlugins");
         }
         embedded_asset!(app, "terrain.wgsl");
+        // The shader's import modules (`#define_import_path hex_terrain::...`).
+        load_shader_library!(app, "shaders/bindings.wgsl");
+        load_shader_library!(app, "shaders/hex.wgsl");
+        load_shader_library!(app, "shaders/ground.wgsl");
+        load_shader_library!(app, "shaders/water.wgsl");
+        load_shader_library!(app, "shaders/tile_state.wgsl");
         app.add_plugins((MaterialPlugin::<HexTerrainMaterial>::default(), tile_texture::TileTexturePlugin))
-            .init_resource::<TerrainAppearance>()
+            .init_resource::<TerrainMaterialSettings>()
             .init_resource::<RenderOrigin>()
-            .register_type::<TerrainAppearance>()
+            .register_type::<TerrainMaterialSettings>()
             .register_type::<RenderOrigin>()
             .add_systems(Startup, create_material.after(tile_texture::create_texture))
             .add_systems(
@@ -141,7 +149,7 @@ impl Plugin for HexTerrainMaterialPlugin {
     }
 }
 
-fn textures(server: &AssetServer, appearance: &TerrainAppearance) -> [Option<Handle<Image>>; 3] {
+fn textures(server: &AssetServer, appearance: &TerrainMaterialSettings) -> [Option<Handle<Image>>; 3] {
     if appearance.textures {
         // World-space coordinates run far past [0, 1]: the textures must repeat.
         std::array::from_fn(|i| {
@@ -180,47 +188,61 @@ fn base(water: bool) -> StandardMaterial {
     }
 }
 
-/// The appearance the shader draws: textures off on a map whose appearance had to be clamped,
-/// the sea floor drawn as a floor only under a shown water surface.
-fn effective(
-    appearance: &TerrainAppearance,
-    map: &crate::HexMap,
-    settings: &crate::HexTerrainSettings,
-) -> TerrainAppearance {
+/// The material settings the shader draws: textures off on a map whose appearance had to be
+/// clamped.
+fn effective(appearance: &TerrainMaterialSettings, map: &crate::HexMap) -> TerrainMaterialSettings {
     let mut effective = appearance.clone();
     effective.textures &= !map.appearance_fallback();
-    effective.sea_floor &= settings.water.enabled;
     effective
 }
 
-/// What the materials are made from besides the appearance: the map, the settings, the tile
-/// state window and texture, the render origin and the asset server (for the textures).
+/// What the materials are made from besides their own settings: the map, the tile states and
+/// their style, the water's settings (absent without the water plugin), the tile state texture,
+/// the render origin and the asset server (for the textures).
 #[derive(bevy::ecs::system::SystemParam)]
 struct MaterialSources<'w> {
     server: Res<'w, AssetServer>,
     map: Res<'w, crate::HexMap>,
-    settings: Res<'w, crate::HexTerrainSettings>,
+    style: Res<'w, TileStateStyle>,
+    water: Option<Res<'w, WaterSettings>>,
     states: Res<'w, TileStates>,
     texture: Res<'w, TileStateTexture>,
     origin: Res<'w, RenderOrigin>,
+}
+
+impl MaterialSources<'_> {
+    /// Whether anything the parameters are made of changed since the system last ran.
+    fn changed(&self) -> bool {
+        self.map.is_changed()
+            || self.style.is_changed()
+            || self.water.as_ref().is_some_and(|w| w.is_changed())
+            || self.texture.is_changed()
+            || self.origin.is_changed()
+    }
+
+    /// The shader parameters and owner colors for the material settings.
+    fn params(&self, material: &TerrainMaterialSettings) -> (TerrainParams, OwnerColors) {
+        let look = Look { material, tiles: &self.style, water: self.water.as_deref() };
+        (params(self.map.terrain(), look, self.states.window(), *self.origin), owner_colors(&self.style))
+    }
 }
 
 fn create_material(
     mut commands: Commands,
     mut materials: ResMut<Assets<HexTerrainMaterial>>,
     sources: MaterialSources,
-    appearance: Res<TerrainAppearance>,
+    appearance: Res<TerrainMaterialSettings>,
 ) {
-    let MaterialSources { server, map, settings, states, texture, origin } = sources;
-    let appearance = effective(&appearance, &map, &settings);
-    let [sea_texture, land_texture, mountain_texture] = textures(&server, &appearance);
+    let appearance = effective(&appearance, &sources.map);
+    let [sea_texture, land_texture, mountain_texture] = textures(&sources.server, &appearance);
+    let (params, owners) = sources.params(&appearance);
     let extension = HexTerrainExtension {
-        params: params(map.config(), &appearance, states.window(), *origin),
+        params,
         sea_texture,
         land_texture,
         mountain_texture,
-        tile_state: texture.handle.clone(),
-        owners: owner_colors(&appearance),
+        tile_state: sources.texture.handle.clone(),
+        owners,
         water: false,
     };
     let water = HexTerrainExtension { water: true, ..extension.clone() };
@@ -230,18 +252,17 @@ fn create_material(
     commands.insert_resource(HexWaterMaterialHandle(handle));
 }
 
-/// Rewrites the materials when the map (hot reload, switch), the appearance, the water setting
-/// or the tile state window change their parameters, and only then (a rewritten material is
+/// Rewrites the materials when the map (hot reload, switch), the material settings, the tile
+/// state style, the water settings or the tile state window change their parameters, and only then (a rewritten material is
 /// uploaded again; tile state changes go straight into the texture); a texture that failed to
 /// load switches to flat colors with a warning.
 fn update_material(
     handles: (Res<HexTerrainMaterialHandle>, Res<HexWaterMaterialHandle>),
     mut materials: ResMut<Assets<HexTerrainMaterial>>,
     sources: MaterialSources,
-    mut appearance: ResMut<TerrainAppearance>,
+    mut appearance: ResMut<TerrainMaterialSettings>,
     mut failed: MessageReader<bevy::asset::AssetLoadFailedEvent<Image>>,
 ) {
-    let MaterialSources { server, map, settings, states, texture, origin } = sources;
     for failure in failed.read() {
         if appearance.textures && appearance.texture_paths.iter().any(|p| failure.path.path().ends_with(p)) {
             warn!("terrain texture {} could not be loaded ({}); using flat colors", failure.path, failure.error);
@@ -250,19 +271,18 @@ fn update_material(
     }
     let Some(material) = materials.get(&handles.0.0) else { return };
     let ext = &material.extension;
-    let window_moved = ext.params.tile_window != window_param(states.window());
-    let changed = map.is_changed() || appearance.is_changed() || settings.is_changed();
-    if !(changed || texture.is_changed() || origin.is_changed() || window_moved) {
+    let window_moved = ext.params.tile_window != window_param(sources.states.window());
+    if !(sources.changed() || appearance.is_changed() || window_moved) {
         return;
     }
-    let effective = effective(&appearance, &map, &settings);
-    let params = params(map.config(), &effective, states.window(), *origin);
-    let owners = owner_colors(&effective);
+    let effective = effective(&appearance, &sources.map);
+    let (params, owners) = sources.params(&effective);
+    let texture = &sources.texture;
     let retexture = effective.textures != ext.sea_texture.is_some();
     if params == ext.params && owners == ext.owners && ext.tile_state == texture.handle && !retexture {
         return;
     }
-    let new = if retexture { Some(textures(&server, &effective)) } else { None };
+    let new = if retexture { Some(textures(&sources.server, &effective)) } else { None };
     for handle in [&handles.0.0, &handles.1.0] {
         let Some(mut material) = materials.get_mut(handle) else { continue };
         let ext = &mut material.extension;

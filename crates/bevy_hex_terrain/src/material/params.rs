@@ -1,10 +1,12 @@
-//! The terrain shader's uniform parameters, built from the map config and the appearance.
+//! The terrain shader's uniform parameters, built from the map config and the three plugins'
+//! settings that say how the terrain looks ([`Look`]).
 
-use super::TerrainAppearance;
-use crate::tiles::MAX_OWNERS;
+use super::TerrainMaterialSettings;
+use crate::tiles::{FOG_MASK, FogState, Highlight, MAX_OWNERS, TileStateStyle, highlight_bit};
+use crate::water::WaterSettings;
 use bevy::prelude::*;
 use bevy::render::render_resource::ShaderType;
-use hex_terrain::MapConfig;
+use hex_terrain::Terrain;
 
 /// Bits of [`TerrainParams::flags`]. The shader receives these values (and
 /// [`MAX_OWNERS`]) as shader defs, so Rust and WGSL share one definition.
@@ -27,8 +29,9 @@ pub mod flags {
     pub const SEA_FLOOR: u32 = 128;
 }
 
-/// The shader defs every terrain pipeline gets: the flag bits and the owner palette size.
-pub(super) const SHADER_DEFS: [(&str, u32); 9] = [
+/// The shader defs every terrain pipeline gets: the flag bits, the owner palette size and the
+/// tile state texel's layout (`tiles/window.rs`), so Rust and WGSL share one definition of each.
+pub(super) const SHADER_DEFS: [(&str, u32); 15] = [
     ("HEX_FLAG_OUTLINES", flags::OUTLINES),
     ("HEX_FLAG_TEXTURES", flags::TEXTURES),
     ("HEX_FLAG_POINTY", flags::POINTY),
@@ -38,6 +41,12 @@ pub(super) const SHADER_DEFS: [(&str, u32); 9] = [
     ("HEX_FLAG_LENS", flags::LENS),
     ("HEX_FLAG_SEA_FLOOR", flags::SEA_FLOOR),
     ("HEX_MAX_OWNERS", MAX_OWNERS as u32),
+    ("HEX_TEXEL_FOG_MASK", FOG_MASK as u32),
+    ("HEX_TEXEL_HOVERED", highlight_bit(Highlight::Hovered) as u32),
+    ("HEX_TEXEL_SELECTED", highlight_bit(Highlight::Selected) as u32),
+    ("HEX_TEXEL_REACHABLE", highlight_bit(Highlight::Reachable) as u32),
+    ("HEX_FOG_EXPLORED", FogState::Explored as u32),
+    ("HEX_FOG_VISIBLE", FogState::Visible as u32),
 ];
 
 /// Uniform parameters of the terrain shader.
@@ -95,7 +104,8 @@ pub struct TerrainParams {
     pub fog_softness: f32,
     /// Strength of the territory tint.
     pub tint_strength: f32,
-    /// Bits of [`flags`].
+    /// Bits of the drawing switches (outlines, textures, pointy hexes, fog, borders, tint, lens,
+    /// sea floor), as the shader defs `HEX_FLAG_*` name them.
     pub flags: u32,
     /// The tiles the tile state texture holds: first offset column and row, width and height.
     pub tile_window: IVec4,
@@ -152,15 +162,27 @@ pub(super) fn window_param((origin, size): (IVec2, UVec2)) -> IVec4 {
     origin.extend(size.x as i32).extend(size.y as i32)
 }
 
-/// Builds the shader parameters for a map config, an appearance and the tile state window
-/// (first offset column and row, size).
+/// What the shader draws, from the plugins that own each part: the material's palette and
+/// outlines, the tile states' style, the water's look (`None`: no water plugin, so no surface
+/// and the sea floor drawn as the sea).
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Look<'a> {
+    /// The palette, textures and outlines.
+    pub material: &'a TerrainMaterialSettings,
+    /// Fog, borders, tint, lens, highlights.
+    pub tiles: &'a TileStateStyle,
+    /// The water's look.
+    pub water: Option<&'a WaterSettings>,
+}
+
+/// Builds the shader parameters for a map, the look and the tile state window (first offset
+/// column and row, size). The map's wrap is the core's ([`hex_terrain::Geometry::wrap`]).
 #[must_use]
-pub fn params(
-    config: &MapConfig,
-    appearance: &TerrainAppearance,
-    window: (IVec2, UVec2),
-    origin: RenderOrigin,
-) -> TerrainParams {
+pub(crate) fn params(terrain: &Terrain, look: Look, window: (IVec2, UVec2), origin: RenderOrigin) -> TerrainParams {
+    let config = terrain.config();
+    let wrap = terrain.wrap();
+    let (appearance, style) = (look.material, look.tiles);
+    let water = look.water.copied().unwrap_or(WaterSettings { enabled: false, ..WaterSettings::default() });
     let t = &config.terrain;
     let max = t.max_elevation;
     let mut bits = 0;
@@ -168,11 +190,12 @@ pub fn params(
         (appearance.outlines, flags::OUTLINES),
         (appearance.textures, flags::TEXTURES),
         (config.layout.orientation == hex_terrain::Orientation::Pointy, flags::POINTY),
-        (appearance.fog_of_war, flags::FOG),
-        (appearance.borders, flags::BORDERS),
-        (appearance.territory_tint, flags::TERRITORY_TINT),
-        (appearance.lens, flags::LENS),
-        (appearance.sea_floor, flags::SEA_FLOOR),
+        (style.fog_of_war, flags::FOG),
+        (style.borders, flags::BORDERS),
+        (style.territory_tint, flags::TERRITORY_TINT),
+        (style.lens, flags::LENS),
+        // The sea floor is drawn as a floor only under a shown water surface.
+        (water.sea_floor && water.enabled, flags::SEA_FLOOR),
     ] {
         if on {
             bits |= bit;
@@ -183,74 +206,56 @@ pub fn params(
         sea_color: linear(appearance.colors[0]),
         land_color: linear(appearance.colors[1]),
         mountain_color: linear(appearance.colors[2]),
-        hover_color: linear(appearance.hover_color),
-        selected_color: linear(appearance.selected_color),
-        reachable_color: linear(appearance.reachable_color),
-        unexplored_color: linear(appearance.unexplored_color),
+        hover_color: linear(style.hover_color),
+        selected_color: linear(style.selected_color),
+        reachable_color: linear(style.reachable_color),
+        unexplored_color: linear(style.unexplored_color),
         outline_color: Vec4::new(0.01, 0.01, 0.01, 0.92),
         water_color: linear(appearance.water_color),
-        shallow_water_color: linear(appearance.shallow_water_color),
-        deep_water_color: linear(appearance.deep_water_color),
-        foam_color: linear(appearance.foam_color),
-        sea_floor_color: linear(appearance.sea_floor_color),
-        deep_water: finite(appearance.deep_water, 0.01, 1.0) * t.sea_threshold * max,
-        foam_width: finite(appearance.foam_width, 0.0, 1e3),
-        waves: finite(appearance.waves, 0.0, 4.0),
+        shallow_water_color: linear(water.shallow_color),
+        deep_water_color: linear(water.deep_color),
+        foam_color: linear(water.foam_color),
+        sea_floor_color: linear(water.sea_floor_color),
+        deep_water: finite(water.deep_water, 0.01, 1.0) * t.sea_threshold * max,
+        foam_width: finite(water.foam_width, 0.0, 1e3),
+        waves: finite(water.waves, 0.0, 4.0),
         sea_level: t.sea_threshold * max,
         mountain_level: t.mountain_threshold * max,
         blend: config.appearance.blend.clamp(0.0, 1.0) * max,
         hex_size: config.layout.hex_size,
         outline_width: appearance.outline_width,
-        texture_scale: wrapped_texture_scale(config, appearance.texture_scale),
-        border_width: finite(appearance.border_width, 0.0, 1.0),
-        border_inset: finite(appearance.border_inset, 0.0, 1.0),
-        fog_softness: finite(appearance.fog_softness, 0.0, 1.0),
+        texture_scale: wrapped_texture_scale(wrap.map(|w| w.width), appearance.texture_scale),
+        border_width: finite(style.border_width, 0.0, 1.0),
+        border_inset: finite(style.border_inset, 0.0, 1.0),
+        fog_softness: finite(style.fog_softness, 0.0, 1.0),
         tint_strength: 0.22,
         flags: bits,
         tile_window: window_param(window),
-        map_wrap: IVec4::new(
-            config.size.bounds().filter(|_| config.wrap).map_or(0, |(x, _)| x as i32),
-            origin.tile.x,
-            origin.tile.y,
-            0,
-        ),
+        map_wrap: IVec4::new(wrap.map_or(0, |w| w.columns), origin.tile.x, origin.tile.y, 0),
         origin_offset: origin.offset.extend(0.0).extend(0.0),
     }
 }
 
-/// The texture scale, on a wrapping map rounded so the map's width holds a whole number of
-/// texture repeats: the relief textures continue across the seam.
-fn wrapped_texture_scale(config: &MapConfig, scale: f32) -> f32 {
-    let Some((columns, _)) = config.size.bounds().filter(|_| config.wrap) else { return scale };
-    let column = match config.layout.orientation {
-        hex_terrain::Orientation::Flat => 1.5,
-        hex_terrain::Orientation::Pointy => 3.0_f32.sqrt(),
-    };
-    let width = columns as f32 * column * config.layout.hex_size;
+/// The texture scale, on a wrapping map (one period `width` world units wide) rounded so the
+/// map's width holds a whole number of texture repeats: the relief textures continue across the
+/// seam.
+fn wrapped_texture_scale(width: Option<f64>, scale: f32) -> f32 {
+    let Some(width) = width.map(|w| w as f32) else { return scale };
     if !(width.is_finite() && width > 0.0 && scale.is_finite()) {
         return scale;
     }
     (width * scale).round().max(1.0) / width
 }
 
-/// The owner palette: the appearance's colors, then hues spaced by the golden angle.
+/// The owner palette of the style ([`TileStateStyle::owner_color`]), owner `n` at index `n - 1`.
 #[must_use]
-pub fn owner_colors(appearance: &TerrainAppearance) -> OwnerColors {
-    let mut owners = OwnerColors::default();
-    for (i, slot) in owners.colors.iter_mut().enumerate() {
-        let color = appearance
-            .owner_colors
-            .get(i)
-            .copied()
-            .unwrap_or_else(|| Color::hsl((i as f32 * 137.508) % 360.0, 0.75, 0.55));
-        *slot = linear(color);
-    }
-    owners
+pub(crate) fn owner_colors(style: &TileStateStyle) -> OwnerColors {
+    OwnerColors { colors: std::array::from_fn(|i| linear(style.owner_color(i as u8 + 1))) }
 }
 
 #[cfg(test)]
 mod tests {
-    use hex_terrain::{MapSize, Orientation};
+    use hex_terrain::{MapConfig, MapSize, Orientation};
 
     use super::*;
 
@@ -259,21 +264,65 @@ mod tests {
     /// elsewhere both are as asked.
     #[test]
     fn wrapping_maps_get_whole_texture_repeats_and_their_width() {
-        let appearance = TerrainAppearance::default();
+        let appearance = TerrainMaterialSettings::default();
+        let style = TileStateStyle::default();
+        let look = Look { material: &appearance, tiles: &style, water: None };
         for (orientation, column) in [(Orientation::Flat, 1.5_f32), (Orientation::Pointy, 3.0_f32.sqrt())] {
             for columns in [44_u32, 84, 106] {
                 let mut config = MapConfig { size: MapSize::Bounded { x: columns, z: 20 }, ..MapConfig::default() };
                 config.layout.orientation = orientation;
-                let plain = params(&config, &appearance, (IVec2::ZERO, UVec2::ONE), RenderOrigin::default());
+                let plain = params(
+                    &Terrain::new(config.clone()).unwrap(),
+                    look,
+                    (IVec2::ZERO, UVec2::ONE),
+                    RenderOrigin::default(),
+                );
                 assert_eq!(plain.texture_scale, appearance.texture_scale);
                 assert_eq!(plain.map_wrap.x, 0);
                 config.wrap = true;
-                let wrapped = params(&config, &appearance, (IVec2::ZERO, UVec2::ONE), RenderOrigin::default());
+                let wrapped = params(
+                    &Terrain::new(config.clone()).unwrap(),
+                    look,
+                    (IVec2::ZERO, UVec2::ONE),
+                    RenderOrigin::default(),
+                );
                 let repeats = wrapped.texture_scale * columns as f32 * column * config.layout.hex_size;
                 assert!((repeats - repeats.round()).abs() < 1e-3, "{repeats} repeats across {columns} columns");
                 assert!((wrapped.texture_scale / appearance.texture_scale - 1.0).abs() < 0.1);
                 assert_eq!(wrapped.map_wrap.x, columns as i32);
             }
         }
+    }
+
+    /// Every value the shader takes from Rust (`#{HEX_...}`) in any of its modules is one of
+    /// the shader defs, and every shader def is used: WGSL never holds a copy of a Rust layout.
+    #[test]
+    fn the_shader_reads_every_layout_from_the_shader_defs() {
+        let sources = [
+            include_str!("terrain.wgsl"),
+            include_str!("shaders/bindings.wgsl"),
+            include_str!("shaders/hex.wgsl"),
+            include_str!("shaders/ground.wgsl"),
+            include_str!("shaders/water.wgsl"),
+            include_str!("shaders/tile_state.wgsl"),
+        ];
+        let mut used = std::collections::BTreeSet::new();
+        for source in sources {
+            for (i, _) in source.match_indices("#{HEX_") {
+                let name = &source[i + 2..];
+                used.insert(&name[..name.find('}').unwrap()]);
+            }
+        }
+        let defined: std::collections::BTreeSet<&str> = SHADER_DEFS.iter().map(|(name, _)| *name).collect();
+        assert_eq!(used, defined);
+        // The texel bits do not overlap, and the fog states fit the fog's mask.
+        let bits = [FOG_MASK, highlight_bit(Highlight::Hovered), highlight_bit(Highlight::Selected)];
+        let bits = [bits[0], bits[1], bits[2], highlight_bit(Highlight::Reachable)];
+        for (i, a) in bits.iter().enumerate() {
+            for b in &bits[i + 1..] {
+                assert_eq!(a & b, 0, "{a:#b} and {b:#b} overlap");
+            }
+        }
+        assert_eq!(FogState::Visible as u16 & !FOG_MASK, 0);
     }
 }

@@ -9,23 +9,8 @@
 //! one stays until the new one is ready) and then only repainted where [`TileStates`](crate::TileStates) was
 //! written this frame ([`TileStates::changed_tiles`](crate::TileStates::changed_tiles)): the tiles written and their neighbors.
 //! Pressing or dragging on the node sends a [`MinimapNavigate`] message with the tile and the
-//! world position under the pointer; the game's camera code moves there:
-//!
-//! ```no_run
-//! use bevy::prelude::*;
-//! use bevy_hex_terrain::minimap::MinimapNavigate;
-//!
-//! fn follow(mut go: MessageReader<MinimapNavigate>, mut camera: Query<&mut Transform, With<Camera3d>>) {
-//!     for go in go.read() {
-//!         for mut t in &mut camera {
-//!             // Keep the camera's height and angle; look at the new spot.
-//!             let offset = t.translation - Vec3::new(go.world.x as f32, 0.0, go.world.y as f32);
-//!             t.translation = Vec3::new(go.world.x as f32, t.translation.y, go.world.y as f32 + offset.z);
-//!         }
-//!     }
-//! }
-//! # App::new().add_systems(Update, follow);
-//! ```
+//! world position under the pointer; the game's camera code moves there (see
+//! [`HexMinimapPlugin`]).
 
 mod navigate;
 mod picture;
@@ -80,11 +65,10 @@ pub struct MinimapSettings {
     pub unexplored_color: Color,
     /// Brightness of explored tiles not in sight, `0..=1`.
     pub explored_brightness: f32,
-    /// Draw fog of war from [`TileStates::visibility`](crate::TileStates::visibility) (off: every tile in full color).
+    /// Draw fog of war from [`TileStates::visibility`](crate::TileStates::visibility) while
+    /// [`TileStateStyle::fog_of_war`](crate::TileStateStyle::fog_of_war) draws it on the terrain
+    /// (off: every tile in full color).
     pub fog_of_war: bool,
-    /// Owner colors: owner `n` takes entry `n - 1` (the terrain material's palette when the
-    /// `render` feature has it).
-    pub owner_colors: Vec<Color>,
     /// How much an owned tile takes its owner's color, `0..=1`.
     pub territory_tint: f32,
     /// Border line width inside owned tiles, a fraction of the hex radius.
@@ -112,7 +96,6 @@ impl Default for MinimapSettings {
             unexplored_color: Color::BLACK,
             explored_brightness: style.explored_brightness,
             fog_of_war: true,
-            owner_colors: style.owner_colors.iter().copied().map(color).collect(),
             territory_tint: style.territory_tint,
             border_width: style.border_width as f32,
             river_width: style.river_width as f32,
@@ -123,7 +106,8 @@ impl Default for MinimapSettings {
 }
 
 impl MinimapSettings {
-    /// The core's style for these settings.
+    /// The core's style for these settings (owner colors come from the
+    /// [`TileStateStyle`](crate::TileStateStyle), which the picture's systems add).
     #[must_use]
     pub fn style(&self) -> MinimapStyle {
         let rgb = |c: Color| {
@@ -139,7 +123,7 @@ impl MinimapSettings {
             fog_of_war: self.fog_of_war,
             unexplored: rgba(self.unexplored_color),
             explored_brightness: self.explored_brightness,
-            owner_colors: self.owner_colors.iter().copied().map(rgb).collect(),
+            owner_colors: Vec::new(),
             territory_tint: self.territory_tint,
             border_width: f64::from(self.border_width),
         }
@@ -171,7 +155,26 @@ pub enum HexMinimapSystems {
 
 /// The minimap: [`MinimapSettings`], the [`HexMinimap`] node, the [`MinimapPicture`] and the
 /// [`MinimapNavigate`] message. Not in [`HexTerrainPlugins`](crate::HexTerrainPlugins): add it
-/// after them; it needs a UI camera to be seen.
+/// after them; it needs a UI camera to be seen. The picture shows the tiles' biome or type
+/// colors, rivers and lakes, the owners and fog of war of [`TileStates`](crate::TileStates) (as
+/// [`TileStateStyle`](crate::TileStateStyle) draws them) and the camera's view; pressing or
+/// dragging on it sends [`MinimapNavigate`], which the game's camera code follows:
+///
+/// ```no_run
+/// use bevy::prelude::*;
+/// use bevy_hex_terrain::MinimapNavigate;
+///
+/// fn follow(mut go: MessageReader<MinimapNavigate>, mut camera: Query<&mut Transform, With<Camera3d>>) {
+///     for go in go.read() {
+///         for mut t in &mut camera {
+///             // Keep the camera's height and angle; look at the new spot.
+///             let offset = t.translation - Vec3::new(go.world.x as f32, 0.0, go.world.y as f32);
+///             t.translation = Vec3::new(go.world.x as f32, t.translation.y, go.world.y as f32 + offset.z);
+///         }
+///     }
+/// }
+/// # App::new().add_systems(Update, follow);
+/// ```
 #[derive(Debug, Clone, Default)]
 pub struct HexMinimapPlugin {
     /// The minimap's settings (the [`MinimapSettings`] resource).

@@ -16,7 +16,7 @@ use hex_terrain::{Terrain, TileRect};
 use super::MinimapSettings;
 use super::view::MinimapCameraView;
 use crate::HexMap;
-use crate::tiles::TileStates;
+use crate::tiles::{TileStateStyle, TileStates};
 
 /// The picture shown and what it is built from.
 #[derive(Resource, Default)]
@@ -112,7 +112,8 @@ pub(super) fn region(
 pub(super) fn build_picture(
     map: Res<HexMap>,
     settings: Res<MinimapSettings>,
-    appearance: Option<Res<crate::TerrainAppearance>>,
+    palette: Option<Res<crate::TerrainMaterialSettings>>,
+    tile_style: Res<TileStateStyle>,
     camera: MinimapCameraView,
     mut picture: ResMut<MinimapPicture>,
 ) {
@@ -120,29 +121,29 @@ pub(super) fn build_picture(
     let focus = camera.focus(&map).and_then(|p| terrain.tile_at(p.x, p.y));
     let current = picture.made_for.map(|(_, r)| r);
     let region = region(terrain, &settings, focus, current);
-    let restyled = settings.is_changed() || appearance.as_ref().is_some_and(|a| a.is_changed());
+    let restyled = settings.is_changed() || tile_style.is_changed() || palette.as_ref().is_some_and(|a| a.is_changed());
     if !restyled && picture.made_for == Some((map.generation(), region)) {
         return;
     }
     let mut style = settings.style();
-    if let Some(appearance) = &appearance {
-        style_from_appearance(&mut style, appearance);
-    }
+    match_terrain(&mut style, palette.as_deref(), &tile_style);
     let (terrain, size) = (Arc::clone(terrain), settings.size.to_array());
     picture.made_for = Some((map.generation(), region));
     picture.task = Some(AsyncComputeTaskPool::get().spawn(async move { Minimap::new(&terrain, region, size, style) }));
 }
 
-/// The terrain material's colors, so the minimap matches the terrain.
-fn style_from_appearance(style: &mut MinimapStyle, appearance: &crate::TerrainAppearance) {
+/// The terrain's colors (the material's palette, when it is there) and the tile states' style
+/// (fog on or off, owner colors), so the minimap matches the terrain.
+fn match_terrain(style: &mut MinimapStyle, palette: Option<&crate::TerrainMaterialSettings>, tiles: &TileStateStyle) {
     let rgb = |c: Color| {
         let [r, g, b, _] = c.to_srgba().to_u8_array();
         [r, g, b]
     };
-    style.kind_colors = appearance.colors.map(rgb);
-    style.fog_of_war &= appearance.fog_of_war;
-    let owners = crate::material::owner_colors(appearance);
-    style.owner_colors = owners.colors.iter().map(|c| rgb(Color::LinearRgba(LinearRgba::from_vec4(*c)))).collect();
+    if let Some(palette) = palette {
+        style.kind_colors = palette.colors.map(rgb);
+    }
+    style.fog_of_war &= tiles.fog_of_war;
+    style.owner_colors = (1..=crate::tiles::MAX_OWNERS).map(|owner| rgb(tiles.owner_color(owner))).collect();
 }
 
 /// Shows a finished picture: painted whole with the tiles' state.

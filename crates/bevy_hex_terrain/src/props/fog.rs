@@ -21,14 +21,14 @@ pub(super) struct PropsByTile {
 /// touches a few props, not every prop of the map.
 pub(super) fn hide_unexplored(
     states: Res<TileStates>,
-    appearance: Option<Res<crate::TerrainAppearance>>,
+    style: Res<crate::tiles::TileStateStyle>,
     added: Query<(Entity, &HexProp), Added<HexProp>>,
     mut removed: RemovedComponents<HexProp>,
     mut visibilities: Query<(&HexProp, &mut Visibility)>,
     mut index: Local<PropsByTile>,
     mut stats: ResMut<HexPropStats>,
 ) {
-    let (fog, fog_changed) = appearance.map_or((false, false), |a| (a.fog_of_war, a.is_changed()));
+    let (fog, fog_changed) = (style.fog_of_war, style.is_changed());
     let index = &mut *index;
     for e in removed.read() {
         if let Some(tile) = index.of.remove(&e)

@@ -5,20 +5,25 @@
 //! thousands of props). Headless, the entities exist without meshes (games and tests can read
 //! them). The game setup's resources and natural wonders ([`hex_terrain::Terrain::marker_props`])
 //! are props too ([`PropKind::Resource`], [`PropKind::Wonder`]): drawn, picked and hidden by fog
-//! the same way. Under fog of war, props on unexplored tiles are hidden.
+//! the same way. Under fog of war, props on unexplored tiles are hidden. How many stand is the
+//! plugin's [`PropSettings`].
 
 #[cfg(feature = "render")]
 mod fog;
 #[cfg(feature = "render")]
-pub mod meshes;
+mod meshes;
+mod settings;
 
 use bevy::prelude::*;
 #[cfg(feature = "render")]
 use hex_terrain::PROP_VARIANTS;
 use hex_terrain::{Prop, PropKind};
 
+pub use settings::PropSettings;
+
+use crate::HexTerrainSystems;
+use crate::streaming::ContentRequest;
 use crate::streaming::content::{ContentQuery, stale_chunks};
-use crate::{HexTerrainSettings, HexTerrainSystems};
 
 /// A prop entity (a child of its chunk).
 #[derive(Component, Debug, Clone, Copy, PartialEq, Reflect)]
@@ -45,17 +50,29 @@ pub struct PropAssets {
 }
 
 /// Spawns and despawns the props of loaded chunks ([`HexProp`] children, in
-/// [`HexTerrainSystems::Insert`]) and hides those on unexplored tiles when the appearance draws
-/// fog of war. Part of [`HexTerrainPlugins`](crate::HexTerrainPlugins); works headless.
+/// [`HexTerrainSystems::Children`]), owns [`PropSettings`] (without this plugin, chunk tasks
+/// place no props) and hides props on unexplored tiles while the
+/// [`TileStateStyle`](crate::TileStateStyle) draws fog of war. Part of
+/// [`HexTerrainPlugins`](crate::HexTerrainPlugins); works headless.
 #[derive(Debug, Clone, Copy, Default)]
 pub struct HexPropsPlugin;
 
 impl Plugin for HexPropsPlugin {
     fn build(&self, app: &mut App) {
-        app.register_type::<HexProp>().register_type::<HexPropStats>().init_resource::<HexPropStats>().add_systems(
-            Update,
-            sync_props.in_set(HexTerrainSystems::Insert).after(crate::streaming::insert::insert_ready),
-        );
+        app.init_resource::<PropSettings>()
+            .init_resource::<ContentRequest>()
+            .init_resource::<HexPropStats>()
+            .register_type::<PropSettings>()
+            .register_type::<HexProp>()
+            .register_type::<HexPropStats>()
+            .add_systems(
+                Update,
+                (
+                    // Before tasks start: they place props as the settings ask.
+                    request_props.run_if(resource_changed::<PropSettings>).before(HexTerrainSystems::Stream),
+                    sync_props.in_set(HexTerrainSystems::Children),
+                ),
+            );
         // After every game system's writes of the frame, before their list starts again.
         #[cfg(feature = "render")]
         app.add_systems(PostUpdate, fog::hide_unexplored.before(crate::tiles::HexTileStateSystems::Pack));
@@ -86,6 +103,11 @@ fn create_assets(
     commands.insert_resource(PropAssets { meshes, material });
 }
 
+/// Asks chunk tasks for props at the settings' cap and density.
+fn request_props(settings: Res<PropSettings>, mut request: ResMut<ContentRequest>) {
+    request.props = Some((settings.max_per_chunk, settings.density));
+}
+
 /// The props' entities of one chunk.
 fn spawn_props(commands: &mut Commands, chunk: Entity, props: &[Prop], size: f32, assets: Option<&PropAssets>) {
     commands.entity(chunk).with_children(|children| {
@@ -111,14 +133,14 @@ fn spawn_props(commands: &mut Commands, chunk: Entity, props: &[Prop], size: f32
 /// despawns or spawns them everywhere.
 fn sync_props(
     mut commands: Commands,
-    settings: Res<HexTerrainSettings>,
+    settings: Res<PropSettings>,
     map: Res<crate::HexMap>,
     assets: Option<Res<PropAssets>>,
     chunks: ContentQuery,
     props: Query<(), With<HexProp>>,
     mut was_enabled: Local<Option<bool>>,
 ) {
-    let enabled = settings.props.enabled;
+    let enabled = settings.enabled;
     let size = map.config().layout.hex_size;
     for (chunk, content) in stale_chunks(&mut commands, &chunks, &props, enabled, &mut was_enabled) {
         if enabled {

@@ -9,40 +9,18 @@ use std::sync::Arc;
 use bevy::prelude::*;
 use hex_terrain::{ChunkMesh, Prop, Terrain};
 
-/// The water surface's settings.
-#[derive(Debug, Clone, Copy, PartialEq, Reflect)]
-pub struct WaterSettings {
-    /// Show the water surface over the sea, rivers and lakes (chunks always build it, so
-    /// turning it on or off at run time takes effect at once).
-    pub enabled: bool,
-    /// Height of river and lake water over a fully covered vertex, a fraction of the hex size.
-    pub river_depth: f32,
-}
-
-impl Default for WaterSettings {
-    fn default() -> Self {
-        Self { enabled: true, river_depth: 0.12 }
-    }
-}
-
-/// The props' settings.
-#[derive(Debug, Clone, Copy, PartialEq, Reflect)]
-pub struct PropSettings {
-    /// Show props (trees, rocks, reeds). Chunks always place them, so turning this off at run
-    /// time despawns the props of loaded chunks at once and turning it on spawns them again.
-    pub enabled: bool,
-    /// Props a chunk keeps at most (the rest are thinned deterministically); applies to chunks
-    /// built after a change.
-    pub max_per_chunk: usize,
-    /// Share of each tile's props that stand, in `[0, 1]`; applies to chunks built after a
-    /// change.
-    pub density: f32,
-}
-
-impl Default for PropSettings {
-    fn default() -> Self {
-        Self { enabled: true, max_per_chunk: 384, density: 1.0 }
-    }
+/// What chunk tasks build besides the terrain. The water and props plugins write their part
+/// from their own settings when those change (`None`: no such plugin, nothing of its kind is
+/// built); the streaming system copies it into each task it starts, so a task never reads a
+/// resource and streaming depends on neither plugin.
+#[derive(Resource, Debug, Clone, Copy, Default, PartialEq)]
+pub(crate) struct ContentRequest {
+    /// River and lake water depth, a fraction of the hex size; `None` without the water plugin
+    /// (no surface is built).
+    pub river_depth: Option<f32>,
+    /// The props' cap per chunk and density; `None` without the props plugin (none are placed;
+    /// the game setup's markers still are).
+    pub props: Option<(usize, f32)>,
 }
 
 /// A chunk's water surface and props (see the module docs). Twin chunks of a wrapping map
@@ -71,16 +49,19 @@ impl BuiltContent {
         Self { water: None, water_triangles: 0, props: Arc::from([]) }
     }
 
-    /// Builds the water and props of `chunk` under the settings (whether they are shown or
-    /// not: the plugins show them).
-    pub(crate) fn build(terrain: &Terrain, chunk: &ChunkMesh, water: WaterSettings, props: PropSettings) -> Self {
-        let depth = water.river_depth.max(0.0) * terrain.config().layout.hex_size;
-        let surface = terrain.water_surface(chunk, if depth.is_finite() { depth } else { 0.0 });
-        let water_triangles = surface.triangle_count();
-        let water = (!surface.is_empty()).then(|| crate::mesh::water_to_mesh(surface));
+    /// Builds the water and props of `chunk` as requested (whether they are shown or not: the
+    /// plugins show them).
+    pub(crate) fn build(terrain: &Terrain, chunk: &ChunkMesh, snapshot: ContentRequest) -> Self {
+        let (mut water, mut water_triangles) = (None, 0);
+        if let Some(depth) = snapshot.river_depth {
+            let depth = depth.max(0.0) * terrain.config().layout.hex_size;
+            let surface = terrain.water_surface(chunk, if depth.is_finite() { depth } else { 0.0 });
+            water_triangles = surface.triangle_count();
+            water = (!surface.is_empty()).then(|| crate::mesh::water_to_mesh(surface));
+        }
         // Trees, rocks and reeds (thinned to the cap), then the game setup's resources and
         // wonders (never thinned).
-        let mut all = terrain.props(chunk, props.max_per_chunk, props.density);
+        let mut all = snapshot.props.map_or_else(Vec::new, |(cap, density)| terrain.props(chunk, cap, density));
         all.extend(terrain.marker_props(chunk));
         let props = all.into();
         Self { water, water_triangles, props }

@@ -8,7 +8,7 @@ use super::content::ChunkContent;
 use super::state::StreamState;
 use super::{ChunkSpawned, ChunkStreamer, ChunkTask, HexChunk, TerrainReady};
 
-/// Inserts finished meshes, at most [`HexTerrainSettings::max_inserts_per_frame`] a frame,
+/// Inserts finished meshes, at most [`HexStreamingSettings::max_inserts_per_frame`] a frame,
 /// and reports [`TerrainReady`] when these inserts make every wanted chunk current.
 pub(crate) fn insert_ready(
     mut commands: Commands,

@@ -2,18 +2,19 @@
 //! ([`planner`], a pure function), their meshes built on Bevy's async compute pool ([`tasks`])
 //! and inserted under a per-frame budget ([`insert`]), with figures in [`HexTerrainStats`].
 
-pub mod content;
-pub mod insert;
-pub mod planner;
+pub(crate) mod content;
+mod insert;
+mod planner;
 mod state;
-pub mod stats;
-pub mod tasks;
+mod stats;
+mod tasks;
 
 use bevy::platform::collections::{HashMap, HashSet};
 use bevy::prelude::*;
 use hex_terrain::ChunkCoord;
 
-pub use content::{ChunkContent, PropSettings, WaterSettings};
+pub use content::ChunkContent;
+pub(crate) use content::ContentRequest;
 pub use stats::HexTerrainStats;
 pub use tasks::ChunkTask;
 
@@ -28,7 +29,7 @@ use crate::HexTerrainSystems;
 #[reflect(Component, Default)]
 #[require(Transform)]
 pub struct HexTerrainAgent {
-    /// Chunk radius kept around this agent, overriding [`HexTerrainSettings::load_radius`].
+    /// Chunk radius kept around this agent, overriding [`HexStreamingSettings::load_radius`].
     pub radius: Option<u32>,
 }
 
@@ -54,7 +55,7 @@ pub enum ChunkThreads {
 /// Streaming parameters.
 #[derive(Resource, Debug, Clone, Reflect)]
 #[reflect(Resource)]
-pub struct HexTerrainSettings {
+pub struct HexStreamingSettings {
     /// Chunks within this many chunks (Chebyshev distance) of an agent exist.
     pub load_radius: u32,
     /// Extra ring generated ahead, so the ring an agent can reach next exists before it
@@ -69,13 +70,9 @@ pub struct HexTerrainSettings {
     pub max_tasks_in_flight: usize,
     /// Where a chunk's generation runs.
     pub chunk_threads: ChunkThreads,
-    /// The water surface over sea, rivers and lakes.
-    pub water: WaterSettings,
-    /// Trees, rocks and reeds on the tiles.
-    pub props: PropSettings,
 }
 
-impl Default for HexTerrainSettings {
+impl Default for HexStreamingSettings {
     fn default() -> Self {
         Self {
             load_radius: 2,
@@ -84,8 +81,6 @@ impl Default for HexTerrainSettings {
             max_inserts_per_frame: 4,
             max_tasks_in_flight: 8,
             chunk_threads: ChunkThreads::default(),
-            water: WaterSettings::default(),
-            props: PropSettings::default(),
         }
     }
 }
@@ -185,8 +180,8 @@ impl ChunkStreamer {
 /// in [`HexTerrainSystems::Stream`] and [`HexTerrainSystems::Insert`]. Needs [`HexMapPlugin`](crate::HexMapPlugin).
 #[derive(Debug, Clone, Default)]
 pub struct HexStreamingPlugin {
-    /// Streaming parameters (the [`HexTerrainSettings`] resource).
-    pub settings: HexTerrainSettings,
+    /// Streaming parameters (the [`HexStreamingSettings`] resource).
+    pub settings: HexStreamingSettings,
 }
 
 impl Plugin for HexStreamingPlugin {
@@ -200,12 +195,13 @@ impl Plugin for HexStreamingPlugin {
         app.insert_resource(self.settings.clone())
             .init_resource::<ChunkStreamer>()
             .init_resource::<HexTerrainStats>()
+            .init_resource::<ContentRequest>()
             .add_message::<ChunkSpawned>()
             .add_message::<ChunkDespawned>()
             .add_message::<TerrainReady>()
             .register_type::<HexTerrainAgent>()
             .register_type::<HexWorldPosition>()
-            .register_type::<HexTerrainSettings>()
+            .register_type::<HexStreamingSettings>()
             .register_type::<HexChunk>()
             .register_type::<ChunkContent>()
             .register_type::<ChunkSpawned>()

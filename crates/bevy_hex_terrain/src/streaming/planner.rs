@@ -5,7 +5,7 @@
 use bevy::platform::collections::HashMap;
 use hex_terrain::{ChunkCoord, Terrain};
 
-use super::HexTerrainSettings;
+use super::HexStreamingSettings;
 
 /// What an existing chunk shows and does, as the planner sees it.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -33,7 +33,7 @@ pub struct Plan {
 #[must_use]
 pub fn plan(
     terrain: &Terrain,
-    settings: &HexTerrainSettings,
+    settings: &HexStreamingSettings,
     agents: &[(ChunkCoord, u32)],
     existing: &HashMap<ChunkCoord, ChunkState>,
 ) -> Plan {

@@ -4,7 +4,7 @@
 use bevy::ecs::system::SystemParam;
 use bevy::prelude::*;
 
-use super::{ChunkStreamer, HexTerrainSettings, HexTerrainStats};
+use super::{ChunkStreamer, HexStreamingSettings, HexTerrainStats};
 use crate::map::HexMap;
 
 /// The streaming state a streaming system reads and writes.
@@ -17,5 +17,5 @@ pub(crate) struct StreamState<'w> {
     /// The map.
     pub map: Res<'w, HexMap>,
     /// The settings.
-    pub settings: Res<'w, HexTerrainSettings>,
+    pub settings: Res<'w, HexStreamingSettings>,
 }

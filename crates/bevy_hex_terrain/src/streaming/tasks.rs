@@ -10,13 +10,10 @@ use bevy::prelude::*;
 use bevy::tasks::{AsyncComputeTaskPool, Task};
 use hex_terrain::{ChunkCoord, GenerateOptions, Terrain, Threads};
 
-use super::content::{BuiltContent, ChunkContent};
+use super::content::{BuiltContent, ChunkContent, ContentRequest};
 use super::planner::{ChunkState, plan};
 use super::state::StreamState;
-use super::{
-    ChunkDespawned, ChunkSpawned, ChunkStreamer, ChunkThreads, HexChunk, HexTerrainAgent, HexTerrainSettings,
-    HexWorldPosition,
-};
+use super::{ChunkDespawned, ChunkSpawned, ChunkStreamer, ChunkThreads, HexChunk, HexTerrainAgent, HexWorldPosition};
 use crate::mesh::chunk_to_mesh;
 
 /// What a chunk task returns.
@@ -47,6 +44,7 @@ pub(crate) fn stream(
     state: StreamState,
     agents: Query<(&GlobalTransform, &HexTerrainAgent, Option<&HexWorldPosition>)>,
     chunks: ChunkQuery,
+    content: Res<ContentRequest>,
     mut despawned: MessageWriter<ChunkDespawned>,
     mut spawned: MessageWriter<ChunkSpawned>,
 ) {
@@ -96,6 +94,7 @@ pub(crate) fn stream(
     }
 
     let pool = AsyncComputeTaskPool::get();
+    let snapshot = *content;
     let threads = match settings.chunk_threads {
         ChunkThreads::AsyncCompute => Threads::Current,
         ChunkThreads::Rayon => Threads::Pool,
@@ -130,7 +129,7 @@ pub(crate) fn stream(
         }
         started.insert(canonical);
         let task = ChunkTask {
-            task: pool.spawn(build_chunk(terrain.clone(), c, generation, threads, settings.clone())),
+            task: pool.spawn(build_chunk(terrain.clone(), c, generation, threads, snapshot)),
             generation,
             requested: Instant::now(),
         };
@@ -220,7 +219,7 @@ async fn build_chunk(
     chunk: ChunkCoord,
     generation: u64,
     threads: Threads,
-    settings: HexTerrainSettings,
+    snapshot: ContentRequest,
 ) -> ChunkBuild {
     let options = GenerateOptions { diagnostics: false, threads };
     let Some(generated) = terrain.chunk_rect(chunk).map(|rect| terrain.generate(rect, options)) else {
@@ -234,6 +233,6 @@ async fn build_chunk(
     };
     let vertices = generated.buffers.vertex_count();
     let mesh_bytes = vertices * (12 + 12 + 8) + generated.buffers.indices.len() * 4;
-    let content = BuiltContent::build(&terrain, &generated, settings.water, settings.props);
+    let content = BuiltContent::build(&terrain, &generated, snapshot);
     ChunkBuild { generation, mesh: chunk_to_mesh(generated), vertices, mesh_bytes, content }
 }

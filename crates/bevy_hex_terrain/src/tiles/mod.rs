@@ -6,6 +6,7 @@
 
 mod state;
 mod store;
+mod style;
 mod window;
 
 #[cfg(test)]
@@ -14,8 +15,11 @@ mod tests;
 use bevy::prelude::*;
 
 pub use hex_terrain::save::{SaveError, TileStateSave};
+pub(crate) use state::{FOG_MASK, bit as highlight_bit};
 pub use state::{FogState, Highlight, MAX_OWNERS, TileStateError, TileStates};
-pub use window::{TEXEL_BYTES, Texel, TileStateUpload};
+pub use style::TileStateStyle;
+pub(crate) use window::TEXEL_BYTES;
+pub use window::{Texel, TileStateUpload};
 
 use crate::{ChunkStreamer, HexMap, HexTerrainSystems};
 
@@ -58,7 +62,8 @@ pub struct TileStateStats {
     pub window_moves: u64,
 }
 
-/// [`TileStates`], [`TileStateSettings`], [`TileStateStats`] and [`TileStateUpload`], with the
+/// [`TileStates`], [`TileStateSettings`], [`TileStateStyle`] (how the states are drawn),
+/// [`TileStateStats`] and [`TileStateUpload`], with the
 /// systems keeping the window on the map ([`HexTerrainSystems::Tiles`]) and packing the
 /// changes (`PostUpdate`). Works headless; the material plugin draws it.
 #[derive(Debug, Clone, Default)]
@@ -74,10 +79,12 @@ impl Plugin for HexTileStatePlugin {
         }
         app.insert_resource(self.settings.clone())
             .init_resource::<TileStates>()
+            .init_resource::<TileStateStyle>()
             .init_resource::<TileStateStats>()
             .init_resource::<TileStateUpload>()
             .register_type::<TileStates>()
             .register_type::<TileStateSettings>()
+            .register_type::<TileStateStyle>()
             .register_type::<TileStateStats>()
             .register_type::<TileStateUpload>()
             .register_type::<FogState>()
@@ -97,8 +104,7 @@ fn follow_map(map: Res<HexMap>, mut states: ResMut<TileStates>, mut shown: Local
     }
     let keep = shown.is_none_or(|id| id == map.map_id());
     *shown = Some(map.map_id());
-    let terrain = map.terrain();
-    states.set_map(terrain.bounds(), terrain.layout().orientation, terrain.wrap().is_some(), keep);
+    states.set_map(map.terrain().geometry(), keep);
 }
 
 /// Places the window: the whole map when it fits, else around the loaded chunks, moving only

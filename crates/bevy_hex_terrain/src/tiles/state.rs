@@ -3,9 +3,8 @@
 
 use bevy::platform::collections::HashSet;
 use bevy::prelude::*;
-use hex_terrain::TileRect;
 use hex_terrain::hexx::{Hex, HexOrientation};
-use hex_terrain::terrain::OFFSET_MODE;
+use hex_terrain::{Geometry, MapConfig, MapSize, TileRect};
 
 mod save;
 
@@ -14,8 +13,8 @@ use super::window::{Texel, TexelWindow, TileStateUpload};
 
 pub use hex_terrain::save::{FogState, Highlight, MAX_OWNERS};
 
-/// A highlight's bit in a texel's first word.
-const fn bit(highlight: Highlight) -> u16 {
+/// A highlight's bit in a texel's first word (the shader takes these as shader defs).
+pub(crate) const fn bit(highlight: Highlight) -> u16 {
     1 << (2 + highlight as u16)
 }
 
@@ -65,12 +64,10 @@ pub struct TileStates {
     tiles: TileStore,
     #[reflect(ignore)]
     highlighted: [HashSet<Hex>; 3],
+    /// The map's geometry (the core's): its bounds, orientation, offset coordinates and
+    /// east-west wrap.
     #[reflect(ignore)]
-    bounds: Option<TileRect>,
-    #[reflect(ignore)]
-    orientation: HexOrientation,
-    /// Whether the map wraps east to west: a tile past its east or west edge is its own.
-    wrap: bool,
+    geometry: MapGeometry,
     #[reflect(ignore)]
     window: TexelWindow,
     /// The tiles in sight, so [`TileStates::hide_visible`] touches only them (a game's explored
@@ -84,6 +81,25 @@ pub struct TileStates {
     writes: u64,
 }
 
+/// The core's geometry of the map the states follow (an unbounded map before any): one place for
+/// offsets and the east-west wrap.
+#[derive(Debug, Clone)]
+struct MapGeometry(Geometry);
+
+impl Default for MapGeometry {
+    fn default() -> Self {
+        Self(Geometry::new(&MapConfig { size: MapSize::Unbounded, ..MapConfig::default() }))
+    }
+}
+
+impl std::ops::Deref for MapGeometry {
+    type Target = Geometry;
+
+    fn deref(&self) -> &Geometry {
+        &self.0
+    }
+}
+
 /// Most tiles [`TileStates::changed_tiles`] lists in a frame; past it, it answers "everything".
 const JOURNAL_LIMIT: usize = 1 << 16;
 
@@ -92,9 +108,7 @@ impl Default for TileStates {
         Self {
             tiles: TileStore::default(),
             highlighted: Default::default(),
-            bounds: None,
-            orientation: HexOrientation::Flat,
-            wrap: false,
+            geometry: MapGeometry::default(),
             window: TexelWindow::new(IVec2::ZERO, UVec2::ONE),
             visible: HashSet::default(),
             journal: None,
@@ -103,7 +117,8 @@ impl Default for TileStates {
     }
 }
 
-const FOG_MASK: u16 = 0b11;
+/// The fog state's bits in a texel's first word (the shader takes it as a shader def).
+pub(crate) const FOG_MASK: u16 = 0b11;
 
 impl TileStates {
     /// What the player knows of a tile.
@@ -247,7 +262,7 @@ impl TileStates {
 
     /// Forgets every tile's state: unexplored, nobody's, no overlay, no highlight.
     pub fn clear(&mut self) {
-        self.tiles = TileStore::new(self.bounds);
+        self.tiles = TileStore::new(self.geometry.bounds());
         self.highlighted = Default::default();
         self.visible.clear();
         self.window.clear();
@@ -274,16 +289,16 @@ impl TileStates {
         (self.window.origin(), self.window.size())
     }
 
-    /// Offset coordinate of a tile, in the map's orientation.
+    /// Offset coordinate of a tile, in the map's orientation ([`Geometry::offset_of`]).
     #[must_use]
     pub fn offset_of(&self, tile: Hex) -> IVec2 {
-        IVec2::from(tile.to_offset_coordinates(OFFSET_MODE, self.orientation))
+        IVec2::from(self.geometry.offset_of(tile))
     }
 
     /// The map's hex orientation (which offset coordinates mean).
     #[must_use]
     pub fn orientation(&self) -> HexOrientation {
-        self.orientation
+        self.geometry.layout().orientation
     }
 
     /// The tile of the map a tile stands for: on a wrapping map, past its east or west edge,
@@ -291,17 +306,14 @@ impl TileStates {
     /// tile itself otherwise. Every method takes such tiles.
     #[must_use]
     pub fn wrap_tile(&self, tile: Hex) -> Hex {
-        let Some(b) = self.bounds.filter(|_| self.wrap) else { return tile };
-        let oc = self.offset_of(tile);
-        let col = (oc.x - b.min[0]).rem_euclid(b.max[0] - b.min[0]) + b.min[0];
-        if col == oc.x { tile } else { Hex::from_offset_coordinates([col, oc.y], OFFSET_MODE, self.orientation) }
+        self.geometry.wrap_tile(tile)
     }
 
     /// The tile's offset coordinate (of the map's own tile on a wrapping map), if it is on the
     /// map.
     fn check(&self, tile: Hex) -> Result<IVec2, TileStateError> {
         let oc = self.offset_of(self.wrap_tile(tile));
-        match self.bounds {
+        match self.geometry.bounds() {
             Some(bounds) if !bounds.contains(oc.to_array()) => {
                 Err(TileStateError::OutsideMap { tile, offset: oc.to_array(), bounds })
             }
@@ -349,10 +361,8 @@ impl TileStates {
     /// which starts the next frame's list.
     #[must_use]
     pub fn changed_tiles(&self) -> Option<impl Iterator<Item = Hex> + '_> {
-        let orientation = self.orientation;
-        self.journal
-            .as_ref()
-            .map(move |j| j.iter().map(move |oc| Hex::from_offset_coordinates(oc.to_array(), OFFSET_MODE, orientation)))
+        let geometry = &self.geometry;
+        self.journal.as_ref().map(move |j| j.iter().map(move |oc| geometry.tile_from_offset(oc.to_array())))
     }
 
     /// Starts a new list of written tiles.
@@ -363,14 +373,12 @@ impl TileStates {
         }
     }
 
-    /// Follows a new map shape: `bounds` (None: unbounded), orientation and east-west wrap. With
-    /// `keep`, tiles still on the map keep their state; otherwise everything is forgotten.
-    pub(crate) fn set_map(&mut self, bounds: Option<TileRect>, orientation: HexOrientation, wrap: bool, keep: bool) {
-        let (old, old_orientation) = (std::mem::take(&mut self.tiles), self.orientation);
-        self.bounds = bounds;
-        self.orientation = orientation;
-        self.wrap = wrap;
-        self.tiles = TileStore::new(bounds);
+    /// Follows a new map's geometry (bounds, orientation, east-west wrap). With `keep`, tiles
+    /// still on the map keep their state; otherwise everything is forgotten.
+    pub(crate) fn set_map(&mut self, geometry: &Geometry, keep: bool) {
+        let old_geometry = std::mem::replace(&mut self.geometry, MapGeometry(geometry.clone()));
+        let old = std::mem::take(&mut self.tiles);
+        self.tiles = TileStore::new(geometry.bounds());
         self.visible.clear();
         self.journal = None;
         if !keep {
@@ -380,7 +388,7 @@ impl TileStates {
         }
         // Offset coordinates may change meaning (another orientation): through the hexes.
         for (oc, texel) in old.stored() {
-            let tile = Hex::from_offset_coordinates(oc.to_array(), OFFSET_MODE, old_orientation);
+            let tile = old_geometry.tile_from_offset(oc.to_array());
             if let Ok(oc) = self.check(tile) {
                 self.tiles.set(oc, texel);
                 if texel[0] & FOG_MASK == FogState::Visible as u16 {
@@ -388,8 +396,9 @@ impl TileStates {
                 }
             }
         }
+        let bounds: Option<TileRect> = geometry.bounds();
         for set in &mut self.highlighted {
-            set.retain(|&h| bounds.is_none_or(|b| b.contains(h.to_offset_coordinates(OFFSET_MODE, orientation))));
+            set.retain(|&h| bounds.is_none_or(|b| b.contains(geometry.offset_of(h))));
         }
         let tiles = &self.tiles;
         self.window.refill_all(|oc| tiles.get(oc));

@@ -1,6 +1,6 @@
 use bevy::prelude::*;
-use hex_terrain::TileRect;
 use hex_terrain::hexx::{Hex, HexOrientation};
+use hex_terrain::{Geometry, MapConfig, MapSize, Orientation};
 
 use super::window::TexelWindow;
 use super::*;
@@ -21,9 +21,22 @@ impl Rng {
     }
 }
 
+/// The core's geometry of a map: `size` columns and rows (`None`: unbounded), its orientation,
+/// wrapping east to west or not.
+fn geometry(size: Option<(u32, u32)>, orientation: HexOrientation, wrap: bool) -> Geometry {
+    let mut config = MapConfig {
+        size: size.map_or(MapSize::Unbounded, |(x, z)| MapSize::Bounded { x, z }),
+        wrap,
+        ..MapConfig::default()
+    };
+    config.layout.orientation =
+        if orientation == HexOrientation::Flat { Orientation::Flat } else { Orientation::Pointy };
+    Geometry::new(&config)
+}
+
 fn bounded(x: i32, z: i32) -> TileStates {
     let mut s = TileStates::default();
-    s.set_map(Some(TileRect::new([0, 0], [x as u32, z as u32])), HexOrientation::Flat, false, true);
+    s.set_map(&geometry(Some((x as u32, z as u32)), HexOrientation::Flat, false), true);
     s.refill_window(IVec2::ZERO, UVec2::new(x as u32, z as u32));
     s
 }
@@ -134,7 +147,8 @@ fn a_moving_window_always_mirrors_the_store() {
     for seed in 1..=20u64 {
         let mut rng = Rng(seed.wrapping_mul(0x9E37_79B9_7F4A_7C15));
         let mut s = TileStates::default();
-        s.set_map(None, if seed % 2 == 0 { HexOrientation::Flat } else { HexOrientation::Pointy }, false, true);
+        let orientation = if seed % 2 == 0 { HexOrientation::Flat } else { HexOrientation::Pointy };
+        s.set_map(&geometry(None, orientation, false), true);
         let size = UVec2::new(rng.range(3, 12) as u32, rng.range(3, 12) as u32);
         let mut origin = IVec2::new(rng.range(-20, 20), rng.range(-20, 20));
         s.refill_window(origin, size);
@@ -196,11 +210,11 @@ fn a_new_map_clears_and_a_reload_keeps_what_is_still_on_the_map() {
     s.set_owner(a, Some(1)).unwrap();
     s.set_owner(b, Some(2)).unwrap();
     // Hot reload to a smaller map: `b` falls off.
-    s.set_map(Some(TileRect::new([0, 0], [10, 10])), HexOrientation::Flat, false, true);
+    s.set_map(&geometry(Some((10, 10)), HexOrientation::Flat, false), true);
     assert_eq!(s.owner(a), Some(1));
     assert_eq!(s.owner(b), None);
     // Another map: nothing kept.
-    s.set_map(Some(TileRect::new([0, 0], [10, 10])), HexOrientation::Flat, false, false);
+    s.set_map(&geometry(Some((10, 10)), HexOrientation::Flat, false), false);
     assert_eq!(s.owner(a), None);
     assert_eq!(s.stored_tiles(), 0);
 }
@@ -209,7 +223,7 @@ fn a_new_map_clears_and_a_reload_keeps_what_is_still_on_the_map() {
 fn a_wrapping_map_takes_tiles_past_its_east_and_west_edges_as_its_own() {
     for orientation in [HexOrientation::Flat, HexOrientation::Pointy] {
         let mut s = TileStates::default();
-        s.set_map(Some(TileRect::new([0, 0], [20, 10])), orientation, true, true);
+        s.set_map(&geometry(Some((20, 10)), orientation, true), true);
         s.refill_window(IVec2::ZERO, UVec2::new(20, 10));
         let at = |col: i32, row: i32| {
             Hex::from_offset_coordinates([col, row], hex_terrain::terrain::OFFSET_MODE, orientation)

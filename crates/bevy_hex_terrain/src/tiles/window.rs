@@ -9,7 +9,7 @@ use bevy::prelude::*;
 pub type Texel = [u16; 4];
 
 /// Bytes of one texel.
-pub const TEXEL_BYTES: usize = std::mem::size_of::<Texel>();
+pub(crate) const TEXEL_BYTES: usize = std::mem::size_of::<Texel>();
 
 /// The changed part of the texture since the last upload: whole rows or spans of rows, ready to
 /// be copied into the texture.

@@ -13,8 +13,8 @@ pub fn unbounded(chunk: (u32, u32)) -> MapConfig {
     MapConfig { size: MapSize::Unbounded, chunk_size: chunk, ..MapConfig::default() }
 }
 
-pub fn settings(radius: u32) -> HexTerrainSettings {
-    HexTerrainSettings {
+pub fn settings(radius: u32) -> HexStreamingSettings {
+    HexStreamingSettings {
         load_radius: radius,
         prefetch: 1,
         unload_hysteresis: 1,
@@ -28,7 +28,14 @@ pub fn settings(radius: u32) -> HexTerrainSettings {
 /// `--no-default-features`, does not have).
 pub fn app_with(plugins: HexTerrainPlugins, asset_dir: Option<&std::path::Path>) -> App {
     let mut app = App::new();
-    let assets = AssetPlugin { file_path: asset_dir.map_or("assets".into(), |d| d.display().to_string()), ..default() };
+    // The tests reload files themselves (`AssetServer::reload`): the file watcher (on whenever
+    // Bevy's `file_watcher` feature is, as in the examples' build) would add reloads of its own
+    // at times that depend on the machine.
+    let assets = AssetPlugin {
+        file_path: asset_dir.map_or("assets".into(), |d| d.display().to_string()),
+        watch_for_changes_override: Some(false),
+        ..default()
+    };
     app.add_plugins((MinimalPlugins, assets, TransformPlugin));
     #[cfg(feature = "render")]
     app.add_plugins(plugins.build().disable::<HexTerrainMaterialPlugin>());

@@ -6,8 +6,8 @@ fn terrain(size: MapSize) -> Terrain {
     Terrain::new(MapConfig { size, chunk_size: (8, 8), ..MapConfig::default() }).unwrap()
 }
 
-fn settings(tasks: usize) -> HexTerrainSettings {
-    HexTerrainSettings { load_radius: 1, prefetch: 1, unload_hysteresis: 1, max_tasks_in_flight: tasks, ..default() }
+fn settings(tasks: usize) -> HexStreamingSettings {
+    HexStreamingSettings { load_radius: 1, prefetch: 1, unload_hysteresis: 1, max_tasks_in_flight: tasks, ..default() }
 }
 
 fn default<T: Default>() -> T {

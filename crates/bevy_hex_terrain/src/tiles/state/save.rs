@@ -2,10 +2,8 @@
 //! bit (the format, its encodings and its checks are the core's `hex_terrain::save`).
 
 use bevy::prelude::*;
-use hex_terrain::hexx::Hex;
 use hex_terrain::save::{SaveError, SavedMap, SavedTile, TileStateSave};
-use hex_terrain::terrain::{OFFSET_MODE, hex_orientation};
-use hex_terrain::{MapConfig, TileRect};
+use hex_terrain::{Geometry, MapConfig};
 
 use super::{FOG_MASK, FogState, Highlight, TileStates, bit};
 
@@ -39,8 +37,7 @@ impl TileStates {
     /// The save's first problem ([`SaveError`]); then nothing changes.
     pub fn load(&mut self, config: &MapConfig, save: &TileStateSave) -> Result<(), SaveError> {
         save.check(config)?;
-        let bounds = config.size.bounds().map(|(x, z)| TileRect::new([0, 0], [x, z]));
-        self.set_map(bounds, hex_orientation(config.layout.orientation), config.wrap && bounds.is_some(), false);
+        self.set_map(&Geometry::new(config), false);
         for tile in &save.tiles {
             let oc = IVec2::new(tile.at.0, tile.at.1);
             let highlights = tile.highlights.iter().fold(0, |b, &h| b | bit(h));
@@ -48,7 +45,7 @@ impl TileStates {
             let texel = [tile.fog as u16 | highlights, u16::from(tile.owner.unwrap_or(0)), r | g << 8, b | a << 8];
             self.store(oc, [0; 4], texel);
             for h in tile.highlights.iter().copied() {
-                let hex = Hex::from_offset_coordinates(oc.to_array(), OFFSET_MODE, self.orientation);
+                let hex = self.geometry.tile_from_offset(oc.to_array());
                 self.highlighted[h as usize].insert(hex);
             }
         }

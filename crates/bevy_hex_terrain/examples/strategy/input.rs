@@ -1,0 +1,94 @@
+//! Input: the pointer over the terrain (through the picking backend: its events carry the tile)
+//! and the keys that switch what is drawn and which map is shown.
+
+use bevy::picking::backend::HitData;
+use bevy::picking::events::{Move, Out, Over, Pointer};
+use bevy::prelude::*;
+use bevy_hex_terrain::prelude::*;
+
+use crate::panel::ReportPanel;
+use crate::{Game, PRESETS};
+
+/// A pointer event that carries the terrain hit it is about.
+pub(crate) trait TerrainHit {
+    fn terrain_hit(&self) -> &HitData;
+}
+
+impl TerrainHit for Over {
+    fn terrain_hit(&self) -> &HitData {
+        &self.hit
+    }
+}
+
+impl TerrainHit for Move {
+    fn terrain_hit(&self) -> &HitData {
+        &self.hit
+    }
+}
+
+/// The hovered tile: the tile the terrain picking backend reports under the pointer.
+pub(crate) fn hover<E: TerrainHit + std::fmt::Debug + Clone + Reflect>(
+    pointer: On<Pointer<E>>,
+    map: Res<HexMap>,
+    mut game: ResMut<Game>,
+) {
+    // A hit on a prop bubbles up to its chunk: act on the first.
+    if pointer.entity != pointer.original_event_target() {
+        return;
+    }
+    if let Some(pick) = pointer.event.terrain_hit().extra_as::<HexPick>() {
+        game.hovered = Some(pick.tile).filter(|&t| map.contains(t));
+    }
+}
+
+/// The pointer left the terrain (a chunk it was over).
+pub(crate) fn leave(pointer: On<Pointer<Out>>, mut game: ResMut<Game>) {
+    if pointer.entity == pointer.original_event_target() && pointer.hit.extra_as::<HexPick>().is_some() {
+        game.hovered = None;
+    }
+}
+
+pub(crate) fn keys(
+    keys: Res<ButtonInput<KeyCode>>,
+    mut material: ResMut<TerrainMaterialSettings>,
+    mut style: ResMut<TileStateStyle>,
+    map: Res<HexMap>,
+    mut load: MessageWriter<LoadHexMap>,
+    mut game: ResMut<Game>,
+    mut report: Query<&mut Visibility, With<ReportPanel>>,
+) {
+    if keys.just_pressed(KeyCode::KeyG) {
+        material.outlines = !material.outlines;
+    }
+    if keys.just_pressed(KeyCode::KeyL) {
+        style.lens = !style.lens;
+    }
+    if keys.just_pressed(KeyCode::KeyT) {
+        style.territory_tint = !style.territory_tint;
+    }
+    if keys.just_pressed(KeyCode::KeyV) {
+        style.fog_of_war = !style.fog_of_war;
+    }
+    if keys.just_pressed(KeyCode::F3) {
+        game.show_chunks = !game.show_chunks;
+    }
+    if keys.just_pressed(KeyCode::KeyF) {
+        for mut v in &mut report {
+            v.toggle_inherited_hidden();
+        }
+    }
+    if keys.just_pressed(KeyCode::KeyP) {
+        game.auto_pan = !game.auto_pan;
+    }
+    if keys.just_pressed(KeyCode::KeyR) {
+        let mut config = map.config().clone();
+        config.seed = config.seed.wrapping_mul(747_796_405).wrapping_add(2_891_336_453);
+        load.write(LoadHexMap(config.into()));
+    }
+    let digits = [KeyCode::Digit1, KeyCode::Digit2, KeyCode::Digit3, KeyCode::Digit4, KeyCode::Digit5, KeyCode::Digit6];
+    for (i, key) in digits.into_iter().enumerate() {
+        if keys.just_pressed(key) {
+            load.write(LoadHexMap(PRESETS[i].into()));
+        }
+    }
+}

@@ -1,0 +1,187 @@
+//! A small turn-based strategy game on streamed hex terrain: pan (WASD/arrows or the screen
+//! edge), zoom (wheel), rotate (Q/E); hover a tile to see it; click a unit to select it and see
+//! where it can go this turn; click a tile to walk there along an A* path (land costs 1,
+//! mountain 3, fording a river 1 more, sea and lakes are impassable); End Turn (button or Enter)
+//! restores movement. G toggles tile outlines, L the movement-cost lens, T the territory tint,
+//! V the fog of war, R regenerates with a new seed, 1-6 switch presets (6: Civ6 Standard,
+//! wrapping; P pans east across its seam), F3 shows chunk boundaries; J, K, B, N, O switch
+//! shadows, distance fog, props, water and ambient occlusion (`look.rs`).
+//!
+//! Two players: yours (red) and a rival (blue), at the starts the map's game setup chose (the
+//! World preset has one: regions of equal fertility, resources and wonders, shown as gems and
+//! obelisks; F opens the fairness report), each with territory around its units that grows
+//! at the end of each turn. Fog of war shows what your units see (mountains block the view, hills
+//! and mountains see farther); rival units out of sight are hidden. All of it is per-tile state
+//! ([`TileStates`]) the terrain shader draws: no mesh is rebuilt.
+//!
+//! `HEXTERRAIN_SCRIPT=1` plays a scripted turn (select, move, end turn), checks the game state,
+//! fog and territory, and exits 0 (1 on a failed check); with `HEXTERRAIN_SCREENSHOT=out.png` it
+//! saves a picture first. Without the script, `HEXTERRAIN_SCREENSHOT` takes a picture after some
+//! frames.
+
+#[path = "../support/mod.rs"]
+mod support;
+
+mod gizmos;
+mod input;
+mod look;
+mod movement;
+mod panel;
+mod rig;
+mod script;
+mod units;
+mod vision;
+
+use std::collections::HashSet;
+
+use bevy::picking::events::{Move, Over};
+use bevy::prelude::*;
+use bevy_hex_terrain::prelude::*;
+
+use crate::gizmos::chunk_boundaries;
+use crate::input::{hover, keys, leave};
+use crate::movement::walk;
+use crate::panel::{EndTurnButton, Panel, ReportPanel, panel, report_panel};
+use crate::rig::{Rig, camera_controls, follow_minimap};
+use crate::units::{click, end_turn, place_units};
+
+pub(crate) const PRESETS: [&str; 6] = [
+    "maps/world.map.ron",
+    "maps/island.map.ron",
+    "maps/mediterranean.map.ron",
+    "maps/inland.map.ron",
+    "maps/continent.map.ron",
+    // Civilization's Standard size, wrapping east to west.
+    "maps/civ6/standard.map.ron",
+];
+
+#[derive(Resource, Default)]
+pub(crate) struct Game {
+    pub(crate) turn: u32,
+    pub(crate) selected: Option<Entity>,
+    pub(crate) hovered: Option<Hex>,
+    pub(crate) reachable: HashSet<Hex>,
+    pub(crate) spawned: bool,
+    pub(crate) show_chunks: bool,
+    /// The camera pans east by itself (P): across the seam of a wrapping map, and on.
+    pub(crate) auto_pan: bool,
+}
+
+fn main() -> AppExit {
+    let scripted = std::env::var_os("HEXTERRAIN_SCRIPT").is_some();
+    // HEXTERRAIN_PRESET=1..6 starts on another preset (6: the wrapping Civ6 Standard map).
+    let preset = std::env::var("HEXTERRAIN_PRESET").ok().and_then(|p| p.parse::<usize>().ok()).unwrap_or(1);
+    let mut app = App::new();
+    // HEXTERRAIN_FOG=off starts without the fog of war (V toggles it).
+    let fog_of_war = std::env::var("HEXTERRAIN_FOG").map_or(true, |v| v != "off");
+    // The minimap sits in the bottom right corner, above the help line.
+    let minimap = MinimapSettings { margin: Vec2::new(12.0, 48.0), ..default() };
+    app.add_plugins((
+        DefaultPlugins,
+        HexTerrainPlugins::from_asset(PRESETS[preset.clamp(1, PRESETS.len()) - 1]),
+        HexMinimapPlugin { settings: minimap },
+    ))
+    .insert_resource(TerrainMaterialSettings { outlines: true, outline_width: 0.04, ..default() })
+    .insert_resource(TileStateStyle { fog_of_war, ..default() })
+    .insert_resource(Game { turn: 1, ..default() })
+    .add_systems(Startup, (setup, look::from_env))
+    .add_systems(
+        Update,
+        (
+            follow_minimap,
+            camera_controls,
+            place_units,
+            (end_turn, keys),
+            walk,
+            (panel, report_panel),
+            chunk_boundaries,
+            look::keys,
+        )
+            .chain(),
+    )
+    .add_systems(
+        Update,
+        (vision::update_fog, vision::highlight, vision::paint_lens).after(HexTerrainSystems::Render).after(walk),
+    )
+    // The pointer through the terrain's picking backend: its events carry the tile.
+    .add_observer(hover::<Over>)
+    .add_observer(hover::<Move>)
+    .add_observer(leave)
+    .add_observer(click);
+    // The scripted turn for the tests is a plugin of its own: the game's systems carry no test
+    // branches.
+    if scripted {
+        app.add_plugins(script::ScriptPlugin);
+    } else {
+        app.add_plugins(support::screenshot::ScreenshotModePlugin);
+    }
+    app.run()
+}
+
+fn setup(mut commands: Commands) {
+    // HEXTERRAIN_FOCUS=x,z starts the camera elsewhere (the README's seam picture).
+    let focus = std::env::var("HEXTERRAIN_FOCUS")
+        .ok()
+        .and_then(|f| {
+            let (x, z) = f.split_once(',')?;
+            Some(Vec3::new(x.trim().parse().ok()?, 0.0, z.trim().parse().ok()?))
+        })
+        // The opening view: a coast with an inland sea, forest, hills and mountains close by.
+        .unwrap_or(Vec3::new(52.0, 0.0, 52.0));
+    commands
+        .spawn((
+            Rig { focus, yaw: 0.0, distance: 18.0, target_focus: focus, target_yaw: 0.0, target_distance: 18.0 },
+            HexTerrainAgent::default(),
+            Transform::from_translation(focus),
+            // The camera below inherits visibility from the rig.
+            Visibility::default(),
+        ))
+        // The plugin lights what a HexTerrainCamera shows: sun, shadows, distance fog (the
+        // camera's `DistanceFog` and `AmbientLight` come with it).
+        .with_child((HexTerrainCamera, Transform::default()));
+    commands.spawn((
+        Panel,
+        Text::new(""),
+        TextFont::from_font_size(16.0),
+        Node { position_type: PositionType::Absolute, top: px(10.0), left: px(10.0), ..default() },
+    ));
+    // HEXTERRAIN_REPORT=1 starts with the fairness report open (F toggles it).
+    let report =
+        if std::env::var_os("HEXTERRAIN_REPORT").is_some() { Visibility::Inherited } else { Visibility::Hidden };
+    commands.spawn((
+        ReportPanel,
+        Text::new(""),
+        TextFont::from_font_size(12.0),
+        report,
+        BackgroundColor(Color::srgba(0.05, 0.06, 0.09, 0.85)),
+        Node {
+            position_type: PositionType::Absolute,
+            top: px(56.0),
+            right: px(10.0),
+            padding: UiRect::all(px(8.0)),
+            ..default()
+        },
+    ));
+    commands.spawn((
+        Text::new(
+            "WASD/arrows/edge pan, wheel zoom, Q/E rotate, click unit then tile, Enter end turn, G outlines, \
+             L lens, T tint, V fog, F fairness report, R new seed, 1-6 presets (6 wraps), P pan east, F3 chunks",
+        ),
+        TextFont::from_font_size(13.0),
+        Node { position_type: PositionType::Absolute, bottom: px(8.0), left: px(10.0), ..default() },
+    ));
+    commands
+        .spawn((
+            EndTurnButton,
+            Button,
+            Node {
+                position_type: PositionType::Absolute,
+                top: px(10.0),
+                right: px(10.0),
+                padding: UiRect::all(px(8.0)),
+                ..default()
+            },
+            BackgroundColor(Color::srgb(0.15, 0.2, 0.3)),
+        ))
+        .with_child((Text::new("End Turn"), TextFont::from_font_size(16.0)));
+}

@@ -1,0 +1,85 @@
+//! The panels: the hovered tile and the selected unit, the End Turn button, and the fairness
+//! report of the map's game setup.
+
+use bevy::prelude::*;
+use bevy_hex_terrain::prelude::*;
+
+use crate::movement::MOVES;
+use crate::units::Unit;
+use crate::{Game, vision};
+
+#[derive(Component)]
+pub(crate) struct Panel;
+
+/// The fairness report of the map's game setup (F).
+#[derive(Component)]
+pub(crate) struct ReportPanel;
+
+#[derive(Component)]
+pub(crate) struct EndTurnButton;
+
+pub(crate) fn panel(
+    game: Res<Game>,
+    map: Res<HexMap>,
+    states: Res<TileStates>,
+    style: Res<TileStateStyle>,
+    units: Query<&Unit>,
+    mut text: Query<&mut Text, With<Panel>>,
+) {
+    let mut s = format!("Turn {}", game.turn);
+    if style.lens {
+        s += "   Lens: movement cost (green 1, orange 3; water impassable)";
+    }
+    if let Some(tile) = game.hovered.filter(|&t| !style.fog_of_war || states.visibility(t) != FogState::Unexplored) {
+        let owner = match states.owner(tile) {
+            Some(vision::HUMAN) => "yours",
+            Some(_) => "rival's",
+            None => "nobody's",
+        };
+        s += &format!("\nTerritory: {owner}");
+        let Some(info) = map.tile_info(tile) else { return };
+        // Offset coordinates (column, row), as the fairness report gives them.
+        let [col, row] = map.terrain().offset_of(tile);
+        s += &format!(
+            "\nTile ({col}, {row})  {} ({})  elevation {:.2}",
+            info.biome.name(),
+            info.kind.name(),
+            info.elevation
+        );
+        if let Some(river) = map.river(tile) {
+            s += &format!("\nRiver: flow {:.1} (fording costs 1 more)", river.flow);
+        }
+        if let Some(lake) = info.lake {
+            s += &format!("\nLake {lake} (impassable)");
+        }
+        if let Some(r) = map.resource(tile) {
+            s += &format!("\nResource: {} ({})", r.name, r.class.name());
+        }
+        if let Some(w) = map.wonder(tile) {
+            s += &format!("\nNatural wonder: {}", w.name);
+        }
+        if let Some(p) = map.start(tile) {
+            s += &format!("\nStart of player {}", p + 1);
+        }
+    }
+    if let Some(unit) = game.selected.and_then(|e| units.get(e).ok()) {
+        s += &format!("\nSelected unit: {} of {MOVES} moves left", unit.moves_left);
+    }
+    for mut t in &mut text {
+        t.0.clone_from(&s);
+    }
+}
+
+/// Writes the setup's fairness report into its panel when the map changes.
+pub(crate) fn report_panel(map: Res<HexMap>, mut text: Query<&mut Text, With<ReportPanel>>) {
+    if !map.is_changed() {
+        return;
+    }
+    let report = match map.setup() {
+        Some(setup) => format!("Fairness report ({} players)\n{}", setup.starts().len(), setup.report()),
+        None => "This map has no game setup (the World preset has one).".to_owned(),
+    };
+    for mut t in &mut text {
+        t.0.clone_from(&report);
+    }
+}

@@ -1,0 +1,25 @@
+//! The props plugin's settings.
+
+use bevy::prelude::*;
+
+/// The props' settings, owned by [`HexPropsPlugin`](crate::HexPropsPlugin). Insert it (before or
+/// after the plugins) to change the defaults.
+#[derive(Resource, Debug, Clone, Copy, PartialEq, Reflect)]
+#[reflect(Resource, Default)]
+pub struct PropSettings {
+    /// Show props (trees, rocks, reeds). Chunks always place them, so turning this off at run
+    /// time despawns the props of loaded chunks at once and turning it on spawns them again.
+    pub enabled: bool,
+    /// Props a chunk keeps at most (the rest are thinned deterministically); applies to chunks
+    /// built after a change.
+    pub max_per_chunk: usize,
+    /// Share of each tile's props that stand, in `[0, 1]`; applies to chunks built after a
+    /// change.
+    pub density: f32,
+}
+
+impl Default for PropSettings {
+    fn default() -> Self {
+        Self { enabled: true, max_per_chunk: 384, density: 1.0 }
+    }
+}

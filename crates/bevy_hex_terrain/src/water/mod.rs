@@ -1,0 +1,74 @@
+//! The water surface's entities: each chunk with water ([`ChunkContent::water`](crate::ChunkContent::water)) gets a
+//! [`HexWater`] child showing it, despawned with the chunk. With Bevy's renderer the terrain
+//! material gives it the water look (its water instance: depth colors, shore foam, moving
+//! waves, transparent over the shallows), and it neither casts nor receives shadows. How deep
+//! rivers run and how the water looks is the plugin's [`WaterSettings`].
+
+mod settings;
+
+use bevy::prelude::*;
+
+pub use settings::WaterSettings;
+
+use crate::HexTerrainSystems;
+use crate::streaming::ContentRequest;
+use crate::streaming::content::{ContentQuery, stale_chunks};
+
+/// A chunk's water surface entity (a child of its chunk).
+#[derive(Component, Debug, Clone, Copy, Default, Reflect)]
+#[reflect(Component, Default)]
+#[require(Transform)]
+#[cfg_attr(feature = "render", require(Visibility))]
+pub struct HexWater;
+
+/// Spawns and despawns the water surfaces of loaded chunks (in
+/// [`HexTerrainSystems::Children`]), owns [`WaterSettings`]; without it, chunk tasks build no
+/// water surface. Part of [`HexTerrainPlugins`](crate::HexTerrainPlugins); works headless.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct HexWaterPlugin;
+
+impl Plugin for HexWaterPlugin {
+    fn build(&self, app: &mut App) {
+        app.init_resource::<WaterSettings>()
+            .init_resource::<ContentRequest>()
+            .register_type::<WaterSettings>()
+            .register_type::<HexWater>()
+            .add_systems(
+                Update,
+                (
+                    // Before tasks start: they build the surface as the settings ask.
+                    request_water.run_if(resource_changed::<WaterSettings>).before(HexTerrainSystems::Stream),
+                    sync_water.in_set(HexTerrainSystems::Children),
+                ),
+            );
+    }
+}
+
+/// Asks chunk tasks for the water surface at the settings' river depth.
+fn request_water(settings: Res<WaterSettings>, mut request: ResMut<ContentRequest>) {
+    request.river_depth = Some(settings.river_depth);
+}
+
+/// Keeps each chunk's water child in step with its [`ChunkContent`](crate::ChunkContent) and
+/// the settings.
+fn sync_water(
+    mut commands: Commands,
+    settings: Res<WaterSettings>,
+    chunks: ContentQuery,
+    waters: Query<(), With<HexWater>>,
+    mut was_enabled: Local<Option<bool>>,
+) {
+    let enabled = settings.enabled;
+    for (chunk, content) in stale_chunks(&mut commands, &chunks, &waters, enabled, &mut was_enabled) {
+        let Some(mesh) = content.water.clone().filter(|_| enabled) else { continue };
+        commands.entity(chunk).with_children(|c| {
+            let mut water = c.spawn((HexWater, Mesh3d(mesh)));
+            #[cfg(feature = "render")]
+            // Neither casts nor receives shadows: the sun's shadows lie on the floor beneath, and
+            // the water's fragments skip the shadow lookups (they cover much of the screen).
+            water.insert((bevy::light::NotShadowCaster, bevy::light::NotShadowReceiver));
+            #[cfg(not(feature = "render"))]
+            let _ = &mut water;
+        });
+    }
+}

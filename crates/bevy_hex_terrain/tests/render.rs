@@ -1,0 +1,155 @@
+//! The terrain material in a real renderer: a known small map from a fixed top-down camera,
+//! rendered (Mesa's software Vulkan under Xvfb in CI) and saved with Bevy's screenshot API, then
+//! checked pixel by pixel. Each scenario opens its own window, so each runs in a process of its
+//! own (`support::in_own_process`, under `xvfb-run` when there is no display): the `#[test]`s
+//! here start the `#[ignore]`d scenarios.
+
+#[macro_use]
+mod support;
+
+use bevy::math::DVec3;
+use bevy::prelude::*;
+use bevy_hex_terrain::hex_terrain::Terrain;
+use bevy_hex_terrain::prelude::*;
+use support::scene::*;
+
+in_own_process! {
+    tiles_show_their_type_color_without_outlines => scenario_outlines_off,
+    outlines_darken_tile_borders => scenario_outlines_on,
+    textures_and_highlights => scenario_textures_and_highlights,
+    a_missing_texture_falls_back_to_flat_colors => scenario_missing_texture,
+    a_deferred_camera_draws_the_terrain_colors => scenario_deferred,
+    biomes_rivers_and_lakes_show_their_colors => scenario_biomes,
+}
+
+#[test]
+#[ignore = "a scenario: run by its #[test] in a process of its own"]
+fn scenario_biomes() {
+    let terrain = Terrain::new(wet_map()).unwrap();
+    let (center, size) = view(&terrain);
+    let (img, _) = render_scene(Scene { config: Some(wet_map()), ..default() }, "biomes");
+    let at = |h: Hex| rgb(&img, pixel(center, size, DVec3::from_array(terrain.tile_center(h).unwrap()).as_vec3()));
+    let mut classes = std::collections::BTreeSet::new();
+    // With two inner rings the center and the first ring take the tile's own color, so a
+    // center pixel shows its biome unblended.
+    for (hex, biome) in terrain.tiles().map(|t| (t, terrain.tile_biome(t).unwrap())) {
+        if terrain.river(hex).is_some() {
+            continue;
+        }
+        let [r, g, b] = at(hex);
+        let c = [r, g, b];
+        let spread = r.max(g).max(b) - r.min(g).min(b);
+        let class = match biome {
+            Biome::Ocean | Biome::Coast | Biome::Lake => {
+                assert!(b > r + 0.1 && b > g, "{biome:?} tile {hex:?} drawn {c:?}");
+                "water"
+            }
+            Biome::Desert | Biome::Plains | Biome::Hills => {
+                assert!(r > b + 0.1, "{biome:?} tile {hex:?} drawn {c:?}");
+                "dry"
+            }
+            Biome::Grassland | Biome::Forest | Biome::Rainforest => {
+                assert!(g > r && g > b, "{biome:?} tile {hex:?} drawn {c:?}");
+                "green"
+            }
+            Biome::Snow | Biome::SnowPeak => {
+                assert!(brightness(c) > 0.6 && spread < 0.15, "{biome:?} tile {hex:?} drawn {c:?}");
+                "snow"
+            }
+            Biome::Tundra | Biome::Rock => {
+                assert!(spread < 0.2, "{biome:?} tile {hex:?} drawn {c:?}");
+                "grey"
+            }
+        };
+        classes.insert(class);
+    }
+    assert!(classes.len() >= 4, "the test map shows several biome classes: {classes:?}");
+    // A river tile's center shows water; a point of it away from the channel shows its biome.
+    let rivers = terrain.rivers();
+    assert!(!rivers.is_empty(), "the test map has rivers");
+    for river in &rivers {
+        let [r, g, b] = at(river.hex);
+        assert!(b > r && b > g, "river tile {:?} center drawn {:?}", river.hex, [r, g, b]);
+    }
+}
+
+#[test]
+#[ignore = "a scenario: run by its #[test] in a process of its own"]
+fn scenario_outlines_off() {
+    let terrain = Terrain::new(map()).unwrap();
+    let material = TerrainMaterialSettings { outlines: false, outline_width: 0.1, ..default() };
+    let (img, counts) = render_scene(Scene { material, ..default() }, "outlines_off");
+    assert_type_colors(&img, &terrain, &[]);
+    let ratio = border_to_center(&img, &terrain);
+    assert!(ratio > 0.85, "without outlines, borders look like centers: {ratio}");
+    // Streaming chunks in changes neither the map nor the material.
+    assert!(counts.frames > 20, "{} frames", counts.frames);
+    assert_eq!(counts.map_changed, 1, "HexMap changed only when inserted");
+    assert_eq!(counts.material_modified, 0, "the material was rewritten with unchanged parameters");
+}
+
+#[test]
+#[ignore = "a scenario: run by its #[test] in a process of its own"]
+fn scenario_deferred() {
+    let terrain = Terrain::new(map()).unwrap();
+    let (img, _) = render_scene(Scene { deferred: true, ..default() }, "deferred");
+    assert_type_colors(&img, &terrain, &[]);
+}
+
+#[test]
+#[ignore = "a scenario: run by its #[test] in a process of its own"]
+fn scenario_outlines_on() {
+    let terrain = Terrain::new(map()).unwrap();
+    let img = render(true, "outlines_on");
+    let ratio = border_to_center(&img, &terrain);
+    assert!(ratio < 0.6, "with outlines, borders are darker than centers: {ratio}");
+}
+
+#[test]
+#[ignore = "a scenario: run by its #[test] in a process of its own"]
+fn scenario_textures_and_highlights() {
+    let terrain = Terrain::new(map()).unwrap();
+    let (center, size) = view(&terrain);
+    let (hovered, selected) = highlighted(&terrain);
+    let (img, _) = render_scene(
+        Scene {
+            material: TerrainMaterialSettings { textures: true, ..default() },
+            tiles: Some(|terrain, states| {
+                let (hovered, selected) = highlighted(terrain);
+                states.set_highlight(hovered, Highlight::Hovered, true).unwrap();
+                states.replace_highlight(Highlight::Reachable, selected);
+            }),
+            ..default()
+        },
+        "textures_highlights",
+    );
+    let mut tinted = selected.clone();
+    tinted.push(hovered);
+    assert_type_colors(&img, &terrain, &tinted);
+    let at = |h: Hex| rgb(&img, pixel(center, size, DVec3::from_array(terrain.tile_center(h).unwrap()).as_vec3()));
+    let [r, g, _] = at(hovered);
+    assert!(r > g * 0.8, "the hovered land tile is tinted warm: {:?}", at(hovered));
+    for h in selected {
+        let [r, _, b] = at(h);
+        assert!(b > r, "a reachable land tile is tinted blue: {:?}", at(h));
+    }
+}
+
+/// The hovered and the reachable tiles of the highlight scenario: clear land tiles.
+fn highlighted(terrain: &Terrain) -> (Hex, Vec<Hex>) {
+    let land: Vec<Hex> =
+        clear_tiles(terrain).into_iter().filter(|(_, k, _)| *k == TileKind::Land).map(|(h, _, _)| h).collect();
+    (land[0], land[1..4].to_vec())
+}
+
+#[test]
+#[ignore = "a scenario: run by its #[test] in a process of its own"]
+fn scenario_missing_texture() {
+    let terrain = Terrain::new(map()).unwrap();
+    let mut material = TerrainMaterialSettings { textures: true, ..default() };
+    material.texture_paths[1] = "textures/no_such_grass.png".into();
+    let (img, _) = render_scene(Scene { material, ..default() }, "missing_texture");
+    let magenta = img.pixels().filter(|p| p[0] > 150 && p[2] > 150 && p[1] < 80).count();
+    assert_eq!(magenta, 0, "no magenta error color");
+    assert_type_colors(&img, &terrain, &[]);
+}
