@@ -6,12 +6,14 @@ use serde::{Deserialize, Serialize};
 use crate::error::LoadError;
 
 mod climate;
+mod edits;
 mod file;
 mod setup;
 mod validate;
 
 pub use climate::{BiomeRule, ClimateConfig, MAX_BIOME_RULES, MAX_WATER_TILES, RiverConfig};
 
+pub use edits::{MAX_EDITS, TileEdit};
 pub use file::MapFile;
 pub use setup::{
     MAX_PER_PLAYER, MAX_PLAYERS, MAX_SETUP_DISTANCE, MAX_SETUP_RINGS, MAX_SETUP_RULES, MAX_SETUP_TILES, MAX_YIELD,
@@ -75,6 +77,10 @@ pub struct MapConfig {
     /// Game setup: start positions, resources, natural wonders and the fairness report (off by
     /// default; see [`SetupConfig`]).
     pub setup: Option<SetupConfig>,
+    /// What a designer changed on the generated map, a tile an entry (empty by default; see
+    /// [`TileEdit`]): the map is the seed's plus these.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub edits: Vec<TileEdit>,
 }
 
 impl Default for MapConfig {
@@ -97,6 +103,7 @@ impl Default for MapConfig {
             rivers: RiverConfig::default(),
             relief: ReliefConfig::default(),
             setup: None,
+            edits: Vec::new(),
         }
     }
 }

@@ -13,6 +13,7 @@
 //! | [`config`] | [`MapConfig`] (RON), validation with the field, value and allowed range of every error |
 //! | [`lattice`], [`chunk`], [`wrap`], [`geometry`] | the hex-in-hex lattice, rectangles and chunks, east-west wrapping; [`Geometry`] composes them: where tiles and points are |
 //! | [`heights`] | [`HeightField`]: Perlin fBm or a heightmap, then the shaping filters |
+//! | [`edits`] | [`Edits`]: a designer's changes ([`TileEdit`]s, the config's `edits`) applied to the raw heights, so every later stage sees them |
 //! | [`kind`] | [`Thresholds`]: a tile's kind from its center height, each kind's height range |
 //! | [`climate`] | [`ClimateModel`]: temperature, moisture and the biome table |
 //! | [`table`], [`water::hydrology`] | [`TileTable`]: every tile's kind and biome and the water network of a bounded map, computed once |
@@ -23,6 +24,7 @@
 //! | [`query`], [`metrics`] | the surface under a position and ray casts, in f64; sharpness (thesis eq. 4.1, 7.3) |
 //! | [`setup`] | [`Setup`]: a game on the map: start positions in regions of equal fertility, resources, natural wonders, and the fairness report (after the terrain; it changes no height) |
 //! | [`terrain`] | [`Terrain`], the facade over all of it |
+//! | [`editor`] | [`Editor`]: strokes of a [`Tool`] with a [`Brush`] that change the config's edits, undo and redo, and the [`Change`] (tiles, chunks) of each |
 //! | [`minimap`] | a top-down picture of the map for a minimap: each pixel's tile, the tiles' colors, rivers, fog of war and owners, repainted per tile |
 //! | [`save`] | what a game writes on the tiles ([`FogState`], owners, overlays, [`Highlight`]s) as a [`TileStateSave`] file: RON or compact binary, checked against the map |
 //!
@@ -46,6 +48,7 @@ pub mod geometry;
 pub mod lattice;
 pub mod wrap;
 
+pub mod edits;
 pub mod heights;
 pub mod kind;
 
@@ -70,6 +73,8 @@ pub mod minimap;
 
 pub mod setup;
 
+pub mod editor;
+
 pub mod terrain;
 
 pub mod save;
@@ -77,11 +82,13 @@ pub mod save;
 pub use chunk::{ChunkCoord, TileRect};
 pub use climate::{Climate, ClimateModel, TileSample};
 pub use config::{
-    AppearanceConfig, BiomeRule, ClimateConfig, HeightSourceConfig, LayoutConfig, ManipulationConfig, MapConfig,
-    MapFile, MapSize, NoiseConfig, Orientation, Place, PullMode, ReliefConfig, ResourceClass, ResourceRule,
-    RiverConfig, SetupConfig, Shape, StartOn, TerrainConfig, ValueWeights, WonderConfig, WonderRule, YieldTable,
-    Yields,
+    AppearanceConfig, BiomeRule, ClimateConfig, HeightSourceConfig, LayoutConfig, MAX_EDITS, ManipulationConfig,
+    MapConfig, MapFile, MapSize, NoiseConfig, Orientation, Place, PullMode, ReliefConfig, ResourceClass, ResourceRule,
+    RiverConfig, SetupConfig, Shape, StartOn, TerrainConfig, TileEdit, ValueWeights, WonderConfig, WonderRule,
+    YieldTable, Yields,
 };
+pub use editor::{Brush, Change, EditError, Editor, Stroke, Tool};
+pub use edits::Edits;
 pub use error::{ConfigError, LoadError};
 pub use geometry::Geometry;
 pub use heights::{HeightField, HeightImage, ImageError};

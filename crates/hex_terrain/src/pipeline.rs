@@ -15,6 +15,7 @@ use hexx::Hex;
 
 use crate::climate::{ClimateModel, TileSample};
 use crate::config::{HeightSourceConfig, MAX_WATER_TILES, MapConfig};
+use crate::edits::Edits;
 use crate::error::ConfigError;
 use crate::geometry::Geometry;
 use crate::heights::{HeightField, HeightImage};
@@ -72,8 +73,14 @@ impl Pipeline {
     /// Builds the stages of a validated config, each from the ones before it.
     fn compile(config: MapConfig, image: Option<Arc<HeightImage>>) -> Result<Self, ConfigError> {
         let geometry = Geometry::new(&config);
-        let heights = HeightField::new(&config, &geometry, image)?;
+        let mut heights = HeightField::new(&config, &geometry, image)?;
         let thresholds = Thresholds::new(&config.terrain, &config.manipulation);
+        if !config.edits.is_empty() {
+            // The edits move tiles relative to their generated centers.
+            let generated = |tile| heights.raw_height(&geometry, geometry.lattice().tile_center(tile));
+            let edits = Edits::new(&config.edits, &geometry, &thresholds, generated);
+            heights = heights.with_edits(edits);
+        }
         let climate = ClimateModel::new(&config, &geometry, thresholds);
         // Rivers need the whole map's table; a climate alone uses it on maps up to the size
         // rivers allow, and computes biomes chunk by chunk on larger ones.

@@ -334,6 +334,10 @@ fn stats(path: &Path) -> CliResult<()> {
         }
         None => println!("setup: none (`hexterrain setup {}` places a game with the default setup)", path.display()),
     }
+    match config.edits.len() {
+        0 => println!("edits: none (the generated map)"),
+        n => println!("edits: {n} tiles edited (the map file's `edits` section, applied over the seed)"),
+    }
     println!("mesh: {} vertices, {} triangles", mesh.buffers.vertex_count(), mesh.buffers.triangle_count());
     println!("generation: {:.2} ms", elapsed.as_secs_f64() * 1e3);
     println!("sharpness (% of max elevation):");

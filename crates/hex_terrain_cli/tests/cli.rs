@@ -294,6 +294,29 @@ fn stats_prints_counts_and_sharpness() {
     }
 }
 
+/// A map file with an `edits` section: `stats` counts the edited tiles and the edits show in
+/// the counts (a tile set to mountain in a sea of Map0's), a bad edit is refused by name.
+#[test]
+fn stats_applies_the_edits_of_a_map_file() {
+    let plain = tmp("plain.map.ron");
+    std::fs::write(&plain, "(size: Bounded(x: 12, z: 10), terrain: (sea_threshold: 0.99, mountain_threshold: 0.995, interpolation_tolerance: 0.0))")
+        .unwrap();
+    let out = ok(&["stats", plain.to_str().unwrap()]);
+    assert!(out.contains("edits: none") && out.contains("mountain  0"), "{out}");
+    let edited = tmp("edited.map.ron");
+    std::fs::write(
+        &edited,
+        "(size: Bounded(x: 12, z: 10), terrain: (sea_threshold: 0.99, mountain_threshold: 0.995, interpolation_tolerance: 0.0),\n \
+         edits: [(at: (3, 3), kind: Some(Mountain)), (at: (4, 3), kind: Some(Mountain))])",
+    )
+    .unwrap();
+    let out = ok(&["stats", edited.to_str().unwrap()]);
+    assert!(out.contains("edits: 2 tiles edited") && out.contains("mountain  2"), "{out}");
+    let bad = tmp("bad_edit.map.ron");
+    std::fs::write(&bad, "(size: Bounded(x: 12, z: 10), edits: [(at: (30, 3), kind: Some(Land))])").unwrap();
+    fails(&["stats", bad.to_str().unwrap()], &["edits[0].at", "columns 0..12"]);
+}
+
 #[test]
 fn experiments_write_every_table_and_picture() {
     let dir = tmp("experiments");

@@ -13,7 +13,10 @@
 use std::sync::Arc;
 
 use hex_terrain::save::{SaveError, TileStateSave};
-use hex_terrain::{GenerateOptions, HeightImage, HeightSourceConfig, MapConfig, MapFile, MapSize, Terrain, TileRect};
+use hex_terrain::{
+    Brush, Editor, GenerateOptions, HeightImage, HeightSourceConfig, MapConfig, MapFile, MapSize, Stroke, Terrain,
+    TileKind, TileRect, Tool,
+};
 
 mod check;
 
@@ -37,6 +40,66 @@ pub fn map_text(data: &[u8]) {
         Ok(config) => build(config, Some(ramp())),
         Err(error) => check_load_error(&error),
     }
+}
+
+/// Edit file: a map file with an `edits` section, as the world builder saves it. The text must
+/// load or be refused by name (the line and column, or `edits[i]` and the allowed range); a map
+/// that loads is edited with strokes the bytes pick (tools, brushes, tiles), undone to its start
+/// bit for bit, and saved: the saved text loads back to the same edits.
+pub fn edits(data: &[u8]) {
+    let split = data.iter().position(|&b| b == 0).unwrap_or(data.len());
+    let (text, script) = (&data[..split], data.get(split + 1..).unwrap_or_default());
+    let file = match MapFile::from_bytes(text) {
+        Ok(file) => file,
+        Err(error) => return check_load_error(&error),
+    };
+    let mut config = file.config;
+    if matches!(config.source, HeightSourceConfig::Image { .. }) {
+        config.source = HeightSourceConfig::Noise;
+    }
+    // Each stroke compiles the map again and compares every tile: keep maps small.
+    if config.size.bounds().is_some_and(|(x, z)| u64::from(x) * u64::from(z) > 64 * 64) {
+        return;
+    }
+    // A small corner of the map: at most MAX_TILES tiles are generated for the comparisons.
+    let Ok(mut editor) = Editor::new(config.clone()) else { return };
+    let rect = TileRect::new([0, 0], [4, 4]);
+    let start = editor.terrain().generate(rect, GenerateOptions::CURRENT_THREAD);
+    check_terrain(editor.terrain(), &start);
+    let mut applied = 0;
+    for step in script.chunks(4).take(8) {
+        let [a, b, c, d] = [0, 1, 2, 3].map(|i| step.get(i).copied().unwrap_or(0));
+        let amount = f32::from(b) / 255.0;
+        let tool = match a % 7 {
+            0 => Tool::Raise(amount),
+            1 => Tool::Lower(amount),
+            2 => Tool::SetHeight(amount),
+            3 => Tool::Smooth,
+            4 => Tool::SetKind([TileKind::Sea, TileKind::Land, TileKind::Mountain][usize::from(b % 3)]),
+            5 => Tool::Erase,
+            _ => Tool::Raise(f32::from_bits(u32::from_le_bytes([a, b, c, d]))),
+        };
+        // A flood on an unbounded map fills thousands of tiles: too slow an input to fuzz.
+        let bounded = editor.terrain().bounds().is_some();
+        let brush = if c % 5 == 4 && bounded { Brush::Flood } else { Brush::Range(u32::from(c % 4)) };
+        let tile = editor.terrain().tile_from_offset([i32::from(d % 8), i32::from(d / 8 % 8)]);
+        match editor.apply(Stroke { tool, brush, tile }) {
+            Ok(change) => applied += usize::from(!change.is_empty()),
+            Err(error) => assert!(!error.to_string().is_empty()),
+        }
+    }
+    assert_eq!(editor.undo_len(), applied);
+    let saved = editor.config();
+    let reloaded = MapConfig::from_ron(&saved.to_ron()).expect("a saved edited map loads");
+    assert_eq!(reloaded.edits, saved.edits, "the saved edits load back the same");
+    let edited = editor.terrain().generate(rect, GenerateOptions::CURRENT_THREAD);
+    check_terrain(editor.terrain(), &edited);
+    while editor.undo().is_some() {}
+    let undone = editor.terrain().generate(rect, GenerateOptions::CURRENT_THREAD);
+    assert!(undone.buffers == start.buffers, "undoing every stroke gives back the map as loaded");
+    let mut loaded = config.edits;
+    loaded.sort_by_key(|e| (e.at.1, e.at.0));
+    assert_eq!(editor.edits(), loaded, "undoing every stroke gives back the edits as loaded");
 }
 
 /// Heightmap: PNG bytes → [`HeightImage`] → a 12x8 map tiled from it.

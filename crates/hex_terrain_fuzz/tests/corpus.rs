@@ -41,3 +41,8 @@ fn tile_save_corpus() {
 fn map_asset_corpus() {
     replay("map_asset", hex_terrain_fuzz::map_asset);
 }
+
+#[test]
+fn edits_corpus() {
+    replay("edits", hex_terrain_fuzz::edits);
+}

@@ -15,9 +15,11 @@ mod tests;
 use bevy::prelude::*;
 
 pub use hex_terrain::save::{SaveError, TileStateSave};
+#[cfg(feature = "render")]
 pub(crate) use state::{FOG_MASK, bit as highlight_bit};
 pub use state::{FogState, Highlight, MAX_OWNERS, TileStateError, TileStates};
 pub use style::TileStateStyle;
+#[cfg(feature = "render")]
 pub(crate) use window::TEXEL_BYTES;
 pub use window::{Texel, TileStateUpload};
 

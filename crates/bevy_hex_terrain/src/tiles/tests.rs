@@ -2,7 +2,7 @@ use bevy::prelude::*;
 use hex_terrain::hexx::{Hex, HexOrientation};
 use hex_terrain::{Geometry, MapConfig, MapSize, Orientation};
 
-use super::window::TexelWindow;
+use super::window::{TEXEL_BYTES, TexelWindow};
 use super::*;
 
 /// A small deterministic generator (xorshift), so the random walks below replay exactly.

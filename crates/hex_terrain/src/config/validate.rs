@@ -203,10 +203,10 @@ impl MapConfig {
             }
         }
         self.validate_climate()?;
-        match &self.setup {
-            Some(setup) => setup.validate(self.size.bounds()),
-            None => Ok(()),
+        if let Some(setup) = &self.setup {
+            setup.validate(self.size.bounds())?;
         }
+        super::edits::validate(&self.edits, self.size, self.terrain.sea_threshold)
     }
 }
 

@@ -18,6 +18,7 @@ use std::sync::Arc;
 use hexx::Hex;
 
 use crate::config::{HeightSourceConfig, MapConfig, Shape};
+use crate::edits::Edits;
 use crate::error::ConfigError;
 use crate::geometry::Geometry;
 
@@ -33,6 +34,8 @@ pub struct HeightField {
     /// Whether a shaping filter changes heights (a bounded map with a shape other than `None`).
     shaping: bool,
     sea_threshold: f64,
+    /// A designer's edits, applied after shaping (`None`: the generated heights).
+    edits: Option<Arc<Edits>>,
 }
 
 impl HeightField {
@@ -88,7 +91,21 @@ impl HeightField {
             shaping: shape_bounds.is_some() && config.shape != Shape::None,
             shape_bounds,
             sea_threshold: f64::from(config.terrain.sea_threshold),
+            edits: None,
         })
+    }
+
+    /// The same field with `edits` applied after shaping (none when they are empty).
+    #[must_use]
+    pub fn with_edits(mut self, edits: Edits) -> Self {
+        self.edits = (!edits.is_empty()).then(|| Arc::new(edits));
+        self
+    }
+
+    /// The edits applied, if any.
+    #[must_use]
+    pub fn edits(&self) -> Option<&Edits> {
+        self.edits.as_deref()
     }
 
     /// The fBm height source.
@@ -97,22 +114,27 @@ impl HeightField {
         &self.fbm
     }
 
-    /// Normalised height after shaping, before manipulation, at a lattice point.
+    /// Normalised height after shaping and the edits, before manipulation, at a lattice point.
     #[must_use]
     #[inline]
     pub fn raw_height(&self, geometry: &Geometry, p: Hex) -> f32 {
         self.shaped(geometry, self.source_height(geometry, p), p)
     }
 
-    /// Applies the shaping filter to a bare source height at lattice point `p`.
+    /// Applies the shaping filter, then the edits, to a bare source height at lattice point `p`:
+    /// the raw height every later stage reads.
     #[must_use]
     #[inline]
     pub fn shaped(&self, geometry: &Geometry, source: f64, p: Hex) -> f32 {
-        if self.shaping {
+        let raw = if self.shaping {
             let [x, z] = geometry.lattice().world(geometry.wrap_point(p));
             shape::apply(&self.shape, self.shape_bounds.as_ref(), source, x, z) as f32
         } else {
             source as f32
+        };
+        match &self.edits {
+            Some(edits) => edits.apply(geometry, p, raw),
+            None => raw,
         }
     }
 

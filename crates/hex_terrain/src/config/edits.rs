@@ -1,0 +1,97 @@
+//! The edits of a map: what a designer changed on the generated map, saved as a delta over the
+//! seed in the map file's `edits` section (a list a person can read and diff, one entry an edited
+//! tile), and checked like every other field.
+
+use serde::{Deserialize, Serialize};
+
+use super::validate::{check, finite_in};
+use super::{MAX_WORLD_TILE, MapSize};
+use crate::error::ConfigError;
+use crate::vocab::TileKind;
+
+/// Most edited tiles a map holds (a Civilization VI Huge map has 10,640 tiles; a designer's
+/// scenario edits a fraction of them).
+pub const MAX_EDITS: usize = 1 << 18;
+
+/// What a designer set on one tile. Every field but `at` is optional: a tile keeps what the
+/// generator gave it for the fields not set.
+///
+/// ```
+/// use hex_terrain::{MapConfig, TileKind};
+///
+/// let config = MapConfig::from_ron(
+///     "(size: Bounded(x: 20, z: 10), edits: [(at: (4, 5), kind: Some(Mountain)), (at: (5, 5), height: Some(0.4))])",
+/// )
+/// .unwrap();
+/// assert_eq!(config.edits[0].kind, Some(TileKind::Mountain));
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[cfg_attr(feature = "bevy_reflect", derive(bevy_reflect::Reflect))]
+#[serde(deny_unknown_fields)]
+pub struct TileEdit {
+    /// The tile, in offset coordinates `(column, row)` like the map's size (on a wrapping map,
+    /// the map's own column, `0..width`).
+    pub at: (i32, i32),
+    /// The height of the tile's center before the type rules, a fraction of the maximum
+    /// elevation in `[0, 1]` (the generator's raw height: below `terrain.sea_threshold` is sea,
+    /// from `terrain.mountain_threshold` on mountain). The whole tile moves with its center,
+    /// keeping its relief; its border vertices move halfway (a third at corners), so the
+    /// neighbors keep theirs.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub height: Option<f32>,
+    /// The tile's type: its center height is brought into the type's range (the nearest height
+    /// of it to `height`, or to the generated one) and every inner vertex of the tile with it.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub kind: Option<TileKind>,
+}
+
+impl TileEdit {
+    /// An edit of the tile at offset coordinates `at` that sets nothing yet.
+    #[must_use]
+    pub fn at(at: (i32, i32)) -> Self {
+        Self { at, height: None, kind: None }
+    }
+
+    /// Whether it sets nothing (an edit that erasing left empty).
+    #[must_use]
+    pub fn is_empty(&self) -> bool {
+        self.height.is_none() && self.kind.is_none()
+    }
+}
+
+/// Checks the edits of a map of `size`: every tile on the map (within the world's edge on an
+/// unbounded one), once; every height finite in `[0, 1]`; a type the map can have; at most
+/// [`MAX_EDITS`].
+pub(super) fn validate(edits: &[TileEdit], size: MapSize, sea_threshold: f32) -> Result<(), ConfigError> {
+    check(edits.len() <= MAX_EDITS, "edits", format!("{} edited tiles", edits.len()), format!("at most {MAX_EDITS}"))?;
+    let mut seen = std::collections::HashSet::with_capacity(edits.len());
+    for (i, edit) in edits.iter().enumerate() {
+        let (col, row) = edit.at;
+        let field = format!("edits[{i}].at");
+        match size.bounds() {
+            Some((x, z)) => check(
+                (0..x as i64).contains(&i64::from(col)) && (0..z as i64).contains(&i64::from(row)),
+                &field,
+                format!("({col}, {row})"),
+                format!("a tile of the map: columns 0..{x}, rows 0..{z}"),
+            )?,
+            None => check(
+                (-MAX_WORLD_TILE..MAX_WORLD_TILE).contains(&col) && (-MAX_WORLD_TILE..MAX_WORLD_TILE).contains(&row),
+                &field,
+                format!("({col}, {row})"),
+                format!("a tile of the world: columns and rows in -{MAX_WORLD_TILE}..{MAX_WORLD_TILE}"),
+            )?,
+        }
+        check(seen.insert(edit.at), &field, format!("({col}, {row})"), "a tile no other edit names")?;
+        if let Some(h) = edit.height {
+            check(finite_in(f64::from(h), 0.0, 1.0), &format!("edits[{i}].height"), h, "[0, 1]")?;
+        }
+        check(
+            !(edit.kind == Some(TileKind::Sea) && sea_threshold <= 0.0),
+            &format!("edits[{i}].kind"),
+            "Sea",
+            "Land or Mountain: terrain.sea_threshold is 0, so no tile is sea",
+        )?;
+    }
+    Ok(())
+}

@@ -1,0 +1,72 @@
+//! Which tiles a stroke touches: a hex range around a tile, or a flood fill of the connected
+//! tiles of one type.
+
+use std::collections::{HashSet, VecDeque};
+
+use hexx::Hex;
+
+use crate::terrain::Terrain;
+
+/// Most tiles a brush range reaches out from its tile.
+pub const MAX_BRUSH_RADIUS: u32 = 16;
+
+/// Most tiles one flood fill takes (on an unbounded map a sea has no end; the largest ocean of a
+/// Civilization VI Huge map, 10,640 tiles in all, fits).
+pub const MAX_FLOOD_TILES: usize = 1 << 14;
+
+/// The tiles one stroke edits.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize)]
+#[cfg_attr(feature = "bevy_reflect", derive(bevy_reflect::Reflect))]
+pub enum Brush {
+    /// Every tile within this many steps of the stroke's tile (0: the tile alone), up to
+    /// [`MAX_BRUSH_RADIUS`].
+    Range(u32),
+    /// The tiles connected to the stroke's tile through tiles of its type (sea, land or
+    /// mountain), up to [`MAX_FLOOD_TILES`].
+    Flood,
+}
+
+impl Brush {
+    /// The map's own tiles the brush covers around `tile` (on a wrapping map a range across the
+    /// seam takes the map's tiles on the other side), each once, in a fixed order; none when
+    /// `tile` is off the map.
+    #[must_use]
+    pub fn tiles(self, terrain: &Terrain, tile: Hex) -> Vec<Hex> {
+        let own = |t: Hex| terrain.in_world(t).then(|| terrain.wrap_tile(t)).filter(|&t| terrain.contains(t));
+        let Some(start) = own(tile) else { return Vec::new() };
+        let mut seen = HashSet::new();
+        let mut out = Vec::new();
+        match self {
+            Self::Range(radius) => {
+                for t in tile.range(radius.min(MAX_BRUSH_RADIUS)) {
+                    if let Some(t) = own(t)
+                        && seen.insert(t)
+                    {
+                        out.push(t);
+                    }
+                }
+            }
+            Self::Flood => {
+                let kind = terrain.tile_info(start).map(|i| i.kind);
+                let mut queue = VecDeque::from([start]);
+                seen.insert(start);
+                while let Some(t) = queue.pop_front() {
+                    out.push(t);
+                    if out.len() >= MAX_FLOOD_TILES {
+                        break;
+                    }
+                    for n in t.all_neighbors() {
+                        if let Some(n) = own(n)
+                            && !seen.contains(&n)
+                            && terrain.tile_info(n).map(|i| i.kind) == kind
+                        {
+                            seen.insert(n);
+                            queue.push_back(n);
+                        }
+                    }
+                }
+            }
+        }
+        out
+    }
+}

@@ -1,0 +1,82 @@
+//! What an operation changed: the tiles whose look or data changed and the chunks whose meshes
+//! must be built again; nothing else is regenerated.
+
+use std::collections::HashSet;
+
+use hexx::Hex;
+
+use crate::chunk::ChunkCoord;
+use crate::terrain::Terrain;
+
+/// What one operation (or its undo) changed.
+#[derive(Debug, Clone, Default, PartialEq, Eq)]
+pub struct Change {
+    /// The map's own tiles that changed: the edited tiles and their neighbors (whose shared
+    /// border vertices moved), and every tile whose type, elevation, biome, river or lake
+    /// changed as a consequence (rivers drain whole basins), or whose game setup marker
+    /// (start, resource, wonder) moved. Sorted.
+    pub tiles: Vec<Hex>,
+    /// The chunks holding those tiles or a neighbor of one (a chunk's mesh holds its tiles'
+    /// border vertices and normals, shared with the next chunk): the meshes to build again.
+    /// Chunks of the map (on a wrapping map, the chunks its copies show). Sorted.
+    pub chunks: Vec<ChunkCoord>,
+}
+
+impl Change {
+    /// Whether nothing changed.
+    #[must_use]
+    pub fn is_empty(&self) -> bool {
+        self.tiles.is_empty()
+    }
+
+    /// The change from `old` to `new`, two compilations of one map whose edits differ on the
+    /// `touched` tiles.
+    pub(super) fn between(old: &Terrain, new: &Terrain, touched: &[Hex]) -> Self {
+        let own = |t: Hex| new.in_world(t).then(|| new.wrap_tile(t)).filter(|&t| new.contains(t));
+        let mut tiles = HashSet::new();
+        for &t in touched {
+            tiles.insert(t);
+            tiles.extend(new.neighbors(t).into_iter().flatten().filter_map(own));
+        }
+        if new.bounds().is_some() {
+            // Rivers, lakes and biomes reach past the edited tiles: compare every tile.
+            for t in new.tiles() {
+                if old.tile_info(t) != new.tile_info(t) || marker(old, t) != marker(new, t) {
+                    tiles.insert(t);
+                }
+            }
+        } else {
+            // Without a tile table, a tile depends on its own heights and its neighbors' types.
+            let near: HashSet<Hex> = touched.iter().flat_map(|t| t.range(2)).filter_map(own).collect();
+            for r in near {
+                if old.tile_info(r) != new.tile_info(r) {
+                    tiles.insert(r);
+                }
+            }
+        }
+        let mut chunks = HashSet::new();
+        for &t in &tiles {
+            chunks.insert(new.wrap_chunk(new.chunk_of(t)).0);
+            for n in new.neighbors(t).into_iter().flatten().filter_map(own) {
+                chunks.insert(new.wrap_chunk(new.chunk_of(n)).0);
+            }
+        }
+        let mut tiles: Vec<Hex> = tiles.into_iter().collect();
+        tiles.sort_by_key(|t| (t.y, t.x));
+        let mut chunks: Vec<ChunkCoord> = chunks.into_iter().collect();
+        chunks.sort_by_key(|c| (c.z, c.x));
+        Self { tiles, chunks }
+    }
+}
+
+/// What the game setup put on a tile (start, resource, wonder), for comparing two maps.
+fn marker(terrain: &Terrain, tile: Hex) -> (Option<u32>, Option<String>, Option<String>) {
+    if terrain.setup().is_none() {
+        return (None, None, None);
+    }
+    (
+        terrain.start(tile),
+        terrain.resource(tile).map(|r| format!("{r:?}")),
+        terrain.wonder(tile).map(|w| format!("{w:?}")),
+    )
+}

@@ -1,0 +1,272 @@
+//! The world builder's core, Bevy-free so a server or a tool can edit too: an [`Editor`] holds a
+//! map and its [`TileEdit`]s, applies strokes ([`Stroke`]: a [`Tool`] with a [`Brush`] around a
+//! tile) as one operation each, undoes and redoes them, and reports what each one changed
+//! ([`Change`]: the tiles and the chunks to rebuild).
+//!
+//! An operation only changes the config's `edits`; the map is compiled again from the config, so
+//! an edited map is exactly what loading its map file gives (the edits are saved as a delta over
+//! the seed: [`Editor::config`], [`MapConfig::to_ron`]). Undoing every operation gives back the
+//! generated map bit for bit, redoing them the edited one.
+
+mod brush;
+mod change;
+
+use std::collections::BTreeMap;
+
+use hexx::Hex;
+
+pub use brush::{Brush, MAX_BRUSH_RADIUS, MAX_FLOOD_TILES};
+pub use change::Change;
+
+use crate::config::{MapConfig, TileEdit};
+use crate::error::ConfigError;
+use crate::terrain::Terrain;
+use crate::vocab::TileKind;
+
+/// What a stroke does to each tile its brush covers.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
+#[cfg_attr(feature = "bevy_reflect", derive(bevy_reflect::Reflect))]
+pub enum Tool {
+    /// Raises the tile's center height by this much (a fraction of the maximum elevation),
+    /// whatever type that makes it.
+    Raise(f32),
+    /// Lowers it by this much.
+    Lower(f32),
+    /// Sets the center height (a fraction of the maximum elevation, `[0, 1]`).
+    SetHeight(f32),
+    /// Sets the center height to the mean of the tile's and its neighbors' (on the map).
+    Smooth,
+    /// Sets the type (sea, land, mountain): the height is brought into the type's range.
+    SetKind(TileKind),
+    /// Takes the tile's edits away: it is the generated tile again.
+    Erase,
+}
+
+/// One stroke: a tool applied with a brush around a tile. One stroke is one operation for undo.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
+#[cfg_attr(feature = "bevy_reflect", derive(bevy_reflect::Reflect))]
+pub struct Stroke {
+    /// What it does.
+    pub tool: Tool,
+    /// Which tiles around `tile` it covers.
+    pub brush: Brush,
+    /// The tile under the cursor (any copy of it on a wrapping map).
+    pub tile: Hex,
+}
+
+/// A stroke that could not be applied; the map is unchanged.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum EditError {
+    /// The stroke's tile is not on the map.
+    #[error("tile ({}, {}) is not on the map", .0.x, .0.y)]
+    OffMap(Hex),
+    /// The tool's amount is not finite or outside its range.
+    #[error("the tool's amount {value} is outside {allowed}")]
+    Amount {
+        /// The amount given.
+        value: f32,
+        /// What is allowed.
+        allowed: &'static str,
+    },
+    /// The edited map is not a valid map (for example more than `MAX_EDITS` edited tiles).
+    #[error(transparent)]
+    Invalid(#[from] ConfigError),
+}
+
+/// One tile of an operation: its offset coordinate, its edit before and after.
+type TileStep = ((i32, i32), Option<TileEdit>, Option<TileEdit>);
+
+/// One operation: each tile it touched, with its edit before and after.
+#[derive(Debug, Clone, PartialEq)]
+struct Operation {
+    tiles: Vec<TileStep>,
+}
+
+/// A map being edited: its terrain, its edits, and the operations to undo and redo.
+#[derive(Debug, Clone)]
+pub struct Editor {
+    terrain: Terrain,
+    /// The config without edits (they are in `edits`).
+    base: MapConfig,
+    /// The edits by offset coordinate.
+    edits: BTreeMap<(i32, i32), TileEdit>,
+    undo: Vec<Operation>,
+    redo: Vec<Operation>,
+}
+
+impl Editor {
+    /// Starts editing a map (its config's edits are where editing starts; undo goes back to
+    /// them, not past them).
+    ///
+    /// # Errors
+    /// The config's first invalid field.
+    pub fn new(config: MapConfig) -> Result<Self, ConfigError> {
+        let terrain = Terrain::new(config.clone())?;
+        let edits = config.edits.iter().map(|e| (e.at, *e)).collect();
+        let base = MapConfig { edits: Vec::new(), ..config };
+        Ok(Self { terrain, base, edits, undo: Vec::new(), redo: Vec::new() })
+    }
+
+    /// The map as edited so far.
+    #[must_use]
+    pub fn terrain(&self) -> &Terrain {
+        &self.terrain
+    }
+
+    /// The edits, row by row: what the map file's `edits` section holds.
+    #[must_use]
+    pub fn edits(&self) -> Vec<TileEdit> {
+        sorted(&self.edits)
+    }
+
+    /// The config of the edited map: the seed's config plus [`Editor::edits`]. Written with
+    /// [`MapConfig::to_ron`], it is the map file of the edited map.
+    #[must_use]
+    pub fn config(&self) -> MapConfig {
+        MapConfig { edits: self.edits(), ..self.base.clone() }
+    }
+
+    /// Operations that [`Editor::undo`] can take back.
+    #[must_use]
+    pub fn undo_len(&self) -> usize {
+        self.undo.len()
+    }
+
+    /// Operations that [`Editor::redo`] can apply again.
+    #[must_use]
+    pub fn redo_len(&self) -> usize {
+        self.redo.len()
+    }
+
+    /// Applies a stroke as one operation (clearing what could be redone) and reports what
+    /// changed. A stroke that changes no edit is no operation.
+    ///
+    /// # Errors
+    /// The stroke's tile off the map, a non-finite or out-of-range amount, or an edited map
+    /// that would not be valid; then nothing changes.
+    pub fn apply(&mut self, stroke: Stroke) -> Result<Change, EditError> {
+        check_amount(stroke.tool)?;
+        let tiles = stroke.brush.tiles(&self.terrain, stroke.tile);
+        if tiles.is_empty() {
+            return Err(EditError::OffMap(stroke.tile));
+        }
+        let mut operation = Operation { tiles: Vec::with_capacity(tiles.len()) };
+        for &tile in &tiles {
+            let [col, row] = self.terrain.offset_of(tile);
+            let at = (col, row);
+            let before = self.edits.get(&at).copied();
+            let after = self.edited(stroke.tool, tile, before);
+            if after != before {
+                operation.tiles.push((at, before, after));
+            }
+        }
+        if operation.tiles.is_empty() {
+            return Ok(Change::default());
+        }
+        let change = self.run(&operation)?;
+        self.undo.push(operation);
+        self.redo.clear();
+        Ok(change)
+    }
+
+    /// Takes the last operation back; `None` when there is none.
+    pub fn undo(&mut self) -> Option<Change> {
+        let operation = self.undo.pop()?;
+        let reversed =
+            Operation { tiles: operation.tiles.iter().map(|&(at, before, after)| (at, after, before)).collect() };
+        // The map was valid before the operation, so going back compiles.
+        let change = self.run(&reversed).ok()?;
+        self.redo.push(operation);
+        Some(change)
+    }
+
+    /// Applies the last undone operation again; `None` when there is none.
+    pub fn redo(&mut self) -> Option<Change> {
+        let operation = self.redo.pop()?;
+        let change = self.run(&operation).ok()?;
+        self.undo.push(operation);
+        Some(change)
+    }
+
+    /// Sets each tile of `operation` to its edit after, compiles the map and reports the
+    /// change; on an invalid map nothing changes.
+    fn run(&mut self, operation: &Operation) -> Result<Change, EditError> {
+        let mut edits = self.edits.clone();
+        for &(at, _, after) in &operation.tiles {
+            match after {
+                Some(edit) => edits.insert(at, edit),
+                None => edits.remove(&at),
+            };
+        }
+        let config = MapConfig { edits: sorted(&edits), ..self.base.clone() };
+        let terrain = Terrain::new(config)?;
+        let touched: Vec<Hex> =
+            operation.tiles.iter().map(|&(at, ..)| terrain.tile_from_offset([at.0, at.1])).collect();
+        let change = Change::between(&self.terrain, &terrain, &touched);
+        self.terrain = terrain;
+        self.edits = edits;
+        Ok(change)
+    }
+
+    /// A tile's edit after `tool` (`None`: no edit left).
+    fn edited(&self, tool: Tool, tile: Hex, before: Option<TileEdit>) -> Option<TileEdit> {
+        let [col, row] = self.terrain.offset_of(tile);
+        let mut edit = before.unwrap_or_else(|| TileEdit::at((col, row)));
+        let height = |t: Hex| self.center_height(t);
+        match tool {
+            Tool::Raise(by) => {
+                edit.height = Some((height(tile) + by).clamp(0.0, 1.0));
+                edit.kind = None;
+            }
+            Tool::Lower(by) => {
+                edit.height = Some((height(tile) - by).clamp(0.0, 1.0));
+                edit.kind = None;
+            }
+            Tool::SetHeight(h) => {
+                edit.height = Some(h);
+                edit.kind = None;
+            }
+            Tool::Smooth => {
+                let mut sum = height(tile);
+                let mut count = 1.0;
+                for n in self.terrain.neighbors(tile).into_iter().flatten() {
+                    if self.terrain.contains(n) {
+                        sum += height(n);
+                        count += 1.0;
+                    }
+                }
+                edit.height = Some((sum / count).clamp(0.0, 1.0));
+                edit.kind = None;
+            }
+            Tool::SetKind(kind) => {
+                edit.height = Some(height(tile));
+                edit.kind = Some(kind);
+            }
+            Tool::Erase => return None,
+        }
+        (!edit.is_empty()).then_some(edit)
+    }
+
+    /// A tile's center height as the map has it now (edited), before the type rules.
+    fn center_height(&self, tile: Hex) -> f32 {
+        let geometry = self.terrain.geometry();
+        self.terrain.pipeline().heights().raw_height(geometry, geometry.lattice().tile_center(tile))
+    }
+}
+
+/// The edits in the order the map file lists them.
+fn sorted(edits: &BTreeMap<(i32, i32), TileEdit>) -> Vec<TileEdit> {
+    let mut out: Vec<TileEdit> = edits.values().copied().collect();
+    out.sort_by_key(|e| (e.at.1, e.at.0));
+    out
+}
+
+/// Refuses a tool amount that is not finite or out of range.
+fn check_amount(tool: Tool) -> Result<(), EditError> {
+    let (value, ok, allowed) = match tool {
+        Tool::Raise(v) | Tool::Lower(v) => (v, v.is_finite() && (0.0..=1.0).contains(&v), "[0, 1]"),
+        Tool::SetHeight(v) => (v, v.is_finite() && (0.0..=1.0).contains(&v), "[0, 1]"),
+        _ => return Ok(()),
+    };
+    if ok { Ok(()) } else { Err(EditError::Amount { value, allowed }) }
+}

@@ -1,0 +1,115 @@
+//! Edits, the stage right after the height field: a designer's changes to tiles (the config's
+//! `edits`, [`TileEdit`]) turned into a change of the raw height of every lattice point they
+//! touch. Everything after it (tile kinds, the tile table with rivers, lakes and biomes, the
+//! vertex chain, meshes, queries, the game setup) reads the edited heights, so an edit is
+//! consistent everywhere at once: a raised ridge changes the drainage, a new mountain gets its
+//! peak, biomes follow the new elevation.
+//!
+//! An edited tile moves by `delta`, the difference between its target center height and the
+//! generated one, so it keeps its relief. A point inside the tile moves by the tile's delta and
+//! is then kept inside the raw range of the tile's (new) type, so every inner vertex lies in the
+//! type's range after the vertex chain whatever the manipulation settings. A border point moves
+//! by the mean of the deltas of the tiles sharing it (an unedited tile counts zero), so the
+//! surface stays continuous and an unedited neighbor keeps every inner vertex it had. Each edited
+//! point is a pure function of the point and the edits: chunks stay bit-identical at seams and
+//! chunked equals whole.
+
+use std::collections::HashMap;
+
+use hexx::Hex;
+
+use crate::config::TileEdit;
+use crate::geometry::Geometry;
+use crate::kind::Thresholds;
+use crate::vocab::TileKind;
+
+/// How one edited tile moves its points.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct TileShift {
+    /// Added to the raw height of its points (its border points share it).
+    delta: f32,
+    /// The raw heights its inner points are kept in: its type's classification range.
+    range: (f32, f32),
+}
+
+/// The edits of a map, compiled against its generated heights (see the module docs).
+#[derive(Debug, Clone, Default)]
+pub struct Edits {
+    /// By the map's own tile (axial).
+    tiles: HashMap<Hex, TileShift>,
+}
+
+impl Edits {
+    /// Compiles `edits` (validated: on the map, once each) for a map whose generated raw height
+    /// at a tile's center is `generated(tile)`.
+    pub fn new(
+        edits: &[TileEdit],
+        geometry: &Geometry,
+        thresholds: &Thresholds,
+        generated: impl Fn(Hex) -> f32,
+    ) -> Self {
+        let mut tiles = HashMap::with_capacity(edits.len());
+        for edit in edits.iter().filter(|e| !e.is_empty()) {
+            let tile = geometry.wrap_tile(geometry.tile_from_offset([edit.at.0, edit.at.1]));
+            let base = generated(tile);
+            let wanted = edit.height.unwrap_or(base);
+            let kind = edit.kind.unwrap_or_else(|| thresholds.classify(wanted));
+            let range = raw_range(thresholds, kind);
+            let target = wanted.clamp(range.0, range.1);
+            tiles.insert(tile, TileShift { delta: target - base, range });
+        }
+        Self { tiles }
+    }
+
+    /// Whether no tile is edited.
+    #[must_use]
+    pub fn is_empty(&self) -> bool {
+        self.tiles.is_empty()
+    }
+
+    /// How many tiles are edited.
+    #[must_use]
+    pub fn len(&self) -> usize {
+        self.tiles.len()
+    }
+
+    /// Whether a tile (any copy of it on a wrapping map) is edited.
+    #[must_use]
+    pub fn is_edited(&self, geometry: &Geometry, tile: Hex) -> bool {
+        self.tiles.contains_key(&geometry.wrap_tile(tile))
+    }
+
+    /// The edited raw height of lattice point `p`, whose generated raw height is `raw`.
+    #[must_use]
+    #[inline]
+    pub fn apply(&self, geometry: &Geometry, p: Hex, raw: f32) -> f32 {
+        let set = geometry.lattice().tiles_at(p);
+        let tiles = set.tiles();
+        if let [tile] = tiles {
+            return match self.tiles.get(&geometry.wrap_tile(*tile)) {
+                Some(shift) => (raw + shift.delta).clamp(shift.range.0, shift.range.1),
+                None => raw,
+            };
+        }
+        let mut sum = 0.0;
+        let mut edited = false;
+        for tile in tiles {
+            if let Some(shift) = self.tiles.get(&geometry.wrap_tile(*tile)) {
+                sum += shift.delta;
+                edited = true;
+            }
+        }
+        if edited { (raw + sum / tiles.len() as f32).clamp(0.0, 1.0) } else { raw }
+    }
+}
+
+/// The raw heights whose centers classify as `kind`: `[0, sea)`, `[sea, mountain)`,
+/// `[mountain, 1]`, closed at the largest height below an open end.
+#[must_use]
+pub fn raw_range(thresholds: &Thresholds, kind: TileKind) -> (f32, f32) {
+    match kind {
+        TileKind::Sea => (0.0, thresholds.sea.next_down().max(0.0)),
+        TileKind::Land => (thresholds.sea, thresholds.mountain.next_down().max(thresholds.sea)),
+        TileKind::Mountain => (thresholds.mountain, 1.0),
+    }
+}

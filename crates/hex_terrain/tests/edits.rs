@@ -1,0 +1,312 @@
+//! The world builder's core over random maps and random strokes: edited tiles are recognisable
+//! (every inner vertex in its type's range), chunks still meet bit for bit and equal the whole,
+//! undoing everything gives back the generated map bit for bit and redoing it the edited one, a
+//! saved map file replays to the same bytes, only the reported chunks change, and rivers on an
+//! edited map still flow down to the sea, a lake or the edge. Bad edits are refused by name.
+
+mod common;
+
+use std::collections::{HashMap, HashSet};
+
+use hex_terrain::hexx::Hex;
+use hex_terrain::{
+    Brush, ChunkCoord, EditError, Editor, GenerateOptions, MapConfig, MapSize, NoiseConfig, Orientation, ReliefConfig,
+    Stroke, Terrain, TileEdit, TileKind, TileRect, Tool,
+};
+use proptest::prelude::*;
+
+prop_compose! {
+    /// Small maps (bounded, wrapping or unbounded), with and without climate, rivers and relief.
+    fn map()(
+        seed in any::<u32>(),
+        bounded in prop::option::weighted(0.8, (6u32..18, 6u32..14)),
+        scale in 8.0f64..60.0,
+        octaves in 1u32..6,
+        sea in 0.2f32..0.45,
+        rings in 1u32..4,
+        chunk in (2u32..7, 2u32..7),
+        pointy in any::<bool>(),
+        climate in any::<bool>(),
+        rivers in any::<bool>(),
+        relief in any::<bool>(),
+        unity in any::<bool>(),
+        wrap in any::<bool>(),
+    ) -> MapConfig {
+        let mut c = MapConfig {
+            seed,
+            size: bounded.map_or(MapSize::Unbounded, |(x, z)| MapSize::Bounded { x, z }),
+            noise: NoiseConfig { octaves, persistence: 0.5, lacunarity: 2.0, scale },
+            chunk_size: chunk,
+            ..MapConfig::default()
+        };
+        c.terrain.sea_threshold = sea;
+        c.terrain.inner_rings = rings;
+        c.layout.orientation = if pointy { Orientation::Pointy } else { Orientation::Flat };
+        c.climate.enabled = climate;
+        c.rivers.enabled = rivers && bounded.is_some();
+        c.rivers.threshold = 3.0;
+        c.manipulation.hex_unity = unity;
+        if relief {
+            c.relief = ReliefConfig::MOUNTAINS;
+        }
+        common::wrapping(c, wrap)
+    }
+}
+
+/// A random stroke around a tile near the map's middle, in offset coordinates `0..12`.
+fn stroke() -> impl Strategy<Value = ((i32, i32), Tool, Brush)> {
+    let tool = prop_oneof![
+        (0.01f32..0.5).prop_map(Tool::Raise),
+        (0.01f32..0.5).prop_map(Tool::Lower),
+        (0.0f32..=1.0).prop_map(Tool::SetHeight),
+        Just(Tool::Smooth),
+        prop_oneof![Just(TileKind::Sea), Just(TileKind::Land), Just(TileKind::Mountain)].prop_map(Tool::SetKind),
+        Just(Tool::Erase),
+    ];
+    let brush = prop_oneof![4 => (0u32..4).prop_map(Brush::Range), 1 => Just(Brush::Flood)];
+    ((0i32..12, 0i32..12), tool, brush)
+}
+
+/// The tiles a test generates: the bounded map, or nine chunks around the origin.
+fn area(t: &Terrain) -> TileRect {
+    t.bounds().unwrap_or_else(|| {
+        let (w, h) = t.chunk_size();
+        TileRect::new([-(w as i32), -(h as i32)], [3 * w, 3 * h])
+    })
+}
+
+/// The chunks covering `rect`.
+fn chunks_of(t: &Terrain, rect: TileRect) -> Vec<ChunkCoord> {
+    let mut out: Vec<ChunkCoord> = rect.iter().map(|oc| t.chunk_of(t.tile_from_offset(oc))).collect();
+    out.sort_unstable_by_key(|c| (c.z, c.x));
+    out.dedup();
+    out
+}
+
+/// Every byte a chunk's mesh holds that a renderer draws.
+fn chunk_bytes(t: &Terrain, c: ChunkCoord) -> Vec<u32> {
+    let Some(m) = t.generate_chunk(c) else { return Vec::new() };
+    let b = &m.buffers;
+    let mut out: Vec<u32> =
+        b.positions.iter().flatten().chain(b.normals.iter().flatten()).map(|v| v.to_bits()).collect();
+    out.extend(b.colors.iter().map(|c| u32::from_le_bytes(*c)));
+    out.extend(b.tile_kinds.iter().copied());
+    out.extend(&b.indices);
+    out
+}
+
+/// The whole area's bytes, chunk by chunk.
+fn map_bytes(t: &Terrain) -> Vec<Vec<u32>> {
+    chunks_of(t, area(t)).into_iter().map(|c| chunk_bytes(t, c)).collect()
+}
+
+/// Applies the strokes that apply (those on the map), returning how many did.
+fn apply_all(editor: &mut Editor, strokes: &[((i32, i32), Tool, Brush)]) -> usize {
+    let mut applied = 0;
+    for &((col, row), tool, brush) in strokes {
+        let tile = editor.terrain().tile_from_offset([col, row]);
+        match editor.apply(Stroke { tool, brush, tile }) {
+            Ok(change) if !change.is_empty() => applied += 1,
+            Ok(_) | Err(EditError::OffMap(_)) => {}
+            Err(e) => panic!("a stroke on the map failed: {e}"),
+        }
+    }
+    applied
+}
+
+/// Rivers flow to tiles whose water level is not higher and end in the sea, a lake or off the
+/// map's edge, without coming back to a tile.
+fn assert_rivers_flow_down(t: &Terrain) -> Result<(), TestCaseError> {
+    let tiles = t.tiles().count();
+    for r in t.rivers() {
+        let mut seen = HashSet::new();
+        let mut here = r.clone();
+        loop {
+            prop_assert!(seen.insert(here.hex) && seen.len() <= tiles, "a river comes back to {:?}", here.hex);
+            let Some(next) = here.downstream else {
+                let edge = here.hex.all_neighbors().iter().any(|&n| !t.contains(n));
+                prop_assert!(edge, "{:?} ends inland without an outlet", here.hex);
+                break;
+            };
+            prop_assert!(t.water_level(next).unwrap() <= here.level, "{:?} flows up to {:?}", here.hex, next);
+            if t.tile_kind(next).unwrap() == TileKind::Sea || t.lake(next).is_some() {
+                break;
+            }
+            let down = t.river(next);
+            prop_assert!(down.is_some(), "{:?} flows into {:?}, neither river, lake nor sea", here.hex, next);
+            here = down.unwrap();
+        }
+    }
+    Ok(())
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 48, ..ProptestConfig::default() })]
+
+    /// Every inner vertex of an edited tile lies in its type's range (whatever the manipulation
+    /// settings), chunks share their border vertices bit for bit and equal the whole map, and
+    /// rivers still flow down.
+    #[test]
+    fn edited_maps_keep_every_invariant(config in map(), strokes in prop::collection::vec(stroke(), 1..5)) {
+        let mut editor = Editor::new(config).unwrap();
+        apply_all(&mut editor, &strokes);
+        let t = editor.terrain();
+        let rect = area(t);
+        let whole = t.generate(rect, GenerateOptions::DIAGNOSTICS);
+        let d = whole.diagnostics.as_ref().unwrap();
+        let n = t.lattice().subdivisions();
+        let max = t.config().terrain.max_elevation;
+        let eps = 1e-4 * max.max(1.0);
+        let edited: HashSet<Hex> =
+            editor.edits().iter().map(|e| t.wrap_tile(t.tile_from_offset([e.at.0, e.at.1]))).collect();
+        let kinds: HashMap<Hex, TileKind> = whole.tiles.iter().map(|i| (i.hex, i.kind)).collect();
+        let mut heights: HashMap<Hex, u32> = HashMap::new();
+        for (i, &p) in d.lattice.iter().enumerate() {
+            let y = whole.buffers.positions[i][1];
+            heights.insert(p, y.to_bits());
+            let set = t.lattice().tiles_at(p);
+            let [tile] = set.tiles() else { continue };
+            if u32::from(d.rings[i]) < n && edited.contains(&t.wrap_tile(*tile)) {
+                let kind = kinds[tile];
+                let (lo, hi) = t.thresholds().range(kind);
+                prop_assert!(y >= lo * max - eps && y <= hi * max + eps,
+                    "inner vertex {:?} of an edited {:?} tile at {} outside [{}, {}]", p, kind, y, lo * max, hi * max);
+            }
+        }
+        // Chunked = whole, so neighbors meet bit for bit.
+        for c in chunks_of(t, rect) {
+            let Some(rect) = t.chunk_rect(c) else { continue };
+            let m = t.generate(rect, GenerateOptions::DIAGNOSTICS);
+            for (i, p) in m.diagnostics.as_ref().unwrap().lattice.iter().enumerate() {
+                if let Some(&bits) = heights.get(p) {
+                    prop_assert_eq!(m.buffers.positions[i][1].to_bits(), bits, "chunk {:?} at {:?}", c, p);
+                }
+            }
+        }
+        assert_rivers_flow_down(t)?;
+    }
+
+    /// Undoing every operation gives back the generated map bit for bit; redoing every one the
+    /// edited map; the saved map file (the seed's config plus the edits) replays to the same
+    /// bytes.
+    #[test]
+    fn undo_redo_and_replay_are_bit_exact(config in map(), strokes in prop::collection::vec(stroke(), 1..6)) {
+        let generated = map_bytes(&Terrain::new(config.clone()).unwrap());
+        let mut editor = Editor::new(config).unwrap();
+        let applied = apply_all(&mut editor, &strokes);
+        prop_assert_eq!(editor.undo_len(), applied);
+        let edited = map_bytes(editor.terrain());
+        let file = editor.config().to_ron();
+        let replayed = Terrain::new(MapConfig::from_ron(&file).unwrap()).unwrap();
+        prop_assert!(map_bytes(&replayed) == edited, "the saved file does not replay to the edited map");
+        while editor.undo().is_some() {}
+        prop_assert!(editor.edits().is_empty());
+        prop_assert!(map_bytes(editor.terrain()) == generated, "undoing everything is not the generated map");
+        prop_assert_eq!(editor.redo_len(), applied);
+        while editor.redo().is_some() {}
+        prop_assert!(map_bytes(editor.terrain()) == edited, "redoing everything is not the edited map");
+    }
+
+    /// An operation changes the meshes of the chunks it reports and of no other.
+    #[test]
+    fn only_the_reported_chunks_change(config in map(), strokes in prop::collection::vec(stroke(), 1..4)) {
+        let mut editor = Editor::new(config).unwrap();
+        for &((col, row), tool, brush) in &strokes {
+            let before = editor.terrain().clone();
+            let tile = before.tile_from_offset([col, row]);
+            let Ok(change) = editor.apply(Stroke { tool, brush, tile }) else { continue };
+            let after = editor.terrain();
+            let reported: HashSet<ChunkCoord> = change.chunks.iter().copied().collect();
+            for c in chunks_of(after, area(after)) {
+                if !reported.contains(&after.wrap_chunk(c).0) {
+                    prop_assert!(chunk_bytes(&before, c) == chunk_bytes(after, c),
+                        "chunk {:?} changed but was not reported ({:?})", c, change.chunks);
+                }
+            }
+        }
+    }
+}
+
+fn bounded(edits: Vec<TileEdit>) -> MapConfig {
+    MapConfig { size: MapSize::Bounded { x: 20, z: 10 }, edits, ..MapConfig::default() }
+}
+
+#[test]
+fn a_kind_edit_makes_the_tile_that_kind_and_its_neighbors_keep_theirs() {
+    let base = Terrain::new(bounded(Vec::new())).unwrap();
+    for kind in [TileKind::Sea, TileKind::Land, TileKind::Mountain] {
+        let t = Terrain::new(bounded(vec![TileEdit { kind: Some(kind), ..TileEdit::at((7, 4)) }])).unwrap();
+        let tile = t.tile_from_offset([7, 4]);
+        assert_eq!(t.tile_kind(tile), Some(kind));
+        for n in tile.all_neighbors() {
+            // Neighbors' centers are their own (a neighbor changes only where it meets the tile).
+            assert_eq!(t.tile_kind(n), base.tile_kind(n), "neighbor {n:?} of a new {kind:?}");
+        }
+    }
+}
+
+#[test]
+fn a_raise_moves_the_whole_tile_and_a_second_undo_is_none() {
+    let mut editor = Editor::new(bounded(Vec::new())).unwrap();
+    let tile = editor.terrain().tile_from_offset([5, 5]);
+    let before = editor.terrain().tile_info(tile).unwrap().elevation;
+    let change = editor.apply(Stroke { tool: Tool::Raise(0.2), brush: Brush::Range(0), tile }).unwrap();
+    assert!(change.tiles.contains(&tile) && !change.chunks.is_empty());
+    let after = editor.terrain().tile_info(tile).unwrap().elevation;
+    assert!(after > before, "{after} not above {before}");
+    assert_eq!(editor.edits().len(), 1);
+    assert!(editor.undo().is_some());
+    assert!(editor.undo().is_none());
+    assert_eq!(editor.terrain().tile_info(tile).unwrap().elevation, before);
+}
+
+#[test]
+fn a_brush_across_a_wrapping_maps_seam_edits_the_maps_own_tiles() {
+    let config = MapConfig { size: MapSize::Bounded { x: 20, z: 10 }, wrap: true, ..MapConfig::default() };
+    let mut editor = Editor::new(config).unwrap();
+    // Column 20 is column 0 again; a radius-1 brush there reaches columns 19, 0 and 1.
+    let tile = editor.terrain().tile_from_offset([20, 5]);
+    editor.apply(Stroke { tool: Tool::SetKind(TileKind::Mountain), brush: Brush::Range(1), tile }).unwrap();
+    let columns: HashSet<i32> = editor.edits().iter().map(|e| e.at.0).collect();
+    assert_eq!(columns, HashSet::from([19, 0, 1]));
+    assert!(editor.edits().iter().all(|e| (0..20).contains(&e.at.0)));
+}
+
+#[test]
+fn bad_edits_are_refused_by_name_and_strokes_off_the_map_change_nothing() {
+    let refused = |edits: Vec<TileEdit>| Terrain::new(bounded(edits)).unwrap_err().to_string();
+    let e = refused(vec![TileEdit::at((20, 3))]);
+    assert!(e.contains("edits[0].at") && e.contains("columns 0..20"), "{e}");
+    let e = refused(vec![TileEdit::at((1, 1)), TileEdit { height: Some(0.5), ..TileEdit::at((1, 1)) }]);
+    assert!(e.contains("edits[1].at") && e.contains("no other edit"), "{e}");
+    for bad in [f32::NAN, f32::INFINITY, -0.5, 1.5] {
+        let e = refused(vec![TileEdit { height: Some(bad), ..TileEdit::at((2, 2)) }]);
+        assert!(e.contains("edits[0].height") && e.contains("[0, 1]"), "{e}");
+    }
+    let mut sealess = bounded(vec![TileEdit { kind: Some(TileKind::Sea), ..TileEdit::at((2, 2)) }]);
+    sealess.terrain.sea_threshold = 0.0;
+    sealess.terrain.interpolation_tolerance = 0.0;
+    let e = Terrain::new(sealess).unwrap_err().to_string();
+    assert!(e.contains("edits[0].kind"), "{e}");
+    // A malformed edit in a map file: its line and column.
+    let e = MapConfig::from_ron("(size: Bounded(x: 20, z: 10),\n edits: [(at: (1, 1), biome_typo: 3)])").unwrap_err();
+    assert!(e.to_string().contains("2:"), "{e}");
+
+    let mut editor = Editor::new(bounded(Vec::new())).unwrap();
+    let off = editor.terrain().tile_from_offset([40, 40]);
+    let stroke = Stroke { tool: Tool::Raise(0.1), brush: Brush::Range(2), tile: off };
+    assert_eq!(editor.apply(stroke), Err(EditError::OffMap(off)));
+    let tile = editor.terrain().tile_from_offset([3, 3]);
+    let bad = Stroke { tool: Tool::Raise(f32::NAN), brush: Brush::Range(0), tile };
+    assert!(matches!(editor.apply(bad), Err(EditError::Amount { .. })));
+    assert_eq!((editor.undo_len(), editor.edits().len()), (0, 0));
+}
+
+#[test]
+fn a_map_without_edits_writes_no_edits_section() {
+    let text = bounded(Vec::new()).to_ron();
+    assert!(!text.contains("edits"), "{text}");
+    let edited = bounded(vec![TileEdit { kind: Some(TileKind::Mountain), ..TileEdit::at((3, 4)) }]).to_ron();
+    assert!(edited.contains("edits") && edited.contains("Mountain"), "{edited}");
+    assert_eq!(MapConfig::from_ron(&edited).unwrap().edits.len(), 1);
+}
