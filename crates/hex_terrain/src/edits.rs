@@ -21,7 +21,7 @@ use hexx::Hex;
 use crate::config::TileEdit;
 use crate::geometry::Geometry;
 use crate::kind::Thresholds;
-use crate::vocab::TileKind;
+use crate::vocab::{Biome, TileKind};
 
 /// How one edited tile moves its points.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -35,8 +35,10 @@ struct TileShift {
 /// The edits of a map, compiled against its generated heights (see the module docs).
 #[derive(Debug, Clone, Default)]
 pub struct Edits {
-    /// By the map's own tile (axial).
+    /// By the map's own tile (axial): the tiles whose height or type is edited.
     tiles: HashMap<Hex, TileShift>,
+    /// The biomes set by hand, by the map's own tile.
+    biomes: HashMap<Hex, Biome>,
 }
 
 impl Edits {
@@ -49,8 +51,16 @@ impl Edits {
         generated: impl Fn(Hex) -> f32,
     ) -> Self {
         let mut tiles = HashMap::with_capacity(edits.len());
-        for edit in edits.iter().filter(|e| !e.is_empty()) {
+        let mut biomes = HashMap::new();
+        for edit in edits {
             let tile = geometry.wrap_tile(geometry.tile_from_offset([edit.at.0, edit.at.1]));
+            if let Some(biome) = edit.biome {
+                biomes.insert(tile, biome);
+            }
+            // A biome alone moves no height.
+            if edit.height.is_none() && edit.kind.is_none() {
+                continue;
+            }
             let base = generated(tile);
             let wanted = edit.height.unwrap_or(base);
             let kind = edit.kind.unwrap_or_else(|| thresholds.classify(wanted));
@@ -58,31 +68,38 @@ impl Edits {
             let target = wanted.clamp(range.0, range.1);
             tiles.insert(tile, TileShift { delta: target - base, range });
         }
-        Self { tiles }
+        Self { tiles, biomes }
     }
 
     /// Whether no tile is edited.
     #[must_use]
     pub fn is_empty(&self) -> bool {
-        self.tiles.is_empty()
+        self.tiles.is_empty() && self.biomes.is_empty()
     }
 
-    /// How many tiles are edited.
-    #[must_use]
-    pub fn len(&self) -> usize {
-        self.tiles.len()
-    }
-
-    /// Whether a tile (any copy of it on a wrapping map) is edited.
+    /// Whether a tile's height or type (any copy of it on a wrapping map) is edited.
     #[must_use]
     pub fn is_edited(&self, geometry: &Geometry, tile: Hex) -> bool {
         self.tiles.contains_key(&geometry.wrap_tile(tile))
+    }
+
+    /// The biome set by hand on a tile (any copy of it on a wrapping map), if any.
+    #[must_use]
+    #[inline]
+    pub fn biome(&self, geometry: &Geometry, tile: Hex) -> Option<Biome> {
+        if self.biomes.is_empty() {
+            return None;
+        }
+        self.biomes.get(&geometry.wrap_tile(tile)).copied()
     }
 
     /// The edited raw height of lattice point `p`, whose generated raw height is `raw`.
     #[must_use]
     #[inline]
     pub fn apply(&self, geometry: &Geometry, p: Hex, raw: f32) -> f32 {
+        if self.tiles.is_empty() {
+            return raw;
+        }
         let set = geometry.lattice().tiles_at(p);
         let tiles = set.tiles();
         if let [tile] = tiles {

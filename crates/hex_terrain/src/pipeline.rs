@@ -188,6 +188,9 @@ impl Pipeline {
     /// A tile's biome: from the table when the map has one, else from its center sample.
     #[must_use]
     pub fn tile_biome(&self, tile: Hex) -> Biome {
+        if let Some(biome) = self.heights.edits().and_then(|e| e.biome(&self.geometry, tile)) {
+            return biome;
+        }
         if let Some(biome) = self.table().and_then(|t| t.biome(&self.geometry, tile)) {
             return biome;
         }

@@ -100,6 +100,14 @@ impl TileTable {
                 climate.biome_from(s, lake, climate_of)
             })
             .collect();
+        // Biomes set by hand stay (the others follow the edited heights).
+        if let Some(edits) = heights.edits() {
+            for (i, &tile) in tiles.iter().enumerate() {
+                if let Some(biome) = edits.biome(geometry, tile) {
+                    table.biomes[i] = biome;
+                }
+            }
+        }
         table
     }
 

@@ -10,8 +10,8 @@ use std::collections::{HashMap, HashSet};
 
 use hex_terrain::hexx::Hex;
 use hex_terrain::{
-    Brush, ChunkCoord, EditError, Editor, GenerateOptions, MapConfig, MapSize, NoiseConfig, Orientation, ReliefConfig,
-    Stroke, Terrain, TileEdit, TileKind, TileRect, Tool,
+    Biome, Brush, ChunkCoord, EditError, Editor, GenerateOptions, MapConfig, MapSize, NoiseConfig, Orientation,
+    ReliefConfig, Stroke, Terrain, TileEdit, TileKind, TileRect, Tool,
 };
 use proptest::prelude::*;
 
@@ -61,9 +61,11 @@ fn stroke() -> impl Strategy<Value = ((i32, i32), Tool, Brush)> {
         (0.0f32..=1.0).prop_map(Tool::SetHeight),
         Just(Tool::Smooth),
         prop_oneof![Just(TileKind::Sea), Just(TileKind::Land), Just(TileKind::Mountain)].prop_map(Tool::SetKind),
+        prop_oneof![Just(Biome::Desert), Just(Biome::Tundra), Just(Biome::Forest)].prop_map(Tool::SetBiome),
         Just(Tool::Erase),
     ];
-    let brush = prop_oneof![4 => (0u32..4).prop_map(Brush::Range), 1 => Just(Brush::Flood)];
+    let brush =
+        prop_oneof![4 => (0u32..4).prop_map(Brush::Range), 1 => Just(Brush::Flood), 1 => Just(Brush::FloodBiome)];
     ((0i32..12, 0i32..12), tool, brush)
 }
 
@@ -157,8 +159,14 @@ proptest! {
         let n = t.lattice().subdivisions();
         let max = t.config().terrain.max_elevation;
         let eps = 1e-4 * max.max(1.0);
-        let edited: HashSet<Hex> =
-            editor.edits().iter().map(|e| t.wrap_tile(t.tile_from_offset([e.at.0, e.at.1]))).collect();
+        // Tiles whose height or type is edited (a biome alone moves no height: such a tile has
+        // the generated heights, whose invariants are `invariants.rs`'s).
+        let edited: HashSet<Hex> = editor
+            .edits()
+            .iter()
+            .filter(|e| e.height.is_some() || e.kind.is_some())
+            .map(|e| t.wrap_tile(t.tile_from_offset([e.at.0, e.at.1])))
+            .collect();
         let kinds: HashMap<Hex, TileKind> = whole.tiles.iter().map(|i| (i.hex, i.kind)).collect();
         let mut heights: HashMap<Hex, u32> = HashMap::new();
         for (i, &p) in d.lattice.iter().enumerate() {
@@ -243,6 +251,30 @@ fn a_kind_edit_makes_the_tile_that_kind_and_its_neighbors_keep_theirs() {
             assert_eq!(t.tile_kind(n), base.tile_kind(n), "neighbor {n:?} of a new {kind:?}");
         }
     }
+}
+
+/// A biome set by hand shows in the tile's info and its chunk's colors, stays when the tile is
+/// raised, and goes when erased; it moves no height.
+#[test]
+fn a_biome_set_by_hand_stays_until_erased() {
+    let mut config = bounded(Vec::new());
+    config.climate.enabled = true;
+    let mut editor = Editor::new(config).unwrap();
+    let t = editor.terrain().clone();
+    let tile = t.tiles().find(|&x| t.tile_info(x).unwrap().kind == TileKind::Land).unwrap();
+    let generated = t.tile_info(tile).unwrap();
+    let biome = if generated.biome == Biome::Desert { Biome::Tundra } else { Biome::Desert };
+    let change = editor.apply(Stroke { tool: Tool::SetBiome(biome), brush: Brush::Range(0), tile }).unwrap();
+    let info = editor.terrain().tile_info(tile).unwrap();
+    assert_eq!((info.biome, info.elevation), (biome, generated.elevation));
+    let chunk = t.chunk_of(tile);
+    assert!(change.chunks.contains(&chunk));
+    let colors = |t: &Terrain| t.generate_chunk(chunk).unwrap().buffers.colors;
+    assert_ne!(colors(&t), colors(editor.terrain()));
+    editor.apply(Stroke { tool: Tool::Raise(0.05), brush: Brush::Range(0), tile }).unwrap();
+    assert_eq!(editor.terrain().tile_info(tile).unwrap().biome, biome);
+    editor.apply(Stroke { tool: Tool::Erase, brush: Brush::Range(0), tile }).unwrap();
+    assert_eq!(editor.terrain().tile_info(tile).unwrap(), generated);
 }
 
 #[test]

@@ -14,8 +14,8 @@ use std::sync::Arc;
 
 use hex_terrain::save::{SaveError, TileStateSave};
 use hex_terrain::{
-    Brush, Editor, GenerateOptions, HeightImage, HeightSourceConfig, MapConfig, MapFile, MapSize, Stroke, Terrain,
-    TileKind, TileRect, Tool,
+    Biome, Brush, Editor, GenerateOptions, HeightImage, HeightSourceConfig, MapConfig, MapFile, MapSize, Stroke,
+    Terrain, TileKind, TileRect, Tool,
 };
 
 mod check;
@@ -70,18 +70,23 @@ pub fn edits(data: &[u8]) {
     for step in script.chunks(4).take(8) {
         let [a, b, c, d] = [0, 1, 2, 3].map(|i| step.get(i).copied().unwrap_or(0));
         let amount = f32::from(b) / 255.0;
-        let tool = match a % 7 {
+        let tool = match a % 8 {
             0 => Tool::Raise(amount),
             1 => Tool::Lower(amount),
             2 => Tool::SetHeight(amount),
             3 => Tool::Smooth,
             4 => Tool::SetKind([TileKind::Sea, TileKind::Land, TileKind::Mountain][usize::from(b % 3)]),
             5 => Tool::Erase,
+            6 => Tool::SetBiome([Biome::Desert, Biome::Grassland, Biome::Snow][usize::from(b % 3)]),
             _ => Tool::Raise(f32::from_bits(u32::from_le_bytes([a, b, c, d]))),
         };
         // A flood on an unbounded map fills thousands of tiles: too slow an input to fuzz.
         let bounded = editor.terrain().bounds().is_some();
-        let brush = if c % 5 == 4 && bounded { Brush::Flood } else { Brush::Range(u32::from(c % 4)) };
+        let brush = match c % 6 {
+            4 if bounded => Brush::Flood,
+            5 if bounded => Brush::FloodBiome,
+            _ => Brush::Range(u32::from(c % 4)),
+        };
         let tile = editor.terrain().tile_from_offset([i32::from(d % 8), i32::from(d / 8 % 8)]);
         match editor.apply(Stroke { tool, brush, tile }) {
             Ok(change) => applied += usize::from(!change.is_empty()),

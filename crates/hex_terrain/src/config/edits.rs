@@ -7,7 +7,7 @@ use serde::{Deserialize, Serialize};
 use super::validate::{check, finite_in};
 use super::{MAX_WORLD_TILE, MapSize};
 use crate::error::ConfigError;
-use crate::vocab::TileKind;
+use crate::vocab::{Biome, TileKind};
 
 /// Most edited tiles a map holds (a Civilization VI Huge map has 10,640 tiles; a designer's
 /// scenario edits a fraction of them).
@@ -43,19 +43,23 @@ pub struct TileEdit {
     /// of it to `height`, or to the generated one) and every inner vertex of the tile with it.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub kind: Option<TileKind>,
+    /// The tile's biome, set by hand: it stays whatever the tile's elevation or climate (an
+    /// unedited tile's biome follows its edited elevation).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub biome: Option<Biome>,
 }
 
 impl TileEdit {
     /// An edit of the tile at offset coordinates `at` that sets nothing yet.
     #[must_use]
     pub fn at(at: (i32, i32)) -> Self {
-        Self { at, height: None, kind: None }
+        Self { at, height: None, kind: None, biome: None }
     }
 
     /// Whether it sets nothing (an edit that erasing left empty).
     #[must_use]
     pub fn is_empty(&self) -> bool {
-        self.height.is_none() && self.kind.is_none()
+        self.height.is_none() && self.kind.is_none() && self.biome.is_none()
     }
 }
 

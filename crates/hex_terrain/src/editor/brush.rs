@@ -24,6 +24,9 @@ pub enum Brush {
     /// The tiles connected to the stroke's tile through tiles of its type (sea, land or
     /// mountain), up to [`MAX_FLOOD_TILES`].
     Flood,
+    /// The tiles connected to the stroke's tile through tiles of its biome, up to
+    /// [`MAX_FLOOD_TILES`].
+    FloodBiome,
 }
 
 impl Brush {
@@ -46,8 +49,11 @@ impl Brush {
                     }
                 }
             }
-            Self::Flood => {
-                let kind = terrain.tile_info(start).map(|i| i.kind);
+            Self::Flood | Self::FloodBiome => {
+                let class = |t: Hex| {
+                    terrain.tile_info(t).map(|i| if self == Self::Flood { i.kind as u8 } else { i.biome as u8 })
+                };
+                let kind = class(start);
                 let mut queue = VecDeque::from([start]);
                 seen.insert(start);
                 while let Some(t) = queue.pop_front() {
@@ -58,7 +64,7 @@ impl Brush {
                     for n in t.all_neighbors() {
                         if let Some(n) = own(n)
                             && !seen.contains(&n)
-                            && terrain.tile_info(n).map(|i| i.kind) == kind
+                            && class(n) == kind
                         {
                             seen.insert(n);
                             queue.push_back(n);

@@ -21,7 +21,7 @@ pub use change::Change;
 use crate::config::{MapConfig, TileEdit};
 use crate::error::ConfigError;
 use crate::terrain::Terrain;
-use crate::vocab::TileKind;
+use crate::vocab::{Biome, TileKind};
 
 /// What a stroke does to each tile its brush covers.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
@@ -38,6 +38,8 @@ pub enum Tool {
     Smooth,
     /// Sets the type (sea, land, mountain): the height is brought into the type's range.
     SetKind(TileKind),
+    /// Sets the biome by hand: it stays whatever the elevation becomes.
+    SetBiome(Biome),
     /// Takes the tile's edits away: it is the generated tile again.
     Erase,
 }
@@ -81,6 +83,9 @@ type TileStep = ((i32, i32), Option<TileEdit>, Option<TileEdit>);
 struct Operation {
     tiles: Vec<TileStep>,
 }
+
+// Raising, lowering, setting or smoothing a height clears a type set by hand (the new height
+// decides the type) and keeps a biome set by hand.
 
 /// A map being edited: its terrain, its edits, and the operations to undo and redo.
 #[derive(Debug, Clone)]
@@ -242,6 +247,7 @@ impl Editor {
                 edit.height = Some(height(tile));
                 edit.kind = Some(kind);
             }
+            Tool::SetBiome(biome) => edit.biome = Some(biome),
             Tool::Erase => return None,
         }
         (!edit.is_empty()).then_some(edit)

@@ -254,6 +254,9 @@ impl<'a> Job<'a> {
                 if table.is_some() {
                     return Some(pipeline.tile_biome(t));
                 }
+                if let Some(biome) = heights.edits().and_then(|e| e.biome(geometry, t)) {
+                    return Some(biome);
+                }
                 let i = out.index(geometry.offset_of(t));
                 let kind = out.kinds[i].unwrap_or(TileKind::Sea);
                 let sample = TileSample::new(raws[i], kind, t.all_neighbors().map(|nb| out.get(pipeline, nb)));

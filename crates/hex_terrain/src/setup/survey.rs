@@ -72,13 +72,17 @@ impl Survey {
         let biomes: Vec<Biome> = tiles
             .par_iter()
             .zip(&kinds)
-            .map(|(&t, &kind)| match stages.table.and_then(|table| table.biome(geometry, t)) {
-                Some(biome) => biome,
-                None if stages.climate.is_enabled() => {
-                    let sample = TileSample::of(geometry, stages.heights, stages.thresholds, t);
-                    stages.climate.biome_of(geometry, stages.heights, t, &sample, false)
+            .map(|(&t, &kind)| {
+                // A biome set by hand first, then the table's.
+                let set = stages.heights.edits().and_then(|e| e.biome(geometry, t));
+                match set.or_else(|| stages.table.and_then(|table| table.biome(geometry, t))) {
+                    Some(biome) => biome,
+                    None if stages.climate.is_enabled() => {
+                        let sample = TileSample::of(geometry, stages.heights, stages.thresholds, t);
+                        stages.climate.biome_of(geometry, stages.heights, t, &sample, false)
+                    }
+                    None => Biome::of_kind(kind),
                 }
-                None => Biome::of_kind(kind),
             })
             .collect();
         let river: Vec<bool> =
