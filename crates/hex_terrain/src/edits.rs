@@ -20,7 +20,6 @@ use hexx::Hex;
 
 use crate::config::TileEdit;
 use crate::geometry::Geometry;
-use crate::kind::Thresholds;
 use crate::vocab::{Biome, TileKind};
 
 /// How one edited tile moves its points.
@@ -42,12 +41,13 @@ pub struct Edits {
 }
 
 impl Edits {
-    /// Compiles `edits` (validated: on the map, once each) for a map whose generated raw height
-    /// at a tile's center is `generated(tile)`.
+    /// Compiles `edits` (validated: on the map, once each) for a map whose raw sea and mountain
+    /// thresholds are `(sea, mountain)` (a center below `sea` is sea, from `mountain` on
+    /// mountain) and whose generated raw height at a tile's center is `generated(tile)`.
     pub fn new(
         edits: &[TileEdit],
         geometry: &Geometry,
-        thresholds: &Thresholds,
+        (sea, mountain): (f32, f32),
         generated: impl Fn(Hex) -> f32,
     ) -> Self {
         let mut tiles = HashMap::with_capacity(edits.len());
@@ -63,8 +63,14 @@ impl Edits {
             }
             let base = generated(tile);
             let wanted = edit.height.unwrap_or(base);
-            let kind = edit.kind.unwrap_or_else(|| thresholds.classify(wanted));
-            let range = raw_range(thresholds, kind);
+            let classified = if wanted < sea {
+                TileKind::Sea
+            } else if wanted < mountain {
+                TileKind::Land
+            } else {
+                TileKind::Mountain
+            };
+            let range = raw_range((sea, mountain), edit.kind.unwrap_or(classified));
             let target = wanted.clamp(range.0, range.1);
             tiles.insert(tile, TileShift { delta: target - base, range });
         }
@@ -122,11 +128,10 @@ impl Edits {
 
 /// The raw heights whose centers classify as `kind`: `[0, sea)`, `[sea, mountain)`,
 /// `[mountain, 1]`, closed at the largest height below an open end.
-#[must_use]
-pub fn raw_range(thresholds: &Thresholds, kind: TileKind) -> (f32, f32) {
+fn raw_range((sea, mountain): (f32, f32), kind: TileKind) -> (f32, f32) {
     match kind {
-        TileKind::Sea => (0.0, thresholds.sea.next_down().max(0.0)),
-        TileKind::Land => (thresholds.sea, thresholds.mountain.next_down().max(thresholds.sea)),
-        TileKind::Mountain => (thresholds.mountain, 1.0),
+        TileKind::Sea => (0.0, sea.next_down().max(0.0)),
+        TileKind::Land => (sea, mountain.next_down().max(sea)),
+        TileKind::Mountain => (mountain, 1.0),
     }
 }

@@ -78,7 +78,7 @@ impl Pipeline {
         if !config.edits.is_empty() {
             // The edits move tiles relative to their generated centers.
             let generated = |tile| heights.raw_height(&geometry, geometry.lattice().tile_center(tile));
-            let edits = Edits::new(&config.edits, &geometry, &thresholds, generated);
+            let edits = Edits::new(&config.edits, &geometry, (thresholds.sea, thresholds.mountain), generated);
             heights = heights.with_edits(edits);
         }
         let climate = ClimateModel::new(&config, &geometry, thresholds);
