@@ -6,6 +6,7 @@ use std::collections::HashSet;
 use hexx::Hex;
 
 use crate::chunk::ChunkCoord;
+use crate::setup::{PlacedResource, PlacedWonder};
 use crate::terrain::Terrain;
 
 /// What one operation (or its undo) changed.
@@ -70,13 +71,9 @@ impl Change {
 }
 
 /// What the game setup put on a tile (start, resource, wonder), for comparing two maps.
-fn marker(terrain: &Terrain, tile: Hex) -> (Option<u32>, Option<String>, Option<String>) {
+fn marker(terrain: &Terrain, tile: Hex) -> (Option<u32>, Option<&PlacedResource>, Option<&PlacedWonder>) {
     if terrain.setup().is_none() {
         return (None, None, None);
     }
-    (
-        terrain.start(tile),
-        terrain.resource(tile).map(|r| format!("{r:?}")),
-        terrain.wonder(tile).map(|w| format!("{w:?}")),
-    )
+    (terrain.start(tile), terrain.resource(tile), terrain.wonder(tile))
 }
