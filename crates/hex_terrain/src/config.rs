@@ -13,7 +13,7 @@ mod validate;
 
 pub use climate::{BiomeRule, ClimateConfig, MAX_BIOME_RULES, MAX_WATER_TILES, RiverConfig};
 
-pub use edits::{MAX_EDITS, TileEdit};
+pub use edits::{MAX_EDITS, PropDensity, RiverEdit, TileEdit};
 pub use file::MapFile;
 pub use setup::{
     MAX_PER_PLAYER, MAX_PLAYERS, MAX_SETUP_DISTANCE, MAX_SETUP_RINGS, MAX_SETUP_RULES, MAX_SETUP_TILES, MAX_YIELD,

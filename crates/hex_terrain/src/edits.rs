@@ -18,7 +18,7 @@ use std::collections::HashMap;
 
 use hexx::Hex;
 
-use crate::config::TileEdit;
+use crate::config::{PropDensity, RiverEdit, TileEdit};
 use crate::geometry::Geometry;
 use crate::vocab::{Biome, TileKind};
 
@@ -38,6 +38,10 @@ pub struct Edits {
     tiles: HashMap<Hex, TileShift>,
     /// The biomes set by hand, by the map's own tile.
     biomes: HashMap<Hex, Biome>,
+    /// The rivers set by hand, by the map's own tile.
+    rivers: HashMap<Hex, RiverEdit>,
+    /// The prop densities set by hand, by the map's own tile.
+    props: HashMap<Hex, PropDensity>,
 }
 
 impl Edits {
@@ -52,12 +56,20 @@ impl Edits {
     ) -> Self {
         let mut tiles = HashMap::with_capacity(edits.len());
         let mut biomes = HashMap::new();
+        let mut rivers = HashMap::new();
+        let mut props = HashMap::new();
         for edit in edits {
             let tile = geometry.wrap_tile(geometry.tile_from_offset([edit.at.0, edit.at.1]));
             if let Some(biome) = edit.biome {
                 biomes.insert(tile, biome);
             }
-            // A biome alone moves no height.
+            if let Some(river) = edit.river {
+                rivers.insert(tile, river);
+            }
+            if let Some(density) = edit.props {
+                props.insert(tile, density);
+            }
+            // A biome, a river or props alone move no height.
             if edit.height.is_none() && edit.kind.is_none() {
                 continue;
             }
@@ -74,13 +86,13 @@ impl Edits {
             let target = wanted.clamp(range.0, range.1);
             tiles.insert(tile, TileShift { delta: target - base, range });
         }
-        Self { tiles, biomes }
+        Self { tiles, biomes, rivers, props }
     }
 
     /// Whether no tile is edited.
     #[must_use]
     pub fn is_empty(&self) -> bool {
-        self.tiles.is_empty() && self.biomes.is_empty()
+        self.tiles.is_empty() && self.biomes.is_empty() && self.rivers.is_empty() && self.props.is_empty()
     }
 
     /// Whether a tile's height or type (any copy of it on a wrapping map) is edited.
@@ -97,6 +109,25 @@ impl Edits {
             return None;
         }
         self.biomes.get(&geometry.wrap_tile(tile)).copied()
+    }
+
+    /// The river set by hand on a tile (any copy of it on a wrapping map), if any.
+    #[must_use]
+    pub fn river(&self, geometry: &Geometry, tile: Hex) -> Option<RiverEdit> {
+        if self.rivers.is_empty() {
+            return None;
+        }
+        self.rivers.get(&geometry.wrap_tile(tile)).copied()
+    }
+
+    /// The prop density set by hand on a tile (any copy of it on a wrapping map), if any.
+    #[must_use]
+    #[inline]
+    pub fn props(&self, geometry: &Geometry, tile: Hex) -> Option<PropDensity> {
+        if self.props.is_empty() {
+            return None;
+        }
+        self.props.get(&geometry.wrap_tile(tile)).copied()
     }
 
     /// The edited raw height of lattice point `p`, whose generated raw height is `raw`.

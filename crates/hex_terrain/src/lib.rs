@@ -83,9 +83,9 @@ pub use chunk::{ChunkCoord, TileRect};
 pub use climate::{Climate, ClimateModel, TileSample};
 pub use config::{
     AppearanceConfig, BiomeRule, ClimateConfig, HeightSourceConfig, LayoutConfig, MAX_EDITS, ManipulationConfig,
-    MapConfig, MapFile, MapSize, NoiseConfig, Orientation, Place, PullMode, ReliefConfig, ResourceClass, ResourceRule,
-    RiverConfig, SetupConfig, Shape, StartOn, TerrainConfig, TileEdit, ValueWeights, WonderConfig, WonderRule,
-    YieldTable, Yields,
+    MapConfig, MapFile, MapSize, NoiseConfig, Orientation, Place, PropDensity, PullMode, ReliefConfig, ResourceClass,
+    ResourceRule, RiverConfig, RiverEdit, SetupConfig, Shape, StartOn, TerrainConfig, TileEdit, ValueWeights,
+    WonderConfig, WonderRule, YieldTable, Yields,
 };
 pub use editor::{Brush, Change, EditError, Editor, Stroke, Tool};
 pub use edits::Edits;

@@ -10,6 +10,9 @@
 //! - **Reeds** on about half the open land tiles (no trees) next to the sea, near the tile's
 //!   edge.
 //!
+//! A density set by hand on a tile ([`TileEdit::props`](crate::TileEdit::props)) replaces its
+//! biome's rule: none, a few or a wood of trees on land, rocks on a mountain, nothing at sea.
+//!
 //! Each prop stands on the meshed surface ([`surface_height`]) at a point drawn inside
 //! its tile; points under the sea, in a river channel or on a lake are skipped. A chunk keeps at
 //! most `max_per_chunk` props: over the cap, those with the lowest hash priority stay, so the
@@ -17,7 +20,7 @@
 
 use hexx::Hex;
 
-use crate::config::ResourceClass;
+use crate::config::{PropDensity, ResourceClass};
 use crate::hash;
 use crate::mesh::ChunkMesh;
 use crate::pipeline::Pipeline;
@@ -44,7 +47,8 @@ pub struct Prop {
     pub tile: Hex,
 }
 
-/// What a tile grows: the kind, how many, and their size in hex radii.
+/// What a tile grows: the kind, how many, and their size in hex radii (a density set by hand
+/// first).
 fn rule(pipeline: &Pipeline, info: &TileInfo, h: u64) -> Option<(PropKind, u32, f32)> {
     let t = pipeline.thresholds();
     let max = pipeline.max_elevation().max(f32::MIN_POSITIVE);
@@ -53,6 +57,16 @@ fn rule(pipeline: &Pipeline, info: &TileInfo, h: u64) -> Option<(PropKind, u32, 
     let pick = hash::unit(h);
     let extra = (h >> 8) as u32 % 3;
     let tree = if land > 0.62 { PropKind::Pine } else { PropKind::Broadleaf };
+    let geometry = pipeline.geometry();
+    if let Some(density) = pipeline.heights().edits().and_then(|e| e.props(geometry, info.hex)) {
+        return match (density, info.kind) {
+            (PropDensity::None, _) | (_, TileKind::Sea) => None,
+            (PropDensity::Sparse, TileKind::Mountain) => Some((PropKind::Rock, 1, 0.2)),
+            (PropDensity::Dense, TileKind::Mountain) => Some((PropKind::Rock, 4 + extra, 0.2)),
+            (PropDensity::Sparse, TileKind::Land) => Some((tree, 2 + extra % 2, 0.28)),
+            (PropDensity::Dense, TileKind::Land) => Some((tree, 7 + extra, 0.3)),
+        };
+    }
     let grows = match (info.kind, info.biome) {
         (TileKind::Sea, _) | (_, Biome::Ocean | Biome::Lake | Biome::Desert | Biome::Snow) => None,
         (TileKind::Mountain, _) | (_, Biome::Rock | Biome::SnowPeak) => Some((PropKind::Rock, 1 + extra, 0.2)),
@@ -68,7 +82,6 @@ fn rule(pipeline: &Pipeline, info: &TileInfo, h: u64) -> Option<(PropKind, u32, 
     if grows.is_some() || info.kind != TileKind::Land || pick < 0.5 {
         return grows;
     }
-    let geometry = pipeline.geometry();
     let coastal =
         geometry.wrapped_neighbors(info.hex).iter().any(|&n| pipeline.map_tile_kind(n) == Some(TileKind::Sea));
     coastal.then_some((PropKind::Reed, 2 + extra, 0.16))

@@ -7,7 +7,7 @@ use hexx::Hex;
 
 use crate::chunk::TileRect;
 use crate::climate::{Climate, ClimateModel, TileSample};
-use crate::config::RiverConfig;
+use crate::config::{RiverConfig, RiverEdit};
 use crate::geometry::Geometry;
 use crate::heights::HeightField;
 use crate::kind::Thresholds;
@@ -88,8 +88,12 @@ impl TileTable {
                     }
                 })
                 .collect();
+            let by_hand: Vec<Option<RiverEdit>> = match heights.edits() {
+                Some(edits) => tiles.iter().map(|&t| edits.river(geometry, t)).collect(),
+                None => Vec::new(),
+            };
             let neighbor = |i: usize, d: usize| table.index(geometry, tiles[i].all_neighbors()[d]);
-            table.hydrology = Some(Hydrology::build(rivers, &table.raw, &table.kinds, &rain, neighbor));
+            table.hydrology = Some(Hydrology::build(rivers, &table.raw, &table.kinds, &rain, &by_hand, neighbor));
         }
         table.biomes = samples
             .iter()

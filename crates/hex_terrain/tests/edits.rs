@@ -2,7 +2,8 @@
 //! (every inner vertex in its type's range), chunks still meet bit for bit and equal the whole,
 //! undoing everything gives back the generated map bit for bit and redoing it the edited one, a
 //! saved map file replays to the same bytes, only the reported chunks change, and rivers on an
-//! edited map still flow down to the sea, a lake or the edge. Bad edits are refused by name.
+//! edited map still flow down to the sea, a lake or the edge. Rivers added and removed, lakes dug
+//! and drained and props set by hand do what they say. Bad edits are refused by name.
 
 mod common;
 
@@ -11,7 +12,7 @@ use std::collections::{HashMap, HashSet};
 use hex_terrain::hexx::Hex;
 use hex_terrain::{
     Biome, Brush, ChunkCoord, EditError, Editor, GenerateOptions, MapConfig, MapSize, NoiseConfig, Orientation,
-    ReliefConfig, Stroke, Terrain, TileEdit, TileKind, TileRect, Tool,
+    PropDensity, PropKind, ReliefConfig, RiverEdit, Stroke, Terrain, TileEdit, TileKind, TileRect, Tool,
 };
 use proptest::prelude::*;
 
@@ -62,6 +63,12 @@ fn stroke() -> impl Strategy<Value = ((i32, i32), Tool, Brush)> {
         Just(Tool::Smooth),
         prop_oneof![Just(TileKind::Sea), Just(TileKind::Land), Just(TileKind::Mountain)].prop_map(Tool::SetKind),
         prop_oneof![Just(Biome::Desert), Just(Biome::Tundra), Just(Biome::Forest)].prop_map(Tool::SetBiome),
+        Just(Tool::AddRiver),
+        Just(Tool::RemoveRiver),
+        Just(Tool::FillLake),
+        Just(Tool::DrainLake),
+        prop_oneof![Just(PropDensity::None), Just(PropDensity::Sparse), Just(PropDensity::Dense)]
+            .prop_map(Tool::SetProps),
         Just(Tool::Erase),
     ];
     let brush =
@@ -109,7 +116,8 @@ fn apply_all(editor: &mut Editor, strokes: &[((i32, i32), Tool, Brush)]) -> usiz
         let tile = editor.terrain().tile_from_offset([col, row]);
         match editor.apply(Stroke { tool, brush, tile }) {
             Ok(change) if !change.is_empty() => applied += 1,
-            Ok(_) | Err(EditError::OffMap(_)) => {}
+            // Water tools on a map without rivers, or a lake dug too close to the sea.
+            Ok(_) | Err(EditError::OffMap(_) | EditError::Unsupported { .. } | EditError::NoLake { .. }) => {}
             Err(e) => panic!("a stroke on the map failed: {e}"),
         }
     }
@@ -341,4 +349,142 @@ fn a_map_without_edits_writes_no_edits_section() {
     let edited = bounded(vec![TileEdit { kind: Some(TileKind::Mountain), ..TileEdit::at((3, 4)) }]).to_ron();
     assert!(edited.contains("edits") && edited.contains("Mountain"), "{edited}");
     assert_eq!(MapConfig::from_ron(&edited).unwrap().edits.len(), 1);
+}
+
+/// A map with climate and rivers, 30x20.
+fn watered() -> MapConfig {
+    let mut config = MapConfig { size: MapSize::Bounded { x: 30, z: 20 }, seed: 7, ..MapConfig::default() };
+    config.climate.enabled = true;
+    config.rivers.enabled = true;
+    config
+}
+
+/// A river added on a dry inland tile runs from it to the sea, a lake or the edge; removing it
+/// there takes it off the tile and everything upstream, and undo brings the map back.
+#[test]
+fn an_added_river_runs_to_an_outlet_and_a_removed_one_is_gone_upstream() {
+    let mut editor = Editor::new(watered()).unwrap();
+    let t = editor.terrain().clone();
+    let tile = t
+        .tiles()
+        .find(|&x| {
+            t.tile_kind(x) == Some(TileKind::Land)
+                && t.river(x).is_none()
+                && t.lake(x).is_none()
+                && x.all_neighbors().iter().all(|&n| t.contains(n) && t.tile_kind(n) == Some(TileKind::Land))
+        })
+        .expect("an inland tile without a river");
+    let change = editor.apply(Stroke { tool: Tool::AddRiver, brush: Brush::Range(0), tile }).unwrap();
+    assert_eq!(editor.edits()[0].river, Some(RiverEdit::Source));
+    let added = editor.terrain().river(tile).expect("a river rises on the tile");
+    let next = added.downstream.expect("it runs on from its source");
+    assert!(change.tiles.contains(&tile) && change.tiles.contains(&next), "the river's tiles are reported");
+    // Follow it down: every tile on its way carries it until the sea, a lake or the edge.
+    let after = editor.terrain().clone();
+    let mut here = added;
+    for _ in 0..after.tiles().count() {
+        let Some(next) = here.downstream else { break };
+        if after.tile_kind(next) == Some(TileKind::Sea) || after.lake(next).is_some() {
+            break;
+        }
+        here = after.river(next).expect("the river goes on to the next tile");
+        assert!(change.tiles.contains(&here.hex), "{:?} on the new river is not reported", here.hex);
+    }
+    assert_rivers_flow_down(&after).unwrap();
+
+    // Remove it where it rises: no river on the tile.
+    editor.apply(Stroke { tool: Tool::RemoveRiver, brush: Brush::Range(0), tile }).unwrap();
+    assert!(editor.terrain().river(tile).is_none());
+    // Remove a generated river mid-way: the tile and every tile draining through it go dry.
+    let mut editor = Editor::new(watered()).unwrap();
+    let t = editor.terrain().clone();
+    let river = t.rivers().into_iter().find(|r| !r.upstream.is_empty()).expect("a river with a tributary");
+    editor.apply(Stroke { tool: Tool::RemoveRiver, brush: Brush::Range(0), tile: river.hex }).unwrap();
+    let dry = editor.terrain();
+    assert!(dry.river(river.hex).is_none());
+    for up in &river.upstream {
+        assert!(dry.river(*up).is_none(), "{up:?} upstream of a removed river still carries one");
+    }
+    assert_rivers_flow_down(dry).unwrap();
+    while editor.undo().is_some() {}
+    assert_eq!(editor.terrain().rivers(), t.rivers());
+}
+
+/// A lake dug into land fills with water; draining it gives land at its surface and no lake.
+#[test]
+fn a_dug_lake_holds_water_and_a_drained_one_is_land() {
+    let mut editor = Editor::new(watered()).unwrap();
+    let t = editor.terrain().clone();
+    // The inland tile whose surroundings stand highest above the sea.
+    let rim = |x: Hex| x.range(2).map(|n| t.raw_height(t.lattice().tile_center(n))).fold(f32::INFINITY, f32::min);
+    let tile = t
+        .tiles()
+        .filter(|&x| t.tile_kind(x) == Some(TileKind::Land) && t.lake(x).is_none() && x.range(2).all(|n| t.contains(n)))
+        .max_by(|&a, &b| rim(a).total_cmp(&rim(b)))
+        .expect("an inland tile two tiles from the edge");
+    let change = editor.apply(Stroke { tool: Tool::FillLake, brush: Brush::Range(1), tile }).unwrap();
+    let dug = editor.terrain().clone();
+    assert!(dug.lake(tile).is_some(), "no lake where one was dug");
+    for n in tile.range(1) {
+        assert!(dug.lake(n).is_some(), "{n:?} under the brush holds no water");
+        assert!(change.tiles.contains(&n));
+    }
+    assert_rivers_flow_down(&dug).unwrap();
+    // Drain the whole lake (a flood of its biome, or every tile of it).
+    let lake = dug.lake(tile).unwrap();
+    let lake_tiles: Vec<Hex> = dug.tiles().filter(|&x| dug.lake(x) == Some(lake)).collect();
+    editor.apply(Stroke { tool: Tool::DrainLake, brush: Brush::Range(2), tile }).unwrap();
+    let drained = editor.terrain();
+    for x in lake_tiles.iter().filter(|x| x.unsigned_distance_to(tile) <= 2) {
+        assert!(drained.lake(*x).is_none(), "{x:?} still holds water after draining");
+        assert_ne!(drained.tile_kind(*x), Some(TileKind::Sea));
+    }
+    assert_rivers_flow_down(drained).unwrap();
+
+    // Water tools on a map without rivers are refused by what they need.
+    let mut dry = Editor::new(bounded(Vec::new())).unwrap();
+    let tile = dry.terrain().tile_from_offset([5, 5]);
+    for tool in [Tool::AddRiver, Tool::RemoveRiver, Tool::FillLake, Tool::DrainLake] {
+        let e = dry.apply(Stroke { tool, brush: Brush::Range(0), tile }).unwrap_err();
+        assert!(matches!(e, EditError::Unsupported { needs: "rivers.enabled", .. }), "{e}");
+    }
+    let mut no_lakes = watered();
+    no_lakes.rivers.lakes = false;
+    let mut editor = Editor::new(no_lakes).unwrap();
+    let e = editor.apply(Stroke { tool: Tool::FillLake, brush: Brush::Range(0), tile }).unwrap_err();
+    assert!(e.to_string().contains("rivers.lakes"), "{e}");
+    // A river edit in a file of a map without rivers is refused by name.
+    let e = Terrain::new(bounded(vec![TileEdit { river: Some(RiverEdit::Source), ..TileEdit::at((3, 3)) }]))
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("edits[0].river") && e.contains("rivers.enabled"), "{e}");
+}
+
+/// Props set by hand: none leaves the tile bare, dense grows a wood, on any land tile.
+#[test]
+fn prop_density_set_by_hand_replaces_the_biomes() {
+    let mut editor = Editor::new(watered()).unwrap();
+    let t = editor.terrain().clone();
+    let props_on = |t: &Terrain, tile: Hex| {
+        let chunk = t.generate_chunk(t.chunk_of(tile)).unwrap();
+        t.props(&chunk, usize::MAX, 1.0).into_iter().filter(|p| p.tile == tile).collect::<Vec<_>>()
+    };
+    let wooded = t.tiles().find(|&x| props_on(&t, x).len() >= 3).expect("a tile with props");
+    editor.apply(Stroke { tool: Tool::SetProps(PropDensity::None), brush: Brush::Range(0), tile: wooded }).unwrap();
+    assert!(props_on(editor.terrain(), wooded).is_empty(), "props stand on a tile set to none");
+    let bare = t
+        .tiles()
+        .find(|&x| {
+            t.tile_kind(x) == Some(TileKind::Land)
+                && t.river(x).is_none()
+                && t.lake(x).is_none()
+                && props_on(&t, x).is_empty()
+        })
+        .expect("a bare dry land tile");
+    editor.apply(Stroke { tool: Tool::SetProps(PropDensity::Dense), brush: Brush::Range(0), tile: bare }).unwrap();
+    let wood = props_on(editor.terrain(), bare);
+    assert!(wood.len() >= 5, "a dense tile grows {} props", wood.len());
+    assert!(wood.iter().all(|p| matches!(p.kind, PropKind::Pine | PropKind::Broadleaf)));
+    // The heights did not move: a prop edit is no height edit.
+    assert_eq!(editor.terrain().tile_info(bare), t.tile_info(bare));
 }

@@ -14,8 +14,8 @@ use std::sync::Arc;
 
 use hex_terrain::save::{SaveError, TileStateSave};
 use hex_terrain::{
-    Biome, Brush, Editor, GenerateOptions, HeightImage, HeightSourceConfig, MapConfig, MapFile, MapSize, Stroke,
-    Terrain, TileKind, TileRect, Tool,
+    Biome, Brush, Editor, GenerateOptions, HeightImage, HeightSourceConfig, MapConfig, MapFile, MapSize, PropDensity,
+    Stroke, Terrain, TileKind, TileRect, Tool,
 };
 
 mod check;
@@ -70,7 +70,7 @@ pub fn edits(data: &[u8]) {
     for step in script.chunks(4).take(8) {
         let [a, b, c, d] = [0, 1, 2, 3].map(|i| step.get(i).copied().unwrap_or(0));
         let amount = f32::from(b) / 255.0;
-        let tool = match a % 8 {
+        let tool = match a % 13 {
             0 => Tool::Raise(amount),
             1 => Tool::Lower(amount),
             2 => Tool::SetHeight(amount),
@@ -78,6 +78,11 @@ pub fn edits(data: &[u8]) {
             4 => Tool::SetKind([TileKind::Sea, TileKind::Land, TileKind::Mountain][usize::from(b % 3)]),
             5 => Tool::Erase,
             6 => Tool::SetBiome([Biome::Desert, Biome::Grassland, Biome::Snow][usize::from(b % 3)]),
+            7 => Tool::AddRiver,
+            8 => Tool::RemoveRiver,
+            9 => Tool::FillLake,
+            10 => Tool::DrainLake,
+            11 => Tool::SetProps([PropDensity::None, PropDensity::Sparse, PropDensity::Dense][usize::from(b % 3)]),
             _ => Tool::Raise(f32::from_bits(u32::from_le_bytes([a, b, c, d]))),
         };
         // A flood on an unbounded map fills thousands of tiles: too slow an input to fuzz.

@@ -47,26 +47,62 @@ pub struct TileEdit {
     /// unedited tile's biome follows its edited elevation).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub biome: Option<Biome>,
+    /// A river set by hand on a map with rivers: a new source here, or no river here nor
+    /// upstream of here.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub river: Option<RiverEdit>,
+    /// How many props (trees, rocks, reeds) the tile grows, instead of what its biome grows.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub props: Option<PropDensity>,
+}
+
+/// A river set by hand on a tile ([`TileEdit::river`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[cfg_attr(feature = "bevy_reflect", derive(bevy_reflect::Reflect))]
+pub enum RiverEdit {
+    /// A river rises on the tile and runs down the drainage, as generated rivers do, to the sea,
+    /// a lake or the map's edge (merging with the rivers it meets). On a sea tile it does nothing.
+    Source,
+    /// No water runs through the tile: neither the tile nor any tile draining through it carries
+    /// a river, and the rivers downstream carry less (they may end where their flow falls below
+    /// the threshold, or rise again where tributaries join).
+    Dry,
+}
+
+/// How many props a tile grows ([`TileEdit::props`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[cfg_attr(feature = "bevy_reflect", derive(bevy_reflect::Reflect))]
+pub enum PropDensity {
+    /// No props.
+    None,
+    /// A few: two or three trees on land (pines on high ground), a rock on a mountain.
+    Sparse,
+    /// A wood: seven to nine trees on land, four to six rocks on a mountain.
+    Dense,
 }
 
 impl TileEdit {
     /// An edit of the tile at offset coordinates `at` that sets nothing yet.
     #[must_use]
     pub fn at(at: (i32, i32)) -> Self {
-        Self { at, height: None, kind: None, biome: None }
+        Self { at, height: None, kind: None, biome: None, river: None, props: None }
     }
 
     /// Whether it sets nothing (an edit that erasing left empty).
     #[must_use]
     pub fn is_empty(&self) -> bool {
-        self.height.is_none() && self.kind.is_none() && self.biome.is_none()
+        self.height.is_none()
+            && self.kind.is_none()
+            && self.biome.is_none()
+            && self.river.is_none()
+            && self.props.is_none()
     }
 }
 
 /// Checks the edits of a map of `size`: every tile on the map (within the world's edge on an
 /// unbounded one), once; every height finite in `[0, 1]`; a type the map can have; at most
-/// [`MAX_EDITS`].
-pub(super) fn validate(edits: &[TileEdit], size: MapSize, sea_threshold: f32) -> Result<(), ConfigError> {
+/// [`MAX_EDITS`]; a river only on a map with rivers.
+pub(super) fn validate(edits: &[TileEdit], size: MapSize, sea_threshold: f32, rivers: bool) -> Result<(), ConfigError> {
     check(edits.len() <= MAX_EDITS, "edits", format!("{} edited tiles", edits.len()), format!("at most {MAX_EDITS}"))?;
     let mut seen = std::collections::HashSet::with_capacity(edits.len());
     for (i, edit) in edits.iter().enumerate() {
@@ -96,6 +132,14 @@ pub(super) fn validate(edits: &[TileEdit], size: MapSize, sea_threshold: f32) ->
             "Sea",
             "Land or Mountain: terrain.sea_threshold is 0, so no tile is sea",
         )?;
+        if let Some(river) = edit.river {
+            check(
+                rivers && size.bounds().is_some(),
+                &format!("edits[{i}].river"),
+                format!("{river:?}"),
+                "none: rivers are off (rivers.enabled is false, or the map is unbounded)",
+            )?;
+        }
     }
     Ok(())
 }

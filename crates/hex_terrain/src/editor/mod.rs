@@ -18,7 +18,7 @@ use hexx::Hex;
 pub use brush::{Brush, MAX_BRUSH_RADIUS, MAX_FLOOD_TILES};
 pub use change::Change;
 
-use crate::config::{MapConfig, TileEdit};
+use crate::config::{MapConfig, PropDensity, RiverEdit, TileEdit};
 use crate::error::ConfigError;
 use crate::terrain::Terrain;
 use crate::vocab::{Biome, TileKind};
@@ -40,6 +40,21 @@ pub enum Tool {
     SetKind(TileKind),
     /// Sets the biome by hand: it stays whatever the elevation becomes.
     SetBiome(Biome),
+    /// Starts a river on the tile ([`RiverEdit::Source`]): it runs down the drainage to the sea,
+    /// a lake or the map's edge. Needs a map with rivers.
+    AddRiver,
+    /// Takes the river off the tile and everything that drains through it ([`RiverEdit::Dry`]).
+    /// Needs a map with rivers.
+    RemoveRiver,
+    /// Digs a lake: the land and mountain tiles the brush covers (not on the map's edge, where water runs off
+    /// the map) sink below the lowest tile around them by more than `rivers.min_lake_depth`, so
+    /// water fills them up to that rim. Needs a map with rivers and lakes.
+    FillLake,
+    /// Drains the lake tiles the brush covers: each is raised to its lake's surface, dry land
+    /// where the water stood. Needs a map with rivers and lakes.
+    DrainLake,
+    /// Sets how many props (trees, rocks, reeds) the tile grows.
+    SetProps(PropDensity),
     /// Takes the tile's edits away: it is the generated tile again.
     Erase,
 }
@@ -70,10 +85,35 @@ pub enum EditError {
         /// What is allowed.
         allowed: &'static str,
     },
+    /// The map has no rivers or lakes for the tool to work on.
+    #[error("the {tool} tool needs {needs}")]
+    Unsupported {
+        /// The tool.
+        tool: &'static str,
+        /// The config fields it needs, in words.
+        needs: &'static str,
+    },
+    /// No lake fits where the stroke digs: the lowest tile around it (`rim`) is within
+    /// `rivers.min_lake_depth` of the sea threshold (`sea`), so a lake there would be sea.
+    #[error("no lake fits here: the lowest tile around it is at {rim}, too close to the sea threshold {sea}")]
+    NoLake {
+        /// The raw center height of the lowest tile around the brush.
+        rim: f32,
+        /// The raw sea threshold.
+        sea: f32,
+    },
     /// The edited map is not a valid map (for example more than `MAX_EDITS` edited tiles).
     #[error(transparent)]
     Invalid(#[from] ConfigError),
 }
+
+/// How far above its lake's surface a drained tile rises (raw height), so no water stands on it
+/// whatever `rivers.min_lake_depth` is.
+const DRAIN_MARGIN: f32 = 1e-4;
+
+/// How much deeper than `rivers.min_lake_depth` a dug lake is (raw height), so it is a lake
+/// whatever the rounding.
+const LAKE_MARGIN: f32 = 0.01;
 
 /// One tile of an operation: its offset coordinate, its edit before and after.
 type TileStep = ((i32, i32), Option<TileEdit>, Option<TileEdit>);
@@ -151,16 +191,24 @@ impl Editor {
     /// that would not be valid; then nothing changes.
     pub fn apply(&mut self, stroke: Stroke) -> Result<Change, EditError> {
         check_amount(stroke.tool)?;
+        self.check_water(stroke.tool)?;
         let tiles = stroke.brush.tiles(&self.terrain, stroke.tile);
         if tiles.is_empty() {
             return Err(EditError::OffMap(stroke.tile));
         }
+        let lake = match stroke.tool {
+            Tool::FillLake => Some(self.lake_level(&tiles)?),
+            _ => None,
+        };
         let mut operation = Operation { tiles: Vec::with_capacity(tiles.len()) };
         for &tile in &tiles {
             let [col, row] = self.terrain.offset_of(tile);
             let at = (col, row);
             let before = self.edits.get(&at).copied();
-            let after = self.edited(stroke.tool, tile, before);
+            let after = match (stroke.tool, lake) {
+                (Tool::FillLake, Some(level)) => self.dug(tile, level, before),
+                _ => self.edited(stroke.tool, tile, before),
+            };
             if after != before {
                 operation.tiles.push((at, before, after));
             }
@@ -248,9 +296,74 @@ impl Editor {
                 edit.kind = Some(kind);
             }
             Tool::SetBiome(biome) => edit.biome = Some(biome),
+            Tool::AddRiver => edit.river = Some(RiverEdit::Source),
+            Tool::RemoveRiver => edit.river = Some(RiverEdit::Dry),
+            Tool::DrainLake => {
+                // A lake tile rises to just above its lake's surface: no water stands on it.
+                let (Some(_), Some(level)) = (self.terrain.lake(tile), self.terrain.water_level(tile)) else {
+                    return before;
+                };
+                edit.height = Some((level + DRAIN_MARGIN).min(1.0));
+                edit.kind = None;
+            }
+            // Planned for the whole stroke in `apply`.
+            Tool::FillLake => return before,
+            Tool::SetProps(density) => edit.props = Some(density),
             Tool::Erase => return None,
         }
         (!edit.is_empty()).then_some(edit)
+    }
+
+    /// Refuses a water tool on a map without rivers (or lakes).
+    fn check_water(&self, tool: Tool) -> Result<(), EditError> {
+        let rivers = &self.base.rivers;
+        let (name, needs_lakes) = match tool {
+            Tool::AddRiver => ("AddRiver", false),
+            Tool::RemoveRiver => ("RemoveRiver", false),
+            Tool::FillLake => ("FillLake", true),
+            Tool::DrainLake => ("DrainLake", true),
+            _ => return Ok(()),
+        };
+        match (rivers.enabled, rivers.lakes || !needs_lakes) {
+            (true, true) => Ok(()),
+            (false, _) => Err(EditError::Unsupported { tool: name, needs: "rivers.enabled" }),
+            (true, false) => Err(EditError::Unsupported { tool: name, needs: "rivers.lakes" }),
+        }
+    }
+
+    /// The raw height the tiles of a lake dug under `tiles` sink to: below the lowest tile
+    /// around them (the rim water spills over) by more than the minimum lake depth.
+    fn lake_level(&self, tiles: &[Hex]) -> Result<f32, EditError> {
+        let inside: std::collections::HashSet<Hex> = tiles.iter().copied().collect();
+        let mut rim = f32::INFINITY;
+        for &t in tiles {
+            for n in self.terrain.neighbors(t).into_iter().flatten() {
+                if self.terrain.contains(n) && !inside.contains(&n) {
+                    rim = rim.min(self.center_height(n));
+                }
+            }
+        }
+        let sea = self.terrain.thresholds().sea;
+        let depth = self.base.rivers.min_lake_depth + LAKE_MARGIN;
+        let floor = rim - depth;
+        if !(floor.is_finite() && floor >= sea) {
+            return Err(EditError::NoLake { rim, sea });
+        }
+        Ok(floor)
+    }
+
+    /// A tile's edit after a lake is dug to `floor`: a land or mountain tile off the map's edge sinks to it
+    /// (one already lower keeps its height); others keep their edit.
+    fn dug(&self, tile: Hex, floor: f32, before: Option<TileEdit>) -> Option<TileEdit> {
+        let on_edge = self.terrain.neighbors(tile).into_iter().flatten().any(|n| !self.terrain.contains(n));
+        if on_edge || self.terrain.tile_kind(tile) == Some(TileKind::Sea) {
+            return before;
+        }
+        let [col, row] = self.terrain.offset_of(tile);
+        let mut edit = before.unwrap_or_else(|| TileEdit::at((col, row)));
+        edit.height = Some(self.center_height(tile).min(floor));
+        edit.kind = None;
+        Some(edit)
     }
 
     /// A tile's center height as the map has it now (edited), before the type rules.

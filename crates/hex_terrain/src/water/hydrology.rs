@@ -24,7 +24,7 @@ use std::collections::BinaryHeap;
 use hexx::Hex;
 use serde::{Deserialize, Serialize};
 
-use crate::config::RiverConfig;
+use crate::config::{RiverConfig, RiverEdit};
 use crate::vocab::TileKind;
 
 /// No downstream tile: the tile is sea (an outlet).
@@ -85,13 +85,19 @@ impl PartialOrd for Entry {
 
 impl Hydrology {
     /// Builds the network of a map's tiles (indices `0..raw.len()`) from their center heights
-    /// `raw`, their kinds, each tile's rain, and `neighbor(i, d)`: the tile in direction `d`
-    /// (`Hex::all_neighbors` order) of tile `i`, `None` off the map.
+    /// `raw`, their kinds, each tile's rain, the rivers set by hand (`rivers[i]`; an empty slice
+    /// when none is), and `neighbor(i, d)`: the tile in direction `d` (`Hex::all_neighbors`
+    /// order) of tile `i`, `None` off the map.
+    ///
+    /// A source set by hand on a land tile collects at least the threshold as rain, so a river
+    /// rises there and runs down like any other; a dry tile and every tile draining through it
+    /// collect nothing.
     pub(crate) fn build(
         config: &RiverConfig,
         raw: &[f32],
         kinds: &[TileKind],
         rain: &[f32],
+        rivers: &[Option<RiverEdit>],
         neighbor: impl Fn(usize, usize) -> Option<usize>,
     ) -> Self {
         let neighbor = &neighbor;
@@ -131,6 +137,18 @@ impl Hydrology {
         let downstream =
             |i: usize, down: &[u8]| (down[i] < OUTLET).then(|| neighbor(i, usize::from(down[i]))).flatten();
         let mut flow: Vec<f32> = rain.to_vec();
+        if !rivers.is_empty() {
+            // Downstream first: a tile is dry when it or the tile it drains into is.
+            let mut dry = vec![false; count];
+            for &i in &order {
+                dry[i] = rivers[i] == Some(RiverEdit::Dry) || downstream(i, &down).is_some_and(|j| dry[j]);
+                if dry[i] {
+                    flow[i] = 0.0;
+                } else if rivers[i] == Some(RiverEdit::Source) && kinds[i] != TileKind::Sea {
+                    flow[i] = flow[i].max(config.threshold);
+                }
+            }
+        }
         for &i in order.iter().rev() {
             if let Some(j) = downstream(i, &down) {
                 flow[j] += flow[i];
