@@ -10,6 +10,7 @@
 //! | set | plugin | what it does | its settings |
 //! | --- | --- | --- | --- |
 //! | [`Map`](HexTerrainSystems::Map) | [`HexMapPlugin`] | loads `*.map.ron` assets (hot reload, [`LoadHexMap`]) into the [`HexMap`] resource; a bad file is a [`HexMapError`] and the old map stays | [`MapSource`] |
+//! | [`Map`](HexTerrainSystems::Map) | [`HexEditorPlugin`] | the world builder: [`HexMapEdit`] strokes, undo, redo and save run on the async compute pool; each edit makes a [`HexMap`] generation in which only its chunks are rebuilt ([`HexMapEdited`]) | |
 //! | [`Stream`](HexTerrainSystems::Stream) | [`HexStreamingPlugin`] | keeps [`HexChunk`]s around every [`HexTerrainAgent`], each built on the async compute pool from a snapshot of the settings below | [`HexStreamingSettings`] |
 //! | [`Insert`](HexTerrainSystems::Insert) | [`HexStreamingPlugin`] | inserts finished meshes and their [`ChunkContent`] under a per-frame budget, sends [`ChunkSpawned`], [`TerrainReady`] | |
 //! | [`Children`](HexTerrainSystems::Children) | [`HexWaterPlugin`], [`HexPropsPlugin`] | spawn each chunk's [`HexWater`] surface and [`HexProp`]s from its content | [`WaterSettings`], [`PropSettings`] |
@@ -49,6 +50,7 @@
 //! ```
 
 mod asset;
+mod editor;
 #[cfg(feature = "big_space")]
 mod far;
 #[cfg(feature = "render")]
@@ -72,6 +74,7 @@ pub use hex_terrain;
 use hex_terrain::MapConfig;
 
 pub use crate::asset::{HexMapAsset, HexMapLoader, HexMapLoaderError};
+pub use crate::editor::{EditAction, HexEditor, HexEditorPlugin, HexMapEdit, HexMapEdited, HexMapSaved};
 #[cfg(feature = "big_space")]
 pub use crate::far::{HexBigSpacePlugin, HexTerrainGrid};
 #[cfg(feature = "render")]
@@ -113,11 +116,11 @@ pub mod prelude {
     #[cfg(feature = "picking")]
     pub use crate::picking::{HexPick, HexPickingPlugin};
     pub use crate::{
-        ChunkContent, ChunkDespawned, ChunkSpawned, ChunkStreamer, FogState, HexChunk, HexMap, HexMapError,
-        HexMapPlugin, HexProp, HexPropsPlugin, HexStreamingPlugin, HexStreamingSettings, HexTerrainAgent,
-        HexTerrainPlugins, HexTerrainStats, HexTerrainSystems, HexTileStatePlugin, HexWater, HexWaterPlugin,
-        HexWorldPosition, Highlight, LoadHexMap, MapSource, PropSettings, SaveError, TerrainReady, TileHit,
-        TileStateSave, TileStateStyle, TileStates, WaterSettings,
+        ChunkContent, ChunkDespawned, ChunkSpawned, ChunkStreamer, FogState, HexChunk, HexEditor, HexMap, HexMapEdit,
+        HexMapEdited, HexMapError, HexMapPlugin, HexProp, HexPropsPlugin, HexStreamingPlugin, HexStreamingSettings,
+        HexTerrainAgent, HexTerrainPlugins, HexTerrainStats, HexTerrainSystems, HexTileStatePlugin, HexWater,
+        HexWaterPlugin, HexWorldPosition, Highlight, LoadHexMap, MapSource, PropSettings, SaveError, TerrainReady,
+        TileHit, TileStateSave, TileStateStyle, TileStates, WaterSettings,
     };
     pub use hex_terrain::hexx::Hex;
     pub use hex_terrain::{
@@ -149,7 +152,8 @@ pub enum HexTerrainSystems {
 /// The terrain plugins: [`HexMapPlugin`] (the [`HexMap`] resource, map assets, switching),
 /// [`HexStreamingPlugin`] (chunks around agents), [`HexTileStatePlugin`] (per-tile game state:
 /// fog of war, territory, lenses, highlights), [`HexWaterPlugin`] (the water surface's
-/// entities), [`HexPropsPlugin`] (trees, rocks, reeds), with the `picking` feature
+/// entities), [`HexPropsPlugin`] (trees, rocks, reeds), [`HexEditorPlugin`] (the world
+/// builder: edit, undo, redo, save), with the `picking` feature
 /// `HexPickingPlugin` and, with the `render` feature, `HexTerrainMaterialPlugin` (the terrain
 /// and water material, which needs Bevy's `PbrPlugin`) and `HexLightPlugin` (sun, shadows, fog
 /// for `HexTerrainCamera`s). Add it after `DefaultPlugins`. Each plugin owns its settings
@@ -191,7 +195,8 @@ impl PluginGroup for HexTerrainPlugins {
             .add(HexStreamingPlugin { settings: self.settings })
             .add(HexTileStatePlugin::default())
             .add(HexWaterPlugin)
-            .add(HexPropsPlugin);
+            .add(HexPropsPlugin)
+            .add(HexEditorPlugin);
         #[cfg(feature = "picking")]
         let group = group.add(picking::HexPickingPlugin::default());
         #[cfg(feature = "render")]

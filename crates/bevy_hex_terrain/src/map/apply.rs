@@ -82,7 +82,10 @@ impl Plugin for HexMapPlugin {
                     .chain(),
             )
             // A request may name an asset that is already loaded: it is applied in the same frame.
-            .add_systems(Update, (load_requested, apply_asset).chain().in_set(HexTerrainSystems::Map));
+            .add_systems(
+                Update,
+                (load_requested, apply_asset).chain().in_set(super::MapAssets).in_set(HexTerrainSystems::Map),
+            );
         if let Some(path) = path {
             app.add_systems(PreStartup, move |server: Res<AssetServer>, mut handle: ResMut<HexMapHandle>| {
                 handle.0 = Some(server.load(path.clone()));

@@ -15,6 +15,11 @@ use hex_terrain::{
 };
 
 pub use apply::{HexMapHandle, HexMapPlugin, LoadHexMap};
+
+/// The map plugin's systems that apply map assets and [`LoadHexMap`] (inside
+/// [`HexTerrainSystems::Map`](crate::HexTerrainSystems::Map)): the editor runs after them.
+#[derive(SystemSet, Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub(crate) struct MapAssets;
 pub use source::MapSource;
 
 /// The active map: its config, layout and tile queries.
@@ -28,6 +33,11 @@ pub use source::MapSource;
 pub struct HexMap {
     terrain: Arc<Terrain>,
     generation: u64,
+    /// The generation of the last new config (every chunk changed then).
+    base_generation: u64,
+    /// The generation of the last edit that changed each chunk of the map, since the last new
+    /// config.
+    edited_chunks: bevy::platform::collections::HashMap<ChunkCoord, u64>,
     map_id: u64,
     waiting_for_asset: bool,
     appearance_fallback: bool,
@@ -48,6 +58,8 @@ impl HexMap {
         Self {
             terrain: Arc::new(terrain),
             generation: 0,
+            base_generation: 0,
+            edited_chunks: default(),
             map_id: 0,
             waiting_for_asset: false,
             appearance_fallback: false,
@@ -67,11 +79,29 @@ impl HexMap {
         &self.terrain
     }
 
-    /// Increases each time a new config takes effect (hot reload); chunks of an older generation
-    /// are regenerated.
+    /// Increases each time a new config takes effect (hot reload) or an edit changes the map;
+    /// a chunk showing a mesh older than its [`chunk_generation`](Self::chunk_generation) is
+    /// regenerated.
     #[must_use]
     pub fn generation(&self) -> u64 {
         self.generation
+    }
+
+    /// The oldest map generation whose mesh of `chunk` is still current: the last new config, or
+    /// the last edit that changed the chunk (on a wrapping map, the chunk of the map it shows).
+    #[must_use]
+    pub fn chunk_generation(&self, chunk: ChunkCoord) -> u64 {
+        if self.edited_chunks.is_empty() {
+            return self.base_generation;
+        }
+        let chunk = self.terrain.wrap_chunk(chunk).0;
+        self.edited_chunks.get(&chunk).map_or(self.base_generation, |&g| g.max(self.base_generation))
+    }
+
+    /// Whether a mesh of `chunk` built for map generation `built` shows the current map.
+    #[must_use]
+    pub fn is_current(&self, chunk: ChunkCoord, built: Option<u64>) -> bool {
+        built.is_some_and(|g| g >= self.chunk_generation(chunk) && g <= self.generation)
     }
 
     /// Changes each time another map is shown ([`LoadHexMap`] or [`replace`](Self::replace));
@@ -135,9 +165,21 @@ impl HexMap {
     pub(crate) fn reload(&mut self, terrain: Terrain) {
         self.terrain = Arc::new(terrain);
         self.generation += 1;
+        self.base_generation = self.generation;
+        self.edited_chunks.clear();
         self.waiting_for_asset = false;
         self.appearance_fallback = false;
         self.applied = None;
+    }
+
+    /// An edit of the same map: a new generation in which only `chunks` (of the map) changed,
+    /// the same [`map_id`](Self::map_id) and the same followed map file.
+    pub(crate) fn edit(&mut self, terrain: Terrain, chunks: &[ChunkCoord]) {
+        self.terrain = Arc::new(terrain);
+        self.generation += 1;
+        for &chunk in chunks {
+            self.edited_chunks.insert(chunk, self.generation);
+        }
     }
 
     /// The tile under a world position (its `y` is ignored); on a wrapping map, the map's own
@@ -346,6 +388,22 @@ pub enum HexMapError {
         /// Why.
         message: String,
     },
+    /// An edit ([`HexMapEdit`](crate::HexMapEdit)) that could not be applied.
+    #[error("{map}: edit not applied, keeping the current terrain: {message}")]
+    Edit {
+        /// The map.
+        map: String,
+        /// Why (the tool's amount out of range, a water tool on a map without rivers...).
+        message: String,
+    },
+    /// An edited map's file that could not be written; the edits stay in memory.
+    #[error("{path} not saved, the edits are kept in memory: {message}")]
+    Unwritable {
+        /// The file.
+        path: String,
+        /// Why.
+        message: String,
+    },
 }
 
 impl HexMapError {
@@ -374,7 +432,11 @@ impl HexMapError {
     #[must_use]
     pub fn map(&self) -> &str {
         match self {
-            Self::Invalid { map, .. } | Self::Malformed { map, .. } | Self::Unreadable { map, .. } => map,
+            Self::Invalid { map, .. }
+            | Self::Malformed { map, .. }
+            | Self::Unreadable { map, .. }
+            | Self::Edit { map, .. }
+            | Self::Unwritable { path: map, .. } => map,
         }
     }
 

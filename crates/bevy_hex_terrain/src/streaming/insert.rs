@@ -21,8 +21,10 @@ pub(crate) fn insert_ready(
     let StreamState { mut streamer, mut stats, map, settings } = state;
     let generation = map.generation();
     if streamer.current_generation != generation {
+        // A new config changes every chunk, an edit some: those that are no longer current.
+        let shown = streamer.current_generation;
         streamer.current_generation = generation;
-        streamer.current.clear();
+        streamer.current.retain(|&c| map.is_current(c, Some(shown)));
     }
     // Settling is judged before and after this frame's inserts, so a reload or a newly wanted
     // chunk whose meshes all arrive within one frame is reported too.
@@ -40,8 +42,8 @@ pub(crate) fn insert_ready(
         let Some(build) = check_ready(&mut task.task) else { continue };
         let requested = task.requested;
         commands.entity(entity).remove::<ChunkTask>();
-        if build.generation != generation {
-            // Outdated by a reload while it ran; the next frame starts a current one.
+        if !map.is_current(chunk.coord, Some(build.generation)) {
+            // Outdated by a reload or an edit while it ran; the next frame starts a current one.
             continue;
         }
         budget -= 1;
@@ -73,7 +75,9 @@ pub(crate) fn insert_ready(
             else {
                 continue;
             };
-            if chunk.generation == Some(generation) || task.is_some_and(|t| t.generation == generation) {
+            if map.is_current(chunk.coord, chunk.generation)
+                || task.is_some_and(|t| map.is_current(chunk.coord, Some(t.generation)))
+            {
                 continue;
             }
             chunk.origin = super::tasks::chunk_origin(&terrain, chunk.coord);

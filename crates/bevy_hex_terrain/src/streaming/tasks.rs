@@ -14,6 +14,7 @@ use super::content::{BuiltContent, ChunkContent, ContentRequest};
 use super::planner::{ChunkState, plan};
 use super::state::StreamState;
 use super::{ChunkDespawned, ChunkSpawned, ChunkStreamer, ChunkThreads, HexChunk, HexTerrainAgent, HexWorldPosition};
+use crate::map::HexMap;
 use crate::mesh::chunk_to_mesh;
 
 /// What a chunk task returns.
@@ -74,8 +75,8 @@ pub(crate) fn stream(
             Some((
                 c,
                 ChunkState {
-                    current: chunk.generation == Some(generation),
-                    building: task.is_some_and(|t| t.generation == generation),
+                    current: map.is_current(c, chunk.generation),
+                    building: task.is_some_and(|t| map.is_current(c, Some(t.generation))),
                 },
             ))
         })
@@ -105,11 +106,7 @@ pub(crate) fn stream(
         // On a wrapping map, chunks standing for the same chunk of the map share one mesh: copy
         // it when a twin shows the current one, wait while one is being built.
         let canonical = terrain.wrap_chunk(c).0;
-        let twin = if started.contains(&canonical) {
-            Twin::Building
-        } else {
-            twin(&terrain, &streamer, &chunks, c, generation)
-        };
+        let twin = if started.contains(&canonical) { Twin::Building } else { twin(&map, &streamer, &chunks, c) };
         match twin {
             Twin::Building => continue,
             Twin::Showing(mesh, content, vertices, mesh_bytes) => {
@@ -174,8 +171,9 @@ type ChunkQuery<'w, 's> = Query<
     (&'static HexChunk, Option<&'static ChunkTask>, Option<&'static Mesh3d>, Option<&'static ChunkContent>),
 >;
 
-/// What `c`'s twins offer, for map generation `generation`.
-fn twin(terrain: &Terrain, streamer: &ChunkStreamer, chunks: &ChunkQuery, c: ChunkCoord, generation: u64) -> Twin {
+/// What `c`'s twins offer for the current map.
+fn twin(map: &HexMap, streamer: &ChunkStreamer, chunks: &ChunkQuery, c: ChunkCoord) -> Twin {
+    let terrain = map.terrain();
     let (canonical, _) = terrain.wrap_chunk(c);
     if terrain.wrap().is_none() {
         return Twin::None;
@@ -186,10 +184,10 @@ fn twin(terrain: &Terrain, streamer: &ChunkStreamer, chunks: &ChunkQuery, c: Chu
             continue;
         }
         let Ok((chunk, task, mesh, content)) = chunks.get(e) else { continue };
-        if let (true, Some(mesh)) = (chunk.generation == Some(generation), mesh) {
+        if let (true, Some(mesh)) = (map.is_current(c, chunk.generation), mesh) {
             return Twin::Showing(mesh.clone(), content.cloned().unwrap_or_default(), chunk.vertices, chunk.mesh_bytes);
         }
-        if task.is_some_and(|t| t.generation == generation) {
+        if task.is_some_and(|t| map.is_current(c, Some(t.generation))) {
             found = Twin::Building;
         }
     }

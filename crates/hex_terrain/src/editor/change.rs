@@ -11,6 +11,7 @@ use crate::terrain::Terrain;
 
 /// What one operation (or its undo) changed.
 #[derive(Debug, Clone, Default, PartialEq, Eq)]
+#[cfg_attr(feature = "bevy_reflect", derive(bevy_reflect::Reflect))]
 pub struct Change {
     /// The map's own tiles that changed: the edited tiles and their neighbors (whose shared
     /// border vertices moved), and every tile whose type, elevation, biome, river or lake

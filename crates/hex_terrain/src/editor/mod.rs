@@ -12,6 +12,7 @@ mod brush;
 mod change;
 
 use std::collections::BTreeMap;
+use std::sync::Arc;
 
 use hexx::Hex;
 
@@ -20,6 +21,7 @@ pub use change::Change;
 
 use crate::config::{MapConfig, PropDensity, RiverEdit, TileEdit};
 use crate::error::ConfigError;
+use crate::heights::HeightImage;
 use crate::terrain::Terrain;
 use crate::vocab::{Biome, TileKind};
 
@@ -133,6 +135,8 @@ pub struct Editor {
     terrain: Terrain,
     /// The config without edits (they are in `edits`).
     base: MapConfig,
+    /// The decoded heightmap of an `Image` source.
+    image: Option<Arc<HeightImage>>,
     /// The edits by offset coordinate.
     edits: BTreeMap<(i32, i32), TileEdit>,
     undo: Vec<Operation>,
@@ -146,10 +150,18 @@ impl Editor {
     /// # Errors
     /// The config's first invalid field.
     pub fn new(config: MapConfig) -> Result<Self, ConfigError> {
-        let terrain = Terrain::new(config.clone())?;
+        Ok(Self::from_terrain(Terrain::new(config)?))
+    }
+
+    /// Starts editing a compiled map (a heightmap it was compiled with stays), without compiling
+    /// it again: undo goes back to its edits, not past them.
+    #[must_use]
+    pub fn from_terrain(terrain: Terrain) -> Self {
+        let config = terrain.config();
         let edits = config.edits.iter().map(|e| (e.at, *e)).collect();
-        let base = MapConfig { edits: Vec::new(), ..config };
-        Ok(Self { terrain, base, edits, undo: Vec::new(), redo: Vec::new() })
+        let base = MapConfig { edits: Vec::new(), ..config.clone() };
+        let image = terrain.heights().image().cloned();
+        Self { terrain, base, image, edits, undo: Vec::new(), redo: Vec::new() }
     }
 
     /// The map as edited so far.
@@ -252,7 +264,7 @@ impl Editor {
             };
         }
         let config = MapConfig { edits: sorted(&edits), ..self.base.clone() };
-        let terrain = Terrain::new(config)?;
+        let terrain = Terrain::with_image(config, self.image.clone())?;
         let touched: Vec<Hex> =
             operation.tiles.iter().map(|&(at, ..)| terrain.tile_from_offset([at.0, at.1])).collect();
         let change = Change::between(&self.terrain, &terrain, &touched);
