@@ -1,6 +1,7 @@
 //! `hexterrain`: previews, heightmap tiling, export, statistics and the thesis' experiments for
 //! `hex_terrain` maps, without writing code or opening a window.
 
+mod edit;
 mod experiments;
 mod export;
 mod render;
@@ -89,6 +90,19 @@ enum Command {
     Stats {
         /// Map config (RON).
         map: PathBuf,
+    },
+    /// Apply the world builder's strokes to a map and write the edited map file (the seed's
+    /// config plus its `edits`); prints each stroke's changed tiles and chunks.
+    Edit {
+        /// Map config (RON).
+        map: PathBuf,
+        /// The strokes: a RON list of `(tool: .., brush: .., at: (column, row))`, e.g.
+        /// `[(tool: SetKind(Mountain), brush: Range(1), at: (20, 12)), (tool: AddRiver, brush: Range(0), at: (21, 12))]`.
+        #[arg(long)]
+        strokes: PathBuf,
+        /// The edited map file to write (.map.ron).
+        #[arg(short, long)]
+        output: PathBuf,
     },
     /// Place a game on the map (start positions, resources, natural wonders) and print the
     /// fairness report; with --output, render the map with them marked.
@@ -273,6 +287,7 @@ fn run(cli: Cli) -> CliResult<()> {
             result
         }
         Command::Stats { map } => stats(&map),
+        Command::Edit { map, strokes, output } => edit::run(&load(&map)?, &strokes, &output),
         Command::Setup { map, players, output, width } => {
             check_width(width)?;
             setup(&map, players, output.as_deref(), width)

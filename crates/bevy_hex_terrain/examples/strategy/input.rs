@@ -6,6 +6,7 @@ use bevy::picking::events::{Move, Out, Over, Pointer};
 use bevy::prelude::*;
 use bevy_hex_terrain::prelude::*;
 
+use crate::editor::EditorMode;
 use crate::panel::ReportPanel;
 use crate::{Game, PRESETS};
 
@@ -56,6 +57,7 @@ pub(crate) fn keys(
     mut load: MessageWriter<LoadHexMap>,
     mut game: ResMut<Game>,
     mut report: Query<&mut Visibility, With<ReportPanel>>,
+    editor: Res<EditorMode>,
 ) {
     if keys.just_pressed(KeyCode::KeyG) {
         material.outlines = !material.outlines;
@@ -72,6 +74,10 @@ pub(crate) fn keys(
     if keys.just_pressed(KeyCode::F3) {
         game.show_chunks = !game.show_chunks;
     }
+    // The world builder takes the digits, F and R (and Ctrl+S) while it is open.
+    if editor.on {
+        return;
+    }
     if keys.just_pressed(KeyCode::KeyF) {
         for mut v in &mut report {
             v.toggle_inherited_hidden();
@@ -85,7 +91,15 @@ pub(crate) fn keys(
         config.seed = config.seed.wrapping_mul(747_796_405).wrapping_add(2_891_336_453);
         load.write(LoadHexMap(config.into()));
     }
-    let digits = [KeyCode::Digit1, KeyCode::Digit2, KeyCode::Digit3, KeyCode::Digit4, KeyCode::Digit5, KeyCode::Digit6];
+    let digits = [
+        KeyCode::Digit1,
+        KeyCode::Digit2,
+        KeyCode::Digit3,
+        KeyCode::Digit4,
+        KeyCode::Digit5,
+        KeyCode::Digit6,
+        KeyCode::Digit7,
+    ];
     for (i, key) in digits.into_iter().enumerate() {
         if keys.just_pressed(key) {
             load.write(LoadHexMap(PRESETS[i].into()));

@@ -4,8 +4,10 @@
 //! mountain 3, fording a river 1 more, sea and lakes are impassable); End Turn (button or Enter)
 //! restores movement. G toggles tile outlines, L the movement-cost lens, T the territory tint,
 //! V the fog of war, R regenerates with a new seed, 1-6 switch presets (6: Civ6 Standard,
-//! wrapping; P pans east across its seam), F3 shows chunk boundaries; J, K, B, N, O switch
-//! shadows, distance fog, props, water and ambient occlusion (`look.rs`).
+//! wrapping; 7: a scenario made with the world builder; P pans east across its seam), F3 shows
+//! chunk boundaries; J, K, B, N, O switch shadows, distance fog, props, water and ambient
+//! occlusion (`look.rs`). Tab opens the world builder (`editor.rs`): paint with a tool and a
+//! brush, Ctrl+Z / Ctrl+Y undo and redo, Ctrl+S saves the edits next to the map.
 //!
 //! Two players: yours (red) and a rival (blue), at the starts the map's game setup chose (the
 //! World preset has one: regions of equal fertility, resources and wonders, shown as gems and
@@ -22,6 +24,7 @@
 #[path = "../support/mod.rs"]
 mod support;
 
+mod editor;
 mod gizmos;
 mod input;
 mod look;
@@ -45,7 +48,7 @@ use crate::panel::{EndTurnButton, Panel, ReportPanel, panel, report_panel};
 use crate::rig::{Rig, camera_controls, follow_minimap};
 use crate::units::{click, end_turn, place_units};
 
-pub(crate) const PRESETS: [&str; 6] = [
+pub(crate) const PRESETS: [&str; 7] = [
     "maps/world.map.ron",
     "maps/island.map.ron",
     "maps/mediterranean.map.ron",
@@ -53,6 +56,8 @@ pub(crate) const PRESETS: [&str; 6] = [
     "maps/continent.map.ron",
     // Civilization's Standard size, wrapping east to west.
     "maps/civ6/standard.map.ron",
+    // A scenario made with the world builder: the World map with a strait and a mountain pass.
+    "maps/strait.map.ron",
 ];
 
 #[derive(Resource, Default)]
@@ -69,7 +74,7 @@ pub(crate) struct Game {
 
 fn main() -> AppExit {
     let scripted = std::env::var_os("HEXTERRAIN_SCRIPT").is_some();
-    // HEXTERRAIN_PRESET=1..6 starts on another preset (6: the wrapping Civ6 Standard map).
+    // HEXTERRAIN_PRESET=1..7 starts on another preset (6: the wrapping Civ6 Standard map).
     let preset = std::env::var("HEXTERRAIN_PRESET").ok().and_then(|p| p.parse::<usize>().ok()).unwrap_or(1);
     let mut app = App::new();
     // HEXTERRAIN_FOG=off starts without the fog of war (V toggles it).
@@ -84,7 +89,8 @@ fn main() -> AppExit {
     .insert_resource(TerrainMaterialSettings { outlines: true, outline_width: 0.04, ..default() })
     .insert_resource(TileStateStyle { fog_of_war, ..default() })
     .insert_resource(Game { turn: 1, ..default() })
-    .add_systems(Startup, (setup, look::from_env))
+    .init_resource::<editor::EditorMode>()
+    .add_systems(Startup, (setup, look::from_env, editor::spawn_panel))
     .add_systems(
         Update,
         (
@@ -98,6 +104,13 @@ fn main() -> AppExit {
             look::keys,
         )
             .chain(),
+    )
+    .add_systems(
+        Update,
+        (editor::from_env, editor::editor_input, editor::paint, editor::brush_outline, editor::editor_panel)
+            .chain()
+            .before(HexTerrainSystems::Map)
+            .after(keys),
     )
     .add_systems(
         Update,
@@ -165,7 +178,8 @@ fn setup(mut commands: Commands) {
     commands.spawn((
         Text::new(
             "WASD/arrows/edge pan, wheel zoom, Q/E rotate, click unit then tile, Enter end turn, G outlines, \
-             L lens, T tint, V fog, F fairness report, R new seed, 1-6 presets (6 wraps), P pan east, F3 chunks",
+             L lens, T tint, V fog, F fairness report, R new seed, 1-7 presets (6 wraps, 7 edited), P pan east, F3 chunks, \
+             Tab world builder",
         ),
         TextFont::from_font_size(13.0),
         Node { position_type: PositionType::Absolute, bottom: px(8.0), left: px(10.0), ..default() },
