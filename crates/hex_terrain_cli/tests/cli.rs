@@ -455,3 +455,32 @@ fn setup_prints_a_row_a_player_and_marks_the_starts() {
     fails(&["setup", crowded.to_str().unwrap()], &["setup.min_distance"]);
     fails(&["setup", duel, "--players", "99"], &["setup.players", "1..=32"]);
 }
+
+#[test]
+fn edit_applies_strokes_from_a_file_and_refuses_bad_ones_by_line_or_stroke() {
+    let map = tmp("to_edit.map.ron");
+    std::fs::write(&map, "(size: Bounded(x: 12, z: 10), terrain: (sea_threshold: 0.99, mountain_threshold: 0.995, interpolation_tolerance: 0.0))").unwrap();
+    let strokes = tmp("strokes.ron");
+    std::fs::write(
+        &strokes,
+        "[(tool: SetKind(Mountain), brush: Range(1), at: (5, 5)), (tool: Erase, brush: Range(0), at: (5, 5))]",
+    )
+    .unwrap();
+    let out_file = tmp("edited_by_cli.map.ron");
+    let out =
+        ok(&["edit", map.to_str().unwrap(), "--strokes", strokes.to_str().unwrap(), "-o", out_file.to_str().unwrap()]);
+    assert!(out.contains("stroke 0") && out.contains("6 edited tiles written"), "{out}");
+    let stats = ok(&["stats", out_file.to_str().unwrap()]);
+    assert!(stats.contains("edits: 6 tiles edited") && stats.contains("mountain  6"), "{stats}");
+    // A malformed stroke file: its line and column; a stroke off the map: which one.
+    std::fs::write(&strokes, "[\n (tool: Raise(0.1), brush: Range(1), at: (5, 5), typo: 1)]").unwrap();
+    fails(
+        &["edit", map.to_str().unwrap(), "--strokes", strokes.to_str().unwrap(), "-o", out_file.to_str().unwrap()],
+        &["strokes.ron:2:"],
+    );
+    std::fs::write(&strokes, "[(tool: AddRiver, brush: Range(0), at: (5, 5))]").unwrap();
+    fails(
+        &["edit", map.to_str().unwrap(), "--strokes", strokes.to_str().unwrap(), "-o", out_file.to_str().unwrap()],
+        &["stroke 0", "rivers.enabled"],
+    );
+}

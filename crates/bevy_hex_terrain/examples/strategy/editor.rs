@@ -149,20 +149,16 @@ pub(crate) fn spawn_panel(mut commands: Commands) {
             for (i, name) in TOOLS.iter().enumerate() {
                 panel.spawn(button(format!("{} {name}", i + 1), EditorButton::Tool(i)));
             }
-            panel
-                .spawn(Node { flex_direction: FlexDirection::Row, ..default() })
-                .with_children(|row| {
-                    row.spawn(button("[ smaller".into(), EditorButton::Smaller));
-                    row.spawn(button("] larger".into(), EditorButton::Larger));
-                    row.spawn(button("F flood".into(), EditorButton::Flood));
-                });
-            panel
-                .spawn(Node { flex_direction: FlexDirection::Row, ..default() })
-                .with_children(|row| {
-                    row.spawn(button("Undo".into(), EditorButton::Undo));
-                    row.spawn(button("Redo".into(), EditorButton::Redo));
-                    row.spawn(button("Save".into(), EditorButton::Save));
-                });
+            panel.spawn(Node { flex_direction: FlexDirection::Row, ..default() }).with_children(|row| {
+                row.spawn(button("[ smaller".into(), EditorButton::Smaller));
+                row.spawn(button("] larger".into(), EditorButton::Larger));
+                row.spawn(button("F flood".into(), EditorButton::Flood));
+            });
+            panel.spawn(Node { flex_direction: FlexDirection::Row, ..default() }).with_children(|row| {
+                row.spawn(button("Undo".into(), EditorButton::Undo));
+                row.spawn(button("Redo".into(), EditorButton::Redo));
+                row.spawn(button("Save".into(), EditorButton::Save));
+            });
             panel.spawn((EditorStatus, Text::new(""), TextFont::from_font_size(12.0)));
         });
 }
