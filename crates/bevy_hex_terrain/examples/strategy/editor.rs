@@ -33,10 +33,9 @@ const DENSITIES: [PropDensity; 3] = [PropDensity::Dense, PropDensity::Sparse, Pr
 /// Largest brush radius of the panel.
 const MAX_RADIUS: u32 = 5;
 
-/// The editor's state: on or off, the tool, its value, the brush.
+/// The editor's state: the tool, its value, the brush (whether it is open is `Game::editing`).
 #[derive(Resource, Debug, Default)]
 pub(crate) struct EditorMode {
-    pub(crate) on: bool,
     tool: usize,
     /// Which of the tool's values (type, biome, density) is picked.
     value: usize,
@@ -182,17 +181,17 @@ pub(crate) fn editor_input(
     keys: Res<ButtonInput<KeyCode>>,
     buttons: Query<(&Interaction, &EditorButton), Changed<Interaction>>,
     handle: Res<HexMapHandle>,
-    mut mode: ResMut<EditorMode>,
+    (mut game, mut mode): (ResMut<Game>, ResMut<EditorMode>),
     mut panel: Query<&mut Visibility, With<EditorPanel>>,
     mut edits: MessageWriter<HexMapEdit>,
 ) {
     if keys.just_pressed(KeyCode::Tab) {
-        mode.on = !mode.on;
+        game.editing = !game.editing;
         for mut v in &mut panel {
-            *v = if mode.on { Visibility::Inherited } else { Visibility::Hidden };
+            *v = if game.editing { Visibility::Inherited } else { Visibility::Hidden };
         }
     }
-    if !mode.on {
+    if !game.editing {
         return;
     }
     let ctrl = keys.any_pressed([KeyCode::ControlLeft, KeyCode::ControlRight]);
@@ -261,7 +260,7 @@ pub(crate) fn paint(
     mut mode: ResMut<EditorMode>,
     mut edits: MessageWriter<HexMapEdit>,
 ) {
-    if !mode.on || !mouse.pressed(MouseButton::Left) {
+    if !game.editing || !mouse.pressed(MouseButton::Left) {
         mode.last = None;
         return;
     }
@@ -277,7 +276,7 @@ pub(crate) fn paint(
 /// The brush's outline under the cursor: the outline of every tile it covers (the hovered tile
 /// alone for a flood fill).
 pub(crate) fn brush_outline(mode: Res<EditorMode>, game: Res<Game>, map: Res<HexMap>, mut gizmos: Gizmos) {
-    let (true, Some(tile)) = (mode.on, game.hovered) else { return };
+    let (true, Some(tile)) = (game.editing, game.hovered) else { return };
     let terrain = map.terrain();
     let brush = if mode.flood { Brush::Range(0) } else { mode.brush() };
     let corners = terrain.layout().center_aligned_hex_corners();
@@ -297,6 +296,7 @@ pub(crate) fn brush_outline(mode: Res<EditorMode>, game: Res<Game>, map: Res<Hex
 
 /// The panel: which tool is picked, the brush, undo and redo depths, the last save or refusal.
 pub(crate) fn editor_panel(
+    game: Res<Game>,
     mut mode: ResMut<EditorMode>,
     editor: Res<HexEditor>,
     mut saved: MessageReader<HexMapSaved>,
@@ -310,7 +310,7 @@ pub(crate) fn editor_panel(
     for e in errors.read() {
         mode.status = e.to_string();
     }
-    if !mode.on {
+    if !game.editing {
         return;
     }
     let text = format!(
@@ -345,7 +345,7 @@ pub(crate) fn editor_panel(
 /// a lake dug to their north-west, a wood to their south and a river rising beside them.
 pub(crate) fn from_env(
     map: Res<HexMap>,
-    mut mode: ResMut<EditorMode>,
+    (mut game, mut mode): (ResMut<Game>, ResMut<EditorMode>),
     mut panel: Query<&mut Visibility, With<EditorPanel>>,
     mut edits: MessageWriter<HexMapEdit>,
     mut done: Local<bool>,
@@ -355,7 +355,7 @@ pub(crate) fn from_env(
     }
     *done = true;
     if std::env::var_os("HEXTERRAIN_EDITOR").is_some() {
-        mode.on = true;
+        game.editing = true;
         for mut v in &mut panel {
             *v = Visibility::Inherited;
         }

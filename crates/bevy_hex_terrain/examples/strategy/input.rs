@@ -6,7 +6,6 @@ use bevy::picking::events::{Move, Out, Over, Pointer};
 use bevy::prelude::*;
 use bevy_hex_terrain::prelude::*;
 
-use crate::editor::EditorMode;
 use crate::panel::ReportPanel;
 use crate::{Game, PRESETS};
 
@@ -57,7 +56,6 @@ pub(crate) fn keys(
     mut load: MessageWriter<LoadHexMap>,
     mut game: ResMut<Game>,
     mut report: Query<&mut Visibility, With<ReportPanel>>,
-    editor: Res<EditorMode>,
 ) {
     if keys.just_pressed(KeyCode::KeyG) {
         material.outlines = !material.outlines;
@@ -75,7 +73,7 @@ pub(crate) fn keys(
         game.show_chunks = !game.show_chunks;
     }
     // The world builder takes the digits, F and R (and Ctrl+S) while it is open.
-    if editor.on {
+    if game.editing {
         return;
     }
     if keys.just_pressed(KeyCode::KeyF) {

@@ -70,6 +70,8 @@ pub(crate) struct Game {
     pub(crate) show_chunks: bool,
     /// The camera pans east by itself (P): across the seam of a wrapping map, and on.
     pub(crate) auto_pan: bool,
+    /// The world builder is open (Tab): clicks paint, the digits pick tools.
+    pub(crate) editing: bool,
 }
 
 fn main() -> AppExit {

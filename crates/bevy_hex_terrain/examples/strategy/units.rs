@@ -126,11 +126,10 @@ pub(crate) fn click(
     map: Res<HexMap>,
     mut game: ResMut<Game>,
     mut units: Query<(Entity, &mut Unit)>,
-    editor: Res<crate::editor::EditorMode>,
 ) {
     // A click on a prop bubbles up to its chunk: act on the first. In the world builder a click
     // paints instead.
-    if editor.on || pointer.button != PointerButton::Primary || pointer.entity != pointer.original_event_target() {
+    if game.editing || pointer.button != PointerButton::Primary || pointer.entity != pointer.original_event_target() {
         return;
     }
     let Some(tile) = pointer.hit.extra_as::<HexPick>().map(|p| p.tile).filter(|&t| map.contains(t)) else { return };
