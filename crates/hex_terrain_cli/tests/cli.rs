@@ -484,3 +484,15 @@ fn edit_applies_strokes_from_a_file_and_refuses_bad_ones_by_line_or_stroke() {
         &["stroke 0", "rivers.enabled"],
     );
 }
+
+/// The shipped scenario is what the editor makes of the World map with the shipped strokes.
+#[test]
+fn the_strait_scenario_is_the_world_map_edited_by_its_strokes() {
+    let out_file = tmp("strait_again.map.ron");
+    let world = repo().join("assets/maps/world.map.ron");
+    let strokes = repo().join("assets/strokes/strait.strokes.ron");
+    ok(&["edit", world.to_str().unwrap(), "--strokes", strokes.to_str().unwrap(), "-o", out_file.to_str().unwrap()]);
+    let made = hex_terrain::MapConfig::load(&out_file).unwrap();
+    let shipped = hex_terrain::MapConfig::load(&repo().join("assets/maps/strait.map.ron")).unwrap();
+    assert_eq!(hex_terrain::MapConfig { name: shipped.name.clone(), ..made }, shipped);
+}
