@@ -87,7 +87,7 @@ pub use config::{
     ResourceRule, RiverConfig, RiverEdit, SetupConfig, Shape, StartOn, TerrainConfig, TileEdit, ValueWeights,
     WonderConfig, WonderRule, YieldTable, Yields,
 };
-pub use editor::{Brush, Change, EditError, Editor, Stroke, Tool};
+pub use editor::{Brush, Change, EditError, EditTimings, Editor, Stroke, Tool};
 pub use edits::Edits;
 pub use error::{ConfigError, LoadError};
 pub use geometry::Geometry;

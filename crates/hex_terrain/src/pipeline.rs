@@ -14,14 +14,14 @@ use std::sync::Arc;
 use hexx::Hex;
 
 use crate::climate::{ClimateModel, TileSample};
-use crate::config::{HeightSourceConfig, MAX_WATER_TILES, MapConfig};
+use crate::config::{HeightSourceConfig, MAX_WATER_TILES, MapConfig, TileEdit};
 use crate::edits::Edits;
 use crate::error::ConfigError;
 use crate::geometry::Geometry;
 use crate::heights::{HeightField, HeightImage};
 use crate::kind::Thresholds;
 use crate::setup::{Setup, Stages};
-use crate::table::TileTable;
+use crate::table::{TileFields, TileTable};
 use crate::vertex::{VertexRules, VertexSample};
 use crate::vocab::{Biome, TileInfo, TileKind};
 use crate::water::channels;
@@ -36,6 +36,8 @@ pub struct Pipeline {
     climate: ClimateModel,
     /// Per-tile data of a bounded map with climate or rivers, computed once.
     table: Option<Arc<TileTable>>,
+    /// The noise the table is built from, kept for compiling the map again with other edits.
+    fields: Option<Arc<TileFields>>,
     vertex: VertexRules,
     /// The game setup of a map whose config asks for one, placed once.
     setup: Option<Arc<Setup>>,
@@ -73,29 +75,68 @@ impl Pipeline {
     /// Builds the stages of a validated config, each from the ones before it.
     fn compile(config: MapConfig, image: Option<Arc<HeightImage>>) -> Result<Self, ConfigError> {
         let geometry = Geometry::new(&config);
-        let mut heights = HeightField::new(&config, &geometry, image)?;
+        let heights = HeightField::new(&config, &geometry, image)?;
         let thresholds = Thresholds::new(&config.terrain, &config.manipulation);
-        if !config.edits.is_empty() {
-            // The edits move tiles relative to their generated centers.
-            let generated = |tile| heights.raw_height(&geometry, geometry.lattice().tile_center(tile));
-            let edits = Edits::new(&config.edits, &geometry, (thresholds.sea, thresholds.mountain), generated);
-            heights = heights.with_edits(edits);
-        }
         let climate = ClimateModel::new(&config, &geometry, thresholds);
         // Rivers need the whole map's table; a climate alone uses it on maps up to the size
         // rivers allow, and computes biomes chunk by chunk on larger ones.
         let bounds = geometry.bounds();
         let tiles = bounds.map_or(u64::MAX, |b| b.len() as u64);
-        let table = bounds
+        let fields = bounds
             .filter(|_| config.rivers.enabled || (config.climate.enabled && tiles <= MAX_WATER_TILES))
-            .map(|rect| Arc::new(TileTable::build(&geometry, &heights, &thresholds, &climate, &config.rivers, rect)));
+            .map(|rect| Arc::new(TileFields::new(&geometry, &heights, &climate, rect)));
         let vertex = VertexRules::new(&config, thresholds);
-        let mut pipeline = Self { config, geometry, heights, thresholds, climate, table, vertex, setup: None };
-        if let Some(setup) = &pipeline.config.setup {
-            let placed = Setup::build(pipeline.stages(), setup, pipeline.config.seed)?;
-            pipeline.setup = Some(Arc::new(placed));
+        let stages = Self { config, geometry, heights, thresholds, climate, table: None, fields, vertex, setup: None };
+        stages.finish()
+    }
+
+    /// The same map with other edits (validated like any config): the stages no edit changes
+    /// (the geometry, the noise, the climate's fields, the tile table's samples) are reused, so
+    /// this costs the edits, the tile table (kinds, rivers, lakes, biomes) and the setup.
+    ///
+    /// # Errors
+    /// The first invalid edit (`edits[i]...`).
+    pub fn with_edits(&self, edits: Vec<TileEdit>) -> Result<Self, ConfigError> {
+        let config = MapConfig { edits, ..self.config.clone() };
+        config.validate()?;
+        let stages = Self {
+            config,
+            geometry: self.geometry.clone(),
+            heights: self.heights.without_edits(),
+            thresholds: self.thresholds,
+            climate: self.climate.clone(),
+            table: None,
+            fields: self.fields.clone(),
+            vertex: self.vertex.clone(),
+            setup: None,
+        };
+        stages.finish()
+    }
+
+    /// Applies the edits to the height field, then builds the tile table and the setup.
+    fn finish(mut self) -> Result<Self, ConfigError> {
+        if !self.config.edits.is_empty() {
+            // The edits move tiles relative to their generated centers.
+            let (geometry, heights, thresholds) = (&self.geometry, &self.heights, &self.thresholds);
+            let generated = |tile| heights.raw_height(geometry, geometry.lattice().tile_center(tile));
+            let edits = Edits::new(&self.config.edits, geometry, (thresholds.sea, thresholds.mountain), generated);
+            self.heights = self.heights.with_edits(edits);
         }
-        Ok(pipeline)
+        self.table = self.fields.as_ref().map(|fields| {
+            Arc::new(TileTable::build(
+                &self.geometry,
+                &self.heights,
+                &self.thresholds,
+                &self.climate,
+                &self.config.rivers,
+                fields,
+            ))
+        });
+        if let Some(setup) = &self.config.setup {
+            let placed = Setup::build(self.stages(), setup, self.config.seed)?;
+            self.setup = Some(Arc::new(placed));
+        }
+        Ok(self)
     }
 
     /// The terrain stages a later stage (the game setup) reads.

@@ -24,6 +24,37 @@ pub struct TileTable {
     hydrology: Option<Hydrology>,
 }
 
+/// What the tile table is built from that no edit changes: each tile center's source height (the
+/// fBm or the heightmap, before shaping) and the climate's noise there, sampled once for the
+/// tiles of a rectangle. The world builder compiles an edited map again from them, so an edit
+/// costs the table's own work, not the noise's.
+#[derive(Debug, Clone)]
+pub struct TileFields {
+    rect: TileRect,
+    source: Vec<f64>,
+    /// `[temperature field, moisture]` of each tile; `None` without a climate.
+    climate: Vec<Option<[f64; 2]>>,
+}
+
+impl TileFields {
+    /// Samples the tiles of `rect`.
+    #[must_use]
+    pub fn new(geometry: &Geometry, heights: &HeightField, climate: &ClimateModel, rect: TileRect) -> Self {
+        let tiles: Vec<Hex> = rect.iter().map(|oc| geometry.tile_from_offset(oc)).collect();
+        let centers: Vec<Hex> = tiles.iter().map(|&t| geometry.lattice().tile_center(t)).collect();
+        let mut source = vec![0.0; centers.len()];
+        heights.source_heights(geometry, &centers, &mut source);
+        let climate = tiles.iter().map(|&t| climate.fields_at(geometry, heights, t)).collect();
+        Self { rect, source, climate }
+    }
+
+    /// The tiles it holds.
+    #[must_use]
+    pub fn rect(&self) -> TileRect {
+        self.rect
+    }
+}
+
 impl TileTable {
     /// Row-major index of an in-map tile (any copy of it on a wrapping map).
     #[must_use]
@@ -46,8 +77,9 @@ impl TileTable {
         (self.rect.max[0] - self.rect.min[0]) as usize
     }
 
-    /// Builds the table of the tiles of `rect`: one height sample a tile, then the water
-    /// network (when `rivers` is on) and the biomes.
+    /// Builds the table of the tiles of `fields`' rectangle from their noise (one height sample
+    /// and the climate's noise a tile, [`TileFields`]): the kinds, then the water network (when
+    /// `rivers` is on) and the biomes.
     #[must_use]
     pub fn build(
         geometry: &Geometry,
@@ -55,13 +87,12 @@ impl TileTable {
         thresholds: &Thresholds,
         climate: &ClimateModel,
         rivers: &RiverConfig,
-        rect: TileRect,
+        fields: &TileFields,
     ) -> Self {
+        let rect = fields.rect;
         let tiles: Vec<Hex> = rect.iter().map(|oc| geometry.tile_from_offset(oc)).collect();
         let centers: Vec<Hex> = tiles.iter().map(|&t| geometry.lattice().tile_center(t)).collect();
-        let mut source = vec![0.0; centers.len()];
-        heights.source_heights(geometry, &centers, &mut source);
-        let raw: Vec<f32> = source.iter().zip(&centers).map(|(&n, &p)| heights.shaped(geometry, n, p)).collect();
+        let raw: Vec<f32> = fields.source.iter().zip(&centers).map(|(&n, &p)| heights.shaped(geometry, n, p)).collect();
         let kinds: Vec<TileKind> = raw.iter().map(|&h| thresholds.classify(h)).collect();
         let mut table = Self { rect, raw, kinds, biomes: Vec::new(), hydrology: None };
         let samples: Vec<TileSample> = tiles.iter().enumerate().map(|(i, &t)| table.sample(geometry, i, t)).collect();
@@ -69,7 +100,11 @@ impl TileTable {
         let climates: Vec<Option<Climate>> = tiles
             .iter()
             .zip(&samples)
-            .map(|(&t, s)| climate.climate_for_biome(geometry, heights, t, s, false))
+            .zip(&fields.climate)
+            .map(|((&t, s), noise)| match noise {
+                Some(noise) if s.kind != TileKind::Sea => Some(climate.climate_with(geometry, t, s, *noise)),
+                _ => None,
+            })
             .collect();
         if rivers.enabled {
             let sea = thresholds.sea;
@@ -113,6 +148,20 @@ impl TileTable {
             }
         }
         table
+    }
+
+    /// Whether tile `i` (row-major) has the same center height, kind, biome and water in `self`
+    /// and `other`, two tables of one map (the world builder's comparison; lake ids aside).
+    #[must_use]
+    pub fn same_tile(&self, other: &Self, i: usize) -> bool {
+        self.raw[i].to_bits() == other.raw[i].to_bits()
+            && self.kinds[i] == other.kinds[i]
+            && self.biomes[i] == other.biomes[i]
+            && match (&self.hydrology, &other.hydrology) {
+                (Some(a), Some(b)) => a.same_tile(b, i),
+                (None, None) => true,
+                _ => false,
+            }
     }
 
     /// Tile `i`'s sample, its neighbors' kinds read from the table.

@@ -493,6 +493,6 @@ fn the_strait_scenario_is_the_world_map_edited_by_its_strokes() {
     let strokes = repo().join("assets/strokes/strait.strokes.ron");
     ok(&["edit", world.to_str().unwrap(), "--strokes", strokes.to_str().unwrap(), "-o", out_file.to_str().unwrap()]);
     let made = hex_terrain::MapConfig::load(&out_file).unwrap();
-    let shipped = hex_terrain::MapConfig::load(&repo().join("assets/maps/strait.map.ron")).unwrap();
+    let shipped = hex_terrain::MapConfig::load(repo().join("assets/maps/strait.map.ron")).unwrap();
     assert_eq!(hex_terrain::MapConfig { name: shipped.name.clone(), ..made }, shipped);
 }

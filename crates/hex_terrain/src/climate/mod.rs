@@ -146,12 +146,25 @@ impl ClimateModel {
     /// Temperature and moisture of a tile from its sample (0.5 each without a climate).
     #[must_use]
     pub fn climate_of(&self, geometry: &Geometry, heights: &HeightField, tile: Hex, s: &TileSample) -> Climate {
-        let Some(fields) = &self.fields else {
-            return Climate { temperature: 0.5, moisture: 0.5 };
-        };
-        let c = &self.config;
+        match self.fields_at(geometry, heights, tile) {
+            Some(fields) => self.climate_with(geometry, tile, s, fields),
+            None => Climate { temperature: 0.5, moisture: 0.5 },
+        }
+    }
+
+    /// The climate's noise at a tile's center, `[temperature field, moisture]`: what depends on
+    /// the tile's position alone (no edit changes it); `None` without a climate.
+    #[must_use]
+    pub fn fields_at(&self, geometry: &Geometry, heights: &HeightField, tile: Hex) -> Option<[f64; 2]> {
+        let fields = self.fields.as_ref()?;
         let [ux, uz] = heights.noise_position(geometry, geometry.lattice().tile_center(tile));
-        let field = fields.temperature(ux, uz);
+        Some([fields.temperature(ux, uz), fields.moisture.sample(ux, uz)])
+    }
+
+    /// Temperature and moisture of a tile from its sample and its noise ([`fields_at`](Self::fields_at)).
+    #[must_use]
+    pub fn climate_with(&self, geometry: &Geometry, tile: Hex, s: &TileSample, [field, wet]: [f64; 2]) -> Climate {
+        let c = &self.config;
         let base = match geometry.bounds() {
             Some(bounds) => {
                 let rows = (bounds.max[1] - bounds.min[1]).max(1) as f32;
@@ -164,7 +177,7 @@ impl ClimateModel {
         let sea = self.thresholds.sea;
         let above = ((s.raw - sea) / (1.0 - sea).max(f32::EPSILON)).max(0.0);
         let temperature = (base - c.lapse_rate * above).clamp(0.0, 1.0);
-        let mut moisture = stretch(fields.moisture.sample(ux, uz), 2.4);
+        let mut moisture = stretch(wet, 2.4);
         if s.next_to_sea {
             moisture = (moisture + c.coast_moisture).min(1.0);
         }

@@ -15,8 +15,9 @@ use crate::terrain::Terrain;
 pub struct Change {
     /// The map's own tiles that changed: the edited tiles and their neighbors (whose shared
     /// border vertices moved), and every tile whose type, elevation, biome, river or lake
-    /// changed as a consequence (rivers drain whole basins), or whose game setup marker
-    /// (start, resource, wonder) moved. Sorted.
+    /// changed as a consequence (rivers drain whole basins), with their neighbors, or whose game
+    /// setup marker (start, resource, wonder) moved. Sorted. (A lake's id may change without
+    /// the lake changing, when a lake before it in the ids' order appears or goes.)
     pub tiles: Vec<Hex>,
     /// The chunks holding those tiles or a neighbor of one (a chunk's mesh holds its tiles'
     /// border vertices and normals, shared with the next chunk): the meshes to build again.
@@ -40,8 +41,20 @@ impl Change {
             tiles.insert(t);
             tiles.extend(new.neighbors(t).into_iter().flatten().filter_map(own));
         }
-        if new.bounds().is_some() {
-            // Rivers, lakes and biomes reach past the edited tiles: compare every tile.
+        if let (Some(a), Some(b)) = (old.pipeline().table(), new.pipeline().table()) {
+            // Rivers, lakes and biomes reach past the edited tiles: compare every tile's row of
+            // the two tables (cheap), and take the neighbors of a tile that changed too (its
+            // border vertices follow its type).
+            let geometry = new.geometry();
+            for t in new.tiles() {
+                let changed = b.index(geometry, t).is_none_or(|i| !a.same_tile(b, i));
+                if changed || marker(old, t) != marker(new, t) {
+                    tiles.insert(t);
+                    tiles.extend(new.neighbors(t).into_iter().flatten().filter_map(own));
+                }
+            }
+        } else if new.bounds().is_some() {
+            // A bounded map without a table: compare every tile.
             for t in new.tiles() {
                 if old.tile_info(t) != new.tile_info(t) || marker(old, t) != marker(new, t) {
                     tiles.insert(t);

@@ -12,7 +12,7 @@ mod brush;
 mod change;
 
 use std::collections::BTreeMap;
-use std::sync::Arc;
+use std::time::{Duration, Instant};
 
 use hexx::Hex;
 
@@ -21,7 +21,6 @@ pub use change::Change;
 
 use crate::config::{MapConfig, PropDensity, RiverEdit, TileEdit};
 use crate::error::ConfigError;
-use crate::heights::HeightImage;
 use crate::terrain::Terrain;
 use crate::vocab::{Biome, TileKind};
 
@@ -135,12 +134,21 @@ pub struct Editor {
     terrain: Terrain,
     /// The config without edits (they are in `edits`).
     base: MapConfig,
-    /// The decoded heightmap of an `Image` source.
-    image: Option<Arc<HeightImage>>,
     /// The edits by offset coordinate.
     edits: BTreeMap<(i32, i32), TileEdit>,
     undo: Vec<Operation>,
     redo: Vec<Operation>,
+    timings: EditTimings,
+}
+
+/// How long an operation took, by part (for benchmarks; the chunks' meshes are built after it,
+/// by whoever shows them).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct EditTimings {
+    /// Compiling the edited map: the edits, the tile table (rivers, lakes, biomes), the setup.
+    pub compile: Duration,
+    /// Finding the tiles and chunks that changed.
+    pub compare: Duration,
 }
 
 impl Editor {
@@ -160,8 +168,7 @@ impl Editor {
         let config = terrain.config();
         let edits = config.edits.iter().map(|e| (e.at, *e)).collect();
         let base = MapConfig { edits: Vec::new(), ..config.clone() };
-        let image = terrain.heights().image().cloned();
-        Self { terrain, base, image, edits, undo: Vec::new(), redo: Vec::new() }
+        Self { terrain, base, edits, undo: Vec::new(), redo: Vec::new(), timings: EditTimings::default() }
     }
 
     /// The map as edited so far.
@@ -263,14 +270,22 @@ impl Editor {
                 None => edits.remove(&at),
             };
         }
-        let config = MapConfig { edits: sorted(&edits), ..self.base.clone() };
-        let terrain = Terrain::with_image(config, self.image.clone())?;
+        let start = Instant::now();
+        let terrain = self.terrain.with_edits(sorted(&edits))?;
+        let compiled = Instant::now();
         let touched: Vec<Hex> =
             operation.tiles.iter().map(|&(at, ..)| terrain.tile_from_offset([at.0, at.1])).collect();
         let change = Change::between(&self.terrain, &terrain, &touched);
+        self.timings = EditTimings { compile: compiled - start, compare: compiled.elapsed() };
         self.terrain = terrain;
         self.edits = edits;
         Ok(change)
+    }
+
+    /// How long the last operation (or undo, or redo) took, by part.
+    #[must_use]
+    pub fn last_timings(&self) -> EditTimings {
+        self.timings
     }
 
     /// A tile's edit after `tool` (`None`: no edit left).

@@ -102,6 +102,12 @@ impl HeightField {
         self
     }
 
+    /// The same field without edits: the generated heights.
+    #[must_use]
+    pub fn without_edits(&self) -> Self {
+        Self { edits: None, ..self.clone() }
+    }
+
     /// The decoded heightmap of an `Image` source (`None` for a `Noise` source).
     #[must_use]
     pub fn image(&self) -> Option<&Arc<HeightImage>> {

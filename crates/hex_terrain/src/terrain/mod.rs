@@ -66,6 +66,15 @@ impl Terrain {
         Ok(Self { pipeline: Arc::new(Pipeline::with_image(config, image)?) })
     }
 
+    /// The same map with other edits, compiled again from the stages no edit changes (the
+    /// world builder's step; see [`Pipeline::with_edits`]).
+    ///
+    /// # Errors
+    /// The first invalid edit.
+    pub fn with_edits(&self, edits: Vec<crate::config::TileEdit>) -> Result<Self, ConfigError> {
+        Ok(Self { pipeline: Arc::new(self.pipeline.with_edits(edits)?) })
+    }
+
     /// The compiled stages, for code that composes them itself (a new stage takes the ones it
     /// needs as arguments).
     #[must_use]

@@ -212,6 +212,17 @@ impl Hydrology {
         (lake, spill)
     }
 
+    /// Whether tile `i` carries the same water in `self` and `other` (level, flow, where it
+    /// drains, lake or not, channels); lake ids are not compared (they count lakes in flood
+    /// order, so a new lake renumbers the lakes after it without changing them).
+    pub(crate) fn same_tile(&self, other: &Self, i: usize) -> bool {
+        self.level[i].to_bits() == other.level[i].to_bits()
+            && self.flow[i].to_bits() == other.flow[i].to_bits()
+            && self.down[i] == other.down[i]
+            && (self.lake[i] == 0) == (other.lake[i] == 0)
+            && self.channels[i].map(f32::to_bits) == other.channels[i].map(f32::to_bits)
+    }
+
     /// Lake id of tile `i` (row-major index in the map), if it is a lake tile.
     pub(crate) fn lake_of(&self, i: usize) -> Option<u32> {
         self.lake[i].checked_sub(1)
