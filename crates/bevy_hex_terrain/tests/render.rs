@@ -20,6 +20,55 @@ in_own_process! {
     a_missing_texture_falls_back_to_flat_colors => scenario_missing_texture,
     a_deferred_camera_draws_the_terrain_colors => scenario_deferred,
     biomes_rivers_and_lakes_show_their_colors => scenario_biomes,
+    edited_tiles_show_their_new_type => scenario_edited,
+}
+
+/// The world builder's edits on [`map`]: a land tile made deep sea, a sea tile made a high
+/// mountain, a mountain tile (or, without one, a second land tile) made mid land; tiles away
+/// from the map's edge. Returns the config and each edited tile with its new type.
+fn edited_map() -> (MapConfig, Vec<(Hex, TileKind)>) {
+    use bevy_hex_terrain::hex_terrain::TileEdit;
+    let generated = Terrain::new(map()).unwrap();
+    let inner = |k: TileKind, skip: &[Hex]| {
+        generated
+            .tiles()
+            .find(|&t| {
+                generated.tile_kind(t) == Some(k) && !skip.contains(&t) && t.range(2).all(|n| generated.contains(n))
+            })
+            .unwrap_or_else(|| panic!("an inner {k:?} tile"))
+    };
+    let land = inner(TileKind::Land, &[]);
+    let sea = inner(TileKind::Sea, &[]);
+    let third = generated
+        .tiles()
+        .find(|&t| generated.tile_kind(t) == Some(TileKind::Mountain) && t.range(2).all(|n| generated.contains(n)))
+        .unwrap_or_else(|| inner(TileKind::Land, &[land]));
+    let t = &generated.config().terrain;
+    let mid = (t.sea_threshold + t.mountain_threshold) / 2.0;
+    let wanted = [(land, TileKind::Sea, 0.05), (sea, TileKind::Mountain, 0.97), (third, TileKind::Land, mid)];
+    let mut config = map();
+    for (tile, kind, height) in wanted {
+        let [col, row] = generated.offset_of(tile);
+        config.edits.push(TileEdit { height: Some(height), kind: Some(kind), ..TileEdit::at((col, row)) });
+    }
+    (config, wanted.iter().map(|&(t, k, _)| (t, k)).collect())
+}
+
+#[test]
+#[ignore = "a scenario: run by its #[test] in a process of its own"]
+fn scenario_edited() {
+    let (config, edited) = edited_map();
+    let terrain = Terrain::new(config.clone()).unwrap();
+    let (center, size) = view(&terrain);
+    let (img, _) = render_scene(Scene { config: Some(config), ..default() }, "edited");
+    for &(tile, kind) in &edited {
+        assert_eq!(terrain.tile_kind(tile), Some(kind), "{tile:?} edited to {kind:?}");
+        let at = DVec3::from_array(terrain.tile_center(tile).unwrap()).as_vec3();
+        assert_kind_color(tile, kind, rgb(&img, pixel(center, size, at)));
+    }
+    // Every other clear tile keeps its type's color.
+    let checked = check_type_colors(&img, &terrain, &[]);
+    assert!(checked.iter().sum::<usize>() > 20, "tiles checked: {checked:?}");
 }
 
 #[test]
