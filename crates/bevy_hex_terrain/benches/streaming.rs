@@ -7,7 +7,7 @@
 //! also spreading over rayon's pool.
 //!
 //! ```text
-//! cargo bench -p bevy_hex_terrain --bench streaming [-- --seconds 60]
+//! cargo bench -p bevy_hex_terrain --bench streaming [-- --seconds 60] [--no-props]
 //! ```
 
 use std::time::{Duration, Instant};
@@ -25,7 +25,21 @@ struct FrameTimes {
     cpu: Vec<f64>,
     /// Of which the main thread waited for a core (runnable, not running), ms.
     waiting: Vec<f64>,
+    /// This frame's marks between the sets (`SETS.len() + 1` of them once the frame is done).
+    marks: Vec<Instant>,
+    /// Wall time of each set, ms, per frame.
+    sets: Vec<[f64; SETS.len()]>,
 }
+
+/// The terrain sets in their order, for the split of a frame.
+const SETS: [(&str, HexTerrainSystems); 6] = [
+    ("map", HexTerrainSystems::Map),
+    ("stream", HexTerrainSystems::Stream),
+    ("insert", HexTerrainSystems::Insert),
+    ("children", HexTerrainSystems::Children),
+    ("tiles", HexTerrainSystems::Tiles),
+    ("render", HexTerrainSystems::Render),
+];
 
 /// The calling thread's total time waiting for a core, in ns: the second field of
 /// `/proc/thread-self/schedstat` (0 where there is no such file). The kernel adds a wait when
@@ -62,10 +76,14 @@ struct Walk {
     /// Meshes inserted, tasks started and tasks cancelled in the frame whose terrain systems
     /// took longest.
     worst: (u64, u64, u64),
+    /// Wall time of each set per frame, ms.
+    sets: Vec<[f64; SETS.len()]>,
+    /// The slowest frame's index.
+    worst_frame: usize,
 }
 
 /// Walks an agent east for `seconds` with chunk generation running on `threads`.
-fn walk(seconds: u32, threads: ChunkThreads) -> Walk {
+fn walk(seconds: u32, threads: ChunkThreads, props: bool) -> Walk {
     let config = MapConfig { size: MapSize::Unbounded, chunk_size: (16, 16), ..MapConfig::default() };
     let chunk_width = 16.0 * 1.5 * config.layout.hex_size;
     let mut app = App::new();
@@ -73,6 +91,7 @@ fn walk(seconds: u32, threads: ChunkThreads) -> Walk {
     app.add_plugins((MinimalPlugins, AssetPlugin::default(), TransformPlugin))
         .add_plugins(HexTerrainPlugins { map: config.into(), settings }.build().disable::<HexTerrainMaterialPlugin>())
         .init_resource::<FrameTimes>()
+        .insert_resource(PropSettings { enabled: props, ..PropSettings::default() })
         // Brackets around the terrain sets: the time between them is the terrain systems' share
         // of the frame.
         .add_systems(
@@ -96,6 +115,31 @@ fn walk(seconds: u32, threads: ChunkThreads) -> Walk {
         );
     // The terrain systems are one chain: run the frame on the main thread, so the time between
     // the brackets is the main thread's and its schedstat tells work from waiting for a core.
+    // A mark between each two sets: the split of the frame.
+    for k in 0..SETS.len() - 1 {
+        app.add_systems(
+            Update,
+            (|mut t: ResMut<FrameTimes>| t.marks.push(Instant::now())).after(SETS[k].1).before(SETS[k + 1].1),
+        );
+    }
+    app.add_systems(
+        Update,
+        (|mut t: ResMut<FrameTimes>| t.marks = vec![Instant::now()]).before(HexTerrainSystems::Map),
+    )
+    .add_systems(
+        Update,
+        (|mut t: ResMut<FrameTimes>| {
+            t.marks.push(Instant::now());
+            if t.marks.len() == SETS.len() + 1 {
+                let mut split = [0.0; SETS.len()];
+                for (k, d) in split.iter_mut().enumerate() {
+                    *d = (t.marks[k + 1] - t.marks[k]).as_secs_f64() * 1e3;
+                }
+                t.sets.push(split);
+            }
+        })
+        .after(HexTerrainSystems::Render),
+    );
     app.edit_schedule(Update, |s| {
         s.set_executor(bevy::ecs::schedule::SingleThreadedExecutor::new());
     });
@@ -107,7 +151,7 @@ fn walk(seconds: u32, threads: ChunkThreads) -> Walk {
         let s = app.world().resource::<HexTerrainStats>();
         (s.meshes_inserted(), s.tasks_started(), s.tasks_cancelled())
     };
-    let (mut worst, mut worst_time) = ((0, 0, 0), 0.0);
+    let (mut worst, mut worst_time, mut worst_frame) = ((0, 0, 0), 0.0, 0);
     for f in 0..frames {
         let start = Instant::now();
         let x = f as f32 / 60.0 * chunk_width;
@@ -120,6 +164,7 @@ fn walk(seconds: u32, threads: ChunkThreads) -> Walk {
         {
             worst_time = t;
             worst = (after.0 - before.0, after.1 - before.1, after.2 - before.2);
+            worst_frame = app.world().resource::<FrameTimes>().sets.len().saturating_sub(1);
         }
         live_max = live_max.max(app.world().resource::<ChunkStreamer>().live_chunks());
         if let Some(rest) = frame.checked_sub(start.elapsed()) {
@@ -133,6 +178,7 @@ fn walk(seconds: u32, threads: ChunkThreads) -> Walk {
     };
     let recorded = app.world().resource::<FrameTimes>();
     let (times, cpu, waiting) = (sorted(&recorded.samples), sorted(&recorded.cpu), sorted(&recorded.waiting));
+    let sets = recorded.sets.clone();
     let stats = app.world().resource::<HexTerrainStats>();
     let mut latencies: Vec<f64> = stats.latencies().map(|s| f64::from(s) * 1e3).collect();
     latencies.sort_by(f64::total_cmp);
@@ -140,7 +186,7 @@ fn walk(seconds: u32, threads: ChunkThreads) -> Walk {
     let live = app.world().resource::<ChunkStreamer>().live_chunks();
     let bytes: Vec<usize> = app.world_mut().query::<&HexChunk>().iter(app.world()).map(|c| c.mesh_bytes).collect();
     let per_chunk = bytes.iter().sum::<usize>() as f64 / bytes.len().max(1) as f64;
-    Walk { started, latencies, times, cpu, waiting, live, live_max, per_chunk, worst }
+    Walk { started, latencies, times, cpu, waiting, live, live_max, per_chunk, worst, sets, worst_frame }
 }
 
 fn main() {
@@ -149,9 +195,11 @@ fn main() {
     // The default (one pool: each chunk on one thread of the async compute pool) beside the
     // old way (each chunk task also fanning out over rayon's pool), in one process, after a
     // short walk that warms up the process (pools, allocator, first page faults).
-    drop(walk(5, ChunkThreads::AsyncCompute));
-    let rayon = walk(seconds, ChunkThreads::Rayon);
-    let ours = walk(seconds, ChunkThreads::AsyncCompute);
+    // `--no-props` walks without props (what they cost the main thread).
+    let props = !std::env::args().any(|a| a == "--no-props");
+    drop(walk(5, ChunkThreads::AsyncCompute, props));
+    let rayon = walk(seconds, ChunkThreads::Rayon, props);
+    let ours = walk(seconds, ChunkThreads::AsyncCompute, props);
     println!("streaming: {seconds} s at 60 fps, agent crossing one 16x16-tile chunk per second, default settings");
     println!("| figure | async compute pool only (default) | chunk tasks also on rayon |\n|---|---|---|");
     let row = |name: &str, f: &dyn Fn(&Walk) -> String| println!("| {name} | {} | {} |", f(&ours), f(&rayon));
@@ -173,6 +221,19 @@ fn main() {
     row("in the slowest frame: meshes inserted / tasks started / cancelled", &|w| {
         format!("{} / {} / {}", w.worst.0, w.worst.1, w.worst.2)
     });
+    for (k, (name, _)) in SETS.iter().enumerate() {
+        row(&format!("set {name}: p99 / max, and in the slowest frame"), &|w| {
+            let mut v: Vec<f64> = w.sets.iter().map(|s| s[k]).collect();
+            let slowest = v.get(w.worst_frame).copied().unwrap_or(f64::NAN);
+            v.sort_by(f64::total_cmp);
+            format!(
+                "{:.3} ms / {:.3} ms; {:.3} ms",
+                percentile(&v, 0.99),
+                v.last().copied().unwrap_or(f64::NAN),
+                slowest
+            )
+        });
+    }
     row("live chunks at the end / at most", &|w| format!("{} / {}", w.live, w.live_max));
     row("mesh memory per chunk", &|w| format!("{:.0} KiB", w.per_chunk / 1024.0));
     println!(

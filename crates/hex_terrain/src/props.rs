@@ -13,7 +13,8 @@
 //! A density set by hand on a tile ([`TileEdit::props`](crate::TileEdit::props)) replaces its
 //! biome's rule: none, a few or a wood of trees on land, rocks on a mountain, nothing at sea.
 //!
-//! Each prop stands on the meshed surface ([`surface_height`]) at a point drawn inside
+//! Each prop stands on the meshed surface (its chunk's vertices, interpolated like
+//! [`surface_height`]) at a point drawn inside
 //! its tile; points under the sea, in a river channel or on a lake are skipped. A chunk keeps at
 //! most `max_per_chunk` props: over the cap, those with the lowest hash priority stay, so the
 //! thinning is as deterministic as the placement.
@@ -103,6 +104,7 @@ pub fn props(pipeline: &Pipeline, chunk: &ChunkMesh, max_per_chunk: usize, densi
     let size = geometry.hex_size();
     let sea = f64::from(pipeline.sea_level());
     let seed = pipeline.config().seed;
+    let surface = ChunkSurface::new(chunk);
     for (info, offset) in chunk.tiles.iter().zip(chunk.rect.iter()) {
         if !info.in_map || info.lake.is_some() {
             continue;
@@ -131,7 +133,7 @@ pub fn props(pipeline: &Pipeline, chunk: &ChunkMesh, max_per_chunk: usize, densi
             if wet && is_wet_at(pipeline, tile, x, z) {
                 continue;
             }
-            let Some(y) = surface_height(pipeline, x, z) else { continue };
+            let Some(y) = surface.height(pipeline, origin, x, z) else { continue };
             if y <= sea + 0.02 * size {
                 continue;
             }
@@ -157,6 +159,47 @@ pub fn props(pipeline: &Pipeline, chunk: &ChunkMesh, max_per_chunk: usize, densi
         props.retain(|_| k.next().copied().unwrap_or(false));
     }
     props
+}
+
+/// A chunk's meshed surface: the height of each vertex by its position in the chunk, so a prop's
+/// height comes from the chunk's own buffers instead of the vertex chain run again for the
+/// corners of its lattice triangle.
+struct ChunkSurface {
+    /// `(position key, height)` of every vertex, by key.
+    vertices: Vec<(u64, f32)>,
+}
+
+impl ChunkSurface {
+    fn new(chunk: &ChunkMesh) -> Self {
+        let mut vertices: Vec<(u64, f32)> =
+            chunk.buffers.positions.iter().map(|&[x, y, z]| (Self::key(x, z), y)).collect();
+        vertices.sort_unstable_by_key(|v| v.0);
+        Self { vertices }
+    }
+
+    /// A vertex's key: its position's bits, as the mesh computes it (`x` and `z` of the lattice
+    /// point less the chunk's origin, in f32).
+    fn key(x: f32, z: f32) -> u64 {
+        (u64::from(x.to_bits()) << 32) | u64::from(z.to_bits())
+    }
+
+    /// The surface height at world `(x, z)` inside the chunk: the lattice triangle's corners'
+    /// heights from the buffers, interpolated (the vertex chain for a corner the chunk lacks).
+    fn height(&self, pipeline: &Pipeline, origin: Hex, x: f64, z: f64) -> Option<f64> {
+        let lattice = pipeline.geometry().lattice();
+        let (tri, w) = lattice.triangle_at(x, z);
+        let mut y = 0.0;
+        for (&p, w) in tri.iter().zip(w) {
+            let [lx, lz] = lattice.world(p - origin);
+            let key = Self::key(lx as f32, lz as f32);
+            let h = match self.vertices.binary_search_by_key(&key, |v| v.0) {
+                Ok(i) => self.vertices[i].1,
+                Err(_) => return surface_height(pipeline, x, z),
+            };
+            y += w * f64::from(h);
+        }
+        Some(y)
+    }
 }
 
 /// Whether river or lake water covers world `(x, z)` of a wet `tile` (the lattice triangle's
