@@ -134,7 +134,7 @@ pub struct Editor {
     terrain: Terrain,
     /// The config without edits (they are in `edits`).
     base: MapConfig,
-    /// The edits by offset coordinate.
+    /// The edits by `(row, column)` (see `row_major`), in the file's order.
     edits: BTreeMap<(i32, i32), TileEdit>,
     undo: Vec<Operation>,
     redo: Vec<Operation>,
@@ -166,7 +166,7 @@ impl Editor {
     #[must_use]
     pub fn from_terrain(terrain: Terrain) -> Self {
         let config = terrain.config();
-        let edits = config.edits.iter().map(|e| (e.at, *e)).collect();
+        let edits = config.edits.iter().map(|e| (row_major(e.at), *e)).collect();
         let base = MapConfig { edits: Vec::new(), ..config.clone() };
         Self { terrain, base, edits, undo: Vec::new(), redo: Vec::new(), timings: EditTimings::default() }
     }
@@ -223,7 +223,7 @@ impl Editor {
         for &tile in &tiles {
             let [col, row] = self.terrain.offset_of(tile);
             let at = (col, row);
-            let before = self.edits.get(&at).copied();
+            let before = self.edits.get(&row_major(at)).copied();
             let after = match (stroke.tool, lake) {
                 (Tool::FillLake, Some(level)) => self.dug(tile, level, before),
                 _ => self.edited(stroke.tool, tile, before),
@@ -266,8 +266,8 @@ impl Editor {
         let mut edits = self.edits.clone();
         for &(at, _, after) in &operation.tiles {
             match after {
-                Some(edit) => edits.insert(at, edit),
-                None => edits.remove(&at),
+                Some(edit) => edits.insert(row_major(at), edit),
+                None => edits.remove(&row_major(at)),
             };
         }
         let start = Instant::now();
@@ -400,11 +400,15 @@ impl Editor {
     }
 }
 
-/// The edits in the order the map file lists them.
+/// The edits in the order the map file lists them: row by row (the map's key order).
 fn sorted(edits: &BTreeMap<(i32, i32), TileEdit>) -> Vec<TileEdit> {
-    let mut out: Vec<TileEdit> = edits.values().copied().collect();
-    out.sort_by_key(|e| (e.at.1, e.at.0));
-    out
+    edits.values().copied().collect()
+}
+
+/// The key of the edit of the tile at `(column, row)`: `(row, column)`, so the map keeps the
+/// edits in the file's order.
+fn row_major((col, row): (i32, i32)) -> (i32, i32) {
+    (row, col)
 }
 
 /// Refuses a tool amount that is not finite or out of range.
