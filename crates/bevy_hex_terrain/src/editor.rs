@@ -153,7 +153,7 @@ impl HexEditor {
     }
 
     fn count(&mut self, editor: &Editor) {
-        self.counts = Counts { undo: editor.undo_len(), redo: editor.redo_len(), edits: editor.edits().len() };
+        self.counts = Counts { undo: editor.undo_len(), redo: editor.redo_len(), edits: editor.edited_tiles() };
     }
 }
 
@@ -200,10 +200,10 @@ fn run_edits(
     mut requests: MessageReader<HexMapEdit>,
     mut reports: EditReports,
 ) {
-    let name = handle.handle().and_then(|h| h.path()).map_or_else(|| "map".to_owned(), |p| format!("map {p}"));
     let state = &mut *state;
     if let Some(outcome) = state.running.as_mut().and_then(check_ready) {
         state.running = None;
+        let name = handle.handle().and_then(|h| h.path()).map_or_else(|| "map".to_owned(), |p| format!("map {p}"));
         finish(state, &mut map, outcome, &name, &mut reports);
     }
     state.queue.extend(requests.read().cloned());

@@ -161,8 +161,8 @@ impl Editor {
         Ok(Self::from_terrain(Terrain::new(config)?))
     }
 
-    /// Starts editing a compiled map (a heightmap it was compiled with stays), without compiling
-    /// it again: undo goes back to its edits, not past them.
+    /// Starts editing a compiled map (a heightmap it was compiled with stays: edits reuse its
+    /// height field), without compiling it again: undo goes back to its edits, not past them.
     #[must_use]
     pub fn from_terrain(terrain: Terrain) -> Self {
         let config = terrain.config();
@@ -188,6 +188,12 @@ impl Editor {
     #[must_use]
     pub fn config(&self) -> MapConfig {
         MapConfig { edits: self.edits(), ..self.base.clone() }
+    }
+
+    /// How many tiles are edited (the length of [`Editor::edits`], without building it).
+    #[must_use]
+    pub fn edited_tiles(&self) -> usize {
+        self.edits.len()
     }
 
     /// Operations that [`Editor::undo`] can take back.

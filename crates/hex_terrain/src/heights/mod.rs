@@ -108,12 +108,6 @@ impl HeightField {
         Self { edits: None, ..self.clone() }
     }
 
-    /// The decoded heightmap of an `Image` source (`None` for a `Noise` source).
-    #[must_use]
-    pub fn image(&self) -> Option<&Arc<HeightImage>> {
-        self.image.as_ref().map(|(image, _)| image)
-    }
-
     /// The edits applied, if any.
     #[must_use]
     pub fn edits(&self) -> Option<&Edits> {
