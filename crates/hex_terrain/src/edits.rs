@@ -105,29 +105,20 @@ impl Edits {
     #[must_use]
     #[inline]
     pub fn biome(&self, geometry: &Geometry, tile: Hex) -> Option<Biome> {
-        if self.biomes.is_empty() {
-            return None;
-        }
-        self.biomes.get(&geometry.wrap_tile(tile)).copied()
+        by_hand(&self.biomes, geometry, tile)
     }
 
     /// The river set by hand on a tile (any copy of it on a wrapping map), if any.
     #[must_use]
     pub fn river(&self, geometry: &Geometry, tile: Hex) -> Option<RiverEdit> {
-        if self.rivers.is_empty() {
-            return None;
-        }
-        self.rivers.get(&geometry.wrap_tile(tile)).copied()
+        by_hand(&self.rivers, geometry, tile)
     }
 
     /// The prop density set by hand on a tile (any copy of it on a wrapping map), if any.
     #[must_use]
     #[inline]
     pub fn props(&self, geometry: &Geometry, tile: Hex) -> Option<PropDensity> {
-        if self.props.is_empty() {
-            return None;
-        }
-        self.props.get(&geometry.wrap_tile(tile)).copied()
+        by_hand(&self.props, geometry, tile)
     }
 
     /// The edited raw height of lattice point `p`, whose generated raw height is `raw`.
@@ -155,6 +146,15 @@ impl Edits {
         }
         if edited { (raw + sum / tiles.len() as f32).clamp(0.0, 1.0) } else { raw }
     }
+}
+
+/// What was set by hand on a tile (any copy of it on a wrapping map); no lookup when nothing was.
+#[inline]
+fn by_hand<T: Copy>(set: &HashMap<Hex, T>, geometry: &Geometry, tile: Hex) -> Option<T> {
+    if set.is_empty() {
+        return None;
+    }
+    set.get(&geometry.wrap_tile(tile)).copied()
 }
 
 /// The raw heights whose centers classify as `kind`: `[0, sea)`, `[sea, mountain)`,

@@ -5,19 +5,11 @@
 //!
 //! `cargo bench -p hex_terrain_bench --bench edit`
 
-use std::time::{Duration, Instant};
+use std::time::Instant;
 
 use hex_terrain::{Brush, Editor, MapConfig, Stroke, TileKind, Tool};
+use hex_terrain_bench::{median, ms};
 use rayon::prelude::*;
-
-fn median(mut v: Vec<Duration>) -> Duration {
-    v.sort_unstable();
-    v[v.len() / 2]
-}
-
-fn ms(d: Duration) -> String {
-    format!("{:8.2} ms", d.as_secs_f64() * 1e3)
-}
 
 fn main() {
     let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../../assets/maps/civ6/huge.map.ron");

@@ -8,17 +8,9 @@
 use std::time::Duration;
 
 use hex_terrain::{MapConfig, Setup, SetupConfig, SetupTimings, Terrain};
+use hex_terrain_bench::{median, ms};
 
 const RUNS: usize = 21;
-
-fn median(mut v: Vec<Duration>) -> Duration {
-    v.sort_unstable();
-    v[v.len() / 2]
-}
-
-fn ms(d: Duration) -> String {
-    format!("{:8.2} ms", d.as_secs_f64() * 1e3)
-}
 
 fn main() {
     let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../../assets/maps/civ6/huge.map.ron");

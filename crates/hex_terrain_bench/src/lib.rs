@@ -128,3 +128,16 @@ pub fn hexx_columns(terrain: &Terrain) -> usize {
         })
         .sum()
 }
+
+/// The median of some timings (the upper one of an even count).
+#[must_use]
+pub fn median(mut v: Vec<std::time::Duration>) -> std::time::Duration {
+    v.sort_unstable();
+    v.get(v.len() / 2).copied().unwrap_or_default()
+}
+
+/// A timing in milliseconds, right-aligned for a table.
+#[must_use]
+pub fn ms(d: std::time::Duration) -> String {
+    format!("{:8.2} ms", d.as_secs_f64() * 1e3)
+}

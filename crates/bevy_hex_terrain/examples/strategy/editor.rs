@@ -12,7 +12,7 @@ use bevy_hex_terrain::hex_terrain::{Brush, PropDensity, Stroke, Tool};
 use bevy_hex_terrain::prelude::*;
 use bevy_hex_terrain::{HexMapHandle, HexMapSaved};
 
-use crate::Game;
+use crate::{DIGITS, Game};
 
 /// The tools of the panel, in key order (1-9).
 const TOOLS: [&str; 9] = ["Raise", "Lower", "Smooth", "Type", "Biome", "River", "Lake", "Props", "Erase"];
@@ -198,18 +198,7 @@ pub(crate) fn editor_input(
     let shift = keys.any_pressed([KeyCode::ShiftLeft, KeyCode::ShiftRight]);
     let mut pressed: Vec<EditorButton> =
         buttons.iter().filter(|(i, _)| **i == Interaction::Pressed).map(|(_, b)| *b).collect();
-    let digits = [
-        KeyCode::Digit1,
-        KeyCode::Digit2,
-        KeyCode::Digit3,
-        KeyCode::Digit4,
-        KeyCode::Digit5,
-        KeyCode::Digit6,
-        KeyCode::Digit7,
-        KeyCode::Digit8,
-        KeyCode::Digit9,
-    ];
-    for (i, key) in digits.into_iter().enumerate() {
+    for (i, key) in DIGITS.into_iter().enumerate() {
         if keys.just_pressed(key) {
             pressed.push(EditorButton::Tool(i));
         }

@@ -7,7 +7,7 @@ use bevy::prelude::*;
 use bevy_hex_terrain::prelude::*;
 
 use crate::panel::ReportPanel;
-use crate::{Game, PRESETS};
+use crate::{DIGITS, Game, PRESETS};
 
 /// A pointer event that carries the terrain hit it is about.
 pub(crate) trait TerrainHit {
@@ -89,16 +89,7 @@ pub(crate) fn keys(
         config.seed = config.seed.wrapping_mul(747_796_405).wrapping_add(2_891_336_453);
         load.write(LoadHexMap(config.into()));
     }
-    let digits = [
-        KeyCode::Digit1,
-        KeyCode::Digit2,
-        KeyCode::Digit3,
-        KeyCode::Digit4,
-        KeyCode::Digit5,
-        KeyCode::Digit6,
-        KeyCode::Digit7,
-    ];
-    for (i, key) in digits.into_iter().enumerate() {
+    for (i, key) in DIGITS.into_iter().take(PRESETS.len()).enumerate() {
         if keys.just_pressed(key) {
             load.write(LoadHexMap(PRESETS[i].into()));
         }

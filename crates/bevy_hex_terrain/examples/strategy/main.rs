@@ -60,6 +60,19 @@ pub(crate) const PRESETS: [&str; 7] = [
     "maps/strait.map.ron",
 ];
 
+/// The digit keys 1-9, in order: presets in the game, tools in the world builder.
+pub(crate) const DIGITS: [KeyCode; 9] = [
+    KeyCode::Digit1,
+    KeyCode::Digit2,
+    KeyCode::Digit3,
+    KeyCode::Digit4,
+    KeyCode::Digit5,
+    KeyCode::Digit6,
+    KeyCode::Digit7,
+    KeyCode::Digit8,
+    KeyCode::Digit9,
+];
+
 #[derive(Resource, Default)]
 pub(crate) struct Game {
     pub(crate) turn: u32,
