@@ -175,6 +175,13 @@ impl Pipeline {
         &self.heights
     }
 
+    /// The same stages with the height field's fBm on another kernel, or `None` if this CPU does
+    /// not run it. Every kernel gives the same bits, so nothing else is compiled again.
+    #[must_use]
+    pub fn with_kernel(&self, kernel: crate::heights::Kernel) -> Option<Self> {
+        Some(Self { heights: self.heights.with_kernel(kernel)?, ..self.clone() })
+    }
+
     /// Thresholds and type ranges in effect.
     #[must_use]
     pub fn thresholds(&self) -> &Thresholds {

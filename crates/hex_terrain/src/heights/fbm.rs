@@ -1,16 +1,57 @@
 //! Perlin fBm height source (thesis section 5.1, Algorithm 2).
 //!
 //! [`FastPerlin`] is [`noise::Perlin`]'s 2D noise (same permutation table, same gradients, same
-//! fade curve; a test holds it within 1e-6 of `noise` everywhere) computed in mixed precision
-//! and branch-free, with the gradient of each of the 256x256 lattice corners read from one flat
+//! fade curve; a test holds it bit-identical to `noise`) computed branch-free, with the
+//! gradients of each of the 256x256 lattice cells' four corners packed in one byte of one flat
 //! table, so that [`Fbm::sample_batch`] vectorises over several points.
+//!
+//! A batch runs on a [`Kernel`] picked once, at run time, from what the CPU has: the portable
+//! loops, or the AVX2 kernel (module `avx2`) on x86-64. Every kernel does the same IEEE operations in
+//! the same order (no fused multiply-add), so each gives the same bits for the same point.
 
 use noise::{NoiseFn, Perlin};
 
 use crate::config::NoiseConfig;
 
+#[cfg(target_arch = "x86_64")]
+mod avx2;
+
 const TABLE: usize = 256;
 const SCALE_2D: f64 = 2.0 / std::f64::consts::SQRT_2;
+/// Coordinates are clamped to `[-2^52, 2^52]` before they are split into a cell and an offset:
+/// beyond it an f64 has no fraction left, and inside it the cell fits an integer exactly on
+/// every kernel (an `i64` here, an f64 floor in the AVX2 kernel), so all kernels agree on every input,
+/// infinities and NaN included (NaN clamps to `2^52`).
+const LIMIT: f64 = 4_503_599_627_370_496.0;
+
+/// `a < b ? a : b`: x86's `minpd` (the second operand when either is NaN), written out so that
+/// the portable loops and the SIMD kernels treat NaN alike.
+#[inline(always)]
+fn min_x86(a: f64, b: f64) -> f64 {
+    if a < b { a } else { b }
+}
+
+/// `a > b ? a : b`: x86's `maxpd`.
+#[inline(always)]
+fn max_x86(a: f64, b: f64) -> f64 {
+    if a > b { a } else { b }
+}
+
+/// `v` clamped to `[0, 1]` (NaN gives 1).
+#[inline(always)]
+fn clamp01(v: f64) -> f64 {
+    max_x86(min_x86(v, 1.0), 0.0)
+}
+
+/// The noise cell of a coordinate and the offset in it. `noise` floors with "truncate, minus one
+/// at or below zero", so an exact integer at or below zero lands in the cell below it; so does
+/// this.
+#[inline(always)]
+fn split(v: f64) -> (i64, f64) {
+    let v = max_x86(min_x86(v, LIMIT), -LIMIT);
+    let c = if v <= 0.0 { v as i64 - 1 } else { v as i64 };
+    (c, clamp01(v - c as f64))
+}
 
 /// 2D Perlin noise equal to `noise::Perlin::new(seed)` on `[f64; 2]` points.
 #[derive(Clone)]
@@ -74,20 +115,11 @@ impl FastPerlin {
         self.lane(x, y)
     }
 
-    /// One evaluation. The cell and the offset inside it are found in f64, so coordinates far
-    /// from the origin keep their precision; the rest (gradients, fade curve, interpolation) runs
-    /// in f32 on values in `[-1, 2]`, whose rounding stays below 1e-6 of the result, and is
-    /// branch-free so that a loop over several points vectorises.
+    /// One evaluation, branch-free so that a loop over several points vectorises.
     #[inline(always)]
     fn lane(&self, x: f64, y: f64) -> f64 {
-        // `noise` floors with "truncate, minus one at or below zero", so an exact integer at or
-        // below zero lands in the cell below it; do the same. Beyond i64 the cast saturates (f64
-        // has no fraction left there): the subtraction wraps, as release builds always did, so
-        // the offset clamps to 0 and the noise stays finite, without a panic in debug builds.
-        let cx = if x <= 0.0 { (x as i64).wrapping_sub(1) } else { x as i64 };
-        let cy = if y <= 0.0 { (y as i64).wrapping_sub(1) } else { y as i64 };
-        let dx = (x - cx as f64).clamp(0.0, 1.0);
-        let dy = (y - cy as f64).clamp(0.0, 1.0);
+        let (cx, dx) = split(x);
+        let (cy, dy) = split(y);
         interpolate(self.cells[(((cx & 0xff) << 8) | (cy & 0xff)) as usize], dx, dy)
     }
 }
@@ -107,7 +139,7 @@ fn interpolate(cell: u8, dx: f64, dy: f64) -> f64 {
     let sx = quintic(dx);
     let sy = quintic(dy);
     let result = lerp(lerp(g00, g01, sy), lerp(g10, g11, sy), sx) * SCALE_2D;
-    result.clamp(-1.0, 1.0)
+    max_x86(min_x86(result, 1.0), -1.0)
 }
 
 /// Packed cell of column `cells - 1` (a period's last) whose east corners are column 0's west
@@ -128,14 +160,15 @@ impl FastPerlin {
     pub fn get_periodic(&self, x: f64, y: f64, cells: i64) -> f64 {
         let cells = cells.max(1);
         let xw = reduce(x, cells as f64, 1.0 / cells as f64);
-        let (cx, cy) = ((xw as i64).clamp(0, cells - 1), if y <= 0.0 { (y as i64).wrapping_sub(1) } else { y as i64 });
+        let (cx, dx) = periodic_split(xw, cells);
+        let (cy, dy) = split(y);
         let row = (cy & 0xff) as usize;
         let cell = if cx == cells - 1 {
             seam_cell(&self.cells, cells, row)
         } else {
             self.cells[((cx & 0xff) as usize) << 8 | row]
         };
-        interpolate(cell, (xw - cx as f64).clamp(0.0, 1.0), (y - cy as f64).clamp(0.0, 1.0))
+        interpolate(cell, dx, dy)
     }
 }
 
@@ -183,21 +216,31 @@ impl PeriodicCells {
     /// Octave `octave`'s noise at `xw` in `[0, cells]` (already reduced).
     #[inline(always)]
     fn lane(&self, octave: usize, cells: i64, xw: f64, y: f64) -> f64 {
-        let cx = (xw as i64).clamp(0, cells - 1);
-        let cy = if y <= 0.0 { (y as i64).wrapping_sub(1) } else { y as i64 };
+        let (cx, dx) = periodic_split(xw, cells);
+        let (cy, dy) = split(y);
         let row = (cy & 0xff) as usize;
         let planar = ((cx & 0xff) as usize) << 8 | row;
         let seam = TABLE * TABLE + (octave % PERIODIC_OCTAVES) * TABLE + row;
         let cell = self.table[if cx == cells - 1 { seam } else { planar }];
-        interpolate(cell, (xw - cx as f64).clamp(0.0, 1.0), (y - cy as f64).clamp(0.0, 1.0))
+        interpolate(cell, dx, dy)
     }
+}
+
+/// The cell of `xw` (in `[0, cells]` once reduced) clamped to the period's cells, and the offset
+/// in it.
+#[inline(always)]
+fn periodic_split(xw: f64, cells: i64) -> (i64, f64) {
+    // The cast saturates beyond i64 (an infinity) and gives 0 for NaN, as the SIMD kernels'
+    // clamped floor does.
+    let cx = (xw as i64).clamp(0, cells - 1);
+    (cx, clamp01(xw - cx as f64))
 }
 
 /// `x` modulo `period`, in `[0, period)` (up to rounding), without a library call.
 #[inline(always)]
 fn reduce(x: f64, period: f64, inv_period: f64) -> f64 {
-    let t = x * inv_period;
-    let q = if t < 0.0 { (t as i64).wrapping_sub(1) } else { t as i64 };
+    let t = max_x86(min_x86(x * inv_period, LIMIT), -LIMIT);
+    let q = if t < 0.0 { t as i64 - 1 } else { t as i64 };
     let xw = x - q as f64 * period;
     let xw = if xw >= period { xw - period } else { xw };
     if xw < 0.0 { xw + period } else { xw }
@@ -216,6 +259,51 @@ fn lerp(a: f64, b: f64, t: f64) -> f64 {
 /// Points sampled together by [`Fbm::sample_batch`].
 pub const LANES: usize = 8;
 
+/// The instruction set [`Fbm::sample_batch`] runs on. Every kernel gives the same bits for the
+/// same point (they do the same IEEE operations in the same order, with no fused multiply-add),
+/// so a map is the same whichever one a machine picks; only the speed differs.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[non_exhaustive]
+pub enum Kernel {
+    /// Plain Rust loops over the batch, which the compiler vectorises for the build's target
+    /// (SSE2 on a default x86-64 build): any CPU.
+    Portable,
+    /// x86-64 with AVX2: the batch as two vectors of four f64 lanes, interleaved.
+    Avx2,
+}
+
+impl Kernel {
+    /// Every kernel, supported here or not.
+    pub const ALL: [Kernel; 2] = [Kernel::Portable, Kernel::Avx2];
+
+    /// The fastest kernel this CPU runs (checked at run time, once per process).
+    #[must_use]
+    pub fn detect() -> Self {
+        if Kernel::Avx2.is_supported() { Kernel::Avx2 } else { Kernel::Portable }
+    }
+
+    /// Whether this CPU runs the kernel.
+    #[must_use]
+    pub fn is_supported(self) -> bool {
+        match self {
+            Kernel::Portable => true,
+            #[cfg(target_arch = "x86_64")]
+            Kernel::Avx2 => avx2::supported(),
+            #[cfg(not(target_arch = "x86_64"))]
+            Kernel::Avx2 => false,
+        }
+    }
+
+    /// The kernel's name, as benchmarks print it.
+    #[must_use]
+    pub fn name(self) -> &'static str {
+        match self {
+            Kernel::Portable => "portable",
+            Kernel::Avx2 => "avx2",
+        }
+    }
+}
+
 /// Fractal Brownian motion over one Perlin function, normalised to `[0, 1]` by a fixed mapping.
 ///
 /// Algorithm 2: `sum(amp_i * perlin(p * freq_i)) / sum(amp_i)`, with `amp` multiplied by the
@@ -231,6 +319,8 @@ pub struct Fbm {
     inv_scale: f64,
     /// On a wrapping map, the period and the cells the periodic noise reads.
     periods: Option<PeriodicCells>,
+    /// What [`Fbm::sample_batch`] runs on: only ever a kernel this CPU supports.
+    kernel: Kernel,
 }
 
 impl Fbm {
@@ -250,7 +340,13 @@ impl Fbm {
         }
         // The thesis' vertex step is a quarter of a hex radius (its 9x9 frame spans two hexes),
         // and its noise scale counts those steps.
-        Self { perlin: FastPerlin::new(seed), octaves, inv_scale: 4.0 / config.scale, periods: None }
+        Self {
+            perlin: FastPerlin::new(seed),
+            octaves,
+            inv_scale: 4.0 / config.scale,
+            periods: None,
+            kernel: Kernel::detect(),
+        }
     }
 
     /// fBm periodic in x with a period of `width` hex radii, for a wrapping map.
@@ -272,6 +368,23 @@ impl Fbm {
         }
         fbm.periods = Some(PeriodicCells::new(&fbm.perlin, cells_per_frequency, periods));
         fbm
+    }
+
+    /// The same fBm on another kernel, or `None` if this CPU does not run it. The output is the
+    /// same bits on every kernel: this is for tests and benchmarks that compare them.
+    #[must_use]
+    pub fn with_kernel(mut self, kernel: Kernel) -> Option<Self> {
+        kernel.is_supported().then(|| {
+            self.kernel = kernel;
+            self
+        })
+    }
+
+    /// The kernel [`Fbm::sample_batch`] runs on ([`Kernel::detect`] unless
+    /// [`Fbm::with_kernel`] chose another).
+    #[must_use]
+    pub fn kernel(&self) -> Kernel {
+        self.kernel
     }
 
     /// Per octave on a wrapping map, the period in noise cells; `None` for planar noise.
@@ -303,7 +416,11 @@ impl Fbm {
     /// vectorises. Every lane gets exactly the bits `sample` gives for its point.
     #[inline]
     pub fn sample_batch(&self, xs: &[f64; LANES], zs: &[f64; LANES], out: &mut [f64; LANES]) {
-        self.sample_lanes::<LANES>(xs, zs, out);
+        match self.kernel {
+            #[cfg(target_arch = "x86_64")]
+            Kernel::Avx2 => avx2::sample_batch(self, xs, zs, out),
+            _ => self.sample_lanes::<LANES>(xs, zs, out),
+        }
     }
 
     #[inline(always)]
@@ -334,7 +451,7 @@ impl Fbm {
             }
         }
         for l in 0..L {
-            out[l] = ((total[l] + 1.0) * 0.5).clamp(0.0, 1.0);
+            out[l] = clamp01((total[l] + 1.0) * 0.5);
         }
     }
 

@@ -9,7 +9,7 @@ pub mod fbm;
 pub mod image;
 pub mod shape;
 
-pub use fbm::{FastPerlin, Fbm};
+pub use fbm::{FastPerlin, Fbm, Kernel};
 pub use image::{HeightImage, ImageError, MAX_IMAGE_PIXELS, MAX_PNG_BYTES, remap_sea_level};
 pub use shape::ShapeBounds;
 
@@ -118,6 +118,14 @@ impl HeightField {
     #[must_use]
     pub fn fbm(&self) -> &Fbm {
         &self.fbm
+    }
+
+    /// The same field with its fBm on another kernel ([`Fbm::with_kernel`]), or `None` if this
+    /// CPU does not run it. The heights are the same bits.
+    #[must_use]
+    pub fn with_kernel(&self, kernel: Kernel) -> Option<Self> {
+        let fbm = self.fbm.clone().with_kernel(kernel)?;
+        Some(Self { fbm, ..self.clone() })
     }
 
     /// Normalised height after shaping and the edits, before manipulation, at a lattice point.

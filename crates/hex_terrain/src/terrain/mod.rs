@@ -75,6 +75,14 @@ impl Terrain {
         Ok(Self { pipeline: Arc::new(self.pipeline.with_edits(edits)?) })
     }
 
+    /// The same map with its fBm on another kernel ([`Kernel`](crate::heights::Kernel)), or
+    /// `None` if this CPU does not run it: for comparing kernels (every kernel gives the same
+    /// bits, so the map is the same).
+    #[must_use]
+    pub fn with_kernel(&self, kernel: crate::heights::Kernel) -> Option<Self> {
+        Some(Self { pipeline: Arc::new(self.pipeline.with_kernel(kernel)?) })
+    }
+
     /// The compiled stages, for code that composes them itself (a new stage takes the ones it
     /// needs as arguments).
     #[must_use]

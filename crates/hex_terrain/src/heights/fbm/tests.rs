@@ -71,3 +71,108 @@ fn coordinates_beyond_i64_give_finite_noise() {
         assert!(v.is_finite() && (-1.0..=1.0).contains(&v), "noise at ({x}, {y}) = {v}");
     }
 }
+
+/// Points that exercise every branch of the kernels: the flooring quirk at integers and zeros
+/// of both signs, cell borders, the period's edges, and coordinates past `±2^52`, infinite or
+/// NaN (the same bits are owed there too, whatever they are).
+fn awkward_points() -> Vec<[f64; 2]> {
+    let specials = [
+        0.0,
+        -0.0,
+        1.0,
+        -1.0,
+        0.5,
+        -0.5,
+        255.0,
+        256.0,
+        -256.0,
+        1e-300,
+        -1e-300,
+        4_503_599_627_370_496.0,
+        -4_503_599_627_370_497.0,
+        9.3e18,
+        -1e300,
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+        f64::NAN,
+    ];
+    let mut points = Vec::new();
+    for &x in &specials {
+        for &z in &specials {
+            points.push([x, z]);
+        }
+    }
+    points
+}
+
+/// The kernel's batches against the portable loops, bit for bit, at `points`.
+fn assert_kernel_bits(fbm: &Fbm, kernel: Kernel, points: &[[f64; 2]]) -> Result<(), String> {
+    let Some(fast) = fbm.clone().with_kernel(kernel) else { return Ok(()) };
+    let portable = fbm.clone().with_kernel(Kernel::Portable).expect("the portable kernel runs anywhere");
+    let (mut a, mut b) = (vec![0.0; points.len()], vec![0.0; points.len()]);
+    fast.sample_many(points, &mut a);
+    portable.sample_many(points, &mut b);
+    for ((p, a), b) in points.iter().zip(&a).zip(&b) {
+        if a.to_bits() != b.to_bits() {
+            return Err(format!("{} at {p:?}: {a} but portable {b}", kernel.name()));
+        }
+    }
+    Ok(())
+}
+
+#[test]
+fn every_kernel_gives_the_portable_bits_at_awkward_points() {
+    let points = awkward_points();
+    let config = NoiseConfig::default();
+    for kernel in Kernel::ALL {
+        for fbm in [Fbm::new(7, &config), Fbm::wrapped(7, &config, 84.0), Fbm::wrapped(7, &config, 0.5)] {
+            assert_kernel_bits(&fbm, kernel, &points).unwrap();
+        }
+    }
+    // The portable loops are `noise::Perlin` bit for bit, so every kernel is.
+    let fbm = Fbm::new(1000, &config);
+    let reference = Perlin::new(1000);
+    for p in points.iter().filter(|p| p[0].abs() < 1e6 && p[1].abs() < 1e6) {
+        assert_eq!(fbm.sample(p[0], p[1]).to_bits(), fbm.sample_reference(&reference, p[0], p[1]).to_bits(), "{p:?}");
+    }
+}
+
+#[test]
+fn detection_picks_a_supported_kernel() {
+    let kernel = Kernel::detect();
+    assert!(kernel.is_supported());
+    assert!(Kernel::Portable.is_supported());
+    assert_eq!(Fbm::new(1, &NoiseConfig::default()).kernel(), kernel);
+    #[cfg(target_arch = "x86_64")]
+    assert_eq!(Kernel::Avx2.is_supported(), std::arch::is_x86_feature_detected!("avx2"));
+}
+
+proptest::proptest! {
+    #![proptest_config(proptest::prelude::ProptestConfig::with_cases(64))]
+
+    /// Random configs (octaves, persistence, lacunarity, scale), seeds, periods and points: every
+    /// kernel this CPU runs gives the portable bits, planar and wrapping.
+    #[test]
+    fn every_kernel_gives_the_portable_bits(
+        seed in proptest::prelude::any::<u32>(),
+        octaves in 1..=crate::config::MAX_OCTAVES,
+        persistence in 0.05..1.0_f64,
+        lacunarity in 1.0..4.0_f64,
+        scale in 0.5..500.0_f64,
+        width in proptest::option::of(1.0..5000.0_f64),
+        origin in (-1e6..1e6_f64, -1e6..1e6_f64),
+        spread in 0.01..1e4_f64,
+        offsets in proptest::collection::vec((-1.0..1.0_f64, -1.0..1.0_f64), 1..40),
+    ) {
+        let config = NoiseConfig { octaves, persistence, lacunarity, scale };
+        let fbm = match width {
+            Some(w) => Fbm::wrapped(seed, &config, w),
+            None => Fbm::new(seed, &config),
+        };
+        let points: Vec<[f64; 2]> =
+            offsets.iter().map(|&(dx, dz)| [origin.0 + dx * spread, origin.1 + dz * spread]).collect();
+        for kernel in Kernel::ALL {
+            proptest::prop_assert!(assert_kernel_bits(&fbm, kernel, &points).is_ok(), "{:?}", assert_kernel_bits(&fbm, kernel, &points));
+        }
+    }
+}
