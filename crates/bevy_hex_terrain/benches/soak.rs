@@ -73,6 +73,15 @@ struct Sample {
 }
 
 fn sample(app: &mut App, reloads: u32) -> Sample {
+    // Props are spawned, and dropped chunks' children despawned, a budget a frame: let them
+    // settle (the agent stands still meanwhile) so every prop can be matched with its chunk.
+    for _ in 0..600 {
+        let pending = app.world().resource::<bevy_hex_terrain::HexPropStats>().pending;
+        if pending == 0 && app.world().resource::<ChunkStreamer>().retiring_chunks() == 0 {
+            break;
+        }
+        app.update();
+    }
     let tasks = app.world_mut().query::<&ChunkTask>().iter(app.world()).count();
     let water = app.world_mut().query::<&HexWater>().iter(app.world()).count();
     let props = app.world_mut().query::<&HexProp>().iter(app.world()).count();

@@ -4,7 +4,9 @@
 //! the terrain systems per frame (wall time, split by the thread's schedstat into time on a core
 //! and time waiting for one), live chunks and memory per chunk; with chunk generation on
 //! Bevy's async compute pool alone (the default) and, in the same process, with each chunk task
-//! also spreading over rayon's pool.
+//! also spreading over rayon's pool. Fog of war is drawn; every frame the hovered tile moves, and
+//! every half second the tiles around the agent are revealed, as a player's cursor and scouts
+//! would.
 //!
 //! ```text
 //! cargo bench -p bevy_hex_terrain --bench streaming [-- --seconds 60] [--no-props]
@@ -13,8 +15,8 @@
 use std::time::{Duration, Instant};
 
 use bevy::prelude::*;
-use bevy_hex_terrain::ChunkThreads;
 use bevy_hex_terrain::prelude::*;
+use bevy_hex_terrain::{ChunkThreads, HexPropStats};
 
 #[derive(Resource, Default)]
 struct FrameTimes {
@@ -80,6 +82,11 @@ struct Walk {
     sets: Vec<[f64; SETS.len()]>,
     /// The slowest frame's index.
     worst_frame: usize,
+    /// Props whose fog was looked at, per frame.
+    fog_checks: Vec<f64>,
+    /// Prop entities at the end, and props waiting to be spawned at most.
+    props_live: usize,
+    pending_max: usize,
 }
 
 /// Walks an agent east for `seconds` with chunk generation running on `threads`.
@@ -92,6 +99,8 @@ fn walk(seconds: u32, threads: ChunkThreads, props: bool) -> Walk {
         .add_plugins(HexTerrainPlugins { map: config.into(), settings }.build().disable::<HexTerrainMaterialPlugin>())
         .init_resource::<FrameTimes>()
         .insert_resource(PropSettings { enabled: props, ..PropSettings::default() })
+        // Fog of war drawn, so props on unexplored tiles are hidden and fog writes are checked.
+        .insert_resource(TileStateStyle { fog_of_war: true, ..TileStateStyle::default() })
         // Brackets around the terrain sets: the time between them is the terrain systems' share
         // of the frame.
         .add_systems(
@@ -152,13 +161,18 @@ fn walk(seconds: u32, threads: ChunkThreads, props: bool) -> Walk {
         (s.meshes_inserted(), s.tasks_started(), s.tasks_cancelled())
     };
     let (mut worst, mut worst_time, mut worst_frame) = ((0, 0, 0), 0.0, 0);
+    let (mut fog_checks, mut pending_max) = (Vec::new(), 0);
     for f in 0..frames {
         let start = Instant::now();
         let x = f as f32 / 60.0 * chunk_width;
         app.world_mut().entity_mut(agent).insert(Transform::from_xyz(x, 0.0, 0.0));
+        cursor_and_scouts(app.world_mut(), x, f);
         let before = counts(&app);
+        let checks = app.world().resource::<HexPropStats>().fog_checks;
         app.update();
         let after = counts(&app);
+        fog_checks.push((app.world().resource::<HexPropStats>().fog_checks - checks) as f64);
+        pending_max = pending_max.max(app.world().resource::<HexPropStats>().pending);
         if let Some(&t) = app.world().resource::<FrameTimes>().samples.last()
             && t > worst_time
         {
@@ -186,7 +200,43 @@ fn walk(seconds: u32, threads: ChunkThreads, props: bool) -> Walk {
     let live = app.world().resource::<ChunkStreamer>().live_chunks();
     let bytes: Vec<usize> = app.world_mut().query::<&HexChunk>().iter(app.world()).map(|c| c.mesh_bytes).collect();
     let per_chunk = bytes.iter().sum::<usize>() as f64 / bytes.len().max(1) as f64;
-    Walk { started, latencies, times, cpu, waiting, live, live_max, per_chunk, worst, sets, worst_frame }
+    let props_live = app.world_mut().query::<&HexProp>().iter(app.world()).count();
+    fog_checks.sort_by(f64::total_cmp);
+    Walk {
+        started,
+        latencies,
+        times,
+        cpu,
+        waiting,
+        live,
+        live_max,
+        per_chunk,
+        worst,
+        sets,
+        worst_frame,
+        fog_checks,
+        props_live,
+        pending_max,
+    }
+}
+
+/// What a player does every frame: the cursor moves the hovered tile (a tile-state write each
+/// frame), and every half second the scouts around the agent reveal the tiles within 10 of it
+/// (a fog change).
+fn cursor_and_scouts(world: &mut World, x: f32, frame: u32) {
+    let terrain = world.resource::<HexMap>().terrain().clone();
+    let mut states = world.resource_mut::<TileStates>();
+    if let Some(tile) = terrain.tile_at(f64::from(x) + f64::from(frame % 9), 3.0) {
+        states.replace_highlight(Highlight::Hovered, [tile]);
+    }
+    if frame.is_multiple_of(30)
+        && let Some(center) = terrain.tile_at(f64::from(x), 0.0)
+    {
+        for tile in center.range(10) {
+            // Tiles outside the state's window are refused; the scouts reveal what it holds.
+            let _ = states.set_visibility(tile, FogState::Visible);
+        }
+    }
 }
 
 fn main() {
@@ -236,6 +286,15 @@ fn main() {
     }
     row("live chunks at the end / at most", &|w| format!("{} / {}", w.live, w.live_max));
     row("mesh memory per chunk", &|w| format!("{:.0} KiB", w.per_chunk / 1024.0));
+    row("props live at the end / waiting to spawn at most", &|w| format!("{} / {}", w.props_live, w.pending_max));
+    row("props whose fog was checked per frame, p50 / p99 / max (a hover every frame)", &|w| {
+        format!(
+            "{:.0} / {:.0} / {:.0}",
+            percentile(&w.fog_checks, 0.5),
+            percentile(&w.fog_checks, 0.99),
+            w.fog_checks.last().copied().unwrap_or(f64::NAN)
+        )
+    });
     println!(
         "p99 latency ratio (async compute only / with rayon): {:.2}",
         percentile(&ours.latencies, 0.99) / percentile(&rayon.latencies, 0.99)

@@ -11,9 +11,9 @@
 //! | --- | --- | --- | --- |
 //! | [`Map`](HexTerrainSystems::Map) | [`HexMapPlugin`] | loads `*.map.ron` assets (hot reload, [`LoadHexMap`]) into the [`HexMap`] resource; a bad file is a [`HexMapError`] and the old map stays | [`MapSource`] |
 //! | [`Map`](HexTerrainSystems::Map) | [`HexEditorPlugin`] | the world builder: [`HexMapEdit`] strokes, undo, redo and save run on the async compute pool; each edit makes a [`HexMap`] generation in which only its chunks are rebuilt ([`HexMapEdited`]) | |
-//! | [`Stream`](HexTerrainSystems::Stream) | [`HexStreamingPlugin`] | keeps [`HexChunk`]s around every [`HexTerrainAgent`], each built on the async compute pool from a snapshot of the settings below | [`HexStreamingSettings`] |
+//! | [`Stream`](HexTerrainSystems::Stream) | [`HexStreamingPlugin`] | keeps [`HexChunk`]s around every [`HexTerrainAgent`], each built on the async compute pool from a snapshot of the settings below; a dropped chunk is hidden at once and its children despawned a budget a frame | [`HexStreamingSettings`] |
 //! | [`Insert`](HexTerrainSystems::Insert) | [`HexStreamingPlugin`] | inserts finished meshes and their [`ChunkContent`] under a per-frame budget, sends [`ChunkSpawned`], [`TerrainReady`] | |
-//! | [`Children`](HexTerrainSystems::Children) | [`HexWaterPlugin`], [`HexPropsPlugin`] | spawn each chunk's [`HexWater`] surface and [`HexProp`]s from its content | [`WaterSettings`], [`PropSettings`] |
+//! | [`Children`](HexTerrainSystems::Children) | [`HexWaterPlugin`], [`HexPropsPlugin`] | spawn each chunk's [`HexWater`] surface and [`HexProp`]s (a budget a frame, nearest chunks first) from its content | [`WaterSettings`], [`PropSettings`] |
 //! | [`Tiles`](HexTerrainSystems::Tiles) | [`HexTileStatePlugin`] | keeps the [`TileStates`] window (fog of war, owners, lens, highlights) on the map; packs changed rows in `PostUpdate` | [`TileStateSettings`], [`TileStateStyle`] |
 //! | [`Render`](HexTerrainSystems::Render) | `HexTerrainMaterialPlugin`, `HexLightPlugin` (`render`) | the terrain and water material and its tile state texture; the sun, fog and ambient light of `HexTerrainCamera`s | `TerrainMaterialSettings`, `TerrainLighting` |
 //!
@@ -95,7 +95,7 @@ pub use crate::picking::{HexPick, HexPickingCamera, HexPickingPlugin, HexPicking
 pub use crate::props::{HexProp, HexPropStats, HexPropsPlugin, PropAssets, PropSettings};
 pub use crate::streaming::{
     ChunkContent, ChunkDespawned, ChunkSpawned, ChunkStreamer, ChunkTask, ChunkThreads, HexChunk, HexStreamingPlugin,
-    HexStreamingSettings, HexTerrainAgent, HexTerrainStats, HexWorldPosition, TerrainReady,
+    HexStreamingSettings, HexTerrainAgent, HexTerrainStats, HexWorldPosition, MAX_RETIRED_CHUNKS, TerrainReady,
 };
 pub use crate::tiles::{
     FogState, HexTileStatePlugin, HexTileStateSystems, Highlight, MAX_OWNERS, SaveError, Texel, TileStateError,
@@ -134,7 +134,8 @@ pub mod prelude {
 pub enum HexTerrainSystems {
     /// Applies a loaded, hot-reloaded or switched map to [`HexMap`].
     Map,
-    /// Decides the wanted chunks around agents, starts tasks, despawns far chunks.
+    /// Decides the wanted chunks around agents, starts tasks, retires far chunks and despawns
+    /// their children a budget a frame.
     Stream,
     /// Inserts finished chunk meshes and their [`ChunkContent`] under the per-frame budget.
     Insert,

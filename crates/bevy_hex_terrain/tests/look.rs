@@ -57,7 +57,7 @@ fn props_are_the_cores_capped_placement_and_the_same_every_time() {
     let mut app = app_with_props(wooded(), 8, props_settings);
     spawn_agent(&mut app, Vec3::ZERO);
     run_until(&mut app, "terrain ready", ready);
-    app.update();
+    run_until(&mut app, "props settled", props_settled);
     let placed = props(&mut app);
     assert!(placed.len() > 20, "the wooded map grows props: {}", placed.len());
     let terrain = Terrain::new(wooded()).unwrap();
@@ -82,7 +82,7 @@ fn props_are_the_cores_capped_placement_and_the_same_every_time() {
     let mut again = app_with_props(wooded(), 8, props_settings);
     spawn_agent(&mut again, Vec3::ZERO);
     run_until(&mut again, "terrain ready", ready);
-    again.update();
+    run_until(&mut again, "props settled", props_settled);
     assert_eq!(placed, props(&mut again));
     // Water surfaces are children of chunks with sea below them.
     let waters = count::<HexWater>(&mut app);
@@ -112,14 +112,15 @@ fn walking_keeps_props_and_water_with_their_chunks() {
         }
     }
     run_until(&mut app, "terrain ready at the end", ready);
-    app.update();
+    run_until(&mut app, "props settled at the end", props_settled);
     let live = app.world().resource::<ChunkStreamer>().live_chunks();
     // radius + prefetch + hysteresis = 3: at most 49 chunks, each with a water surface and at
-    // most `cap` props.
+    // most `cap` props, and at most `MAX_RETIRED_CHUNKS` dropped ones whose children are going.
     assert!(live <= 49);
-    assert!(max_entities <= 49 * (2 + cap) + 16, "entities peaked at {max_entities}");
+    let bound = (49 + bevy_hex_terrain::MAX_RETIRED_CHUNKS) * (2 + cap) + 16;
+    assert!(max_entities <= bound, "entities peaked at {max_entities}");
     let (lo, hi) = (settled.iter().min().unwrap(), settled.iter().max().unwrap());
-    assert!(*hi <= 49 * (2 + cap) + 16 && *lo > 0, "settled entity counts {settled:?}");
+    assert!(*hi <= bound && *lo > 0, "settled entity counts {settled:?}");
     // Every prop and water surface belongs to a live chunk, and every live chunk shows all of
     // its content: despawned chunks took theirs with them.
     let expected: usize = app.world_mut().query::<&ChunkContent>().iter(app.world()).map(|c| c.props.len()).sum();
@@ -129,6 +130,58 @@ fn walking_keeps_props_and_water_with_their_chunks() {
     // Meshes: a terrain and at most a water mesh a chunk (props share a few meshes, headless none).
     let meshes = app.world().resource::<Assets<Mesh>>().len();
     assert!(meshes <= 2 * 49, "{meshes} meshes alive: despawned chunks must free theirs");
+}
+
+/// Props come and go a budget a frame: walking over a wooded world, no frame spawns more prop
+/// entities than `PropSettings::max_spawns_per_frame`, nor despawns more of a dropped chunk's
+/// children than `HexStreamingSettings::max_despawns_per_frame` (a chunk with at most a few
+/// children goes at once); a dropped chunk is no chunk any more from the frame it is dropped,
+/// and once settled every loaded chunk shows all its props and no dropped chunk's are left.
+#[test]
+fn props_come_and_go_a_budget_a_frame() {
+    let mut config = unbounded((8, 8));
+    config.noise.scale = 40.0;
+    let budget = 40;
+    let plugins = HexTerrainPlugins {
+        map: config.into(),
+        settings: HexStreamingSettings { max_despawns_per_frame: budget, ..settings(1) },
+    };
+    let mut app = app_with(plugins, None);
+    app.insert_resource(PropSettings { max_spawns_per_frame: budget, max_per_chunk: 120, ..default() });
+    let agent = spawn_agent(&mut app, Vec3::ZERO);
+    let mut live: std::collections::HashSet<Entity> = std::collections::HashSet::new();
+    let (mut most_spawned, mut most_gone, mut retired_seen) = (0, 0, 0);
+    // A chunk (8 flat columns, 12 units) every 48 frames: a dropped column's children drain
+    // before the next, so no dropped chunk has to go whole.
+    for step in 0..480 {
+        let at = Vec3::new(step as f32 * 0.25, 0.0, 0.0);
+        app.world_mut().entity_mut(agent).insert(Transform::from_translation(at));
+        app.update();
+        let world = app.world_mut();
+        let now: std::collections::HashSet<Entity> =
+            world.query_filtered::<Entity, With<HexProp>>().iter(world).collect();
+        // Chunks dropped whole this frame (a few children each) take theirs outside the budget.
+        let dropped = world.resource::<Messages<ChunkDespawned>>().iter_current_update_messages().count();
+        let spawned = now.difference(&live).count();
+        let gone = live.difference(&now).count();
+        assert!(spawned <= budget, "frame {step}: {spawned} props spawned, over the budget of {budget}");
+        assert!(gone <= budget + 8 * dropped, "frame {step}: {gone} props despawned ({dropped} chunks dropped)");
+        most_spawned = most_spawned.max(spawned);
+        most_gone = most_gone.max(gone);
+        let retiring = world.resource::<ChunkStreamer>().retiring_chunks();
+        assert!(retiring < bevy_hex_terrain::MAX_RETIRED_CHUNKS, "frame {step}: {retiring} chunks retiring");
+        retired_seen = retired_seen.max(retiring);
+        // The chunk entities are exactly the streamer's: a dropped chunk is no chunk any more.
+        let chunks = world.query::<&HexChunk>().iter(world).count();
+        assert_eq!(chunks, world.resource::<ChunkStreamer>().live_chunks(), "frame {step}");
+        live = now;
+    }
+    assert!(most_spawned == budget && most_gone >= budget, "the walk hits both budgets: {most_spawned}, {most_gone}");
+    assert!(retired_seen > 0, "dropped chunks retire");
+    run_until(&mut app, "terrain ready", ready);
+    run_until(&mut app, "props settled", props_settled);
+    let expected: usize = app.world_mut().query::<&ChunkContent>().iter(app.world()).map(|c| c.props.len()).sum();
+    assert_eq!(props(&mut app).len(), expected, "every loaded chunk shows all its props, no dropped chunk's remain");
 }
 
 /// Chunk tasks build what the water and props plugins ask for, from their settings when the
@@ -186,7 +239,7 @@ fn props_and_water_switch_off_and_on_at_run_time() {
     let mut app = app_with_props(wooded(), 8, PropSettings::default());
     spawn_agent(&mut app, Vec3::ZERO);
     run_until(&mut app, "terrain ready", ready);
-    app.update();
+    run_until(&mut app, "props settled", props_settled);
     let (props_on, water_on) = (count::<HexProp>(&mut app), count::<HexWater>(&mut app));
     assert!(props_on > 0 && water_on > 0);
     app.world_mut().resource_mut::<PropSettings>().enabled = false;
@@ -197,7 +250,7 @@ fn props_and_water_switch_off_and_on_at_run_time() {
     app.world_mut().resource_mut::<PropSettings>().enabled = true;
     app.world_mut().resource_mut::<WaterSettings>().enabled = true;
     app.update();
-    app.update();
+    run_until(&mut app, "props settled", props_settled);
     assert_eq!((count::<HexProp>(&mut app), count::<HexWater>(&mut app)), (props_on, water_on));
 }
 
@@ -207,7 +260,7 @@ fn a_map_switch_replaces_the_props_with_the_new_maps() {
     let mut app = app_with_props(wooded(), 8, props_settings);
     spawn_agent(&mut app, Vec3::ZERO);
     run_until(&mut app, "terrain ready", ready);
-    app.update();
+    run_until(&mut app, "props settled", props_settled);
     let before = props(&mut app);
     let other = MapConfig { seed: 4242, ..wooded() };
     app.world_mut().write_message(LoadHexMap(other.clone().into()));
@@ -215,7 +268,7 @@ fn a_map_switch_replaces_the_props_with_the_new_maps() {
     run_until(&mut app, "the new map ready", |app| {
         app.world().resource::<HexMap>().generation() > generation && ready(app)
     });
-    app.update();
+    run_until(&mut app, "props settled", props_settled);
     let after = props(&mut app);
     assert_ne!(before, after, "another seed grows other props");
     let terrain = Terrain::new(other).unwrap();
@@ -240,6 +293,7 @@ fn props_hide_under_fog_and_a_write_looks_only_at_its_tiles_props() {
         let streamer = app.world().resource::<ChunkStreamer>();
         streamer.wanted().next().is_some() && streamer.wanted().all(|(c, _)| streamer.is_chunk_loaded(c))
     });
+    run_until(&mut app, "props settled", props_settled);
     app.update();
     let shown = |app: &mut App| -> Vec<(Hex, bool)> {
         app.world_mut()
@@ -293,6 +347,7 @@ fn the_setups_resources_and_wonders_stand_on_their_tiles_and_hide_under_fog() {
         let streamer = app.world().resource::<ChunkStreamer>();
         streamer.wanted().next().is_some() && streamer.wanted().all(|(c, _)| streamer.is_chunk_loaded(c))
     });
+    run_until(&mut app, "props settled", props_settled);
     app.update();
     let terrain = Terrain::new(config).unwrap();
     let setup = terrain.setup().unwrap();

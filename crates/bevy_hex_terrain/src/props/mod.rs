@@ -1,5 +1,7 @@
 //! Props on the terrain: each chunk's trees, rocks and reeds ([`hex_terrain::Terrain::props`],
-//! placed in the chunk's task) become child entities of the chunk, so they despawn with it.
+//! placed in the chunk's task) become child entities of the chunk, spawned a budget a frame
+//! (nearest chunks first) and despawned with it (a budget a frame too, see
+//! [`HexStreamingSettings::max_despawns_per_frame`](crate::HexStreamingSettings::max_despawns_per_frame)).
 //! With Bevy's renderer, every prop of a kind and variant shares one mesh and all share one
 //! vertex-colored material: Bevy batches them into instanced draws (a handful of draws for
 //! thousands of props). Headless, the entities exist without meshes (games and tests can read
@@ -13,6 +15,8 @@ mod fog;
 #[cfg(feature = "render")]
 mod meshes;
 mod settings;
+
+use std::collections::VecDeque;
 
 use bevy::prelude::*;
 #[cfg(feature = "render")]
@@ -128,25 +132,67 @@ fn spawn_props(commands: &mut Commands, chunk: Entity, props: &[Prop], size: f32
     });
 }
 
+/// What [`sync_props`] remembers between frames: whether props were shown, and the chunks whose
+/// props wait to be spawned, with the index of the next.
+#[derive(Default)]
+struct Spawning {
+    was_enabled: Option<bool>,
+    queue: VecDeque<(Entity, usize)>,
+}
+
 /// Keeps each chunk's prop children in step with its [`ChunkContent`](crate::ChunkContent) and the settings: a chunk
 /// whose content changed (a new mesh, a hot reload) gets its props anew; turning props off or on
-/// despawns or spawns them everywhere.
+/// despawns or spawns them everywhere. Spawning is queued, chunk by chunk, the chunks nearest an
+/// agent first, at most [`PropSettings::max_spawns_per_frame`] props a frame.
 fn sync_props(
     mut commands: Commands,
-    settings: Res<PropSettings>,
-    map: Res<crate::HexMap>,
-    assets: Option<Res<PropAssets>>,
+    (settings, map, assets): (Res<PropSettings>, Res<crate::HexMap>, Option<Res<PropAssets>>),
+    (streamer, coords): (Option<Res<crate::ChunkStreamer>>, Query<&crate::HexChunk>),
     chunks: ContentQuery,
     props: Query<(), With<HexProp>>,
-    mut was_enabled: Local<Option<bool>>,
+    mut spawning: Local<Spawning>,
+    mut stats: ResMut<HexPropStats>,
 ) {
+    let Spawning { was_enabled, queue } = &mut *spawning;
     let enabled = settings.enabled;
     let size = map.config().layout.hex_size;
-    for (chunk, content) in stale_chunks(&mut commands, &chunks, &props, enabled, &mut was_enabled) {
+    for (chunk, _) in stale_chunks(&mut commands, &chunks, &props, enabled, was_enabled) {
+        queue.retain(|&(e, _)| e != chunk);
         if enabled {
-            spawn_props(&mut commands, chunk, &content.props, size, assets.as_deref());
+            queue.push_back((chunk, 0));
         }
     }
+    if !enabled {
+        queue.clear();
+    }
+    // The chunks nearest an agent first (those in view), the order they came in among equals.
+    if let Some(streamer) = &streamer
+        && queue.len() > 1
+    {
+        let distance =
+            |e: Entity| coords.get(e).ok().and_then(|c| streamer.wanted_distance(c.coord)).unwrap_or(u32::MAX);
+        queue.make_contiguous().sort_by_key(|&(e, _)| distance(e));
+    }
+    let mut budget = settings.max_spawns_per_frame.max(1);
+    while budget > 0 {
+        let Some(&mut (chunk, ref mut next)) = queue.front_mut() else { break };
+        // A chunk dropped (or retired) before its turn has nothing to show.
+        let all = chunks.get(chunk).map_or(&[][..], |(_, content, _)| &content.into_inner().props[..]);
+        let rest = &all[(*next).min(all.len())..];
+        let take = rest.len().min(budget);
+        if take > 0 {
+            spawn_props(&mut commands, chunk, &rest[..take], size, assets.as_deref());
+        }
+        budget -= take;
+        *next += take;
+        if take == rest.len() {
+            queue.pop_front();
+        }
+    }
+    stats.pending = queue
+        .iter()
+        .map(|&(chunk, next)| chunks.get(chunk).map_or(0, |(_, c, _)| c.props.len().saturating_sub(next)))
+        .sum();
 }
 
 /// Figures of the props.
@@ -157,4 +203,7 @@ pub struct HexPropStats {
     /// it and those on tiles whose state was written in it (every prop when the fog is switched
     /// or another map is loaded).
     pub fog_checks: u64,
+    /// Props of loaded chunks waiting for their turn to be spawned (see
+    /// [`PropSettings::max_spawns_per_frame`]).
+    pub pending: usize,
 }

@@ -16,10 +16,14 @@ pub struct PropSettings {
     /// Share of each tile's props that stand, in `[0, 1]`; applies to chunks built after a
     /// change.
     pub density: f32,
+    /// Prop entities spawned per frame at most: a new chunk's props appear over a few frames
+    /// (the chunks nearest an agent first) rather than all in the frame its mesh does, so no frame
+    /// spends milliseconds spawning hundreds of them.
+    pub max_spawns_per_frame: usize,
 }
 
 impl Default for PropSettings {
     fn default() -> Self {
-        Self { enabled: true, max_per_chunk: 384, density: 1.0 }
+        Self { enabled: true, max_per_chunk: 384, density: 1.0, max_spawns_per_frame: 64 }
     }
 }

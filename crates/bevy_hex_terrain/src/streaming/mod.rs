@@ -5,6 +5,7 @@
 pub(crate) mod content;
 mod insert;
 mod planner;
+mod retire;
 mod state;
 mod stats;
 mod tasks;
@@ -15,6 +16,7 @@ use hex_terrain::ChunkCoord;
 
 pub use content::ChunkContent;
 pub(crate) use content::ContentRequest;
+pub use retire::MAX_RETIRED_CHUNKS;
 pub use stats::HexTerrainStats;
 pub use tasks::ChunkTask;
 
@@ -70,6 +72,10 @@ pub struct HexStreamingSettings {
     pub max_tasks_in_flight: usize,
     /// Where a chunk's generation runs.
     pub chunk_threads: ChunkThreads,
+    /// Children of dropped chunks (props, water surfaces) despawned per frame at most: a
+    /// dropped chunk is hidden and forgotten at once, and despawned with its last child. At most
+    /// [`MAX_RETIRED_CHUNKS`] wait; beyond them the oldest goes whole.
+    pub max_despawns_per_frame: usize,
 }
 
 impl Default for HexStreamingSettings {
@@ -81,6 +87,7 @@ impl Default for HexStreamingSettings {
             max_inserts_per_frame: 4,
             max_tasks_in_flight: 8,
             chunk_threads: ChunkThreads::default(),
+            max_despawns_per_frame: 64,
         }
     }
 }
@@ -144,6 +151,8 @@ pub struct ChunkStreamer {
     current_generation: u64,
     /// Whether every wanted chunk was current at the end of the last frame.
     settled: bool,
+    /// Dropped chunks whose children are being despawned.
+    retiring: retire::Retiring,
 }
 
 impl ChunkStreamer {
@@ -164,6 +173,12 @@ impl ChunkStreamer {
         self.wanted.iter().map(|(&c, &d)| (c, d))
     }
 
+    /// The distance (in chunks) of a wanted chunk to the nearest agent, `None` if not wanted.
+    #[must_use]
+    pub fn wanted_distance(&self, chunk: ChunkCoord) -> Option<u32> {
+        self.wanted.get(&chunk).copied()
+    }
+
     /// Whether a chunk's mesh is in the world.
     #[must_use]
     pub fn is_chunk_loaded(&self, chunk: ChunkCoord) -> bool {
@@ -173,6 +188,13 @@ impl ChunkStreamer {
     /// The chunks whose meshes are in the world.
     pub fn loaded_chunks(&self) -> impl Iterator<Item = ChunkCoord> + '_ {
         self.loaded.iter().copied()
+    }
+
+    /// Dropped chunks, hidden, whose children are still being despawned (see
+    /// [`HexStreamingSettings::max_despawns_per_frame`]).
+    #[must_use]
+    pub fn retiring_chunks(&self) -> usize {
+        self.retiring.len()
     }
 }
 
@@ -210,7 +232,7 @@ impl Plugin for HexStreamingPlugin {
             .add_systems(
                 Update,
                 (
-                    tasks::stream.in_set(HexTerrainSystems::Stream),
+                    (tasks::stream, retire::reap).chain().in_set(HexTerrainSystems::Stream),
                     insert::insert_ready.in_set(HexTerrainSystems::Insert),
                 ),
             );

@@ -88,7 +88,8 @@ pub(crate) fn stream(
         if chunks.get(e).is_ok_and(|(_, task, ..)| task.is_some()) {
             stats.cancelled();
         }
-        commands.entity(e).despawn();
+        let children = chunks.get(e).ok().and_then(|(.., children)| children).map_or(0, |c| c.len());
+        super::retire::retire(&mut commands, &mut streamer, e, children);
         streamer.loaded.remove(&c);
         streamer.current.remove(&c);
         despawned.write(ChunkDespawned { coord: c });
@@ -168,7 +169,13 @@ enum Twin {
 type ChunkQuery<'w, 's> = Query<
     'w,
     's,
-    (&'static HexChunk, Option<&'static ChunkTask>, Option<&'static Mesh3d>, Option<&'static ChunkContent>),
+    (
+        &'static HexChunk,
+        Option<&'static ChunkTask>,
+        Option<&'static Mesh3d>,
+        Option<&'static ChunkContent>,
+        Option<&'static Children>,
+    ),
 >;
 
 /// What `c`'s twins offer for the current map.
@@ -183,7 +190,7 @@ fn twin(map: &HexMap, streamer: &ChunkStreamer, chunks: &ChunkQuery, c: ChunkCoo
         if other == c || terrain.wrap_chunk(other).0 != canonical {
             continue;
         }
-        let Ok((chunk, task, mesh, content)) = chunks.get(e) else { continue };
+        let Ok((chunk, task, mesh, content, _)) = chunks.get(e) else { continue };
         if let (true, Some(mesh)) = (map.is_current(c, chunk.generation), mesh) {
             return Twin::Showing(mesh.clone(), content.cloned().unwrap_or_default(), chunk.vertices, chunk.mesh_bytes);
         }

@@ -109,8 +109,8 @@ fn follow_map(map: Res<HexMap>, mut states: ResMut<TileStates>, mut shown: Local
     states.set_map(map.terrain().geometry(), keep);
 }
 
-/// Places the window: the whole map when it fits, else around the loaded chunks, moving only
-/// when they leave it.
+/// Places the window: the whole map when it fits, else around the loaded chunks, following their
+/// center in steps of a sixteenth of the window (and at once when they leave it).
 fn follow_chunks(
     map: Res<HexMap>,
     settings: Res<TileStateSettings>,
@@ -154,7 +154,12 @@ fn follow_chunks(
             let w = IRect::from_corners(o, o + size.as_ivec2());
             w.contains(area.min) && w.contains(area.max - IVec2::ONE)
         };
-        if current != size || !inside(origin) {
+        // The window follows the loaded area's center in steps of a sixteenth of its size, so a
+        // move rewrites a strip of that width (about half a millisecond for a 512-tile window),
+        // not half the window at once when the area reaches its edge.
+        let step = (size.as_ivec2() / 16).max(IVec2::ONE);
+        let drift = (area.center() - (origin + size.as_ivec2() / 2)).abs();
+        if current != size || !inside(origin) || drift.x >= step.x || drift.y >= step.y {
             want = area.center() - size.as_ivec2() / 2;
             if let Some(b) = bounds {
                 want = want.clamp(b.min, b.max - size.as_ivec2());

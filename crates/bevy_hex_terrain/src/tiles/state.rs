@@ -400,14 +400,12 @@ impl TileStates {
         for set in &mut self.highlighted {
             set.retain(|&h| bounds.is_none_or(|b| b.contains(geometry.offset_of(h))));
         }
-        let tiles = &self.tiles;
-        self.window.refill_all(|oc| tiles.get(oc));
+        self.window.refill_all(&self.tiles);
     }
 
     /// Places the window (a new size makes a new texture).
     pub(crate) fn refill_window(&mut self, origin: IVec2, size: UVec2) {
-        let tiles = &self.tiles;
-        self.window.reposition(origin, size, |oc| tiles.get(oc));
+        self.window.reposition(origin, size, &self.tiles);
     }
 
     /// Whether the texture has changes to upload.

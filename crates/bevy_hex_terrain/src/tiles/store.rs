@@ -6,7 +6,7 @@ use bevy::platform::collections::HashMap;
 use bevy::prelude::*;
 use hex_terrain::TileRect;
 
-use super::window::Texel;
+use super::window::{Texel, TexelSource};
 
 /// Bounded maps up to this many tiles (32 MiB of texels) are stored densely.
 const DENSE_TILES: usize = 1 << 22;
@@ -88,5 +88,26 @@ impl TileStore {
             }
             Self::Sparse(map) => map.iter().map(|(oc, t)| (*oc, *t)).collect(),
         }
+    }
+}
+
+impl TexelSource for TileStore {
+    fn texel(&self, oc: IVec2) -> Texel {
+        self.get(oc)
+    }
+
+    fn each_stored_in(&self, rect: IRect, f: &mut dyn FnMut(IVec2, Texel)) -> bool {
+        let Self::Sparse(map) = self else { return false };
+        // Walking the map's entries costs a few nanoseconds each, a lookup of every tile of
+        // `rect` tens: walk them unless the map holds far more tiles than `rect`.
+        if map.len() >= 16 * rect.width() as usize * rect.height() as usize {
+            return false;
+        }
+        for (&oc, &texel) in map {
+            if oc.x >= rect.min.x && oc.x < rect.max.x && oc.y >= rect.min.y && oc.y < rect.max.y {
+                f(oc, texel);
+            }
+        }
+        true
     }
 }

@@ -8,6 +8,16 @@ use bevy::prelude::*;
 /// `[fog | highlights << 2, owner, overlay r | g << 8, overlay b | a << 8]`.
 pub type Texel = [u16; 4];
 
+/// Where the window's texels come from: the store of every tile's state.
+pub(crate) trait TexelSource {
+    /// The texel of a tile (`[0; 4]` when nothing is stored for it).
+    fn texel(&self, oc: IVec2) -> Texel;
+    /// Calls `f` for every tile inside `rect` (max exclusive) that has a stored texel, and
+    /// returns true, when the source can list them for less than a lookup of every tile of
+    /// `rect` costs; else calls nothing and returns false.
+    fn each_stored_in(&self, rect: IRect, f: &mut dyn FnMut(IVec2, Texel)) -> bool;
+}
+
 /// Bytes of one texel.
 pub(crate) const TEXEL_BYTES: usize = std::mem::size_of::<Texel>();
 
@@ -125,13 +135,13 @@ impl TexelWindow {
 
     /// Moves the window to `origin` with `size`, refilling the texels of the tiles that enter it
     /// from `state` (a resize makes a new texture, filled whole).
-    pub fn reposition(&mut self, origin: IVec2, size: UVec2, state: impl Fn(IVec2) -> Texel) {
+    pub fn reposition(&mut self, origin: IVec2, size: UVec2, state: &impl TexelSource) {
         let size = size.max(UVec2::ONE);
         if size != self.size {
             let texture = self.texture + 1;
             *self = Self::new(origin, size);
             self.texture = texture;
-            self.refill(IRect::from_corners(origin, origin + size.as_ivec2()), &state);
+            self.refill(IRect::from_corners(origin, origin + size.as_ivec2()), state);
             return;
         }
         if origin == self.origin {
@@ -141,7 +151,7 @@ impl TexelWindow {
         self.origin = origin;
         let new = IRect::from_corners(origin, origin + size.as_ivec2());
         if old.intersect(new).is_empty() {
-            self.refill(new, &state);
+            self.refill(new, state);
             return;
         }
         // The entering strips: columns beside the old window, then rows above or below it.
@@ -156,28 +166,46 @@ impl TexelWindow {
         } else {
             IRect::new(inner.min.x, old.max.y, inner.max.x, new.max.y)
         };
-        self.refill(cols, &state);
-        self.refill(rows, &state);
+        self.refill(cols, state);
+        self.refill(rows, state);
     }
 
     /// Refills every texel from `state` (the tiles' offset coordinates changed meaning).
-    pub fn refill_all(&mut self, state: impl Fn(IVec2) -> Texel) {
+    pub fn refill_all(&mut self, state: &impl TexelSource) {
         let rect = IRect::from_corners(self.origin, self.origin + self.size.as_ivec2());
-        self.refill(rect, &state);
+        self.refill(rect, state);
     }
 
-    fn refill(&mut self, rect: IRect, state: &impl Fn(IVec2) -> Texel) {
+    /// Rewrites the texels of `rect` (max exclusive) from `state`, row by row (the texel column
+    /// wraps at most once a row, so it is stepped, not divided, per tile). A source that can
+    /// list its stored tiles more cheaply is asked for those: the rest are cleared.
+    fn refill(&mut self, rect: IRect, state: &impl TexelSource) {
+        if rect.is_empty() {
+            return;
+        }
+        let area = rect.width() as usize * rect.height() as usize;
+        let mut listed = Vec::new();
+        let few = state.each_stored_in(rect, &mut |oc, texel| listed.push((oc, texel)));
+        let width = self.size.x;
         for y in rect.min.y..rect.max.y {
+            let ty = y.rem_euclid(self.size.y as i32) as u32;
+            let mut tx = rect.min.x.rem_euclid(width as i32) as u32;
             for x in rect.min.x..rect.max.x {
-                let oc = IVec2::new(x, y);
-                let t = self.texel_of(oc);
-                let i = (t.y * self.size.x + t.x) as usize;
-                let texel = state(oc);
+                let texel = if few { [0; 4] } else { state.texel(IVec2::new(x, y)) };
+                let i = (ty * width + tx) as usize;
                 if self.texels[i] != texel {
                     self.texels[i] = texel;
-                    self.mark(t);
+                    self.mark(UVec2::new(tx, ty));
+                }
+                tx += 1;
+                if tx == width {
+                    tx = 0;
                 }
             }
+        }
+        debug_assert!(listed.len() <= area);
+        for (oc, texel) in listed {
+            self.write(oc, texel);
         }
     }
 

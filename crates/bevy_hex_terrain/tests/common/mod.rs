@@ -73,6 +73,13 @@ pub fn ready(app: &mut App) -> bool {
         && app.world_mut().query::<&bevy_hex_terrain::ChunkTask>().iter(app.world()).next().is_none()
 }
 
+/// Whether every loaded chunk shows all of its props and no dropped chunk's children remain
+/// (props are spawned, and dropped chunks' children despawned, a budget a frame).
+pub fn props_settled(app: &mut App) -> bool {
+    app.world().get_resource::<bevy_hex_terrain::HexPropStats>().is_none_or(|s| s.pending == 0)
+        && app.world().resource::<ChunkStreamer>().retiring_chunks() == 0
+}
+
 pub fn chunk_coords(app: &mut App) -> HashSet<ChunkCoord> {
     app.world_mut().query::<&HexChunk>().iter(app.world()).map(|c| c.coord).collect()
 }
