@@ -95,7 +95,7 @@ pub use heights::{HeightField, HeightImage, ImageError};
 pub use hexx;
 pub use kind::Thresholds;
 pub use lattice::Lattice;
-pub use mesh::{ChunkMesh, Diagnostics, GenerateOptions, MeshBuffers, Threads};
+pub use mesh::{ChunkMesh, Detail, Diagnostics, GenerateOptions, MeshBuffers, Threads};
 pub use metrics::Sharpness;
 pub use pipeline::Pipeline;
 pub use props::{Marker, MarkerKind, Prop};

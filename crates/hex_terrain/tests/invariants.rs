@@ -5,8 +5,8 @@ use std::collections::HashMap;
 
 use hex_terrain::hexx::Hex;
 use hex_terrain::{
-    ChunkCoord, ChunkMesh, GenerateOptions, ManipulationConfig, MapConfig, MapSize, NoiseConfig, Orientation, PullMode,
-    ReliefConfig, RiverConfig, Shape, Terrain, TerrainConfig, Threads, TileKind, TileRect,
+    ChunkCoord, ChunkMesh, Detail, GenerateOptions, ManipulationConfig, MapConfig, MapSize, NoiseConfig, Orientation,
+    PullMode, ReliefConfig, RiverConfig, Shape, Terrain, TerrainConfig, Threads, TileKind, TileRect,
 };
 use proptest::prelude::*;
 
@@ -141,6 +141,44 @@ fn world_xz(m: &ChunkMesh, i: usize) -> [f64; 2] {
     [m.origin[0] + f64::from(p[0]), m.origin[2] + f64::from(p[2])]
 }
 
+/// The edges of a mesh that belong to one triangle only (its outline), as lattice pairs.
+fn outline(m: &ChunkMesh) -> std::collections::BTreeSet<((i32, i32), (i32, i32))> {
+    let l = lattice(m);
+    let mut count: HashMap<(Hex, Hex), usize> = HashMap::new();
+    for t in m.buffers.indices.chunks_exact(3) {
+        for k in 0..3 {
+            let (a, b) = (l[t[k] as usize], l[t[(k + 1) % 3] as usize]);
+            let key = if (a.x, a.y) < (b.x, b.y) { (a, b) } else { (b, a) };
+            *count.entry(key).or_default() += 1;
+        }
+    }
+    count.into_iter().filter(|&(_, c)| c == 1).map(|((a, b), _)| ((a.x, a.y), (b.x, b.y))).collect()
+}
+
+/// The area of a mesh's faces seen from above.
+fn ground(m: &ChunkMesh) -> f64 {
+    m.buffers
+        .indices
+        .chunks_exact(3)
+        .map(|t| {
+            let [a, b, c] = [t[0], t[1], t[2]].map(|i| m.buffers.positions[i as usize].map(f64::from));
+            ((b[2] - a[2]) * (c[0] - a[0]) - (b[0] - a[0]) * (c[2] - a[2])).abs() / 2.0
+        })
+        .sum()
+}
+
+/// For each face of a mesh, whether it is wound counter-clockwise seen from above.
+fn windings(m: &ChunkMesh) -> Vec<bool> {
+    m.buffers
+        .indices
+        .chunks_exact(3)
+        .map(|t| {
+            let [a, b, c] = [t[0], t[1], t[2]].map(|i| m.buffers.positions[i as usize].map(f64::from));
+            (b[2] - a[2]) * (c[0] - a[0]) - (b[0] - a[0]) * (c[2] - a[2]) > 0.0
+        })
+        .collect()
+}
+
 /// Distance between two UVs modulo whole texture repeats.
 fn uv_gap(a: [f32; 2], b: [f32; 2]) -> f64 {
     let d = |x: f32, y: f32| {
@@ -209,6 +247,42 @@ proptest! {
 
     /// Invariants 4-6: every non-border vertex lies in its tile type's range; counts follow the
     /// formula; nothing is NaN or infinite.
+    /// Level of detail: a coarse chunk is vertices of the full chunk (every attribute the same
+    /// bits, so invariants 1-4 carry over), with the full chunk's outline edge for edge (so a
+    /// coarse chunk meets a full or coarse neighbor without a crack), covering the same ground
+    /// (no hole, no overlap: the same area seen from above, every face up), a fan of six
+    /// triangles a tile inside.
+    #[test]
+    fn coarse_chunks_keep_the_full_vertices_and_outline(config in config()) {
+        let t = Terrain::new(config).unwrap();
+        let rect = area(&t);
+        for chunk in chunks_of(&t, rect).into_iter().take(4) {
+            let Some(rect_c) = t.chunk_rect(chunk) else { continue };
+            let full = t.generate_detail(rect_c, GenerateOptions::DIAGNOSTICS, Detail::Full);
+            let coarse = t.generate_detail(rect_c, GenerateOptions::DIAGNOSTICS, Detail::Coarse);
+            prop_assert_eq!(&coarse.tiles, &full.tiles);
+            let full_index = index(&full);
+            for (i, p) in lattice(&coarse).iter().enumerate() {
+                let f = full_index[p];
+                prop_assert_eq!(vertex_bits(&coarse, i), vertex_bits(&full, f), "vertex {:?}", p);
+                prop_assert_eq!(coarse.buffers.positions[i].map(f32::to_bits), full.buffers.positions[f].map(f32::to_bits));
+                prop_assert_eq!(coarse.buffers.uvs[i].map(f32::to_bits), full.buffers.uvs[f].map(f32::to_bits));
+            }
+            prop_assert_eq!(outline(&coarse), outline(&full), "chunk {:?}: the outline differs", chunk);
+            let (area_full, area_coarse) = (ground(&full), ground(&coarse));
+            prop_assert!((area_full - area_coarse).abs() <= 1e-4 * area_full.max(1e-6), "area {} vs {}", area_coarse, area_full);
+            // Every face wound as the full mesh's are (up).
+            let up = windings(&full);
+            prop_assert!(up.iter().all(|&w| w == up[0]));
+            prop_assert!(windings(&coarse).iter().all(|&w| w == up[0]), "a coarse face points down");
+            let tiles = full.tiles.len();
+            let n = t.lattice().subdivisions() as usize;
+            prop_assert_eq!(full.buffers.triangle_count(), 6 * n * n * tiles);
+            // Six a tile, plus n - 1 more for each tile edge on the outline.
+            prop_assert_eq!(coarse.buffers.triangle_count(), 6 * tiles + (n - 1) * outline(&full).len() / n);
+        }
+    }
+
     #[test]
     fn tiles_are_recognisable_counts_match_and_buffers_are_finite(config in config()) {
         let t = Terrain::new(config.clone()).unwrap();

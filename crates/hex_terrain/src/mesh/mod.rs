@@ -7,13 +7,17 @@
 //! | `job.rs` | one generation as a job whose passes are methods: tile kinds, owned vertices, halo, indices |
 //! | `normals.rs` | the normals pass |
 //! | `parallel.rs` | the parallel policy: batches, pool entry, disjoint output slices |
+//! | `coarse.rs` | level of detail: a generated mesh as a fan a tile, its outline kept whole ([`Detail`]) |
 
+pub(crate) mod coarse;
 mod grid;
 mod job;
 mod normals;
 mod parallel;
 
 use hexx::Hex;
+
+pub use coarse::Detail;
 
 use crate::chunk::TileRect;
 use crate::pipeline::Pipeline;

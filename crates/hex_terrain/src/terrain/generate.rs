@@ -3,7 +3,7 @@
 
 use super::Terrain;
 use crate::chunk::{ChunkCoord, TileRect};
-use crate::mesh::{self, ChunkMesh, GenerateOptions};
+use crate::mesh::{self, ChunkMesh, Detail, GenerateOptions};
 use crate::props::{self, Prop};
 
 impl Terrain {
@@ -17,6 +17,29 @@ impl Terrain {
         let mut mesh = self.generate(rect, GenerateOptions::CURRENT_THREAD);
         mesh.origin = self.chunk_origin(chunk)?;
         Some(mesh)
+    }
+
+    /// [`Terrain::generate_chunk`] at a level of detail: [`Detail::Full`] is `generate_chunk`.
+    #[must_use]
+    pub fn generate_chunk_detail(&self, chunk: ChunkCoord, detail: Detail) -> Option<ChunkMesh> {
+        let rect = self.chunk_rect(chunk)?;
+        let mut mesh = self.generate_detail(rect, GenerateOptions::CURRENT_THREAD, detail);
+        mesh.origin = self.chunk_origin(chunk)?;
+        Some(mesh)
+    }
+
+    /// [`Terrain::generate`] at a level of detail: [`Detail::Full`] is `generate`; a
+    /// [`Detail::Coarse`] mesh is the full mesh's vertices (the same bits) drawn as a fan a
+    /// tile, its outline kept whole, so it meets a neighbor of either level without a crack.
+    #[must_use]
+    pub fn generate_detail(&self, rect: TileRect, options: GenerateOptions, detail: Detail) -> ChunkMesh {
+        match detail {
+            Detail::Full => self.generate(rect, options),
+            Detail::Coarse => {
+                let full = self.generate(rect, GenerateOptions { diagnostics: true, ..options });
+                mesh::coarse::coarsen(self.geometry(), &full, options.diagnostics)
+            }
+        }
     }
 
     /// Generates a bounded map in one mesh on all cores, `None` for an unbounded world.

@@ -1,0 +1,104 @@
+//! Level of detail: a chunk's mesh with fewer triangles for chunks seen from afar.
+//!
+//! [`Detail::Coarse`] draws each tile as a fan of triangles from its center to its border: inside
+//! the chunk a tile edge is one segment between two corners (six triangles a tile instead of
+//! `6n²`), while on the chunk's outline every lattice point of the full mesh stays. So:
+//!
+//! - every vertex of the coarse mesh is a vertex of the full mesh, with the same bits in every
+//!   attribute: whatever holds of a vertex (its tile type's height range, the seams, chunked =
+//!   whole) holds of the coarse mesh;
+//! - the coarse mesh's outline is the full mesh's, point for point, so two neighboring chunks
+//!   meet without a crack whatever level each is drawn at (no skirt needed);
+//! - the tile is still one colored hexagon: its center at its type's height, its corners on the
+//!   thresholds, the distance to the center 0 in the middle and 1 on the edges, where the
+//!   shader draws outlines, borders and fog from the world position as at full detail.
+
+use std::collections::HashMap;
+
+use hexx::Hex;
+
+use super::{ChunkMesh, Diagnostics, MeshBuffers};
+use crate::geometry::Geometry;
+
+/// How finely a chunk is meshed ([`Terrain::generate_detail`](crate::Terrain::generate_detail)).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+#[cfg_attr(feature = "bevy_reflect", derive(bevy_reflect::Reflect))]
+pub enum Detail {
+    /// Every lattice point: `6n²` triangles a tile.
+    #[default]
+    Full,
+    /// A fan of six triangles a tile from its center to its corners, the chunk's outline kept
+    /// whole (see the module docs): for chunks far from every camera.
+    Coarse,
+}
+
+/// The coarse mesh of `full`, which must have been generated with diagnostics (its vertices'
+/// lattice coordinates); the coarse mesh keeps diagnostics only if `keep_diagnostics`.
+pub(crate) fn coarsen(geometry: &Geometry, full: &ChunkMesh, keep_diagnostics: bool) -> ChunkMesh {
+    let Some(diagnostics) = &full.diagnostics else { return full.clone() };
+    let lattice = geometry.lattice();
+    let n = lattice.subdivisions() as usize;
+    let index: HashMap<Hex, u32> = diagnostics.lattice.iter().enumerate().map(|(i, &p)| (p, i as u32)).collect();
+    // The border of a tile, as offsets from its center in ring order: a corner every `n` points.
+    let border: Vec<Hex> = Hex::ZERO.ring(n as u32).collect();
+    let buffers = &full.buffers;
+    // Which way the full mesh winds its faces (up seen from above), to wind the fans alike.
+    let up = |t: [u32; 3]| {
+        let [a, b, c] = t.map(|i| buffers.positions[i as usize]);
+        (b[2] - a[2]) * (c[0] - a[0]) - (b[0] - a[0]) * (c[2] - a[2]) > 0.0
+    };
+    let full_up = buffers.indices.get(..3).is_none_or(|t| up([t[0], t[1], t[2]]));
+    let mut triangles: Vec<[u32; 3]> = Vec::with_capacity(full.tiles.len() * 8);
+    let mut polygon: Vec<u32> = Vec::with_capacity(border.len());
+    for info in &full.tiles {
+        let center = lattice.tile_center(info.hex);
+        let Some(&middle) = index.get(&center) else { continue };
+        polygon.clear();
+        for edge in 0..6 {
+            // The tile across this edge, from a point inside the edge (n >= 2, so there is one).
+            let inner = center + border[edge * n + 1];
+            let across = lattice.tiles_at(inner).tiles().iter().copied().find(|&t| t != info.hex);
+            let inside = across.is_some_and(|t| full.rect.contains(geometry.offset_of(t)));
+            let step = if inside { n } else { 1 };
+            for k in (0..n).step_by(step) {
+                if let Some(&v) = index.get(&(center + border[edge * n + k])) {
+                    polygon.push(v);
+                }
+            }
+        }
+        for k in 0..polygon.len() {
+            let t = [middle, polygon[k], polygon[(k + 1) % polygon.len()]];
+            triangles.push(if up(t) == full_up { t } else { [t[0], t[2], t[1]] });
+        }
+    }
+    // The vertices the fans use, in first-use order.
+    let mut remap = vec![u32::MAX; buffers.positions.len()];
+    let mut kept: Vec<usize> = Vec::new();
+    let mut indices = Vec::with_capacity(triangles.len() * 3);
+    for t in &triangles {
+        for &v in t {
+            let slot = &mut remap[v as usize];
+            if *slot == u32::MAX {
+                *slot = kept.len() as u32;
+                kept.push(v as usize);
+            }
+            indices.push(*slot);
+        }
+    }
+    let buffers = MeshBuffers {
+        positions: kept.iter().map(|&i| buffers.positions[i]).collect(),
+        normals: kept.iter().map(|&i| buffers.normals[i]).collect(),
+        uvs: kept.iter().map(|&i| buffers.uvs[i]).collect(),
+        tile_kinds: kept.iter().map(|&i| buffers.tile_kinds[i]).collect(),
+        center_distances: kept.iter().map(|&i| buffers.center_distances[i]).collect(),
+        colors: if buffers.colors.is_empty() { Vec::new() } else { kept.iter().map(|&i| buffers.colors[i]).collect() },
+        indices,
+    };
+    let diagnostics = keep_diagnostics.then(|| Diagnostics {
+        lattice: kept.iter().map(|&i| diagnostics.lattice[i]).collect(),
+        raw_heights: kept.iter().map(|&i| diagnostics.raw_heights[i]).collect(),
+        moved: kept.iter().map(|&i| diagnostics.moved[i]).collect(),
+        rings: kept.iter().map(|&i| diagnostics.rings[i]).collect(),
+    });
+    ChunkMesh { rect: full.rect, origin: full.origin, buffers, tiles: full.tiles.clone(), diagnostics }
+}
