@@ -62,7 +62,9 @@ fn scenario_water() {
     let deep = *seas.iter().max_by(|a, b| depth(**a).total_cmp(&depth(**b))).unwrap();
     let coast = *seas.iter().filter(|h| coastal(h)).min_by(|a, b| depth(**a).total_cmp(&depth(**b))).unwrap();
     assert!(depth(deep) > 2.0 * depth(coast), "the test map has deep and shallow sea");
-    let (d, c) = (at(center_of(&terrain, deep)), at(center_of(&terrain, coast)));
+    // Patches, not single pixels: the sun glints on the moving waves.
+    let patch_at = |p: Vec3| patch(&img, pixel(center, size, p));
+    let (d, c) = (patch_at(center_of(&terrain, deep)), patch_at(center_of(&terrain, coast)));
     assert!(brightness(d) < 0.8 * brightness(c), "deep sea {d:?} is darker than the coast {c:?}");
     assert!(c[0] > d[0] + 0.04, "the sandy floor shows through the shallows: coast {c:?}, deep {d:?}");
     // The shore: halfway between a coastal sea tile's center and its land neighbor's, the

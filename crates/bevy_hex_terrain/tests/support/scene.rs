@@ -311,6 +311,19 @@ pub fn rgb(img: &image::RgbImage, (x, y): (u32, u32)) -> [f32; 3] {
     img.get_pixel(x.min(WIDTH - 1), y.min(HEIGHT - 1)).0.map(|c| f32::from(c) / 255.0)
 }
 
+/// The median color, by brightness, of the 7x7 pixels around a pixel: what a patch of a surface
+/// shows, without the glint of one moving wave in the sun (the water's normals follow the time,
+/// so a single pixel's highlight depends on the frame the picture was taken in).
+#[allow(dead_code, reason = "not every test binary that includes the scene support reads patches")]
+pub fn patch(img: &image::RgbImage, (x, y): (u32, u32)) -> [f32; 3] {
+    let mut colors: Vec<[f32; 3]> = (-3..=3_i32)
+        .flat_map(|dy| (-3..=3_i32).map(move |dx| (dx, dy)))
+        .map(|(dx, dy)| rgb(img, (x.saturating_add_signed(dx), y.saturating_add_signed(dy))))
+        .collect();
+    colors.sort_by(|a, b| brightness(*a).total_cmp(&brightness(*b)));
+    colors[colors.len() / 2]
+}
+
 pub fn brightness(c: [f32; 3]) -> f32 {
     (c[0] + c[1] + c[2]) / 3.0
 }
