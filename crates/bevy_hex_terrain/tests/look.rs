@@ -281,8 +281,9 @@ fn a_map_switch_replaces_the_props_with_the_new_maps() {
 }
 
 /// Under fog of war, props on unexplored tiles are hidden and show once their tile is explored;
-/// a frame looks only at the props of the tiles written in it (a hover's highlight touches a
-/// tile's props, not the map's), and switching the fog off shows them all.
+/// a frame looks only at the props of the tiles whose fog changed in it (a hover's highlight
+/// touches none, a fog change a tile's props, not the map's), and switching the fog off shows
+/// them all.
 #[cfg(feature = "render")]
 #[test]
 fn props_hide_under_fog_and_a_write_looks_only_at_its_tiles_props() {
@@ -316,12 +317,22 @@ fn props_hide_under_fog_and_a_write_looks_only_at_its_tiles_props() {
     for (t, s) in shown(&mut app) {
         assert_eq!(s, t == tile, "prop on {t:?}");
     }
-    // A highlight on that tile: only its props are looked at.
-    let before = app.world().resource::<bevy_hex_terrain::HexPropStats>().fog_checks;
+    // A highlight on that tile leaves its fog as it was: no prop is looked at.
+    let checks = |app: &App| app.world().resource::<bevy_hex_terrain::HexPropStats>().fog_checks;
+    let before = checks(&app);
     app.world_mut().resource_mut::<TileStates>().set_highlight(tile, Highlight::Hovered, true).unwrap();
     app.update();
-    let checked = app.world().resource::<bevy_hex_terrain::HexPropStats>().fog_checks - before;
-    assert_eq!(checked, n as u64, "the hovered tile's {n} props, not the map's {}", all.len());
+    assert_eq!(checks(&app), before, "a hover looks at no prop");
+    // A fog change on it: its props only, not the map's.
+    app.world_mut().resource_mut::<TileStates>().set_visibility(tile, FogState::Visible).unwrap();
+    app.update();
+    app.world_mut().resource_mut::<TileStates>().set_visibility(tile, FogState::Unexplored).unwrap();
+    let before = checks(&app);
+    app.update();
+    assert_eq!(checks(&app) - before, n as u64, "the tile's {n} props, not the map's {}", all.len());
+    for (t, s) in shown(&mut app) {
+        assert!(!s, "prop on {t:?} hidden again");
+    }
     // A frame without writes looks at none.
     let before = app.world().resource::<bevy_hex_terrain::HexPropStats>().fog_checks;
     app.update();

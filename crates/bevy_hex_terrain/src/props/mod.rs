@@ -199,9 +199,9 @@ fn sync_props(
 #[derive(Resource, Debug, Clone, Default, Reflect)]
 #[reflect(Resource)]
 pub struct HexPropStats {
-    /// Props whose tile's fog was looked at since the start: a frame adds only the props new in
-    /// it and those on tiles whose state was written in it (every prop when the fog is switched
-    /// or another map is loaded).
+    /// Props whose visibility the fog set since the start: a frame adds only the props new in
+    /// it and those on tiles whose fog changed in it (every prop when the fog is switched or
+    /// another map is loaded); a highlight or an owner written on a tile adds none.
     pub fog_checks: u64,
     /// Props of loaded chunks waiting for their turn to be spawned (see
     /// [`PropSettings::max_spawns_per_frame`]).
