@@ -189,10 +189,14 @@ fn sync_props(
             queue.pop_front();
         }
     }
-    stats.pending = queue
+    let pending = queue
         .iter()
         .map(|&(chunk, next)| chunks.get(chunk).map_or(0, |(_, c, _)| c.props.len().saturating_sub(next)))
         .sum();
+    // Written only when it changes, so the figures are not "changed" every frame.
+    if stats.pending != pending {
+        stats.pending = pending;
+    }
 }
 
 /// Figures of the props.

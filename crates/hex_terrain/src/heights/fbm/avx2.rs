@@ -24,7 +24,8 @@ use std::arch::x86_64::{
     _mm256_sub_pd, _mm256_xor_pd,
 };
 
-use super::{Fbm, LANES, LIMIT, PERIODIC_OCTAVES, PeriodicCells, SCALE_2D, TABLE};
+use super::periodic::{PERIODIC_OCTAVES, PeriodicCells};
+use super::{Fbm, LANES, LIMIT, SCALE_2D, TABLE};
 
 /// Whether this CPU has AVX2 (std caches the answer).
 pub(super) fn supported() -> bool {
