@@ -23,7 +23,8 @@ use hexx::Hex;
 
 use crate::config::{PropDensity, ResourceClass};
 use crate::hash;
-use crate::mesh::ChunkMesh;
+use crate::mesh::coarse::fan_border;
+use crate::mesh::{ChunkMesh, Detail};
 use crate::pipeline::Pipeline;
 use crate::query::surface_height;
 use crate::vocab::{Biome, TileInfo, TileKind};
@@ -89,9 +90,10 @@ fn rule(pipeline: &Pipeline, info: &TileInfo, h: u64) -> Option<(PropKind, u32, 
 }
 
 /// The props of a generated chunk (see the module docs), at most `max_per_chunk`, with
-/// `density` (in `[0, 1]`, clamped) the share of each tile's props that stand.
+/// `density` (in `[0, 1]`, clamped) the share of each tile's props that stand, on the surface
+/// drawn at `detail` (`chunk` is the full mesh whatever the detail).
 #[must_use]
-pub fn props(pipeline: &Pipeline, chunk: &ChunkMesh, max_per_chunk: usize, density: f32) -> Vec<Prop> {
+pub fn props(pipeline: &Pipeline, chunk: &ChunkMesh, max_per_chunk: usize, density: f32, detail: Detail) -> Vec<Prop> {
     let density = if density.is_finite() { density.clamp(0.0, 1.0) } else { 0.0 };
     let mut props = Vec::new();
     let mut priority = Vec::new();
@@ -118,6 +120,8 @@ pub fn props(pipeline: &Pipeline, chunk: &ChunkMesh, max_per_chunk: usize, densi
         let [lx, lz] = lattice.world(center - origin);
         // Whether any water runs on the tile: asked once a tile, not once a prop.
         let wet = pipeline.tile_is_wet(tile);
+        // The tile's coarse fan, once a tile.
+        let fan = if detail == Detail::Coarse { fan_border(geometry, chunk.rect, tile) } else { Vec::new() };
         for i in 0..count {
             let r = hash::hash(seed, &[i64::from(key.x), i64::from(key.y), i64::from(i)]);
             let u = |k: u32| f64::from(hash::unit(hash::hash(seed, &[r as i64, i64::from(k)])));
@@ -133,10 +137,15 @@ pub fn props(pipeline: &Pipeline, chunk: &ChunkMesh, max_per_chunk: usize, densi
             if wet && is_wet_at(pipeline, tile, x, z) {
                 continue;
             }
+            // Which props stand is decided on the full surface, whatever the detail.
             let Some(y) = surface.height(pipeline, origin, x, z) else { continue };
             if y <= sea + 0.02 * size {
                 continue;
             }
+            let y = match detail {
+                Detail::Full => y,
+                Detail::Coarse => surface.fan_height(pipeline, origin, tile, &fan, x, z).unwrap_or(y),
+            };
             props.push(Prop {
                 kind,
                 variant: (u(3) * f64::from(PROP_VARIANTS)) as u8 % PROP_VARIANTS,
@@ -183,22 +192,53 @@ impl ChunkSurface {
         (u64::from(x.to_bits()) << 32) | u64::from(z.to_bits())
     }
 
+    /// The height of the chunk's vertex at lattice point `p`, if the chunk has it.
+    fn vertex(&self, pipeline: &Pipeline, origin: Hex, p: Hex) -> Option<f32> {
+        let [lx, lz] = pipeline.geometry().lattice().world(p - origin);
+        let key = Self::key(lx as f32, lz as f32);
+        self.vertices.binary_search_by_key(&key, |v| v.0).ok().map(|i| self.vertices[i].1)
+    }
+
     /// The surface height at world `(x, z)` inside the chunk: the lattice triangle's corners'
     /// heights from the buffers, interpolated (the vertex chain for a corner the chunk lacks).
     fn height(&self, pipeline: &Pipeline, origin: Hex, x: f64, z: f64) -> Option<f64> {
-        let lattice = pipeline.geometry().lattice();
-        let (tri, w) = lattice.triangle_at(x, z);
+        let (tri, w) = pipeline.geometry().lattice().triangle_at(x, z);
         let mut y = 0.0;
         for (&p, w) in tri.iter().zip(w) {
-            let [lx, lz] = lattice.world(p - origin);
-            let key = Self::key(lx as f32, lz as f32);
-            let h = match self.vertices.binary_search_by_key(&key, |v| v.0) {
-                Ok(i) => self.vertices[i].1,
-                Err(_) => return surface_height(pipeline, x, z),
-            };
+            let Some(h) = self.vertex(pipeline, origin, p) else { return surface_height(pipeline, x, z) };
             y += w * f64::from(h);
         }
         Some(y)
+    }
+
+    /// The height at world `(x, z)` of `tile`'s coarse fan ([`Detail::Coarse`]): the fan
+    /// triangle under the point, its corners' heights from the buffers (the coarse mesh's
+    /// vertices are the full mesh's), interpolated. `None` off the fan.
+    /// `border` is the tile's [`fan_border`].
+    fn fan_height(&self, pipeline: &Pipeline, origin: Hex, tile: Hex, border: &[Hex], x: f64, z: f64) -> Option<f64> {
+        let lattice = pipeline.geometry().lattice();
+        let center = lattice.tile_center(tile);
+        let at = |p: Hex| lattice.world(p);
+        let [cx, cz] = at(center);
+        for k in 0..border.len() {
+            let (a, b) = (border[k], border[(k + 1) % border.len()]);
+            let ([ax, az], [bx, bz]) = (at(a), at(b));
+            // Barycentric weights of (x, z) in the triangle (center, a, b).
+            let det = (ax - cx) * (bz - cz) - (bx - cx) * (az - cz);
+            if det == 0.0 {
+                continue;
+            }
+            let wa = ((x - cx) * (bz - cz) - (bx - cx) * (z - cz)) / det;
+            let wb = ((ax - cx) * (z - cz) - (x - cx) * (az - cz)) / det;
+            let wc = 1.0 - wa - wb;
+            let eps = -1e-9;
+            if wa < eps || wb < eps || wc < eps {
+                continue;
+            }
+            let h = |p: Hex| self.vertex(pipeline, origin, p).map(f64::from);
+            return Some(wc * h(center)? + wa * h(a)? + wb * h(b)?);
+        }
+        None
     }
 }
 

@@ -5,8 +5,8 @@
 use std::collections::HashMap;
 
 use hex_terrain::{
-    ChunkCoord, ChunkMesh, MapConfig, MapSize, Orientation, PropKind, ReliefConfig, RiverConfig, Shape, Terrain,
-    TileKind, WaterBuffers,
+    ChunkCoord, ChunkMesh, Detail, GenerateOptions, MapConfig, MapSize, Orientation, PropKind, ReliefConfig,
+    RiverConfig, Shape, Terrain, TileKind, WaterBuffers,
 };
 use proptest::prelude::*;
 
@@ -155,6 +155,40 @@ proptest! {
             prop_assert!(capped.iter().all(|p| props.contains(p)));
         }
         prop_assert_eq!(seen, all.len(), "the chunks' props are not the whole map's");
+    }
+
+    /// Props of a coarse chunk ([`Detail::Coarse`]) are the full chunk's props (same kind,
+    /// place, yaw, size, tile, order), each standing on the coarse mesh: its height is the coarse
+    /// triangle's under its foot, found by brute force over the coarse mesh's triangles.
+    #[test]
+    fn coarse_props_are_the_full_props_on_the_coarse_surface(config in config()) {
+        let t = Terrain::new(config).unwrap();
+        let size = f64::from(t.config().layout.hex_size);
+        for chunk in t.chunks().into_iter().take(6) {
+            let rect = t.chunk_rect(chunk).unwrap();
+            let full = t.generate(rect, GenerateOptions::DIAGNOSTICS);
+            let coarse = t.coarsen(&full, false).unwrap();
+            prop_assert_eq!(&coarse.buffers, &t.generate_detail(rect, GenerateOptions::CURRENT_THREAD, Detail::Coarse).buffers);
+            let on_full = t.props(&full, usize::MAX, 1.0);
+            let on_coarse = t.props_on(&full, usize::MAX, 1.0, Detail::Coarse);
+            prop_assert_eq!(&t.props_on(&full, usize::MAX, 1.0, Detail::Full), &on_full);
+            prop_assert_eq!(on_full.len(), on_coarse.len());
+            let b = &coarse.buffers;
+            for (f, c) in on_full.iter().zip(&on_coarse) {
+                prop_assert_eq!((f.kind, f.variant, f.tile, f.yaw, f.scale), (c.kind, c.variant, c.tile, c.yaw, c.scale));
+                prop_assert_eq!([f.position[0], f.position[2]], [c.position[0], c.position[2]]);
+                let (x, z) = (f64::from(c.position[0]), f64::from(c.position[2]));
+                let under = b.indices.chunks_exact(3).find_map(|tri| {
+                    let [p, q, r] = [0, 1, 2].map(|k| b.positions[tri[k] as usize].map(f64::from));
+                    let det = (q[0] - p[0]) * (r[2] - p[2]) - (r[0] - p[0]) * (q[2] - p[2]);
+                    let u = ((x - p[0]) * (r[2] - p[2]) - (r[0] - p[0]) * (z - p[2])) / det;
+                    let v = ((q[0] - p[0]) * (z - p[2]) - (x - p[0]) * (q[2] - p[2])) / det;
+                    (det != 0.0 && u >= -1e-6 && v >= -1e-6 && u + v <= 1.0 + 1e-6).then(|| p[1] + u * (q[1] - p[1]) + v * (r[1] - p[1]))
+                });
+                let y = under.expect("a coarse prop off its chunk's coarse mesh");
+                prop_assert!((y - f64::from(c.position[1])).abs() < 1e-4 * size.max(1.0), "prop at {} on a coarse surface at {}", c.position[1], y);
+            }
+        }
     }
 }
 

@@ -18,6 +18,7 @@ use std::collections::HashMap;
 use hexx::Hex;
 
 use super::{ChunkMesh, Diagnostics, MeshBuffers};
+use crate::chunk::TileRect;
 use crate::geometry::Geometry;
 
 /// How finely a chunk is meshed ([`Terrain::generate_detail`](crate::Terrain::generate_detail)).
@@ -32,15 +33,35 @@ pub enum Detail {
     Coarse,
 }
 
-/// The coarse mesh of `full`, which must have been generated with diagnostics (its vertices'
-/// lattice coordinates); the coarse mesh keeps diagnostics only if `keep_diagnostics`.
-pub(crate) fn coarsen(geometry: &Geometry, full: &ChunkMesh, keep_diagnostics: bool) -> ChunkMesh {
-    let Some(diagnostics) = &full.diagnostics else { return full.clone() };
+/// The border of `tile`'s fan in a coarse mesh of `rect`, as lattice points in ring order: its
+/// six corners, and on an edge shared with a tile outside `rect` (the chunk's outline) every
+/// lattice point of the edge, so the outline stays the full mesh's. `n` is the lattice's
+/// subdivisions.
+pub(crate) fn fan_border(geometry: &Geometry, rect: TileRect, tile: Hex) -> Vec<Hex> {
     let lattice = geometry.lattice();
     let n = lattice.subdivisions() as usize;
-    let index: HashMap<Hex, u32> = diagnostics.lattice.iter().enumerate().map(|(i, &p)| (p, i as u32)).collect();
+    let center = lattice.tile_center(tile);
     // The border of a tile, as offsets from its center in ring order: a corner every `n` points.
-    let border: Vec<Hex> = Hex::ZERO.ring(n as u32).collect();
+    let ring: Vec<Hex> = Hex::ZERO.ring(n as u32).collect();
+    let mut border = Vec::with_capacity(ring.len());
+    for edge in 0..6 {
+        // The tile across this edge, from a point inside the edge (n >= 2, so there is one).
+        let inner = center + ring[edge * n + 1];
+        let across = lattice.tiles_at(inner).tiles().iter().copied().find(|&t| t != tile);
+        let inside = across.is_some_and(|t| rect.contains(geometry.offset_of(t)));
+        let step = if inside { n } else { 1 };
+        border.extend((0..n).step_by(step).map(|k| center + ring[edge * n + k]));
+    }
+    border
+}
+
+/// The coarse mesh of `full`, which must have been generated with diagnostics (its vertices'
+/// lattice coordinates); the coarse mesh keeps diagnostics only if `keep_diagnostics`. `None`
+/// when `full` has no diagnostics.
+pub(crate) fn coarsen(geometry: &Geometry, full: &ChunkMesh, keep_diagnostics: bool) -> Option<ChunkMesh> {
+    let diagnostics = full.diagnostics.as_ref()?;
+    let lattice = geometry.lattice();
+    let index: HashMap<Hex, u32> = diagnostics.lattice.iter().enumerate().map(|(i, &p)| (p, i as u32)).collect();
     let buffers = &full.buffers;
     // Which way the full mesh winds its faces (up seen from above), to wind the fans alike.
     let up = |t: [u32; 3]| {
@@ -49,23 +70,11 @@ pub(crate) fn coarsen(geometry: &Geometry, full: &ChunkMesh, keep_diagnostics: b
     };
     let full_up = buffers.indices.get(..3).is_none_or(|t| up([t[0], t[1], t[2]]));
     let mut triangles: Vec<[u32; 3]> = Vec::with_capacity(full.tiles.len() * 8);
-    let mut polygon: Vec<u32> = Vec::with_capacity(border.len());
+    let mut polygon: Vec<u32> = Vec::new();
     for info in &full.tiles {
-        let center = lattice.tile_center(info.hex);
-        let Some(&middle) = index.get(&center) else { continue };
+        let Some(&middle) = index.get(&lattice.tile_center(info.hex)) else { continue };
         polygon.clear();
-        for edge in 0..6 {
-            // The tile across this edge, from a point inside the edge (n >= 2, so there is one).
-            let inner = center + border[edge * n + 1];
-            let across = lattice.tiles_at(inner).tiles().iter().copied().find(|&t| t != info.hex);
-            let inside = across.is_some_and(|t| full.rect.contains(geometry.offset_of(t)));
-            let step = if inside { n } else { 1 };
-            for k in (0..n).step_by(step) {
-                if let Some(&v) = index.get(&(center + border[edge * n + k])) {
-                    polygon.push(v);
-                }
-            }
-        }
+        polygon.extend(fan_border(geometry, full.rect, info.hex).iter().filter_map(|p| index.get(p).copied()));
         for k in 0..polygon.len() {
             let t = [middle, polygon[k], polygon[(k + 1) % polygon.len()]];
             triangles.push(if up(t) == full_up { t } else { [t[0], t[2], t[1]] });
@@ -100,5 +109,5 @@ pub(crate) fn coarsen(geometry: &Geometry, full: &ChunkMesh, keep_diagnostics: b
         moved: kept.iter().map(|&i| diagnostics.moved[i]).collect(),
         rings: kept.iter().map(|&i| diagnostics.rings[i]).collect(),
     });
-    ChunkMesh { rect: full.rect, origin: full.origin, buffers, tiles: full.tiles.clone(), diagnostics }
+    Some(ChunkMesh { rect: full.rect, origin: full.origin, buffers, tiles: full.tiles.clone(), diagnostics })
 }

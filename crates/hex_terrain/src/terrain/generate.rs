@@ -37,9 +37,19 @@ impl Terrain {
             Detail::Full => self.generate(rect, options),
             Detail::Coarse => {
                 let full = self.generate(rect, GenerateOptions { diagnostics: true, ..options });
-                mesh::coarse::coarsen(self.geometry(), &full, options.diagnostics)
+                // Generated with diagnostics, so never the fallback.
+                mesh::coarse::coarsen(self.geometry(), &full, options.diagnostics).unwrap_or(full)
             }
         }
+    }
+
+    /// The [`Detail::Coarse`] mesh of a full mesh generated with diagnostics
+    /// ([`GenerateOptions::diagnostics`]), keeping them if `keep_diagnostics`: what
+    /// [`Terrain::generate_detail`] returns, for a caller that also needs the full mesh (for
+    /// [`Terrain::props_on`], the water surface). `None` when `full` has no diagnostics.
+    #[must_use]
+    pub fn coarsen(&self, full: &ChunkMesh, keep_diagnostics: bool) -> Option<ChunkMesh> {
+        mesh::coarse::coarsen(self.geometry(), full, keep_diagnostics)
     }
 
     /// Generates a bounded map in one mesh on all cores, `None` for an unbounded world.
@@ -75,7 +85,17 @@ impl Terrain {
     /// `density` (in `[0, 1]`, clamped) the share of each tile's props that stand.
     #[must_use]
     pub fn props(&self, chunk: &ChunkMesh, max_per_chunk: usize, density: f32) -> Vec<Prop> {
-        props::props(&self.pipeline, chunk, max_per_chunk, density)
+        props::props(&self.pipeline, chunk, max_per_chunk, density, Detail::Full)
+    }
+
+    /// [`Terrain::props`] standing on the surface drawn at `detail`: `chunk` is the full mesh,
+    /// and each prop's height is that of the mesh [`Terrain::generate_detail`] makes at `detail`
+    /// under its foot (a coarse tile is flatter than the full one, so a prop at the full
+    /// surface's height would float or sink). Same props, same places, same order as
+    /// [`Terrain::props`] (which stand is decided on the full surface); only the heights differ.
+    #[must_use]
+    pub fn props_on(&self, chunk: &ChunkMesh, max_per_chunk: usize, density: f32, detail: Detail) -> Vec<Prop> {
+        props::props(&self.pipeline, chunk, max_per_chunk, density, detail)
     }
 
     /// The game setup's markers (starts, resources, wonders) on a generated chunk (see
