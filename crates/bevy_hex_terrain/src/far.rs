@@ -88,19 +88,28 @@ impl HexMap {
     }
 }
 
-/// Agents in a grid: where they are, and the f64 position streaming last read.
+/// What streaming reads the f64 position of: agents (where terrain streams) and, with a
+/// renderer, cameras (what levels of detail are measured from).
+#[cfg(feature = "render")]
+type Tracked = Or<(With<HexTerrainAgent>, With<bevy::camera::Camera>)>;
+/// What streaming reads the f64 position of: agents (where terrain streams).
+#[cfg(not(feature = "render"))]
+type Tracked = With<HexTerrainAgent>;
+
+/// Agents and cameras in a grid: where they are, and the f64 position streaming last read.
 type GridAgents<'w, 's> = Query<
     'w,
     's,
     (Entity, &'static ChildOf, &'static CellCoord, &'static Transform, Option<&'static HexWorldPosition>),
-    With<HexTerrainAgent>,
+    Tracked,
 >;
 
 /// Chunks that changed, with their cell and parent if placed.
 type ChangedChunks<'w, 's> =
     Query<'w, 's, (Entity, &'static HexChunk, Option<&'static CellCoord>, Option<&'static ChildOf>), Changed<HexChunk>>;
 
-/// Agents in a grid stream from their f64 position.
+/// Agents in a grid stream from their f64 position; cameras in it measure levels of detail from
+/// theirs.
 fn track_agents(mut commands: Commands, grids: Query<&Grid>, agents: GridAgents) {
     for (entity, parent, cell, transform, known) in &agents {
         let Ok(grid) = grids.get(parent.parent()) else { continue };

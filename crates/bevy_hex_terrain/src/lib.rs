@@ -94,8 +94,9 @@ pub use crate::minimap::{
 pub use crate::picking::{HexPick, HexPickingCamera, HexPickingPlugin, HexPickingSettings, HexPickingStats};
 pub use crate::props::{HexProp, HexPropStats, HexPropsPlugin, PropAssets, PropSettings};
 pub use crate::streaming::{
-    ChunkContent, ChunkDespawned, ChunkSpawned, ChunkStreamer, ChunkTask, ChunkThreads, HexChunk, HexStreamingPlugin,
-    HexStreamingSettings, HexTerrainAgent, HexTerrainStats, HexWorldPosition, MAX_RETIRED_CHUNKS, TerrainReady,
+    ChunkContent, ChunkDespawned, ChunkSpawned, ChunkStreamer, ChunkTask, ChunkThreads, DEFAULT_COARSE_DISTANCE,
+    DETAIL_HYSTERESIS, HexChunk, HexStreamingPlugin, HexStreamingSettings, HexTerrainAgent, HexTerrainStats,
+    HexWorldPosition, MAX_RETIRED_CHUNKS, TerrainReady,
 };
 pub use crate::tiles::{
     FogState, HexTileStatePlugin, HexTileStateSystems, Highlight, MAX_OWNERS, SaveError, Texel, TileStateError,
@@ -124,7 +125,7 @@ pub mod prelude {
     };
     pub use hex_terrain::hexx::Hex;
     pub use hex_terrain::{
-        Biome, ChunkCoord, MapConfig, MapSize, PlacedResource, PlacedWonder, ResourceClass, RiverTile, Setup,
+        Biome, ChunkCoord, Detail, MapConfig, MapSize, PlacedResource, PlacedWonder, ResourceClass, RiverTile, Setup,
         SetupConfig, TileInfo, TileKind,
     };
 }

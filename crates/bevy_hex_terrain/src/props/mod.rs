@@ -107,9 +107,9 @@ fn create_assets(
     commands.insert_resource(PropAssets { meshes, material });
 }
 
-/// Asks chunk tasks for props at the settings' cap and density.
+/// Asks chunk tasks for props at the settings' cap, density and share on coarse chunks.
 fn request_props(settings: Res<PropSettings>, mut request: ResMut<ContentRequest>) {
-    request.props = Some((settings.max_per_chunk, settings.density));
+    request.props = Some((settings.max_per_chunk, settings.density, settings.coarse_share));
 }
 
 /// The props' entities of one chunk.

@@ -7,7 +7,7 @@
 use std::sync::Arc;
 
 use bevy::prelude::*;
-use hex_terrain::{ChunkMesh, Prop, Terrain};
+use hex_terrain::{ChunkMesh, Detail, Prop, Terrain};
 
 /// What chunk tasks build besides the terrain. The water and props plugins write their part
 /// from their own settings when those change (`None`: no such plugin, nothing of its kind is
@@ -18,9 +18,9 @@ pub(crate) struct ContentRequest {
     /// River and lake water depth, a fraction of the hex size; `None` without the water plugin
     /// (no surface is built).
     pub river_depth: Option<f32>,
-    /// The props' cap per chunk and density; `None` without the props plugin (none are placed;
-    /// the game setup's markers still are).
-    pub props: Option<(usize, f32)>,
+    /// The props' cap per chunk, density, and share of them standing on a coarse chunk; `None`
+    /// without the props plugin (none are placed; the game setup's markers still are).
+    pub props: Option<(usize, f32, f32)>,
 }
 
 /// A chunk's water surface and props (see the module docs). Twin chunks of a wrapping map
@@ -49,9 +49,11 @@ impl BuiltContent {
         Self { water: None, water_triangles: 0, props: Arc::from([]) }
     }
 
-    /// Builds the water and props of `chunk` as requested (whether they are shown or not: the
-    /// plugins show them).
-    pub(crate) fn build(terrain: &Terrain, chunk: &ChunkMesh, snapshot: ContentRequest) -> Self {
+    /// Builds the water and props of `chunk` (the full mesh) as requested (whether they are
+    /// shown or not: the plugins show them), the props standing on the surface drawn at
+    /// `detail` (on a coarse chunk, the requested share of them). The water surface is the full
+    /// mesh's at every level: it lies over the sea and lakes, which a coarse tile keeps.
+    pub(crate) fn build(terrain: &Terrain, chunk: &ChunkMesh, snapshot: ContentRequest, detail: Detail) -> Self {
         let (mut water, mut water_triangles) = (None, 0);
         if let Some(depth) = snapshot.river_depth {
             let depth = depth.max(0.0) * terrain.config().layout.hex_size;
@@ -61,7 +63,11 @@ impl BuiltContent {
         }
         // Trees, rocks and reeds (thinned to the cap), then the game setup's resources and
         // wonders (never thinned).
-        let mut all = snapshot.props.map_or_else(Vec::new, |(cap, density)| terrain.props(chunk, cap, density));
+        let mut all = snapshot.props.map_or_else(Vec::new, |(cap, density, coarse)| {
+            let share = if detail == Detail::Coarse { coarse } else { 1.0 };
+            terrain.props_on(chunk, cap, density * share, detail)
+        });
+        // Markers stand at tile centers, a vertex of both levels.
         all.extend(terrain.marker_props(chunk));
         let props = all.into();
         Self { water, water_triangles, props }

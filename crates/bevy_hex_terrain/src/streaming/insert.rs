@@ -32,8 +32,10 @@ pub(crate) fn insert_ready(
     let was_complete = complete(&streamer);
     let mut budget = settings.max_inserts_per_frame.max(1);
     let terrain = map.terrain().clone();
-    // Meshes inserted this frame, by the chunk of the map they show (wrapping maps share them).
-    let mut inserted: Vec<(hex_terrain::ChunkCoord, Handle<Mesh>, ChunkContent, usize, usize)> = Vec::new();
+    // Meshes inserted this frame, by the chunk of the map they show and their level (wrapping
+    // maps share them).
+    let mut inserted: Vec<(hex_terrain::ChunkCoord, hex_terrain::Detail, Handle<Mesh>, ChunkContent, usize, usize)> =
+        Vec::new();
     for (entity, mut chunk, task) in &mut tasks {
         if budget == 0 {
             break;
@@ -54,24 +56,28 @@ pub(crate) fn insert_ready(
             props: build.content.props,
         };
         let canonical = terrain.wrap_chunk(chunk.coord).0;
-        inserted.push((canonical, handle.clone(), content.clone(), build.vertices, build.mesh_bytes));
+        inserted.push((canonical, build.detail, handle.clone(), content.clone(), build.vertices, build.mesh_bytes));
         // A hot reload may move a chunk's origin (another hex size): place it again.
         chunk.origin = super::tasks::chunk_origin(&terrain, chunk.coord);
         commands.entity(entity).insert((Mesh3d(handle), content, Transform::from_translation(chunk.origin.as_vec3())));
         chunk.generation = Some(build.generation);
         chunk.vertices = build.vertices;
         chunk.mesh_bytes = build.mesh_bytes;
+        chunk.detail = build.detail;
         streamer.loaded.insert(chunk.coord);
         streamer.current.insert(chunk.coord);
         stats.inserted(requested.elapsed().as_secs_f32());
         spawned.write(ChunkSpawned { entity, coord: chunk.coord });
     }
 
-    // Copies of those chunks past a wrapping map's edge waiting for the mesh show it too.
+    // Copies of those chunks past a wrapping map's edge waiting for the mesh (at its level) show
+    // it too.
     if terrain.wrap().is_some() && !inserted.is_empty() {
         for (entity, mut chunk, task) in &mut tasks {
             let canonical = terrain.wrap_chunk(chunk.coord).0;
-            let Some((_, handle, content, vertices, mesh_bytes)) = inserted.iter().find(|(c, ..)| *c == canonical)
+            let detail = streamer.wanted_detail(chunk.coord).unwrap_or(chunk.detail);
+            let Some(&(_, detail, ref handle, ref content, vertices, mesh_bytes)) =
+                inserted.iter().find(|(c, d, ..)| *c == canonical && *d == detail)
             else {
                 continue;
             };
@@ -87,8 +93,9 @@ pub(crate) fn insert_ready(
                 Transform::from_translation(chunk.origin.as_vec3()),
             ));
             chunk.generation = Some(generation);
-            chunk.vertices = *vertices;
-            chunk.mesh_bytes = *mesh_bytes;
+            chunk.vertices = vertices;
+            chunk.mesh_bytes = mesh_bytes;
+            chunk.detail = detail;
             streamer.loaded.insert(chunk.coord);
             streamer.current.insert(chunk.coord);
             spawned.write(ChunkSpawned { entity, coord: chunk.coord });

@@ -3,6 +3,7 @@
 //! and inserted under a per-frame budget ([`insert`]), with figures in [`HexTerrainStats`].
 
 pub(crate) mod content;
+mod detail;
 mod insert;
 mod planner;
 mod retire;
@@ -12,10 +13,11 @@ mod tasks;
 
 use bevy::platform::collections::{HashMap, HashSet};
 use bevy::prelude::*;
-use hex_terrain::ChunkCoord;
+use hex_terrain::{ChunkCoord, Detail};
 
 pub use content::ChunkContent;
 pub(crate) use content::ContentRequest;
+pub use detail::DETAIL_HYSTERESIS;
 pub use retire::MAX_RETIRED_CHUNKS;
 pub use stats::HexTerrainStats;
 pub use tasks::ChunkTask;
@@ -35,9 +37,9 @@ pub struct HexTerrainAgent {
     pub radius: Option<u32>,
 }
 
-/// An entity's world position in f64, for agents far from the origin: streaming reads it
-/// instead of the `GlobalTransform` when present. With the `big_space` feature, agents in the
-/// terrain's grid get it from their cell and transform every frame.
+/// An entity's world position in f64, for agents (and cameras) far from the origin: streaming
+/// reads it instead of the `GlobalTransform` when present. With the `big_space` feature, agents
+/// and cameras in the terrain's grid get it from their cell and transform every frame.
 #[derive(Component, Debug, Clone, Copy, Default, PartialEq, Reflect)]
 #[reflect(Component, Default)]
 pub struct HexWorldPosition(pub bevy::math::DVec3);
@@ -76,7 +78,19 @@ pub struct HexStreamingSettings {
     /// dropped chunk is hidden and forgotten at once, and despawned with its last child. At most
     /// [`MAX_RETIRED_CHUNKS`] wait; beyond them the oldest goes whole.
     pub max_despawns_per_frame: usize,
+    /// Level of detail: a chunk whose box is farther than this many hex sizes (multiples of the
+    /// map's `layout.hex_size`) from every camera is drawn coarse ([`Detail::Coarse`]: a fan of
+    /// six triangles a tile, its outline kept whole, so levels meet without a crack), and full
+    /// again once nearer than `1 -` [`DETAIL_HYSTERESIS`] of it. Measured in 3D, so a camera
+    /// zoomed out sees every chunk coarse. The cameras are every active `Camera` (with the
+    /// `render` feature), or, without one, the [`HexTerrainAgent`]s. A level change is a chunk
+    /// task like any other; the old mesh shows until the new one is ready. `None`: every
+    /// chunk full.
+    pub coarse_distance: Option<f32>,
 }
+
+/// The default [`HexStreamingSettings::coarse_distance`], in hex sizes.
+pub const DEFAULT_COARSE_DISTANCE: f32 = 64.0;
 
 impl Default for HexStreamingSettings {
     fn default() -> Self {
@@ -88,6 +102,7 @@ impl Default for HexStreamingSettings {
             max_tasks_in_flight: 8,
             chunk_threads: ChunkThreads::default(),
             max_despawns_per_frame: 64,
+            coarse_distance: Some(DEFAULT_COARSE_DISTANCE),
         }
     }
 }
@@ -112,6 +127,8 @@ pub struct HexChunk {
     pub vertices: usize,
     /// Bytes of its mesh's vertex and index data.
     pub mesh_bytes: usize,
+    /// The level of detail of its mesh (see [`HexStreamingSettings::coarse_distance`]).
+    pub detail: Detail,
 }
 
 /// A chunk's mesh was inserted (first time or regenerated).
@@ -144,6 +161,8 @@ pub struct TerrainReady {
 pub struct ChunkStreamer {
     chunks: HashMap<ChunkCoord, Entity>,
     wanted: HashMap<ChunkCoord, u32>,
+    /// The level each wanted chunk is to be drawn at.
+    detail: HashMap<ChunkCoord, Detail>,
     /// Chunks whose mesh is in the world (of any generation).
     loaded: HashSet<ChunkCoord>,
     /// Chunks showing a mesh of `current_generation`.
@@ -177,6 +196,13 @@ impl ChunkStreamer {
     #[must_use]
     pub fn wanted_distance(&self, chunk: ChunkCoord) -> Option<u32> {
         self.wanted.get(&chunk).copied()
+    }
+
+    /// The level of detail a wanted chunk is to be drawn at (its mesh may still show another
+    /// while its new one is built), `None` if not wanted.
+    #[must_use]
+    pub fn wanted_detail(&self, chunk: ChunkCoord) -> Option<Detail> {
+        self.detail.get(&chunk).copied()
     }
 
     /// Whether a chunk's mesh is in the world.

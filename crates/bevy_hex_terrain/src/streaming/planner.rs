@@ -2,10 +2,12 @@
 //! wanted, which are dropped and which get a task, in what order. A pure function of its
 //! inputs, tested on [`ChunkCoord`]s without an `App`.
 
+use bevy::math::DVec3;
 use bevy::platform::collections::HashMap;
-use hex_terrain::{ChunkCoord, Terrain};
+use hex_terrain::{ChunkCoord, Detail, Terrain};
 
 use super::HexStreamingSettings;
+use super::detail::chunk_detail;
 
 /// What an existing chunk shows and does, as the planner sees it.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -14,6 +16,8 @@ pub struct ChunkState {
     pub current: bool,
     /// A task for the current map generation is building its mesh.
     pub building: bool,
+    /// The level of the mesh its task builds, if building, else of the mesh it shows.
+    pub detail: Detail,
 }
 
 /// What one frame of streaming does.
@@ -21,20 +25,24 @@ pub struct ChunkState {
 pub struct Plan {
     /// Chunks that must exist, with their distance (in chunks) to the nearest agent.
     pub wanted: HashMap<ChunkCoord, u32>,
+    /// The level each wanted chunk is to be drawn at ([`chunk_detail`]).
+    pub detail: HashMap<ChunkCoord, Detail>,
     /// Existing chunks to despawn: beyond every agent's keep distance, or outside the map.
     pub drop: Vec<ChunkCoord>,
-    /// Wanted chunks to start a task for (missing, or showing an older generation and not
-    /// being rebuilt), nearest first, at most the free task budget.
-    pub start: Vec<ChunkCoord>,
+    /// Wanted chunks to start a task for, with the level to build: missing, showing an older
+    /// generation, or current at another level than wanted, and not being rebuilt; nearest
+    /// first, at most the free task budget.
+    pub start: Vec<(ChunkCoord, Detail)>,
 }
 
-/// Plans a frame. `agents` holds each agent's chunk and radius; `existing` every chunk entity's
-/// state.
+/// Plans a frame. `agents` holds each agent's chunk and radius; `viewers` the world positions
+/// levels of detail are measured from; `existing` every chunk entity's state.
 #[must_use]
 pub fn plan(
     terrain: &Terrain,
     settings: &HexStreamingSettings,
     agents: &[(ChunkCoord, u32)],
+    viewers: &[DVec3],
     existing: &HashMap<ChunkCoord, ChunkState>,
 ) -> Plan {
     let ahead = settings.prefetch;
@@ -75,14 +83,23 @@ pub fn plan(
 
     let in_flight = existing.iter().filter(|(c, s)| s.building && !drop.contains(c)).count();
     let budget = settings.max_tasks_in_flight.saturating_sub(in_flight);
-    let mut todo: Vec<(u32, ChunkCoord)> = wanted
+    let detail: HashMap<ChunkCoord, Detail> = wanted
+        .keys()
+        .map(|&c| (c, chunk_detail(terrain, settings, viewers, c, existing.get(&c).map(|s| s.detail))))
+        .collect();
+    // Missing or outdated chunks first, then level changes, each nearest first.
+    let mut todo: Vec<(bool, u32, ChunkCoord)> = wanted
         .iter()
-        .filter(|&(c, _)| existing.get(c).is_none_or(|s| !s.current && !s.building))
-        .map(|(&c, &d)| (d, c))
+        .filter_map(|(&c, &d)| match existing.get(&c) {
+            None => Some((false, d, c)),
+            Some(s) if s.building => None,
+            Some(s) if !s.current => Some((false, d, c)),
+            Some(s) => (s.detail != detail[&c]).then_some((true, d, c)),
+        })
         .collect();
     todo.sort_unstable();
-    let start = todo.into_iter().take(budget).map(|(_, c)| c).collect();
-    Plan { wanted, drop, start }
+    let start = todo.into_iter().take(budget).map(|(_, _, c)| (c, detail[&c])).collect();
+    Plan { wanted, detail, drop, start }
 }
 
 #[cfg(test)]

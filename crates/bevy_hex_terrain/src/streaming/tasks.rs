@@ -8,9 +8,10 @@ use bevy::platform::collections::{HashMap, HashSet};
 use bevy::platform::time::Instant;
 use bevy::prelude::*;
 use bevy::tasks::{AsyncComputeTaskPool, Task};
-use hex_terrain::{ChunkCoord, GenerateOptions, Terrain, Threads};
+use hex_terrain::{ChunkCoord, Detail, GenerateOptions, Terrain, Threads};
 
 use super::content::{BuiltContent, ChunkContent, ContentRequest};
+use super::detail::Cameras;
 use super::planner::{ChunkState, plan};
 use super::state::StreamState;
 use super::{ChunkDespawned, ChunkSpawned, ChunkStreamer, ChunkThreads, HexChunk, HexTerrainAgent, HexWorldPosition};
@@ -24,6 +25,7 @@ pub struct ChunkBuild {
     pub(super) vertices: usize,
     pub(super) mesh_bytes: usize,
     pub(super) content: BuiltContent,
+    pub(super) detail: Detail,
 }
 
 /// A chunk mesh being built on the async compute pool.
@@ -36,6 +38,15 @@ pub struct ChunkTask {
     pub(super) task: Task<ChunkBuild>,
     pub(super) generation: u64,
     pub(super) requested: Instant,
+    pub(super) detail: Detail,
+}
+
+impl ChunkTask {
+    /// The level of detail of the mesh it builds.
+    #[must_use]
+    pub fn detail(&self) -> Detail {
+        self.detail
+    }
 }
 
 /// Plans the frame ([`plan`]) and applies it: despawns dropped chunks, spawns missing ones and
@@ -44,10 +55,10 @@ pub(crate) fn stream(
     mut commands: Commands,
     state: StreamState,
     agents: Query<(&GlobalTransform, &HexTerrainAgent, Option<&HexWorldPosition>)>,
+    cameras: Cameras,
     chunks: ChunkQuery,
     content: Res<ContentRequest>,
-    mut despawned: MessageWriter<ChunkDespawned>,
-    mut spawned: MessageWriter<ChunkSpawned>,
+    (mut despawned, mut spawned): (MessageWriter<ChunkDespawned>, MessageWriter<ChunkSpawned>),
 ) {
     let StreamState { mut streamer, mut stats, map, settings } = state;
     if map.is_waiting_for_asset() {
@@ -57,6 +68,9 @@ pub(crate) fn stream(
     let generation = map.generation();
     // Forget entities despawned by someone else.
     streamer.chunks.retain(|_, e| chunks.contains(*e));
+    let viewers = cameras.positions().unwrap_or_else(|| {
+        agents.iter().map(|(t, _, world)| world.map_or_else(|| t.translation().as_dvec3(), |w| w.0)).collect()
+    });
     let agents: Vec<(ChunkCoord, u32)> = agents
         .iter()
         .filter_map(|(t, a, world)| {
@@ -72,16 +86,17 @@ pub(crate) fn stream(
         .iter()
         .filter_map(|(&c, &e)| {
             let (chunk, task, ..) = chunks.get(e).ok()?;
-            Some((
-                c,
+            Some((c, {
+                let building = task.filter(|t| map.is_current(c, Some(t.generation)));
                 ChunkState {
                     current: map.is_current(c, chunk.generation),
-                    building: task.is_some_and(|t| map.is_current(c, Some(t.generation))),
-                },
-            ))
+                    building: building.is_some(),
+                    detail: building.map_or(chunk.detail, |t| t.detail),
+                }
+            }))
         })
         .collect();
-    let plan = plan(&terrain, &settings, &agents, &existing);
+    let plan = plan(&terrain, &settings, &agents, &viewers, &existing);
 
     for c in plan.drop {
         let Some(e) = streamer.chunks.remove(&c) else { continue };
@@ -101,17 +116,22 @@ pub(crate) fn stream(
         ChunkThreads::AsyncCompute => Threads::Current,
         ChunkThreads::Rayon => Threads::Pool,
     };
-    // Chunks of the map whose task starts this frame.
+    // Chunks of the map whose task starts this frame, with the level it builds.
     let mut started = HashSet::new();
-    for c in plan.start {
-        // On a wrapping map, chunks standing for the same chunk of the map share one mesh: copy
-        // it when a twin shows the current one, wait while one is being built.
+    for (c, detail) in plan.start {
+        // On a wrapping map, chunks standing for the same chunk of the map share one mesh of a
+        // level: copy it when a twin shows the current one, wait while one is being built.
         let canonical = terrain.wrap_chunk(c).0;
-        let twin = if started.contains(&canonical) { Twin::Building } else { twin(&map, &streamer, &chunks, c) };
+        let twin = if started.contains(&(canonical, detail)) {
+            Twin::Building
+        } else {
+            twin(&map, &streamer, &chunks, c, detail)
+        };
         match twin {
             Twin::Building => continue,
             Twin::Showing(mesh, content, vertices, mesh_bytes) => {
-                let chunk = HexChunk { generation: Some(generation), vertices, mesh_bytes, ..new_chunk(&terrain, c) };
+                let chunk =
+                    HexChunk { generation: Some(generation), vertices, mesh_bytes, detail, ..new_chunk(&terrain, c) };
                 let shown = (mesh, content, chunk, chunk_transform(&terrain, c));
                 let e = match streamer.chunks.get(&c) {
                     Some(&e) => commands.entity(e).insert(shown).id(),
@@ -125,11 +145,12 @@ pub(crate) fn stream(
             }
             Twin::None => {}
         }
-        started.insert(canonical);
+        started.insert((canonical, detail));
         let task = ChunkTask {
-            task: pool.spawn(build_chunk(terrain.clone(), c, generation, threads, snapshot)),
+            task: pool.spawn(build_chunk(terrain.clone(), c, generation, threads, snapshot, detail)),
             generation,
             requested: Instant::now(),
+            detail,
         };
         stats.started();
         match streamer.chunks.get(&c) {
@@ -153,6 +174,9 @@ pub(crate) fn stream(
     if streamer.wanted != plan.wanted {
         streamer.wanted = plan.wanted;
     }
+    if streamer.detail != plan.detail {
+        streamer.detail = plan.detail;
+    }
 }
 
 /// What the twins of a chunk (chunks of a wrapping map standing for the same map chunk) offer it.
@@ -161,7 +185,8 @@ enum Twin {
     None,
     /// A twin's task builds the current mesh.
     Building,
-    /// A twin shows the current mesh: its handle, content, vertices and bytes.
+    /// A twin shows the current mesh at the level wanted: its handle, content, vertices and
+    /// bytes.
     Showing(Mesh3d, ChunkContent, usize, usize),
 }
 
@@ -178,8 +203,8 @@ type ChunkQuery<'w, 's> = Query<
     ),
 >;
 
-/// What `c`'s twins offer for the current map.
-fn twin(map: &HexMap, streamer: &ChunkStreamer, chunks: &ChunkQuery, c: ChunkCoord) -> Twin {
+/// What `c`'s twins offer for the current map at level `detail`.
+fn twin(map: &HexMap, streamer: &ChunkStreamer, chunks: &ChunkQuery, c: ChunkCoord, detail: Detail) -> Twin {
     let terrain = map.terrain();
     let (canonical, _) = terrain.wrap_chunk(c);
     if terrain.wrap().is_none() {
@@ -191,10 +216,10 @@ fn twin(map: &HexMap, streamer: &ChunkStreamer, chunks: &ChunkQuery, c: ChunkCoo
             continue;
         }
         let Ok((chunk, task, mesh, content, _)) = chunks.get(e) else { continue };
-        if let (true, Some(mesh)) = (map.is_current(c, chunk.generation), mesh) {
+        if let (true, true, Some(mesh)) = (map.is_current(c, chunk.generation), chunk.detail == detail, mesh) {
             return Twin::Showing(mesh.clone(), content.cloned().unwrap_or_default(), chunk.vertices, chunk.mesh_bytes);
         }
-        if task.is_some_and(|t| map.is_current(c, Some(t.generation))) {
+        if task.is_some_and(|t| map.is_current(c, Some(t.generation)) && t.detail == detail) {
             found = Twin::Building;
         }
     }
@@ -208,7 +233,14 @@ pub(super) fn chunk_origin(terrain: &Terrain, coord: ChunkCoord) -> DVec3 {
 
 /// A chunk entity's component before its first mesh.
 fn new_chunk(terrain: &Terrain, coord: ChunkCoord) -> HexChunk {
-    HexChunk { coord, origin: chunk_origin(terrain, coord), generation: None, vertices: 0, mesh_bytes: 0 }
+    HexChunk {
+        coord,
+        origin: chunk_origin(terrain, coord),
+        generation: None,
+        vertices: 0,
+        mesh_bytes: 0,
+        detail: Detail::Full,
+    }
 }
 
 /// A chunk's transform: its mesh origin (exact near the world's origin; far out, the
@@ -218,15 +250,17 @@ fn chunk_transform(terrain: &Terrain, coord: ChunkCoord) -> Transform {
 }
 
 /// The body of a chunk task: core generation plus the Bevy mesh, the water surface and the
-/// props, off the main thread.
+/// props, off the main thread. A coarse chunk is generated full (with the lattice points
+/// coarsening needs), its water and props built from the full mesh, then coarsened.
 async fn build_chunk(
     terrain: Arc<Terrain>,
     chunk: ChunkCoord,
     generation: u64,
     threads: Threads,
     snapshot: ContentRequest,
+    detail: Detail,
 ) -> ChunkBuild {
-    let options = GenerateOptions { diagnostics: false, threads };
+    let options = GenerateOptions { diagnostics: detail == Detail::Coarse, threads };
     let Some(generated) = terrain.chunk_rect(chunk).map(|rect| terrain.generate(rect, options)) else {
         return ChunkBuild {
             generation,
@@ -234,10 +268,16 @@ async fn build_chunk(
             vertices: 0,
             mesh_bytes: 0,
             content: BuiltContent::empty(),
+            detail,
         };
     };
-    let vertices = generated.buffers.vertex_count();
-    let mesh_bytes = vertices * (12 + 12 + 8) + generated.buffers.indices.len() * 4;
-    let content = BuiltContent::build(&terrain, &generated, snapshot);
-    ChunkBuild { generation, mesh: chunk_to_mesh(generated), vertices, mesh_bytes, content }
+    let content = BuiltContent::build(&terrain, &generated, snapshot, detail);
+    let drawn = match detail {
+        Detail::Full => generated,
+        // Generated with diagnostics above, so never the fallback.
+        Detail::Coarse => terrain.coarsen(&generated, false).unwrap_or(generated),
+    };
+    let vertices = drawn.buffers.vertex_count();
+    let mesh_bytes = vertices * (12 + 12 + 8) + drawn.buffers.indices.len() * 4;
+    ChunkBuild { generation, mesh: chunk_to_mesh(drawn), vertices, mesh_bytes, content, detail }
 }
