@@ -1,6 +1,9 @@
 //! An agent walks a straight line east across an unbounded map; terrain streams in ahead of it
 //! and is dropped behind. The camera follows; a counter shows live chunks, chunk latency and
-//! what each frame draws (draw calls, instances, triangles).
+//! what each frame draws (draw calls, instances, triangles, coarse chunks). Far chunks are drawn
+//! coarse (see `HexStreamingSettings::coarse_distance`); `HEXTERRAIN_LOD=off` draws every chunk
+//! full, to compare. In screenshot mode the counter is printed too. `HEXTERRAIN_STILL=1` keeps
+//! the walker where it starts and spawns every prop at once: a settled view, for figures.
 
 use bevy::prelude::*;
 use bevy_hex_terrain::prelude::*;
@@ -16,9 +19,22 @@ struct Walker;
 #[derive(Component)]
 struct Counter;
 
+/// The walker stands still (`HEXTERRAIN_STILL`).
+#[derive(Resource)]
+struct Still(bool);
+
 fn main() {
+    let mut streaming = HexStreamingSettings::default();
+    if std::env::var("HEXTERRAIN_LOD").is_ok_and(|v| v == "off") {
+        streaming.coarse_distance = None;
+    }
+    let still = std::env::var_os("HEXTERRAIN_STILL").is_some();
+    let props = PropSettings { max_spawns_per_frame: if still { usize::MAX } else { 64 }, ..default() };
     App::new()
         .add_plugins((DefaultPlugins, HexTerrainPlugins::default()))
+        .insert_resource(streaming)
+        .insert_resource(props)
+        .insert_resource(Still(still))
         .add_plugins(support::screenshot::ScreenshotModePlugin)
         .add_plugins(support::render_figures::RenderFiguresPlugin)
         .insert_resource(TerrainMaterialSettings { outlines: true, outline_width: 0.04, ..default() })
@@ -51,13 +67,14 @@ fn setup(mut commands: Commands, mut meshes: ResMut<Assets<Mesh>>, mut materials
 }
 
 /// Walks east and stands on the real surface.
-fn walk(time: Res<Time>, map: Res<HexMap>, mut walker: Query<&mut Transform, With<Walker>>) {
+fn walk(time: Res<Time>, still: Res<Still>, map: Res<HexMap>, mut walker: Query<&mut Transform, With<Walker>>) {
+    let speed = if still.0 { 0.0 } else { SPEED };
     for mut t in &mut walker {
-        t.translation.x += SPEED * time.delta_secs();
+        t.translation.x += speed * time.delta_secs();
         // The world ends 2^24 tiles out: the walker stops at its edge.
         match map.surface_height(t.translation) {
             Some(y) => t.translation.y = y + 0.9,
-            None => t.translation.x -= SPEED * time.delta_secs(),
+            None => t.translation.x -= speed * time.delta_secs(),
         }
     }
 }
@@ -67,15 +84,17 @@ fn show_figures(
     stats: Res<HexTerrainStats>,
     frame: Res<support::render_figures::RenderFigures>,
     props: Query<(), With<HexProp>>,
+    chunks: Query<&HexChunk>,
     mut counter: Query<&mut Text, With<Counter>>,
 ) {
+    let coarse = chunks.iter().filter(|c| c.generation.is_some() && c.detail == Detail::Coarse).count();
     let mut latencies: Vec<f32> = stats.latencies().collect();
     latencies.sort_by(f32::total_cmp);
     let at = |p: f32| latencies.get(((latencies.len().max(1) - 1) as f32 * p) as usize).map_or(0.0, |s| s * 1e3);
     for mut text in &mut counter {
         text.0 = format!(
             "live chunks: {}   chunks built: {}   cancelled: {}   props: {}\nchunk latency p50 {:.0} ms, p99 {:.0} ms\n\
-             frame: {} draw calls, {} instances, {} triangles",
+             frame: {} draw calls, {} instances, {} triangles (terrain {} full + {} coarse, props {} + {}); {} chunks coarse",
             streamer.live_chunks(),
             stats.tasks_started(),
             stats.tasks_cancelled(),
@@ -85,6 +104,14 @@ fn show_figures(
             frame.draws,
             frame.instances,
             frame.triangles,
+            frame.terrain[0],
+            frame.terrain[1],
+            frame.props[0],
+            frame.props[1],
+            coarse,
         );
+        if std::env::var_os("HEXTERRAIN_SCREENSHOT").is_some() {
+            println!("{}", text.0.replace('\n', " | "));
+        }
     }
 }

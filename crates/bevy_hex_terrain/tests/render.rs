@@ -21,6 +21,71 @@ in_own_process! {
     a_deferred_camera_draws_the_terrain_colors => scenario_deferred,
     biomes_rivers_and_lakes_show_their_colors => scenario_biomes,
     edited_tiles_show_their_new_type => scenario_edited,
+    levels_of_detail_meet_without_a_crack => scenario_levels,
+    levels_of_detail_meet_without_a_crack_past_a_wrapping_edge => scenario_levels_wrapping,
+}
+
+/// Streaming settings whose levels split a top-down view from 50 units up: the chunks under the
+/// camera (47 units above the 3-unit mountains) full, those more than about 10 units aside coarse.
+fn split_levels() -> HexStreamingSettings {
+    HexStreamingSettings { coarse_distance: Some(48.0), ..default() }
+}
+
+/// Pixels of the clear color ([`HOLE`]) where the map covers the ground: inside the rectangle
+/// of the outermost tile centers (`z` only when `rows_only`, for a wrapping map whose copies
+/// cover every `x`).
+fn holes_inside(img: &image::RgbImage, terrain: &Terrain, (center, size): (Vec2, Vec2), rows_only: bool) -> usize {
+    let (mut lo, mut hi) = (Vec2::splat(f32::MAX), Vec2::splat(f32::MIN));
+    for t in terrain.tiles() {
+        let [x, _, z] = terrain.tile_center(t).unwrap().map(|v| v as f32);
+        lo = lo.min(Vec2::new(x, z));
+        hi = hi.max(Vec2::new(x, z));
+    }
+    let mut holes = 0;
+    for (px, py, p) in img.enumerate_pixels() {
+        let world = center
+            + (Vec2::new(px as f32 + 0.5, py as f32 + 0.5) / Vec2::new(WIDTH as f32, HEIGHT as f32) - 0.5) * size;
+        let inside_x = rows_only || (lo.x..=hi.x).contains(&world.x);
+        if inside_x && (lo.y..=hi.y).contains(&world.y) && p.0 == HOLE {
+            holes += 1;
+        }
+    }
+    holes
+}
+
+/// Full and coarse chunks side by side: no crack or hole where they meet, and every clear tile,
+/// at either level, shows its type's color at its center.
+#[test]
+#[ignore = "a scenario: run by its #[test] in a process of its own"]
+fn scenario_levels() {
+    let config = MapConfig { chunk_size: (4, 4), ..map() };
+    let terrain = Terrain::new(config.clone()).unwrap();
+    let view = view(&terrain);
+    let scene = Scene { config: Some(config), streaming: Some(split_levels()), look_at: Some(view.0), ..default() };
+    let (img, counts) = render_scene(scene, "levels");
+    let [full, coarse] = counts.levels;
+    assert!(full > 0 && coarse > 0, "{full} full and {coarse} coarse chunks: both levels must be in view");
+    let holes = holes_inside(&img, &terrain, view, false);
+    assert_eq!(holes, 0, "{holes} pixels of the clear color inside the map: cracks where levels meet");
+    assert_type_colors(&img, &terrain, &[]);
+}
+
+/// The same past a wrapping map's east edge: the copies east of it, full near the camera, meet
+/// the map's own chunks, coarse farther west, without a crack.
+#[test]
+#[ignore = "a scenario: run by its #[test] in a process of its own"]
+fn scenario_levels_wrapping() {
+    let config = MapConfig { chunk_size: (4, 4), wrap: true, size: MapSize::Bounded { x: 24, z: 14 }, ..map() };
+    let terrain = Terrain::new(config.clone()).unwrap();
+    // The east edge: the map's last column, and the first copy's first.
+    let (center, size) = view(&terrain);
+    let edge = Vec2::new(24.0 * 1.5 - 0.75, center.y);
+    let scene = Scene { config: Some(config), streaming: Some(split_levels()), look_at: Some(edge), ..default() };
+    let (img, counts) = render_scene(scene, "levels_wrapping");
+    let [full, coarse] = counts.levels;
+    assert!(full > 0 && coarse > 0, "{full} full and {coarse} coarse chunks: both levels must be in view");
+    let holes = holes_inside(&img, &terrain, (edge, size), true);
+    assert_eq!(holes, 0, "{holes} pixels of the clear color inside the map's rows: cracks where levels meet");
 }
 
 /// The world builder's edits on [`map`]: a land tile made deep sea, a sea tile made a high

@@ -1,7 +1,8 @@
 //! Rendering a million units from the origin with `big_space`'s floating origin (Mesa's software
 //! Vulkan under Xvfb in CI): the picture is not blank, has no hole (no clear-color pixel: no
-//! crack between chunks, no NaN vertex), every clear tile shows its type's color at its center,
-//! and the tile state (a lens overlay) lands on the right tile.
+//! crack between chunks, full or coarse, no NaN vertex), every clear tile shows its type's color
+//! at its center, at either level of detail, and the tile state (a lens overlay) lands on the
+//! right tile.
 
 #[macro_use]
 mod support;
@@ -36,8 +37,20 @@ in_own_process! {
 #[ignore = "a scenario: run by its #[test] in a process of its own"]
 fn scenario_far() {
     let style = TileStateStyle { lens: true, ..default() };
-    let scene = Scene { config: Some(far_map()), style, tiles: Some(write_lens), far: Some(FAR), ..default() };
-    let (img, _) = render_scene(scene, "far");
+    // Levels of detail split the view: full chunks under the camera (47 units above the 3-unit
+    // mountains), coarse ones more than about 10 units aside.
+    let streaming = HexStreamingSettings { coarse_distance: Some(48.0), ..default() };
+    let scene = Scene {
+        config: Some(far_map()),
+        style,
+        tiles: Some(write_lens),
+        far: Some(FAR),
+        streaming: Some(streaming),
+        ..default()
+    };
+    let (img, counts) = render_scene(scene, "far");
+    let [full, coarse] = counts.levels;
+    assert!(full > 0 && coarse > 0, "{full} full and {coarse} coarse chunks: both levels must be in view");
 
     let holes = img.pixels().filter(|p| p.0 == HOLE).count();
     assert_eq!(holes, 0, "{holes} pixels of the clear color: holes or cracks in the terrain");

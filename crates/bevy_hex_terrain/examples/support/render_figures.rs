@@ -15,6 +15,10 @@ pub struct RenderFigures {
     pub instances: usize,
     /// Triangles of the visible meshes.
     pub triangles: usize,
+    /// Of those, the triangles of terrain chunks: `[full, coarse]` (levels of detail).
+    pub terrain: [usize; 2],
+    /// Of those, the triangles of props: `[on full chunks, on coarse chunks]`.
+    pub props: [usize; 2],
 }
 
 /// Counts [`RenderFigures`] every frame, after visibility is known.
@@ -38,8 +42,10 @@ fn count(
         &ViewVisibility,
         &MeshMaterial3d<bevy_hex_terrain::HexTerrainMaterial>,
         Has<bevy_hex_terrain::HexWater>,
+        Option<&bevy_hex_terrain::HexChunk>,
     )>,
-    standard: Query<(&Mesh3d, &ViewVisibility, &MeshMaterial3d<StandardMaterial>)>,
+    standard: Query<(&Mesh3d, &ViewVisibility, &MeshMaterial3d<StandardMaterial>, Option<&ChildOf>)>,
+    chunks: Query<&bevy_hex_terrain::HexChunk>,
     mut triangles: Local<HashMap<AssetId<Mesh>, usize>>,
 ) {
     let mut f = RenderFigures::default();
@@ -55,16 +61,24 @@ fn count(
         if transparent || batches.insert((id, material)) {
             f.draws += 1;
         }
+        t
     };
     // The water surfaces are transparent.
-    for (mesh, visible, material, water) in &terrain {
+    for (mesh, visible, material, water, chunk) in &terrain {
         if visible.get() {
-            add(mesh, material.0.id().untyped(), water);
+            let t = add(mesh, material.0.id().untyped(), water);
+            if let Some(chunk) = chunk {
+                f.terrain[chunk.detail as usize] += t;
+            }
         }
     }
-    for (mesh, visible, material) in &standard {
+    for (mesh, visible, material, parent) in &standard {
         if visible.get() {
-            add(mesh, material.0.id().untyped(), false);
+            let t = add(mesh, material.0.id().untyped(), false);
+            // A chunk's children drawn with a standard material are its props.
+            if let Some(chunk) = parent.and_then(|p| chunks.get(p.parent()).ok()) {
+                f.props[chunk.detail as usize] += t;
+            }
         }
     }
     // Meshes change with hot reloads: forget the cache when it grows past what is loaded.

@@ -3,13 +3,30 @@
 //! instanced draws). A mesh's unit is the prop's scale (see [`hex_terrain::Prop::scale`]): its
 //! foot is at the origin, trees are about 2.2 units tall.
 
+use bevy::mesh::VertexAttributeValues;
 use bevy::prelude::*;
 use hex_terrain::{PROP_VARIANTS, PropKind};
 
-/// A flat-shaded part in one color, placed by `transform`.
+/// A flat-shaded part in one color, placed by `transform`, without its faces that look straight
+/// down (the base of a cone, the bottom of a box): from any camera above a face's plane, and a
+/// strategy game's camera is above the ground, such a face is a back face, culled unseen.
 fn part(mesh: Mesh, color: Color, transform: Transform) -> Mesh {
     let mut mesh = mesh.with_duplicated_vertices().transformed_by(transform);
+    mesh.remove_attribute(Mesh::ATTRIBUTE_UV_0);
+    mesh.remove_attribute(Mesh::ATTRIBUTE_TANGENT);
     mesh.compute_flat_normals();
+    if let (Some(VertexAttributeValues::Float32x3(p)), Some(VertexAttributeValues::Float32x3(n))) =
+        (mesh.attribute(Mesh::ATTRIBUTE_POSITION), mesh.attribute(Mesh::ATTRIBUTE_NORMAL))
+    {
+        // Flat normals: each triangle's three vertices share its normal.
+        let keep: Vec<bool> = n.chunks_exact(3).map(|t| t[0][1] > -0.99).collect();
+        let kept = |v: &[[f32; 3]]| -> Vec<[f32; 3]> {
+            v.chunks_exact(3).zip(&keep).filter(|(_, k)| **k).flat_map(|(t, _)| t.iter().copied()).collect()
+        };
+        let (p, n) = (kept(p), kept(n));
+        mesh.insert_attribute(Mesh::ATTRIBUTE_POSITION, p);
+        mesh.insert_attribute(Mesh::ATTRIBUTE_NORMAL, n);
+    }
     let n = mesh.count_vertices();
     let c = color.to_linear().to_f32_array();
     mesh.insert_attribute(Mesh::ATTRIBUTE_COLOR, vec![c; n]);
@@ -50,9 +67,10 @@ fn ico(radius: f32, subdivisions: u32) -> Mesh {
     Sphere::new(radius).mesh().ico(subdivisions).unwrap_or_else(|_| Sphere::new(radius).mesh().uv(6, 4))
 }
 
+/// A trunk: an open tube (its top is inside the crown, its foot in the ground).
 fn trunk(height: f32, radius: f32) -> Mesh {
     part(
-        Cylinder::new(radius, height).mesh().resolution(4).build(),
+        Cylinder::new(radius, height).mesh().resolution(4).without_caps().build(),
         Color::srgb(0.36, 0.25, 0.16),
         Transform::from_xyz(0.0, height * 0.5, 0.0),
     )
@@ -151,6 +169,59 @@ fn wonder() -> Mesh {
             Transform::from_xyz(0.0, 2.52, 0.0).with_rotation(Quat::from_rotation_y(std::f32::consts::FRAC_PI_4)),
         ),
     ])
+}
+
+/// The far mesh of a tree: a trunk and one crown (`cone`: a cone, else a squat ball) of a
+/// handful of faces, in the colors of the full mesh.
+fn far_tree(v: u8, cone: bool) -> Mesh {
+    let full_green = if cone {
+        [Color::srgb(0.10, 0.30, 0.17), Color::srgb(0.13, 0.34, 0.19), Color::srgb(0.09, 0.27, 0.15)]
+    } else {
+        [Color::srgb(0.20, 0.42, 0.13), Color::srgb(0.26, 0.47, 0.15), Color::srgb(0.17, 0.36, 0.12)]
+    };
+    let green = full_green[usize::from(v) % 3];
+    let trunk = part(
+        Cylinder::new(0.1, 0.6).mesh().resolution(3).without_caps().build(),
+        Color::srgb(0.36, 0.25, 0.16),
+        Transform::from_xyz(0.0, 0.3, 0.0),
+    );
+    let crown = if cone {
+        part(Cone::new(0.6, 1.7).mesh().resolution(5).build(), green, Transform::from_xyz(0.0, 1.25, 0.0))
+    } else {
+        part(Sphere::new(0.8).mesh().uv(4, 2), green, Transform::from_xyz(0.0, 1.4, 0.0))
+    };
+    merged(vec![trunk, crown])
+}
+
+/// The far mesh of variant `v` of a prop kind, for props on chunks drawn coarse (far from every
+/// camera, a few pixels tall): the same size, colors and foot as [`prop_mesh`], a third of its
+/// faces or fewer. Markers (resources, wonders) keep their full mesh: they must read at a
+/// strategic zoom.
+#[must_use]
+pub fn prop_mesh_far(kind: PropKind, v: u8) -> Mesh {
+    let v = v % PROP_VARIANTS;
+    match kind {
+        PropKind::Broadleaf => far_tree(v, false),
+        PropKind::Pine => far_tree(v, true),
+        PropKind::Rock => {
+            let grey = [Color::srgb(0.45, 0.43, 0.40), Color::srgb(0.52, 0.50, 0.47), Color::srgb(0.40, 0.38, 0.37)]
+                [usize::from(v) % 3];
+            let squash = Transform::from_xyz(0.0, 0.3, 0.0).with_scale(Vec3::new(1.0, 0.7 + 0.15 * f32::from(v), 0.85));
+            part(Sphere::new(0.8).mesh().uv(4, 2), grey, squash)
+        }
+        PropKind::Reed => {
+            let color = Color::srgb(0.45, 0.55, 0.25);
+            let blades = (0..3)
+                .map(|i| {
+                    let a = std::f32::consts::TAU * i as f32 / 3.0;
+                    let t = Transform::from_xyz(0.25 * a.cos(), 0.75, 0.25 * a.sin());
+                    part(Cone::new(0.07, 1.5).mesh().resolution(3).build(), color, t)
+                })
+                .collect();
+            merged(blades)
+        }
+        PropKind::Resource | PropKind::Wonder => prop_mesh(kind, v),
+    }
 }
 
 /// The mesh of variant `v` (below [`PROP_VARIANTS`]) of a prop kind.

@@ -48,6 +48,9 @@ pub struct HexProp {
 pub struct PropAssets {
     /// `meshes[kind as usize][variant]`.
     pub meshes: Vec<Vec<Handle<Mesh>>>,
+    /// The far meshes, for props on chunks drawn coarse (far from every camera): the same shapes
+    /// with a third of the faces or fewer, `far_meshes[kind as usize][variant]`.
+    pub far_meshes: Vec<Vec<Handle<Mesh>>>,
     /// The one material every prop uses (white base, vertex colors).
     #[cfg(feature = "render")]
     pub material: Handle<StandardMaterial>,
@@ -99,12 +102,12 @@ fn create_assets(
     mut meshes: ResMut<Assets<Mesh>>,
     mut materials: ResMut<Assets<StandardMaterial>>,
 ) {
-    let meshes = PropKind::ALL
-        .iter()
-        .map(|&kind| (0..PROP_VARIANTS).map(|v| meshes.add(meshes::prop_mesh(kind, v))).collect())
-        .collect();
+    let mut all = |make: fn(PropKind, u8) -> Mesh| -> Vec<Vec<Handle<Mesh>>> {
+        PropKind::ALL.iter().map(|&kind| (0..PROP_VARIANTS).map(|v| meshes.add(make(kind, v))).collect()).collect()
+    };
+    let (near, far_meshes) = (all(meshes::prop_mesh), all(meshes::prop_mesh_far));
     let material = materials.add(StandardMaterial { perceptual_roughness: 0.9, reflectance: 0.15, ..default() });
-    commands.insert_resource(PropAssets { meshes, material });
+    commands.insert_resource(PropAssets { meshes: near, far_meshes, material });
 }
 
 /// Asks chunk tasks for props at the settings' cap, density and share on coarse chunks.
@@ -112,8 +115,15 @@ fn request_props(settings: Res<PropSettings>, mut request: ResMut<ContentRequest
     request.props = Some((settings.max_per_chunk, settings.density, settings.coarse_share));
 }
 
-/// The props' entities of one chunk.
-fn spawn_props(commands: &mut Commands, chunk: Entity, props: &[Prop], size: f32, assets: Option<&PropAssets>) {
+/// The props' entities of one chunk, with the far meshes on a chunk drawn coarse.
+fn spawn_props(
+    commands: &mut Commands,
+    chunk: Entity,
+    props: &[Prop],
+    size: f32,
+    assets: Option<&PropAssets>,
+    far: bool,
+) {
     commands.entity(chunk).with_children(|children| {
         for p in props {
             let transform = Transform::from_translation(Vec3::from_array(p.position))
@@ -123,11 +133,12 @@ fn spawn_props(commands: &mut Commands, chunk: Entity, props: &[Prop], size: f32
             let mut e = children.spawn((prop, transform));
             #[cfg(feature = "render")]
             if let Some(assets) = assets {
-                let mesh = assets.meshes[p.kind as usize][usize::from(p.variant % PROP_VARIANTS)].clone();
+                let meshes = if far { &assets.far_meshes } else { &assets.meshes };
+                let mesh = meshes[p.kind as usize][usize::from(p.variant % PROP_VARIANTS)].clone();
                 e.insert((Mesh3d(mesh), MeshMaterial3d(assets.material.clone())));
             }
             #[cfg(not(feature = "render"))]
-            let _ = (&mut e, assets);
+            let _ = (&mut e, assets, far);
         }
     });
 }
@@ -181,7 +192,8 @@ fn sync_props(
         let rest = &all[(*next).min(all.len())..];
         let take = rest.len().min(budget);
         if take > 0 {
-            spawn_props(&mut commands, chunk, &rest[..take], size, assets.as_deref());
+            let far = coords.get(chunk).is_ok_and(|c| c.detail == hex_terrain::Detail::Coarse);
+            spawn_props(&mut commands, chunk, &rest[..take], size, assets.as_deref(), far);
         }
         budget -= take;
         *next += take;

@@ -89,6 +89,11 @@ pub struct Scene {
     /// After the first picture: change the settings, let the change show, and take a second
     /// picture ([`render_pair`]).
     pub then: Option<fn(&mut PropSettings, &mut TerrainLighting)>,
+    /// Streaming settings (the defaults when `None`).
+    pub streaming: Option<HexStreamingSettings>,
+    /// Look at this world `(x, z)` instead of the map's middle, with a streaming agent on the
+    /// camera (so a wrapping map shows the copies past its edge), and clear to [`HOLE`].
+    pub look_at: Option<Vec2>,
 }
 
 /// World units the far camera shows, `x` by `z`.
@@ -106,6 +111,8 @@ pub struct Counts {
     pub map_changed: usize,
     /// Frames run.
     pub frames: usize,
+    /// Chunks showing a mesh at each level (`[full, coarse]`) in the frame of the first picture.
+    pub levels: [usize; 2],
 }
 
 /// Renders the map with outlines on or off and returns the screenshot.
@@ -128,13 +135,18 @@ pub fn render_pair(scene: Scene, name: &str) -> (image::RgbImage, image::RgbImag
 }
 
 fn render_scenes(scene: Scene, name: &str) -> (image::RgbImage, Option<image::RgbImage>, Counts) {
-    let Scene { config, material, style, tiles, deferred, far, water, props, lighting, then } = scene;
+    let Scene { config, material, style, tiles, deferred, far, water, props, lighting, then, streaming, look_at } =
+        scene;
     let config = config.unwrap_or_else(map);
-    let settings = HexStreamingSettings::default();
+    let settings = streaming.unwrap_or_default();
     let out_after = Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("{name}_after.png"));
     let _ = std::fs::remove_file(&out_after);
     let terrain = Terrain::new(config.clone()).unwrap();
-    let (center, size) = if far.is_some() { (Vec2::ZERO, FAR_VIEW) } else { view(&terrain) };
+    let (center, size) = match (far, look_at) {
+        (Some(_), _) => (Vec2::ZERO, FAR_VIEW),
+        (None, Some(at)) => (at, view(&terrain).1),
+        (None, None) => view(&terrain),
+    };
     let out = Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("{name}.png"));
     let _ = std::fs::remove_file(&out);
     let done: Arc<Mutex<bool>> = Arc::default();
@@ -199,6 +211,10 @@ fn render_scenes(scene: Scene, name: &str) -> (image::RgbImage, Option<image::Rg
                     .looking_at(Vec3::new(center.x, 0.0, center.y), Vec3::NEG_Z),
             ))
             .id();
+        if look_at.is_some() {
+            app.world_mut().entity_mut(camera).insert(HexTerrainAgent { radius: Some(8) });
+            app.insert_resource(ClearColor(Color::srgb_u8(HOLE[0], HOLE[1], HOLE[2])));
+        }
         if sun {
             app.world_mut().entity_mut(camera).insert(HexTerrainCamera);
         } else {
@@ -220,6 +236,18 @@ fn render_scenes(scene: Scene, name: &str) -> (image::RgbImage, Option<image::Rg
         );
     }
     let counts: Arc<Mutex<Counts>> = Arc::default();
+    let levels = counts.clone();
+    let shot = done.clone();
+    // The levels shown, every frame until the first picture is kept.
+    app.add_systems(Last, move |chunks: Query<&HexChunk, With<Mesh3d>>| {
+        if !*shot.lock().unwrap() {
+            let mut l = [0; 2];
+            for c in &chunks {
+                l[c.detail as usize] += 1;
+            }
+            levels.lock().unwrap().levels = l;
+        }
+    });
     let seen = counts.clone();
     app.add_systems(Last, move |map: Res<HexMap>, mut events: MessageReader<AssetEvent<HexTerrainMaterial>>| {
         let mut c = seen.lock().unwrap();
