@@ -34,16 +34,24 @@ impl Plugin for RenderFiguresPlugin {
 /// A material handle's identity, whatever its type.
 type MaterialKey = bevy::asset::UntypedAssetId;
 
+/// Meshes drawn with the terrain material: chunks and water surfaces (with their chunk, if a
+/// chunk).
+type TerrainDraws<'w, 's> = Query<
+    'w,
+    's,
+    (
+        &'static Mesh3d,
+        &'static ViewVisibility,
+        &'static MeshMaterial3d<bevy_hex_terrain::HexTerrainMaterial>,
+        Has<bevy_hex_terrain::HexWater>,
+        Option<&'static bevy_hex_terrain::HexChunk>,
+    ),
+>;
+
 fn count(
     meshes: Res<Assets<Mesh>>,
     mut figures: ResMut<RenderFigures>,
-    terrain: Query<(
-        &Mesh3d,
-        &ViewVisibility,
-        &MeshMaterial3d<bevy_hex_terrain::HexTerrainMaterial>,
-        Has<bevy_hex_terrain::HexWater>,
-        Option<&bevy_hex_terrain::HexChunk>,
-    )>,
+    terrain: TerrainDraws,
     standard: Query<(&Mesh3d, &ViewVisibility, &MeshMaterial3d<StandardMaterial>, Option<&ChildOf>)>,
     chunks: Query<&bevy_hex_terrain::HexChunk>,
     mut triangles: Local<HashMap<AssetId<Mesh>, usize>>,
