@@ -129,7 +129,8 @@ fn coarse_chunks_carry_a_share_of_the_props_on_the_coarse_surface() {
     let mut app = lod_app(config, 2, 12.0);
     app.insert_resource(PropSettings { max_per_chunk: 200, coarse_share: 0.5, ..default() });
     spawn_agent(&mut app, Vec3::new(6.0, 0.0, 6.0));
-    run_until(&mut app, "levels settled", |app| levels_settled(app) && props_settled(app));
+    run_until(&mut app, "levels settled", levels_settled);
+    run_until(&mut app, "props settled", props_settled);
     let terrain = app.world().resource::<HexMap>().terrain().clone();
     let chunks: Vec<(ChunkCoord, Detail, ChunkContent)> = app
         .world_mut()

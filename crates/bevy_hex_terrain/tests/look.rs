@@ -17,8 +17,11 @@ fn wooded() -> MapConfig {
     c
 }
 
+/// Every chunk full (levels of detail off): these tests compare props with the core's full
+/// placement; `detail.rs` tests the props of coarse chunks.
 fn app_with_props(config: MapConfig, radius: u32, props: PropSettings) -> App {
-    let mut app = app_with(HexTerrainPlugins { map: config.into(), settings: settings(radius) }, None);
+    let settings = HexStreamingSettings { coarse_distance: None, ..settings(radius) };
+    let mut app = app_with(HexTerrainPlugins { map: config.into(), settings }, None);
     app.insert_resource(props);
     app
 }
