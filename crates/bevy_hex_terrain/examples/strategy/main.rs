@@ -91,6 +91,15 @@ fn main() -> AppExit {
     let scripted = std::env::var_os("HEXTERRAIN_SCRIPT").is_some();
     // HEXTERRAIN_PRESET=1..7 starts on another preset (6: the wrapping Civ6 Standard map).
     let preset = std::env::var("HEXTERRAIN_PRESET").ok().and_then(|p| p.parse::<usize>().ok()).unwrap_or(1);
+    // HEXTERRAIN_MAP=maps/civ6/huge.map.ron starts on any map file of the assets instead.
+    let map = std::env::var("HEXTERRAIN_MAP").unwrap_or_else(|_| PRESETS[preset.clamp(1, PRESETS.len()) - 1].into());
+    // HEXTERRAIN_SETTLE=1 spawns every prop at once (for figures of a settled view).
+    let settle = std::env::var_os("HEXTERRAIN_SETTLE").is_some();
+    // HEXTERRAIN_LOD=off draws every chunk at full detail (levels of detail compared).
+    let mut streaming = HexStreamingSettings::default();
+    if std::env::var("HEXTERRAIN_LOD").is_ok_and(|v| v == "off") {
+        streaming.coarse_distance = None;
+    }
     let mut app = App::new();
     // HEXTERRAIN_FOG=off starts without the fog of war (V toggles it).
     let fog_of_war = std::env::var("HEXTERRAIN_FOG").map_or(true, |v| v != "off");
@@ -98,11 +107,12 @@ fn main() -> AppExit {
     let minimap = MinimapSettings { margin: Vec2::new(12.0, 48.0), ..default() };
     app.add_plugins((
         DefaultPlugins,
-        HexTerrainPlugins::from_asset(PRESETS[preset.clamp(1, PRESETS.len()) - 1]),
+        HexTerrainPlugins { settings: streaming, ..HexTerrainPlugins::from_asset(map) },
         HexMinimapPlugin { settings: minimap },
     ))
     .insert_resource(TerrainMaterialSettings { outlines: true, outline_width: 0.04, ..default() })
     .insert_resource(TileStateStyle { fog_of_war, ..default() })
+    .insert_resource(PropSettings { max_spawns_per_frame: if settle { usize::MAX } else { 64 }, ..default() })
     .insert_resource(Game { turn: 1, ..default() })
     .init_resource::<editor::EditorMode>()
     .add_systems(Startup, (setup, look::from_env, editor::spawn_panel))
@@ -142,8 +152,34 @@ fn main() -> AppExit {
         app.add_plugins(script::ScriptPlugin);
     } else {
         app.add_plugins(support::screenshot::ScreenshotModePlugin);
+        // In screenshot mode, what each frame draws is printed (the README's figures).
+        if std::env::var_os("HEXTERRAIN_SCREENSHOT").is_some() {
+            app.add_plugins(support::render_figures::RenderFiguresPlugin).add_systems(Last, print_figures);
+        }
     }
     app.run()
+}
+
+/// Prints what the frame drew and the chunks at each level.
+fn print_figures(
+    frame: Res<support::render_figures::RenderFigures>,
+    chunks: Query<&HexChunk>,
+    props: Query<(), With<HexProp>>,
+) {
+    let coarse = chunks.iter().filter(|c| c.generation.is_some() && c.detail == Detail::Coarse).count();
+    println!(
+        "frame: {} draw calls, {} instances, {} triangles (terrain {} full + {} coarse, props {} + {}); {} chunks, {} coarse; {} props",
+        frame.draws,
+        frame.instances,
+        frame.triangles,
+        frame.terrain[0],
+        frame.terrain[1],
+        frame.props[0],
+        frame.props[1],
+        chunks.iter().count(),
+        coarse,
+        props.iter().count(),
+    );
 }
 
 fn setup(mut commands: Commands) {
@@ -156,9 +192,12 @@ fn setup(mut commands: Commands) {
         })
         // The opening view: a coast with an inland sea, forest, hills and mountains close by.
         .unwrap_or(Vec3::new(52.0, 0.0, 52.0));
+    // HEXTERRAIN_ZOOM=d starts the camera d units from its focus (8 to 120, 18 by default).
+    let zoom =
+        std::env::var("HEXTERRAIN_ZOOM").ok().and_then(|z| z.parse::<f32>().ok()).map_or(18.0, |z| z.clamp(8.0, 120.0));
     commands
         .spawn((
-            Rig { focus, yaw: 0.0, distance: 18.0, target_focus: focus, target_yaw: 0.0, target_distance: 18.0 },
+            Rig { focus, yaw: 0.0, distance: zoom, target_focus: focus, target_yaw: 0.0, target_distance: zoom },
             HexTerrainAgent::default(),
             Transform::from_translation(focus),
             // The camera below inherits visibility from the rig.

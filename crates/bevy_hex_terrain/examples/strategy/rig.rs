@@ -33,11 +33,11 @@ pub(crate) fn camera_controls(
     keys: Res<ButtonInput<KeyCode>>,
     scroll: Res<AccumulatedMouseScroll>,
     windows: Query<&Window>,
-    mut rigs: Query<(&mut Rig, &mut Transform, &Children)>,
+    mut rigs: Query<(&mut Rig, &mut Transform, &Children, &mut HexTerrainAgent)>,
     mut cameras: Query<&mut Transform, (With<Camera3d>, Without<Rig>)>,
 ) {
     let dt = time.delta_secs();
-    for (mut rig, mut t, children) in &mut rigs {
+    for (mut rig, mut t, children, mut agent) in &mut rigs {
         let mut pan = Vec2::ZERO;
         for (key, d) in [
             (KeyCode::KeyW, Vec2::NEG_Y),
@@ -87,6 +87,12 @@ pub(crate) fn camera_controls(
         rig.focus = rig.focus.lerp(tf, k);
         rig.yaw += (ty - rig.yaw) * k;
         rig.distance += (td - rig.distance) * k;
+        // Zoomed out the camera sees farther: keep terrain loaded as far (a chunk is about 24
+        // units across), and let levels of detail keep what that costs down.
+        let radius = Some(2 + (rig.distance / 40.0) as u32);
+        if agent.radius != radius {
+            agent.radius = radius;
+        }
         t.translation = rig.focus;
         for child in children.iter() {
             if let Ok(mut cam) = cameras.get_mut(child) {
