@@ -172,3 +172,37 @@ fn twins_of_a_wrapping_map_share_a_mesh_only_at_one_level() {
     let handles = meshed_chunks(&mut app);
     assert_ne!(handles[&near], handles[&far]);
 }
+
+#[test]
+fn a_level_change_swaps_props_a_budget_a_frame() {
+    let mut config = unbounded((8, 8));
+    config.noise.scale = 40.0;
+    let mut app = lod_app(config, 2, 12.0);
+    let budget = 16;
+    app.insert_resource(PropSettings { max_per_chunk: 200, max_spawns_per_frame: budget, ..default() });
+    let agent = spawn_agent(&mut app, Vec3::new(6.0, 0.0, 6.0));
+    run_until(&mut app, "levels settled", levels_settled);
+    run_until(&mut app, "props settled", props_settled);
+    let count = |app: &mut App| app.world_mut().query::<&HexProp>().iter(app.world()).count();
+    let mut last = count(&mut app);
+    let full_before = last;
+    // One chunk east: a column of chunks turns full, another coarse, none is dropped.
+    app.world_mut().entity_mut(agent).insert(Transform::from_translation(Vec3::new(18.0, 0.0, 6.0)));
+    let retire = app.world().resource::<HexStreamingSettings>().max_despawns_per_frame;
+    let mut most = 0;
+    let mut frames = 0;
+    let mut step = |app: &mut App| {
+        frames += 1;
+        let now = count(app);
+        most = most.max(now.abs_diff(last));
+        last = now;
+        frames
+    };
+    run_until(&mut app, "levels settled after the move", |app| step(app) > 2 && levels_settled(app));
+    run_until(&mut app, "props settled after the move", |app| {
+        step(app);
+        props_settled(app)
+    });
+    assert!(most > 0 && most <= budget + retire, "{most} props came or went in one frame (budget {budget})");
+    assert_ne!(last, full_before, "the levels changed, and the props with them");
+}

@@ -16,12 +16,12 @@ mod fog;
 mod meshes;
 mod settings;
 
-use std::collections::VecDeque;
+use std::collections::{HashMap, VecDeque};
 
 use bevy::prelude::*;
 #[cfg(feature = "render")]
 use hex_terrain::PROP_VARIANTS;
-use hex_terrain::{Prop, PropKind};
+use hex_terrain::{Detail, Prop, PropKind};
 
 pub use settings::PropSettings;
 
@@ -143,12 +143,15 @@ fn spawn_props(
     });
 }
 
-/// What [`sync_props`] remembers between frames: whether props were shown, and the chunks whose
-/// props wait to be spawned, with the index of the next.
+/// What [`sync_props`] remembers between frames: whether props were shown, the chunks whose
+/// props wait to be spawned (with the index of the next), the old props of chunks that changed
+/// level waiting to be despawned, and the map generation and level of each chunk's props.
 #[derive(Default)]
 struct Spawning {
     was_enabled: Option<bool>,
     queue: VecDeque<(Entity, usize)>,
+    stale: VecDeque<Entity>,
+    shown: HashMap<Entity, (Option<u64>, Detail)>,
 }
 
 /// Keeps each chunk's prop children in step with its [`ChunkContent`](crate::ChunkContent) and the settings: a chunk
@@ -164,18 +167,40 @@ fn sync_props(
     mut spawning: Local<Spawning>,
     mut stats: ResMut<HexPropStats>,
 ) {
-    let Spawning { was_enabled, queue } = &mut *spawning;
+    let Spawning { was_enabled, queue, stale, shown } = &mut *spawning;
     let enabled = settings.enabled;
     let size = map.config().layout.hex_size;
-    for (chunk, _) in stale_chunks(&mut commands, &chunks, &props, enabled, was_enabled) {
+    for (chunk, _, old) in stale_chunks(&chunks, &props, enabled, was_enabled) {
         queue.retain(|&(e, _)| e != chunk);
-        if enabled {
-            queue.push_back((chunk, 0));
+        // A chunk that changed level (same map generation, another detail) swaps its props
+        // a budget a frame, like any spawn; anything else (another map, an edit, the switch)
+        // takes its old props away at once.
+        let now = coords.get(chunk).ok().map(|c| (c.generation, c.detail));
+        let level_change = enabled && now.is_some_and(|(g, d)| shown.get(&chunk).is_some_and(|s| s.0 == g && s.1 != d));
+        if level_change {
+            stale.extend(old);
+        } else {
+            for prop in old {
+                commands.entity(prop).despawn();
+            }
+        }
+        match now {
+            Some(now) if enabled => {
+                shown.insert(chunk, now);
+                queue.push_back((chunk, 0));
+            }
+            _ => {
+                shown.remove(&chunk);
+            }
         }
     }
     if !enabled {
         queue.clear();
+        for prop in stale.drain(..) {
+            commands.entity(prop).try_despawn();
+        }
     }
+    shown.retain(|&chunk, _| coords.contains(chunk));
     // The chunks nearest an agent first (those in view), the order they came in among equals.
     if let Some(streamer) = &streamer
         && queue.len() > 1
@@ -185,6 +210,14 @@ fn sync_props(
         queue.make_contiguous().sort_by_key(|&(e, _)| distance(e));
     }
     let mut budget = settings.max_spawns_per_frame.max(1);
+    // Old props first (those of chunks dropped meanwhile went with their chunk).
+    while budget > 0 {
+        let Some(prop) = stale.pop_front() else { break };
+        if props.contains(prop) {
+            commands.entity(prop).despawn();
+            budget -= 1;
+        }
+    }
     while budget > 0 {
         let Some(&mut (chunk, ref mut next)) = queue.front_mut() else { break };
         // A chunk dropped (or retired) before its turn has nothing to show.
@@ -205,9 +238,12 @@ fn sync_props(
         .iter()
         .map(|&(chunk, next)| chunks.get(chunk).map_or(0, |(_, c, _)| c.props.len().saturating_sub(next)))
         .sum();
-    // Written only when it changes, so the figures are not "changed" every frame.
+    // Written only when they change, so the figures are not "changed" every frame.
     if stats.pending != pending {
         stats.pending = pending;
+    }
+    if stats.stale != stale.len() {
+        stats.stale = stale.len();
     }
 }
 
@@ -222,4 +258,7 @@ pub struct HexPropStats {
     /// Props of loaded chunks waiting for their turn to be spawned (see
     /// [`PropSettings::max_spawns_per_frame`]).
     pub pending: usize,
+    /// Old props of chunks that changed level of detail, waiting for their turn to be despawned
+    /// (within the same budget).
+    pub stale: usize,
 }

@@ -18,7 +18,8 @@ pub struct PropSettings {
     pub density: f32,
     /// Prop entities spawned per frame at most: a new chunk's props appear over a few frames
     /// (the chunks nearest an agent first) rather than all in the frame its mesh does, so no frame
-    /// spends milliseconds spawning hundreds of them.
+    /// spends milliseconds spawning hundreds of them. When a chunk changes level of detail, its
+    /// old props are despawned within the same budget, before the new ones come.
     pub max_spawns_per_frame: usize,
     /// Share of a chunk's props that stand when it is drawn coarse, far from every camera (see
     /// [`HexStreamingSettings::coarse_distance`](crate::HexStreamingSettings::coarse_distance)),

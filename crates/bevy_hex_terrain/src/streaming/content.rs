@@ -79,15 +79,15 @@ pub(crate) type ContentQuery<'w, 's> =
     Query<'w, 's, (Entity, Ref<'static, ChunkContent>, Option<&'static Children>), With<super::HexChunk>>;
 
 /// The chunks whose children of one kind (`T`: water, props) must be made anew (all of them
-/// when the kind's switch changed, else those whose content changed), with their content; their
-/// old children of that kind are despawned. `was` remembers the switch between frames.
+/// when the kind's switch changed, else those whose content changed), with their content and
+/// their old children of that kind, which the caller despawns (at once, or a budget a frame).
+/// `was` remembers the switch between frames.
 pub(crate) fn stale_chunks<'a, T: Component>(
-    commands: &mut Commands,
     chunks: &'a ContentQuery,
     children_of_kind: &Query<(), With<T>>,
     enabled: bool,
     was: &mut Option<bool>,
-) -> Vec<(Entity, &'a ChunkContent)> {
+) -> Vec<(Entity, &'a ChunkContent, Vec<Entity>)> {
     let toggled = *was != Some(enabled);
     *was = Some(enabled);
     let mut stale = Vec::new();
@@ -95,12 +95,8 @@ pub(crate) fn stale_chunks<'a, T: Component>(
         if !(toggled || content.is_changed()) {
             continue;
         }
-        for child in children.into_iter().flatten() {
-            if children_of_kind.contains(*child) {
-                commands.entity(*child).despawn();
-            }
-        }
-        stale.push((chunk, content.into_inner()));
+        let old = children.into_iter().flatten().copied().filter(|c| children_of_kind.contains(*c)).collect();
+        stale.push((chunk, content.into_inner(), old));
     }
     stale
 }

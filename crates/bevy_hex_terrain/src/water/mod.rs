@@ -59,7 +59,11 @@ fn sync_water(
     mut was_enabled: Local<Option<bool>>,
 ) {
     let enabled = settings.enabled;
-    for (chunk, content) in stale_chunks(&mut commands, &chunks, &waters, enabled, &mut was_enabled) {
+    for (chunk, content, old) in stale_chunks(&chunks, &waters, enabled, &mut was_enabled) {
+        // One surface a chunk: replaced at once.
+        for water in old {
+            commands.entity(water).despawn();
+        }
         let Some(mesh) = content.water.clone().filter(|_| enabled) else { continue };
         commands.entity(chunk).with_children(|c| {
             let mut water = c.spawn((HexWater, Mesh3d(mesh)));
