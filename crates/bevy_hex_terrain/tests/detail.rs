@@ -123,11 +123,11 @@ fn far_chunks_are_coarse_and_a_level_change_keeps_the_old_mesh_until_the_new_one
 }
 
 #[test]
-fn coarse_chunks_carry_a_share_of_the_props_on_the_coarse_surface() {
+fn coarse_chunks_carry_their_props_on_the_coarse_surface() {
     let mut config = unbounded((8, 8));
     config.noise.scale = 40.0;
     let mut app = lod_app(config, 2, 12.0);
-    app.insert_resource(PropSettings { max_per_chunk: 200, coarse_share: 0.5, ..default() });
+    app.insert_resource(PropSettings { max_per_chunk: 200, ..default() });
     spawn_agent(&mut app, Vec3::new(6.0, 0.0, 6.0));
     run_until(&mut app, "levels settled", levels_settled);
     run_until(&mut app, "props settled", props_settled);
@@ -142,8 +142,7 @@ fn coarse_chunks_carry_a_share_of_the_props_on_the_coarse_surface() {
     for (c, detail, content) in chunks {
         let full = terrain
             .generate(terrain.chunk_rect(c).unwrap(), bevy_hex_terrain::hex_terrain::GenerateOptions::DIAGNOSTICS);
-        let share = if detail == Detail::Coarse { 0.5 } else { 1.0 };
-        let mut expected = terrain.props_on(&full, 200, share, detail);
+        let mut expected = terrain.props_on(&full, 200, 1.0, detail);
         expected.extend(terrain.marker_props(&full));
         assert_eq!(&content.props[..], &expected[..], "chunk {c:?} at {detail:?}");
         levels[detail as usize] += content.props.len();
@@ -173,8 +172,17 @@ fn twins_of_a_wrapping_map_share_a_mesh_only_at_one_level() {
     assert_ne!(handles[&near], handles[&far]);
 }
 
+/// The prop entities and their heights, by chunk.
+fn prop_entities(app: &mut App) -> HashMap<Entity, (Entity, f32)> {
+    app.world_mut()
+        .query::<(Entity, &ChildOf, &Transform, &HexProp)>()
+        .iter(app.world())
+        .map(|(e, parent, t, _)| (e, (parent.parent(), t.translation.y)))
+        .collect()
+}
+
 #[test]
-fn a_level_change_swaps_props_a_budget_a_frame() {
+fn a_level_change_moves_the_props_in_place() {
     let mut config = unbounded((8, 8));
     config.noise.scale = 40.0;
     let mut app = lod_app(config, 2, 12.0);
@@ -183,14 +191,15 @@ fn a_level_change_swaps_props_a_budget_a_frame() {
     let agent = spawn_agent(&mut app, Vec3::new(6.0, 0.0, 6.0));
     run_until(&mut app, "levels settled", levels_settled);
     run_until(&mut app, "props settled", props_settled);
-    let count = |app: &mut App| app.world_mut().query::<&HexProp>().iter(app.world()).count();
-    let mut last = count(&mut app);
-    let full_before = last;
+    let levels = |app: &mut App| -> HashMap<Entity, Detail> {
+        app.world_mut().query::<(Entity, &HexChunk)>().iter(app.world()).map(|(e, c)| (e, c.detail)).collect()
+    };
+    let (before, levels_before) = (prop_entities(&mut app), levels(&mut app));
     // One chunk east: a column of chunks turns full, another coarse, none is dropped.
     app.world_mut().entity_mut(agent).insert(Transform::from_translation(Vec3::new(18.0, 0.0, 6.0)));
+    let count = |app: &mut App| app.world_mut().query::<&HexProp>().iter(app.world()).count();
     let retire = app.world().resource::<HexStreamingSettings>().max_despawns_per_frame;
-    let mut most = 0;
-    let mut frames = 0;
+    let (mut last, mut most, mut frames) = (count(&mut app), 0, 0);
     let mut step = |app: &mut App| {
         frames += 1;
         let now = count(app);
@@ -203,6 +212,23 @@ fn a_level_change_swaps_props_a_budget_a_frame() {
         step(app);
         props_settled(app)
     });
-    assert!(most > 0 && most <= budget + retire, "{most} props came or went in one frame (budget {budget})");
-    assert_ne!(last, full_before, "the levels changed, and the props with them");
+    assert!(most <= budget + retire, "{most} props came or went in one frame (budget {budget})");
+    let (after, levels_after) = (prop_entities(&mut app), levels(&mut app));
+    // Every chunk that changed level kept its prop entities, each moved onto its new surface.
+    let mut moved = 0;
+    let mut switched = 0;
+    for (chunk, level) in &levels_after {
+        if levels_before.get(chunk).is_none_or(|l| l == level) {
+            continue;
+        }
+        switched += 1;
+        let old: Vec<(&Entity, &(Entity, f32))> = before.iter().filter(|(_, (c, _))| c == chunk).collect();
+        for (e, (_, y)) in old {
+            let (_, now) =
+                after.get(e).unwrap_or_else(|| panic!("prop {e} of a chunk that changed level was despawned"));
+            moved += usize::from(now != y);
+        }
+    }
+    assert!(switched >= 4, "{switched} chunks changed level");
+    assert!(moved > 0, "no prop moved onto the new surface");
 }

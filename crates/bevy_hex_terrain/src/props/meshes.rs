@@ -171,32 +171,26 @@ fn wonder() -> Mesh {
     ])
 }
 
-/// The far mesh of a tree: a trunk and one crown (`cone`: a cone, else a squat ball) of a
-/// handful of faces, in the colors of the full mesh.
+/// The far mesh of a tree: one crown of three to six faces standing on the ground (`cone`: a
+/// three-sided pyramid, else a squat double one), in the full mesh's colors.
 fn far_tree(v: u8, cone: bool) -> Mesh {
-    let full_green = if cone {
+    let greens = if cone {
         [Color::srgb(0.10, 0.30, 0.17), Color::srgb(0.13, 0.34, 0.19), Color::srgb(0.09, 0.27, 0.15)]
     } else {
         [Color::srgb(0.20, 0.42, 0.13), Color::srgb(0.26, 0.47, 0.15), Color::srgb(0.17, 0.36, 0.12)]
     };
-    let green = full_green[usize::from(v) % 3];
-    let trunk = part(
-        Cylinder::new(0.1, 0.6).mesh().resolution(3).without_caps().build(),
-        Color::srgb(0.36, 0.25, 0.16),
-        Transform::from_xyz(0.0, 0.3, 0.0),
-    );
-    let crown = if cone {
-        part(Cone::new(0.6, 1.7).mesh().resolution(5).build(), green, Transform::from_xyz(0.0, 1.25, 0.0))
+    let green = greens[usize::from(v) % 3];
+    if cone {
+        part(Cone::new(0.6, 2.0).mesh().resolution(3).build(), green, Transform::from_xyz(0.0, 1.0, 0.0))
     } else {
-        part(Sphere::new(0.8).mesh().uv(4, 2), green, Transform::from_xyz(0.0, 1.4, 0.0))
-    };
-    merged(vec![trunk, crown])
+        let crown = Transform::from_xyz(0.0, 1.3, 0.0).with_scale(Vec3::new(1.0, 1.1, 1.0));
+        part(Sphere::new(0.8).mesh().uv(3, 2), green, crown)
+    }
 }
 
 /// The far mesh of variant `v` of a prop kind, for props on chunks drawn coarse (far from every
-/// camera, a few pixels tall): the same size, colors and foot as [`prop_mesh`], a third of its
-/// faces or fewer. Markers (resources, wonders) keep their full mesh: they must read at a
-/// strategic zoom.
+/// camera, a few pixels tall): the same size, colors and foot as [`prop_mesh`], three to six
+/// faces. Markers (resources, wonders) keep their full mesh: they must read at a strategic zoom.
 #[must_use]
 pub fn prop_mesh_far(kind: PropKind, v: u8) -> Mesh {
     let v = v % PROP_VARIANTS;
@@ -207,19 +201,13 @@ pub fn prop_mesh_far(kind: PropKind, v: u8) -> Mesh {
             let grey = [Color::srgb(0.45, 0.43, 0.40), Color::srgb(0.52, 0.50, 0.47), Color::srgb(0.40, 0.38, 0.37)]
                 [usize::from(v) % 3];
             let squash = Transform::from_xyz(0.0, 0.3, 0.0).with_scale(Vec3::new(1.0, 0.7 + 0.15 * f32::from(v), 0.85));
-            part(Sphere::new(0.8).mesh().uv(4, 2), grey, squash)
+            part(Sphere::new(0.8).mesh().uv(3, 2), grey, squash)
         }
-        PropKind::Reed => {
-            let color = Color::srgb(0.45, 0.55, 0.25);
-            let blades = (0..3)
-                .map(|i| {
-                    let a = std::f32::consts::TAU * i as f32 / 3.0;
-                    let t = Transform::from_xyz(0.25 * a.cos(), 0.75, 0.25 * a.sin());
-                    part(Cone::new(0.07, 1.5).mesh().resolution(3).build(), color, t)
-                })
-                .collect();
-            merged(blades)
-        }
+        PropKind::Reed => part(
+            Cone::new(0.2, 1.5).mesh().resolution(3).build(),
+            Color::srgb(0.45, 0.55, 0.25),
+            Transform::from_xyz(0.0, 0.75, 0.0),
+        ),
         PropKind::Resource | PropKind::Wonder => prop_mesh(kind, v),
     }
 }

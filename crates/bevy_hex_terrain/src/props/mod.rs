@@ -110,9 +110,9 @@ fn create_assets(
     commands.insert_resource(PropAssets { meshes: near, far_meshes, material });
 }
 
-/// Asks chunk tasks for props at the settings' cap, density and share on coarse chunks.
+/// Asks chunk tasks for props at the settings' cap and density.
 fn request_props(settings: Res<PropSettings>, mut request: ResMut<ContentRequest>) {
-    request.props = Some((settings.max_per_chunk, settings.density, settings.coarse_share));
+    request.props = Some((settings.max_per_chunk, settings.density));
 }
 
 /// The props' entities of one chunk, with the far meshes on a chunk drawn coarse.
@@ -144,45 +144,56 @@ fn spawn_props(
 }
 
 /// What [`sync_props`] remembers between frames: whether props were shown, the chunks whose
-/// props wait to be spawned (with the index of the next), the old props of chunks that changed
-/// level waiting to be despawned, and the map generation and level of each chunk's props.
+/// props wait to be spawned (with the index of the next), and the map generation and level of
+/// each chunk's props.
 #[derive(Default)]
 struct Spawning {
     was_enabled: Option<bool>,
     queue: VecDeque<(Entity, usize)>,
-    stale: VecDeque<Entity>,
     shown: HashMap<Entity, (Option<u64>, Detail)>,
 }
+
+/// The prop entities, as [`sync_props`] reads and moves them.
+type PropQuery<'w, 's> = Query<'w, 's, (&'static HexProp, &'static mut Transform, PropMesh)>;
+
+/// A prop's mesh, with Bevy's renderer (none headless).
+#[cfg(feature = "render")]
+type PropMesh = Option<&'static mut Mesh3d>;
+/// A prop's mesh, with Bevy's renderer (none headless).
+#[cfg(not(feature = "render"))]
+type PropMesh = ();
 
 /// Keeps each chunk's prop children in step with its [`ChunkContent`](crate::ChunkContent) and the settings: a chunk
 /// whose content changed (a new mesh, a hot reload) gets its props anew; turning props off or on
 /// despawns or spawns them everywhere. Spawning is queued, chunk by chunk, the chunks nearest an
-/// agent first, at most [`PropSettings::max_spawns_per_frame`] props a frame.
+/// agent first, at most [`PropSettings::max_spawns_per_frame`] props a frame. A chunk that only
+/// changed level of detail keeps its prop entities: they move to the new surface and take the
+/// level's meshes, in place.
 fn sync_props(
     mut commands: Commands,
     (settings, map, assets): (Res<PropSettings>, Res<crate::HexMap>, Option<Res<PropAssets>>),
     (streamer, coords): (Option<Res<crate::ChunkStreamer>>, Query<&crate::HexChunk>),
     chunks: ContentQuery,
-    props: Query<(), With<HexProp>>,
+    mut props: PropQuery,
     mut spawning: Local<Spawning>,
     mut stats: ResMut<HexPropStats>,
 ) {
-    let Spawning { was_enabled, queue, stale, shown } = &mut *spawning;
+    let Spawning { was_enabled, queue, shown } = &mut *spawning;
     let enabled = settings.enabled;
     let size = map.config().layout.hex_size;
-    for (chunk, _, old) in stale_chunks(&chunks, &props, enabled, was_enabled) {
-        queue.retain(|&(e, _)| e != chunk);
-        // A chunk that changed level (same map generation, another detail) swaps its props
-        // a budget a frame, like any spawn; anything else (another map, an edit, the switch)
-        // takes its old props away at once.
+    for (chunk, content, old) in stale_chunks(&chunks, |e| props.contains(e), enabled, was_enabled) {
         let now = coords.get(chunk).ok().map(|c| (c.generation, c.detail));
+        // Only the level changed (same map generation, another detail): the same props on
+        // another surface (see `Terrain::props_on`), moved in place.
         let level_change = enabled && now.is_some_and(|(g, d)| shown.get(&chunk).is_some_and(|s| s.0 == g && s.1 != d));
-        if level_change {
-            stale.extend(old);
-        } else {
-            for prop in old {
-                commands.entity(prop).despawn();
-            }
+        let far = now.is_some_and(|(_, d)| d == Detail::Coarse);
+        if level_change && relevel(&mut props, &old, &content.props, far, assets.as_deref()) {
+            shown.insert(chunk, now.unwrap_or_default());
+            continue;
+        }
+        queue.retain(|&(e, _)| e != chunk);
+        for prop in old {
+            commands.entity(prop).despawn();
         }
         match now {
             Some(now) if enabled => {
@@ -196,9 +207,6 @@ fn sync_props(
     }
     if !enabled {
         queue.clear();
-        for prop in stale.drain(..) {
-            commands.entity(prop).try_despawn();
-        }
     }
     shown.retain(|&chunk, _| coords.contains(chunk));
     // The chunks nearest an agent first (those in view), the order they came in among equals.
@@ -210,14 +218,6 @@ fn sync_props(
         queue.make_contiguous().sort_by_key(|&(e, _)| distance(e));
     }
     let mut budget = settings.max_spawns_per_frame.max(1);
-    // Old props first (those of chunks dropped meanwhile went with their chunk).
-    while budget > 0 {
-        let Some(prop) = stale.pop_front() else { break };
-        if props.contains(prop) {
-            commands.entity(prop).despawn();
-            budget -= 1;
-        }
-    }
     while budget > 0 {
         let Some(&mut (chunk, ref mut next)) = queue.front_mut() else { break };
         // A chunk dropped (or retired) before its turn has nothing to show.
@@ -238,13 +238,39 @@ fn sync_props(
         .iter()
         .map(|&(chunk, next)| chunks.get(chunk).map_or(0, |(_, c, _)| c.props.len().saturating_sub(next)))
         .sum();
-    // Written only when they change, so the figures are not "changed" every frame.
+    // Written only when it changes, so the figures are not "changed" every frame.
     if stats.pending != pending {
         stats.pending = pending;
     }
-    if stats.stale != stale.len() {
-        stats.stale = stale.len();
+}
+
+/// Moves a chunk's spawned props (`old`, in spawn order, the first of `props`) onto the surface
+/// of the chunk's new level and gives them its meshes (`far` on a coarse chunk). `false`, and
+/// nothing moved, if they are not the first of `props` (then the chunk's props are made anew).
+fn relevel(props: &mut PropQuery, old: &[Entity], new: &[Prop], far: bool, assets: Option<&PropAssets>) -> bool {
+    let same = old.len() <= new.len()
+        && old.iter().zip(new).all(|(&e, p)| {
+            props.get(e).is_ok_and(|(prop, t, _)| {
+                (prop.kind, prop.variant, prop.tile) == (p.kind, p.variant, p.tile)
+                    && t.translation.x == p.position[0]
+                    && t.translation.z == p.position[2]
+            })
+        });
+    if !same {
+        return false;
     }
+    for (&e, p) in old.iter().zip(new) {
+        let Ok((_, mut transform, mesh)) = props.get_mut(e) else { continue };
+        transform.translation.y = p.position[1];
+        #[cfg(feature = "render")]
+        if let (Some(mut mesh), Some(assets)) = (mesh, assets) {
+            let meshes = if far { &assets.far_meshes } else { &assets.meshes };
+            mesh.0 = meshes[p.kind as usize][usize::from(p.variant % PROP_VARIANTS)].clone();
+        }
+        #[cfg(not(feature = "render"))]
+        let _ = (mesh, far, assets);
+    }
+    true
 }
 
 /// Figures of the props.
@@ -258,7 +284,4 @@ pub struct HexPropStats {
     /// Props of loaded chunks waiting for their turn to be spawned (see
     /// [`PropSettings::max_spawns_per_frame`]).
     pub pending: usize,
-    /// Old props of chunks that changed level of detail, waiting for their turn to be despawned
-    /// (within the same budget).
-    pub stale: usize,
 }

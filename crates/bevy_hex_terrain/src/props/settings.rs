@@ -18,19 +18,12 @@ pub struct PropSettings {
     pub density: f32,
     /// Prop entities spawned per frame at most: a new chunk's props appear over a few frames
     /// (the chunks nearest an agent first) rather than all in the frame its mesh does, so no frame
-    /// spends milliseconds spawning hundreds of them. When a chunk changes level of detail, its
-    /// old props are despawned within the same budget, before the new ones come.
+    /// spends milliseconds spawning hundreds of them.
     pub max_spawns_per_frame: usize,
-    /// Share of a chunk's props that stand when it is drawn coarse, far from every camera (see
-    /// [`HexStreamingSettings::coarse_distance`](crate::HexStreamingSettings::coarse_distance)),
-    /// in `[0, 1]`: the same deterministic thinning as `density`, so a coarse chunk's props are
-    /// some of its full props, standing on the coarse surface. Applies to chunks built after a
-    /// change.
-    pub coarse_share: f32,
 }
 
 impl Default for PropSettings {
     fn default() -> Self {
-        Self { enabled: true, max_per_chunk: 384, density: 1.0, max_spawns_per_frame: 64, coarse_share: 0.25 }
+        Self { enabled: true, max_per_chunk: 384, density: 1.0, max_spawns_per_frame: 64 }
     }
 }

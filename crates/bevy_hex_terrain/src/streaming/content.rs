@@ -18,9 +18,9 @@ pub(crate) struct ContentRequest {
     /// River and lake water depth, a fraction of the hex size; `None` without the water plugin
     /// (no surface is built).
     pub river_depth: Option<f32>,
-    /// The props' cap per chunk, density, and share of them standing on a coarse chunk; `None`
-    /// without the props plugin (none are placed; the game setup's markers still are).
-    pub props: Option<(usize, f32, f32)>,
+    /// The props' cap per chunk and density; `None` without the props plugin (none are placed;
+    /// the game setup's markers still are).
+    pub props: Option<(usize, f32)>,
 }
 
 /// A chunk's water surface and props (see the module docs). Twin chunks of a wrapping map
@@ -51,8 +51,9 @@ impl BuiltContent {
 
     /// Builds the water and props of `chunk` (the full mesh) as requested (whether they are
     /// shown or not: the plugins show them), the props standing on the surface drawn at
-    /// `detail` (on a coarse chunk, the requested share of them). The water surface is the full
-    /// mesh's at every level: it lies over the sea and lakes, which a coarse tile keeps.
+    /// `detail`: the same props at every level, so a level change moves them instead of making
+    /// them anew. The water surface is the full mesh's at every level: it lies over the sea and
+    /// lakes, which a coarse tile keeps.
     pub(crate) fn build(terrain: &Terrain, chunk: &ChunkMesh, snapshot: ContentRequest, detail: Detail) -> Self {
         let (mut water, mut water_triangles) = (None, 0);
         if let Some(depth) = snapshot.river_depth {
@@ -63,10 +64,8 @@ impl BuiltContent {
         }
         // Trees, rocks and reeds (thinned to the cap), then the game setup's resources and
         // wonders (never thinned).
-        let mut all = snapshot.props.map_or_else(Vec::new, |(cap, density, coarse)| {
-            let share = if detail == Detail::Coarse { coarse } else { 1.0 };
-            terrain.props_on(chunk, cap, density * share, detail)
-        });
+        let mut all =
+            snapshot.props.map_or_else(Vec::new, |(cap, density)| terrain.props_on(chunk, cap, density, detail));
         // Markers stand at tile centers, a vertex of both levels.
         all.extend(terrain.marker_props(chunk));
         let props = all.into();
@@ -78,13 +77,13 @@ impl BuiltContent {
 pub(crate) type ContentQuery<'w, 's> =
     Query<'w, 's, (Entity, Ref<'static, ChunkContent>, Option<&'static Children>), With<super::HexChunk>>;
 
-/// The chunks whose children of one kind (`T`: water, props) must be made anew (all of them
+/// The chunks whose children of one kind (water, props: those `of_kind` says) must be made anew (all of them
 /// when the kind's switch changed, else those whose content changed), with their content and
 /// their old children of that kind, which the caller despawns (at once, or a budget a frame).
 /// `was` remembers the switch between frames.
-pub(crate) fn stale_chunks<'a, T: Component>(
+pub(crate) fn stale_chunks<'a>(
     chunks: &'a ContentQuery,
-    children_of_kind: &Query<(), With<T>>,
+    of_kind: impl Fn(Entity) -> bool,
     enabled: bool,
     was: &mut Option<bool>,
 ) -> Vec<(Entity, &'a ChunkContent, Vec<Entity>)> {
@@ -95,7 +94,7 @@ pub(crate) fn stale_chunks<'a, T: Component>(
         if !(toggled || content.is_changed()) {
             continue;
         }
-        let old = children.into_iter().flatten().copied().filter(|c| children_of_kind.contains(*c)).collect();
+        let old = children.into_iter().flatten().copied().filter(|c| of_kind(*c)).collect();
         stale.push((chunk, content.into_inner(), old));
     }
     stale

@@ -59,7 +59,7 @@ fn sync_water(
     mut was_enabled: Local<Option<bool>>,
 ) {
     let enabled = settings.enabled;
-    for (chunk, content, old) in stale_chunks(&chunks, &waters, enabled, &mut was_enabled) {
+    for (chunk, content, old) in stale_chunks(&chunks, |e| waters.contains(e), enabled, &mut was_enabled) {
         // One surface a chunk: replaced at once.
         for water in old {
             commands.entity(water).despawn();

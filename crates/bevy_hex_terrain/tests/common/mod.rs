@@ -76,7 +76,7 @@ pub fn ready(app: &mut App) -> bool {
 /// Whether every loaded chunk shows all of its props and no dropped chunk's children remain
 /// (props are spawned, and dropped chunks' children despawned, a budget a frame).
 pub fn props_settled(app: &mut App) -> bool {
-    app.world().get_resource::<bevy_hex_terrain::HexPropStats>().is_none_or(|s| s.pending == 0 && s.stale == 0)
+    app.world().get_resource::<bevy_hex_terrain::HexPropStats>().is_none_or(|s| s.pending == 0)
         && app.world().resource::<ChunkStreamer>().retiring_chunks() == 0
 }
 
