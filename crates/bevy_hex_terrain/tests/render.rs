@@ -20,6 +20,7 @@ in_own_process! {
     a_missing_texture_falls_back_to_flat_colors => scenario_missing_texture,
     a_deferred_camera_draws_the_terrain_colors => scenario_deferred,
     biomes_rivers_and_lakes_show_their_colors => scenario_biomes,
+    biomes_rivers_and_lakes_show_their_colors_on_coarse_chunks => scenario_biomes_coarse,
     edited_tiles_show_their_new_type => scenario_edited,
     levels_of_detail_meet_without_a_crack => scenario_levels,
     levels_of_detail_meet_without_a_crack_past_a_wrapping_edge => scenario_levels_wrapping,
@@ -139,9 +140,27 @@ fn scenario_edited() {
 #[test]
 #[ignore = "a scenario: run by its #[test] in a process of its own"]
 fn scenario_biomes() {
+    biomes(false);
+}
+
+/// Every chunk drawn coarse: biomes, rivers and lakes read the same.
+#[test]
+#[ignore = "a scenario: run by its #[test] in a process of its own"]
+fn scenario_biomes_coarse() {
+    biomes(true);
+}
+
+/// Renders the wet map, every chunk coarse if `coarse`, and checks each tile's center shows its
+/// biome and each river tile's center water.
+fn biomes(coarse: bool) {
     let terrain = Terrain::new(wet_map()).unwrap();
     let (center, size) = view(&terrain);
-    let (img, _) = render_scene(Scene { config: Some(wet_map()), ..default() }, "biomes");
+    let streaming = coarse.then(|| HexStreamingSettings { coarse_distance: Some(0.0), ..default() });
+    let name = if coarse { "biomes_coarse" } else { "biomes" };
+    let (img, counts) = render_scene(Scene { config: Some(wet_map()), streaming, ..default() }, name);
+    if coarse {
+        assert_eq!(counts.levels[0], 0, "{:?} chunks full, coarse", counts.levels);
+    }
     let at = |h: Hex| rgb(&img, pixel(center, size, DVec3::from_array(terrain.tile_center(h).unwrap()).as_vec3()));
     let mut classes = std::collections::BTreeSet::new();
     // With two inner rings the center and the first ring take the tile's own color, so a

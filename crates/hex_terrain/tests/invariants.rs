@@ -262,9 +262,22 @@ proptest! {
             let coarse = t.generate_detail(rect_c, GenerateOptions::DIAGNOSTICS, Detail::Coarse);
             prop_assert_eq!(&coarse.tiles, &full.tiles);
             let full_index = index(&full);
-            for (i, p) in lattice(&coarse).iter().enumerate() {
+            // Every attribute as the full mesh's, but the color: a fan's vertices have its
+            // tile's own biome color (the fan's first vertex, the tile's center) and their
+            // point's own water.
+            let points = lattice(&coarse);
+            for t in coarse.buffers.indices.chunks_exact(3) {
+                for &v in &t[1..] {
+                    if let (Some(own), Some(c)) = (coarse.buffers.colors.get(t[0] as usize), coarse.buffers.colors.get(v as usize)) {
+                        prop_assert_eq!(&c[..3], &own[..3], "a fan vertex not in its tile's color");
+                        prop_assert_eq!(c[3], full.buffers.colors[full_index[&points[v as usize]]][3]);
+                    }
+                }
+            }
+            for (i, p) in points.iter().enumerate() {
                 let f = full_index[p];
-                prop_assert_eq!(vertex_bits(&coarse, i), vertex_bits(&full, f), "vertex {:?}", p);
+                let without_color = |m: &ChunkMesh, i: usize| { let b = vertex_bits(m, i); (b.0, b.1, b.2, b.3) };
+                prop_assert_eq!(without_color(&coarse, i), without_color(&full, f), "vertex {:?}", p);
                 prop_assert_eq!(coarse.buffers.positions[i].map(f32::to_bits), full.buffers.positions[f].map(f32::to_bits));
                 prop_assert_eq!(coarse.buffers.uvs[i].map(f32::to_bits), full.buffers.uvs[f].map(f32::to_bits));
             }

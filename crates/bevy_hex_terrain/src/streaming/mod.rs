@@ -90,7 +90,7 @@ pub struct HexStreamingSettings {
 }
 
 /// The default [`HexStreamingSettings::coarse_distance`], in hex sizes.
-pub const DEFAULT_COARSE_DISTANCE: f32 = 56.0;
+pub const DEFAULT_COARSE_DISTANCE: f32 = 52.0;
 
 impl Default for HexStreamingSettings {
     fn default() -> Self {

@@ -5,8 +5,11 @@
 //! `6n²`), while on the chunk's outline every lattice point of the full mesh stays. So:
 //!
 //! - every vertex of the coarse mesh is a vertex of the full mesh, with the same bits in every
-//!   attribute: whatever holds of a vertex (its tile type's height range, the seams, chunked =
-//!   whole) holds of the coarse mesh;
+//!   attribute but the color: whatever holds of a vertex (its tile type's height range, the
+//!   seams, chunked = whole) holds of the coarse mesh. Each tile's fan has its own copies of its
+//!   border's vertices, colored with the tile's own biome color (the full mesh's border vertices
+//!   average the colors of the tiles around them, which a fan would smear over the whole tile)
+//!   and keeping their own water;
 //! - the coarse mesh's outline is the full mesh's, point for point, so two neighboring chunks
 //!   meet without a crack whatever level each is drawn at (no skirt needed);
 //! - the tile is still one colored hexagon: its center at its type's height, its corners on the
@@ -69,40 +72,46 @@ pub(crate) fn coarsen(geometry: &Geometry, full: &ChunkMesh, keep_diagnostics: b
         (b[2] - a[2]) * (c[0] - a[0]) - (b[0] - a[0]) * (c[2] - a[2]) > 0.0
     };
     let full_up = buffers.indices.get(..3).is_none_or(|t| up([t[0], t[1], t[2]]));
-    let mut triangles: Vec<[u32; 3]> = Vec::with_capacity(full.tiles.len() * 8);
+    // Each tile's fan has vertices of its own: a copy of the full mesh's vertex at each point,
+    // with, on a map with vertex colors, the tile's own biome color (the full mesh's border
+    // vertices average the colors of the tiles around them, which a fan would smear over the
+    // whole tile) and the point's own water.
+    let mut kept: Vec<(usize, Option<[u8; 4]>)> = Vec::with_capacity(full.tiles.len() * 8);
+    let mut indices: Vec<u32> = Vec::with_capacity(full.tiles.len() * 24);
     let mut polygon: Vec<u32> = Vec::new();
     for info in &full.tiles {
         let Some(&middle) = index.get(&lattice.tile_center(info.hex)) else { continue };
+        let own = buffers.colors.get(middle as usize).copied();
+        let first = kept.len() as u32;
+        kept.push((middle as usize, None));
         polygon.clear();
-        polygon.extend(fan_border(geometry, full.rect, info.hex).iter().filter_map(|p| index.get(p).copied()));
+        for p in fan_border(geometry, full.rect, info.hex) {
+            let Some(&v) = index.get(&p) else { continue };
+            let color = own.map(|[r, g, b, _]| [r, g, b, buffers.colors[v as usize][3]]);
+            polygon.push(kept.len() as u32);
+            kept.push((v as usize, color));
+        }
         for k in 0..polygon.len() {
-            let t = [middle, polygon[k], polygon[(k + 1) % polygon.len()]];
-            triangles.push(if up(t) == full_up { t } else { [t[0], t[2], t[1]] });
+            let t = [first, polygon[k], polygon[(k + 1) % polygon.len()]];
+            let source = t.map(|i| kept[i as usize].0 as u32);
+            indices.extend(if up(source) == full_up { t } else { [t[0], t[2], t[1]] });
         }
     }
-    // The vertices the fans use, in first-use order.
-    let mut remap = vec![u32::MAX; buffers.positions.len()];
-    let mut kept: Vec<usize> = Vec::new();
-    let mut indices = Vec::with_capacity(triangles.len() * 3);
-    for t in &triangles {
-        for &v in t {
-            let slot = &mut remap[v as usize];
-            if *slot == u32::MAX {
-                *slot = kept.len() as u32;
-                kept.push(v as usize);
-            }
-            indices.push(*slot);
-        }
-    }
+    let take = |f: &dyn Fn(usize) -> [f32; 3]| -> Vec<[f32; 3]> { kept.iter().map(|&(i, _)| f(i)).collect() };
     let buffers = MeshBuffers {
-        positions: kept.iter().map(|&i| buffers.positions[i]).collect(),
-        normals: kept.iter().map(|&i| buffers.normals[i]).collect(),
-        uvs: kept.iter().map(|&i| buffers.uvs[i]).collect(),
-        tile_kinds: kept.iter().map(|&i| buffers.tile_kinds[i]).collect(),
-        center_distances: kept.iter().map(|&i| buffers.center_distances[i]).collect(),
-        colors: if buffers.colors.is_empty() { Vec::new() } else { kept.iter().map(|&i| buffers.colors[i]).collect() },
+        positions: take(&|i| buffers.positions[i]),
+        normals: take(&|i| buffers.normals[i]),
+        uvs: kept.iter().map(|&(i, _)| buffers.uvs[i]).collect(),
+        tile_kinds: kept.iter().map(|&(i, _)| buffers.tile_kinds[i]).collect(),
+        center_distances: kept.iter().map(|&(i, _)| buffers.center_distances[i]).collect(),
+        colors: if buffers.colors.is_empty() {
+            Vec::new()
+        } else {
+            kept.iter().map(|&(i, own)| own.unwrap_or(buffers.colors[i])).collect()
+        },
         indices,
     };
+    let kept: Vec<usize> = kept.into_iter().map(|(i, _)| i).collect();
     let diagnostics = keep_diagnostics.then(|| Diagnostics {
         lattice: kept.iter().map(|&i| diagnostics.lattice[i]).collect(),
         raw_heights: kept.iter().map(|&i| diagnostics.raw_heights[i]).collect(),

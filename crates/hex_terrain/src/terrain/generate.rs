@@ -29,8 +29,9 @@ impl Terrain {
     }
 
     /// [`Terrain::generate`] at a level of detail: [`Detail::Full`] is `generate`; a
-    /// [`Detail::Coarse`] mesh is the full mesh's vertices (the same bits) drawn as a fan a
-    /// tile, its outline kept whole, so it meets a neighbor of either level without a crack.
+    /// [`Detail::Coarse`] mesh is the full mesh's vertices (the same bits, each tile's in its own
+    /// biome color) drawn as a fan a tile, its outline kept whole, so it meets a neighbor of
+    /// either level without a crack.
     #[must_use]
     pub fn generate_detail(&self, rect: TileRect, options: GenerateOptions, detail: Detail) -> ChunkMesh {
         match detail {
