@@ -111,7 +111,8 @@ fn an_agent_a_million_units_out_streams_exact_chunks() {
         assert!((chunk.origin.x - at.x).abs() < 200.0 && (chunk.origin.z - at.z).abs() < 200.0);
         let positions = meshes.get(&mesh.0).unwrap().attribute(Mesh::ATTRIBUTE_POSITION).unwrap().as_float3().unwrap();
         assert!(positions.iter().all(|p| p[0].abs() < 100.0 && p[2].abs() < 100.0), "positions relative to the chunk");
-        let expected = terrain.generate_chunk(chunk.coord).unwrap();
+        // The core's mesh at the level the chunk is drawn at.
+        let expected = terrain.generate_chunk_detail(chunk.coord, chunk.detail).unwrap();
         assert_eq!(positions, expected.buffers.positions.as_slice());
     }
     let tile = app.world().resource::<HexMap>().tile_at_f64(at).unwrap();

@@ -89,7 +89,7 @@ pub struct Scene {
     /// After the first picture: change the settings, let the change show, and take a second
     /// picture ([`render_pair`]).
     pub then: Option<fn(&mut PropSettings, &mut TerrainLighting)>,
-    /// Streaming settings (the defaults when `None`).
+    /// Streaming settings (when `None`, the defaults with every chunk full).
     pub streaming: Option<HexStreamingSettings>,
     /// Look at this world `(x, z)` instead of the map's middle, with a streaming agent on the
     /// camera (so a wrapping map shows the copies past its edge), and clear to [`HOLE`].
@@ -138,7 +138,8 @@ fn render_scenes(scene: Scene, name: &str) -> (image::RgbImage, Option<image::Rg
     let Scene { config, material, style, tiles, deferred, far, water, props, lighting, then, streaming, look_at } =
         scene;
     let config = config.unwrap_or_else(map);
-    let settings = streaming.unwrap_or_default();
+    // The scenarios of other features look at full detail; those of levels of detail say theirs.
+    let settings = streaming.unwrap_or(HexStreamingSettings { coarse_distance: None, ..default() });
     let out_after = Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("{name}_after.png"));
     let _ = std::fs::remove_file(&out_after);
     let terrain = Terrain::new(config.clone()).unwrap();
