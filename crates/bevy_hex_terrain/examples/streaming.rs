@@ -24,10 +24,7 @@ struct Counter;
 struct Still(bool);
 
 fn main() {
-    let mut streaming = HexStreamingSettings::default();
-    if std::env::var("HEXTERRAIN_LOD").is_ok_and(|v| v == "off") {
-        streaming.coarse_distance = None;
-    }
+    let streaming = support::streaming_from_env();
     let still = std::env::var_os("HEXTERRAIN_STILL").is_some();
     let props = PropSettings { max_spawns_per_frame: if still { usize::MAX } else { 64 }, ..default() };
     App::new()
@@ -84,31 +81,22 @@ fn show_figures(
     stats: Res<HexTerrainStats>,
     frame: Res<support::render_figures::RenderFigures>,
     props: Query<(), With<HexProp>>,
-    chunks: Query<&HexChunk>,
     mut counter: Query<&mut Text, With<Counter>>,
 ) {
-    let coarse = chunks.iter().filter(|c| c.generation.is_some() && c.detail == Detail::Coarse).count();
     let mut latencies: Vec<f32> = stats.latencies().collect();
     latencies.sort_by(f32::total_cmp);
     let at = |p: f32| latencies.get(((latencies.len().max(1) - 1) as f32 * p) as usize).map_or(0.0, |s| s * 1e3);
     for mut text in &mut counter {
         text.0 = format!(
             "live chunks: {}   chunks built: {}   cancelled: {}   props: {}\nchunk latency p50 {:.0} ms, p99 {:.0} ms\n\
-             frame: {} draw calls, {} instances, {} triangles (terrain {} full + {} coarse, props {} + {}); {} chunks coarse",
+             frame: {}",
             streamer.live_chunks(),
             stats.tasks_started(),
             stats.tasks_cancelled(),
             props.iter().len(),
             at(0.5),
             at(0.99),
-            frame.draws,
-            frame.instances,
-            frame.triangles,
-            frame.terrain[0],
-            frame.terrain[1],
-            frame.props[0],
-            frame.props[1],
-            coarse,
+            *frame,
         );
         if std::env::var_os("HEXTERRAIN_SCREENSHOT").is_some() {
             println!("{}", text.0.replace('\n', " | "));

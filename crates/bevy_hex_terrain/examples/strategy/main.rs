@@ -96,10 +96,7 @@ fn main() -> AppExit {
     // HEXTERRAIN_SETTLE=1 spawns every prop at once (for figures of a settled view).
     let settle = std::env::var_os("HEXTERRAIN_SETTLE").is_some();
     // HEXTERRAIN_LOD=off draws every chunk at full detail (levels of detail compared).
-    let mut streaming = HexStreamingSettings::default();
-    if std::env::var("HEXTERRAIN_LOD").is_ok_and(|v| v == "off") {
-        streaming.coarse_distance = None;
-    }
+    let streaming = support::streaming_from_env();
     let mut app = App::new();
     // HEXTERRAIN_FOG=off starts without the fog of war (V toggles it).
     let fog_of_war = std::env::var("HEXTERRAIN_FOG").map_or(true, |v| v != "off");
@@ -161,25 +158,8 @@ fn main() -> AppExit {
 }
 
 /// Prints what the frame drew and the chunks at each level.
-fn print_figures(
-    frame: Res<support::render_figures::RenderFigures>,
-    chunks: Query<&HexChunk>,
-    props: Query<(), With<HexProp>>,
-) {
-    let coarse = chunks.iter().filter(|c| c.generation.is_some() && c.detail == Detail::Coarse).count();
-    println!(
-        "frame: {} draw calls, {} instances, {} triangles (terrain {} full + {} coarse, props {} + {}); {} chunks, {} coarse; {} props",
-        frame.draws,
-        frame.instances,
-        frame.triangles,
-        frame.terrain[0],
-        frame.terrain[1],
-        frame.props[0],
-        frame.props[1],
-        chunks.iter().count(),
-        coarse,
-        props.iter().count(),
-    );
+fn print_figures(frame: Res<support::render_figures::RenderFigures>, props: Query<(), With<HexProp>>) {
+    println!("frame: {}; {} props", *frame, props.iter().count());
 }
 
 fn setup(mut commands: Commands) {

@@ -19,6 +19,25 @@ pub struct RenderFigures {
     pub terrain: [usize; 2],
     /// Of those, the triangles of props: `[on full chunks, on coarse chunks]`.
     pub props: [usize; 2],
+    /// Chunks showing a mesh, visible or not: `[full, coarse]`.
+    pub chunks: [usize; 2],
+}
+
+impl std::fmt::Display for RenderFigures {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let Self { draws, instances, triangles, terrain, props, chunks } = self;
+        write!(
+            f,
+            "{draws} draw calls, {instances} instances, {triangles} triangles (terrain {} full + {} coarse, \
+             props {} + {}); {} chunks, {} coarse",
+            terrain[0],
+            terrain[1],
+            props[0],
+            props[1],
+            chunks[0] + chunks[1],
+            chunks[1],
+        )
+    }
 }
 
 /// Counts [`RenderFigures`] every frame, after visibility is known.
@@ -88,6 +107,9 @@ fn count(
                 f.props[chunk.detail as usize] += t;
             }
         }
+    }
+    for chunk in chunks.iter().filter(|c| c.generation.is_some()) {
+        f.chunks[chunk.detail as usize] += 1;
     }
     // Meshes change with hot reloads: forget the cache when it grows past what is loaded.
     if triangles.len() > 4 * meshes.len() + 64 {

@@ -97,21 +97,21 @@ pub(crate) fn coarsen(geometry: &Geometry, full: &ChunkMesh, keep_diagnostics: b
             indices.extend(if up(source) == full_up { t } else { [t[0], t[2], t[1]] });
         }
     }
-    let take = |f: &dyn Fn(usize) -> [f32; 3]| -> Vec<[f32; 3]> { kept.iter().map(|&(i, _)| f(i)).collect() };
-    let buffers = MeshBuffers {
-        positions: take(&|i| buffers.positions[i]),
-        normals: take(&|i| buffers.normals[i]),
-        uvs: kept.iter().map(|&(i, _)| buffers.uvs[i]).collect(),
-        tile_kinds: kept.iter().map(|&(i, _)| buffers.tile_kinds[i]).collect(),
-        center_distances: kept.iter().map(|&(i, _)| buffers.center_distances[i]).collect(),
-        colors: if buffers.colors.is_empty() {
-            Vec::new()
-        } else {
-            kept.iter().map(|&(i, own)| own.unwrap_or(buffers.colors[i])).collect()
-        },
-        indices,
+    let colors = if buffers.colors.is_empty() {
+        Vec::new()
+    } else {
+        kept.iter().map(|&(i, own)| own.unwrap_or(buffers.colors[i])).collect()
     };
     let kept: Vec<usize> = kept.into_iter().map(|(i, _)| i).collect();
+    let buffers = MeshBuffers {
+        positions: kept.iter().map(|&i| buffers.positions[i]).collect(),
+        normals: kept.iter().map(|&i| buffers.normals[i]).collect(),
+        uvs: kept.iter().map(|&i| buffers.uvs[i]).collect(),
+        tile_kinds: kept.iter().map(|&i| buffers.tile_kinds[i]).collect(),
+        center_distances: kept.iter().map(|&i| buffers.center_distances[i]).collect(),
+        colors,
+        indices,
+    };
     let diagnostics = keep_diagnostics.then(|| Diagnostics {
         lattice: kept.iter().map(|&i| diagnostics.lattice[i]).collect(),
         raw_heights: kept.iter().map(|&i| diagnostics.raw_heights[i]).collect(),
