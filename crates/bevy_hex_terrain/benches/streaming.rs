@@ -1,8 +1,8 @@
 //! Streaming benchmark on a headless App: an agent crossing one chunk per second for 60
 //! simulated seconds at 60 frames a second (paced in real time, so chunk tasks get the time a
 //! game would give them). Prints chunk latency (request to mesh inserted), main-thread time in
-//! the terrain systems per frame (wall time, split by the thread's schedstat into time on a core
-//! and time waiting for one), live chunks and memory per chunk; with chunk generation on
+//! the terrain systems per frame (wall time, split by the thread's clocks into time on a core,
+//! time waiting for one and time asleep in the kernel, and the time on a core of each set), live chunks and memory per chunk; with chunk generation on
 //! Bevy's async compute pool alone (the default) and, in the same process, with each chunk task
 //! also spreading over rayon's pool. Fog of war is drawn; every frame the hovered tile moves, and
 //! every half second the tiles around the agent are revealed, as a player's cursor and scouts
@@ -20,16 +20,19 @@ use bevy_hex_terrain::{ChunkThreads, HexPropStats};
 
 #[derive(Resource, Default)]
 struct FrameTimes {
-    start: Option<(Instant, Schedstat)>,
     /// Wall time of the terrain systems, ms.
     samples: Vec<f64>,
-    /// Of which the main thread ran on a core (wall time less waiting), ms.
+    /// Of which the main thread ran on a core, ms.
     cpu: Vec<f64>,
     /// Of which the main thread waited for a core (runnable, not running), ms.
     waiting: Vec<f64>,
-    /// This frame's marks between the sets (`SETS.len() + 1` of them once the frame is done).
-    marks: Vec<Instant>,
-    /// Wall time of each set, ms, per frame.
+    /// Of which the main thread slept in the kernel (neither running nor runnable: a page fault
+    /// waiting for a lock, a blocking call), ms.
+    blocked: Vec<f64>,
+    /// This frame's clocks before the first set, between each two and after the last
+    /// (`SETS.len() + 1` of them once the frame is done).
+    marks: Vec<Clocks>,
+    /// Time on a core of each set, ms, per frame.
     sets: Vec<[f64; SETS.len()]>,
 }
 
@@ -43,19 +46,63 @@ const SETS: [(&str, HexTerrainSystems); 6] = [
     ("render", HexTerrainSystems::Render),
 ];
 
-/// The calling thread's total time waiting for a core, in ns: the second field of
-/// `/proc/thread-self/schedstat` (0 where there is no such file). The kernel adds a wait when
-/// the thread gets a core back, so the waiting time of an interval is exact; the first field,
-/// time on a core, is only brought up to date at scheduler ticks, so time on a core is taken as
-/// wall time less waiting.
-#[derive(Clone, Copy, Default)]
-struct Schedstat(u64);
+/// The calling thread's clocks at one instant: wall time; time on a core, in ns
+/// (`CLOCK_THREAD_CPUTIME_ID`: the kernel brings the running thread's figure up to date when
+/// asked, so it is exact); and time waiting for a core, in ns (the second field of
+/// `/proc/thread-self/schedstat`: the kernel adds a wait when the thread gets a core back, so an
+/// interval's is exact). Where a clock is missing (not Linux) it reads 0, and an interval's
+/// wall time counts as time on a core.
+#[derive(Clone, Copy)]
+struct Clocks {
+    wall: Instant,
+    cpu: Option<u64>,
+    waiting: u64,
+}
 
-impl Schedstat {
+impl Clocks {
     fn now() -> Self {
-        let text = std::fs::read_to_string("/proc/thread-self/schedstat").unwrap_or_default();
-        Self(text.split_whitespace().nth(1).and_then(|f| f.parse().ok()).unwrap_or(0))
+        let waiting = waiting_ns();
+        #[cfg(unix)]
+        let cpu = {
+            let t = rustix::time::clock_gettime(rustix::time::ClockId::ThreadCPUTime);
+            u64::try_from(t.tv_sec).ok().zip(u64::try_from(t.tv_nsec).ok()).map(|(s, n)| s * 1_000_000_000 + n)
+        };
+        #[cfg(not(unix))]
+        let cpu = None;
+        Self { wall: Instant::now(), cpu, waiting }
     }
+
+    /// Wall time from `earlier` to `self`, and of it the time on a core, waiting for a core and
+    /// asleep in the kernel, in ms.
+    fn since(self, earlier: Self) -> [f64; 4] {
+        let wall = (self.wall - earlier.wall).as_secs_f64() * 1e3;
+        let waiting = self.waiting.saturating_sub(earlier.waiting) as f64 * 1e-6;
+        let cpu = match (self.cpu, earlier.cpu) {
+            (Some(b), Some(a)) => b.saturating_sub(a) as f64 * 1e-6,
+            _ => (wall - waiting).max(0.0),
+        };
+        [wall, cpu, waiting, (wall - cpu - waiting).max(0.0)]
+    }
+}
+
+/// The calling thread's total time waiting for a core, in ns: the second field of its
+/// `/proc/thread-self/schedstat`, opened once per thread and read again from its start (a read
+/// costs a microsecond or two, where opening the file by its path costs several), 0 where there
+/// is no such file.
+fn waiting_ns() -> u64 {
+    thread_local! {
+        static FILE: Option<std::fs::File> = std::fs::File::open("/proc/thread-self/schedstat").ok();
+    }
+    FILE.with(|file| {
+        let Some(file) = file else { return 0 };
+        let mut buf = [0u8; 128];
+        #[cfg(unix)]
+        let read = std::os::unix::fs::FileExt::read_at(file, &mut buf, 0).unwrap_or(0);
+        #[cfg(not(unix))]
+        let read = 0;
+        let text = std::str::from_utf8(&buf[..read]).unwrap_or_default();
+        text.split_whitespace().nth(1).and_then(|f| f.parse().ok()).unwrap_or(0)
+    })
 }
 
 fn percentile(sorted: &[f64], p: f64) -> f64 {
@@ -72,22 +119,32 @@ struct Walk {
     times: Vec<f64>,
     cpu: Vec<f64>,
     waiting: Vec<f64>,
+    blocked: Vec<f64>,
     live: usize,
     live_max: usize,
     per_chunk: f64,
     /// Meshes inserted, tasks started and tasks cancelled in the frame whose terrain systems
     /// took longest.
     worst: (u64, u64, u64),
-    /// Wall time of each set per frame, ms.
+    /// Time on a core of each set per frame, ms.
     sets: Vec<[f64; SETS.len()]>,
-    /// The slowest frame's index.
+    /// The index of the frame whose terrain systems took longest on a core.
     worst_frame: usize,
     /// Props whose fog was looked at, per frame.
     fog_checks: Vec<f64>,
     /// Prop entities at the end, and props waiting to be spawned at most.
     props_live: usize,
     pending_max: usize,
+    /// The first frame with [`FULL_WORLD`] props live (`None` if never).
+    full_from: Option<usize>,
+    /// Time on a core of the frames from it on, ms, sorted.
+    cpu_full: Vec<f64>,
 }
+
+/// Props live from which the world counts as full: the issue's "a frame that moves a hover with
+/// 20,000 props live". Before it, the world fills: Bevy's table of prop entities doubles (at
+/// 8,192 and 16,384 props), each time copying every prop in one frame.
+const FULL_WORLD: usize = 20_000;
 
 /// Walks an agent east for `seconds` with chunk generation running on `threads`.
 fn walk(seconds: u32, threads: ChunkThreads, props: bool) -> Walk {
@@ -101,54 +158,39 @@ fn walk(seconds: u32, threads: ChunkThreads, props: bool) -> Walk {
         .insert_resource(PropSettings { enabled: props, ..PropSettings::default() })
         // Fog of war drawn, so props on unexplored tiles are hidden and fog writes are checked.
         .insert_resource(TileStateStyle { fog_of_war: true, ..TileStateStyle::default() })
-        // Brackets around the terrain sets: the time between them is the terrain systems' share
-        // of the frame.
-        .add_systems(
-            Update,
-            (|mut t: ResMut<FrameTimes>| t.start = Some((Instant::now(), Schedstat::now())))
-                .before(HexTerrainSystems::Map),
-        )
+        // Clocks before the first set, between each two and after the last: the time between
+        // the first and the last is the terrain systems' share of the frame, and each interval
+        // a set's.
+        .add_systems(Update, (|mut t: ResMut<FrameTimes>| t.marks = vec![Clocks::now()]).before(HexTerrainSystems::Map))
         .add_systems(
             Update,
             (|mut t: ResMut<FrameTimes>| {
-                if let Some((wall, stat)) = t.start.take() {
-                    let now = Schedstat::now();
-                    let elapsed = wall.elapsed().as_secs_f64() * 1e3;
-                    let waiting = now.0.saturating_sub(stat.0) as f64 * 1e-6;
-                    t.samples.push(elapsed);
-                    t.cpu.push((elapsed - waiting).max(0.0));
-                    t.waiting.push(waiting);
+                t.marks.push(Clocks::now());
+                if t.marks.len() != SETS.len() + 1 {
+                    return;
                 }
+                let mut split = [0.0; SETS.len()];
+                for (k, d) in split.iter_mut().enumerate() {
+                    *d = t.marks[k + 1].since(t.marks[k])[1];
+                }
+                t.sets.push(split);
+                let [wall, cpu, waiting, blocked] = t.marks[SETS.len()].since(t.marks[0]);
+                t.samples.push(wall);
+                t.cpu.push(cpu);
+                t.waiting.push(waiting);
+                t.blocked.push(blocked);
             })
             .after(HexTerrainSystems::Render),
         );
-    // The terrain systems are one chain: run the frame on the main thread, so the time between
-    // the brackets is the main thread's and its schedstat tells work from waiting for a core.
-    // A mark between each two sets: the split of the frame.
+    // The terrain systems are one chain: run the frame on the main thread, so the clocks of the
+    // main thread tell its work from waiting. A mark between each two sets: the split of the
+    // frame.
     for k in 0..SETS.len() - 1 {
         app.add_systems(
             Update,
-            (|mut t: ResMut<FrameTimes>| t.marks.push(Instant::now())).after(SETS[k].1).before(SETS[k + 1].1),
+            (|mut t: ResMut<FrameTimes>| t.marks.push(Clocks::now())).after(SETS[k].1).before(SETS[k + 1].1),
         );
     }
-    app.add_systems(
-        Update,
-        (|mut t: ResMut<FrameTimes>| t.marks = vec![Instant::now()]).before(HexTerrainSystems::Map),
-    )
-    .add_systems(
-        Update,
-        (|mut t: ResMut<FrameTimes>| {
-            t.marks.push(Instant::now());
-            if t.marks.len() == SETS.len() + 1 {
-                let mut split = [0.0; SETS.len()];
-                for (k, d) in split.iter_mut().enumerate() {
-                    *d = (t.marks[k + 1] - t.marks[k]).as_secs_f64() * 1e3;
-                }
-                t.sets.push(split);
-            }
-        })
-        .after(HexTerrainSystems::Render),
-    );
     app.edit_schedule(Update, |s| {
         s.set_executor(bevy::ecs::schedule::SingleThreadedExecutor::new());
     });
@@ -161,7 +203,8 @@ fn walk(seconds: u32, threads: ChunkThreads, props: bool) -> Walk {
         (s.meshes_inserted(), s.tasks_started(), s.tasks_cancelled())
     };
     let (mut worst, mut worst_time, mut worst_frame) = ((0, 0, 0), 0.0, 0);
-    let (mut fog_checks, mut pending_max) = (Vec::new(), 0);
+    let (mut fog_checks, mut pending_max, mut full_from) = (Vec::new(), 0, None);
+    let mut prop_query = app.world_mut().query::<&HexProp>();
     for f in 0..frames {
         let start = Instant::now();
         let x = f as f32 / 60.0 * chunk_width;
@@ -173,7 +216,10 @@ fn walk(seconds: u32, threads: ChunkThreads, props: bool) -> Walk {
         let after = counts(&app);
         fog_checks.push((app.world().resource::<HexPropStats>().fog_checks - checks) as f64);
         pending_max = pending_max.max(app.world().resource::<HexPropStats>().pending);
-        if let Some(&t) = app.world().resource::<FrameTimes>().samples.last()
+        if full_from.is_none() && prop_query.iter(app.world()).count() >= FULL_WORLD {
+            full_from = Some(app.world().resource::<FrameTimes>().cpu.len().saturating_sub(1));
+        }
+        if let Some(&t) = app.world().resource::<FrameTimes>().cpu.last()
             && t > worst_time
         {
             worst_time = t;
@@ -191,7 +237,9 @@ fn walk(seconds: u32, threads: ChunkThreads, props: bool) -> Walk {
         v
     };
     let recorded = app.world().resource::<FrameTimes>();
-    let (times, cpu, waiting) = (sorted(&recorded.samples), sorted(&recorded.cpu), sorted(&recorded.waiting));
+    let (times, cpu) = (sorted(&recorded.samples), sorted(&recorded.cpu));
+    let cpu_full = sorted(&recorded.cpu[full_from.unwrap_or(recorded.cpu.len()).min(recorded.cpu.len())..].to_vec());
+    let (waiting, blocked) = (sorted(&recorded.waiting), sorted(&recorded.blocked));
     let sets = recorded.sets.clone();
     let stats = app.world().resource::<HexTerrainStats>();
     let mut latencies: Vec<f64> = stats.latencies().map(|s| f64::from(s) * 1e3).collect();
@@ -208,6 +256,7 @@ fn walk(seconds: u32, threads: ChunkThreads, props: bool) -> Walk {
         times,
         cpu,
         waiting,
+        blocked,
         live,
         live_max,
         per_chunk,
@@ -215,6 +264,8 @@ fn walk(seconds: u32, threads: ChunkThreads, props: bool) -> Walk {
         sets,
         worst_frame,
         fog_checks,
+        full_from,
+        cpu_full,
         props_live,
         pending_max,
     }
@@ -267,17 +318,22 @@ fn main() {
     };
     row("terrain systems per frame, wall time, p50 / p99 / max", &|w| spread(&w.times));
     row("of which the main thread on a core, p50 / p99 / max", &|w| spread(&w.cpu));
+    row(&format!("the same from the first frame with {FULL_WORLD} props live on"), &|w| {
+        format!("{} (from frame {})", spread(&w.cpu_full), w.full_from.map_or("-".into(), |f| f.to_string()))
+    });
     row("of which waiting for a core, p50 / p99 / max", &|w| spread(&w.waiting));
-    row("in the slowest frame: meshes inserted / tasks started / cancelled", &|w| {
+    row("of which asleep in the kernel, p50 / p99 / max", &|w| spread(&w.blocked));
+    row("in the slowest frame on a core: meshes inserted / tasks started / cancelled", &|w| {
         format!("{} / {} / {}", w.worst.0, w.worst.1, w.worst.2)
     });
     for (k, (name, _)) in SETS.iter().enumerate() {
-        row(&format!("set {name}: p99 / max, and in the slowest frame"), &|w| {
+        row(&format!("set {name} on a core: p50 / p99 / max, and in the slowest frame"), &|w| {
             let mut v: Vec<f64> = w.sets.iter().map(|s| s[k]).collect();
             let slowest = v.get(w.worst_frame).copied().unwrap_or(f64::NAN);
             v.sort_by(f64::total_cmp);
             format!(
-                "{:.3} ms / {:.3} ms; {:.3} ms",
+                "{:.3} ms / {:.3} ms / {:.3} ms; {:.3} ms",
+                percentile(&v, 0.5),
                 percentile(&v, 0.99),
                 v.last().copied().unwrap_or(f64::NAN),
                 slowest

@@ -130,15 +130,17 @@ fn spawn_props(
                 .with_rotation(Quat::from_rotation_y(p.yaw))
                 .with_scale(Vec3::splat(p.scale * size));
             let prop = HexProp { kind: p.kind, variant: p.variant, tile: p.tile };
-            let mut e = children.spawn((prop, transform));
+            // Spawned with its mesh in one bundle: one archetype move a prop, not two.
             #[cfg(feature = "render")]
             if let Some(assets) = assets {
                 let meshes = if far { &assets.far_meshes } else { &assets.meshes };
                 let mesh = meshes[p.kind as usize][usize::from(p.variant % PROP_VARIANTS)].clone();
-                e.insert((Mesh3d(mesh), MeshMaterial3d(assets.material.clone())));
+                children.spawn((prop, transform, Mesh3d(mesh), MeshMaterial3d(assets.material.clone())));
+                continue;
             }
             #[cfg(not(feature = "render"))]
-            let _ = (&mut e, assets, far);
+            let _ = (assets, far);
+            children.spawn((prop, transform));
         }
     });
 }

@@ -2,8 +2,11 @@
 //! nearest viewer (the cameras, or the agents without a camera). A pure function of the terrain,
 //! the settings, the viewers and the level a chunk shows now, tested without an `App`.
 
+use std::sync::Arc;
+
 use bevy::ecs::system::SystemParam;
 use bevy::math::DVec3;
+use bevy::platform::collections::HashMap;
 use bevy::prelude::*;
 use hex_terrain::{ChunkCoord, Detail, Terrain};
 
@@ -47,21 +50,21 @@ pub fn box_distance(viewer: DVec3, (min, max): (DVec3, DVec3)) -> f64 {
     (min - viewer).max(viewer - max).max(DVec3::ZERO).length()
 }
 
-/// The level `chunk` is drawn at: [`Detail::Coarse`] when it is farther than
-/// [`HexStreamingSettings::coarse_distance`] hex sizes from every viewer, [`Detail::Full`] when
-/// nearer than `1 - DETAIL_HYSTERESIS` of that, and in between the level it shows (`shown`,
-/// `None` for a chunk without a mesh, which takes the level of its side of the threshold).
-/// Without viewers or a threshold every chunk is full.
+/// The level a chunk whose box ([`chunk_box`]) is `bounds` is drawn at: [`Detail::Coarse`] when
+/// it is farther than [`HexStreamingSettings::coarse_distance`] hex sizes from every viewer,
+/// [`Detail::Full`] when nearer than `1 - DETAIL_HYSTERESIS` of that, and in between the level it
+/// shows (`shown`, `None` for a chunk without a mesh, which takes the level of its side of the
+/// threshold). Without viewers, a threshold or a box (a chunk outside the map) it is full.
 #[must_use]
 pub fn chunk_detail(
     terrain: &Terrain,
     settings: &HexStreamingSettings,
     viewers: &[DVec3],
-    chunk: ChunkCoord,
+    bounds: Option<(DVec3, DVec3)>,
     shown: Option<Detail>,
 ) -> Detail {
     let Some(threshold) = settings.coarse_distance else { return Detail::Full };
-    let Some(bounds) = chunk_box(terrain, chunk) else { return Detail::Full };
+    let Some(bounds) = bounds else { return Detail::Full };
     if viewers.is_empty() || !threshold.is_finite() {
         return Detail::Full;
     }
@@ -71,6 +74,59 @@ pub fn chunk_detail(
         Some(Detail::Coarse) if d >= far * (1.0 - DETAIL_HYSTERESIS) => Detail::Coarse,
         _ if d > far => Detail::Coarse,
         _ => Detail::Full,
+    }
+}
+
+/// The boxes of one terrain's chunks ([`chunk_box`]), each computed once: the planner measures
+/// every wanted chunk's distance every frame a viewer moves. Emptied when asked about another
+/// terrain (another `Arc`: a reload, an edit), and of the chunks no longer wanted by
+/// [`ChunkBoxes::keep`].
+#[derive(Default)]
+pub struct ChunkBoxes {
+    terrain: Option<Arc<Terrain>>,
+    boxes: HashMap<ChunkCoord, Option<(DVec3, DVec3)>>,
+}
+
+impl ChunkBoxes {
+    /// [`chunk_detail`] of `chunk`, its box computed once per terrain.
+    pub fn detail(
+        &mut self,
+        terrain: &Arc<Terrain>,
+        settings: &HexStreamingSettings,
+        viewers: &[DVec3],
+        chunk: ChunkCoord,
+        shown: Option<Detail>,
+    ) -> Detail {
+        if settings.coarse_distance.is_none() || viewers.is_empty() {
+            return Detail::Full;
+        }
+        if !self.terrain.as_ref().is_some_and(|t| Arc::ptr_eq(t, terrain)) {
+            self.boxes.clear();
+            self.terrain = Some(terrain.clone());
+        }
+        let bounds = *self.boxes.entry(chunk).or_insert_with(|| chunk_box(terrain, chunk));
+        chunk_detail(terrain, settings, viewers, bounds, shown)
+    }
+
+    /// Boxes held (what the tests check the cache forgets).
+    #[cfg(test)]
+    #[must_use]
+    pub fn held(&self) -> usize {
+        self.boxes.len()
+    }
+
+    /// Forgets the boxes of chunks `wanted` does not hold, so an agent walking on does not pile
+    /// them up.
+    pub fn keep<V>(&mut self, wanted: &HashMap<ChunkCoord, V>) {
+        if self.boxes.len() > wanted.len() {
+            self.boxes.retain(|c, _| wanted.contains_key(c));
+        }
+    }
+}
+
+impl std::fmt::Debug for ChunkBoxes {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("ChunkBoxes").field("boxes", &self.boxes.len()).finish_non_exhaustive()
     }
 }
 

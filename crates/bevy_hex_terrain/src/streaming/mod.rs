@@ -172,6 +172,8 @@ pub struct ChunkStreamer {
     settled: bool,
     /// Dropped chunks whose children are being despawned.
     retiring: retire::Retiring,
+    /// The wanted chunks' boxes, which their level of detail is measured from.
+    boxes: detail::ChunkBoxes,
 }
 
 impl ChunkStreamer {

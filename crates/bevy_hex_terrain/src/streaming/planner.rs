@@ -2,12 +2,14 @@
 //! wanted, which are dropped and which get a task, in what order. A pure function of its
 //! inputs, tested on [`ChunkCoord`]s without an `App`.
 
+use std::sync::Arc;
+
 use bevy::math::DVec3;
 use bevy::platform::collections::HashMap;
 use hex_terrain::{ChunkCoord, Detail, Terrain};
 
 use super::HexStreamingSettings;
-use super::detail::chunk_detail;
+use super::detail::ChunkBoxes;
 
 /// What an existing chunk shows and does, as the planner sees it.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -25,7 +27,7 @@ pub struct ChunkState {
 pub struct Plan {
     /// Chunks that must exist, with their distance (in chunks) to the nearest agent.
     pub wanted: HashMap<ChunkCoord, u32>,
-    /// The level each wanted chunk is to be drawn at ([`chunk_detail`]).
+    /// The level each wanted chunk is to be drawn at ([`chunk_detail`](super::detail::chunk_detail)).
     pub detail: HashMap<ChunkCoord, Detail>,
     /// Existing chunks to despawn: beyond every agent's keep distance, or outside the map.
     pub drop: Vec<ChunkCoord>,
@@ -36,14 +38,16 @@ pub struct Plan {
 }
 
 /// Plans a frame. `agents` holds each agent's chunk and radius; `viewers` the world positions
-/// levels of detail are measured from; `existing` every chunk entity's state.
+/// levels of detail are measured from; `existing` every chunk entity's state; `boxes` the chunk
+/// boxes computed so far (a cache: the plan is the same with an empty one).
 #[must_use]
 pub fn plan(
-    terrain: &Terrain,
+    terrain: &Arc<Terrain>,
     settings: &HexStreamingSettings,
     agents: &[(ChunkCoord, u32)],
     viewers: &[DVec3],
     existing: &HashMap<ChunkCoord, ChunkState>,
+    boxes: &mut ChunkBoxes,
 ) -> Plan {
     let ahead = settings.prefetch;
     let mut centers = agents.to_vec();
@@ -85,8 +89,9 @@ pub fn plan(
     let budget = settings.max_tasks_in_flight.saturating_sub(in_flight);
     let detail: HashMap<ChunkCoord, Detail> = wanted
         .keys()
-        .map(|&c| (c, chunk_detail(terrain, settings, viewers, c, existing.get(&c).map(|s| s.detail))))
+        .map(|&c| (c, boxes.detail(terrain, settings, viewers, c, existing.get(&c).map(|s| s.detail))))
         .collect();
+    boxes.keep(&wanted);
     // Missing or outdated chunks first, then level changes, each nearest first.
     let mut todo: Vec<(bool, u32, ChunkCoord)> = wanted
         .iter()

@@ -96,7 +96,7 @@ pub(crate) fn stream(
             }))
         })
         .collect();
-    let plan = plan(&terrain, &settings, &agents, &viewers, &existing);
+    let plan = plan(&terrain, &settings, &agents, &viewers, &existing, &mut streamer.boxes);
 
     for c in plan.drop {
         let Some(e) = streamer.chunks.remove(&c) else { continue };

@@ -2,8 +2,8 @@ use hex_terrain::{MapConfig, MapSize};
 
 use super::*;
 
-fn terrain(size: MapSize) -> Terrain {
-    Terrain::new(MapConfig { size, chunk_size: (8, 8), ..MapConfig::default() }).unwrap()
+fn terrain(size: MapSize) -> Arc<Terrain> {
+    Arc::new(Terrain::new(MapConfig { size, chunk_size: (8, 8), ..MapConfig::default() }).unwrap())
 }
 
 fn settings(tasks: usize) -> HexStreamingSettings {
@@ -22,7 +22,7 @@ fn square(center: ChunkCoord, r: i32) -> Vec<ChunkCoord> {
 fn an_agent_wants_its_radius_plus_prefetch_nearest_first() {
     let t = terrain(MapSize::Unbounded);
     let agent = ChunkCoord::new(5, -3);
-    let p = plan(&t, &settings(100), &[(agent, 1)], &[], &HashMap::default());
+    let p = plan(&t, &settings(100), &[(agent, 1)], &[], &HashMap::default(), &mut ChunkBoxes::default());
     let mut wanted: Vec<ChunkCoord> = p.wanted.keys().copied().collect();
     wanted.sort_unstable();
     let mut expected = square(agent, 2);
@@ -42,13 +42,13 @@ fn the_task_budget_counts_running_tasks() {
     let mut existing = HashMap::default();
     existing.insert(agent, ChunkState { current: false, building: true, ..default() });
     existing.insert(ChunkCoord::new(1, 0), ChunkState { current: true, building: false, ..default() });
-    let p = plan(&t, &settings(4), &[(agent, 1)], &[], &existing);
+    let p = plan(&t, &settings(4), &[(agent, 1)], &[], &existing, &mut ChunkBoxes::default());
     assert_eq!(p.start.len(), 3, "4 slots, one taken");
     assert!(!p.start.iter().any(|s| s.0 == agent), "a chunk being built is not started again");
     assert!(!p.start.iter().any(|s| s.0 == ChunkCoord::new(1, 0)), "a current chunk is not rebuilt");
     // An outdated chunk (older generation, no task) is rebuilt.
     existing.insert(ChunkCoord::new(1, 0), ChunkState::default());
-    let p = plan(&t, &settings(100), &[(agent, 1)], &[], &existing);
+    let p = plan(&t, &settings(100), &[(agent, 1)], &[], &existing, &mut ChunkBoxes::default());
     assert!(p.start.iter().any(|s| s.0 == ChunkCoord::new(1, 0)));
 }
 
@@ -61,7 +61,7 @@ fn chunks_drop_only_beyond_the_hysteresis() {
         .map(|x| (ChunkCoord::new(x, 0), ChunkState { current: true, building: false, ..default() }))
         .collect();
     // radius 1 + prefetch 1 + hysteresis 1: kept within 3 chunks.
-    let p = plan(&t, &settings(8), &[(agent, 1)], &[], &existing);
+    let p = plan(&t, &settings(8), &[(agent, 1)], &[], &existing, &mut ChunkBoxes::default());
     assert_eq!(p.drop, vec![ChunkCoord::new(0, 0), ChunkCoord::new(14, 0)]);
     assert!(!p.wanted.contains_key(&ChunkCoord::new(7, 0)), "kept, not wanted");
 }
@@ -70,7 +70,7 @@ fn chunks_drop_only_beyond_the_hysteresis() {
 fn several_agents_keep_the_union_at_the_nearest_distance() {
     let t = terrain(MapSize::Unbounded);
     let (a, b) = (ChunkCoord::new(0, 0), ChunkCoord::new(3, 0));
-    let p = plan(&t, &settings(100), &[(a, 1), (b, 1)], &[], &HashMap::default());
+    let p = plan(&t, &settings(100), &[(a, 1), (b, 1)], &[], &HashMap::default(), &mut ChunkBoxes::default());
     assert_eq!(p.wanted[&ChunkCoord::new(2, 0)], 1, "nearer to b");
     assert_eq!(p.wanted[&ChunkCoord::new(1, 0)], 1, "nearer to a");
     assert_eq!(p.wanted.len(), 5 * 8);
@@ -79,26 +79,30 @@ fn several_agents_keep_the_union_at_the_nearest_distance() {
 #[test]
 fn bounded_maps_clip_and_without_agents_want_every_chunk() {
     let t = terrain(MapSize::Bounded { x: 20, z: 12 });
-    let p = plan(&t, &settings(100), &[], &[], &HashMap::default());
+    let p = plan(&t, &settings(100), &[], &[], &HashMap::default(), &mut ChunkBoxes::default());
     let mut all = t.chunks();
     all.sort_unstable();
     let mut wanted: Vec<ChunkCoord> = p.wanted.keys().copied().collect();
     wanted.sort_unstable();
     assert_eq!(wanted, all);
     // An agent in a corner wants only chunks inside the map.
-    let p = plan(&t, &settings(100), &[(ChunkCoord::new(0, 0), 1)], &[], &HashMap::default());
+    let p =
+        plan(&t, &settings(100), &[(ChunkCoord::new(0, 0), 1)], &[], &HashMap::default(), &mut ChunkBoxes::default());
     assert!(p.wanted.keys().all(|c| t.chunk_rect(*c).is_some()));
     assert_eq!(p.wanted.len(), 3 * 2);
     // A chunk outside the map (after a reload to a smaller map) is dropped.
     let existing: HashMap<ChunkCoord, ChunkState> =
         [(ChunkCoord::new(9, 9), ChunkState::default())].into_iter().collect();
-    assert_eq!(plan(&t, &settings(100), &[], &[], &existing).drop, vec![ChunkCoord::new(9, 9)]);
+    assert_eq!(
+        plan(&t, &settings(100), &[], &[], &existing, &mut ChunkBoxes::default()).drop,
+        vec![ChunkCoord::new(9, 9)]
+    );
 }
 
 #[test]
 fn without_agents_an_unbounded_world_streams_around_the_origin() {
     let t = terrain(MapSize::Unbounded);
-    let p = plan(&t, &settings(100), &[], &[], &HashMap::default());
+    let p = plan(&t, &settings(100), &[], &[], &HashMap::default(), &mut ChunkBoxes::default());
     assert_eq!(p.wanted.len(), 25);
     assert!(p.wanted.keys().all(|c| c.distance(ChunkCoord::default()) <= 2));
 }
@@ -119,8 +123,8 @@ fn chunks_far_from_every_viewer_are_coarse_with_hysteresis() {
     let t = terrain(MapSize::Unbounded);
     let viewer = viewer_over(&t, 0.0);
     let s = lod(20.0);
-    assert_eq!(chunk_detail(&t, &s, &[viewer], ChunkCoord::default(), None), Detail::Full);
-    assert_eq!(chunk_detail(&t, &s, &[viewer], ChunkCoord::new(6, 0), None), Detail::Coarse);
+    assert_eq!(chunk_detail(&t, &s, &[viewer], chunk_box(&t, ChunkCoord::default()), None), Detail::Full);
+    assert_eq!(chunk_detail(&t, &s, &[viewer], chunk_box(&t, ChunkCoord::new(6, 0)), None), Detail::Coarse);
     // Every chunk's level against its distance, for each level it may show.
     let size = f64::from(t.config().layout.hex_size);
     for x in -6..=6 {
@@ -129,7 +133,7 @@ fn chunks_far_from_every_viewer_are_coarse_with_hysteresis() {
             let d = box_distance(viewer, chunk_box(&t, c).unwrap()) / size;
             let (near, far) = (d < 20.0 * (1.0 - DETAIL_HYSTERESIS), d > 20.0);
             for shown in [None, Some(Detail::Full), Some(Detail::Coarse)] {
-                let got = chunk_detail(&t, &s, &[viewer], c, shown);
+                let got = chunk_detail(&t, &s, &[viewer], chunk_box(&t, c), shown);
                 let expected = if far {
                     Detail::Coarse
                 } else if near {
@@ -144,13 +148,16 @@ fn chunks_far_from_every_viewer_are_coarse_with_hysteresis() {
     // The nearest viewer counts; height counts (a camera zoomed out sees every chunk coarse).
     let (min, max) = chunk_box(&t, ChunkCoord::new(6, 0)).unwrap();
     let other = (min + max) / 2.0;
-    assert_eq!(chunk_detail(&t, &s, &[viewer, other], ChunkCoord::new(6, 0), None), Detail::Full);
-    assert_eq!(chunk_detail(&t, &s, &[viewer_over(&t, 40.0 * size)], ChunkCoord::default(), None), Detail::Coarse);
+    assert_eq!(chunk_detail(&t, &s, &[viewer, other], chunk_box(&t, ChunkCoord::new(6, 0)), None), Detail::Full);
+    assert_eq!(
+        chunk_detail(&t, &s, &[viewer_over(&t, 40.0 * size)], chunk_box(&t, ChunkCoord::default()), None),
+        Detail::Coarse
+    );
     // No viewer, no threshold, or a threshold that is not a number: everything full.
-    assert_eq!(chunk_detail(&t, &s, &[], ChunkCoord::new(6, 0), None), Detail::Full);
+    assert_eq!(chunk_detail(&t, &s, &[], chunk_box(&t, ChunkCoord::new(6, 0)), None), Detail::Full);
     let off = HexStreamingSettings { coarse_distance: None, ..settings(100) };
-    assert_eq!(chunk_detail(&t, &off, &[viewer], ChunkCoord::new(6, 0), None), Detail::Full);
-    assert_eq!(chunk_detail(&t, &lod(f32::NAN), &[viewer], ChunkCoord::new(6, 0), None), Detail::Full);
+    assert_eq!(chunk_detail(&t, &off, &[viewer], chunk_box(&t, ChunkCoord::new(6, 0)), None), Detail::Full);
+    assert_eq!(chunk_detail(&t, &lod(f32::NAN), &[viewer], chunk_box(&t, ChunkCoord::new(6, 0)), None), Detail::Full);
 }
 
 #[test]
@@ -161,14 +168,14 @@ fn a_level_change_is_a_task_after_the_missing_chunks_and_keeps_the_mesh() {
     let near = ChunkCoord::new(1, 0);
     let far = ChunkCoord::new(2, 2);
     let s = HexStreamingSettings { load_radius: 2, ..lod(10.0) };
-    let p = plan(&t, &s, &[(agent, 2)], &[viewer], &HashMap::default());
+    let p = plan(&t, &s, &[(agent, 2)], &[viewer], &HashMap::default(), &mut ChunkBoxes::default());
     assert_eq!(p.detail[&agent], Detail::Full);
     assert_eq!(p.detail[&far], Detail::Coarse);
     assert!(p.start.contains(&(far, Detail::Coarse)), "a new far chunk is built coarse at once");
     // Every chunk current at full detail: the far ones get a coarse task, the near ones none.
     let mut existing: HashMap<ChunkCoord, ChunkState> =
         p.wanted.keys().map(|&c| (c, ChunkState { current: true, building: false, detail: Detail::Full })).collect();
-    let p = plan(&t, &s, &[(agent, 2)], &[viewer], &existing);
+    let p = plan(&t, &s, &[(agent, 2)], &[viewer], &existing, &mut ChunkBoxes::default());
     assert!(p.start.contains(&(far, Detail::Coarse)));
     assert!(p.start.iter().all(|&(c, d)| d == Detail::Coarse && p.detail[&c] == Detail::Coarse));
     assert!(!p.start.iter().any(|s| s.0 == near || s.0 == agent));
@@ -179,9 +186,9 @@ fn a_level_change_is_a_task_after_the_missing_chunks_and_keeps_the_mesh() {
     existing.insert(far, ChunkState { current: true, building: true, detail: Detail::Coarse });
     // Two task slots, one taken by the chunk being rebuilt.
     let one = HexStreamingSettings { max_tasks_in_flight: 2, ..s.clone() };
-    let p = plan(&t, &one, &[(agent, 2)], &[viewer], &existing);
+    let p = plan(&t, &one, &[(agent, 2)], &[viewer], &existing, &mut ChunkBoxes::default());
     assert_eq!(p.start, vec![(missing, Detail::Coarse)]);
-    let p = plan(&t, &s, &[(agent, 2)], &[viewer], &existing);
+    let p = plan(&t, &s, &[(agent, 2)], &[viewer], &existing, &mut ChunkBoxes::default());
     assert!(!p.start.iter().any(|s| s.0 == far));
 }
 
@@ -213,5 +220,36 @@ fn a_chunks_box_holds_its_mesh_wherever_it_stands() {
                 }
             }
         }
+    }
+}
+
+#[test]
+fn one_box_cache_over_frames_and_terrains_plans_as_an_empty_one() {
+    use hex_terrain::Orientation;
+    // Two terrains of other geometry (a reload), the cache asked about each in turn, and a viewer
+    // walking on past many chunks (the cache forgets those no longer wanted).
+    let flat = terrain(MapSize::Unbounded);
+    let mut c = MapConfig { size: MapSize::Bounded { x: 64, z: 40 }, chunk_size: (8, 8), ..MapConfig::default() };
+    c.layout.orientation = Orientation::Pointy;
+    c.layout.hex_size = 2.5;
+    let pointy = Arc::new(Terrain::new(c).unwrap());
+    let s = HexStreamingSettings { load_radius: 2, ..lod(12.0) };
+    let mut boxes = ChunkBoxes::default();
+    let mut existing: HashMap<ChunkCoord, ChunkState> = HashMap::default();
+    for step in 0..40 {
+        let t = if step % 7 < 4 { &flat } else { &pointy };
+        let size = f64::from(t.config().layout.hex_size);
+        let viewer = DVec3::new(f64::from(step) * 9.0 * size, f64::from(step % 5) * 4.0 * size, 3.0 * size);
+        let agent = t.tile_at(viewer.x, viewer.z).map_or(ChunkCoord::default(), |tile| t.chunk_of(tile));
+        let cached = plan(t, &s, &[(agent, 2)], &[viewer], &existing, &mut boxes);
+        let fresh = plan(t, &s, &[(agent, 2)], &[viewer], &existing, &mut ChunkBoxes::default());
+        assert_eq!(cached, fresh, "step {step}");
+        assert!(boxes.held() <= cached.wanted.len(), "step {step}: {} boxes kept", boxes.held());
+        // The chunks now show what the plan wanted, so hysteresis comes into play.
+        existing = cached
+            .detail
+            .iter()
+            .map(|(&c, &d)| (c, ChunkState { current: true, building: false, detail: d }))
+            .collect();
     }
 }
