@@ -124,8 +124,8 @@ struct Walk {
     live_max: usize,
     per_chunk: f64,
     /// Meshes inserted, tasks started and tasks cancelled in the frame whose terrain systems
-    /// took longest.
-    worst: (u64, u64, u64),
+    /// took longest on a core, and its prop entities and entities before and after it.
+    worst: (u64, u64, u64, [usize; 2], [u32; 2]),
     /// Time on a core of each set per frame, ms.
     sets: Vec<[f64; SETS.len()]>,
     /// The index of the frame whose terrain systems took longest on a core.
@@ -202,7 +202,7 @@ fn walk(seconds: u32, threads: ChunkThreads, props: bool) -> Walk {
         let s = app.world().resource::<HexTerrainStats>();
         (s.meshes_inserted(), s.tasks_started(), s.tasks_cancelled())
     };
-    let (mut worst, mut worst_time, mut worst_frame) = ((0, 0, 0), 0.0, 0);
+    let (mut worst, mut worst_time, mut worst_frame) = ((0, 0, 0, [0; 2], [0; 2]), 0.0, 0);
     let (mut fog_checks, mut pending_max, mut full_from) = (Vec::new(), 0, None);
     let mut prop_query = app.world_mut().query::<&HexProp>();
     for f in 0..frames {
@@ -211,19 +211,29 @@ fn walk(seconds: u32, threads: ChunkThreads, props: bool) -> Walk {
         app.world_mut().entity_mut(agent).insert(Transform::from_xyz(x, 0.0, 0.0));
         cursor_and_scouts(app.world_mut(), x, f);
         let before = counts(&app);
+        let (props_before, entities_before) =
+            (prop_query.iter(app.world()).count(), app.world().entities().count_spawned());
         let checks = app.world().resource::<HexPropStats>().fog_checks;
         app.update();
         let after = counts(&app);
         fog_checks.push((app.world().resource::<HexPropStats>().fog_checks - checks) as f64);
         pending_max = pending_max.max(app.world().resource::<HexPropStats>().pending);
-        if full_from.is_none() && prop_query.iter(app.world()).count() >= FULL_WORLD {
+        let (props_after, entities_after) =
+            (prop_query.iter(app.world()).count(), app.world().entities().count_spawned());
+        if full_from.is_none() && props_after >= FULL_WORLD {
             full_from = Some(app.world().resource::<FrameTimes>().cpu.len().saturating_sub(1));
         }
         if let Some(&t) = app.world().resource::<FrameTimes>().cpu.last()
             && t > worst_time
         {
             worst_time = t;
-            worst = (after.0 - before.0, after.1 - before.1, after.2 - before.2);
+            worst = (
+                after.0 - before.0,
+                after.1 - before.1,
+                after.2 - before.2,
+                [props_before, props_after],
+                [entities_before, entities_after],
+            );
             worst_frame = app.world().resource::<FrameTimes>().sets.len().saturating_sub(1);
         }
         live_max = live_max.max(app.world().resource::<ChunkStreamer>().live_chunks());
@@ -323,8 +333,11 @@ fn main() {
     });
     row("of which waiting for a core, p50 / p99 / max", &|w| spread(&w.waiting));
     row("of which asleep in the kernel, p50 / p99 / max", &|w| spread(&w.blocked));
-    row("in the slowest frame on a core: meshes inserted / tasks started / cancelled", &|w| {
-        format!("{} / {} / {}", w.worst.0, w.worst.1, w.worst.2)
+    row("the slowest frame on a core: its index; meshes inserted / tasks started / cancelled", &|w| {
+        format!("frame {}; {} / {} / {}", w.worst_frame, w.worst.0, w.worst.1, w.worst.2)
+    });
+    row("in it, prop entities and entities before -> after", &|w| {
+        format!("{} -> {}, {} -> {}", w.worst.3[0], w.worst.3[1], w.worst.4[0], w.worst.4[1])
     });
     for (k, (name, _)) in SETS.iter().enumerate() {
         row(&format!("set {name} on a core: p50 / p99 / max, and in the slowest frame"), &|w| {
