@@ -204,23 +204,24 @@ fn walk(seconds: u32, threads: ChunkThreads, props: bool) -> Walk {
     };
     let (mut worst, mut worst_time, mut worst_frame) = ((0, 0, 0, [0; 2], [0; 2]), 0.0, 0);
     let (mut fog_checks, mut pending_max, mut full_from) = (Vec::new(), 0, None);
+    // Prop entities live, counted once a frame after it (nothing spawns props between frames).
     let mut prop_query = app.world_mut().query::<&HexProp>();
+    let mut props_live = prop_query.iter(app.world()).count();
     for f in 0..frames {
         let start = Instant::now();
         let x = f as f32 / 60.0 * chunk_width;
         app.world_mut().entity_mut(agent).insert(Transform::from_xyz(x, 0.0, 0.0));
         cursor_and_scouts(app.world_mut(), x, f);
         let before = counts(&app);
-        let (props_before, entities_before) =
-            (prop_query.iter(app.world()).count(), app.world().entities().count_spawned());
+        let (props_before, entities_before) = (props_live, app.world().entities().count_spawned());
         let checks = app.world().resource::<HexPropStats>().fog_checks;
         app.update();
         let after = counts(&app);
         fog_checks.push((app.world().resource::<HexPropStats>().fog_checks - checks) as f64);
         pending_max = pending_max.max(app.world().resource::<HexPropStats>().pending);
-        let (props_after, entities_after) =
-            (prop_query.iter(app.world()).count(), app.world().entities().count_spawned());
-        if full_from.is_none() && props_after >= FULL_WORLD {
+        props_live = prop_query.iter(app.world()).count();
+        let entities_after = app.world().entities().count_spawned();
+        if full_from.is_none() && props_live >= FULL_WORLD {
             full_from = Some(app.world().resource::<FrameTimes>().cpu.len().saturating_sub(1));
         }
         if let Some(&t) = app.world().resource::<FrameTimes>().cpu.last()
@@ -231,7 +232,7 @@ fn walk(seconds: u32, threads: ChunkThreads, props: bool) -> Walk {
                 after.0 - before.0,
                 after.1 - before.1,
                 after.2 - before.2,
-                [props_before, props_after],
+                [props_before, props_live],
                 [entities_before, entities_after],
             );
             worst_frame = app.world().resource::<FrameTimes>().sets.len().saturating_sub(1);
@@ -258,7 +259,6 @@ fn walk(seconds: u32, threads: ChunkThreads, props: bool) -> Walk {
     let live = app.world().resource::<ChunkStreamer>().live_chunks();
     let bytes: Vec<usize> = app.world_mut().query::<&HexChunk>().iter(app.world()).map(|c| c.mesh_bytes).collect();
     let per_chunk = bytes.iter().sum::<usize>() as f64 / bytes.len().max(1) as f64;
-    let props_live = app.world_mut().query::<&HexProp>().iter(app.world()).count();
     fog_checks.sort_by(f64::total_cmp);
     Walk {
         started,

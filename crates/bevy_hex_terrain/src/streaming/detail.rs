@@ -97,9 +97,6 @@ impl ChunkBoxes {
         chunk: ChunkCoord,
         shown: Option<Detail>,
     ) -> Detail {
-        if settings.coarse_distance.is_none() || viewers.is_empty() {
-            return Detail::Full;
-        }
         if !self.terrain.as_ref().is_some_and(|t| Arc::ptr_eq(t, terrain)) {
             self.boxes.clear();
             self.terrain = Some(terrain.clone());
