@@ -34,6 +34,32 @@ struct FrameTimes {
     marks: Vec<Clocks>,
     /// Time on a core of each set, ms, per frame.
     sets: Vec<[f64; SETS.len()]>,
+    /// Time on a core of the control (a fixed workload run after the terrain systems each
+    /// frame, see [`control`]), ms, per frame.
+    control: Vec<f64>,
+    /// The control's memory.
+    scratch: Vec<u64>,
+}
+
+/// The control: the same work every frame (two passes of integer arithmetic over half a
+/// megabyte, read and written), near the terrain systems' median time on a core here. It does
+/// not change from frame to frame, so what its time on a core does is what the machine does to
+/// the thread (interrupts handled on its core, the pool threads' cache and memory traffic): the
+/// noise floor of the terrain's figures beside it.
+fn control(scratch: &mut Vec<u64>) -> u64 {
+    const WORDS: usize = 1 << 16;
+    const PASSES: usize = 2;
+    if scratch.len() != WORDS {
+        *scratch = (0..WORDS as u64).collect();
+    }
+    let mut acc = 0x9e37_79b9_7f4a_7c15_u64;
+    for _ in 0..PASSES {
+        for word in scratch.iter_mut() {
+            acc = (acc ^ *word).wrapping_mul(0x2545_f491_4f6c_dd1d).rotate_left(17);
+            *word = word.wrapping_add(acc >> 60);
+        }
+    }
+    acc
 }
 
 /// The terrain sets in their order, for the split of a frame.
@@ -139,6 +165,8 @@ struct Walk {
     full_from: Option<usize>,
     /// Time on a core of the frames from it on, ms, sorted.
     cpu_full: Vec<f64>,
+    /// Time on a core of the control, ms, sorted.
+    control: Vec<f64>,
 }
 
 /// Props live from which the world counts as full: the issue's "a frame that moves a hover with
@@ -179,6 +207,11 @@ fn walk(seconds: u32, threads: ChunkThreads, props: bool) -> Walk {
                 t.cpu.push(cpu);
                 t.waiting.push(waiting);
                 t.blocked.push(blocked);
+                // The control, on the same thread in the same frame, timed with the same clock.
+                let before = Clocks::now();
+                std::hint::black_box(control(&mut t.scratch));
+                let cpu = Clocks::now().since(before)[1];
+                t.control.push(cpu);
             })
             .after(HexTerrainSystems::Render),
         );
@@ -252,6 +285,7 @@ fn walk(seconds: u32, threads: ChunkThreads, props: bool) -> Walk {
     let cpu_full = sorted(&recorded.cpu[full_from.unwrap_or(recorded.cpu.len()).min(recorded.cpu.len())..].to_vec());
     let (waiting, blocked) = (sorted(&recorded.waiting), sorted(&recorded.blocked));
     let sets = recorded.sets.clone();
+    let control = sorted(&recorded.control);
     let stats = app.world().resource::<HexTerrainStats>();
     let mut latencies: Vec<f64> = stats.latencies().map(|s| f64::from(s) * 1e3).collect();
     latencies.sort_by(f64::total_cmp);
@@ -276,6 +310,7 @@ fn walk(seconds: u32, threads: ChunkThreads, props: bool) -> Walk {
         fog_checks,
         full_from,
         cpu_full,
+        control,
         props_live,
         pending_max,
     }
@@ -330,6 +365,16 @@ fn main() {
     row("of which the main thread on a core, p50 / p99 / max", &|w| spread(&w.cpu));
     row(&format!("the same from the first frame with {FULL_WORLD} props live on"), &|w| {
         format!("{} (from frame {})", spread(&w.cpu_full), w.full_from.map_or("-".into(), |f| f.to_string()))
+    });
+    row("frames over 2 ms on a core, of all and from the world full", &|w| {
+        let over = |v: &[f64]| v.iter().filter(|&&t| t > 2.0).count();
+        format!("{} of {}; {} of {}", over(&w.cpu), w.cpu.len(), over(&w.cpu_full), w.cpu_full.len())
+    });
+    row("the control (the same work each frame, after the terrain systems) on a core, p50 / p99 / max", &|w| {
+        spread(&w.control)
+    });
+    row("the control's frames over 2 ms on a core", &|w| {
+        format!("{} of {}", w.control.iter().filter(|&&t| t > 2.0).count(), w.control.len())
     });
     row("of which waiting for a core, p50 / p99 / max", &|w| spread(&w.waiting));
     row("of which asleep in the kernel, p50 / p99 / max", &|w| spread(&w.blocked));

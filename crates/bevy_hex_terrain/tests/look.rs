@@ -187,6 +187,70 @@ fn props_come_and_go_a_budget_a_frame() {
     assert_eq!(props(&mut app).len(), expected, "every loaded chunk shows all its props, no dropped chunk's remain");
 }
 
+/// The props' table gets room for every prop the kept chunks can hold before the first prop is
+/// spawned, so it never grows while a walk fills the world and goes on (Bevy would double it,
+/// copying every prop in one frame): every prop lands in that one table, headless and, with the
+/// prop assets, drawn (spawned with their mesh, material and box).
+#[test]
+fn the_props_table_has_room_before_the_first_prop_and_never_grows() {
+    for drawn in [false, true] {
+        let mut config = unbounded((8, 8));
+        config.noise.scale = 40.0;
+        let settings = HexStreamingSettings { coarse_distance: None, ..settings(1) };
+        let mut app = app_with(HexTerrainPlugins { map: config.into(), settings }, None);
+        app.insert_resource(PropSettings { max_per_chunk: 120, ..default() });
+        #[cfg(feature = "render")]
+        if drawn {
+            use bevy_hex_terrain::PropAssets;
+            use hex_terrain::{PROP_VARIANTS, PropKind};
+            let kinds = PropKind::ALL.len();
+            let handles = vec![vec![Handle::<Mesh>::default(); usize::from(PROP_VARIANTS)]; kinds];
+            let aabbs = vec![vec![bevy::camera::primitives::Aabb::default(); usize::from(PROP_VARIANTS)]; kinds];
+            app.insert_resource(PropAssets {
+                meshes: handles.clone(),
+                far_meshes: handles,
+                material: Handle::default(),
+                aabbs,
+            });
+        }
+        #[cfg(not(feature = "render"))]
+        if drawn {
+            continue;
+        }
+        let agent = spawn_agent(&mut app, Vec3::ZERO);
+        let (mut room, mut most) = (None, 0);
+        for step in 0..400 {
+            let at = Vec3::new(step as f32 * 0.4, 0.0, step as f32 * 0.1);
+            app.world_mut().entity_mut(agent).insert(Transform::from_translation(at));
+            app.update();
+            let world = app.world_mut();
+            let mut tables: Vec<_> = world
+                .query_filtered::<Entity, With<HexProp>>()
+                .iter(world)
+                .map(|e| world.entity(e).location().table_id)
+                .collect();
+            tables.dedup();
+            let live = world.query::<&HexProp>().iter(world).count();
+            most = most.max(live);
+            let Some(&table) = tables.first() else { continue };
+            assert_eq!(tables.len(), 1, "step {step} (drawn: {drawn}): props in {} tables", tables.len());
+            let capacity = world.storages().tables.get(table).unwrap().capacity();
+            assert!(capacity >= live, "step {step}");
+            let first = *room.get_or_insert(capacity);
+            assert_eq!(capacity, first, "step {step} (drawn: {drawn}): the table grew from {first} to {capacity}");
+            if drawn {
+                let unboxed = world
+                    .query_filtered::<(), (With<HexProp>, Without<bevy::camera::primitives::Aabb>)>()
+                    .iter(world)
+                    .count();
+                assert_eq!(unboxed, 0, "step {step}: props spawned without their box");
+            }
+        }
+        // Past several doublings of a table grown from the first frame's batch.
+        assert!(most > 8 * 64, "drawn: {drawn}: at most {most} props live");
+    }
+}
+
 /// Chunk tasks build what the water and props plugins ask for, from their settings when the
 /// task starts: without the plugins, no water surface and no props are built at all; a new
 /// density applies to the chunks built after it.

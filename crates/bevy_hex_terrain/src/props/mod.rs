@@ -17,7 +17,9 @@ mod meshes;
 mod settings;
 
 use std::collections::{HashMap, VecDeque};
+use std::marker::PhantomData;
 
+use bevy::ecs::bundle::NoBundleEffect;
 use bevy::prelude::*;
 #[cfg(feature = "render")]
 use hex_terrain::PROP_VARIANTS;
@@ -54,6 +56,10 @@ pub struct PropAssets {
     /// The one material every prop uses (white base, vertex colors).
     #[cfg(feature = "render")]
     pub material: Handle<StandardMaterial>,
+    /// The bounding box of each of `meshes`, `aabbs[kind as usize][variant]`: a prop is spawned
+    /// with it, so Bevy does not add one later (which would move every prop to another table).
+    #[cfg(feature = "render")]
+    pub aabbs: Vec<Vec<bevy::camera::primitives::Aabb>>,
 }
 
 /// Spawns and despawns the props of loaded chunks ([`HexProp`] children, in
@@ -105,9 +111,16 @@ fn create_assets(
     let mut all = |make: fn(PropKind, u8) -> Mesh| -> Vec<Vec<Handle<Mesh>>> {
         PropKind::ALL.iter().map(|&kind| (0..PROP_VARIANTS).map(|v| meshes.add(make(kind, v))).collect()).collect()
     };
+    use bevy::camera::primitives::MeshAabb;
     let (near, far_meshes) = (all(meshes::prop_mesh), all(meshes::prop_mesh_far));
+    let aabbs = PropKind::ALL
+        .iter()
+        .map(|&kind| {
+            (0..PROP_VARIANTS).map(|v| meshes::prop_mesh(kind, v).compute_aabb().unwrap_or_default()).collect()
+        })
+        .collect();
     let material = materials.add(StandardMaterial { perceptual_roughness: 0.9, reflectance: 0.15, ..default() });
-    commands.insert_resource(PropAssets { meshes: near, far_meshes, material });
+    commands.insert_resource(PropAssets { meshes: near, far_meshes, material, aabbs });
 }
 
 /// Asks chunk tasks for props at the settings' cap and density.
@@ -115,7 +128,16 @@ fn request_props(settings: Res<PropSettings>, mut request: ResMut<ContentRequest
     request.props = Some((settings.max_per_chunk, settings.density));
 }
 
-/// The props' entities of one chunk, with the far meshes on a chunk drawn coarse.
+/// A prop entity as spawned with Bevy's renderer and the prop assets: its mesh, material and
+/// box, and its chunk.
+#[cfg(feature = "render")]
+type DrawnProp =
+    (HexProp, Transform, Mesh3d, MeshMaterial3d<StandardMaterial>, bevy::camera::primitives::Aabb, ChildOf);
+/// A prop entity as spawned headless: what it is, where, and its chunk.
+type BareProp = (HexProp, Transform, ChildOf);
+
+/// The props' entities of one chunk (children of it, in `props`' order), with the far meshes on
+/// a chunk drawn coarse: one batch, every prop spawned whole (one table row each, no move).
 fn spawn_props(
     commands: &mut Commands,
     chunk: Entity,
@@ -124,35 +146,81 @@ fn spawn_props(
     assets: Option<&PropAssets>,
     far: bool,
 ) {
-    commands.entity(chunk).with_children(|children| {
-        for p in props {
-            let transform = Transform::from_translation(Vec3::from_array(p.position))
-                .with_rotation(Quat::from_rotation_y(p.yaw))
-                .with_scale(Vec3::splat(p.scale * size));
-            let prop = HexProp { kind: p.kind, variant: p.variant, tile: p.tile };
-            // Spawned with its mesh in one bundle: one archetype move a prop, not two.
-            #[cfg(feature = "render")]
-            if let Some(assets) = assets {
-                let meshes = if far { &assets.far_meshes } else { &assets.meshes };
-                let mesh = meshes[p.kind as usize][usize::from(p.variant % PROP_VARIANTS)].clone();
-                children.spawn((prop, transform, Mesh3d(mesh), MeshMaterial3d(assets.material.clone())));
-                continue;
-            }
-            #[cfg(not(feature = "render"))]
-            let _ = (assets, far);
-            children.spawn((prop, transform));
-        }
-    });
+    let bare = |p: &Prop| {
+        let transform = Transform::from_translation(Vec3::from_array(p.position))
+            .with_rotation(Quat::from_rotation_y(p.yaw))
+            .with_scale(Vec3::splat(p.scale * size));
+        (HexProp { kind: p.kind, variant: p.variant, tile: p.tile }, transform, ChildOf(chunk))
+    };
+    #[cfg(feature = "render")]
+    if let Some(assets) = assets {
+        let meshes = if far { &assets.far_meshes } else { &assets.meshes };
+        let drawn: Vec<DrawnProp> = props
+            .iter()
+            .map(|p| {
+                let (prop, transform, parent) = bare(p);
+                let (kind, variant) = (p.kind as usize, usize::from(p.variant % PROP_VARIANTS));
+                let mesh = Mesh3d(meshes[kind][variant].clone());
+                (prop, transform, mesh, MeshMaterial3d(assets.material.clone()), assets.aabbs[kind][variant], parent)
+            })
+            .collect();
+        commands.spawn_batch(drawn);
+        return;
+    }
+    #[cfg(not(feature = "render"))]
+    let _ = (assets, far);
+    commands.spawn_batch(props.iter().map(bare).collect::<Vec<BareProp>>());
+}
+
+/// The most props [`sync_props`] makes room for ahead (about 50 MB of table, given only as
+/// it is written); beyond it the table grows as Bevy grows it.
+const MAX_ROOM: usize = 1 << 18;
+
+/// Makes room for at least `additional` more props in the table their entities are spawned
+/// into (and as many entity slots), in one allocation: without it, Bevy doubles the table as
+/// props come, and the doubling that copies some 16,000 props costs one frame milliseconds.
+fn make_room(commands: &mut Commands, additional: usize, assets: Option<&PropAssets>) {
+    #[cfg(feature = "render")]
+    if assets.is_some() {
+        commands.queue(move |world: &mut World| room_for::<DrawnProp>(world, additional));
+        return;
+    }
+    #[cfg(not(feature = "render"))]
+    let _ = assets;
+    commands.queue(move |world: &mut World| room_for::<BareProp>(world, additional));
+}
+
+/// Room for `additional` more entities of bundle `B`: `World::spawn_batch` reserves its table
+/// (and entity slots) for the most its iterator says it may yield, and [`Room`] yields none.
+/// Bevy 0.19 has no other public way to reserve a table.
+fn room_for<B: Bundle<Effect: NoBundleEffect>>(world: &mut World, additional: usize) {
+    world.spawn_batch(Room::<B>(additional, PhantomData));
+}
+
+/// An iterator of no bundles that says it may yield `.0` of them (see [`room_for`]).
+struct Room<B>(usize, PhantomData<fn() -> B>);
+
+impl<B> Iterator for Room<B> {
+    type Item = B;
+
+    fn next(&mut self) -> Option<B> {
+        None
+    }
+
+    fn size_hint(&self) -> (usize, Option<usize>) {
+        (0, Some(self.0))
+    }
 }
 
 /// What [`sync_props`] remembers between frames: whether props were shown, the chunks whose
-/// props wait to be spawned (with the index of the next), and the map generation and level of
-/// each chunk's props.
+/// props wait to be spawned (with the index of the next), the map generation and level of
+/// each chunk's props, and the props the table was last given room for.
 #[derive(Default)]
 struct Spawning {
     was_enabled: Option<bool>,
     queue: VecDeque<(Entity, usize)>,
     shown: HashMap<Entity, (Option<u64>, Detail)>,
+    room: usize,
 }
 
 /// The prop entities, as [`sync_props`] reads and moves them.
@@ -174,13 +242,17 @@ type PropMesh = ();
 fn sync_props(
     mut commands: Commands,
     (settings, map, assets): (Res<PropSettings>, Res<crate::HexMap>, Option<Res<PropAssets>>),
-    (streamer, coords): (Option<Res<crate::ChunkStreamer>>, Query<&crate::HexChunk>),
-    chunks: ContentQuery,
+    (streamer, streaming, agents): (
+        Option<Res<crate::ChunkStreamer>>,
+        Option<Res<crate::HexStreamingSettings>>,
+        Query<&crate::HexTerrainAgent>,
+    ),
+    (chunks, coords): (ContentQuery, Query<&crate::HexChunk>),
     mut props: PropQuery,
     mut spawning: Local<Spawning>,
     mut stats: ResMut<HexPropStats>,
 ) {
-    let Spawning { was_enabled, queue, shown } = &mut *spawning;
+    let Spawning { was_enabled, queue, shown, room } = &mut *spawning;
     let enabled = settings.enabled;
     let size = map.config().layout.hex_size;
     for (chunk, content, old) in stale_chunks(&chunks, |e| props.contains(e), enabled, was_enabled) {
@@ -218,6 +290,18 @@ fn sync_props(
         let distance =
             |e: Entity| coords.get(e).ok().and_then(|c| streamer.wanted_distance(c.coord)).unwrap_or(u32::MAX);
         queue.make_contiguous().sort_by_key(|&(e, _)| distance(e));
+    }
+    // Room in the props' table for every prop the chunks kept can hold (with the last props of
+    // the chunks retiring), made at once while the table is small instead of doubled as props
+    // come; again when the settings or the agents ask for more.
+    if let (Some(streaming), false) = (&streaming, queue.is_empty()) {
+        let radii = agents.iter().map(|a| a.radius.unwrap_or(streaming.load_radius));
+        let kept = crate::streaming::kept_at_most(map.terrain(), streaming, radii) + crate::MAX_RETIRED_CHUNKS;
+        let target = kept.saturating_mul(settings.max_per_chunk).min(MAX_ROOM);
+        if target > *room {
+            make_room(&mut commands, target.saturating_sub(props.iter().count()), assets.as_deref());
+            *room = target;
+        }
     }
     let mut budget = settings.max_spawns_per_frame.max(1);
     while budget > 0 {

@@ -18,6 +18,7 @@ use hex_terrain::{ChunkCoord, Detail};
 pub use content::ChunkContent;
 pub(crate) use content::ContentRequest;
 pub use detail::DETAIL_HYSTERESIS;
+pub(crate) use planner::kept_at_most;
 pub use retire::MAX_RETIRED_CHUNKS;
 pub use stats::HexTerrainStats;
 pub use tasks::ChunkTask;

@@ -107,5 +107,25 @@ pub fn plan(
     Plan { wanted, detail, drop, start }
 }
 
+/// The most chunks [`plan`] keeps at once, for agents of these radii: every chunk within an
+/// agent's radius + prefetch + hysteresis (a square of chunks each), at most the map's chunks on a
+/// bounded map that does not wrap (a wrapping map's copies past its edges are chunks of their
+/// own); without agents, every chunk of a bounded map, or those around the origin of an unbounded
+/// one. An upper bound, to size what grows with the chunks ahead of time.
+#[must_use]
+pub fn kept_at_most(terrain: &Terrain, settings: &HexStreamingSettings, radii: impl IntoIterator<Item = u32>) -> usize {
+    let square = |r: u32| {
+        let side = 2 * (r as usize + settings.prefetch as usize + settings.unload_hysteresis as usize) + 1;
+        side * side
+    };
+    let mut radii = radii.into_iter().peekable();
+    let bounded = terrain.bounds().is_some();
+    if radii.peek().is_none() {
+        return if bounded { terrain.chunks().len() } else { square(settings.load_radius) };
+    }
+    let squares = radii.map(square).fold(0usize, usize::saturating_add);
+    if bounded && terrain.wrap().is_none() { squares.min(terrain.chunks().len()) } else { squares }
+}
+
 #[cfg(test)]
 mod tests;

@@ -253,3 +253,48 @@ fn one_box_cache_over_frames_and_terrains_plans_as_an_empty_one() {
             .collect();
     }
 }
+
+proptest::proptest! {
+    #![proptest_config(proptest::prelude::ProptestConfig::with_cases(48))]
+
+    /// However agents of any radius walk (unbounded, bounded and wrapping maps; with or without
+    /// agents; any prefetch and hysteresis), the chunks that exist, once every planned task
+    /// has started and every drop is done, never number more than `kept_at_most`.
+    #[test]
+    fn the_kept_chunks_never_outnumber_their_bound(
+        size in 0u8..3,
+        (load, prefetch, hysteresis) in (0u32..3, 0u32..3, 0u32..3),
+        agents in proptest::collection::vec((0u32..4, -6i32..6, -6i32..6), 0..4),
+        steps in proptest::collection::vec(proptest::collection::vec((-2i32..3, -2i32..3), 4), 1..12),
+    ) {
+        let mut c = MapConfig { chunk_size: (8, 8), ..MapConfig::default() };
+        c.size = if size == 0 { MapSize::Unbounded } else { MapSize::Bounded { x: 40, z: 24 } };
+        c.wrap = size == 2;
+        let t = Arc::new(Terrain::new(c).unwrap());
+        let s = HexStreamingSettings {
+            load_radius: load,
+            prefetch,
+            unload_hysteresis: hysteresis,
+            max_tasks_in_flight: usize::MAX,
+            coarse_distance: None,
+            ..default()
+        };
+        let bound = kept_at_most(&t, &s, agents.iter().map(|a| a.0));
+        let mut at: Vec<(ChunkCoord, u32)> =
+            agents.iter().map(|&(r, x, z)| (ChunkCoord::new(x, z), r)).collect();
+        let mut existing: HashMap<ChunkCoord, ChunkState> = HashMap::default();
+        for step in &steps {
+            for (agent, &(dx, dz)) in at.iter_mut().zip(step) {
+                agent.0 = ChunkCoord::new(agent.0.x + dx, agent.0.z + dz);
+            }
+            let p = plan(&t, &s, &at, &[], &existing, &mut ChunkBoxes::default());
+            for c in &p.drop {
+                existing.remove(c);
+            }
+            for &(c, detail) in &p.start {
+                existing.insert(c, ChunkState { current: true, building: false, detail });
+            }
+            proptest::prop_assert!(existing.len() <= bound, "{} chunks kept, bound {bound}", existing.len());
+        }
+    }
+}
