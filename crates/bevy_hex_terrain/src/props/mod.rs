@@ -2,6 +2,9 @@
 //! placed in the chunk's task) become child entities of the chunk, spawned a budget a frame
 //! (nearest chunks first) and despawned with it (a budget a frame too, see
 //! [`HexStreamingSettings::max_despawns_per_frame`](crate::HexStreamingSettings::max_despawns_per_frame)).
+//! Each prop is spawned whole, into a table given room before the first prop for every prop
+//! the chunks streaming keeps can hold, so the table does not grow (copying every prop in one
+//! frame) while the world fills.
 //! With Bevy's renderer, every prop of a kind and variant shares one mesh and all share one
 //! vertex-colored material: Bevy batches them into instanced draws (a handful of draws for
 //! thousands of props). Headless, the entities exist without meshes (games and tests can read
