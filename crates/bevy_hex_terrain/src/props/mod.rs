@@ -175,8 +175,9 @@ fn spawn_props(
     commands.spawn_batch(props.iter().map(bare).collect::<Vec<BareProp>>());
 }
 
-/// The most props [`sync_props`] makes room for ahead (about 50 MB of table, given only as
-/// it is written); beyond it the table grows as Bevy grows it.
+/// The most props [`sync_props`] makes room for ahead (a few hundred bytes of address space a
+/// prop, which the system backs with memory only as props are written); beyond it the table
+/// grows as Bevy grows it.
 const MAX_ROOM: usize = 1 << 18;
 
 /// Makes room for at least `additional` more props in the table their entities are spawned
