@@ -111,17 +111,16 @@ fn create_assets(
     mut meshes: ResMut<Assets<Mesh>>,
     mut materials: ResMut<Assets<StandardMaterial>>,
 ) {
-    let mut all = |make: fn(PropKind, u8) -> Mesh| -> Vec<Vec<Handle<Mesh>>> {
-        PropKind::ALL.iter().map(|&kind| (0..PROP_VARIANTS).map(|v| meshes.add(make(kind, v))).collect()).collect()
-    };
     use bevy::camera::primitives::MeshAabb;
-    let (near, far_meshes) = (all(meshes::prop_mesh), all(meshes::prop_mesh_far));
-    let aabbs = PropKind::ALL
-        .iter()
-        .map(|&kind| {
-            (0..PROP_VARIANTS).map(|v| meshes::prop_mesh(kind, v).compute_aabb().unwrap_or_default()).collect()
-        })
-        .collect();
+    let build = |make: fn(PropKind, u8) -> Mesh| -> Vec<Vec<Mesh>> {
+        PropKind::ALL.iter().map(|&kind| (0..PROP_VARIANTS).map(|v| make(kind, v)).collect()).collect()
+    };
+    let (near, far) = (build(meshes::prop_mesh), build(meshes::prop_mesh_far));
+    let aabbs = near.iter().map(|row| row.iter().map(|m| m.compute_aabb().unwrap_or_default()).collect()).collect();
+    let mut add = |all: Vec<Vec<Mesh>>| -> Vec<Vec<Handle<Mesh>>> {
+        all.into_iter().map(|row| row.into_iter().map(|m| meshes.add(m)).collect()).collect()
+    };
+    let (near, far_meshes) = (add(near), add(far));
     let material = materials.add(StandardMaterial { perceptual_roughness: 0.9, reflectance: 0.15, ..default() });
     commands.insert_resource(PropAssets { meshes: near, far_meshes, material, aabbs });
 }
@@ -259,6 +258,8 @@ fn sync_props(
     let Spawning { was_enabled, queue, shown, room } = &mut *spawning;
     let enabled = settings.enabled;
     let size = map.config().layout.hex_size;
+    // Whether a chunk's props were queued this frame (the room is looked at only then).
+    let mut queued = false;
     for (chunk, content, old) in stale_chunks(&chunks, |e| props.contains(e), enabled, was_enabled) {
         let now = coords.get(chunk).ok().map(|c| (c.generation, c.detail));
         // Only the level changed (same map generation, another detail): the same props on
@@ -277,6 +278,7 @@ fn sync_props(
             Some(now) if enabled => {
                 shown.insert(chunk, now);
                 queue.push_back((chunk, 0));
+                queued = true;
             }
             _ => {
                 shown.remove(&chunk);
@@ -297,8 +299,9 @@ fn sync_props(
     }
     // Room in the props' table for every prop the chunks kept can hold (with the last props of
     // the chunks retiring), made at once while the table is small instead of doubled as props
-    // come; again when the settings or the agents ask for more.
-    if let (Some(streaming), false) = (&streaming, queue.is_empty()) {
+    // come; again when the settings or the agents ask for more. Looked at when a chunk's props
+    // are queued, not every frame they wait.
+    if let (Some(streaming), true) = (&streaming, queued) {
         let radii = agents.iter().map(|a| a.radius.unwrap_or(streaming.load_radius));
         let kept = crate::streaming::kept_at_most(map.terrain(), streaming, radii) + crate::MAX_RETIRED_CHUNKS;
         let target = kept.saturating_mul(settings.max_per_chunk).min(MAX_ROOM);
