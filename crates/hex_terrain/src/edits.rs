@@ -9,7 +9,8 @@
 //! generated one, so it keeps its relief. A point inside the tile moves by the tile's delta and
 //! is then kept inside the raw range of the tile's (new) type, so every inner vertex lies in the
 //! type's range after the vertex chain whatever the manipulation settings. A border point moves
-//! by the mean of the deltas of the tiles sharing it (an unedited tile counts zero), so the
+//! by the mean of the deltas of the tiles sharing it (an unedited tile counts zero; the deltas
+//! summed in ascending order, so every copy of a point gets the same bits), so the
 //! surface stays continuous and an unedited neighbor keeps every inner vertex it had. Each edited
 //! point is a pure function of the point and the edits: chunks stay bit-identical at seams and
 //! chunked equals whole.
@@ -136,15 +137,25 @@ impl Edits {
                 None => raw,
             };
         }
-        let mut sum = 0.0;
-        let mut edited = false;
+        // The deltas are summed in ascending order, not in the order `tiles_at` lists the
+        // tiles: that order follows the cube rounding of the point, which can differ between a
+        // point and its copy one period away, and three f32 additions in another order can
+        // round to other bits (the seam would no longer be exact).
+        let mut deltas = [0.0f32; 3];
+        let mut edited = 0;
         for tile in tiles {
             if let Some(shift) = self.tiles.get(&geometry.wrap_tile(*tile)) {
-                sum += shift.delta;
-                edited = true;
+                deltas[edited] = shift.delta;
+                edited += 1;
             }
         }
-        if edited { (raw + sum / tiles.len() as f32).clamp(0.0, 1.0) } else { raw }
+        if edited == 0 {
+            return raw;
+        }
+        let deltas = &mut deltas[..edited];
+        deltas.sort_unstable_by(f32::total_cmp);
+        let sum = deltas.iter().fold(0.0f32, |sum, &d| sum + d);
+        (raw + sum / tiles.len() as f32).clamp(0.0, 1.0)
     }
 }
 

@@ -186,7 +186,7 @@ pub struct TileInfo {
     pub elevation: f32,
     /// Whether the tile belongs to the map (always true for an unbounded world).
     pub in_map: bool,
-    /// Biome (from the kind alone when the map has no climate).
+    /// Biome, by the rule of [`Terrain::tile_biome`](crate::Terrain::tile_biome).
     pub biome: Biome,
     /// Water a river on the tile carries, 0 without a river.
     pub river_flow: f32,

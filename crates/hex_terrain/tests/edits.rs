@@ -189,6 +189,25 @@ proptest! {
                     "inner vertex {:?} of an edited {:?} tile at {} outside [{}, {}]", p, kind, y, lo * max, hi * max);
             }
         }
+        // On a wrapping map the last and first columns meet bit for bit: every vertex that is
+        // also in the map one period east has the same height and normal there.
+        if let Some(wrap) = t.wrap() {
+            let index: HashMap<Hex, usize> = d.lattice.iter().enumerate().map(|(i, &p)| (p, i)).collect();
+            let b = &whole.buffers;
+            for (i, &p) in d.lattice.iter().enumerate() {
+                if let Some(&j) = index.get(&(p + wrap.lattice_shift)) {
+                    prop_assert_eq!(b.positions[i][1].to_bits(), b.positions[j][1].to_bits(),
+                        "seam vertex {:?} and its copy {:?}", p, p + wrap.lattice_shift);
+                    prop_assert_eq!(b.normals[i].map(f32::to_bits), b.normals[j].map(f32::to_bits),
+                        "seam normal {:?}", p);
+                }
+            }
+        }
+        // Every tile of the whole map's mesh is the tile `tile_info` describes (its biome set
+        // by hand too, with or without climate).
+        for info in &whole.tiles {
+            prop_assert_eq!(Some(*info), t.tile_info(info.hex), "tile {:?}", info.hex);
+        }
         // Chunked = whole, so neighbors meet bit for bit.
         for c in chunks_of(t, rect) {
             let Some(rect) = t.chunk_rect(c) else { continue };
@@ -487,4 +506,50 @@ fn prop_density_set_by_hand_replaces_the_biomes() {
     assert!(wood.iter().all(|p| matches!(p.kind, PropKind::Pine | PropKind::Broadleaf)));
     // The heights did not move: a prop edit is no height edit.
     assert_eq!(editor.terrain().tile_info(bare), t.tile_info(bare));
+}
+
+/// A biome set by hand on a map without climate is the biome of the mesh's tile, of
+/// `tile_info` and of every query (the mesh used to give the kind's biome).
+#[test]
+fn a_biome_set_by_hand_shows_in_the_mesh_on_a_map_without_climate() {
+    let config =
+        MapConfig::from_ron("(size: Bounded(x: 4, z: 4), edits: [(at: (1, 1), biome: Some(Desert))])").unwrap();
+    assert!(!config.climate.enabled);
+    let t = Terrain::new(config).unwrap();
+    let tile = t.tile_from_offset([1, 1]);
+    let mesh = t.generate_map().unwrap();
+    let info = mesh.tiles.iter().find(|i| i.hex == tile).unwrap();
+    assert_eq!(info.biome, Biome::Desert);
+    assert_eq!(t.tile_info(tile).unwrap().biome, Biome::Desert);
+    assert_eq!(t.tile_biome(tile), Some(Biome::Desert));
+}
+
+/// Three edited tiles around a seam corner of a wrapping map: the corner and its copy one
+/// period east have the same bits (the deltas were summed in the order the point's cube
+/// rounding listed the tiles, which differed between the copies).
+#[test]
+fn an_edited_corner_on_the_wrap_seam_is_bit_exact() {
+    let config = MapConfig::from_ron(
+        "(size: Bounded(x: 8, z: 22), wrap: true, terrain: (max_elevation: 43.983936, sea_threshold: 0.3724436, \
+         mountain_threshold: 0.686497, interpolation_tolerance: 0.047680397, inner_rings: 2), \
+         shape: Island(a: 4.2091084, b: 5.2374687), chunk_size: (10, 5), edits: [(at: (7, 10), height: \
+         Some(0.15201788)), (at: (0, 11), height: Some(0.109587856)), (at: (7, 11), height: Some(0.13849555))])",
+    )
+    .unwrap();
+    let t = Terrain::new(config).unwrap();
+    let shift = t.wrap().unwrap().lattice_shift;
+    let m = t.generate(t.bounds().unwrap(), GenerateOptions::DIAGNOSTICS);
+    let lattice = &m.diagnostics.as_ref().unwrap().lattice;
+    let index: HashMap<Hex, usize> = lattice.iter().enumerate().map(|(i, &p)| (p, i)).collect();
+    let mut pairs = 0;
+    for (i, &p) in lattice.iter().enumerate() {
+        if let Some(&j) = index.get(&(p + shift)) {
+            assert_eq!(m.buffers.positions[i][1].to_bits(), m.buffers.positions[j][1].to_bits(), "{p:?}");
+            assert_eq!(m.buffers.normals[i].map(f32::to_bits), m.buffers.normals[j].map(f32::to_bits), "{p:?}");
+            pairs += 1;
+        }
+    }
+    assert!(pairs > 22, "{pairs} seam pairs");
+    let corner = Hex::new(-36, 66);
+    assert_eq!(t.vertex(corner).unwrap().height.to_bits(), t.vertex(corner + shift).unwrap().height.to_bits());
 }

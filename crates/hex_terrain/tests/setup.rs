@@ -231,9 +231,11 @@ fn arb_map() -> impl Strategy<Value = MapConfig> {
     (
         (24u32..56, 16u32..36, any::<u32>(), any::<bool>(), 0u8..3),
         (1u32..7, 1u32..4, 2u32..9, 0u8..4, 0.02f32..0.4, any::<bool>(), 0u32..3, 0u32..5),
+        // A part of the map as the setup's area, as fractions of its columns and rows.
+        prop::option::weighted(0.5, (0.0f64..0.5, 0.0f64..0.5, 0.5f64..1.0, 0.5f64..1.0)),
     )
         .prop_map(
-            |((x, z, seed, wrap, water), (players, rings, distance, on, fairness, normalize, per, wonders))| {
+            |((x, z, seed, wrap, water), (players, rings, distance, on, fairness, normalize, per, wonders), area)| {
                 let mut config =
                     MapConfig { seed, size: MapSize::Bounded { x, z }, chunk_size: (8, 8), ..MapConfig::default() };
                 config.climate.enabled = water > 0;
@@ -252,7 +254,15 @@ fn arb_map() -> impl Strategy<Value = MapConfig> {
                 }
                 setup.wonders.count = wonders;
                 config.setup = Some(setup);
-                common::wrapping(config, wrap)
+                let mut config = common::wrapping(config, wrap);
+                if let (Some((a, b, c, d)), Some((x, z))) = (area, config.size.bounds()) {
+                    let at = |f: f64, n: u32| (f * f64::from(n)) as i32;
+                    config.setup.as_mut().unwrap().area = Some(TileRect {
+                        min: [at(a, x), at(b, z)],
+                        max: [at(c, x).max(at(a, x) + 1), at(d, z).max(at(b, z) + 1)],
+                    });
+                }
+                config
             },
         )
 }
@@ -448,4 +458,25 @@ fn the_standard_preset_with_six_players_keeps_its_pinned_setup() {
     let got = (starts, setup.resources().len(), setup.wonders().len(), fingerprint(setup));
     let pinned = (vec![[59, 15], [49, 29], [79, 32], [28, 13], [14, 32], [35, 38]], 284, 3, 11_824_934_867_017_311_903);
     assert_eq!(got, pinned, "the setup changed; if deliberate, pin {got:?}");
+}
+
+/// A land tile on the edge of the setup's area whose sea lies outside the area is a coast tile:
+/// it gets the coast bonus (the report's gold equals the tiles' own, counted here).
+#[test]
+fn a_coast_outside_the_area_still_counts() {
+    let config = MapConfig::from_ron(
+        "(seed: 1, size: Bounded(x: 20, z: 20), setup: Some((players: 1, rings: 5, min_distance: 1, \
+         area: Some((min: (6, 6), max: (14, 14))))))",
+    )
+    .unwrap();
+    let t = Terrain::new(config).unwrap();
+    let cfg = t.config().setup.clone().unwrap();
+    let setup = t.setup().unwrap();
+    let start = setup.starts()[0];
+    let mut sum = Yields::default();
+    for h in ring(&t, start, cfg.rings).into_iter().map(hex).filter(|&h| setup.area().contains(t.offset_of(h))) {
+        sum += yields(&t, &cfg, h);
+    }
+    assert_eq!(setup.report().starts[0].yields, sum);
+    check_setup(&t).unwrap();
 }

@@ -43,8 +43,9 @@ pub struct TileEdit {
     /// of it to `height`, or to the generated one) and every inner vertex of the tile with it.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub kind: Option<TileKind>,
-    /// The tile's biome, set by hand: it stays whatever the tile's elevation or climate (an
-    /// unedited tile's biome follows its edited elevation).
+    /// The tile's biome, set by hand: it stays whatever the tile's elevation, climate or water,
+    /// on maps with and without climate (an unedited tile's biome follows its edited elevation;
+    /// the rule: [`Terrain::tile_biome`](crate::Terrain::tile_biome)).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub biome: Option<Biome>,
     /// A river set by hand on a map with rivers: a new source here, or no river here nor

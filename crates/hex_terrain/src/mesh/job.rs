@@ -132,6 +132,7 @@ impl<'a> Job<'a> {
         });
 
         let table = self.pipeline.table();
+        let edits = self.pipeline.heights().edits();
         let tiles = self
             .tiles
             .iter()
@@ -142,7 +143,12 @@ impl<'a> Job<'a> {
                 kind,
                 elevation: heights[points.grid.slot(self.lattice.tile_center(hex))],
                 in_map: true,
-                biome: kinds.biomes.get(t).map_or(Biome::of_kind(kind), |b| b.0),
+                // Without vertex colors the map has no climate and no table: a biome set by
+                // hand, else the kind's (as `Pipeline::tile_biome`).
+                biome: kinds.biomes.get(t).map_or_else(
+                    || edits.and_then(|e| e.biome(self.geometry, hex)).unwrap_or(Biome::of_kind(kind)),
+                    |b| b.0,
+                ),
                 river_flow: table.map_or(0.0, |t| t.river_flow(self.geometry, hex)),
                 lake: table.and_then(|t| t.lake(self.geometry, hex)),
             })

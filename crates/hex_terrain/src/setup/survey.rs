@@ -31,6 +31,22 @@ pub struct Stages<'a> {
     pub table: Option<&'a TileTable>,
 }
 
+impl Stages<'_> {
+    /// A tile's biome by the one rule ([`crate::Terrain::tile_biome`]): set by hand, the
+    /// table's, the climate's, the kind's.
+    fn biome(&self, tile: Hex, kind: TileKind) -> Biome {
+        let set = self.heights.edits().and_then(|e| e.biome(self.geometry, tile));
+        match set.or_else(|| self.table.and_then(|table| table.biome(self.geometry, tile))) {
+            Some(biome) => biome,
+            None if self.climate.is_enabled() => {
+                let sample = TileSample::of(self.geometry, self.heights, self.thresholds, tile);
+                self.climate.biome_of(self.geometry, self.heights, tile, &sample, false)
+            }
+            None => Biome::of_kind(kind),
+        }
+    }
+}
+
 /// Every tile of the setup's area, row by row.
 #[derive(Debug, Clone)]
 pub(crate) struct Survey {
@@ -69,22 +85,7 @@ impl Survey {
             .par_iter()
             .map(|&t| stages.thresholds.map_tile_kind(geometry, stages.heights, t).unwrap_or(TileKind::Sea))
             .collect();
-        let biomes: Vec<Biome> = tiles
-            .par_iter()
-            .zip(&kinds)
-            .map(|(&t, &kind)| {
-                // A biome set by hand first, then the table's.
-                let set = stages.heights.edits().and_then(|e| e.biome(geometry, t));
-                match set.or_else(|| stages.table.and_then(|table| table.biome(geometry, t))) {
-                    Some(biome) => biome,
-                    None if stages.climate.is_enabled() => {
-                        let sample = TileSample::of(geometry, stages.heights, stages.thresholds, t);
-                        stages.climate.biome_of(geometry, stages.heights, t, &sample, false)
-                    }
-                    None => Biome::of_kind(kind),
-                }
-            })
-            .collect();
+        let biomes: Vec<Biome> = tiles.par_iter().zip(&kinds).map(|(&t, &kind)| stages.biome(t, kind)).collect();
         let river: Vec<bool> =
             tiles.iter().map(|&t| stages.table.is_some_and(|table| table.river_flow(geometry, t) > 0.0)).collect();
         let mut survey = Self {
@@ -106,13 +107,20 @@ impl Survey {
             .iter()
             .map(|&t| t.all_neighbors().map(|n| survey.index(geometry, n).map_or(NONE, |j| j as u32)))
             .collect();
+        // A land tile next to the sea, wherever the sea lies: a neighbor on the map outside
+        // the area counts too (read from the stages: only the area's edge tiles have one).
+        let sea = |kind: TileKind, biome: Biome| kind == TileKind::Sea && biome != Biome::Lake;
         survey.coast = (0..survey.len())
             .map(|i| {
                 survey.kinds[i] != TileKind::Sea
-                    && survey.neighbors[i].iter().any(|&j| {
-                        j != NONE
-                            && survey.kinds[j as usize] == TileKind::Sea
-                            && survey.biomes[j as usize] != Biome::Lake
+                    && survey.neighbors[i].iter().zip(survey.tiles[i].all_neighbors()).any(|(&j, n)| {
+                        if j != NONE {
+                            return sea(survey.kinds[j as usize], survey.biomes[j as usize]);
+                        }
+                        stages
+                            .thresholds
+                            .map_tile_kind(geometry, stages.heights, n)
+                            .is_some_and(|kind| sea(kind, stages.biome(n, kind)))
                     })
             })
             .collect();

@@ -314,8 +314,12 @@ impl Terrain {
             .then(|| climate.climate_of(self.geometry(), self.heights(), tile, &self.pipeline.tile_sample(tile)))
     }
 
-    /// A tile's biome (from the relief kind alone when the map has no climate; lake tiles are
-    /// [`Biome::Lake`] whether or not it has); `None` past the world.
+    /// A tile's biome; `None` past the world. The one rule, which [`TileInfo::biome`], chunk
+    /// meshes' tiles, props and the game setup follow too: a biome set by hand
+    /// ([`TileEdit::biome`](crate::TileEdit::biome)) first, whatever the tile's elevation,
+    /// climate or water; else, on a map with a tile table (a bounded map with climate or
+    /// rivers), the table's, where lake tiles are [`Biome::Lake`]; else the climate's; else,
+    /// on a map without climate, the kind's ([`Biome::of_kind`]).
     #[must_use]
     pub fn tile_biome(&self, tile: Hex) -> Option<Biome> {
         self.in_world(tile).then(|| self.pipeline.tile_biome(tile))
