@@ -87,11 +87,16 @@ pub use config::{
     ResourceRule, RiverConfig, RiverEdit, SetupConfig, Shape, StartOn, TerrainConfig, TileEdit, ValueWeights,
     WonderConfig, WonderRule, YieldTable, Yields,
 };
-pub use editor::{Brush, Change, EditError, EditTimings, Editor, Stroke, Tool};
+pub use config::{
+    MAX_BIOME_RULES, MAX_CHUNK_BYTES, MAX_CHUNK_SIDE, MAX_INNER_RINGS, MAX_MAP_BYTES, MAX_OCTAVES, MAX_OFFSET,
+    MAX_PER_PLAYER, MAX_PLAYERS, MAX_SETUP_DISTANCE, MAX_SETUP_RINGS, MAX_SETUP_RULES, MAX_SETUP_TILES,
+    MAX_WATER_TILES, MAX_WORLD_TILE, MAX_YIELD, MIN_WRAP_COLUMNS,
+};
+pub use editor::{Brush, Change, EditError, EditTimings, Editor, MAX_BRUSH_RADIUS, MAX_FLOOD_TILES, Stroke, Tool};
 pub use edits::Edits;
 pub use error::{ConfigError, LoadError};
 pub use geometry::Geometry;
-pub use heights::{HeightField, HeightImage, ImageError};
+pub use heights::{HeightField, HeightImage, ImageError, MAX_IMAGE_PIXELS, MAX_PNG_BYTES};
 pub use hexx;
 pub use kind::Thresholds;
 pub use lattice::Lattice;
@@ -99,10 +104,13 @@ pub use mesh::{ChunkMesh, Detail, Diagnostics, GenerateOptions, MeshBuffers, Thr
 pub use metrics::Sharpness;
 pub use pipeline::Pipeline;
 pub use props::{Marker, MarkerKind, Prop};
-pub use query::RayHit;
+pub use query::{MAX_RAY_STEPS, RayHit};
 pub use relief::Relief;
-pub use save::{FogState, Highlight, SaveError, TileStateSave};
-pub use setup::{PlacedResource, PlacedWonder, Setup, SetupReport, SetupTimings, StartReport, TileSetup};
+pub use save::{FogState, Highlight, MAX_OWNERS, MAX_SAVED_TILES, SAVE_VERSION, SaveError, TileStateSave};
+pub use setup::{
+    MAX_START_SEARCH_CHECKS, PlacedResource, PlacedWonder, Setup, SetupNote, SetupReport, SetupTimings, Shortfall,
+    Stages, StartReport, TileSetup,
+};
 pub use table::TileTable;
 pub use terrain::Terrain;
 pub use vertex::{Sharing, VertexRules, VertexSample};

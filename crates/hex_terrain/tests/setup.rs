@@ -354,7 +354,7 @@ fn a_setup_that_cannot_fit_is_refused_with_the_field() {
     config.setup = Some(SetupConfig { players: 12, min_distance: 20, ..SetupConfig::default() });
     let e = Terrain::new(config).unwrap_err();
     assert_eq!(e.field, "setup.min_distance");
-    assert!(e.to_string().contains("at most"), "{e}");
+    assert!(e.allowed.contains("or fewer players"), "{e}");
     // More players than tiles a start may stand on.
     let mut config = MapConfig { size: MapSize::Bounded { x: 6, z: 4 }, ..MapConfig::default() };
     config.setup = Some(SetupConfig { players: 30, min_distance: 1, ..SetupConfig::default() });
@@ -478,5 +478,115 @@ fn a_coast_outside_the_area_still_counts() {
         sum += yields(&t, &cfg, h);
     }
     assert_eq!(setup.report().starts[0].yields, sum);
+    check_setup(&t).unwrap();
+}
+
+/// The tiles a start may stand on, from the public tile queries: land of the map's area, not
+/// water, passable, next to the sea (anywhere on the map) or on a river as the setup asks.
+fn eligible(t: &Terrain, cfg: &SetupConfig, area: TileRect) -> Vec<Hex> {
+    area.iter()
+        .map(|oc| t.tile_from_offset(oc))
+        .filter(|&tile| {
+            let info = t.tile_info(tile).unwrap();
+            let coast = t.neighbors(tile).unwrap().iter().any(|&n| {
+                t.contains(n) && t.tile_info(n).is_some_and(|i| i.kind == TileKind::Sea && i.biome != Biome::Lake)
+            });
+            let river = info.river_flow > 0.0;
+            info.kind == TileKind::Land
+                && !info.biome.is_water()
+                && info.lake.is_none()
+                && cfg.cost(info.biome) > 0
+                && match cfg.start_on {
+                    StartOn::Land => true,
+                    StartOn::Coast => coast,
+                    StartOn::River => river,
+                    StartOn::CoastOrRiver => coast || river,
+                }
+        })
+        .collect()
+}
+
+/// Whether `n` of `tiles` are pairwise at least `d` apart: every set of `n` indices in
+/// increasing order, the pairwise distances read from a table computed first.
+fn fits(t: &Terrain, tiles: &[Hex], n: usize, d: u32) -> bool {
+    let far: Vec<Vec<bool>> =
+        tiles.iter().map(|&a| tiles.iter().map(|&b| t.distance(a, b).unwrap() >= d).collect()).collect();
+    fn grow(far: &[Vec<bool>], set: &mut Vec<usize>, from: usize, n: usize) -> bool {
+        if set.len() == n {
+            return true;
+        }
+        for i in from..far.len() {
+            if far.len() - i < n - set.len() {
+                return false;
+            }
+            if set.iter().all(|&j| far[i][j]) {
+                set.push(i);
+                if grow(far, set, i + 1, n) {
+                    return true;
+                }
+                set.pop();
+            }
+        }
+        false
+    }
+    grow(&far, &mut Vec::new(), 0, n)
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 64, ..ProptestConfig::default() })]
+
+    /// Starts far apart on small maps: a setup is refused for its distance only when no starts
+    /// that far apart exist (searched here by brute force), and a refusal that says "at most
+    /// m" is true: `m` fits and `m + 1` does not.
+    #[test]
+    fn a_distance_is_refused_only_when_no_starts_fit_it(
+        (x, z) in (8u32..16, 6u32..12),
+        seed in any::<u32>(),
+        players in 2u32..6,
+        distance in 3u32..12,
+        on in 0u8..2,
+        wrap in any::<bool>(),
+    ) {
+        let mut config = MapConfig { seed, size: MapSize::Bounded { x, z }, chunk_size: (8, 8), ..MapConfig::default() };
+        config.setup = Some(SetupConfig {
+            players,
+            min_distance: distance,
+            start_on: [StartOn::Land, StartOn::Coast][on as usize],
+            ..SetupConfig::default()
+        });
+        let config = common::wrapping(config, wrap);
+        let cfg = config.setup.clone().unwrap();
+        match Terrain::new(config.clone()) {
+            Ok(t) => check_setup(&t)?,
+            Err(e) if e.field == "setup.min_distance" => {
+                let plain = { let mut c = config.clone(); c.setup = None; Terrain::new(c).unwrap() };
+                let area = plain.bounds().unwrap();
+                let tiles = eligible(&plain, &cfg, area);
+                let n = players as usize;
+                prop_assert!(!fits(&plain, &tiles, n, distance), "refused ({e}) but {n} starts fit {distance} apart");
+                if let Some(rest) = e.allowed.strip_prefix("at most ") {
+                    let m: u32 = rest.split(' ').next().unwrap().parse().unwrap();
+                    prop_assert!(fits(&plain, &tiles, n, m), "{e}: but {m} does not fit");
+                    prop_assert!(!fits(&plain, &tiles, n, m + 1), "{e}: but {} fits", m + 1);
+                }
+            }
+            Err(e) => prop_assert_eq!(&e.field, "setup.players", "unexpected error {}", e),
+        }
+    }
+}
+
+/// Map0 with five players twenty tiles apart: five such starts exist (offsets (14, 15),
+/// (26, 0), (29, 27), (2, 1), (2, 29)), so the setup finds starts that far apart.
+#[test]
+fn five_starts_twenty_apart_on_map0_are_found() {
+    let config = MapConfig::from_ron("(setup: Some((players: 5, min_distance: 20)))").unwrap();
+    let t = Terrain::new(config).unwrap();
+    let starts = t.setup().unwrap().starts();
+    assert_eq!(starts.len(), 5);
+    for (k, &a) in starts.iter().enumerate() {
+        for &b in &starts[k + 1..] {
+            assert!(t.distance(a, b).unwrap() >= 20);
+        }
+    }
     check_setup(&t).unwrap();
 }

@@ -55,6 +55,10 @@ pub struct SetupConfig {
     /// (a city's working radius), `1..=5`.
     pub rings: u32,
     /// Fewest tiles between two starts (hex distance, across the seam on a wrapping map).
+    /// Starts are found whenever the map has that many tiles a start may stand on this far
+    /// apart, by an exact search if the spread by regions falls short; a map where the search
+    /// would take more than [`MAX_START_SEARCH_CHECKS`](crate::MAX_START_SEARCH_CHECKS) distance
+    /// checks is refused with the largest distance found, saying the search stopped.
     pub min_distance: u32,
     /// Where a start may stand, besides on land that is neither mountain nor lake.
     pub start_on: StartOn,

@@ -35,6 +35,7 @@ pub mod survey;
 
 pub use placement::{SetupNote, Shortfall};
 pub use report::{SetupReport, StartReport};
+pub use starts::MAX_START_SEARCH_CHECKS;
 pub use survey::Stages;
 
 use survey::{NONE, Survey};

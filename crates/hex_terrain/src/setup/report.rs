@@ -42,7 +42,9 @@ pub struct StartReport {
 pub struct SetupReport {
     /// One row a start, in player order.
     pub starts: Vec<StartReport>,
-    /// `max / min - 1` of the starts' values.
+    /// `max / min - 1` of the starts' values: 0 for one start or equal values (and when no
+    /// value is above 0), infinite when the smallest value is at most 0 and another is above
+    /// it (no ratio bounds them: such a setup is never within a bound).
     pub spread: f32,
     /// The bound asked (`setup.fairness`).
     pub bound: f32,

@@ -1,7 +1,8 @@
 //! Start positions: in each region of equal fertility the best tile a start may stand on (the
 //! value of the tiles within its rings, a little less the farther it is from the region's
 //! fertile middle, so neighbors do not crowd a shared border) that keeps its distance from the
-//! starts already chosen; then moves that narrow the spread of the starts' values, each kept
+//! starts already chosen (when regions leave gaps, the starts spread as far apart as they go, and
+//! when that is not far enough, an exact search within [`MAX_START_SEARCH_CHECKS`]); then moves that narrow the spread of the starts' values, each kept
 //! only if it does, a bounded number of times.
 
 use std::collections::BTreeSet;
@@ -17,6 +18,21 @@ use crate::geometry::Geometry;
 const CENTER_BIAS: f32 = 0.3;
 /// How much a start's rank falls for each guaranteed resource its rings have no tile for.
 const MISSING_PENALTY: f32 = 0.15;
+
+/// The most distance checks the exact search for starts makes (over all the distances it
+/// tries for one setup) when the greedy spread does not fit them: about 0.15 s on one core.
+/// Past it a refusal says the search stopped instead of claiming a bound.
+pub const MAX_START_SEARCH_CHECKS: u64 = 1 << 22;
+
+/// What the exact search for starts found.
+enum Search {
+    /// Starts, in the candidates' order.
+    Found(Vec<usize>),
+    /// Proven: no such starts.
+    None,
+    /// The budget ran out first.
+    Stopped,
+}
 
 /// What choosing starts reads.
 pub(crate) struct Chooser<'a> {
@@ -101,18 +117,106 @@ impl Chooser<'_> {
             .map(|(a, b)| self.geometry.distance(survey.tiles[spread[a]], survey.tiles[spread[b]]).unwrap_or(0))
             .min()
             .unwrap_or(u32::MAX);
-        if apart >= self.config.min_distance {
+        let min = self.config.min_distance;
+        if apart >= min {
             return Ok(spread);
         }
-        Err(ConfigError::new(
-            "setup.min_distance",
-            self.config.min_distance.to_string(),
-            format!(
-                "at most {apart} for {n} starts on this map (the farthest apart {n} starts found on its {} tiles a \
-                 start may stand on), or fewer players",
-                eligible.len()
+        // The greedy spread is short: search exactly, within a bound of work.
+        let mut budget = MAX_START_SEARCH_CHECKS;
+        let stopped = match self.search(&eligible, n, min, &mut budget) {
+            Search::Found(starts) => return Ok(starts),
+            Search::None => None,
+            Search::Stopped => Some(min),
+        };
+        // Refused: the largest distance the starts fit at, proven when the search ends.
+        let mut fits = apart;
+        let mut stopped = stopped;
+        if stopped.is_none() {
+            for d in (apart + 1..min).rev() {
+                match self.search(&eligible, n, d, &mut budget) {
+                    Search::Found(_) => {
+                        fits = d;
+                        break;
+                    }
+                    Search::None => {}
+                    Search::Stopped => {
+                        stopped = Some(d);
+                        break;
+                    }
+                }
+            }
+        }
+        let tiles = eligible.len();
+        let allowed = match stopped {
+            None => format!(
+                "at most {fits} for {n} starts on this map (no {n} of its {tiles} tiles a start may stand on are {} \
+                 apart), or fewer players",
+                fits + 1
             ),
-        ))
+            Some(d) => format!(
+                "a distance {n} starts fit at: {fits} fits on this map, {d} was not found within the search's bound \
+                 ({MAX_START_SEARCH_CHECKS} distance checks among its {tiles} tiles a start may stand on), or fewer \
+                 players"
+            ),
+        };
+        Err(ConfigError::new("setup.min_distance", min.to_string(), allowed))
+    }
+
+    /// `n` of the `candidates` pairwise at least `d` apart: a depth-first search over them in
+    /// order (each start chosen keeps only the candidates far enough from it), exact unless it
+    /// spends `budget` distance checks first.
+    fn search(&self, candidates: &[usize], n: usize, d: u32, budget: &mut u64) -> Search {
+        let mut chosen = Vec::with_capacity(n);
+        match self.extend(candidates, n, d, &mut chosen, budget) {
+            Some(true) => Search::Found(chosen),
+            Some(false) => Search::None,
+            None => Search::Stopped,
+        }
+    }
+
+    /// Adds starts from `candidates` (each at least `d` from every start in `chosen`) until
+    /// there are `n`: `Some(true)` when it did, `Some(false)` when no choice can, `None` when
+    /// the budget ran out.
+    fn extend(
+        &self,
+        candidates: &[usize],
+        n: usize,
+        d: u32,
+        chosen: &mut Vec<usize>,
+        budget: &mut u64,
+    ) -> Option<bool> {
+        let need = n - chosen.len();
+        if need == 0 {
+            return Some(true);
+        }
+        if candidates.len() < need {
+            return Some(false);
+        }
+        if need == 1 {
+            chosen.push(candidates[0]);
+            return Some(true);
+        }
+        let tiles = &self.survey.tiles;
+        for (k, &c) in candidates.iter().enumerate() {
+            if candidates.len() - k < need {
+                break;
+            }
+            let rest = &candidates[k + 1..];
+            *budget = budget.checked_sub(rest.len() as u64)?;
+            let next: Vec<usize> = rest
+                .iter()
+                .copied()
+                .filter(|&o| self.geometry.distance(tiles[c], tiles[o]).is_some_and(|e| e >= d))
+                .collect();
+            chosen.push(c);
+            match self.extend(&next, n, d, chosen, budget) {
+                Some(false) => {
+                    chosen.pop();
+                }
+                found_or_stopped => return found_or_stopped,
+            }
+        }
+        Some(false)
     }
 
     /// The tiles a start may stand on, region by region.
