@@ -198,7 +198,7 @@ impl Targets<'_, '_> {
                 && let Some(water) =
                     self.chunk_child(world, |e| self.water.get(e).is_ok_and(|v| v != Visibility::Hidden))
             {
-                let chunk = map.chunk_of(map.terrain().unwrapped_tile_at(world.x, world.z)?);
+                let chunk = map.chunk_of(map.terrain().unwrapped_tile_at(world.x, world.z)?)?;
                 best = Some((water, t, Vec3::Y, HexPick { tile, chunk, world }));
             }
         }
@@ -217,8 +217,7 @@ impl Targets<'_, '_> {
         for k in 0..=samples {
             let p = (origin + direction * (t0 + (t1 - t0) * k as f32 / samples.max(1) as f32)).as_dvec3() + offset;
             if let Some(tile) = terrain.unwrapped_tile_at(p.x, p.z) {
-                for t in std::iter::once(tile).chain(tile.all_neighbors()) {
-                    let c = map.chunk_of(t);
+                for c in std::iter::once(tile).chain(tile.all_neighbors()).filter_map(|t| map.chunk_of(t)) {
                     if !chunks.contains(&c) {
                         chunks.push(c);
                     }
@@ -259,7 +258,7 @@ impl Targets<'_, '_> {
 
     /// The child of the loaded chunk under `world` that `wanted` accepts and takes hits.
     fn chunk_child(&self, world: DVec3, wanted: impl Fn(Entity) -> bool) -> Option<Entity> {
-        let chunk = self.map.chunk_of(self.map.terrain().unwrapped_tile_at(world.x, world.z)?);
+        let chunk = self.map.chunk_of(self.map.terrain().unwrapped_tile_at(world.x, world.z)?)?;
         let entity = self.streamer.entity(chunk).filter(|_| self.streamer.is_chunk_loaded(chunk))?;
         self.children.get(entity).ok()?.iter().find(|&e| wanted(e) && self.hoverable(e))
     }
@@ -327,7 +326,7 @@ fn pick(
 ) -> Option<(Entity, f32, Vec3, HexPick)> {
     let hit = map.raycast_f64(origin, direction, f64::from(max_distance))?;
     // The chunk under the hit, not wrapped: east of a wrapping map's edge it is the copy there.
-    let chunk = map.chunk_of(map.terrain().unwrapped_tile_at(hit.point.x, hit.point.z)?);
+    let chunk = map.chunk_of(map.terrain().unwrapped_tile_at(hit.point.x, hit.point.z)?)?;
     let entity = streamer.entity(chunk).filter(|_| streamer.is_chunk_loaded(chunk))?;
     let normal = map.surface_normal_f64(hit.point)?.as_vec3();
     Some((entity, hit.distance as f32, normal, HexPick { tile: hit.tile, chunk, world: hit.point }))

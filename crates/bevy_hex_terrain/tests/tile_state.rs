@@ -132,7 +132,7 @@ fn state_outlives_streaming_and_the_window_follows_the_chunks() {
     // Far away: the home chunk unloads and the window moves with the chunks.
     let far = app.world().resource::<HexMap>().tile_center(Hex::new(3000, -1000)).unwrap();
     app.world_mut().entity_mut(agent).insert(Transform::from_translation(far));
-    let home_chunk = app.world().resource::<HexMap>().chunk_of(home);
+    let home_chunk = app.world().resource::<HexMap>().chunk_of(home).unwrap();
     settle(&mut app, "chunks far away", |app| {
         idle(app) && !app.world().resource::<ChunkStreamer>().is_chunk_loaded(home_chunk)
     });

@@ -359,7 +359,10 @@ impl Default for AppearanceConfig {
 }
 
 impl MapConfig {
-    /// Parses a RON document and validates it.
+    /// Parses a RON document and validates it ([`MapConfig::validate`]: every field's range).
+    /// What only the generated map can tell, whether a game setup fits it (enough tiles a start
+    /// may stand on, far enough apart: `setup.players`, `setup.min_distance`), is checked when
+    /// the map is compiled ([`Terrain::new`](crate::Terrain::new)), which names the field too.
     ///
     /// # Errors
     /// [`LoadError::Ron`] with line and column for malformed RON, [`LoadError::Invalid`] naming the

@@ -333,7 +333,8 @@ impl Geometry {
     /// half an f32 ulp of the farthest vertex from it, per axis, plus the f64 rounding of the
     /// sum. It grows with the rectangle's extent, not with its distance from the world's
     /// origin. Two copies of a vertex shared by meshes of `a` and `b` agree within
-    /// `position_error(a) + position_error(b)`.
+    /// `position_error(a) + position_error(b)`. Divide by [`Geometry::step`] for lattice steps,
+    /// the unit the docs quote it in.
     #[must_use]
     pub fn position_error(&self, rect: TileRect) -> f64 {
         let Some((rx, rz, o)) = self.reach(rect) else { return 0.0 };
@@ -370,7 +371,8 @@ impl Geometry {
     }
 
     /// The largest [`Geometry::position_error`] of a chunk of this geometry (a chunk's tiles,
-    /// clipped to the map, anywhere in the world), in world units. A wrapping map's chunk placed
+    /// clipped to the map, anywhere in the world), in world units (divide by [`Geometry::step`]
+    /// for lattice steps). A wrapping map's chunk placed
     /// periods east adds `2^-50` of its distance from the world's origin.
     #[must_use]
     pub fn chunk_position_error(&self) -> f64 {

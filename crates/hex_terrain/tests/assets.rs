@@ -96,7 +96,7 @@ fn the_world_preset_has_every_biome_rivers_and_lakes() {
     let mean = |tiles: &mut dyn Iterator<Item = hex_terrain::hexx::Hex>| {
         let (mut h, mut m, mut n) = (0.0, 0.0, 0.0);
         for tile in tiles {
-            h += t.raw_height(t.lattice().tile_center(tile));
+            h += t.raw_height(t.lattice().tile_center(tile)).unwrap();
             m += t.tile_climate(tile).unwrap().moisture;
             n += 1.0;
         }

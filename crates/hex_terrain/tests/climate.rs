@@ -101,14 +101,14 @@ proptest! {
             let Some(lake) = t.lake(tile) else { continue };
             lakes.insert(lake);
             let spill = h.spill_height(lake).unwrap();
-            let center = t.raw_height(t.lattice().tile_center(tile));
+            let center = t.raw_height(t.lattice().tile_center(tile)).unwrap();
             prop_assert!(center + min_depth < spill, "lake tile {:?} at {} not below spill {}", tile, center, spill);
             prop_assert!(!on_edge(&t, tile));
             prop_assert_eq!(t.tile_biome(tile).unwrap(), Biome::Lake);
             for nb in tile.all_neighbors() {
                 if t.lake(nb) == Some(lake) { continue; }
                 prop_assert!(t.lake(nb).is_none(), "two lakes touch at {:?}", nb);
-                let rim = t.raw_height(t.lattice().tile_center(nb));
+                let rim = t.raw_height(t.lattice().tile_center(nb)).unwrap();
                 prop_assert!(rim >= spill - min_depth, "lake {} leaks through {:?} ({} < {})", lake, nb, rim, spill);
             }
         }

@@ -4,7 +4,10 @@
 
 use hex_terrain::config::MAX_WORLD_TILE;
 use hex_terrain::hexx::Hex;
-use hex_terrain::{ChunkCoord, GenerateOptions, MapConfig, MapSize, NoiseConfig, Orientation, Shape, Terrain};
+use hex_terrain::{
+    Brush, ChunkCoord, EditError, Editor, GenerateOptions, MapConfig, MapSize, NoiseConfig, Orientation, SetupConfig,
+    Shape, Stroke, Terrain, Tool,
+};
 use proptest::prelude::*;
 
 prop_compose! {
@@ -141,20 +144,21 @@ proptest! {
             prop_assert_eq!(t.river(tile), None);
             prop_assert_eq!(t.lake(tile), None);
             prop_assert_eq!(t.water_level(tile), None);
-            prop_assert_eq!(t.river_flow(tile), 0.0);
+            prop_assert_eq!(t.river_flow(tile), None);
             prop_assert!(!t.tile_is_wet(tile));
-            prop_assert!(!t.contains(tile) || t.wrap().is_some());
+            prop_assert!(!t.contains(tile));
+            prop_assert_eq!(t.wrap_tile(tile), None);
+            prop_assert_eq!(t.chunk_of(tile), None);
             prop_assert_eq!(t.tile_near(tile, Hex::ZERO), tile);
-            let rect = t.chunk_rect(t.chunk_of(tile));
-            prop_assert!(rect.is_none_or(|r| !r.contains(t.offset_of(tile))), "{:?} is in no chunk's tiles", tile);
         }
         // Lattice points past the world (2^30 steps are more than 2^24 tiles of 17 steps).
         for p in [Hex::new(i32::MAX, 0), Hex::new(i32::MIN, i32::MAX), Hex::new(1 << 30, -(1 << 30)), Hex::new(0, 1 << 30)] {
             prop_assert!(!t.geometry().point_in_world(p));
             prop_assert!(t.vertex(p).is_none() && t.vertex_elevation(p).is_none() && t.point_color(p).is_none());
-            prop_assert_eq!(t.water_cover(Hex::ZERO, p), 0.0);
-            // The noise field itself goes on: a real height, not an overflow.
-            prop_assert!(t.raw_height(p).is_finite() && t.source_height(p).is_finite());
+            prop_assert_eq!(t.water_cover(Hex::ZERO, p), None);
+            prop_assert_eq!(t.raw_height(p), None);
+            prop_assert_eq!(t.source_height(p), None);
+            prop_assert_eq!(t.noise_position(p), None);
         }
         let z_in_map = if t.bounds().is_some() { 0.5 } else { 1e9 };
         for x in HOSTILE {
@@ -282,4 +286,117 @@ fn the_reported_cases_hold() {
     let unbounded = Terrain::new(MapConfig { size: MapSize::Unbounded, ..MapConfig::default() }).unwrap();
     assert_eq!(unbounded.tile_info(Hex::new(1 << 30, -(1 << 30))), None);
     assert_eq!(unbounded.surface_height(1e9, 1e9), None);
+    // An error about a tile at `i32`'s end prints (hexx's `Debug` of a `Hex` overflows there).
+    assert_eq!(format!("{:?}", EditError::OffMap(Hex::new(i32::MIN, 0))), format!("OffMap([{}, 0])", i32::MIN));
+}
+
+/// Tiles inside and outside the world: near the map (and past its edges), anywhere an `i32`
+/// reaches, and around the world's edge.
+fn any_tile() -> impl Strategy<Value = ([i32; 2], Option<Hex>)> {
+    let m = MAX_WORLD_TILE;
+    prop_oneof![
+        3 => (-6i32..40, -6i32..20).prop_map(|(c, r)| ([c, r], None)),
+        1 => (any::<i32>(), any::<i32>()).prop_map(|(x, y)| ([0, 0], Some(Hex::new(x, y)))),
+        1 => (m - 3..m + 3, -m - 3..-m + 3, any::<bool>()).prop_map(|(a, b, swap)| (if swap { [b, a] } else { [a, b] }, None)),
+    ]
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 48, ..ProptestConfig::default() })]
+
+    /// The one rule of the queries (`hex_terrain::terrain`'s docs), over random tiles inside
+    /// and outside the world: the terrain at a place answers `Some` exactly in the world, the
+    /// map's questions exactly on the map (`contains`, itself checked against the bounds here),
+    /// predicates `false` elsewhere, conversions answer everything; nothing panics (overflow
+    /// checks on); strokes past the map or with too wide a brush are refused by name.
+    #[test]
+    fn every_query_follows_the_rule(
+        config in config(),
+        water in 0u8..3,
+        setup in any::<bool>(),
+        tiles in prop::collection::vec(any_tile(), 24),
+    ) {
+        let mut config = config;
+        config.climate.enabled = water > 0;
+        config.rivers.enabled = water > 1 && config.size.bounds().is_some();
+        if setup && config.size.bounds().is_some() {
+            config.setup = Some(SetupConfig { players: 1, min_distance: 1, rings: 1, ..SetupConfig::default() });
+        }
+        let t = match Terrain::new(config.clone()) {
+            Ok(t) => t,
+            // A map without a tile a start may stand on.
+            Err(_) => { config.setup = None; Terrain::new(config).unwrap() }
+        };
+        let m = i64::from(MAX_WORLD_TILE);
+        for (offset, raw) in tiles {
+            let tile = raw.unwrap_or_else(|| t.tile_from_offset(offset));
+            let world = t.in_world(tile);
+            let on_map = t.contains(tile);
+            // Membership, from the offset coordinate (a conversion: it answers any tile).
+            if world {
+                let [c, r] = t.offset_of(tile);
+                prop_assert!((-m..m).contains(&i64::from(c)) && (-m..m).contains(&i64::from(r)));
+                prop_assert_eq!(t.tile_from_offset([c, r]), tile);
+                let expected = match (t.bounds(), t.wrap()) {
+                    (None, _) => true,
+                    (Some(b), Some(_)) => (b.min[1]..b.max[1]).contains(&r),
+                    (Some(b), None) => b.contains([c, r]),
+                };
+                prop_assert_eq!(on_map, expected, "contains({:?}) at offset {:?}", tile, [c, r]);
+            } else {
+                prop_assert!(!on_map);
+            }
+            // The terrain at a place: exactly in the world.
+            prop_assert_eq!(t.tile_kind(tile).is_some(), world);
+            prop_assert_eq!(t.tile_biome(tile).is_some(), world);
+            prop_assert_eq!(t.tile_center(tile).is_some(), world);
+            prop_assert_eq!(t.tile_climate(tile).is_some(), world && t.climate().is_enabled());
+            prop_assert_eq!(t.distance(tile, t.tile_from_offset([0, 0])).is_some(), world);
+            let info = t.tile_info(tile);
+            prop_assert_eq!(info.is_some(), world);
+            if let Some(info) = info {
+                prop_assert_eq!(info.in_map, on_map);
+            }
+            // The map: exactly on the map.
+            prop_assert_eq!(t.wrap_tile(tile).is_some(), on_map);
+            prop_assert_eq!(t.chunk_of(tile).is_some(), on_map);
+            prop_assert_eq!(t.map_tile_kind(tile).is_some(), on_map);
+            prop_assert_eq!(t.river_flow(tile).is_some(), on_map);
+            prop_assert!(on_map || (t.river(tile).is_none() && t.lake(tile).is_none() && t.water_level(tile).is_none()));
+            prop_assert!(on_map || (t.tile_setup(tile).is_none() && t.start(tile).is_none() && t.resource(tile).is_none()));
+            prop_assert!(on_map || !t.tile_is_wet(tile));
+            let around = t.neighbors(tile);
+            prop_assert_eq!(around.is_some(), on_map);
+            if let (Some(around), Some(own), Some(info)) = (around, t.wrap_tile(tile), info) {
+                prop_assert!(t.contains(own) && t.bounds().is_none_or(|b| b.contains(t.offset_of(own))));
+                prop_assert_eq!(t.river_flow(tile), Some(info.river_flow));
+                let chunk = t.chunk_of(tile).unwrap();
+                prop_assert!(t.chunk_rect(chunk).is_some_and(|r| r.contains(t.offset_of(own))), "{:?} not in {:?}", tile, chunk);
+                for (n, raw) in around.iter().zip(tile.all_neighbors()) {
+                    prop_assert_eq!(n.is_some(), t.contains(raw), "neighbor {:?} of {:?}", raw, tile);
+                    prop_assert_eq!(*n, t.wrap_tile(raw));
+                }
+                let center = t.lattice().tile_center(tile);
+                prop_assert!(t.raw_height(center).is_some() && t.source_height(center).is_some());
+                prop_assert!(t.vertex(center).is_some() && t.noise_position(center).is_some());
+                prop_assert!(t.water_cover(tile, center).is_some_and(|c| (0.0..=1.0).contains(&c)));
+            }
+            // Conversions answer every tile.
+            let _ = (t.wrap_point(tile), t.tile_near(tile, Hex::ZERO), t.tile_near(Hex::ZERO, tile));
+            // A stroke off the map is refused by name, and its error prints.
+            if !on_map {
+                let mut editor = Editor::from_terrain(t.clone());
+                let e = editor.apply(Stroke { tool: Tool::Raise(0.1), brush: Brush::Range(1), tile }).unwrap_err();
+                prop_assert_eq!(&e, &EditError::OffMap(tile));
+                let printed = format!("{e:?} {e}");
+                prop_assert!(printed.contains("OffMap"));
+            }
+        }
+        // A brush wider than the most is refused, not clamped.
+        let tile = t.tile_from_offset([0, 0]);
+        let mut editor = Editor::from_terrain(t);
+        let stroke = Stroke { tool: Tool::Raise(0.1), brush: Brush::Range(hex_terrain::MAX_BRUSH_RADIUS + 1), tile };
+        prop_assert_eq!(editor.apply(stroke), Err(EditError::Range { radius: hex_terrain::MAX_BRUSH_RADIUS + 1 }));
+        prop_assert_eq!(editor.undo_len(), 0);
+    }
 }

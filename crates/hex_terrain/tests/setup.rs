@@ -23,7 +23,7 @@ fn maps_dir() -> std::path::PathBuf {
 
 /// The tiles of the map within `radius` of `tile`, each once (the map's own copies).
 fn ring(t: &Terrain, tile: Hex, radius: u32) -> BTreeSet<(i32, i32)> {
-    tile.range(radius).filter(|&h| t.contains(h)).map(|h| t.wrap_tile(h)).map(|h| (h.x, h.y)).collect()
+    tile.range(radius).filter_map(|h| t.wrap_tile(h)).map(|h| (h.x, h.y)).collect()
 }
 
 fn hex((x, y): (i32, i32)) -> Hex {
@@ -41,9 +41,11 @@ fn yields(t: &Terrain, cfg: &SetupConfig, tile: Hex) -> Yields {
         y += cfg.yields.river;
     }
     let coast = info.kind != TileKind::Sea
-        && t.neighbors(tile).unwrap().iter().any(|&n| {
-            t.contains(n) && t.tile_info(n).is_some_and(|i| i.kind == TileKind::Sea && i.biome != Biome::Lake)
-        });
+        && t.neighbors(tile)
+            .unwrap()
+            .iter()
+            .flatten()
+            .any(|&n| t.tile_info(n).is_some_and(|i| i.kind == TileKind::Sea && i.biome != Biome::Lake));
     if coast {
         y += cfg.yields.coast;
     }
@@ -67,17 +69,17 @@ fn allowed(t: &Terrain, tile: Hex, on: &[Place]) -> bool {
 /// Path costs from `from` over the area's passable tiles (entering a tile costs its biome's
 /// movement cost).
 fn dijkstra(t: &Terrain, cfg: &SetupConfig, area: TileRect, from: Hex) -> BTreeMap<(i32, i32), u32> {
-    let inside = |h: Hex| t.contains(h) && area.contains(t.offset_of(t.wrap_tile(h)));
+    let inside = |h: Hex| t.wrap_tile(h).is_some_and(|h| area.contains(t.offset_of(h)));
     let mut dist = BTreeMap::new();
     let mut heap = BinaryHeap::new();
-    let from = t.wrap_tile(from);
+    let from = t.wrap_tile(from).unwrap();
     dist.insert((from.x, from.y), 0);
     heap.push(Reverse((0, from.x, from.y)));
     while let Some(Reverse((d, x, y))) = heap.pop() {
         if dist.get(&(x, y)).is_some_and(|&e| e < d) {
             continue;
         }
-        for n in t.neighbors(Hex::new(x, y)).unwrap() {
+        for n in t.neighbors(Hex::new(x, y)).unwrap().into_iter().flatten() {
             if !inside(n) {
                 continue;
             }
@@ -85,7 +87,6 @@ fn dijkstra(t: &Terrain, cfg: &SetupConfig, area: TileRect, from: Hex) -> BTreeM
             if c == 0 {
                 continue;
             }
-            let n = t.wrap_tile(n);
             if dist.get(&(n.x, n.y)).is_none_or(|&e| d + c < e) {
                 dist.insert((n.x, n.y), d + c);
                 heap.push(Reverse((d + c, n.x, n.y)));
@@ -118,9 +119,12 @@ fn check_setup(t: &Terrain) -> Result<(), TestCaseError> {
         prop_assert_eq!(info.kind, TileKind::Land, "start {} on {:?}", p, info.kind);
         prop_assert!(!info.biome.is_water() && info.lake.is_none(), "start {p} on water");
         prop_assert!(cfg.cost(info.biome) > 0, "start {p} impassable");
-        let coast = t.neighbors(s).unwrap().iter().any(|&n| {
-            t.contains(n) && t.tile_info(n).is_some_and(|i| i.kind == TileKind::Sea && i.biome != Biome::Lake)
-        });
+        let coast = t
+            .neighbors(s)
+            .unwrap()
+            .iter()
+            .flatten()
+            .any(|&n| t.tile_info(n).is_some_and(|i| i.kind == TileKind::Sea && i.biome != Biome::Lake));
         let river = info.river_flow > 0.0;
         let ok = match cfg.start_on {
             StartOn::Land => true,
@@ -162,7 +166,7 @@ fn check_setup(t: &Terrain) -> Result<(), TestCaseError> {
         let near = tiles.iter().filter(|&&h| t.resource(h).is_some()).count() as u32;
         prop_assert_eq!(row.resources, near);
         for (q, &o) in starts.iter().enumerate() {
-            let o = t.wrap_tile(o);
+            let o = t.wrap_tile(o).unwrap();
             prop_assert_eq!(report.costs[p][q], costs[p].get(&(o.x, o.y)).copied(), "cost {} to {}", p, q);
         }
         let rival = (0..starts.len()).filter(|&q| q != p).filter_map(|q| report.costs[p][q].map(|c| (c, q))).min();
@@ -488,9 +492,12 @@ fn eligible(t: &Terrain, cfg: &SetupConfig, area: TileRect) -> Vec<Hex> {
         .map(|oc| t.tile_from_offset(oc))
         .filter(|&tile| {
             let info = t.tile_info(tile).unwrap();
-            let coast = t.neighbors(tile).unwrap().iter().any(|&n| {
-                t.contains(n) && t.tile_info(n).is_some_and(|i| i.kind == TileKind::Sea && i.biome != Biome::Lake)
-            });
+            let coast = t
+                .neighbors(tile)
+                .unwrap()
+                .iter()
+                .flatten()
+                .any(|&n| t.tile_info(n).is_some_and(|i| i.kind == TileKind::Sea && i.biome != Biome::Lake));
             let river = info.river_flow > 0.0;
             info.kind == TileKind::Land
                 && !info.biome.is_water()

@@ -71,7 +71,7 @@ pub fn noise_floor(terrain: &Terrain) -> f64 {
         let mut positions = [[0.0; 2]; BATCH];
         let points = &points[k * BATCH..k * BATCH + chunk.len()];
         for (position, &p) in positions.iter_mut().zip(points) {
-            *position = terrain.noise_position(p);
+            *position = terrain.heights().noise_position(terrain.geometry(), p);
         }
         terrain.fbm().sample_many(&positions[..points.len()], chunk);
     });
@@ -87,7 +87,7 @@ pub fn noise_floor_reference(terrain: &Terrain, reference: &noise::Perlin) -> f6
         .par_iter()
         .with_min_len(256)
         .map(|&p| {
-            let [x, z] = terrain.noise_position(p);
+            let [x, z] = terrain.heights().noise_position(terrain.geometry(), p);
             terrain.fbm().sample_reference(reference, x, z)
         })
         .sum()
@@ -119,7 +119,7 @@ pub fn hexx_columns(terrain: &Terrain) -> usize {
                 .map(|oc| {
                     let hex = terrain.tile_from_offset(oc);
                     let center = terrain.lattice().tile_center(hex);
-                    (hex, terrain.source_height(center) as f32 * max_elevation)
+                    (hex, terrain.heights().source_height(terrain.geometry(), center) as f32 * max_elevation)
                 })
                 .collect();
             let mesh = HeightMapMeshBuilder::new(terrain.layout(), &heights).build();

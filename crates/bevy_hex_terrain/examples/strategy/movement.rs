@@ -32,7 +32,7 @@ pub(crate) fn cost(map: &HexMap, tile: Hex) -> Option<u32> {
 pub(crate) fn step_cost(map: &HexMap, a: Hex, b: Hex) -> Option<u32> {
     let enter = cost(map, b)?;
     // Rivers name the map's own tiles; `a` may be a copy past a wrapping map's edge.
-    let a = map.wrap_tile(a);
+    let a = map.wrap_tile(a)?;
     let ford = map.river(b).is_some_and(|r| r.downstream != Some(a) && !r.upstream.contains(&a));
     Some(enter + u32::from(ford))
 }
@@ -54,7 +54,7 @@ pub(crate) fn reachable(map: &HexMap, start: Hex, budget: u32, blocked: &HashSet
             continue;
         }
         for next in here.all_neighbors() {
-            if blocked.contains(&map.wrap_tile(next)) {
+            if map.wrap_tile(next).is_some_and(|own| blocked.contains(&own)) {
                 continue;
             }
             let Some(c) = step_cost(map, here, next) else { continue };
@@ -65,7 +65,7 @@ pub(crate) fn reachable(map: &HexMap, start: Hex, budget: u32, blocked: &HashSet
             }
         }
     }
-    best.into_keys().map(|t| map.wrap_tile(t)).filter(|&t| t != start).collect()
+    best.into_keys().filter_map(|t| map.wrap_tile(t)).filter(|&t| t != start).collect()
 }
 
 /// Moves units along their paths, on the surface. On a wrapping map a unit is drawn at its copy

@@ -140,7 +140,7 @@ fn across_the_seam() -> bool {
 /// Which half of the map a tile's column is in.
 fn east_half(map: &HexMap, tile: Hex) -> bool {
     let columns = map.terrain().bounds().map_or(1, |b| b.max[0]);
-    map.terrain().offset_of(map.wrap_tile(tile))[0] >= columns / 2
+    map.wrap_tile(tile).is_some_and(|own| map.terrain().offset_of(own)[0] >= columns / 2)
 }
 
 /// Checks the fog against what the units see, and with `owned` that every unit stands in its
@@ -164,7 +164,7 @@ fn check_vision(
         return Err(format!("tile {t:?} is in sight but drawn {:?}", states.visibility(*t)));
     }
     let far =
-        sight.iter().map(|&t| t + Hex::new(30, 0)).find(|&t| map.contains(t) && !sight.contains(&map.wrap_tile(t)));
+        sight.iter().map(|&t| t + Hex::new(30, 0)).find(|&t| map.wrap_tile(t).is_some_and(|own| !sight.contains(&own)));
     if let Some(t) = far.filter(|&t| states.visibility(t) == FogState::Visible) {
         return Err(format!("tile {t:?}, far from every unit, is visible"));
     }

@@ -70,7 +70,7 @@ pub(crate) fn place_units(
     let land_near = |from: Hex, taken: &[Hex]| {
         (0..40u32)
             .flat_map(|r| from.ring(r))
-            .map(|t| map.wrap_tile(t))
+            .filter_map(|t| map.wrap_tile(t))
             .find(|&t| cost(&map, t) == Some(1) && !taken.contains(&t))
     };
     let mut taken = Vec::new();
@@ -147,7 +147,7 @@ pub(crate) fn click(
         let from = unit.tile;
         let goal = map.tile_near(tile, from);
         let step = |a: Hex, b: Hex| {
-            let taken = occupied.contains(&map.wrap_tile(b)) && b != from;
+            let taken = map.wrap_tile(b).is_some_and(|own| occupied.contains(&own)) && b != from;
             if taken { None } else { step_cost(&map, a, b) }
         };
         if let Some(path) = a_star(from, goal, step) {
@@ -156,7 +156,7 @@ pub(crate) fn click(
                 unit.moves_left -= spent;
                 unit.path =
                     path.iter().skip(1).filter_map(|&t| map.tile_center(t)).map(|c| c + Vec3::Y * 0.6).collect();
-                unit.tile = map.wrap_tile(goal);
+                unit.tile = map.wrap_tile(goal).unwrap_or(tile);
             }
         }
     }

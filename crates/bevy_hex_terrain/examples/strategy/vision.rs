@@ -41,7 +41,7 @@ pub fn sight(map: &HexMap, from: Hex) -> HashSet<Hex> {
     seen.extend(faces);
     seen.insert(from);
     // The map's own tiles (the view may reach across a wrapping map's seam).
-    seen.into_iter().filter(|&h| map.contains(h)).map(|h| map.wrap_tile(h)).collect()
+    seen.into_iter().filter_map(|h| map.wrap_tile(h)).collect()
 }
 
 /// Fog of war: whenever a human unit enters another tile (also while walking) or the map

@@ -279,10 +279,11 @@ impl HexMap {
         self.terrain.surface_normal(world.x, world.z).map(DVec3::from_array)
     }
 
-    /// The six neighbors of a tile (some may lie outside a bounded map; on a wrapping map,
-    /// neighbors across the seam are the map's own tiles on the other side).
+    /// The six neighbors of a tile of the map, in hexx's direction order: each the map's own
+    /// tile (across the seam on a wrapping map), `None` where that neighbor is off the map;
+    /// `None` for a tile not on the map ([`Terrain::neighbors`]).
     #[must_use]
-    pub fn neighbors(&self, tile: Hex) -> Option<[Hex; 6]> {
+    pub fn neighbors(&self, tile: Hex) -> Option<[Option<Hex>; 6]> {
         self.terrain.neighbors(tile)
     }
 
@@ -293,10 +294,10 @@ impl HexMap {
         self.terrain.distance(a, b)
     }
 
-    /// The tile of the map a tile stands for (on a wrapping map, its column modulo the map's
-    /// width; the tile itself otherwise).
+    /// The map's own tile a tile stands for (on a wrapping map, its column modulo the map's
+    /// width; the tile itself otherwise); `None` for a tile not on the map.
     #[must_use]
-    pub fn wrap_tile(&self, tile: Hex) -> Hex {
+    pub fn wrap_tile(&self, tile: Hex) -> Option<Hex> {
         self.terrain.wrap_tile(tile)
     }
 
@@ -323,9 +324,10 @@ impl HexMap {
         self.terrain.contains(tile)
     }
 
-    /// The chunk holding a tile.
+    /// The chunk holding a tile of the map (on a wrapping map, a tile past the east or west
+    /// edge is in a chunk placed there); `None` for a tile not on the map.
     #[must_use]
-    pub fn chunk_of(&self, tile: Hex) -> ChunkCoord {
+    pub fn chunk_of(&self, tile: Hex) -> Option<ChunkCoord> {
         self.terrain.chunk_of(tile)
     }
 }

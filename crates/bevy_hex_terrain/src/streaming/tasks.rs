@@ -78,7 +78,9 @@ pub(crate) fn stream(
             // The tile of the plane (not wrapped): on a wrapping map the agent's chunk is the copy
             // under it, east or west of the map. An agent past the world's edge loads nothing.
             let tile = terrain.unwrapped_tile_at(p.x, p.z)?;
-            Some((terrain.chunk_of(tile), a.radius.unwrap_or(settings.load_radius)))
+            // The chunk the tile falls in, also past a bounded map's edge (the map's chunks near
+            // an agent standing off it still load): the geometry's, not the map query's.
+            Some((terrain.geometry().chunk_of(tile), a.radius.unwrap_or(settings.load_radius)))
         })
         .collect();
     let existing: HashMap<ChunkCoord, ChunkState> = streamer

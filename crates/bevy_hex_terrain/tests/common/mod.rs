@@ -94,5 +94,5 @@ pub fn window(center: ChunkCoord, r: i32) -> HashSet<ChunkCoord> {
 
 pub fn agent_chunk(app: &App, at: Vec3) -> ChunkCoord {
     let map = app.world().resource::<HexMap>();
-    map.chunk_of(map.tile_at(at).unwrap())
+    map.chunk_of(map.tile_at(at).unwrap()).unwrap()
 }

@@ -39,7 +39,8 @@ pub(super) fn finite_in(v: f64, lo: f64, hi: f64) -> bool {
 }
 
 impl MapConfig {
-    /// Checks every field against its allowed range.
+    /// Checks every field against its allowed range (a game setup's fit to the generated map is
+    /// checked when it is compiled, by [`Terrain::new`](crate::Terrain::new)).
     ///
     /// # Errors
     /// The first invalid field, with its value and the allowed range.

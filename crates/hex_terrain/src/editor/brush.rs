@@ -19,7 +19,7 @@ pub const MAX_FLOOD_TILES: usize = 1 << 14;
 #[cfg_attr(feature = "bevy_reflect", derive(bevy_reflect::Reflect))]
 pub enum Brush {
     /// Every tile within this many steps of the stroke's tile (0: the tile alone), up to
-    /// [`MAX_BRUSH_RADIUS`].
+    /// [`MAX_BRUSH_RADIUS`] (a stroke with more is refused: `EditError::Range`).
     Range(u32),
     /// The tiles connected to the stroke's tile through tiles of its type (sea, land or
     /// mountain), up to [`MAX_FLOOD_TILES`].
@@ -32,16 +32,17 @@ pub enum Brush {
 impl Brush {
     /// The map's own tiles the brush covers around `tile` (on a wrapping map a range across the
     /// seam takes the map's tiles on the other side), each once, in a fixed order; none when
-    /// `tile` is off the map.
+    /// `tile` is off the map or a range is above [`MAX_BRUSH_RADIUS`].
     #[must_use]
     pub fn tiles(self, terrain: &Terrain, tile: Hex) -> Vec<Hex> {
-        let own = |t: Hex| terrain.in_world(t).then(|| terrain.wrap_tile(t)).filter(|&t| terrain.contains(t));
+        let own = |t: Hex| terrain.wrap_tile(t);
         let Some(start) = own(tile) else { return Vec::new() };
         let mut seen = HashSet::new();
         let mut out = Vec::new();
         match self {
+            Self::Range(radius) if radius > MAX_BRUSH_RADIUS => {}
             Self::Range(radius) => {
-                for t in tile.range(radius.min(MAX_BRUSH_RADIUS)) {
+                for t in tile.range(radius) {
                     if let Some(t) = own(t)
                         && seen.insert(t)
                     {

@@ -16,12 +16,17 @@ pub struct Change {
     /// The map's own tiles that changed: the edited tiles and their neighbors (whose shared
     /// border vertices moved), and every tile whose type, elevation, biome, river or lake
     /// changed as a consequence (rivers drain whole basins), with their neighbors, or whose game
-    /// setup marker (start, resource, wonder) moved. Sorted. (A lake's id may change without
-    /// the lake changing, when a lake before it in the ids' order appears or goes.)
+    /// setup marker (start, resource, wonder) moved. Sorted by `(y, x)` of the axial
+    /// coordinate, each once. (A lake's id may change without the lake changing, when a lake
+    /// before it in the ids' order appears or goes.)
     pub tiles: Vec<Hex>,
-    /// The chunks holding those tiles or a neighbor of one (a chunk's mesh holds its tiles'
+    /// The map's own tiles whose edits the operation changed (what the stroke edited, or what
+    /// its undo or redo set back), a part of `tiles`. Sorted by `(y, x)`, each once.
+    pub edited: Vec<Hex>,
+    /// The chunks holding `tiles` or a neighbor of one (a chunk's mesh holds its tiles'
     /// border vertices and normals, shared with the next chunk): the meshes to build again.
-    /// Chunks of the map (on a wrapping map, the chunks its copies show). Sorted.
+    /// Chunks of the map (on a wrapping map, the chunks its copies show). Sorted by `(z, x)`,
+    /// each once.
     pub chunks: Vec<ChunkCoord>,
 }
 
@@ -35,11 +40,10 @@ impl Change {
     /// The change from `old` to `new`, two compilations of one map whose edits differ on the
     /// `touched` tiles.
     pub(super) fn between(old: &Terrain, new: &Terrain, touched: &[Hex]) -> Self {
-        let own = |t: Hex| new.in_world(t).then(|| new.wrap_tile(t)).filter(|&t| new.contains(t));
         let mut tiles = HashSet::new();
         for &t in touched {
             tiles.insert(t);
-            tiles.extend(new.neighbors(t).into_iter().flatten().filter_map(own));
+            tiles.extend(new.neighbors(t).into_iter().flatten().flatten());
         }
         if let (Some(a), Some(b)) = (old.pipeline().table(), new.pipeline().table()) {
             // Rivers, lakes and biomes reach past the edited tiles: compare every tile's row of
@@ -50,7 +54,7 @@ impl Change {
                 let changed = b.index(geometry, t).is_none_or(|i| !a.same_tile(b, i));
                 if changed || marker(old, t) != marker(new, t) {
                     tiles.insert(t);
-                    tiles.extend(new.neighbors(t).into_iter().flatten().filter_map(own));
+                    tiles.extend(new.neighbors(t).into_iter().flatten().flatten());
                 }
             }
         } else if new.bounds().is_some() {
@@ -62,7 +66,7 @@ impl Change {
             }
         } else {
             // Without a tile table, a tile depends on its own heights and its neighbors' types.
-            let near: HashSet<Hex> = touched.iter().flat_map(|t| t.range(2)).filter_map(own).collect();
+            let near: HashSet<Hex> = touched.iter().flat_map(|t| t.range(2)).filter_map(|t| new.wrap_tile(t)).collect();
             for r in near {
                 if old.tile_info(r) != new.tile_info(r) {
                     tiles.insert(r);
@@ -71,16 +75,19 @@ impl Change {
         }
         let mut chunks = HashSet::new();
         for &t in &tiles {
-            chunks.insert(new.wrap_chunk(new.chunk_of(t)).0);
-            for n in new.neighbors(t).into_iter().flatten().filter_map(own) {
-                chunks.insert(new.wrap_chunk(new.chunk_of(n)).0);
+            let around = new.neighbors(t).into_iter().flatten().flatten();
+            for c in std::iter::once(t).chain(around).filter_map(|t| new.chunk_of(t)) {
+                chunks.insert(new.wrap_chunk(c).0);
             }
         }
         let mut tiles: Vec<Hex> = tiles.into_iter().collect();
         tiles.sort_by_key(|t| (t.y, t.x));
+        let mut edited = touched.to_vec();
+        edited.sort_by_key(|t| (t.y, t.x));
+        edited.dedup();
         let mut chunks: Vec<ChunkCoord> = chunks.into_iter().collect();
         chunks.sort_by_key(|c| (c.z, c.x));
-        Self { tiles, chunks }
+        Self { tiles, edited, chunks }
     }
 }
 

@@ -73,7 +73,10 @@ pub struct Stroke {
 }
 
 /// A stroke that could not be applied; the map is unchanged.
-#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+///
+/// Its `Debug` prints a tile as its two axial coordinates, so an error about any tile a caller
+/// passed prints without overflow (hexx's `Debug` of a `Hex` computes its third coordinate).
+#[derive(Clone, PartialEq, thiserror::Error)]
 pub enum EditError {
     /// The stroke's tile is not on the map.
     #[error("tile ({}, {}) is not on the map", .0.x, .0.y)]
@@ -85,6 +88,12 @@ pub enum EditError {
         value: f32,
         /// What is allowed.
         allowed: &'static str,
+    },
+    /// The brush's range is above [`MAX_BRUSH_RADIUS`].
+    #[error("the brush's range {radius} is above {}, the most a brush reaches", MAX_BRUSH_RADIUS)]
+    Range {
+        /// The range given.
+        radius: u32,
     },
     /// The map has no rivers or lakes for the tool to work on.
     #[error("the {tool} tool needs {needs}")]
@@ -106,6 +115,23 @@ pub enum EditError {
     /// The edited map is not a valid map (for example more than `MAX_EDITS` edited tiles).
     #[error(transparent)]
     Invalid(#[from] ConfigError),
+}
+
+impl std::fmt::Debug for EditError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Self::OffMap(tile) => f.debug_tuple("OffMap").field(&[tile.x, tile.y]).finish(),
+            Self::Amount { value, allowed } => {
+                f.debug_struct("Amount").field("value", value).field("allowed", allowed).finish()
+            }
+            Self::Range { radius } => f.debug_struct("Range").field("radius", radius).finish(),
+            Self::Unsupported { tool, needs } => {
+                f.debug_struct("Unsupported").field("tool", tool).field("needs", needs).finish()
+            }
+            Self::NoLake { rim, sea } => f.debug_struct("NoLake").field("rim", rim).field("sea", sea).finish(),
+            Self::Invalid(e) => f.debug_tuple("Invalid").field(e).finish(),
+        }
+    }
 }
 
 /// How far above its lake's surface a drained tile rises (raw height), so no water stands on it
@@ -209,13 +235,23 @@ impl Editor {
     }
 
     /// Applies a stroke as one operation (clearing what could be redone) and reports what
-    /// changed. A stroke that changes no edit is no operation.
+    /// changed ([`Change::edited`]: the tiles whose edits it changed). A stroke that changes no
+    /// edit is no operation: it answers an empty [`Change`] and nothing can be undone for it.
     ///
     /// # Errors
-    /// The stroke's tile off the map, a non-finite or out-of-range amount, or an edited map
-    /// that would not be valid; then nothing changes.
+    /// Checked in this order, the first that fails is answered and nothing changes:
+    /// [`EditError::Amount`] (the tool's amount not finite or out of range),
+    /// [`EditError::Range`] (a brush range above [`MAX_BRUSH_RADIUS`]),
+    /// [`EditError::Unsupported`] (a water tool on a map without rivers or lakes),
+    /// [`EditError::OffMap`] (the stroke's tile not on the map), [`EditError::NoLake`] (a lake
+    /// dug where it would be sea), [`EditError::Invalid`] (the edited map would not be valid).
     pub fn apply(&mut self, stroke: Stroke) -> Result<Change, EditError> {
         check_amount(stroke.tool)?;
+        if let Brush::Range(radius) = stroke.brush
+            && radius > MAX_BRUSH_RADIUS
+        {
+            return Err(EditError::Range { radius });
+        }
         self.check_water(stroke.tool)?;
         let tiles = stroke.brush.tiles(&self.terrain, stroke.tile);
         if tiles.is_empty() {
@@ -315,11 +351,9 @@ impl Editor {
             Tool::Smooth => {
                 let mut sum = height(tile);
                 let mut count = 1.0;
-                for n in self.terrain.neighbors(tile).into_iter().flatten() {
-                    if self.terrain.contains(n) {
-                        sum += height(n);
-                        count += 1.0;
-                    }
+                for n in self.terrain.neighbors(tile).into_iter().flatten().flatten() {
+                    sum += height(n);
+                    count += 1.0;
                 }
                 edit.height = Some((sum / count).clamp(0.0, 1.0));
                 edit.kind = None;
@@ -370,8 +404,8 @@ impl Editor {
         let inside: std::collections::HashSet<Hex> = tiles.iter().copied().collect();
         let mut rim = f32::INFINITY;
         for &t in tiles {
-            for n in self.terrain.neighbors(t).into_iter().flatten() {
-                if self.terrain.contains(n) && !inside.contains(&n) {
+            for n in self.terrain.neighbors(t).into_iter().flatten().flatten() {
+                if !inside.contains(&n) {
                     rim = rim.min(self.center_height(n));
                 }
             }
@@ -388,7 +422,7 @@ impl Editor {
     /// A tile's edit after a lake is dug to `floor`: a land or mountain tile off the map's edge sinks to it
     /// (one already lower keeps its height); others keep their edit.
     fn dug(&self, tile: Hex, floor: f32, before: Option<TileEdit>) -> Option<TileEdit> {
-        let on_edge = self.terrain.neighbors(tile).into_iter().flatten().any(|n| !self.terrain.contains(n));
+        let on_edge = self.terrain.neighbors(tile).is_none_or(|around| around.contains(&None));
         if on_edge || self.terrain.tile_kind(tile) == Some(TileKind::Sea) {
             return before;
         }

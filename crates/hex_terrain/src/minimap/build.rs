@@ -63,10 +63,7 @@ impl Minimap {
             (0..w * h).map(|i| terrain.tile_from_offset([region.min[0] + i % w, region.min[1] + i / w])).collect();
         let neighbors: Vec<[u32; 6]> = tiles
             .iter()
-            .map(|&t| {
-                t.all_neighbors()
-                    .map(|n| if terrain.contains(n) { index(terrain.wrap_tile(n)).unwrap_or(NONE) } else { NONE })
-            })
+            .map(|&t| t.all_neighbors().map(|n| terrain.wrap_tile(n).and_then(index).unwrap_or(NONE)))
             .collect();
         let colors: Vec<[u8; 3]> = tiles.iter().map(|&t| tile_color(terrain, &style, t)).collect();
         let rivers: Vec<Vec<usize>> = tiles.iter().map(|&t| river_slots(terrain, t)).collect();

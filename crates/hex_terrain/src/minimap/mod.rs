@@ -297,10 +297,7 @@ impl Minimap {
     }
 
     fn index(&self, tile: Hex) -> Option<u32> {
-        if !self.terrain.in_world(tile) {
-            return None;
-        }
-        index_in(&self.terrain, self.region, self.terrain.wrap_tile(tile))
+        index_in(&self.terrain, self.region, self.terrain.wrap_tile(tile)?)
     }
 }
 

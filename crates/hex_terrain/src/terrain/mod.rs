@@ -3,6 +3,45 @@
 //! `mod.rs` (compiling, the stages, tiles), `water.rs` (rivers, lakes, the water surface),
 //! `generate.rs` (meshes, props), `surface.rs` (positions, heights, rays), `setup.rs` (the game
 //! setup: starts, resources, wonders).
+//!
+//! # How queries answer
+//!
+//! One rule for every query of [`Terrain`] (tested over random tiles, points and positions
+//! inside and outside the world in `tests/edges.rs`, with overflow checks on):
+//!
+//! - **The terrain at a place** ([`tile_kind`](Terrain::tile_kind),
+//!   [`tile_info`](Terrain::tile_info), [`tile_biome`](Terrain::tile_biome),
+//!   [`tile_climate`](Terrain::tile_climate), [`tile_center`](Terrain::tile_center),
+//!   [`vertex`](Terrain::vertex), [`vertex_elevation`](Terrain::vertex_elevation),
+//!   [`raw_height`](Terrain::raw_height), [`source_height`](Terrain::source_height),
+//!   [`noise_position`](Terrain::noise_position), [`point_color`](Terrain::point_color),
+//!   [`tile_at`](Terrain::tile_at), [`surface_height`](Terrain::surface_height),
+//!   [`surface_normal`](Terrain::surface_normal), [`raycast`](Terrain::raycast),
+//!   [`distance`](Terrain::distance)) answers `None` past the world
+//!   ([`in_world`](Terrain::in_world), [`MAX_WORLD_TILE`](crate::MAX_WORLD_TILE)). The generated
+//!   terrain goes on past a bounded map's edge, so these answer there too
+//!   ([`TileInfo::in_map`] says whether the tile is the map's).
+//! - **The map** ([`wrap_tile`](Terrain::wrap_tile), [`neighbors`](Terrain::neighbors),
+//!   [`chunk_of`](Terrain::chunk_of), [`map_tile_kind`](Terrain::map_tile_kind),
+//!   [`river`](Terrain::river), [`river_flow`](Terrain::river_flow), [`lake`](Terrain::lake),
+//!   [`water_level`](Terrain::water_level), [`water_cover`](Terrain::water_cover),
+//!   [`tile_setup`](Terrain::tile_setup), [`resource`](Terrain::resource),
+//!   [`wonder`](Terrain::wonder), [`start`](Terrain::start)) answers `None` for a tile that is
+//!   not on the map ([`contains`](Terrain::contains)). On the map, an amount that is nothing is
+//!   `Some(0.0)` (a dry tile's `river_flow`, `water_cover`); a thing that is not there is
+//!   `None` (`river`, `lake`, `resource`). [`neighbors`](Terrain::neighbors) answers each of
+//!   the six directions: `None` where that neighbor is off the map.
+//! - **Predicates** ([`contains`](Terrain::contains), [`in_world`](Terrain::in_world),
+//!   [`tile_is_wet`](Terrain::tile_is_wet)) answer `false` wherever they are not true.
+//! - **Conversions between coordinates** ([`tile_from_offset`](Terrain::tile_from_offset),
+//!   [`offset_of`](Terrain::offset_of), [`wrap_point`](Terrain::wrap_point),
+//!   [`wrap_chunk`](Terrain::wrap_chunk), [`tile_near`](Terrain::tile_near),
+//!   [`rect_origin`](Terrain::rect_origin)) are arithmetic on coordinates: they answer every
+//!   input, never panic, and say nothing of the terrain.
+//! - **Nothing clamps silently, nothing panics**: a value a caller chose (a config, an edit, a
+//!   stroke, a save) out of its range is refused with an error naming it
+//!   ([`ConfigError`](crate::ConfigError), [`EditError`](crate::EditError),
+//!   [`SaveError`](crate::SaveError)); queries never return errors.
 
 mod generate;
 mod setup;
@@ -51,7 +90,8 @@ impl Terrain {
     /// source from its path).
     ///
     /// # Errors
-    /// The first invalid field of the config.
+    /// The first invalid field of the config; `setup.players` or `setup.min_distance` when the
+    /// game setup does not fit the generated map.
     pub fn new(config: MapConfig) -> Result<Self, ConfigError> {
         Ok(Self { pipeline: Arc::new(Pipeline::new(config)?) })
     }
@@ -174,11 +214,12 @@ impl Terrain {
         self.geometry().tiles()
     }
 
-    /// The tile of the map a tile stands for: on a wrapping map, the tile of the same row whose
-    /// column is the tile's column modulo the width; the tile itself otherwise.
+    /// The map's own tile a tile stands for: on a wrapping map, the tile of the same row whose
+    /// column is the tile's column modulo the width; the tile itself otherwise. `None` for a
+    /// tile not on the map.
     #[must_use]
-    pub fn wrap_tile(&self, tile: Hex) -> Hex {
-        self.geometry().wrap_tile(tile)
+    pub fn wrap_tile(&self, tile: Hex) -> Option<Hex> {
+        self.contains(tile).then(|| self.geometry().wrap_tile(tile))
     }
 
     /// The canonical lattice point of a lattice point (itself unless the map wraps).
@@ -217,11 +258,13 @@ impl Terrain {
         self.geometry().tile_near(tile, near)
     }
 
-    /// The six neighbors of a tile, each wrapped into the map on a wrapping map; `None` for a
-    /// tile past the world.
+    /// The six neighbors of a tile of the map, in hexx's direction order, each the map's own
+    /// tile (across the seam on a wrapping map) or `None` where that neighbor is off the map;
+    /// `None` for a tile not on the map.
     #[must_use]
-    pub fn neighbors(&self, tile: Hex) -> Option<[Hex; 6]> {
-        self.geometry().neighbors(tile)
+    pub fn neighbors(&self, tile: Hex) -> Option<[Option<Hex>; 6]> {
+        let g = self.geometry();
+        g.contains(tile).then(|| tile.all_neighbors().map(|n| g.contains(n).then(|| g.wrap_tile(n))))
     }
 
     /// Chunk size in tiles.
@@ -230,11 +273,12 @@ impl Terrain {
         self.geometry().chunk_size()
     }
 
-    /// The chunk holding a tile. On a wrapping map, a tile past the map's east or west edge is
-    /// in a chunk placed there (see [`crate::wrap`]).
+    /// The chunk holding a tile of the map; `None` for a tile not on the map. On a wrapping
+    /// map, a tile past the map's east or west edge is in a chunk placed there (see
+    /// [`crate::wrap`]).
     #[must_use]
-    pub fn chunk_of(&self, tile: Hex) -> ChunkCoord {
-        self.geometry().chunk_of(tile)
+    pub fn chunk_of(&self, tile: Hex) -> Option<ChunkCoord> {
+        self.contains(tile).then(|| self.geometry().chunk_of(tile))
     }
 
     /// A chunk's tiles clipped to the map, `None` when it lies outside (or, on an unbounded
@@ -267,23 +311,26 @@ impl Terrain {
         self.geometry().chunks()
     }
 
-    /// Normalised height after shaping, before manipulation, at a lattice point.
+    /// Normalised height after shaping (and the edits), before manipulation, at a lattice
+    /// point; `None` past the world.
     #[must_use]
-    pub fn raw_height(&self, p: Hex) -> f32 {
-        self.heights().raw_height(self.geometry(), p)
+    pub fn raw_height(&self, p: Hex) -> Option<f32> {
+        self.geometry().point_in_world(p).then(|| self.heights().raw_height(self.geometry(), p))
     }
 
-    /// Bare source height (fBm or heightmap, no shaping) at a lattice point.
+    /// Bare source height (fBm or heightmap, no shaping) at a lattice point; `None` past the
+    /// world.
     #[must_use]
-    pub fn source_height(&self, p: Hex) -> f64 {
-        self.heights().source_height(self.geometry(), p)
+    pub fn source_height(&self, p: Hex) -> Option<f64> {
+        self.geometry().point_in_world(p).then(|| self.heights().source_height(self.geometry(), p))
     }
 
     /// Where a lattice point samples the noise: its world position in hex radii, shifted by the
-    /// map's offset (on a wrapping map, the position of its canonical point).
+    /// map's offset (on a wrapping map, the position of its canonical point); `None` past the
+    /// world.
     #[must_use]
-    pub fn noise_position(&self, p: Hex) -> [f64; 2] {
-        self.heights().noise_position(self.geometry(), p)
+    pub fn noise_position(&self, p: Hex) -> Option<[f64; 2]> {
+        self.geometry().point_in_world(p).then(|| self.heights().noise_position(self.geometry(), p))
     }
 
     /// Type of a tile (by its center), whether or not it is in the map; `None` past the world.
@@ -292,7 +339,7 @@ impl Terrain {
         self.in_world(tile).then(|| self.pipeline.tile_kind(tile))
     }
 
-    /// Type of a tile if it belongs to the map.
+    /// Type of a tile of the map; `None` for a tile not on the map.
     #[must_use]
     pub fn map_tile_kind(&self, tile: Hex) -> Option<TileKind> {
         self.in_world(tile).then(|| self.pipeline.map_tile_kind(tile)).flatten()

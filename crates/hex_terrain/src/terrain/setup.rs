@@ -18,6 +18,9 @@ impl Terrain {
     /// setup or outside its area.
     #[must_use]
     pub fn tile_setup(&self, tile: Hex) -> Option<TileSetup<'_>> {
+        if !self.contains(tile) {
+            return None;
+        }
         self.setup()?.at(self.geometry(), tile)
     }
 

@@ -49,7 +49,7 @@ fn bounds_and_chunks() {
     assert_eq!(total, 900);
     assert!(t.chunk_rect(ChunkCoord::new(5, 0)).is_none());
     for tile in t.tiles() {
-        assert!(t.chunk_rect(t.chunk_of(tile)).unwrap().contains(t.offset_of(tile)));
+        assert!(t.chunk_rect(t.chunk_of(tile).unwrap()).unwrap().contains(t.offset_of(tile)));
     }
 }
 

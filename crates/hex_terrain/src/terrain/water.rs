@@ -15,28 +15,29 @@ impl Terrain {
         self.pipeline.table()?.hydrology()
     }
 
-    /// The river on a tile, if one runs through it.
+    /// The river on a tile of the map, if one runs through it.
     #[must_use]
     pub fn river(&self, tile: Hex) -> Option<RiverTile> {
-        if !self.in_world(tile) {
+        if !self.contains(tile) {
             return None;
         }
         self.pipeline.table()?.river(self.geometry(), tile)
     }
 
-    /// Water a river on a tile carries, 0 when no river runs through it.
+    /// Water a river on a tile of the map carries, `Some(0.0)` when no river runs through it;
+    /// `None` for a tile not on the map.
     #[must_use]
-    pub fn river_flow(&self, tile: Hex) -> f32 {
-        match self.pipeline.table() {
-            Some(t) if self.in_world(tile) => t.river_flow(self.geometry(), tile),
-            _ => 0.0,
+    pub fn river_flow(&self, tile: Hex) -> Option<f32> {
+        if !self.contains(tile) {
+            return None;
         }
+        Some(self.pipeline.table().map_or(0.0, |t| t.river_flow(self.geometry(), tile)))
     }
 
     /// The lake a tile belongs to (an id, 0 for the first lake), if it is a lake tile.
     #[must_use]
     pub fn lake(&self, tile: Hex) -> Option<u32> {
-        if !self.in_world(tile) {
+        if !self.contains(tile) {
             return None;
         }
         self.pipeline.table()?.lake(self.geometry(), tile)
@@ -48,30 +49,29 @@ impl Terrain {
         self.tiles().filter_map(|t| self.river(t)).collect()
     }
 
-    /// Water level of a tile (the filled surface, normalised), on a map with rivers.
+    /// Water level of a tile of the map (the filled surface, normalised), on a map with
+    /// rivers.
     #[must_use]
     pub fn water_level(&self, tile: Hex) -> Option<f32> {
-        if !self.in_world(tile) {
+        if !self.contains(tile) {
             return None;
         }
         self.pipeline.table()?.water_level(self.geometry(), tile)
     }
 
     /// How much of a channel or lake covers lattice point `p` of `tile`: 1 on a lake tile and on
-    /// a channel's middle line, falling smoothly to 0 at the channel's half-width.
+    /// a channel's middle line, falling smoothly to 0 at the channel's half-width (`Some(0.0)`
+    /// on a dry tile); `None` for a tile not on the map or a point past the world.
     #[must_use]
-    pub fn water_cover(&self, tile: Hex, p: Hex) -> f32 {
-        if !self.in_world(tile) || !self.geometry().point_in_world(p) {
-            return 0.0;
-        }
-        self.pipeline.water_cover(tile, p)
+    pub fn water_cover(&self, tile: Hex, p: Hex) -> Option<f32> {
+        (self.contains(tile) && self.geometry().point_in_world(p)).then(|| self.pipeline.water_cover(tile, p))
     }
 
     /// Whether any water (a lake, or a river channel) lies on a tile: every point of a dry tile
     /// has a water cover of 0.
     #[must_use]
     pub fn tile_is_wet(&self, tile: Hex) -> bool {
-        self.in_world(tile) && self.pipeline.tile_is_wet(tile)
+        self.contains(tile) && self.pipeline.tile_is_wet(tile)
     }
 
     /// Whether meshes carry a color per vertex (climate or rivers on).

@@ -240,7 +240,7 @@ fn one_box_cache_over_frames_and_terrains_plans_as_an_empty_one() {
         let t = if step % 7 < 4 { &flat } else { &pointy };
         let size = f64::from(t.config().layout.hex_size);
         let viewer = DVec3::new(f64::from(step) * 9.0 * size, f64::from(step % 5) * 4.0 * size, 3.0 * size);
-        let agent = t.tile_at(viewer.x, viewer.z).map_or(ChunkCoord::default(), |tile| t.chunk_of(tile));
+        let agent = t.tile_at(viewer.x, viewer.z).and_then(|tile| t.chunk_of(tile)).unwrap_or_default();
         let cached = plan(t, &s, &[(agent, 2)], &[viewer], &existing, &mut boxes);
         let fresh = plan(t, &s, &[(agent, 2)], &[viewer], &existing, &mut ChunkBoxes::default());
         assert_eq!(cached, fresh, "step {step}");
