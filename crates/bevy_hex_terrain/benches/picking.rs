@@ -136,7 +136,8 @@ fn backend(n: usize) -> (f64, usize) {
     app.add_plugins((MinimalPlugins, AssetPlugin::default(), TransformPlugin, PickingPlugin, InteractionPlugin));
     let settings = HexStreamingSettings { load_radius: 3, max_inserts_per_frame: 64, ..default() };
     let map = MapConfig { size: MapSize::Unbounded, ..MapConfig::default() };
-    app.add_plugins(HexTerrainPlugins { map: map.into(), settings }.build().disable::<HexTerrainMaterialPlugin>());
+    app.insert_resource(settings);
+    app.add_plugins(HexTerrainPlugins::new(map).build().disable::<HexTerrainMaterialPlugin>());
     app.insert_resource(Rays(rays(n, [-30.0, 30.0, -30.0, 30.0]), 0));
     app.add_systems(
         PreUpdate,

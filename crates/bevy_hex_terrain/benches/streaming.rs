@@ -182,7 +182,8 @@ fn walk(seconds: u32, threads: ChunkThreads, props: bool) -> Walk {
     let mut app = App::new();
     let settings = HexStreamingSettings { chunk_threads: threads, ..HexStreamingSettings::default() };
     app.add_plugins((MinimalPlugins, AssetPlugin::default(), TransformPlugin))
-        .add_plugins(HexTerrainPlugins { map: config.into(), settings }.build().disable::<HexTerrainMaterialPlugin>())
+        .insert_resource(settings)
+        .add_plugins(HexTerrainPlugins::new(config).build().disable::<HexTerrainMaterialPlugin>())
         .init_resource::<FrameTimes>()
         .insert_resource(PropSettings { enabled: props, ..PropSettings::default() })
         // Fog of war drawn, so props on unexplored tiles are hidden and fog writes are checked.

@@ -159,21 +159,20 @@ pub enum HexTerrainSystems {
 /// `HexPickingPlugin` and, with the `render` feature, `HexTerrainMaterialPlugin` (the terrain
 /// and water material, which needs Bevy's `PbrPlugin`) and `HexLightPlugin` (sun, shadows, fog
 /// for `HexTerrainCamera`s). Add it after `DefaultPlugins`. Each plugin owns its settings
-/// resource (insert yours to change them); disable one with
+/// resource, added with `init_resource`: insert yours before or after adding the plugins to
+/// change them (a value inserted first is kept); disable one with
 /// `HexTerrainPlugins::default().build().disable::<…>()`.
 #[derive(Debug, Clone, Default)]
 pub struct HexTerrainPlugins {
     /// The map to show.
     pub map: MapSource,
-    /// Streaming parameters.
-    pub settings: HexStreamingSettings,
 }
 
 impl HexTerrainPlugins {
     /// The plugins showing a map (an asset path or a config).
     #[must_use]
     pub fn new(map: impl Into<MapSource>) -> Self {
-        Self { map: map.into(), settings: HexStreamingSettings::default() }
+        Self { map: map.into() }
     }
 
     /// The plugins showing the map config at an asset path (hot-reloaded when the asset server
@@ -194,13 +193,13 @@ impl PluginGroup for HexTerrainPlugins {
     fn build(self) -> PluginGroupBuilder {
         let group = PluginGroupBuilder::start::<Self>()
             .add(HexMapPlugin { map: self.map })
-            .add(HexStreamingPlugin { settings: self.settings })
-            .add(HexTileStatePlugin::default())
+            .add(HexStreamingPlugin)
+            .add(HexTileStatePlugin)
             .add(HexWaterPlugin)
             .add(HexPropsPlugin)
             .add(HexEditorPlugin);
         #[cfg(feature = "picking")]
-        let group = group.add(picking::HexPickingPlugin::default());
+        let group = group.add(picking::HexPickingPlugin);
         #[cfg(feature = "render")]
         let group = group.add(material::HexTerrainMaterialPlugin).add(light::HexLightPlugin);
         group

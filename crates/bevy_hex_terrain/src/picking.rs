@@ -29,7 +29,7 @@ pub struct HexPick {
 }
 
 /// The picking backend's settings.
-#[derive(Resource, Debug, Clone, Reflect)]
+#[derive(Resource, Debug, Clone, PartialEq, Reflect)]
 #[reflect(Resource)]
 pub struct HexPickingSettings {
     /// Cast pointer rays on the terrain.
@@ -99,18 +99,18 @@ pub struct HexPickingCamera;
 /// the terrain that another backend reports (a unit, with `MeshPickingPlugin`) comes first by
 /// Bevy's depth order and blocks the terrain behind it unless its `Pickable` says otherwise.
 /// Only loaded chunks are hit: a ray to a chunk not streamed in reports nothing.
-#[derive(Debug, Clone, Default)]
-pub struct HexPickingPlugin {
-    /// The backend's settings (the [`HexPickingSettings`] resource).
-    pub settings: HexPickingSettings,
-}
+///
+/// Its settings are the [`HexPickingSettings`] resource: a value inserted before the plugin is
+/// added is kept.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct HexPickingPlugin;
 
 impl Plugin for HexPickingPlugin {
     fn build(&self, app: &mut App) {
         if !app.is_plugin_added::<crate::HexMapPlugin>() {
             panic!("HexPickingPlugin needs HexMapPlugin: add HexTerrainPlugins (or HexMapPlugin before it)");
         }
-        app.insert_resource(self.settings.clone())
+        app.init_resource::<HexPickingSettings>()
             .init_resource::<RayMap>()
             .add_message::<PointerHits>()
             .init_resource::<HexPickingStats>()

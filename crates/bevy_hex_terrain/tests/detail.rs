@@ -16,7 +16,7 @@ use common::*;
 /// The app of [`common::app`], levels measured `coarse_distance` hex sizes out.
 fn lod_app(config: MapConfig, radius: u32, coarse_distance: f32) -> App {
     let settings = HexStreamingSettings { coarse_distance: Some(coarse_distance), ..settings(radius) };
-    app_with(HexTerrainPlugins { map: config.into(), settings }, None)
+    app_with(config.into(), settings, None)
 }
 
 /// Every chunk with a mesh: its level and mesh positions' bits.

@@ -117,7 +117,7 @@ fn a_saved_edit_file_loads_to_the_same_edits_and_its_reload_applies_once() {
     let dir = asset_dir("editor");
     let file = dir.join("edit.map.ron");
     std::fs::write(&file, "(seed: 9, size: Bounded(x: 16, z: 8), chunk_size: (8, 8))").unwrap();
-    let mut app = app_with(HexTerrainPlugins::new("edit.map.ron"), Some(&dir));
+    let mut app = app_with("edit.map.ron".into(), HexStreamingSettings::default(), Some(&dir));
     keep::<HexMapEdited>(&mut app);
     keep::<HexMapSaved>(&mut app);
     keep::<HexMapError>(&mut app);

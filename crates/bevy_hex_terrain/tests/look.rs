@@ -21,7 +21,7 @@ fn wooded() -> MapConfig {
 /// placement; `detail.rs` tests the props of coarse chunks.
 fn app_with_props(config: MapConfig, radius: u32, props: PropSettings) -> App {
     let settings = HexStreamingSettings { coarse_distance: None, ..settings(radius) };
-    let mut app = app_with(HexTerrainPlugins { map: config.into(), settings }, None);
+    let mut app = app_with(config.into(), settings, None);
     app.insert_resource(props);
     app
 }
@@ -145,11 +145,8 @@ fn props_come_and_go_a_budget_a_frame() {
     let mut config = unbounded((8, 8));
     config.noise.scale = 40.0;
     let budget = 40;
-    let plugins = HexTerrainPlugins {
-        map: config.into(),
-        settings: HexStreamingSettings { max_despawns_per_frame: budget, ..settings(1) },
-    };
-    let mut app = app_with(plugins, None);
+    let streaming = HexStreamingSettings { max_despawns_per_frame: budget, ..settings(1) };
+    let mut app = app_with(config.into(), streaming, None);
     app.insert_resource(PropSettings { max_spawns_per_frame: budget, max_per_chunk: 120, ..default() });
     let agent = spawn_agent(&mut app, Vec3::ZERO);
     let mut live: std::collections::HashSet<Entity> = std::collections::HashSet::new();
@@ -197,7 +194,7 @@ fn the_props_table_has_room_before_the_first_prop_and_never_grows() {
         let mut config = unbounded((8, 8));
         config.noise.scale = 40.0;
         let settings = HexStreamingSettings { coarse_distance: None, ..settings(1) };
-        let mut app = app_with(HexTerrainPlugins { map: config.into(), settings }, None);
+        let mut app = app_with(config.into(), settings, None);
         app.insert_resource(PropSettings { max_per_chunk: 120, ..default() });
         #[cfg(feature = "render")]
         if drawn {
@@ -266,13 +263,13 @@ fn tasks_build_what_the_plugins_and_their_settings_ask_for() {
         all.sort_unstable_by_key(|(coord, _)| *coord);
         all.into_iter().map(|(_, c)| c).collect()
     };
-    let plugins = HexTerrainPlugins { map: wooded().into(), settings: settings(8) };
+    let plugins = HexTerrainPlugins::new(wooded());
     #[cfg(feature = "render")]
     let group = plugins.build().disable::<HexTerrainMaterialPlugin>();
     #[cfg(not(feature = "render"))]
     let group = plugins.build();
     let mut bare = App::new();
-    bare.add_plugins((MinimalPlugins, AssetPlugin::default(), TransformPlugin));
+    bare.add_plugins((MinimalPlugins, AssetPlugin::default(), TransformPlugin)).insert_resource(settings(8));
     bare.add_plugins(group.disable::<HexWaterPlugin>().disable::<HexPropsPlugin>());
     spawn_agent(&mut bare, Vec3::ZERO);
     run_until(&mut bare, "terrain ready without water and props", ready);

@@ -35,8 +35,9 @@ fn app(config: MapConfig) -> App {
     app.add_plugins((MinimalPlugins, AssetPlugin::default(), TransformPlugin, PickingPlugin, InteractionPlugin));
     app.init_asset::<Image>();
     let settings = HexStreamingSettings { load_radius: 1, ..default() };
-    app.add_plugins(HexTerrainPlugins { map: config.into(), settings }.build().disable::<HexTerrainMaterialPlugin>());
-    app.add_plugins(HexMinimapPlugin::default());
+    app.insert_resource(settings);
+    app.add_plugins(HexTerrainPlugins::new(config).build().disable::<HexTerrainMaterialPlugin>());
+    app.add_plugins(HexMinimapPlugin);
     // The minimap draws fog of war as the terrain does: while the tile states' style has it on.
     app.insert_resource(TileStateStyle { fog_of_war: true, ..default() });
     app.init_resource::<OnMinimap>().init_resource::<Navigations>();
@@ -203,4 +204,19 @@ fn location() -> Location {
 
 fn map_tiles(config: &MapConfig) -> Vec<Hex> {
     hex_terrain::Terrain::new(config.clone()).unwrap().tiles().collect()
+}
+
+/// `MinimapSettings` inserted before the plugin is added is kept (the plugin uses
+/// `init_resource`, like every plugin of the crate).
+#[test]
+fn minimap_settings_inserted_first_are_kept() {
+    let mut app = App::new();
+    app.add_plugins((MinimalPlugins, AssetPlugin::default(), TransformPlugin, PickingPlugin, InteractionPlugin));
+    app.init_asset::<Image>();
+    let mine = MinimapSettings { size: UVec2::new(99, 77), explored_brightness: 0.25, ..default() };
+    app.insert_resource(mine.clone());
+    app.add_plugins(HexTerrainPlugins::new(config()).build().disable::<HexTerrainMaterialPlugin>());
+    app.add_plugins(HexMinimapPlugin);
+    app.update();
+    assert_eq!(app.world().resource::<MinimapSettings>(), &mine);
 }

@@ -47,7 +47,8 @@ fn app(config: MapConfig) -> App {
 fn app_with(config: MapConfig, settings: HexStreamingSettings) -> App {
     let mut app = App::new();
     app.add_plugins((MinimalPlugins, AssetPlugin::default(), TransformPlugin, PickingPlugin, InteractionPlugin));
-    app.add_plugins(HexTerrainPlugins { map: config.into(), settings }.build().disable::<HexTerrainMaterialPlugin>());
+    app.insert_resource(settings);
+    app.add_plugins(HexTerrainPlugins::new(config).build().disable::<HexTerrainMaterialPlugin>());
     app.init_resource::<Clicks>();
     add_pointer(&mut app);
     app.world_mut().spawn((HexTerrainAgent::default(), Transform::default()));
@@ -240,7 +241,8 @@ fn picking_is_exact_a_million_units_out_with_big_space() {
     app.add_plugins((MinimalPlugins, AssetPlugin::default(), input, PickingPlugin, InteractionPlugin));
     app.add_plugins(BigSpaceDefaultPlugins);
     let settings = HexStreamingSettings { load_radius: 1, ..default() };
-    app.add_plugins(HexTerrainPlugins { map: config.into(), settings }.build().disable::<HexTerrainMaterialPlugin>());
+    app.insert_resource(settings);
+    app.add_plugins(HexTerrainPlugins::new(config).build().disable::<HexTerrainMaterialPlugin>());
     app.add_plugins(HexBigSpacePlugin);
     add_pointer(&mut app);
     let far = DVec3::new(1.0e6 + 0.37, 0.0, -1.0e6 - 0.21);

@@ -164,7 +164,7 @@ fn far_teleport_cancels_stale_work() {
     let mut s = settings(3);
     s.max_tasks_in_flight = 40;
     s.max_inserts_per_frame = 1;
-    let mut app = app_with(HexTerrainPlugins { map: unbounded((16, 16)).into(), settings: s }, None);
+    let mut app = app_with(unbounded((16, 16)).into(), s, None);
     let agent = spawn_agent(&mut app, Vec3::ZERO);
     app.update();
     let started = app.world().resource::<HexTerrainStats>().tasks_started();
@@ -197,7 +197,7 @@ fn write(dir: &std::path::Path, name: &str, text: &str) {
 fn hot_reload_regenerates_every_chunk_and_a_bad_edit_keeps_the_terrain() {
     let dir = asset_dir("plugin");
     write(&dir, "test.map.ron", "(seed: 5, size: Bounded(x: 16, z: 16), chunk_size: (8, 8))");
-    let mut app = app_with(HexTerrainPlugins::new("test.map.ron"), Some(&dir));
+    let mut app = app_with("test.map.ron".into(), HexStreamingSettings::default(), Some(&dir));
     run_until(&mut app, "first map", |app| app.world().resource::<HexMap>().config().seed == 5 && ready(app));
     let first = meshed_chunks(&mut app);
     assert_eq!(first.len(), 4);
@@ -325,7 +325,7 @@ fn load_hex_map_switches_to_a_config_or_a_file_and_refuses_a_bad_one() {
     let dir = asset_dir("switch");
     write(&dir, "a.map.ron", "(seed: 21, size: Bounded(x: 8, z: 8), chunk_size: (8, 8))");
     write(&dir, "b.map.ron", "(seed: 22, size: Bounded(x: 12, z: 8), chunk_size: (8, 8))");
-    let mut app = app_with(HexTerrainPlugins::new("a.map.ron"), Some(&dir));
+    let mut app = app_with("a.map.ron".into(), HexStreamingSettings::default(), Some(&dir));
     run_until(&mut app, "map a", |app| app.world().resource::<HexMap>().config().seed == 21 && ready(app));
 
     // A config applies at once and is streamed.
@@ -370,7 +370,7 @@ fn chunk_tasks_on_rayon_give_the_same_meshes() {
     for threads in [ChunkThreads::AsyncCompute, ChunkThreads::Rayon] {
         let mut s = settings(1);
         s.chunk_threads = threads;
-        let mut app = app_with(HexTerrainPlugins { map: config.clone().into(), settings: s }, None);
+        let mut app = app_with(config.clone().into(), s, None);
         run_until(&mut app, "whole map ready", ready);
         let handles = meshed_chunks(&mut app);
         let assets = app.world().resource::<Assets<Mesh>>();
@@ -395,7 +395,7 @@ fn reload_teleport_and_switch_in_one_frame_leave_only_the_new_state() {
     write(&dir, "b.map.ron", "(seed: 32, size: Unbounded, chunk_size: (8, 8), terrain: (inner_rings: 2))");
     let mut s = settings(2);
     s.max_inserts_per_frame = 2;
-    let mut app = app_with(HexTerrainPlugins { map: "a.map.ron".into(), settings: s }, Some(&dir));
+    let mut app = app_with("a.map.ron".into(), s, Some(&dir));
     let agent = spawn_agent(&mut app, Vec3::ZERO);
     run_until(&mut app, "map a", |app| app.world().resource::<HexMap>().config().seed == 31 && ready(app));
     let start = app.world().resource::<HexTerrainStats>().tasks_started();
@@ -464,7 +464,7 @@ fn keep_errors(app: &mut App) {
 fn a_file_reload_applies_once_and_a_broken_one_is_reported_once() {
     let dir = asset_dir("once");
     write(&dir, "once.map.ron", "(seed: 41, size: Bounded(x: 8, z: 8), chunk_size: (8, 8))");
-    let mut app = app_with(HexTerrainPlugins::new("once.map.ron"), Some(&dir));
+    let mut app = app_with("once.map.ron".into(), HexStreamingSettings::default(), Some(&dir));
     keep_errors(&mut app);
     run_until(&mut app, "the map", |app| app.world().resource::<HexMap>().config().seed == 41 && ready(app));
     let g = generation(&app);
@@ -513,7 +513,7 @@ fn hostile_heightmap_paths_in_a_map_file_are_refused_and_keep_the_terrain() {
     let dir = asset_dir("hostile");
     write(&dir, "good.map.ron", "(seed: 51, size: Bounded(x: 8, z: 8), chunk_size: (8, 8))");
     write(&dir, "text.png", "this is not a PNG");
-    let mut app = app_with(HexTerrainPlugins::new("good.map.ron"), Some(&dir));
+    let mut app = app_with("good.map.ron".into(), HexStreamingSettings::default(), Some(&dir));
     keep_errors(&mut app);
     run_until(&mut app, "the good map", |app| app.world().resource::<HexMap>().config().seed == 51 && ready(app));
     let g = generation(&app);

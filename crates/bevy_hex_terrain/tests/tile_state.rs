@@ -13,8 +13,8 @@ fn headless(map: impl Into<MapSource>, asset_dir: Option<&std::path::Path>) -> A
     let mut app = App::new();
     let file_path = asset_dir.map_or("assets".into(), |d| d.display().to_string());
     app.add_plugins((MinimalPlugins, AssetPlugin { file_path, ..default() }, TransformPlugin));
-    let settings = HexStreamingSettings { load_radius: 1, max_inserts_per_frame: 16, ..default() };
-    let plugins = HexTerrainPlugins { map: map.into(), settings };
+    app.insert_resource(HexStreamingSettings { load_radius: 1, max_inserts_per_frame: 16, ..default() });
+    let plugins = HexTerrainPlugins::new(map);
     #[cfg(feature = "render")]
     app.add_plugins(plugins.build().disable::<HexTerrainMaterialPlugin>());
     #[cfg(not(feature = "render"))]

@@ -102,47 +102,45 @@ fn main() -> AppExit {
     let fog_of_war = std::env::var("HEXTERRAIN_FOG").map_or(true, |v| v != "off");
     // The minimap sits in the bottom right corner, above the help line.
     let minimap = MinimapSettings { margin: Vec2::new(12.0, 48.0), ..default() };
-    app.add_plugins((
-        DefaultPlugins,
-        HexTerrainPlugins { settings: streaming, ..HexTerrainPlugins::from_asset(map) },
-        HexMinimapPlugin { settings: minimap },
-    ))
-    .insert_resource(TerrainMaterialSettings { outlines: true, outline_width: 0.04, ..default() })
-    .insert_resource(TileStateStyle { fog_of_war, ..default() })
-    .insert_resource(PropSettings { max_spawns_per_frame: if settle { usize::MAX } else { 64 }, ..default() })
-    .insert_resource(Game { turn: 1, ..default() })
-    .init_resource::<editor::EditorMode>()
-    .add_systems(Startup, (setup, look::from_env, editor::spawn_panel))
-    .add_systems(
-        Update,
-        (
-            follow_minimap,
-            camera_controls,
-            place_units,
-            (end_turn, keys),
-            walk,
-            (panel, report_panel),
-            chunk_boundaries,
-            look::keys,
+    app.add_plugins((DefaultPlugins, HexTerrainPlugins::from_asset(map), HexMinimapPlugin))
+        .insert_resource(streaming)
+        .insert_resource(minimap)
+        .insert_resource(TerrainMaterialSettings { outlines: true, outline_width: 0.04, ..default() })
+        .insert_resource(TileStateStyle { fog_of_war, ..default() })
+        .insert_resource(PropSettings { max_spawns_per_frame: if settle { usize::MAX } else { 64 }, ..default() })
+        .insert_resource(Game { turn: 1, ..default() })
+        .init_resource::<editor::EditorMode>()
+        .add_systems(Startup, (setup, look::from_env, editor::spawn_panel))
+        .add_systems(
+            Update,
+            (
+                follow_minimap,
+                camera_controls,
+                place_units,
+                (end_turn, keys),
+                walk,
+                (panel, report_panel),
+                chunk_boundaries,
+                look::keys,
+            )
+                .chain(),
         )
-            .chain(),
-    )
-    .add_systems(
-        Update,
-        (editor::from_env, editor::editor_input, editor::paint, editor::brush_outline, editor::editor_panel)
-            .chain()
-            .before(HexTerrainSystems::Map)
-            .after(keys),
-    )
-    .add_systems(
-        Update,
-        (vision::update_fog, vision::highlight, vision::paint_lens).after(HexTerrainSystems::Render).after(walk),
-    )
-    // The pointer through the terrain's picking backend: its events carry the tile.
-    .add_observer(hover::<Over>)
-    .add_observer(hover::<Move>)
-    .add_observer(leave)
-    .add_observer(click);
+        .add_systems(
+            Update,
+            (editor::from_env, editor::editor_input, editor::paint, editor::brush_outline, editor::editor_panel)
+                .chain()
+                .before(HexTerrainSystems::Map)
+                .after(keys),
+        )
+        .add_systems(
+            Update,
+            (vision::update_fog, vision::highlight, vision::paint_lens).after(HexTerrainSystems::Render).after(walk),
+        )
+        // The pointer through the terrain's picking backend: its events carry the tile.
+        .add_observer(hover::<Over>)
+        .add_observer(hover::<Move>)
+        .add_observer(leave)
+        .add_observer(click);
     // The scripted turn for the tests is a plugin of its own: the game's systems carry no test
     // branches.
     if scripted {

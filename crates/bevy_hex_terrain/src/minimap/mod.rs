@@ -42,7 +42,7 @@ pub enum MinimapCorner {
 }
 
 /// The minimap's settings; change them at run time (a change of the look rebuilds the picture).
-#[derive(Resource, Debug, Clone, Reflect)]
+#[derive(Resource, Debug, Clone, PartialEq, Reflect)]
 #[reflect(Resource)]
 pub struct MinimapSettings {
     /// Show the minimap.
@@ -175,18 +175,18 @@ pub enum HexMinimapSystems {
 /// }
 /// # App::new().add_systems(Update, follow);
 /// ```
-#[derive(Debug, Clone, Default)]
-pub struct HexMinimapPlugin {
-    /// The minimap's settings (the [`MinimapSettings`] resource).
-    pub settings: MinimapSettings,
-}
+///
+/// Its settings are the [`MinimapSettings`] resource: a value inserted before the plugin is
+/// added is kept.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct HexMinimapPlugin;
 
 impl Plugin for HexMinimapPlugin {
     fn build(&self, app: &mut App) {
         if !app.is_plugin_added::<crate::HexTileStatePlugin>() {
             panic!("HexMinimapPlugin needs HexTileStatePlugin: add HexTerrainPlugins before it");
         }
-        app.insert_resource(self.settings.clone())
+        app.init_resource::<MinimapSettings>()
             .init_resource::<MinimapPicture>()
             .add_message::<MinimapNavigate>()
             .register_type::<MinimapSettings>()

@@ -58,7 +58,7 @@ pub enum ChunkThreads {
 }
 
 /// Streaming parameters.
-#[derive(Resource, Debug, Clone, Reflect)]
+#[derive(Resource, Debug, Clone, PartialEq, Reflect)]
 #[reflect(Resource)]
 pub struct HexStreamingSettings {
     /// Chunks within this many chunks (Chebyshev distance) of an agent exist.
@@ -229,11 +229,10 @@ impl ChunkStreamer {
 
 /// Chunk streaming: [`ChunkStreamer`], [`HexTerrainStats`], the chunk messages, and the systems
 /// in [`HexTerrainSystems::Stream`] and [`HexTerrainSystems::Insert`]. Needs [`HexMapPlugin`](crate::HexMapPlugin).
-#[derive(Debug, Clone, Default)]
-pub struct HexStreamingPlugin {
-    /// Streaming parameters (the [`HexStreamingSettings`] resource).
-    pub settings: HexStreamingSettings,
-}
+/// Its settings are the [`HexStreamingSettings`] resource: a value inserted before the plugin
+/// is added is kept.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct HexStreamingPlugin;
 
 impl Plugin for HexStreamingPlugin {
     fn build(&self, app: &mut App) {
@@ -243,7 +242,7 @@ impl Plugin for HexStreamingPlugin {
         if !app.world().contains_resource::<Assets<Mesh>>() {
             app.init_asset::<Mesh>();
         }
-        app.insert_resource(self.settings.clone())
+        app.init_resource::<HexStreamingSettings>()
             .init_resource::<ChunkStreamer>()
             .init_resource::<HexTerrainStats>()
             .init_resource::<ContentRequest>()

@@ -34,7 +34,7 @@ pub enum HexTileStateSystems {
 }
 
 /// Parameters of the tile state store.
-#[derive(Resource, Debug, Clone, Reflect)]
+#[derive(Resource, Debug, Clone, PartialEq, Reflect)]
 #[reflect(Resource)]
 pub struct TileStateSettings {
     /// Largest window of tiles the GPU texture holds (8 bytes a tile). A bounded map that fits
@@ -67,19 +67,17 @@ pub struct TileStateStats {
 /// [`TileStates`], [`TileStateSettings`], [`TileStateStyle`] (how the states are drawn),
 /// [`TileStateStats`] and [`TileStateUpload`], with the
 /// systems keeping the window on the map ([`HexTerrainSystems::Tiles`]) and packing the
-/// changes (`PostUpdate`). Works headless; the material plugin draws it.
-#[derive(Debug, Clone, Default)]
-pub struct HexTileStatePlugin {
-    /// Store parameters (the [`TileStateSettings`] resource).
-    pub settings: TileStateSettings,
-}
+/// changes (`PostUpdate`). Works headless; the material plugin draws it. Its settings are
+/// the [`TileStateSettings`] resource: a value inserted before the plugin is added is kept.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct HexTileStatePlugin;
 
 impl Plugin for HexTileStatePlugin {
     fn build(&self, app: &mut App) {
         if !app.is_plugin_added::<crate::HexMapPlugin>() {
             panic!("HexTileStatePlugin needs HexMapPlugin: add HexTerrainPlugins (or HexMapPlugin before it)");
         }
-        app.insert_resource(self.settings.clone())
+        app.init_resource::<TileStateSettings>()
             .init_resource::<TileStates>()
             .init_resource::<TileStateStyle>()
             .init_resource::<TileStateStats>()

@@ -24,9 +24,11 @@ pub fn settings(radius: u32) -> HexStreamingSettings {
     }
 }
 
-/// A headless app: the terrain plugins without the material (which the headless build,
-/// `--no-default-features`, does not have).
-pub fn app_with(plugins: HexTerrainPlugins, asset_dir: Option<&std::path::Path>) -> App {
+/// A headless app: the terrain plugins showing `map` without the material (which the headless
+/// build, `--no-default-features`, does not have), with the streaming `settings` inserted
+/// before the plugins are added (a value inserted first is kept).
+pub fn app_with(map: MapSource, settings: HexStreamingSettings, asset_dir: Option<&std::path::Path>) -> App {
+    let plugins = HexTerrainPlugins::new(map);
     let mut app = App::new();
     // The tests reload files themselves (`AssetServer::reload`): the file watcher (on whenever
     // Bevy's `file_watcher` feature is, as in the examples' build) would add reloads of its own
@@ -36,7 +38,7 @@ pub fn app_with(plugins: HexTerrainPlugins, asset_dir: Option<&std::path::Path>)
         watch_for_changes_override: Some(false),
         ..default()
     };
-    app.add_plugins((MinimalPlugins, assets, TransformPlugin));
+    app.add_plugins((MinimalPlugins, assets, TransformPlugin)).insert_resource(settings);
     #[cfg(feature = "render")]
     app.add_plugins(plugins.build().disable::<HexTerrainMaterialPlugin>());
     #[cfg(not(feature = "render"))]
@@ -45,7 +47,7 @@ pub fn app_with(plugins: HexTerrainPlugins, asset_dir: Option<&std::path::Path>)
 }
 
 pub fn app(config: MapConfig, radius: u32) -> App {
-    app_with(HexTerrainPlugins { map: config.into(), settings: settings(radius) }, None)
+    app_with(config.into(), settings(radius), None)
 }
 
 pub fn spawn_agent(app: &mut App, at: Vec3) -> Entity {

@@ -163,9 +163,10 @@ fn render_scenes(scene: Scene, name: &str) -> (image::RgbImage, Option<image::Rg
     } else {
         app.add_plugins(plugins);
     }
-    let plugin = HexTerrainPlugins { map: MapSource::Config(Box::new(config)), settings };
+    let plugin = HexTerrainPlugins::new(MapSource::Config(Box::new(config)));
     let sun = lighting.is_some();
-    app.add_plugins(plugin)
+    app.insert_resource(settings)
+        .add_plugins(plugin)
         .insert_resource(lighting.unwrap_or_default())
         .insert_resource(material)
         .insert_resource(style)

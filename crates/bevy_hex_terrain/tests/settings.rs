@@ -1,0 +1,62 @@
+//! Every plugin's settings resource is added with `init_resource`: a value a user inserts
+//! before adding the plugins is kept (one way to set them, the way Bevy's own plugins do).
+//! `MinimapSettings` is checked the same way in `minimap.rs`, whose app has what the minimap
+//! needs.
+
+use bevy::asset::AssetPlugin;
+use bevy::prelude::*;
+use bevy_hex_terrain::prelude::*;
+use bevy_hex_terrain::{HexTerrainPlugins, TileStateSettings};
+
+#[test]
+fn settings_inserted_before_the_plugins_are_kept() {
+    let streaming = HexStreamingSettings { load_radius: 5, prefetch: 3, max_tasks_in_flight: 7, ..default() };
+    let tiles = TileStateSettings { max_window: UVec2::new(64, 32) };
+    let water = WaterSettings { enabled: false, ..default() };
+    let props = PropSettings { max_per_chunk: 17, ..default() };
+    let mut app = App::new();
+    app.add_plugins((MinimalPlugins, AssetPlugin::default(), TransformPlugin))
+        .insert_resource(streaming.clone())
+        .insert_resource(tiles.clone())
+        .insert_resource(water)
+        .insert_resource(props);
+    #[cfg(feature = "picking")]
+    let picking = bevy_hex_terrain::HexPickingSettings { max_distance: 123.0, require_markers: true, ..default() };
+    #[cfg(feature = "picking")]
+    app.insert_resource(picking.clone());
+    #[cfg(feature = "render")]
+    let lighting = TerrainLighting { shadows: false, ..default() };
+    #[cfg(feature = "render")]
+    app.insert_resource(lighting.clone());
+    let plugins = HexTerrainPlugins::new(MapConfig::default());
+    #[cfg(feature = "render")]
+    app.add_plugins(plugins.build().disable::<HexTerrainMaterialPlugin>());
+    #[cfg(not(feature = "render"))]
+    app.add_plugins(plugins);
+    app.update();
+    let world = app.world();
+    assert_eq!(world.resource::<HexStreamingSettings>(), &streaming);
+    assert_eq!(world.resource::<TileStateSettings>(), &tiles);
+    assert_eq!(world.resource::<WaterSettings>(), &water);
+    assert_eq!(world.resource::<PropSettings>(), &props);
+    #[cfg(feature = "picking")]
+    assert_eq!(world.resource::<bevy_hex_terrain::HexPickingSettings>(), &picking);
+    #[cfg(feature = "render")]
+    assert_eq!(world.resource::<TerrainLighting>(), &lighting);
+}
+
+/// Without a value inserted, each plugin adds its default.
+#[test]
+fn each_plugin_adds_its_default_settings() {
+    let mut app = App::new();
+    app.add_plugins((MinimalPlugins, AssetPlugin::default(), TransformPlugin));
+    let plugins = HexTerrainPlugins::new(MapConfig::default());
+    #[cfg(feature = "render")]
+    app.add_plugins(plugins.build().disable::<HexTerrainMaterialPlugin>());
+    #[cfg(not(feature = "render"))]
+    app.add_plugins(plugins);
+    app.update();
+    let world = app.world();
+    assert_eq!(world.resource::<HexStreamingSettings>(), &HexStreamingSettings::default());
+    assert_eq!(world.resource::<TileStateSettings>(), &TileStateSettings::default());
+}
