@@ -23,6 +23,7 @@ struct Flyer;
 struct Counter;
 
 fn main() {
+    support::require_asset("maps/continent.map.ron");
     App::new()
         .add_plugins((
             DefaultPlugins.build().disable::<TransformPlugin>(),

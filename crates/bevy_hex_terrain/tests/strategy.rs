@@ -115,3 +115,24 @@ fn scripted_turn(name: &str, env: &[(&str, &str)]) -> String {
     assert!(colors.len() > 500, "the screenshot looks blank ({} colors)", colors.len());
     stdout.into_owned()
 }
+
+/// Run from a folder without `assets/` (the binary alone, or a wrong `BEVY_ASSET_ROOT`), the
+/// examples that load a map file exit with an error naming the path and `BEVY_ASSET_ROOT`,
+/// before opening a window, instead of drawing nothing and exiting 0.
+#[test]
+fn examples_without_their_assets_exit_with_the_path() {
+    let nowhere = Path::new(env!("CARGO_TARGET_TMPDIR")).join("no-assets-here");
+    std::fs::create_dir_all(&nowhere).unwrap();
+    for name in ["strategy", "far"] {
+        let out = std::process::Command::new(example(name))
+            .current_dir(&nowhere)
+            .env("BEVY_ASSET_ROOT", &nowhere)
+            .env_remove("CARGO_MANIFEST_DIR")
+            .output()
+            .unwrap();
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{name}: {stderr}");
+        assert!(stderr.contains("BEVY_ASSET_ROOT") && stderr.contains("asset folder is missing"), "{name}: {stderr}");
+        assert!(stderr.contains(&nowhere.join("assets").display().to_string()), "{name}: {stderr}");
+    }
+}

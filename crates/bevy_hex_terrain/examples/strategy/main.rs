@@ -97,6 +97,7 @@ fn main() -> AppExit {
     let settle = std::env::var_os("HEXTERRAIN_SETTLE").is_some();
     // HEXTERRAIN_LOD=off draws every chunk at full detail (levels of detail compared).
     let streaming = support::streaming_from_env();
+    support::require_asset(&map);
     let mut app = App::new();
     // HEXTERRAIN_FOG=off starts without the fog of war (V toggles it).
     let fog_of_war = std::env::var("HEXTERRAIN_FOG").map_or(true, |v| v != "off");

@@ -1,5 +1,6 @@
 //! What the examples share besides the plugin: the screenshot mode (`HEXTERRAIN_SCREENSHOT`) that
-//! the README's pictures and the tests use, and the figures of what a frame draws.
+//! the README's pictures and the tests use, the figures of what a frame draws, and the check
+//! that the map file an example loads is where Bevy looks for it.
 #![allow(dead_code, reason = "each example uses its own part")]
 
 pub mod render_figures;
@@ -13,4 +14,25 @@ pub fn streaming_from_env() -> bevy_hex_terrain::HexStreamingSettings {
         streaming.coarse_distance = None;
     }
     streaming
+}
+
+/// Exits with status 2 and a message naming the path and `BEVY_ASSET_ROOT` when the map file an
+/// example loads at start (`path`, relative to the asset folder) is not where Bevy's asset
+/// server looks for it: `assets/` under `BEVY_ASSET_ROOT`, else under the crate when run by
+/// `cargo run`, else beside the executable. Without it a binary run from elsewhere would log an
+/// error, draw an empty picture and exit 0.
+pub fn require_asset(path: &str) {
+    let root = bevy::asset::io::file::FileAssetReader::get_base_path().join("assets");
+    let file = root.join(path);
+    if file.is_file() {
+        return;
+    }
+    let what = if root.is_dir() { "the map file" } else { "the asset folder" };
+    eprintln!(
+        "error: {what} is missing: {} (the asset folder is {}; set BEVY_ASSET_ROOT to the directory holding \
+         `assets/`, e.g. crates/bevy_hex_terrain, or run the example with `cargo run --example`)",
+        file.display(),
+        root.display()
+    );
+    std::process::exit(2);
 }
