@@ -64,6 +64,16 @@ pub struct HexMapEdited {
     pub generation: u64,
 }
 
+/// An operation ran and changed nothing: a stroke that sets what its tiles already have, or an
+/// undo or redo with nothing to take back or apply again. [`HexMap`] is as it was (no new
+/// generation); every [`HexMapEdit`] other than a save is answered by exactly one of
+/// [`HexMapEdited`], this, or [`HexMapError`].
+#[derive(Message, Debug, Clone, Copy, PartialEq, Eq, Reflect)]
+pub struct HexMapUnchanged {
+    /// What was asked.
+    pub action: EditAction,
+}
+
 /// The edited map's file was written.
 #[derive(Message, Debug, Clone, PartialEq, Eq, Reflect)]
 pub struct HexMapSaved {
@@ -157,8 +167,8 @@ impl HexEditor {
     }
 }
 
-/// The world builder: [`HexEditor`], [`HexMapEdit`] in, [`HexMapEdited`] and [`HexMapSaved`]
-/// out, refusals as [`HexMapError`]; its system runs in [`HexTerrainSystems::Map`], after the map
+/// The world builder: [`HexEditor`], [`HexMapEdit`] in, [`HexMapEdited`] (or
+/// [`HexMapUnchanged`]) and [`HexMapSaved`] out, refusals as [`HexMapError`]; its system runs in [`HexTerrainSystems::Map`], after the map
 /// assets. Needs [`HexMapPlugin`](crate::HexMapPlugin).
 ///
 /// A hot reload of the map file (or another map) replaces the terrain and starts a new undo
@@ -175,9 +185,11 @@ impl Plugin for HexEditorPlugin {
         app.init_resource::<HexEditor>()
             .add_message::<HexMapEdit>()
             .add_message::<HexMapEdited>()
+            .add_message::<HexMapUnchanged>()
             .add_message::<HexMapSaved>()
             .register_type::<HexMapEdit>()
             .register_type::<HexMapEdited>()
+            .register_type::<HexMapUnchanged>()
             .register_type::<HexMapSaved>()
             .add_systems(Update, run_edits.after(crate::map::MapAssets).in_set(HexTerrainSystems::Map));
     }
@@ -187,6 +199,7 @@ impl Plugin for HexEditorPlugin {
 #[derive(bevy::ecs::system::SystemParam)]
 struct EditReports<'w> {
     edited: MessageWriter<'w, HexMapEdited>,
+    unchanged: MessageWriter<'w, HexMapUnchanged>,
     saved: MessageWriter<'w, HexMapSaved>,
     errors: MessageWriter<'w, HexMapError>,
 }
@@ -270,7 +283,9 @@ fn finish(state: &mut HexEditor, map: &mut HexMap, outcome: Outcome, name: &str,
             state.follows = Some(map.generation());
             reports.edited.write(HexMapEdited { action, change, generation: map.generation() });
         }
-        Ok(_) => {}
+        Ok(_) => {
+            reports.unchanged.write(HexMapUnchanged { action });
+        }
         Err(e) => {
             let error = HexMapError::Edit { map: name.to_owned(), message: e.to_string() };
             warn!("{error}");

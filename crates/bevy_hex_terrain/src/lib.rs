@@ -10,7 +10,7 @@
 //! | set | plugin | what it does | its settings |
 //! | --- | --- | --- | --- |
 //! | [`Map`](HexTerrainSystems::Map) | [`HexMapPlugin`] | loads `*.map.ron` assets (hot reload, [`LoadHexMap`]) into the [`HexMap`] resource; a bad file is a [`HexMapError`] and the old map stays | [`MapSource`] |
-//! | [`Map`](HexTerrainSystems::Map) | [`HexEditorPlugin`] | the world builder: [`HexMapEdit`] strokes, undo, redo and save run on the async compute pool; each edit makes a [`HexMap`] generation in which only its chunks are rebuilt ([`HexMapEdited`]) | |
+//! | [`Map`](HexTerrainSystems::Map) | [`HexEditorPlugin`] | the world builder: [`HexMapEdit`] strokes, undo, redo and save run on the async compute pool; each edit makes a [`HexMap`] generation in which only its chunks are rebuilt ([`HexMapEdited`]; one that changes nothing, [`HexMapUnchanged`]) | |
 //! | [`Stream`](HexTerrainSystems::Stream) | [`HexStreamingPlugin`] | keeps [`HexChunk`]s around every [`HexTerrainAgent`], each built on the async compute pool from a snapshot of the settings below; a dropped chunk is hidden at once and its children despawned a budget a frame | [`HexStreamingSettings`] |
 //! | [`Insert`](HexTerrainSystems::Insert) | [`HexStreamingPlugin`] | inserts finished meshes and their [`ChunkContent`] under a per-frame budget, sends [`ChunkSpawned`], [`TerrainReady`] | |
 //! | [`Children`](HexTerrainSystems::Children) | [`HexWaterPlugin`], [`HexPropsPlugin`] | spawn each chunk's [`HexWater`] surface and [`HexProp`]s (a budget a frame, nearest chunks first) from its content | [`WaterSettings`], [`PropSettings`] |
@@ -74,7 +74,9 @@ pub use hex_terrain;
 use hex_terrain::MapConfig;
 
 pub use crate::asset::{HexMapAsset, HexMapLoader, HexMapLoaderError};
-pub use crate::editor::{EditAction, HexEditor, HexEditorPlugin, HexMapEdit, HexMapEdited, HexMapSaved};
+pub use crate::editor::{
+    EditAction, HexEditor, HexEditorPlugin, HexMapEdit, HexMapEdited, HexMapSaved, HexMapUnchanged,
+};
 #[cfg(feature = "big_space")]
 pub use crate::far::{HexBigSpacePlugin, HexTerrainGrid};
 #[cfg(feature = "render")]
@@ -115,18 +117,18 @@ pub mod prelude {
     #[cfg(feature = "minimap")]
     pub use crate::minimap::{HexMinimapPlugin, MinimapNavigate, MinimapSettings};
     #[cfg(feature = "picking")]
-    pub use crate::picking::{HexPick, HexPickingPlugin};
+    pub use crate::picking::{HexPick, HexPickingPlugin, HexPickingSettings};
     pub use crate::{
         ChunkContent, ChunkDespawned, ChunkSpawned, ChunkStreamer, FogState, HexChunk, HexEditor, HexMap, HexMapEdit,
-        HexMapEdited, HexMapError, HexMapPlugin, HexProp, HexPropsPlugin, HexStreamingPlugin, HexStreamingSettings,
-        HexTerrainAgent, HexTerrainPlugins, HexTerrainStats, HexTerrainSystems, HexTileStatePlugin, HexWater,
-        HexWaterPlugin, HexWorldPosition, Highlight, LoadHexMap, MapSource, PropSettings, SaveError, TerrainReady,
-        TileHit, TileStateSave, TileStateStyle, TileStates, WaterSettings,
+        HexMapEdited, HexMapError, HexMapPlugin, HexMapUnchanged, HexProp, HexPropsPlugin, HexStreamingPlugin,
+        HexStreamingSettings, HexTerrainAgent, HexTerrainPlugins, HexTerrainStats, HexTerrainSystems,
+        HexTileStatePlugin, HexWater, HexWaterPlugin, HexWorldPosition, Highlight, LoadHexMap, MapSource, PropSettings,
+        SaveError, TerrainReady, TileHit, TileStateSave, TileStateSettings, TileStateStyle, TileStates, WaterSettings,
     };
     pub use hex_terrain::hexx::Hex;
     pub use hex_terrain::{
-        Biome, ChunkCoord, Detail, MapConfig, MapSize, PlacedResource, PlacedWonder, ResourceClass, RiverTile, Setup,
-        SetupConfig, TileInfo, TileKind,
+        Biome, Brush, Change, ChunkCoord, Detail, EditError, MapConfig, MapSize, PlacedResource, PlacedWonder,
+        ResourceClass, RiverTile, Setup, SetupConfig, Stroke, TileEdit, TileInfo, TileKind, Tool,
     };
 }
 

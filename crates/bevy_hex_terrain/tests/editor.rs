@@ -11,7 +11,7 @@ use bevy::mesh::VertexAttributeValues;
 use bevy::prelude::*;
 use bevy_hex_terrain::hex_terrain::{Brush, Stroke, Tool};
 use bevy_hex_terrain::prelude::*;
-use bevy_hex_terrain::{EditAction, HexMapSaved};
+use bevy_hex_terrain::{EditAction, HexMapSaved, HexMapUnchanged};
 use common::*;
 
 /// Every message of type `M` sent so far (kept in a resource, so none is missed between updates).
@@ -96,6 +96,18 @@ fn an_edit_rebuilds_exactly_its_chunks_and_undo_gives_back_the_meshes() {
     assert_eq!(seen::<HexMapEdited>(&app)[1].action, EditAction::Undo);
     assert!(mesh_positions(&mut app) == generated, "undo gives back the generated meshes");
     assert_eq!(app.world().resource::<HexEditor>().redo_len(), 1);
+
+    // An operation that changes nothing is answered too: a stroke setting what the tile has, an
+    // undo with nothing left to take back.
+    keep::<HexMapUnchanged>(&mut app);
+    let g = app.world().resource::<HexMap>().generation();
+    edit(&mut app, HexMapEdit::Stroke(Stroke { tool: Tool::Erase, brush: Brush::Range(0), tile }));
+    edit(&mut app, HexMapEdit::Undo);
+    run_until(&mut app, "two answers", |app| seen::<HexMapUnchanged>(app).len() >= 2);
+    let unchanged: Vec<EditAction> = seen::<HexMapUnchanged>(&app).iter().map(|u| u.action).collect();
+    assert_eq!(unchanged, [EditAction::Stroke, EditAction::Undo]);
+    assert_eq!(app.world().resource::<HexMap>().generation(), g);
+    assert_eq!(seen::<HexMapEdited>(&app).len(), 2);
 
     // A stroke the editor refuses: reported by the map's name, the terrain as it was.
     let g = app.world().resource::<HexMap>().generation();
