@@ -28,9 +28,13 @@ pub use source::MapSource;
 ///
 /// Positions are Bevy world coordinates: `x` and `z` on the ground, `y` up.
 ///
-/// It changes (in Bevy's change detection) only when another map takes effect, so
-/// `resource_changed::<HexMap>` means "new terrain". Which chunks are loaded is
-/// [`ChunkStreamer`](crate::ChunkStreamer)'s business.
+/// It changes (in Bevy's change detection) only when its terrain does: another map takes
+/// effect, a hot reload applies, or an edit applies ([`HexMapEdited`](crate::HexMapEdited));
+/// streaming never marks it changed. So `resource_changed::<HexMap>` means "new terrain", not
+/// "new map": code that runs once per map compares [`map_id`](Self::map_id), which an edit and a
+/// hot reload keep, and waits while [`is_waiting_for_asset`](Self::is_waiting_for_asset) (the
+/// placeholder shown while a map file loads has the file's `map_id` already). Which chunks are
+/// loaded is [`ChunkStreamer`](crate::ChunkStreamer)'s business.
 #[derive(Resource, Debug, Clone)]
 pub struct HexMap {
     terrain: Arc<Terrain>,

@@ -40,8 +40,8 @@
 //!   input, never panic, and say nothing of the terrain.
 //! - **Nothing clamps silently, nothing panics**: a value a caller chose (a config, an edit, a
 //!   stroke, a save) out of its range is refused with an error naming it
-//!   ([`ConfigError`](crate::ConfigError), [`EditError`](crate::EditError),
-//!   [`SaveError`](crate::SaveError)); queries never return errors.
+//!   ([`ConfigError`], [`EditError`](crate::EditError), [`SaveError`](crate::SaveError));
+//!   queries never return errors.
 
 mod generate;
 mod setup;
