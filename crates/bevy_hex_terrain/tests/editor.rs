@@ -62,9 +62,17 @@ fn watered() -> MapConfig {
     config
 }
 
+/// Every `ChunkSpawned` triggered on a chunk entity (a global observer sees each).
+#[derive(Resource, Default)]
+struct Observed(Vec<ChunkSpawned>);
+
 #[test]
 fn an_edit_rebuilds_exactly_its_chunks_and_undo_gives_back_the_meshes() {
     let mut app = app(watered(), 2);
+    app.init_resource::<Observed>().add_observer(|e: On<ChunkSpawned>, mut seen: ResMut<Observed>| {
+        seen.0.push(*e.event());
+    });
+    keep::<ChunkSpawned>(&mut app);
     keep::<HexMapEdited>(&mut app);
     keep::<HexMapError>(&mut app);
     run_until(&mut app, "the map", ready);
@@ -88,6 +96,14 @@ fn an_edit_rebuilds_exactly_its_chunks_and_undo_gives_back_the_meshes() {
     let map = app.world().resource::<HexMap>();
     assert_eq!((map.map_id(), map.generation()), (map_id, edited.generation));
     assert!(map.tile_info(tile).unwrap().elevation > low, "the raised tile is higher");
+    // Each chunk's mesh came as a message and as an event on the chunk entity, the first time
+    // with `first`; the edit's chunks came again, not first.
+    let observed = app.world().resource::<Observed>().0.clone();
+    assert_eq!(observed, seen::<ChunkSpawned>(&app), "the events on the chunks are the messages");
+    let firsts: Vec<Entity> = observed.iter().filter(|e| e.first).map(|e| e.entity).collect();
+    assert_eq!(firsts.len(), firsts.iter().collect::<HashSet<_>>().len(), "one first mesh a chunk");
+    let again: HashSet<ChunkCoord> = observed.iter().filter(|e| !e.first).map(|e| e.coord).collect();
+    assert_eq!(again, reported, "the rebuilt chunks come again, not first");
     assert_eq!(app.world().resource::<TileStates>().owner(tile), Some(2), "tile states stay through an edit");
     assert_eq!(app.world().resource::<HexEditor>().undo_len(), 1);
 

@@ -131,6 +131,11 @@ fn map_queries_agree_with_the_core_crate() {
         assert_eq!(map.tile_at(center).unwrap(), tile);
         assert!(map.contains(tile));
         assert_eq!(map.neighbors(tile).unwrap(), tile.all_neighbors().map(|n| map.contains(n).then_some(n)));
+        // Each query's f32 and f64 forms agree.
+        let normal = map.surface_normal(center).unwrap();
+        assert_eq!(normal, map.surface_normal_f64(center.as_dvec3()).unwrap().as_vec3());
+        let far = Vec3::new(center.x + 1000.0, 0.0, center.z);
+        assert_eq!(map.wrap_near(center, far), map.wrap_near_f64(center.as_dvec3(), far.as_dvec3()).as_vec3());
         let ray = Ray3d::new(center + Vec3::new(2.0, 30.0, 1.0), Dir3::new(-Vec3::new(2.0, 30.0, 1.0)).unwrap());
         let hit = map.raycast(ray, 100.0).unwrap();
         assert_eq!(hit.tile, tile);

@@ -276,8 +276,14 @@ impl HexMap {
         self.terrain.surface_height(world.x, world.z)
     }
 
-    /// Upward unit normal of the surface (as meshed) at an f64 world position; `None` past the
+    /// Upward unit normal of the surface (as meshed) at a world position; `None` past the
     /// world's edge.
+    #[must_use]
+    pub fn surface_normal(&self, world: Vec3) -> Option<Vec3> {
+        self.surface_normal_f64(world.as_dvec3()).map(|n| n.as_vec3())
+    }
+
+    /// [`surface_normal`](Self::surface_normal) at an f64 world position.
     #[must_use]
     pub fn surface_normal_f64(&self, world: DVec3) -> Option<DVec3> {
         self.terrain.surface_normal(world.x, world.z).map(DVec3::from_array)
@@ -320,6 +326,14 @@ impl HexMap {
         let Some(width) = self.terrain.wrap().map(|w| w.width as f32) else { return position };
         let k = ((near.x - position.x) / width).round();
         position + Vec3::X * (k * width)
+    }
+
+    /// [`wrap_near`](Self::wrap_near) in f64 (positions far from the origin).
+    #[must_use]
+    pub fn wrap_near_f64(&self, position: DVec3, near: DVec3) -> DVec3 {
+        let Some(width) = self.terrain.wrap().map(|w| w.width) else { return position };
+        let k = ((near.x - position.x) / width).round();
+        position + DVec3::X * (k * width)
     }
 
     /// Whether a tile belongs to the map (every tile of the world, for an unbounded one).

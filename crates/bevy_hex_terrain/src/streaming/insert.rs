@@ -60,6 +60,7 @@ pub(crate) fn insert_ready(
         // A hot reload may move a chunk's origin (another hex size): place it again.
         chunk.origin = super::tasks::chunk_origin(&terrain, chunk.coord);
         commands.entity(entity).insert((Mesh3d(handle), content, Transform::from_translation(chunk.origin.as_vec3())));
+        let first = chunk.generation.is_none();
         chunk.generation = Some(build.generation);
         chunk.vertices = build.vertices;
         chunk.mesh_bytes = build.mesh_bytes;
@@ -67,7 +68,9 @@ pub(crate) fn insert_ready(
         streamer.loaded.insert(chunk.coord);
         streamer.current.insert(chunk.coord);
         stats.inserted(requested.elapsed().as_secs_f32());
-        spawned.write(ChunkSpawned { entity, coord: chunk.coord });
+        let event = ChunkSpawned { entity, coord: chunk.coord, first };
+        spawned.write(event);
+        commands.trigger(event);
     }
 
     // Copies of those chunks past a wrapping map's edge waiting for the mesh (at its level) show
@@ -92,13 +95,16 @@ pub(crate) fn insert_ready(
                 content.clone(),
                 Transform::from_translation(chunk.origin.as_vec3()),
             ));
+            let first = chunk.generation.is_none();
             chunk.generation = Some(generation);
             chunk.vertices = vertices;
             chunk.mesh_bytes = mesh_bytes;
             chunk.detail = detail;
             streamer.loaded.insert(chunk.coord);
             streamer.current.insert(chunk.coord);
-            spawned.write(ChunkSpawned { entity, coord: chunk.coord });
+            let event = ChunkSpawned { entity, coord: chunk.coord, first };
+            spawned.write(event);
+            commands.trigger(event);
         }
     }
 

@@ -132,13 +132,19 @@ pub struct HexChunk {
     pub detail: Detail,
 }
 
-/// A chunk's mesh was inserted (first time or regenerated).
-#[derive(Message, Debug, Clone, Copy, Reflect)]
+/// A chunk's mesh was inserted: the first time (`first`), or again after an edit, a hot reload
+/// or a level-of-detail change. Sent as a message (read every chunk's with a
+/// `MessageReader<ChunkSpawned>`) and triggered as an entity event on the chunk entity (observe
+/// one chunk with `commands.entity(chunk).observe(|event: On<ChunkSpawned>| ...)`, or all with
+/// a global observer).
+#[derive(Message, EntityEvent, Debug, Clone, Copy, PartialEq, Reflect)]
 pub struct ChunkSpawned {
     /// The chunk entity.
     pub entity: Entity,
     /// Chunk column and row.
     pub coord: ChunkCoord,
+    /// Whether this is the entity's first mesh (false when it is rebuilt).
+    pub first: bool,
 }
 
 /// A chunk left the world.

@@ -135,6 +135,7 @@ pub(crate) fn stream(
                 let chunk =
                     HexChunk { generation: Some(generation), vertices, mesh_bytes, detail, ..new_chunk(&terrain, c) };
                 let shown = (mesh, content, chunk, chunk_transform(&terrain, c));
+                let first = !streamer.loaded.contains(&c);
                 let e = match streamer.chunks.get(&c) {
                     Some(&e) => commands.entity(e).insert(shown).id(),
                     None => commands.spawn((Name::new(format!("hex chunk {} {}", c.x, c.z)), shown)).id(),
@@ -142,7 +143,9 @@ pub(crate) fn stream(
                 streamer.chunks.insert(c, e);
                 streamer.loaded.insert(c);
                 streamer.current.insert(c);
-                spawned.write(ChunkSpawned { entity: e, coord: c });
+                let event = ChunkSpawned { entity: e, coord: c, first };
+                spawned.write(event);
+                commands.trigger(event);
                 continue;
             }
             Twin::None => {}
