@@ -86,17 +86,21 @@ pub struct HexMapSaved {
 /// The world builder's state: the core [`Editor`] following [`HexMap`], the operations waiting
 /// and the one running. Read it for the undo and redo counts and the edits; change the map with
 /// [`HexMapEdit`] messages.
-#[derive(Resource, Default)]
+#[derive(Resource, Default, Reflect)]
+#[reflect(Resource, Default)]
 pub struct HexEditor {
     /// The editor, when no task holds it.
+    #[reflect(ignore)]
     editor: Option<Editor>,
     /// The [`HexMap::generation`] the editor's terrain is.
     follows: Option<u64>,
     /// Operations waiting for the running one.
     queue: VecDeque<HexMapEdit>,
     /// The operation running: the editor, what it did, the generation it started from.
+    #[reflect(ignore)]
     running: Option<Task<Outcome>>,
     /// Files being written.
+    #[reflect(ignore)]
     saving: Vec<Task<Result<HexMapSaved, (PathBuf, String)>>>,
     /// Figures of the editor as of the last operation.
     counts: Counts,
@@ -111,7 +115,7 @@ struct Outcome {
 }
 
 /// Undo and redo depths and the edited tiles, kept for reading while a task holds the editor.
-#[derive(Debug, Clone, Copy, Default)]
+#[derive(Debug, Clone, Copy, Default, Reflect)]
 struct Counts {
     undo: usize,
     redo: usize,
@@ -183,6 +187,7 @@ impl Plugin for HexEditorPlugin {
             panic!("HexEditorPlugin needs HexMapPlugin: add HexTerrainPlugins (or HexMapPlugin before it)");
         }
         app.init_resource::<HexEditor>()
+            .register_type::<HexEditor>()
             .add_message::<HexMapEdit>()
             .add_message::<HexMapEdited>()
             .add_message::<HexMapUnchanged>()

@@ -60,3 +60,31 @@ fn each_plugin_adds_its_default_settings() {
     assert_eq!(world.resource::<HexStreamingSettings>(), &HexStreamingSettings::default());
     assert_eq!(world.resource::<TileStateSettings>(), &TileStateSettings::default());
 }
+
+/// The plugins' public resources are reflected and registered (an inspector lists them).
+#[test]
+fn public_resources_are_reflected_and_registered() {
+    use bevy::reflect::Reflect;
+    let mut app = App::new();
+    app.add_plugins((MinimalPlugins, AssetPlugin::default(), TransformPlugin));
+    let plugins = HexTerrainPlugins::new(MapConfig::default());
+    #[cfg(feature = "render")]
+    app.add_plugins(plugins.build().disable::<HexTerrainMaterialPlugin>());
+    #[cfg(not(feature = "render"))]
+    app.add_plugins(plugins);
+    app.update();
+    let registry = app.world().resource::<AppTypeRegistry>().read();
+    let world = app.world();
+    let reflected: [&dyn Reflect; 6] = [
+        world.resource::<HexMap>(),
+        world.resource::<ChunkStreamer>(),
+        world.resource::<HexTerrainStats>(),
+        world.resource::<HexEditor>(),
+        world.resource::<HexStreamingSettings>(),
+        world.resource::<TileStates>(),
+    ];
+    for value in reflected {
+        let path = value.reflect_type_path();
+        assert!(registry.get_with_type_path(path).is_some(), "{path} is not registered");
+    }
+}

@@ -67,6 +67,7 @@ impl Plugin for HexMapPlugin {
             .add_message::<LoadHexMap>()
             .register_type::<HexMapError>()
             .register_type::<LoadHexMap>()
+            .register_type::<HexMap>()
             // A new config must be in place before chunks are requested against it, and a
             // chunk must be requested before its mesh can be inserted.
             .configure_sets(

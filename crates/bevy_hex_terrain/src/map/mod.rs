@@ -35,8 +35,11 @@ pub use source::MapSource;
 /// hot reload keep, and waits while [`is_waiting_for_asset`](Self::is_waiting_for_asset) (the
 /// placeholder shown while a map file loads has the file's `map_id` already). Which chunks are
 /// loaded is [`ChunkStreamer`](crate::ChunkStreamer)'s business.
-#[derive(Resource, Debug, Clone)]
+#[derive(Resource, Debug, Clone, Reflect)]
+#[reflect(from_reflect = false, Debug)]
 pub struct HexMap {
+    /// The compiled terrain (not reflected: the core's stages hold no reflected state).
+    #[reflect(ignore)]
     terrain: Arc<Terrain>,
     generation: u64,
     /// The generation of the last new config (every chunk changed then).
@@ -48,6 +51,7 @@ pub struct HexMap {
     waiting_for_asset: bool,
     appearance_fallback: bool,
     /// The map asset whose config is applied, if any, with its heightmap.
+    #[reflect(ignore)]
     applied: Option<(AssetId<crate::asset::HexMapAsset>, Option<Arc<hex_terrain::HeightImage>>)>,
 }
 

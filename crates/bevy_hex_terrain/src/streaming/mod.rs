@@ -164,7 +164,8 @@ pub struct TerrainReady {
 
 /// Which chunks exist, which are wanted and which show a mesh: the streaming bookkeeping,
 /// written by the streaming systems and read through its getters.
-#[derive(Resource, Debug, Default)]
+#[derive(Resource, Debug, Default, Reflect)]
+#[reflect(Resource, Debug, Default)]
 pub struct ChunkStreamer {
     chunks: HashMap<ChunkCoord, Entity>,
     wanted: HashMap<ChunkCoord, u32>,
@@ -178,8 +179,10 @@ pub struct ChunkStreamer {
     /// Whether every wanted chunk was current at the end of the last frame.
     settled: bool,
     /// Dropped chunks whose children are being despawned.
+    #[reflect(ignore)]
     retiring: retire::Retiring,
     /// The wanted chunks' boxes, which their level of detail is measured from.
+    #[reflect(ignore)]
     boxes: detail::ChunkBoxes,
 }
 
@@ -263,6 +266,8 @@ impl Plugin for HexStreamingPlugin {
             .register_type::<ChunkSpawned>()
             .register_type::<ChunkDespawned>()
             .register_type::<TerrainReady>()
+            .register_type::<ChunkStreamer>()
+            .register_type::<HexTerrainStats>()
             .add_systems(
                 Update,
                 (

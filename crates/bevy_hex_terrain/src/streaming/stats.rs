@@ -8,7 +8,8 @@ use bevy::prelude::*;
 const LATENCY_WINDOW: usize = 1024;
 
 /// Streaming figures, read through getters.
-#[derive(Resource, Debug, Default)]
+#[derive(Resource, Debug, Default, Reflect)]
+#[reflect(Resource, Debug, Default)]
 pub struct HexTerrainStats {
     latencies: VecDeque<f32>,
     tasks_started: u64,
