@@ -8,32 +8,41 @@ use bevy::prelude::*;
 use bevy_hex_terrain::prelude::*;
 use bevy_hex_terrain::{HexTerrainPlugins, TileStateSettings};
 
-#[test]
-fn settings_inserted_before_the_plugins_are_kept() {
-    let streaming = HexStreamingSettings { load_radius: 5, prefetch: 3, max_tasks_in_flight: 7, ..default() };
-    let tiles = TileStateSettings { max_window: UVec2::new(64, 32) };
-    let water = WaterSettings { enabled: false, ..default() };
-    let props = PropSettings { max_per_chunk: 17, ..default() };
+/// A headless app with the terrain plugins (no material), after `before` ran on it before they
+/// were added, updated once.
+fn app_after(before: impl FnOnce(&mut App)) -> App {
     let mut app = App::new();
-    app.add_plugins((MinimalPlugins, AssetPlugin::default(), TransformPlugin))
-        .insert_resource(streaming.clone())
-        .insert_resource(tiles.clone())
-        .insert_resource(water)
-        .insert_resource(props);
-    #[cfg(feature = "picking")]
-    let picking = bevy_hex_terrain::HexPickingSettings { max_distance: 123.0, require_markers: true, ..default() };
-    #[cfg(feature = "picking")]
-    app.insert_resource(picking.clone());
-    #[cfg(feature = "render")]
-    let lighting = TerrainLighting { shadows: false, ..default() };
-    #[cfg(feature = "render")]
-    app.insert_resource(lighting.clone());
+    app.add_plugins((MinimalPlugins, AssetPlugin::default(), TransformPlugin));
+    before(&mut app);
     let plugins = HexTerrainPlugins::new(MapConfig::default());
     #[cfg(feature = "render")]
     app.add_plugins(plugins.build().disable::<HexTerrainMaterialPlugin>());
     #[cfg(not(feature = "render"))]
     app.add_plugins(plugins);
     app.update();
+    app
+}
+
+#[test]
+fn settings_inserted_before_the_plugins_are_kept() {
+    let streaming = HexStreamingSettings { load_radius: 5, prefetch: 3, max_tasks_in_flight: 7, ..default() };
+    let tiles = TileStateSettings { max_window: UVec2::new(64, 32) };
+    let water = WaterSettings { enabled: false, ..default() };
+    let props = PropSettings { max_per_chunk: 17, ..default() };
+    #[cfg(feature = "picking")]
+    let picking = bevy_hex_terrain::HexPickingSettings { max_distance: 123.0, require_markers: true, ..default() };
+    #[cfg(feature = "render")]
+    let lighting = TerrainLighting { shadows: false, ..default() };
+    let app = app_after(|app| {
+        app.insert_resource(streaming.clone())
+            .insert_resource(tiles.clone())
+            .insert_resource(water)
+            .insert_resource(props);
+        #[cfg(feature = "picking")]
+        app.insert_resource(picking.clone());
+        #[cfg(feature = "render")]
+        app.insert_resource(lighting.clone());
+    });
     let world = app.world();
     assert_eq!(world.resource::<HexStreamingSettings>(), &streaming);
     assert_eq!(world.resource::<TileStateSettings>(), &tiles);
@@ -48,14 +57,7 @@ fn settings_inserted_before_the_plugins_are_kept() {
 /// Without a value inserted, each plugin adds its default.
 #[test]
 fn each_plugin_adds_its_default_settings() {
-    let mut app = App::new();
-    app.add_plugins((MinimalPlugins, AssetPlugin::default(), TransformPlugin));
-    let plugins = HexTerrainPlugins::new(MapConfig::default());
-    #[cfg(feature = "render")]
-    app.add_plugins(plugins.build().disable::<HexTerrainMaterialPlugin>());
-    #[cfg(not(feature = "render"))]
-    app.add_plugins(plugins);
-    app.update();
+    let app = app_after(|_| {});
     let world = app.world();
     assert_eq!(world.resource::<HexStreamingSettings>(), &HexStreamingSettings::default());
     assert_eq!(world.resource::<TileStateSettings>(), &TileStateSettings::default());
@@ -65,14 +67,7 @@ fn each_plugin_adds_its_default_settings() {
 #[test]
 fn public_resources_are_reflected_and_registered() {
     use bevy::reflect::Reflect;
-    let mut app = App::new();
-    app.add_plugins((MinimalPlugins, AssetPlugin::default(), TransformPlugin));
-    let plugins = HexTerrainPlugins::new(MapConfig::default());
-    #[cfg(feature = "render")]
-    app.add_plugins(plugins.build().disable::<HexTerrainMaterialPlugin>());
-    #[cfg(not(feature = "render"))]
-    app.add_plugins(plugins);
-    app.update();
+    let app = app_after(|_| {});
     let registry = app.world().resource::<AppTypeRegistry>().read();
     let world = app.world();
     let reflected: [&dyn Reflect; 6] = [

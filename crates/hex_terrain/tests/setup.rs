@@ -40,13 +40,7 @@ fn yields(t: &Terrain, cfg: &SetupConfig, tile: Hex) -> Yields {
     if info.river_flow > 0.0 {
         y += cfg.yields.river;
     }
-    let coast = info.kind != TileKind::Sea
-        && t.neighbors(tile)
-            .unwrap()
-            .iter()
-            .flatten()
-            .any(|&n| t.tile_info(n).is_some_and(|i| i.kind == TileKind::Sea && i.biome != Biome::Lake));
-    if coast {
+    if info.kind != TileKind::Sea && next_to_sea(t, tile) {
         y += cfg.yields.coast;
     }
     if let Some(r) = t.resource(tile) {
@@ -56,6 +50,26 @@ fn yields(t: &Terrain, cfg: &SetupConfig, tile: Hex) -> Yields {
         y += cfg.wonders.list[w.rule as usize].yields;
     }
     y
+}
+
+/// Whether a tile of the map has a sea neighbor (sea, not a lake) anywhere on the map.
+fn next_to_sea(t: &Terrain, tile: Hex) -> bool {
+    t.neighbors(tile)
+        .unwrap()
+        .iter()
+        .flatten()
+        .any(|&n| t.tile_info(n).is_some_and(|i| i.kind == TileKind::Sea && i.biome != Biome::Lake))
+}
+
+/// Whether a tile keeps the setup's `start_on` rule (coast: next to the sea; river: on one).
+fn keeps_start_on(t: &Terrain, start_on: StartOn, tile: Hex) -> bool {
+    let (coast, river) = (next_to_sea(t, tile), t.tile_info(tile).unwrap().river_flow > 0.0);
+    match start_on {
+        StartOn::Land => true,
+        StartOn::Coast => coast,
+        StartOn::River => river,
+        StartOn::CoastOrRiver => coast || river,
+    }
 }
 
 fn allowed(t: &Terrain, tile: Hex, on: &[Place]) -> bool {
@@ -119,20 +133,7 @@ fn check_setup(t: &Terrain) -> Result<(), TestCaseError> {
         prop_assert_eq!(info.kind, TileKind::Land, "start {} on {:?}", p, info.kind);
         prop_assert!(!info.biome.is_water() && info.lake.is_none(), "start {p} on water");
         prop_assert!(cfg.cost(info.biome) > 0, "start {p} impassable");
-        let coast = t
-            .neighbors(s)
-            .unwrap()
-            .iter()
-            .flatten()
-            .any(|&n| t.tile_info(n).is_some_and(|i| i.kind == TileKind::Sea && i.biome != Biome::Lake));
-        let river = info.river_flow > 0.0;
-        let ok = match cfg.start_on {
-            StartOn::Land => true,
-            StartOn::Coast => coast,
-            StartOn::River => river,
-            StartOn::CoastOrRiver => coast || river,
-        };
-        prop_assert!(ok, "start {p} breaks {:?}", cfg.start_on);
+        prop_assert!(keeps_start_on(t, cfg.start_on, s), "start {p} breaks {:?}", cfg.start_on);
         for &o in &starts[p + 1..] {
             prop_assert!(t.distance(s, o).unwrap() >= cfg.min_distance, "starts closer than {}", cfg.min_distance);
         }
@@ -492,23 +493,11 @@ fn eligible(t: &Terrain, cfg: &SetupConfig, area: TileRect) -> Vec<Hex> {
         .map(|oc| t.tile_from_offset(oc))
         .filter(|&tile| {
             let info = t.tile_info(tile).unwrap();
-            let coast = t
-                .neighbors(tile)
-                .unwrap()
-                .iter()
-                .flatten()
-                .any(|&n| t.tile_info(n).is_some_and(|i| i.kind == TileKind::Sea && i.biome != Biome::Lake));
-            let river = info.river_flow > 0.0;
             info.kind == TileKind::Land
                 && !info.biome.is_water()
                 && info.lake.is_none()
                 && cfg.cost(info.biome) > 0
-                && match cfg.start_on {
-                    StartOn::Land => true,
-                    StartOn::Coast => coast,
-                    StartOn::River => river,
-                    StartOn::CoastOrRiver => coast || river,
-                }
+                && keeps_start_on(t, cfg.start_on, tile)
         })
         .collect()
 }
