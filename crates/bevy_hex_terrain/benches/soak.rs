@@ -91,7 +91,7 @@ fn sample(app: &mut App, reloads: u32) -> Sample {
     let orphans = parents.iter().filter(|&&p| app.world().get::<HexChunk>(p).is_none()).count();
     let world = app.world();
     Sample {
-        chunks: world.resource::<HexTerrainStats>().meshes_inserted(),
+        chunks: world.resource::<HexStreamingStats>().meshes_inserted(),
         reloads,
         rss_mib: status_kib("VmRSS") as f64 / 1024.0,
         peak_mib: status_kib("VmHWM") as f64 / 1024.0,
@@ -211,7 +211,7 @@ fn main() {
         play(&mut app, position, frame);
         app.update();
         std::thread::sleep(Duration::from_micros(500));
-        let chunks = app.world().resource::<HexTerrainStats>().meshes_inserted();
+        let chunks = app.world().resource::<HexStreamingStats>().meshes_inserted();
         if chunks >= next_reload {
             next_reload += 300;
             reloads += 1;

@@ -185,9 +185,9 @@ fn walk(seconds: u32, threads: ChunkThreads, props: bool) -> Walk {
         .insert_resource(settings)
         .add_plugins(HexTerrainPlugins::new(config).build().disable::<HexTerrainMaterialPlugin>())
         .init_resource::<FrameTimes>()
-        .insert_resource(PropSettings { enabled: props, ..PropSettings::default() })
+        .insert_resource(HexPropSettings { enabled: props, ..HexPropSettings::default() })
         // Fog of war drawn, so props on unexplored tiles are hidden and fog writes are checked.
-        .insert_resource(TileStateStyle { fog_of_war: true, ..TileStateStyle::default() })
+        .insert_resource(HexTileStateStyle { fog_of_war: true, ..HexTileStateStyle::default() })
         // Clocks before the first set, between each two and after the last: the time between
         // the first and the last is the terrain systems' share of the frame, and each interval
         // a set's.
@@ -234,7 +234,7 @@ fn walk(seconds: u32, threads: ChunkThreads, props: bool) -> Walk {
     let frame = Duration::from_secs_f64(1.0 / 60.0);
     let mut live_max = 0;
     let counts = |app: &App| {
-        let s = app.world().resource::<HexTerrainStats>();
+        let s = app.world().resource::<HexStreamingStats>();
         (s.meshes_inserted(), s.tasks_started(), s.tasks_cancelled())
     };
     let (mut worst, mut worst_time, mut worst_frame) = ((0, 0, 0, [0; 2], [0; 2]), 0.0, 0);
@@ -288,7 +288,7 @@ fn walk(seconds: u32, threads: ChunkThreads, props: bool) -> Walk {
     let (waiting, blocked) = (sorted(&recorded.waiting), sorted(&recorded.blocked));
     let sets = recorded.sets.clone();
     let control = sorted(&recorded.control);
-    let stats = app.world().resource::<HexTerrainStats>();
+    let stats = app.world().resource::<HexStreamingStats>();
     let mut latencies: Vec<f64> = stats.latencies().map(|s| f64::from(s) * 1e3).collect();
     latencies.sort_by(f64::total_cmp);
     let started = stats.tasks_started();

@@ -13,7 +13,7 @@ use std::time::{Duration, Instant};
 
 use bevy::prelude::*;
 use bevy_hex_terrain::prelude::*;
-use bevy_hex_terrain::{ChunkTask, HexTileStatePlugin, TileStateStats};
+use bevy_hex_terrain::{ChunkTask, HexTileStatePlugin, HexTileStateStats};
 
 fn percentile(sorted: &[f64], p: f64) -> f64 {
     sorted[((sorted.len() - 1) as f64 * p).round() as usize]
@@ -77,7 +77,7 @@ fn run(mode: Mode, frames: usize) -> Run {
         let start = Instant::now();
         app.update();
         run.frames.push(start.elapsed().as_secs_f64() * 1e3);
-        if let Some(stats) = app.world().get_resource::<TileStateStats>() {
+        if let Some(stats) = app.world().get_resource::<HexTileStateStats>() {
             run.bytes.push(stats.last_upload_bytes);
         }
     }

@@ -32,7 +32,7 @@ fn main() {
             HexBigSpacePlugin,
         ))
         .add_plugins(support::screenshot::ScreenshotModePlugin)
-        .insert_resource(TerrainMaterialSettings { outlines: true, outline_width: 0.04, ..default() })
+        .insert_resource(HexTerrainMaterialSettings { outlines: true, outline_width: 0.04, ..default() })
         .add_systems(Startup, setup)
         .add_systems(Update, (fly, show_position))
         .run();

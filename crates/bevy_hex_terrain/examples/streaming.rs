@@ -26,7 +26,7 @@ struct Still(bool);
 fn main() {
     let streaming = support::streaming_from_env();
     let still = std::env::var_os("HEXTERRAIN_STILL").is_some();
-    let props = PropSettings { max_spawns_per_frame: if still { usize::MAX } else { 64 }, ..default() };
+    let props = HexPropSettings { max_spawns_per_frame: if still { usize::MAX } else { 64 }, ..default() };
     App::new()
         .add_plugins((DefaultPlugins, HexTerrainPlugins::default()))
         .insert_resource(streaming)
@@ -34,7 +34,7 @@ fn main() {
         .insert_resource(Still(still))
         .add_plugins(support::screenshot::ScreenshotModePlugin)
         .add_plugins(support::render_figures::RenderFiguresPlugin)
-        .insert_resource(TerrainMaterialSettings { outlines: true, outline_width: 0.04, ..default() })
+        .insert_resource(HexTerrainMaterialSettings { outlines: true, outline_width: 0.04, ..default() })
         .add_systems(Startup, setup)
         .add_systems(Update, (walk, show_figures))
         .run();
@@ -78,7 +78,7 @@ fn walk(time: Res<Time>, still: Res<Still>, map: Res<HexMap>, mut walker: Query<
 
 fn show_figures(
     streamer: Res<ChunkStreamer>,
-    stats: Res<HexTerrainStats>,
+    stats: Res<HexStreamingStats>,
     frame: Res<support::render_figures::RenderFigures>,
     props: Query<(), With<HexProp>>,
     mut counter: Query<&mut Text, With<Counter>>,

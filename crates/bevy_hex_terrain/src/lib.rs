@@ -13,9 +13,9 @@
 //! | [`Map`](HexTerrainSystems::Map) | [`HexEditorPlugin`] | the world builder: [`HexMapEdit`] strokes, undo, redo and save run on the async compute pool; each edit makes a [`HexMap`] generation in which only its chunks are rebuilt ([`HexMapEdited`]; one that changes nothing, [`HexMapUnchanged`]) | |
 //! | [`Stream`](HexTerrainSystems::Stream) | [`HexStreamingPlugin`] | keeps [`HexChunk`]s around every [`HexTerrainAgent`], each built on the async compute pool from a snapshot of the settings below; a dropped chunk is hidden at once and its children despawned a budget a frame | [`HexStreamingSettings`] |
 //! | [`Insert`](HexTerrainSystems::Insert) | [`HexStreamingPlugin`] | inserts finished meshes and their [`ChunkContent`] under a per-frame budget, sends [`ChunkSpawned`], [`TerrainReady`] | |
-//! | [`Children`](HexTerrainSystems::Children) | [`HexWaterPlugin`], [`HexPropsPlugin`] | spawn each chunk's [`HexWater`] surface and [`HexProp`]s (a budget a frame, nearest chunks first) from its content | [`WaterSettings`], [`PropSettings`] |
-//! | [`Tiles`](HexTerrainSystems::Tiles) | [`HexTileStatePlugin`] | keeps the [`TileStates`] window (fog of war, owners, lens, highlights) on the map; packs changed rows in `PostUpdate` | [`TileStateSettings`], [`TileStateStyle`] |
-//! | [`Render`](HexTerrainSystems::Render) | `HexTerrainMaterialPlugin`, `HexLightPlugin` (`render`) | the terrain and water material and its tile state texture; the sun, fog and ambient light of `HexTerrainCamera`s | `TerrainMaterialSettings`, `TerrainLighting` |
+//! | [`Children`](HexTerrainSystems::Children) | [`HexWaterPlugin`], [`HexPropsPlugin`] | spawn each chunk's [`HexWater`] surface and [`HexProp`]s (a budget a frame, nearest chunks first) from its content | [`HexWaterSettings`], [`HexPropSettings`] |
+//! | [`Tiles`](HexTerrainSystems::Tiles) | [`HexTileStatePlugin`] | keeps the [`TileStates`] window (fog of war, owners, lens, highlights) on the map; packs changed rows in `PostUpdate` | [`HexTileStateSettings`], [`HexTileStateStyle`] |
+//! | [`Render`](HexTerrainSystems::Render) | `HexTerrainMaterialPlugin`, `HexLightPlugin` (`render`) | the terrain and water material and its tile state texture; the sun, fog and ambient light of `HexTerrainCamera`s | `HexTerrainMaterialSettings`, `HexLightSettings` |
 //!
 //! Besides them: with the `picking` feature `HexPickingPlugin`, a `bevy_picking` backend whose
 //! hits carry the tile (`HexPick`);
@@ -80,50 +80,51 @@ pub use crate::editor::{
 #[cfg(feature = "big_space")]
 pub use crate::far::{HexBigSpacePlugin, HexTerrainGrid};
 #[cfg(feature = "render")]
-pub use crate::light::{HexLightPlugin, HexSun, HexTerrainCamera, TerrainLighting};
+pub use crate::light::{HexLightPlugin, HexLightSettings, HexSun, HexTerrainCamera};
 pub use crate::map::{HexMap, HexMapError, HexMapHandle, HexMapPlugin, LoadHexMap, MapSource, TileHit, TileHitF64};
 #[cfg(feature = "render")]
 pub use crate::material::{
-    HexTerrainExtension, HexTerrainKey, HexTerrainMaterial, HexTerrainMaterialPlugin, OwnerColors, RenderOrigin,
-    TerrainMaterialSettings, TerrainParams,
+    HexTerrainExtension, HexTerrainKey, HexTerrainMaterial, HexTerrainMaterialPlugin, HexTerrainMaterialSettings,
+    OwnerColors, RenderOrigin, TerrainParams,
 };
 #[cfg(feature = "minimap")]
 pub use crate::minimap::{
-    HexMinimap, HexMinimapCamera, HexMinimapPlugin, HexMinimapSystems, MinimapCorner, MinimapNavigate, MinimapPicture,
-    MinimapSettings,
+    HexMinimap, HexMinimapCamera, HexMinimapPlugin, HexMinimapSettings, HexMinimapSystems, MinimapCorner,
+    MinimapNavigate, MinimapPicture,
 };
 #[cfg(feature = "picking")]
 pub use crate::picking::{HexPick, HexPickingCamera, HexPickingPlugin, HexPickingSettings, HexPickingStats};
-pub use crate::props::{HexProp, HexPropStats, HexPropsPlugin, PropAssets, PropSettings};
+pub use crate::props::{HexProp, HexPropSettings, HexPropStats, HexPropsPlugin, PropAssets};
 pub use crate::streaming::{
     ChunkContent, ChunkDespawned, ChunkSpawned, ChunkStreamer, ChunkTask, ChunkThreads, DEFAULT_COARSE_DISTANCE,
-    DETAIL_HYSTERESIS, HexChunk, HexStreamingPlugin, HexStreamingSettings, HexTerrainAgent, HexTerrainStats,
+    DETAIL_HYSTERESIS, HexChunk, HexStreamingPlugin, HexStreamingSettings, HexStreamingStats, HexTerrainAgent,
     HexWorldPosition, MAX_RETIRED_CHUNKS, TerrainReady,
 };
 pub use crate::tiles::{
-    FogState, HexTileStatePlugin, HexTileStateSystems, Highlight, MAX_OWNERS, SaveError, Texel, TileStateError,
-    TileStateSave, TileStateSettings, TileStateStats, TileStateStyle, TileStateUpload, TileStates,
+    FogState, HexTileStatePlugin, HexTileStateSettings, HexTileStateStats, HexTileStateStyle, HexTileStateSystems,
+    Highlight, MAX_OWNERS, SaveError, Texel, TileStateError, TileStateSave, TileStateUpload, TileStates,
 };
-pub use crate::water::{HexWater, HexWaterPlugin, WaterSettings};
+pub use crate::water::{HexWater, HexWaterPlugin, HexWaterSettings};
 
 /// Everything a game usually needs.
 pub mod prelude {
     #[cfg(feature = "big_space")]
     pub use crate::far::{HexBigSpacePlugin, HexTerrainGrid};
     #[cfg(feature = "render")]
-    pub use crate::light::{HexLightPlugin, HexTerrainCamera, TerrainLighting};
+    pub use crate::light::{HexLightPlugin, HexLightSettings, HexTerrainCamera};
     #[cfg(feature = "render")]
-    pub use crate::material::{HexTerrainMaterialPlugin, TerrainMaterialSettings};
+    pub use crate::material::{HexTerrainMaterialPlugin, HexTerrainMaterialSettings};
     #[cfg(feature = "minimap")]
-    pub use crate::minimap::{HexMinimapPlugin, MinimapNavigate, MinimapSettings};
+    pub use crate::minimap::{HexMinimapPlugin, HexMinimapSettings, MinimapNavigate};
     #[cfg(feature = "picking")]
     pub use crate::picking::{HexPick, HexPickingPlugin, HexPickingSettings};
     pub use crate::{
         ChunkContent, ChunkDespawned, ChunkSpawned, ChunkStreamer, FogState, HexChunk, HexEditor, HexMap, HexMapEdit,
-        HexMapEdited, HexMapError, HexMapPlugin, HexMapUnchanged, HexProp, HexPropsPlugin, HexStreamingPlugin,
-        HexStreamingSettings, HexTerrainAgent, HexTerrainPlugins, HexTerrainStats, HexTerrainSystems,
-        HexTileStatePlugin, HexWater, HexWaterPlugin, HexWorldPosition, Highlight, LoadHexMap, MapSource, PropSettings,
-        SaveError, TerrainReady, TileHit, TileStateSave, TileStateSettings, TileStateStyle, TileStates, WaterSettings,
+        HexMapEdited, HexMapError, HexMapPlugin, HexMapUnchanged, HexProp, HexPropSettings, HexPropsPlugin,
+        HexStreamingPlugin, HexStreamingSettings, HexStreamingStats, HexTerrainAgent, HexTerrainPlugins,
+        HexTerrainSystems, HexTileStatePlugin, HexTileStateSettings, HexTileStateStyle, HexWater, HexWaterPlugin,
+        HexWaterSettings, HexWorldPosition, Highlight, LoadHexMap, MapSource, SaveError, TerrainReady, TileHit,
+        TileStateSave, TileStates,
     };
     pub use hex_terrain::hexx::Hex;
     pub use hex_terrain::{

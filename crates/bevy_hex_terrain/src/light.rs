@@ -1,6 +1,6 @@
 //! Light and air for the terrain: a directional sun with cascaded shadows fitted to the view of
 //! a strategy camera, and distance fog so far terrain fades into the sky, each switchable in
-//! [`TerrainLighting`] (software renderers and weak GPUs turn shadows off). Cameras opt in with
+//! [`HexLightSettings`] (software renderers and weak GPUs turn shadows off). Cameras opt in with
 //! [`HexTerrainCamera`], which brings its fog and ambient light as components of its own.
 
 use bevy::light::{CascadeShadowConfig, CascadeShadowConfigBuilder, DirectionalLightShadowMap};
@@ -11,9 +11,9 @@ use crate::HexTerrainSystems;
 
 /// Put on a camera to light and fog the terrain it shows. It requires a [`Camera3d`], a
 /// [`DistanceFog`] and an [`AmbientLight`], components of the camera that you see and may
-/// override: while [`TerrainLighting::fog`] is on, the plugin fits the fog's falloff to the
-/// camera's height above the sea and its color to [`TerrainLighting::fog_color`] (off, it
-/// removes the fog); it sets the ambient light's brightness when [`TerrainLighting`] changes.
+/// override: while [`HexLightSettings::fog`] is on, the plugin fits the fog's falloff to the
+/// camera's height above the sea and its color to [`HexLightSettings::fog_color`] (off, it
+/// removes the fog); it sets the ambient light's brightness when [`HexLightSettings`] changes.
 /// The sun's shadow cascades follow the first such camera's height.
 ///
 /// Screen-space ambient occlusion is the camera's too: add Bevy's
@@ -24,22 +24,22 @@ use crate::HexTerrainSystems;
 pub struct HexTerrainCamera;
 
 impl HexTerrainCamera {
-    /// The fog a terrain camera starts with: [`TerrainLighting`]'s default color, fitted to a
+    /// The fog a terrain camera starts with: [`HexLightSettings`]'s default color, fitted to a
     /// camera 20 units above the sea (the plugin refits it from the first frame).
     #[must_use]
     pub fn fog() -> DistanceFog {
-        TerrainLighting::default().fog_for(20.0)
+        HexLightSettings::default().fog_for(20.0)
     }
 
-    /// The ambient light a terrain camera starts with ([`TerrainLighting::ambient_brightness`]'s
+    /// The ambient light a terrain camera starts with ([`HexLightSettings::ambient_brightness`]'s
     /// default).
     #[must_use]
     pub fn ambient() -> AmbientLight {
-        AmbientLight { brightness: TerrainLighting::default().ambient_brightness, ..default() }
+        AmbientLight { brightness: HexLightSettings::default().ambient_brightness, ..default() }
     }
 }
 
-/// The sun entity the plugin spawns (while [`TerrainLighting::sun`] is on).
+/// The sun entity the plugin spawns (while [`HexLightSettings::sun`] is on).
 #[derive(Component, Debug, Clone, Copy, Default, Reflect)]
 #[reflect(Component, Default)]
 pub struct HexSun;
@@ -47,7 +47,7 @@ pub struct HexSun;
 /// How the terrain is lit. Changes apply the next frame.
 #[derive(Resource, Debug, Clone, PartialEq, Reflect)]
 #[reflect(Resource, Default)]
-pub struct TerrainLighting {
+pub struct HexLightSettings {
     /// Spawn and keep a directional sun ([`HexSun`]) once a [`HexTerrainCamera`] exists. Off,
     /// light the scene yourself.
     pub sun: bool,
@@ -78,7 +78,7 @@ pub struct TerrainLighting {
     pub fog_range: Vec2,
 }
 
-impl Default for TerrainLighting {
+impl Default for HexLightSettings {
     fn default() -> Self {
         Self {
             sun: true,
@@ -97,7 +97,7 @@ impl Default for TerrainLighting {
     }
 }
 
-impl TerrainLighting {
+impl HexLightSettings {
     /// The direction the sunlight travels (from the sun down to the ground).
     #[must_use]
     pub fn sun_direction(&self) -> Vec3 {
@@ -142,15 +142,15 @@ fn finite(v: f32, or: f32) -> f32 {
     if v.is_finite() { v } else { or }
 }
 
-/// The sun, shadows, fog and occlusion of [`TerrainLighting`] for [`HexTerrainCamera`]s.
+/// The sun, shadows, fog and occlusion of [`HexLightSettings`] for [`HexTerrainCamera`]s.
 /// Part of [`HexTerrainPlugins`](crate::HexTerrainPlugins) with the `render` feature.
 #[derive(Debug, Clone, Copy, Default)]
 pub struct HexLightPlugin;
 
 impl Plugin for HexLightPlugin {
     fn build(&self, app: &mut App) {
-        app.init_resource::<TerrainLighting>()
-            .register_type::<TerrainLighting>()
+        app.init_resource::<HexLightSettings>()
+            .register_type::<HexLightSettings>()
             .register_type::<HexTerrainCamera>()
             .register_type::<HexSun>()
             .add_systems(Update, (update_sun, update_cameras).in_set(HexTerrainSystems::Render));
@@ -165,7 +165,7 @@ fn camera_height(cameras: &Query<&GlobalTransform, With<HexTerrainCamera>>, map:
 
 fn update_sun(
     mut commands: Commands,
-    lighting: Res<TerrainLighting>,
+    lighting: Res<HexLightSettings>,
     // Bevy's light plugin's (absent from a headless app).
     shadow_map: Option<ResMut<DirectionalLightShadowMap>>,
     map: Res<crate::HexMap>,
@@ -243,7 +243,7 @@ fn same_fog(a: &DistanceFog, b: &DistanceFog) -> bool {
 /// its ambient brightness when the camera is new or the lighting changes.
 fn update_cameras(
     mut commands: Commands,
-    lighting: Res<TerrainLighting>,
+    lighting: Res<HexLightSettings>,
     map: Res<crate::HexMap>,
     cameras: TerrainCameras,
 ) {

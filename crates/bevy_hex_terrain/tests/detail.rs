@@ -131,7 +131,7 @@ fn coarse_chunks_carry_their_props_on_the_coarse_surface() {
     let mut config = unbounded((8, 8));
     config.noise.scale = 40.0;
     let mut app = lod_app(config, 2, 12.0);
-    app.insert_resource(PropSettings { max_per_chunk: 200, ..default() });
+    app.insert_resource(HexPropSettings { max_per_chunk: 200, ..default() });
     spawn_agent(&mut app, Vec3::new(6.0, 0.0, 6.0));
     run_until(&mut app, "levels settled", levels_settled);
     run_until(&mut app, "props settled", props_settled);
@@ -191,7 +191,7 @@ fn a_level_change_moves_the_props_in_place() {
     config.noise.scale = 40.0;
     let mut app = lod_app(config, 2, 12.0);
     let budget = 16;
-    app.insert_resource(PropSettings { max_per_chunk: 200, max_spawns_per_frame: budget, ..default() });
+    app.insert_resource(HexPropSettings { max_per_chunk: 200, max_spawns_per_frame: budget, ..default() });
     let agent = spawn_agent(&mut app, Vec3::new(6.0, 0.0, 6.0));
     run_until(&mut app, "levels settled", levels_settled);
     run_until(&mut app, "props settled", props_settled);

@@ -6,7 +6,7 @@ mod common;
 
 use bevy::prelude::*;
 use bevy_hex_terrain::prelude::*;
-use bevy_hex_terrain::{ChunkContent, HexTerrainPlugins, PropSettings};
+use bevy_hex_terrain::{ChunkContent, HexPropSettings, HexTerrainPlugins};
 use common::*;
 use hex_terrain::Terrain;
 
@@ -19,7 +19,7 @@ fn wooded() -> MapConfig {
 
 /// Every chunk full (levels of detail off): these tests compare props with the core's full
 /// placement; `detail.rs` tests the props of coarse chunks.
-fn app_with_props(config: MapConfig, radius: u32, props: PropSettings) -> App {
+fn app_with_props(config: MapConfig, radius: u32, props: HexPropSettings) -> App {
     let settings = HexStreamingSettings { coarse_distance: None, ..settings(radius) };
     let mut app = app_with(config.into(), settings, None);
     app.insert_resource(props);
@@ -56,7 +56,7 @@ fn count<T: Component>(app: &mut App) -> usize {
 #[test]
 fn props_are_the_cores_capped_placement_and_the_same_every_time() {
     let cap = 12;
-    let props_settings = PropSettings { max_per_chunk: cap, ..default() };
+    let props_settings = HexPropSettings { max_per_chunk: cap, ..default() };
     let mut app = app_with_props(wooded(), 8, props_settings);
     spawn_agent(&mut app, Vec3::ZERO);
     run_until(&mut app, "terrain ready", ready);
@@ -97,7 +97,7 @@ fn walking_keeps_props_and_water_with_their_chunks() {
     let mut config = unbounded((6, 6));
     config.noise.scale = 40.0;
     let cap = 40;
-    let mut app = app_with_props(config, 1, PropSettings { max_per_chunk: cap, ..default() });
+    let mut app = app_with_props(config, 1, HexPropSettings { max_per_chunk: cap, ..default() });
     let agent = spawn_agent(&mut app, Vec3::ZERO);
     let mut max_entities = 0;
     let mut settled = Vec::new();
@@ -136,7 +136,7 @@ fn walking_keeps_props_and_water_with_their_chunks() {
 }
 
 /// Props come and go a budget a frame: walking over a wooded world, no frame spawns more prop
-/// entities than `PropSettings::max_spawns_per_frame`, nor despawns more of a dropped chunk's
+/// entities than `HexPropSettings::max_spawns_per_frame`, nor despawns more of a dropped chunk's
 /// children than `HexStreamingSettings::max_despawns_per_frame` (a chunk with at most a few
 /// children goes at once); a dropped chunk is no chunk any more from the frame it is dropped,
 /// and once settled every loaded chunk shows all its props and no dropped chunk's are left.
@@ -147,7 +147,7 @@ fn props_come_and_go_a_budget_a_frame() {
     let budget = 40;
     let streaming = HexStreamingSettings { max_despawns_per_frame: budget, ..settings(1) };
     let mut app = app_with(config.into(), streaming, None);
-    app.insert_resource(PropSettings { max_spawns_per_frame: budget, max_per_chunk: 120, ..default() });
+    app.insert_resource(HexPropSettings { max_spawns_per_frame: budget, max_per_chunk: 120, ..default() });
     let agent = spawn_agent(&mut app, Vec3::ZERO);
     let mut live: std::collections::HashSet<Entity> = std::collections::HashSet::new();
     let (mut most_spawned, mut most_gone, mut retired_seen) = (0, 0, 0);
@@ -195,7 +195,7 @@ fn the_props_table_has_room_before_the_first_prop_and_never_grows() {
         config.noise.scale = 40.0;
         let settings = HexStreamingSettings { coarse_distance: None, ..settings(1) };
         let mut app = app_with(config.into(), settings, None);
-        app.insert_resource(PropSettings { max_per_chunk: 120, ..default() });
+        app.insert_resource(HexPropSettings { max_per_chunk: 120, ..default() });
         #[cfg(feature = "render")]
         if drawn {
             use bevy_hex_terrain::PropAssets;
@@ -277,7 +277,7 @@ fn tasks_build_what_the_plugins_and_their_settings_ask_for() {
     assert!(!bare.is_empty());
     assert!(bare.iter().all(|&(props, water)| props == 0 && !water), "{bare:?}");
 
-    let mut app = app_with_props(wooded(), 8, PropSettings::default());
+    let mut app = app_with_props(wooded(), 8, HexPropSettings::default());
     spawn_agent(&mut app, Vec3::ZERO);
     run_until(&mut app, "terrain ready", ready);
     let full = contents(&mut app);
@@ -285,7 +285,7 @@ fn tasks_build_what_the_plugins_and_their_settings_ask_for() {
     assert!(full.iter().any(|&(_, water)| water) && full.iter().any(|&(props, _)| props > 0));
     // Half the density, then a new map generation (a reload of the same map) rebuilds every
     // chunk with it: fewer props, the same water.
-    app.world_mut().resource_mut::<PropSettings>().density = 0.5;
+    app.world_mut().resource_mut::<HexPropSettings>().density = 0.5;
     let generation = app.world().resource::<HexMap>().generation();
     app.world_mut().write_message(LoadHexMap(wooded().into()));
     run_until(&mut app, "terrain ready again", |app| {
@@ -300,19 +300,19 @@ fn tasks_build_what_the_plugins_and_their_settings_ask_for() {
 
 #[test]
 fn props_and_water_switch_off_and_on_at_run_time() {
-    let mut app = app_with_props(wooded(), 8, PropSettings::default());
+    let mut app = app_with_props(wooded(), 8, HexPropSettings::default());
     spawn_agent(&mut app, Vec3::ZERO);
     run_until(&mut app, "terrain ready", ready);
     run_until(&mut app, "props settled", props_settled);
     let (props_on, water_on) = (count::<HexProp>(&mut app), count::<HexWater>(&mut app));
     assert!(props_on > 0 && water_on > 0);
-    app.world_mut().resource_mut::<PropSettings>().enabled = false;
-    app.world_mut().resource_mut::<WaterSettings>().enabled = false;
+    app.world_mut().resource_mut::<HexPropSettings>().enabled = false;
+    app.world_mut().resource_mut::<HexWaterSettings>().enabled = false;
     app.update();
     app.update();
     assert_eq!((count::<HexProp>(&mut app), count::<HexWater>(&mut app)), (0, 0));
-    app.world_mut().resource_mut::<PropSettings>().enabled = true;
-    app.world_mut().resource_mut::<WaterSettings>().enabled = true;
+    app.world_mut().resource_mut::<HexPropSettings>().enabled = true;
+    app.world_mut().resource_mut::<HexWaterSettings>().enabled = true;
     app.update();
     run_until(&mut app, "props settled", props_settled);
     assert_eq!((count::<HexProp>(&mut app), count::<HexWater>(&mut app)), (props_on, water_on));
@@ -320,7 +320,7 @@ fn props_and_water_switch_off_and_on_at_run_time() {
 
 #[test]
 fn a_map_switch_replaces_the_props_with_the_new_maps() {
-    let props_settings = PropSettings { max_per_chunk: 30, ..default() };
+    let props_settings = HexPropSettings { max_per_chunk: 30, ..default() };
     let mut app = app_with_props(wooded(), 8, props_settings);
     spawn_agent(&mut app, Vec3::ZERO);
     run_until(&mut app, "terrain ready", ready);
@@ -351,8 +351,8 @@ fn a_map_switch_replaces_the_props_with_the_new_maps() {
 #[cfg(feature = "render")]
 #[test]
 fn props_hide_under_fog_and_a_write_looks_only_at_its_tiles_props() {
-    let mut app = app_with_props(wooded(), 1, PropSettings::default());
-    app.insert_resource(TileStateStyle { fog_of_war: true, ..default() });
+    let mut app = app_with_props(wooded(), 1, HexPropSettings::default());
+    app.insert_resource(HexTileStateStyle { fog_of_war: true, ..default() });
     spawn_agent(&mut app, Vec3::ZERO);
     run_until(&mut app, "the chunks around the agent", |app| {
         let streamer = app.world().resource::<ChunkStreamer>();
@@ -402,7 +402,7 @@ fn props_hide_under_fog_and_a_write_looks_only_at_its_tiles_props() {
     app.update();
     assert_eq!(app.world().resource::<bevy_hex_terrain::HexPropStats>().fog_checks, before);
     // Fog off: every prop shows.
-    app.world_mut().resource_mut::<TileStateStyle>().fog_of_war = false;
+    app.world_mut().resource_mut::<HexTileStateStyle>().fog_of_war = false;
     app.update();
     assert!(shown(&mut app).iter().all(|(_, s)| *s));
 }
@@ -415,8 +415,8 @@ fn props_hide_under_fog_and_a_write_looks_only_at_its_tiles_props() {
 fn the_setups_resources_and_wonders_stand_on_their_tiles_and_hide_under_fog() {
     let mut config = wooded();
     config.setup = Some(SetupConfig { players: 2, min_distance: 8, ..default() });
-    let mut app = app_with_props(config.clone(), 8, PropSettings::default());
-    app.insert_resource(TileStateStyle { fog_of_war: true, ..default() });
+    let mut app = app_with_props(config.clone(), 8, HexPropSettings::default());
+    app.insert_resource(HexTileStateStyle { fog_of_war: true, ..default() });
     spawn_agent(&mut app, Vec3::ZERO);
     run_until(&mut app, "every chunk", |app| {
         let streamer = app.world().resource::<ChunkStreamer>();

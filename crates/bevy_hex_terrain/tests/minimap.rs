@@ -39,7 +39,7 @@ fn app(config: MapConfig) -> App {
     app.add_plugins(HexTerrainPlugins::new(config).build().disable::<HexTerrainMaterialPlugin>());
     app.add_plugins(HexMinimapPlugin);
     // The minimap draws fog of war as the terrain does: while the tile states' style has it on.
-    app.insert_resource(TileStateStyle { fog_of_war: true, ..default() });
+    app.insert_resource(HexTileStateStyle { fog_of_war: true, ..default() });
     app.init_resource::<OnMinimap>().init_resource::<Navigations>();
     // The UI backend's hit, as Bevy's reports it: the node and the position on it.
     app.add_systems(
@@ -83,7 +83,7 @@ fn pixels_have_the_tiles_colors_and_unexplored_tiles_are_black() {
     run_until(&mut app, "the minimap's picture", built);
     app.update();
     let map = app.world().resource::<HexMap>().clone();
-    let settings = app.world().resource::<MinimapSettings>().clone();
+    let settings = app.world().resource::<HexMinimapSettings>().clone();
     let minimap = app.world().resource::<MinimapPicture>().minimap().unwrap().clone();
     let [w, h] = minimap.size();
     assert!(w <= settings.size.x && h <= settings.size.y && (w == settings.size.x || h == settings.size.y));
@@ -206,17 +206,17 @@ fn map_tiles(config: &MapConfig) -> Vec<Hex> {
     hex_terrain::Terrain::new(config.clone()).unwrap().tiles().collect()
 }
 
-/// `MinimapSettings` inserted before the plugin is added is kept (the plugin uses
+/// `HexMinimapSettings` inserted before the plugin is added is kept (the plugin uses
 /// `init_resource`, like every plugin of the crate).
 #[test]
 fn minimap_settings_inserted_first_are_kept() {
     let mut app = App::new();
     app.add_plugins((MinimalPlugins, AssetPlugin::default(), TransformPlugin, PickingPlugin, InteractionPlugin));
     app.init_asset::<Image>();
-    let mine = MinimapSettings { size: UVec2::new(99, 77), explored_brightness: 0.25, ..default() };
+    let mine = HexMinimapSettings { size: UVec2::new(99, 77), explored_brightness: 0.25, ..default() };
     app.insert_resource(mine.clone());
     app.add_plugins(HexTerrainPlugins::new(config()).build().disable::<HexTerrainMaterialPlugin>());
     app.add_plugins(HexMinimapPlugin);
     app.update();
-    assert_eq!(app.world().resource::<MinimapSettings>(), &mine);
+    assert_eq!(app.world().resource::<HexMinimapSettings>(), &mine);
 }

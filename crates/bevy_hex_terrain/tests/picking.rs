@@ -39,8 +39,8 @@ struct Clicks(Vec<(Entity, Hex)>);
 /// The ground alone: no water surface, no props (the tests of what stands on it turn them on).
 fn app(config: MapConfig) -> App {
     let mut app = app_with(config, HexStreamingSettings { load_radius: 1, ..default() });
-    app.insert_resource(WaterSettings { enabled: false, ..default() });
-    app.insert_resource(PropSettings { enabled: false, ..default() });
+    app.insert_resource(HexWaterSettings { enabled: false, ..default() });
+    app.insert_resource(HexPropSettings { enabled: false, ..default() });
     app
 }
 

@@ -210,7 +210,7 @@ fn biomes(coarse: bool) {
 #[ignore = "a scenario: run by its #[test] in a process of its own"]
 fn scenario_outlines_off() {
     let terrain = Terrain::new(map()).unwrap();
-    let material = TerrainMaterialSettings { outlines: false, outline_width: 0.1, ..default() };
+    let material = HexTerrainMaterialSettings { outlines: false, outline_width: 0.1, ..default() };
     let (img, counts) = render_scene(Scene { material, ..default() }, "outlines_off");
     assert_type_colors(&img, &terrain, &[]);
     let ratio = border_to_center(&img, &terrain);
@@ -246,7 +246,7 @@ fn scenario_textures_and_highlights() {
     let (hovered, selected) = highlighted(&terrain);
     let (img, _) = render_scene(
         Scene {
-            material: TerrainMaterialSettings { textures: true, ..default() },
+            material: HexTerrainMaterialSettings { textures: true, ..default() },
             tiles: Some(|terrain, states| {
                 let (hovered, selected) = highlighted(terrain);
                 states.set_highlight(hovered, Highlight::Hovered, true).unwrap();
@@ -279,7 +279,7 @@ fn highlighted(terrain: &Terrain) -> (Hex, Vec<Hex>) {
 #[ignore = "a scenario: run by its #[test] in a process of its own"]
 fn scenario_missing_texture() {
     let terrain = Terrain::new(map()).unwrap();
-    let mut material = TerrainMaterialSettings { textures: true, ..default() };
+    let mut material = HexTerrainMaterialSettings { textures: true, ..default() };
     material.texture_paths[1] = "textures/no_such_grass.png".into();
     let (img, _) = render_scene(Scene { material, ..default() }, "missing_texture");
     let magenta = img.pixels().filter(|p| p[0] > 150 && p[2] > 150 && p[1] < 80).count();

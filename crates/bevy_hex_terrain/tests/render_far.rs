@@ -36,7 +36,7 @@ in_own_process! {
 #[test]
 #[ignore = "a scenario: run by its #[test] in a process of its own"]
 fn scenario_far() {
-    let style = TileStateStyle { lens: true, ..default() };
+    let style = HexTileStateStyle { lens: true, ..default() };
     // Levels of detail split the view: full chunks under the camera (47 units above the 3-unit
     // mountains), coarse ones more than about 10 units aside.
     let streaming = HexStreamingSettings { coarse_distance: Some(48.0), ..default() };

@@ -41,7 +41,7 @@ fn scenario_water() {
     let terrain = Terrain::new(config.clone()).unwrap();
     let (center, size) = view(&terrain);
     // Textures on: the relief textures keep working beside the water (which does not use them).
-    let material = TerrainMaterialSettings { outlines: true, outline_width: 0.1, textures: true, ..default() };
+    let material = HexTerrainMaterialSettings { outlines: true, outline_width: 0.1, textures: true, ..default() };
     let (img, _) = render_scene(
         Scene {
             config: Some(config),
@@ -93,7 +93,7 @@ fn scenario_props() {
     let config = relief_map();
     let terrain = Terrain::new(config.clone()).unwrap();
     let (center, size) = view(&terrain);
-    let cap = PropSettings::default().max_per_chunk;
+    let cap = HexPropSettings::default().max_per_chunk;
     let props: Vec<Vec3> = terrain
         .chunks()
         .into_iter()
@@ -129,8 +129,8 @@ fn scenario_props() {
 }
 
 /// A low sun from the west, with sharp (2048²) shadow maps.
-fn lighting() -> TerrainLighting {
-    TerrainLighting { sun_elevation: 22.0, sun_azimuth: 270.0, fog: false, shadow_map_size: 2048, ..default() }
+fn lighting() -> HexLightSettings {
+    HexLightSettings { sun_elevation: 22.0, sun_azimuth: 270.0, fog: false, shadow_map_size: 2048, ..default() }
 }
 
 fn lighting_direction() -> Vec3 {

@@ -60,7 +60,7 @@ in_own_process! {
 fn scenario_fog() {
     let terrain = Terrain::new(map()).unwrap();
     let (center, size) = view(&terrain);
-    let style = TileStateStyle { fog_of_war: true, ..default() };
+    let style = HexTileStateStyle { fog_of_war: true, ..default() };
     let (img, _) = render_scene(Scene { style, tiles: Some(write_fog), ..default() }, "fog");
     let at = |p: Vec3| rgb(&img, pixel(center, size, p));
     let tiles = interior(&terrain, |h| fog_of(&terrain, h));
@@ -114,7 +114,7 @@ fn owner_of(terrain: &Terrain, h: Hex) -> Option<u8> {
 fn scenario_borders() {
     let terrain = Terrain::new(map()).unwrap();
     let (center, size) = view(&terrain);
-    let style = TileStateStyle { territory_tint: false, border_width: 0.25, border_inset: 0.05, ..default() };
+    let style = HexTileStateStyle { territory_tint: false, border_width: 0.25, border_inset: 0.05, ..default() };
     let tiles = |terrain: &Terrain, states: &mut TileStates| {
         for t in terrain.tiles() {
             states.set_owner(t, owner_of(terrain, t)).unwrap();
@@ -190,7 +190,7 @@ fn five_hundred_highlighted_tiles_are_all_tinted() {
     let tinted = five_hundred(&terrain);
     assert_eq!(tinted.len(), 500);
     // The tint's color as the screen shows it (sRGB).
-    let tint = TileStateStyle::default().reachable_color.to_srgba();
+    let tint = HexTileStateStyle::default().reachable_color.to_srgba();
     let tint = [tint.red, tint.green, tint.blue];
     for t in terrain.tiles() {
         let p = pixel(center, size, DVec3::from_array(terrain.tile_center(t).unwrap()).as_vec3());
@@ -275,6 +275,6 @@ fn scenario_lens_off() {
 #[test]
 #[ignore = "a scenario: run by its #[test] in a process of its own"]
 fn scenario_lens_on() {
-    let style = TileStateStyle { lens: true, ..default() };
+    let style = HexTileStateStyle { lens: true, ..default() };
     render_scene(Scene { style, tiles: Some(write_lens), ..default() }, "lens_on");
 }

@@ -1,12 +1,12 @@
 //! Every plugin's settings resource is added with `init_resource`: a value a user inserts
 //! before adding the plugins is kept (one way to set them, the way Bevy's own plugins do).
-//! `MinimapSettings` is checked the same way in `minimap.rs`, whose app has what the minimap
+//! `HexMinimapSettings` is checked the same way in `minimap.rs`, whose app has what the minimap
 //! needs.
 
 use bevy::asset::AssetPlugin;
 use bevy::prelude::*;
 use bevy_hex_terrain::prelude::*;
-use bevy_hex_terrain::{HexTerrainPlugins, TileStateSettings};
+use bevy_hex_terrain::{HexTerrainPlugins, HexTileStateSettings};
 
 /// A headless app with the terrain plugins (no material), after `before` ran on it before they
 /// were added, updated once.
@@ -26,13 +26,13 @@ fn app_after(before: impl FnOnce(&mut App)) -> App {
 #[test]
 fn settings_inserted_before_the_plugins_are_kept() {
     let streaming = HexStreamingSettings { load_radius: 5, prefetch: 3, max_tasks_in_flight: 7, ..default() };
-    let tiles = TileStateSettings { max_window: UVec2::new(64, 32) };
-    let water = WaterSettings { enabled: false, ..default() };
-    let props = PropSettings { max_per_chunk: 17, ..default() };
+    let tiles = HexTileStateSettings { max_window: UVec2::new(64, 32) };
+    let water = HexWaterSettings { enabled: false, ..default() };
+    let props = HexPropSettings { max_per_chunk: 17, ..default() };
     #[cfg(feature = "picking")]
     let picking = bevy_hex_terrain::HexPickingSettings { max_distance: 123.0, require_markers: true, ..default() };
     #[cfg(feature = "render")]
-    let lighting = TerrainLighting { shadows: false, ..default() };
+    let lighting = HexLightSettings { shadows: false, ..default() };
     let app = app_after(|app| {
         app.insert_resource(streaming.clone())
             .insert_resource(tiles.clone())
@@ -45,13 +45,13 @@ fn settings_inserted_before_the_plugins_are_kept() {
     });
     let world = app.world();
     assert_eq!(world.resource::<HexStreamingSettings>(), &streaming);
-    assert_eq!(world.resource::<TileStateSettings>(), &tiles);
-    assert_eq!(world.resource::<WaterSettings>(), &water);
-    assert_eq!(world.resource::<PropSettings>(), &props);
+    assert_eq!(world.resource::<HexTileStateSettings>(), &tiles);
+    assert_eq!(world.resource::<HexWaterSettings>(), &water);
+    assert_eq!(world.resource::<HexPropSettings>(), &props);
     #[cfg(feature = "picking")]
     assert_eq!(world.resource::<bevy_hex_terrain::HexPickingSettings>(), &picking);
     #[cfg(feature = "render")]
-    assert_eq!(world.resource::<TerrainLighting>(), &lighting);
+    assert_eq!(world.resource::<HexLightSettings>(), &lighting);
 }
 
 /// Without a value inserted, each plugin adds its default.
@@ -60,7 +60,7 @@ fn each_plugin_adds_its_default_settings() {
     let app = app_after(|_| {});
     let world = app.world();
     assert_eq!(world.resource::<HexStreamingSettings>(), &HexStreamingSettings::default());
-    assert_eq!(world.resource::<TileStateSettings>(), &TileStateSettings::default());
+    assert_eq!(world.resource::<HexTileStateSettings>(), &HexTileStateSettings::default());
 }
 
 /// The plugins' public resources are reflected and registered (an inspector lists them).
@@ -73,7 +73,7 @@ fn public_resources_are_reflected_and_registered() {
     let reflected: [&dyn Reflect; 6] = [
         world.resource::<HexMap>(),
         world.resource::<ChunkStreamer>(),
-        world.resource::<HexTerrainStats>(),
+        world.resource::<HexStreamingStats>(),
         world.resource::<HexEditor>(),
         world.resource::<HexStreamingSettings>(),
         world.resource::<TileStates>(),

@@ -64,7 +64,7 @@ fn long_walk_keeps_chunk_count_and_meshes_bounded() {
         max_live = max_live.max(live);
     }
     run_until(&mut app, "terrain ready at the end", ready);
-    let started = app.world().resource::<HexTerrainStats>().tasks_started();
+    let started = app.world().resource::<HexStreamingStats>().tasks_started();
     assert!(started > 2000, "walked over {started} chunk builds");
     // radius + prefetch + hysteresis = 3: at most a 7x7 window.
     assert!(max_live <= 49, "live chunks peaked at {max_live}");
@@ -172,13 +172,13 @@ fn far_teleport_cancels_stale_work() {
     let mut app = app_with(unbounded((16, 16)).into(), s, None);
     let agent = spawn_agent(&mut app, Vec3::ZERO);
     app.update();
-    let started = app.world().resource::<HexTerrainStats>().tasks_started();
+    let started = app.world().resource::<HexStreamingStats>().tasks_started();
     assert_eq!(started, 40, "a bounded number of tasks at once");
     let far = Vec3::new(100_000.0, 0.0, -80_000.0);
     app.world_mut().entity_mut(agent).insert(Transform::from_translation(far));
     app.update();
     app.update();
-    let cancelled = app.world().resource::<HexTerrainStats>().tasks_cancelled();
+    let cancelled = app.world().resource::<HexStreamingStats>().tasks_cancelled();
     assert!(cancelled > 0, "work for the old place was dropped");
     let center = agent_chunk(&app, far);
     for c in chunk_coords(&mut app) {
@@ -297,7 +297,7 @@ fn streaming_never_marks_the_map_changed() {
     run_until(&mut app, "terrain ready", ready);
     // The first frame sees the resource as added; from here on only chunks change.
     app.world_mut().resource_mut::<MapChanges>().0 = 0;
-    let before = app.world().resource::<HexTerrainStats>().meshes_inserted();
+    let before = app.world().resource::<HexStreamingStats>().meshes_inserted();
     // Each step waits for the chunks around the agent (not for a number of frames, which would
     // measure the machine's speed): the count of inserts is then the walk's, on any machine.
     for step in 1..40 {
@@ -305,7 +305,7 @@ fn streaming_never_marks_the_map_changed() {
         app.world_mut().entity_mut(agent).insert(Transform::from_translation(at));
         run_until(&mut app, "the chunks around the agent", wanted_chunks_loaded);
     }
-    let inserted = app.world().resource::<HexTerrainStats>().meshes_inserted() - before;
+    let inserted = app.world().resource::<HexStreamingStats>().meshes_inserted() - before;
     assert!(inserted > 100, "chunks streamed in: {inserted}");
     assert_eq!(app.world().resource::<MapChanges>().0, 0, "HexMap was marked changed while streaming");
 }
@@ -403,14 +403,14 @@ fn reload_teleport_and_switch_in_one_frame_leave_only_the_new_state() {
     let mut app = app_with("a.map.ron".into(), s, Some(&dir));
     let agent = spawn_agent(&mut app, Vec3::ZERO);
     run_until(&mut app, "map a", |app| app.world().resource::<HexMap>().config().seed == 31 && ready(app));
-    let start = app.world().resource::<HexTerrainStats>().tasks_started();
+    let start = app.world().resource::<HexStreamingStats>().tasks_started();
     // Send a reload of map a, so tasks of a new generation are in flight...
     let handle = app.world().resource::<HexMapHandle>().handle().unwrap().clone();
     let mut config = app.world().resource::<Assets<HexMapAsset>>().get(&handle).unwrap().config.clone();
     config.seed = 33;
     let reloaded = HexMapAsset { config: config.clone(), image: None, appearance_fallback: false };
     app.world_mut().resource_mut::<Assets<HexMapAsset>>().insert(handle.id(), reloaded.clone()).unwrap();
-    run_until(&mut app, "reload tasks", |app| app.world().resource::<HexTerrainStats>().tasks_started() > start);
+    run_until(&mut app, "reload tasks", |app| app.world().resource::<HexStreamingStats>().tasks_started() > start);
     assert!(app.world_mut().query::<&bevy_hex_terrain::ChunkTask>().iter(app.world()).next().is_some());
     // ...then, in one frame: another reload, a far teleport and a switch to map b.
     config.seed = 34;

@@ -6,7 +6,7 @@ use bevy::asset::AssetPlugin;
 use bevy::prelude::*;
 use bevy_hex_terrain::TileStateUpload;
 use bevy_hex_terrain::prelude::*;
-use bevy_hex_terrain::{HexMapAsset, HexMapHandle, TileStateStats};
+use bevy_hex_terrain::{HexMapAsset, HexMapHandle, HexTileStateStats};
 
 /// The terrain plugins headless (no material), streaming two chunks around agents.
 fn headless(map: impl Into<MapSource>, asset_dir: Option<&std::path::Path>) -> App {
@@ -85,7 +85,7 @@ fn writing_tile_state_never_rebuilds_or_reinserts_a_chunk_mesh() {
             states.replace_highlight(Highlight::Reachable, tiles.iter().copied().skip(frame * 300).take(3000));
         }
         app.update();
-        let stats = app.world().resource::<TileStateStats>();
+        let stats = app.world().resource::<HexTileStateStats>();
         assert!(stats.last_upload_bytes > 0, "frame {frame} uploaded its changes");
         assert!(stats.last_upload_bytes <= 106 * 66 * 8, "an upload is at most the texture");
     }
@@ -106,7 +106,7 @@ fn a_frame_without_changes_uploads_nothing() {
     let tile = app.world().resource::<HexMap>().terrain().tile_from_offset([3, 4]);
     app.world_mut().resource_mut::<TileStates>().set_visibility(tile, FogState::Visible).unwrap();
     app.update();
-    let stats = app.world().resource::<TileStateStats>().clone();
+    let stats = app.world().resource::<HexTileStateStats>().clone();
     assert_eq!(stats.last_upload_bytes, 8, "one tile's texel");
     let upload_tick = |app: &App| app.world().resource_ref::<TileStateUpload>().last_changed();
     let tick = upload_tick(&app);
@@ -115,7 +115,7 @@ fn a_frame_without_changes_uploads_nothing() {
         app.world_mut().resource_mut::<TileStates>().set_visibility(tile, FogState::Visible).unwrap();
         app.update();
     }
-    let after = app.world().resource::<TileStateStats>();
+    let after = app.world().resource::<HexTileStateStats>();
     assert_eq!(after.uploads, stats.uploads, "no upload in quiet frames");
     assert_eq!(after.last_upload_bytes, 0);
     assert_eq!(upload_tick(&app), tick, "the upload resource was not touched, so nothing is extracted");
@@ -150,7 +150,7 @@ fn state_outlives_streaming_and_the_window_follows_the_chunks() {
     }
     assert!(!window.contains(states.offset_of(home)), "the window left home");
     assert_eq!(states.owner(home), Some(3), "state of a tile in an unloaded chunk is kept");
-    assert!(app.world().resource::<TileStateStats>().window_moves >= 2);
+    assert!(app.world().resource::<HexTileStateStats>().window_moves >= 2);
     // Back home: the texture shows it again (the refill is tested in the unit tests).
     app.world_mut().entity_mut(agent).insert(Transform::default());
     settle(&mut app, "chunks at home", |app| {

@@ -65,7 +65,7 @@ fn chunks_appear_at_wrapped_positions_as_an_agent_walks_east() {
     }
     assert!(max_x >= 3 * wrap.chunk_columns(), "the walk went three periods east (chunk {max_x})");
     // Each chunk of the map was generated about once however many times it was placed again.
-    let stats = app.world().resource::<HexTerrainStats>();
+    let stats = app.world().resource::<HexStreamingStats>();
     let map_chunks = terrain.chunks().len() as u64;
     assert!(stats.tasks_started() <= 3 * map_chunks, "{} tasks for {map_chunks} chunks", stats.tasks_started());
 }

@@ -50,8 +50,8 @@ pub(crate) fn leave(pointer: On<Pointer<Out>>, mut game: ResMut<Game>) {
 
 pub(crate) fn keys(
     keys: Res<ButtonInput<KeyCode>>,
-    mut material: ResMut<TerrainMaterialSettings>,
-    mut style: ResMut<TileStateStyle>,
+    mut material: ResMut<HexTerrainMaterialSettings>,
+    mut style: ResMut<HexTileStateStyle>,
     map: Res<HexMap>,
     mut load: MessageWriter<LoadHexMap>,
     mut game: ResMut<Game>,

@@ -13,9 +13,9 @@ fn off(var: &str) -> bool {
 
 /// Applies the environment's switches at start.
 pub(crate) fn from_env(
-    mut lighting: ResMut<TerrainLighting>,
-    mut props: ResMut<PropSettings>,
-    mut water: ResMut<WaterSettings>,
+    mut lighting: ResMut<HexLightSettings>,
+    mut props: ResMut<HexPropSettings>,
+    mut water: ResMut<HexWaterSettings>,
 ) {
     let all = off("HEXTERRAIN_LOOK");
     if all || off("HEXTERRAIN_SHADOWS") {
@@ -36,9 +36,9 @@ pub(crate) fn from_env(
 pub(crate) fn keys(
     mut commands: Commands,
     keys: Res<ButtonInput<KeyCode>>,
-    mut lighting: ResMut<TerrainLighting>,
-    mut props: ResMut<PropSettings>,
-    mut water: ResMut<WaterSettings>,
+    mut lighting: ResMut<HexLightSettings>,
+    mut props: ResMut<HexPropSettings>,
+    mut water: ResMut<HexWaterSettings>,
     cameras: Query<(Entity, Has<ScreenSpaceAmbientOcclusion>), With<HexTerrainCamera>>,
 ) {
     if keys.just_pressed(KeyCode::KeyJ) {

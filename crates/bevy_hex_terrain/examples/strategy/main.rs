@@ -102,13 +102,13 @@ fn main() -> AppExit {
     // HEXTERRAIN_FOG=off starts without the fog of war (V toggles it).
     let fog_of_war = std::env::var("HEXTERRAIN_FOG").map_or(true, |v| v != "off");
     // The minimap sits in the bottom right corner, above the help line.
-    let minimap = MinimapSettings { margin: Vec2::new(12.0, 48.0), ..default() };
+    let minimap = HexMinimapSettings { margin: Vec2::new(12.0, 48.0), ..default() };
     app.add_plugins((DefaultPlugins, HexTerrainPlugins::from_asset(map), HexMinimapPlugin))
         .insert_resource(streaming)
         .insert_resource(minimap)
-        .insert_resource(TerrainMaterialSettings { outlines: true, outline_width: 0.04, ..default() })
-        .insert_resource(TileStateStyle { fog_of_war, ..default() })
-        .insert_resource(PropSettings { max_spawns_per_frame: if settle { usize::MAX } else { 64 }, ..default() })
+        .insert_resource(HexTerrainMaterialSettings { outlines: true, outline_width: 0.04, ..default() })
+        .insert_resource(HexTileStateStyle { fog_of_war, ..default() })
+        .insert_resource(HexPropSettings { max_spawns_per_frame: if settle { usize::MAX } else { 64 }, ..default() })
         .insert_resource(Game { turn: 1, ..default() })
         .init_resource::<editor::EditorMode>()
         .add_systems(Startup, (setup, look::from_env, editor::spawn_panel))

@@ -22,7 +22,7 @@ pub(crate) fn panel(
     game: Res<Game>,
     map: Res<HexMap>,
     states: Res<TileStates>,
-    style: Res<TileStateStyle>,
+    style: Res<HexTileStateStyle>,
     units: Query<&Unit>,
     mut text: Query<&mut Text, With<Panel>>,
 ) {

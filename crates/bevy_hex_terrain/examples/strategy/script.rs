@@ -196,8 +196,8 @@ impl Plugin for ScriptPlugin {
 /// What the script looks at: the game, the map, the tile states, the look and the units.
 #[derive(bevy::ecs::system::SystemParam)]
 pub struct Observed<'w, 's> {
-    material: Res<'w, TerrainMaterialSettings>,
-    style: Res<'w, TileStateStyle>,
+    material: Res<'w, HexTerrainMaterialSettings>,
+    style: Res<'w, HexTileStateStyle>,
     game: Res<'w, Game>,
     map: Res<'w, HexMap>,
     states: Res<'w, TileStates>,

@@ -3,8 +3,8 @@
 //! does, in flat colors or textures, and draws tile outlines and highlights. The same shader
 //! serves forward and deferred cameras.
 
-use crate::tiles::{TileStateStyle, TileStates};
-use crate::water::WaterSettings;
+use crate::tiles::{HexTileStateStyle, TileStates};
+use crate::water::HexWaterSettings;
 use bevy::asset::{AssetPath, embedded_asset, embedded_path};
 use bevy::image::{ImageAddressMode, ImageLoaderSettings, ImageSampler, ImageSamplerDescriptor};
 use bevy::mesh::MeshVertexBufferLayoutRef;
@@ -14,7 +14,7 @@ use bevy::render::render_resource::{AsBindGroup, RenderPipelineDescriptor, Speci
 use bevy::shader::{ShaderDefVal, ShaderRef, load_shader_library};
 use params::{Look, SHADER_DEFS, owner_colors, params, window_param};
 pub use params::{OwnerColors, RenderOrigin, TerrainParams};
-pub use settings::TerrainMaterialSettings;
+pub use settings::HexTerrainMaterialSettings;
 use tile_texture::TileStateTexture;
 
 mod params;
@@ -107,8 +107,8 @@ pub struct HexTerrainMaterialHandle(pub Handle<HexTerrainMaterial>);
 pub struct HexWaterMaterialHandle(pub Handle<HexTerrainMaterial>);
 
 /// The terrain material: registers [`HexTerrainMaterial`], gives every chunk mesh the shared
-/// material and keeps it in step with the map, its [`TerrainMaterialSettings`], the
-/// [`TileStateStyle`], the [`WaterSettings`] and the tile state texture, into which it copies
+/// material and keeps it in step with the map, its [`HexTerrainMaterialSettings`], the
+/// [`HexTileStateStyle`], the [`HexWaterSettings`] and the tile state texture, into which it copies
 /// [`TileStates`]' changes (`tile_texture.rs`).
 /// Needs Bevy's `PbrPlugin` (in `DefaultPlugins`); a headless app disables this plugin.
 #[derive(Debug, Clone, Copy, Default)]
@@ -134,9 +134,9 @@ impl Plugin for HexTerrainMaterialPlugin {
         load_shader_library!(app, "shaders/water.wgsl");
         load_shader_library!(app, "shaders/tile_state.wgsl");
         app.add_plugins((MaterialPlugin::<HexTerrainMaterial>::default(), tile_texture::TileTexturePlugin))
-            .init_resource::<TerrainMaterialSettings>()
+            .init_resource::<HexTerrainMaterialSettings>()
             .init_resource::<RenderOrigin>()
-            .register_type::<TerrainMaterialSettings>()
+            .register_type::<HexTerrainMaterialSettings>()
             .register_type::<RenderOrigin>()
             .add_systems(Startup, create_material.after(tile_texture::create_texture))
             .add_systems(
@@ -149,7 +149,7 @@ impl Plugin for HexTerrainMaterialPlugin {
     }
 }
 
-fn textures(server: &AssetServer, appearance: &TerrainMaterialSettings) -> [Option<Handle<Image>>; 3] {
+fn textures(server: &AssetServer, appearance: &HexTerrainMaterialSettings) -> [Option<Handle<Image>>; 3] {
     if appearance.textures {
         // World-space coordinates run far past [0, 1]: the textures must repeat.
         std::array::from_fn(|i| {
@@ -190,7 +190,7 @@ fn base(water: bool) -> StandardMaterial {
 
 /// The material settings the shader draws: textures off on a map whose appearance had to be
 /// clamped.
-fn effective(appearance: &TerrainMaterialSettings, map: &crate::HexMap) -> TerrainMaterialSettings {
+fn effective(appearance: &HexTerrainMaterialSettings, map: &crate::HexMap) -> HexTerrainMaterialSettings {
     let mut effective = appearance.clone();
     effective.textures &= !map.appearance_fallback();
     effective
@@ -203,8 +203,8 @@ fn effective(appearance: &TerrainMaterialSettings, map: &crate::HexMap) -> Terra
 struct MaterialSources<'w> {
     server: Res<'w, AssetServer>,
     map: Res<'w, crate::HexMap>,
-    style: Res<'w, TileStateStyle>,
-    water: Option<Res<'w, WaterSettings>>,
+    style: Res<'w, HexTileStateStyle>,
+    water: Option<Res<'w, HexWaterSettings>>,
     states: Res<'w, TileStates>,
     texture: Res<'w, TileStateTexture>,
     origin: Res<'w, RenderOrigin>,
@@ -221,7 +221,7 @@ impl MaterialSources<'_> {
     }
 
     /// The shader parameters and owner colors for the material settings.
-    fn params(&self, material: &TerrainMaterialSettings) -> (TerrainParams, OwnerColors) {
+    fn params(&self, material: &HexTerrainMaterialSettings) -> (TerrainParams, OwnerColors) {
         let look = Look { material, tiles: &self.style, water: self.water.as_deref() };
         (params(self.map.terrain(), look, self.states.window(), *self.origin), owner_colors(&self.style))
     }
@@ -231,7 +231,7 @@ fn create_material(
     mut commands: Commands,
     mut materials: ResMut<Assets<HexTerrainMaterial>>,
     sources: MaterialSources,
-    appearance: Res<TerrainMaterialSettings>,
+    appearance: Res<HexTerrainMaterialSettings>,
 ) {
     let appearance = effective(&appearance, &sources.map);
     let [sea_texture, land_texture, mountain_texture] = textures(&sources.server, &appearance);
@@ -260,7 +260,7 @@ fn update_material(
     handles: (Res<HexTerrainMaterialHandle>, Res<HexWaterMaterialHandle>),
     mut materials: ResMut<Assets<HexTerrainMaterial>>,
     sources: MaterialSources,
-    mut appearance: ResMut<TerrainMaterialSettings>,
+    mut appearance: ResMut<HexTerrainMaterialSettings>,
     mut failed: MessageReader<bevy::asset::AssetLoadFailedEvent<Image>>,
 ) {
     for failure in failed.read() {

@@ -1,9 +1,9 @@
 //! The terrain shader's uniform parameters, built from the map config and the three plugins'
 //! settings that say how the terrain looks ([`Look`]).
 
-use super::TerrainMaterialSettings;
-use crate::tiles::{FOG_MASK, FogState, Highlight, MAX_OWNERS, TileStateStyle, highlight_bit};
-use crate::water::WaterSettings;
+use super::HexTerrainMaterialSettings;
+use crate::tiles::{FOG_MASK, FogState, HexTileStateStyle, Highlight, MAX_OWNERS, highlight_bit};
+use crate::water::HexWaterSettings;
 use bevy::prelude::*;
 use bevy::render::render_resource::ShaderType;
 use hex_terrain::Terrain;
@@ -168,11 +168,11 @@ pub(super) fn window_param((origin, size): (IVec2, UVec2)) -> IVec4 {
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct Look<'a> {
     /// The palette, textures and outlines.
-    pub material: &'a TerrainMaterialSettings,
+    pub material: &'a HexTerrainMaterialSettings,
     /// Fog, borders, tint, lens, highlights.
-    pub tiles: &'a TileStateStyle,
+    pub tiles: &'a HexTileStateStyle,
     /// The water's look.
-    pub water: Option<&'a WaterSettings>,
+    pub water: Option<&'a HexWaterSettings>,
 }
 
 /// Builds the shader parameters for a map, the look and the tile state window (first offset
@@ -182,7 +182,7 @@ pub(crate) fn params(terrain: &Terrain, look: Look, window: (IVec2, UVec2), orig
     let config = terrain.config();
     let wrap = terrain.wrap();
     let (appearance, style) = (look.material, look.tiles);
-    let water = look.water.copied().unwrap_or(WaterSettings { enabled: false, ..WaterSettings::default() });
+    let water = look.water.copied().unwrap_or(HexWaterSettings { enabled: false, ..HexWaterSettings::default() });
     let t = &config.terrain;
     let max = t.max_elevation;
     let mut bits = 0;
@@ -247,9 +247,9 @@ fn wrapped_texture_scale(width: Option<f64>, scale: f32) -> f32 {
     (width * scale).round().max(1.0) / width
 }
 
-/// The owner palette of the style ([`TileStateStyle::owner_color`]), owner `n` at index `n - 1`.
+/// The owner palette of the style ([`HexTileStateStyle::owner_color`]), owner `n` at index `n - 1`.
 #[must_use]
-pub(crate) fn owner_colors(style: &TileStateStyle) -> OwnerColors {
+pub(crate) fn owner_colors(style: &HexTileStateStyle) -> OwnerColors {
     OwnerColors { colors: std::array::from_fn(|i| linear(style.owner_color(i as u8 + 1))) }
 }
 
@@ -264,8 +264,8 @@ mod tests {
     /// elsewhere both are as asked.
     #[test]
     fn wrapping_maps_get_whole_texture_repeats_and_their_width() {
-        let appearance = TerrainMaterialSettings::default();
-        let style = TileStateStyle::default();
+        let appearance = HexTerrainMaterialSettings::default();
+        let style = HexTileStateStyle::default();
         let look = Look { material: &appearance, tiles: &style, water: None };
         for (orientation, column) in [(Orientation::Flat, 1.5_f32), (Orientation::Pointy, 3.0_f32.sqrt())] {
             for columns in [44_u32, 84, 106] {

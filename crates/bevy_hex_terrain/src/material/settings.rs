@@ -1,6 +1,6 @@
 //! The material's own settings: the layer palette, textures and outlines. How tile states and
-//! the water look is set with their plugins ([`TileStateStyle`](crate::TileStateStyle),
-//! [`WaterSettings`](crate::WaterSettings)).
+//! the water look is set with their plugins ([`HexTileStateStyle`](crate::HexTileStateStyle),
+//! [`HexWaterSettings`](crate::HexWaterSettings)).
 
 use bevy::prelude::*;
 
@@ -9,7 +9,7 @@ use bevy::prelude::*;
 /// (before or after the plugins) to change the defaults.
 #[derive(Resource, Debug, Clone, PartialEq, Reflect)]
 #[reflect(Resource, Default)]
-pub struct TerrainMaterialSettings {
+pub struct HexTerrainMaterialSettings {
     /// Draw tile outlines (thesis figure 47).
     pub outlines: bool,
     /// Outline width in world units.
@@ -26,7 +26,7 @@ pub struct TerrainMaterialSettings {
     pub texture_paths: [String; 3],
 }
 
-impl Default for TerrainMaterialSettings {
+impl Default for HexTerrainMaterialSettings {
     fn default() -> Self {
         Self {
             outlines: false,

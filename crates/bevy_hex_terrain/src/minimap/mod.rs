@@ -44,7 +44,7 @@ pub enum MinimapCorner {
 /// The minimap's settings; change them at run time (a change of the look rebuilds the picture).
 #[derive(Resource, Debug, Clone, PartialEq, Reflect)]
 #[reflect(Resource)]
-pub struct MinimapSettings {
+pub struct HexMinimapSettings {
     /// Show the minimap.
     pub visible: bool,
     /// The window corner it sits in.
@@ -66,7 +66,7 @@ pub struct MinimapSettings {
     /// Brightness of explored tiles not in sight, `0..=1`.
     pub explored_brightness: f32,
     /// Draw fog of war from [`TileStates::visibility`](crate::TileStates::visibility) while
-    /// [`TileStateStyle::fog_of_war`](crate::TileStateStyle::fog_of_war) draws it on the terrain
+    /// [`HexTileStateStyle::fog_of_war`](crate::HexTileStateStyle::fog_of_war) draws it on the terrain
     /// (off: every tile in full color).
     pub fog_of_war: bool,
     /// How much an owned tile takes its owner's color, `0..=1`.
@@ -81,7 +81,7 @@ pub struct MinimapSettings {
     pub outline_color: Color,
 }
 
-impl Default for MinimapSettings {
+impl Default for HexMinimapSettings {
     fn default() -> Self {
         let style = MinimapStyle::default();
         let color = |[r, g, b]: [u8; 3]| Color::srgb_u8(r, g, b);
@@ -105,9 +105,9 @@ impl Default for MinimapSettings {
     }
 }
 
-impl MinimapSettings {
+impl HexMinimapSettings {
     /// The core's style for these settings (owner colors come from the
-    /// [`TileStateStyle`](crate::TileStateStyle), which the picture's systems add).
+    /// [`HexTileStateStyle`](crate::HexTileStateStyle), which the picture's systems add).
     #[must_use]
     pub fn style(&self) -> MinimapStyle {
         let rgb = |c: Color| {
@@ -139,7 +139,7 @@ pub struct MinimapNavigate {
     pub world: DVec2,
 }
 
-/// The minimap's UI node (spawned by [`HexMinimapPlugin`], placed by [`MinimapSettings`]).
+/// The minimap's UI node (spawned by [`HexMinimapPlugin`], placed by [`HexMinimapSettings`]).
 #[derive(Component, Debug, Clone, Copy, Default, Reflect)]
 #[reflect(Component, Default)]
 #[require(Node, ImageNode, Outline, BackgroundColor)]
@@ -153,11 +153,11 @@ pub enum HexMinimapSystems {
     Draw,
 }
 
-/// The minimap: [`MinimapSettings`], the [`HexMinimap`] node, the [`MinimapPicture`] and the
+/// The minimap: [`HexMinimapSettings`], the [`HexMinimap`] node, the [`MinimapPicture`] and the
 /// [`MinimapNavigate`] message. Not in [`HexTerrainPlugins`](crate::HexTerrainPlugins): add it
 /// after them; it needs a UI camera to be seen. The picture shows the tiles' biome or type
 /// colors, rivers and lakes, the owners and fog of war of [`TileStates`](crate::TileStates) (as
-/// [`TileStateStyle`](crate::TileStateStyle) draws them) and the camera's view; pressing or
+/// [`HexTileStateStyle`](crate::HexTileStateStyle) draws them) and the camera's view; pressing or
 /// dragging on it sends [`MinimapNavigate`], which the game's camera code follows:
 ///
 /// ```no_run
@@ -176,7 +176,7 @@ pub enum HexMinimapSystems {
 /// # App::new().add_systems(Update, follow);
 /// ```
 ///
-/// Its settings are the [`MinimapSettings`] resource: a value inserted before the plugin is
+/// Its settings are the [`HexMinimapSettings`] resource: a value inserted before the plugin is
 /// added is kept.
 #[derive(Debug, Clone, Copy, Default)]
 pub struct HexMinimapPlugin;
@@ -186,10 +186,10 @@ impl Plugin for HexMinimapPlugin {
         if !app.is_plugin_added::<crate::HexTileStatePlugin>() {
             panic!("HexMinimapPlugin needs HexTileStatePlugin: add HexTerrainPlugins before it");
         }
-        app.init_resource::<MinimapSettings>()
+        app.init_resource::<HexMinimapSettings>()
             .init_resource::<MinimapPicture>()
             .add_message::<MinimapNavigate>()
-            .register_type::<MinimapSettings>()
+            .register_type::<HexMinimapSettings>()
             .register_type::<HexMinimap>()
             .register_type::<HexMinimapCamera>()
             .register_type::<MinimapNavigate>()
@@ -217,7 +217,7 @@ fn spawn_node(mut commands: Commands, mut images: ResMut<Assets<Image>>, mut pic
 
 /// Places and sizes the node from the settings and the picture.
 fn place_node(
-    settings: Res<MinimapSettings>,
+    settings: Res<HexMinimapSettings>,
     picture: Res<MinimapPicture>,
     mut nodes: Query<(&mut Node, &mut Outline, &mut BackgroundColor), With<HexMinimap>>,
 ) {

@@ -13,10 +13,10 @@ use hex_terrain::hexx::Hex;
 use hex_terrain::minimap::{Minimap, MinimapStyle, TileLook};
 use hex_terrain::{Terrain, TileRect};
 
-use super::MinimapSettings;
+use super::HexMinimapSettings;
 use super::view::MinimapCameraView;
 use crate::HexMap;
-use crate::tiles::{TileStateStyle, TileStates};
+use crate::tiles::{HexTileStateStyle, TileStates};
 
 /// The picture shown and what it is built from.
 #[derive(Resource, Default)]
@@ -84,7 +84,7 @@ pub(super) fn new_image([w, h]: [u32; 2], data: Vec<u8>) -> Image {
 /// unbounded world (kept while the focus stays in the middle half).
 pub(super) fn region(
     terrain: &Terrain,
-    settings: &MinimapSettings,
+    settings: &HexMinimapSettings,
     focus: Option<Hex>,
     current: Option<TileRect>,
 ) -> TileRect {
@@ -111,9 +111,9 @@ pub(super) fn region(
 /// Starts building a picture when the map, the style or an unbounded map's region changed.
 pub(super) fn build_picture(
     map: Res<HexMap>,
-    settings: Res<MinimapSettings>,
-    palette: Option<Res<crate::TerrainMaterialSettings>>,
-    tile_style: Res<TileStateStyle>,
+    settings: Res<HexMinimapSettings>,
+    palette: Option<Res<crate::HexTerrainMaterialSettings>>,
+    tile_style: Res<HexTileStateStyle>,
     camera: MinimapCameraView,
     mut picture: ResMut<MinimapPicture>,
 ) {
@@ -134,7 +134,11 @@ pub(super) fn build_picture(
 
 /// The terrain's colors (the material's palette, when it is there) and the tile states' style
 /// (fog on or off, owner colors), so the minimap matches the terrain.
-fn match_terrain(style: &mut MinimapStyle, palette: Option<&crate::TerrainMaterialSettings>, tiles: &TileStateStyle) {
+fn match_terrain(
+    style: &mut MinimapStyle,
+    palette: Option<&crate::HexTerrainMaterialSettings>,
+    tiles: &HexTileStateStyle,
+) {
     let rgb = |c: Color| {
         let [r, g, b, _] = c.to_srgba().to_u8_array();
         [r, g, b]

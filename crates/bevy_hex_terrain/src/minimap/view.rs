@@ -5,7 +5,7 @@ use bevy::ecs::system::SystemParam;
 use bevy::math::{DVec2, DVec3, Vec3A};
 use bevy::prelude::*;
 
-use super::{MinimapPicture, MinimapSettings};
+use super::{HexMinimapSettings, MinimapPicture};
 use crate::HexMap;
 use crate::picking::FrameOrigin;
 
@@ -75,7 +75,7 @@ impl MinimapCameraView<'_, '_> {
 /// Draws the camera's view over the picture, restoring the pixels under the last outline.
 pub(super) fn draw_outline(
     mut picture: ResMut<MinimapPicture>,
-    settings: Res<MinimapSettings>,
+    settings: Res<HexMinimapSettings>,
     camera: MinimapCameraView,
     map: Res<HexMap>,
     mut images: ResMut<Assets<Image>>,

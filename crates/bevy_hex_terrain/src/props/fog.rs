@@ -23,7 +23,7 @@ pub(super) struct PropsByTile {
 /// highlight every frame touches no prop at all.
 pub(super) fn hide_unexplored(
     states: Res<TileStates>,
-    style: Res<crate::tiles::TileStateStyle>,
+    style: Res<crate::tiles::HexTileStateStyle>,
     added: Query<(Entity, &HexProp), Added<HexProp>>,
     mut removed: RemovedComponents<HexProp>,
     mut visibilities: Query<(&HexProp, &mut Visibility)>,

@@ -11,7 +11,7 @@
 //! them). The game setup's resources and natural wonders ([`hex_terrain::Terrain::marker_props`])
 //! are props too ([`PropKind::Resource`], [`PropKind::Wonder`]): drawn, picked and hidden by fog
 //! the same way. Under fog of war, props on unexplored tiles are hidden. How many stand is the
-//! plugin's [`PropSettings`].
+//! plugin's [`HexPropSettings`].
 
 #[cfg(feature = "render")]
 mod fog;
@@ -28,7 +28,7 @@ use bevy::prelude::*;
 use hex_terrain::PROP_VARIANTS;
 use hex_terrain::{Detail, Prop, PropKind};
 
-pub use settings::PropSettings;
+pub use settings::HexPropSettings;
 
 use crate::HexTerrainSystems;
 use crate::streaming::ContentRequest;
@@ -66,26 +66,26 @@ pub struct PropAssets {
 }
 
 /// Spawns and despawns the props of loaded chunks ([`HexProp`] children, in
-/// [`HexTerrainSystems::Children`]), owns [`PropSettings`] (without this plugin, chunk tasks
+/// [`HexTerrainSystems::Children`]), owns [`HexPropSettings`] (without this plugin, chunk tasks
 /// place no props) and hides props on unexplored tiles while the
-/// [`TileStateStyle`](crate::TileStateStyle) draws fog of war. Part of
+/// [`HexTileStateStyle`](crate::HexTileStateStyle) draws fog of war. Part of
 /// [`HexTerrainPlugins`](crate::HexTerrainPlugins); works headless.
 #[derive(Debug, Clone, Copy, Default)]
 pub struct HexPropsPlugin;
 
 impl Plugin for HexPropsPlugin {
     fn build(&self, app: &mut App) {
-        app.init_resource::<PropSettings>()
+        app.init_resource::<HexPropSettings>()
             .init_resource::<ContentRequest>()
             .init_resource::<HexPropStats>()
-            .register_type::<PropSettings>()
+            .register_type::<HexPropSettings>()
             .register_type::<HexProp>()
             .register_type::<HexPropStats>()
             .add_systems(
                 Update,
                 (
                     // Before tasks start: they place props as the settings ask.
-                    request_props.run_if(resource_changed::<PropSettings>).before(HexTerrainSystems::Stream),
+                    request_props.run_if(resource_changed::<HexPropSettings>).before(HexTerrainSystems::Stream),
                     sync_props.in_set(HexTerrainSystems::Children),
                 ),
             );
@@ -126,7 +126,7 @@ fn create_assets(
 }
 
 /// Asks chunk tasks for props at the settings' cap and density.
-fn request_props(settings: Res<PropSettings>, mut request: ResMut<ContentRequest>) {
+fn request_props(settings: Res<HexPropSettings>, mut request: ResMut<ContentRequest>) {
     request.props = Some((settings.max_per_chunk, settings.density));
 }
 
@@ -239,12 +239,12 @@ type PropMesh = ();
 /// Keeps each chunk's prop children in step with its [`ChunkContent`](crate::ChunkContent) and the settings: a chunk
 /// whose content changed (a new mesh, a hot reload) gets its props anew; turning props off or on
 /// despawns or spawns them everywhere. Spawning is queued, chunk by chunk, the chunks nearest an
-/// agent first, at most [`PropSettings::max_spawns_per_frame`] props a frame. A chunk that only
+/// agent first, at most [`HexPropSettings::max_spawns_per_frame`] props a frame. A chunk that only
 /// changed level of detail keeps its prop entities: they move to the new surface and take the
 /// level's meshes, in place.
 fn sync_props(
     mut commands: Commands,
-    (settings, map, assets): (Res<PropSettings>, Res<crate::HexMap>, Option<Res<PropAssets>>),
+    (settings, map, assets): (Res<HexPropSettings>, Res<crate::HexMap>, Option<Res<PropAssets>>),
     (streamer, streaming, agents): (
         Option<Res<crate::ChunkStreamer>>,
         Option<Res<crate::HexStreamingSettings>>,
@@ -375,6 +375,6 @@ pub struct HexPropStats {
     /// another map is loaded); a highlight or an owner written on a tile adds none.
     pub fog_checks: u64,
     /// Props of loaded chunks waiting for their turn to be spawned (see
-    /// [`PropSettings::max_spawns_per_frame`]).
+    /// [`HexPropSettings::max_spawns_per_frame`]).
     pub pending: usize,
 }

@@ -6,7 +6,7 @@ use bevy::prelude::*;
 /// after the plugins) to change the defaults.
 #[derive(Resource, Debug, Clone, Copy, PartialEq, Reflect)]
 #[reflect(Resource, Default)]
-pub struct PropSettings {
+pub struct HexPropSettings {
     /// Show props (trees, rocks, reeds). Chunks always place them, so turning this off at run
     /// time despawns the props of loaded chunks at once and turning it on spawns them again.
     pub enabled: bool,
@@ -22,7 +22,7 @@ pub struct PropSettings {
     pub max_spawns_per_frame: usize,
 }
 
-impl Default for PropSettings {
+impl Default for HexPropSettings {
     fn default() -> Self {
         Self { enabled: true, max_per_chunk: 384, density: 1.0, max_spawns_per_frame: 64 }
     }

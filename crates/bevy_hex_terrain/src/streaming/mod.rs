@@ -1,6 +1,6 @@
 //! Chunk streaming around tracked agents (thesis section 3.4, figure 9): which chunks exist
 //! ([`planner`], a pure function), their meshes built on Bevy's async compute pool ([`tasks`])
-//! and inserted under a per-frame budget ([`insert`]), with figures in [`HexTerrainStats`].
+//! and inserted under a per-frame budget ([`insert`]), with figures in [`HexStreamingStats`].
 
 pub(crate) mod content;
 mod detail;
@@ -20,7 +20,7 @@ pub(crate) use content::ContentRequest;
 pub use detail::DETAIL_HYSTERESIS;
 pub(crate) use planner::kept_at_most;
 pub use retire::MAX_RETIRED_CHUNKS;
-pub use stats::HexTerrainStats;
+pub use stats::HexStreamingStats;
 pub use tasks::ChunkTask;
 
 use crate::HexTerrainSystems;
@@ -46,6 +46,9 @@ pub struct HexTerrainAgent {
 pub struct HexWorldPosition(pub bevy::math::DVec3);
 
 /// Where a chunk task's generation runs.
+///
+/// Hidden from the docs: only the streaming benchmark changes it, to compare one pool with two.
+#[doc(hidden)]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Reflect)]
 pub enum ChunkThreads {
     /// Each chunk on the one thread of Bevy's async compute pool that runs its task: one pool
@@ -73,11 +76,12 @@ pub struct HexStreamingSettings {
     pub max_inserts_per_frame: usize,
     /// Chunk tasks running at once at most; the nearest missing chunks go first.
     pub max_tasks_in_flight: usize,
-    /// Where a chunk's generation runs.
+    /// Where a chunk's generation runs (the streaming benchmark's switch).
+    #[doc(hidden)]
     pub chunk_threads: ChunkThreads,
     /// Children of dropped chunks (props, water surfaces) despawned per frame at most: a
     /// dropped chunk is hidden and forgotten at once, and despawned with its last child. At most
-    /// [`MAX_RETIRED_CHUNKS`] wait; beyond them the oldest goes whole.
+    /// 16 wait; beyond them the oldest goes whole.
     pub max_despawns_per_frame: usize,
     /// Level of detail: a chunk whose box is farther than this many hex sizes (multiples of the
     /// map's `layout.hex_size`) from every camera is drawn coarse ([`Detail::Coarse`]: a fan of
@@ -236,7 +240,7 @@ impl ChunkStreamer {
     }
 }
 
-/// Chunk streaming: [`ChunkStreamer`], [`HexTerrainStats`], the chunk messages, and the systems
+/// Chunk streaming: [`ChunkStreamer`], [`HexStreamingStats`], the chunk messages, and the systems
 /// in [`HexTerrainSystems::Stream`] and [`HexTerrainSystems::Insert`]. Needs [`HexMapPlugin`](crate::HexMapPlugin).
 /// Its settings are the [`HexStreamingSettings`] resource: a value inserted before the plugin
 /// is added is kept.
@@ -253,7 +257,7 @@ impl Plugin for HexStreamingPlugin {
         }
         app.init_resource::<HexStreamingSettings>()
             .init_resource::<ChunkStreamer>()
-            .init_resource::<HexTerrainStats>()
+            .init_resource::<HexStreamingStats>()
             .init_resource::<ContentRequest>()
             .add_message::<ChunkSpawned>()
             .add_message::<ChunkDespawned>()
@@ -267,7 +271,7 @@ impl Plugin for HexStreamingPlugin {
             .register_type::<ChunkDespawned>()
             .register_type::<TerrainReady>()
             .register_type::<ChunkStreamer>()
-            .register_type::<HexTerrainStats>()
+            .register_type::<HexStreamingStats>()
             .add_systems(
                 Update,
                 (

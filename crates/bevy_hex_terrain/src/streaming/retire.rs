@@ -17,7 +17,9 @@ use super::{ChunkStreamer, HexChunk, HexStreamingSettings};
 const FEW_CHILDREN: usize = 8;
 
 /// Retired chunks kept at most: beyond them the oldest is despawned whole, so an agent outrunning
-/// the budget cannot pile up hidden entities.
+/// the budget cannot pile up hidden entities. Hidden from the docs: public so the tests can
+/// bound the entities streaming keeps.
+#[doc(hidden)]
 pub const MAX_RETIRED_CHUNKS: usize = 16;
 
 /// A dropped chunk whose children are being despawned.

@@ -4,7 +4,7 @@
 use bevy::ecs::system::SystemParam;
 use bevy::prelude::*;
 
-use super::{ChunkStreamer, HexStreamingSettings, HexTerrainStats};
+use super::{ChunkStreamer, HexStreamingSettings, HexStreamingStats};
 use crate::map::HexMap;
 
 /// The streaming state a streaming system reads and writes.
@@ -13,7 +13,7 @@ pub(crate) struct StreamState<'w> {
     /// Which chunks are wanted, loaded and current.
     pub streamer: ResMut<'w, ChunkStreamer>,
     /// The figures.
-    pub stats: ResMut<'w, HexTerrainStats>,
+    pub stats: ResMut<'w, HexStreamingStats>,
     /// The map.
     pub map: Res<'w, HexMap>,
     /// The settings.

@@ -1,4 +1,4 @@
-//! [`HexTerrainStats`]: streaming figures for counters, benchmarks and soak runs.
+//! [`HexStreamingStats`]: streaming figures for counters, benchmarks and soak runs.
 
 use std::collections::VecDeque;
 
@@ -10,14 +10,14 @@ const LATENCY_WINDOW: usize = 1024;
 /// Streaming figures, read through getters.
 #[derive(Resource, Debug, Default, Reflect)]
 #[reflect(Resource, Debug, Default)]
-pub struct HexTerrainStats {
+pub struct HexStreamingStats {
     latencies: VecDeque<f32>,
     tasks_started: u64,
     tasks_cancelled: u64,
     meshes_inserted: u64,
 }
 
-impl HexTerrainStats {
+impl HexStreamingStats {
     /// Request-to-insert latency of the most recent chunks (up to 1024), in seconds, oldest
     /// first.
     pub fn latencies(&self) -> impl ExactSizeIterator<Item = f32> + '_ {

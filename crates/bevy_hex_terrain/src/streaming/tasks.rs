@@ -33,6 +33,10 @@ pub struct ChunkBuild {
 /// Dropping it (the chunk was despawned, or a newer task replaced it) cancels the work if the
 /// pool has not started it yet. A chunk's generation has no await point, so once started it
 /// runs to its end (about a millisecond for a 16x16-tile chunk) and its result is discarded.
+///
+/// Hidden from the docs: streaming's internal; public so the tests and the screenshot harness
+/// can wait until no chunk is being built (a game waits for [`TerrainReady`](crate::TerrainReady)).
+#[doc(hidden)]
 #[derive(Component)]
 pub struct ChunkTask {
     pub(super) task: Task<ChunkBuild>,

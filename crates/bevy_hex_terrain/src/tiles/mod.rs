@@ -18,7 +18,7 @@ pub use hex_terrain::save::{SaveError, TileStateSave};
 #[cfg(feature = "render")]
 pub(crate) use state::{FOG_MASK, bit as highlight_bit};
 pub use state::{FogState, Highlight, MAX_OWNERS, TileStateError, TileStates};
-pub use style::TileStateStyle;
+pub use style::HexTileStateStyle;
 #[cfg(feature = "render")]
 pub(crate) use window::TEXEL_BYTES;
 pub use window::{Texel, TileStateUpload};
@@ -36,7 +36,7 @@ pub enum HexTileStateSystems {
 /// Parameters of the tile state store.
 #[derive(Resource, Debug, Clone, PartialEq, Reflect)]
 #[reflect(Resource)]
-pub struct TileStateSettings {
+pub struct HexTileStateSettings {
     /// Largest window of tiles the GPU texture holds (8 bytes a tile). A bounded map that fits
     /// is held whole; a larger or unbounded map gets a window of this size that follows the
     /// loaded chunks, which must fit in it (tiles outside draw as unexplored and plain). Sides
@@ -44,7 +44,7 @@ pub struct TileStateSettings {
     pub max_window: UVec2,
 }
 
-impl Default for TileStateSettings {
+impl Default for HexTileStateSettings {
     fn default() -> Self {
         Self { max_window: UVec2::splat(512) }
     }
@@ -53,7 +53,7 @@ impl Default for TileStateSettings {
 /// Figures of the tile state uploads.
 #[derive(Resource, Debug, Clone, Default, Reflect)]
 #[reflect(Resource)]
-pub struct TileStateStats {
+pub struct HexTileStateStats {
     /// Bytes packed for the GPU in the last frame (0 when nothing changed).
     pub last_upload_bytes: usize,
     /// Bytes packed since the start.
@@ -64,11 +64,11 @@ pub struct TileStateStats {
     pub window_moves: u64,
 }
 
-/// [`TileStates`], [`TileStateSettings`], [`TileStateStyle`] (how the states are drawn),
-/// [`TileStateStats`] and [`TileStateUpload`], with the
+/// [`TileStates`], [`HexTileStateSettings`], [`HexTileStateStyle`] (how the states are drawn),
+/// [`HexTileStateStats`] and [`TileStateUpload`], with the
 /// systems keeping the window on the map ([`HexTerrainSystems::Tiles`]) and packing the
 /// changes (`PostUpdate`). Works headless; the material plugin draws it. Its settings are
-/// the [`TileStateSettings`] resource: a value inserted before the plugin is added is kept.
+/// the [`HexTileStateSettings`] resource: a value inserted before the plugin is added is kept.
 #[derive(Debug, Clone, Copy, Default)]
 pub struct HexTileStatePlugin;
 
@@ -77,15 +77,15 @@ impl Plugin for HexTileStatePlugin {
         if !app.is_plugin_added::<crate::HexMapPlugin>() {
             panic!("HexTileStatePlugin needs HexMapPlugin: add HexTerrainPlugins (or HexMapPlugin before it)");
         }
-        app.init_resource::<TileStateSettings>()
+        app.init_resource::<HexTileStateSettings>()
             .init_resource::<TileStates>()
-            .init_resource::<TileStateStyle>()
-            .init_resource::<TileStateStats>()
+            .init_resource::<HexTileStateStyle>()
+            .init_resource::<HexTileStateStats>()
             .init_resource::<TileStateUpload>()
             .register_type::<TileStates>()
-            .register_type::<TileStateSettings>()
-            .register_type::<TileStateStyle>()
-            .register_type::<TileStateStats>()
+            .register_type::<HexTileStateSettings>()
+            .register_type::<HexTileStateStyle>()
+            .register_type::<HexTileStateStats>()
             .register_type::<TileStateUpload>()
             .register_type::<FogState>()
             .register_type::<Highlight>()
@@ -111,10 +111,10 @@ fn follow_map(map: Res<HexMap>, mut states: ResMut<TileStates>, mut shown: Local
 /// center in steps of a sixteenth of the window (and at once when they leave it).
 fn follow_chunks(
     map: Res<HexMap>,
-    settings: Res<TileStateSettings>,
+    settings: Res<HexTileStateSettings>,
     streamer: Option<Res<ChunkStreamer>>,
     mut states: ResMut<TileStates>,
-    mut stats: ResMut<TileStateStats>,
+    mut stats: ResMut<HexTileStateStats>,
     mut warned: Local<bool>,
 ) {
     let terrain = map.terrain();
@@ -140,7 +140,7 @@ fn follow_chunks(
         if (area.width() as u32 > size.x || area.height() as u32 > size.y) && !*warned {
             warn!(
                 "hex terrain: the loaded chunks span {}x{} tiles, more than the tile state window of {}x{} \
-                 (TileStateSettings::max_window): tiles outside it draw as unexplored",
+                 (HexTileStateSettings::max_window): tiles outside it draw as unexplored",
                 area.width(),
                 area.height(),
                 size.x,
@@ -172,7 +172,11 @@ fn follow_chunks(
 
 /// Packs the rows changed this frame for the GPU (a frame without changes touches nothing) and
 /// starts the next frame's list of changed tiles.
-fn pack_upload(mut states: ResMut<TileStates>, mut upload: ResMut<TileStateUpload>, mut stats: ResMut<TileStateStats>) {
+fn pack_upload(
+    mut states: ResMut<TileStates>,
+    mut upload: ResMut<TileStateUpload>,
+    mut stats: ResMut<HexTileStateStats>,
+) {
     states.bypass_change_detection().clear_journal();
     if !states.has_upload() {
         if stats.last_upload_bytes != 0 {

@@ -51,7 +51,7 @@ pub enum TileStateError {
 ///
 /// Every tile's state is kept here, loaded or not (a chunk streamed out and back keeps it); the
 /// GPU holds a window of tiles around the loaded chunks (the whole map when it fits in
-/// [`TileStateSettings::max_window`](super::TileStateSettings::max_window)) and receives only the rows that changed, once a frame,
+/// [`HexTileStateSettings::max_window`](super::HexTileStateSettings::max_window)) and receives only the rows that changed, once a frame,
 /// after `Update`. The state is kept when the map file is hot-reloaded (tiles that fall off a
 /// resized map are dropped) and cleared when another map is loaded.
 ///
@@ -415,8 +415,8 @@ impl TileStates {
     }
 
     /// The rows changed since the last call, ready for the texture; the plugin calls this once
-    /// a frame.
-    pub fn take_upload(&mut self) -> TileStateUpload {
+    /// a frame (a caller taking them would steal the frame's upload, so it is the crate's).
+    pub(crate) fn take_upload(&mut self) -> TileStateUpload {
         self.window.take_upload()
     }
 

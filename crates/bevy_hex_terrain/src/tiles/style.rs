@@ -9,7 +9,7 @@ use bevy::prelude::*;
 /// insert it (before or after the plugins) to change the defaults.
 #[derive(Resource, Debug, Clone, PartialEq, Reflect)]
 #[reflect(Resource, Default)]
-pub struct TileStateStyle {
+pub struct HexTileStateStyle {
     /// Draw fog of war from [`TileStates::visibility`](crate::TileStates::visibility):
     /// unexplored tiles dark, explored ones desaturated, props on unexplored tiles hidden. Off,
     /// every tile is drawn as visible.
@@ -40,7 +40,7 @@ pub struct TileStateStyle {
     pub reachable_color: Color,
 }
 
-impl Default for TileStateStyle {
+impl Default for HexTileStateStyle {
     fn default() -> Self {
         Self {
             fog_of_war: false,
@@ -68,7 +68,7 @@ impl Default for TileStateStyle {
     }
 }
 
-impl TileStateStyle {
+impl HexTileStateStyle {
     /// The color of owner `owner` (1-based; 0 is nobody and gets the first color): its entry in
     /// [`owner_colors`](Self::owner_colors), or past the list a hue spaced by the golden angle.
     #[must_use]

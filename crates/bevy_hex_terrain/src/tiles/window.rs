@@ -6,6 +6,7 @@ use bevy::prelude::*;
 
 /// One tile's state as the shader reads it (an `Rgba16Uint` texel):
 /// `[fog | highlights << 2, owner, overlay r | g << 8, overlay b | a << 8]`.
+#[doc(hidden)] // The GPU layout of `TileStateUpload`, hidden with it.
 pub type Texel = [u16; 4];
 
 /// Where the window's texels come from: the store of every tile's state.
@@ -23,6 +24,10 @@ pub(crate) const TEXEL_BYTES: usize = std::mem::size_of::<Texel>();
 
 /// The changed part of the texture since the last upload: whole rows or spans of rows, ready to
 /// be copied into the texture.
+///
+/// Hidden from the docs: the material plugin's internal; public so the tests can mirror the
+/// texture the GPU receives and compare it with [`TileStates`](crate::TileStates).
+#[doc(hidden)]
 #[derive(Resource, Debug, Clone, Default, Reflect)]
 #[reflect(Resource, Default)]
 pub struct TileStateUpload {

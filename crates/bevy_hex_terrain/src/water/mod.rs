@@ -2,13 +2,13 @@
 //! [`HexWater`] child showing it, despawned with the chunk. With Bevy's renderer the terrain
 //! material gives it the water look (its water instance: depth colors, shore foam, moving
 //! waves, transparent over the shallows), and it neither casts nor receives shadows. How deep
-//! rivers run and how the water looks is the plugin's [`WaterSettings`].
+//! rivers run and how the water looks is the plugin's [`HexWaterSettings`].
 
 mod settings;
 
 use bevy::prelude::*;
 
-pub use settings::WaterSettings;
+pub use settings::HexWaterSettings;
 
 use crate::HexTerrainSystems;
 use crate::streaming::ContentRequest;
@@ -22,22 +22,22 @@ use crate::streaming::content::{ContentQuery, stale_chunks};
 pub struct HexWater;
 
 /// Spawns and despawns the water surfaces of loaded chunks (in
-/// [`HexTerrainSystems::Children`]), owns [`WaterSettings`]; without it, chunk tasks build no
+/// [`HexTerrainSystems::Children`]), owns [`HexWaterSettings`]; without it, chunk tasks build no
 /// water surface. Part of [`HexTerrainPlugins`](crate::HexTerrainPlugins); works headless.
 #[derive(Debug, Clone, Copy, Default)]
 pub struct HexWaterPlugin;
 
 impl Plugin for HexWaterPlugin {
     fn build(&self, app: &mut App) {
-        app.init_resource::<WaterSettings>()
+        app.init_resource::<HexWaterSettings>()
             .init_resource::<ContentRequest>()
-            .register_type::<WaterSettings>()
+            .register_type::<HexWaterSettings>()
             .register_type::<HexWater>()
             .add_systems(
                 Update,
                 (
                     // Before tasks start: they build the surface as the settings ask.
-                    request_water.run_if(resource_changed::<WaterSettings>).before(HexTerrainSystems::Stream),
+                    request_water.run_if(resource_changed::<HexWaterSettings>).before(HexTerrainSystems::Stream),
                     sync_water.in_set(HexTerrainSystems::Children),
                 ),
             );
@@ -45,7 +45,7 @@ impl Plugin for HexWaterPlugin {
 }
 
 /// Asks chunk tasks for the water surface at the settings' river depth.
-fn request_water(settings: Res<WaterSettings>, mut request: ResMut<ContentRequest>) {
+fn request_water(settings: Res<HexWaterSettings>, mut request: ResMut<ContentRequest>) {
     request.river_depth = Some(settings.river_depth);
 }
 
@@ -53,7 +53,7 @@ fn request_water(settings: Res<WaterSettings>, mut request: ResMut<ContentReques
 /// the settings.
 fn sync_water(
     mut commands: Commands,
-    settings: Res<WaterSettings>,
+    settings: Res<HexWaterSettings>,
     chunks: ContentQuery,
     waters: Query<(), With<HexWater>>,
     mut was_enabled: Local<Option<bool>>,

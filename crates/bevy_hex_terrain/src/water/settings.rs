@@ -8,7 +8,7 @@ use bevy::prelude::*;
 /// [`river_depth`](Self::river_depth), which applies to chunks built after the change.
 #[derive(Resource, Debug, Clone, Copy, PartialEq, Reflect)]
 #[reflect(Resource, Default)]
-pub struct WaterSettings {
+pub struct HexWaterSettings {
     /// Show the water surface over the sea, rivers and lakes (chunks always build it, so
     /// turning it on or off at run time takes effect at once).
     pub enabled: bool,
@@ -35,7 +35,7 @@ pub struct WaterSettings {
     pub waves: f32,
 }
 
-impl Default for WaterSettings {
+impl Default for HexWaterSettings {
     fn default() -> Self {
         Self {
             enabled: true,

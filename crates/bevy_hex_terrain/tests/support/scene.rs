@@ -68,9 +68,9 @@ pub struct Scene {
     /// The map ([`map`] when `None`).
     pub config: Option<MapConfig>,
     /// The material's palette and outlines.
-    pub material: TerrainMaterialSettings,
+    pub material: HexTerrainMaterialSettings,
     /// How the tile states are drawn.
-    pub style: TileStateStyle,
+    pub style: HexTileStateStyle,
     /// Writes the tile states before the first frame.
     pub tiles: Option<fn(&Terrain, &mut TileStates)>,
     /// A deferred camera (deferred and depth prepasses) instead of a forward one.
@@ -85,10 +85,10 @@ pub struct Scene {
     pub props: bool,
     /// Light the scene with the plugin's sun (the camera is a `HexTerrainCamera`) instead of a
     /// fixed shadowless light.
-    pub lighting: Option<TerrainLighting>,
+    pub lighting: Option<HexLightSettings>,
     /// After the first picture: change the settings, let the change show, and take a second
     /// picture ([`render_pair`]).
-    pub then: Option<fn(&mut PropSettings, &mut TerrainLighting)>,
+    pub then: Option<fn(&mut HexPropSettings, &mut HexLightSettings)>,
     /// Streaming settings (when `None`, the defaults with every chunk full).
     pub streaming: Option<HexStreamingSettings>,
     /// Look at this world `(x, z)` instead of the map's middle, with a streaming agent on the
@@ -117,7 +117,7 @@ pub struct Counts {
 
 /// Renders the map with outlines on or off and returns the screenshot.
 pub fn render(outlines: bool, name: &str) -> image::RgbImage {
-    let material = TerrainMaterialSettings { outlines, outline_width: 0.1, ..default() };
+    let material = HexTerrainMaterialSettings { outlines, outline_width: 0.1, ..default() };
     render_scene(Scene { material, ..default() }, name).0
 }
 
@@ -170,8 +170,8 @@ fn render_scenes(scene: Scene, name: &str) -> (image::RgbImage, Option<image::Rg
         .insert_resource(lighting.unwrap_or_default())
         .insert_resource(material)
         .insert_resource(style)
-        .insert_resource(WaterSettings { enabled: water, ..default() })
-        .insert_resource(PropSettings { enabled: props, ..default() })
+        .insert_resource(HexWaterSettings { enabled: water, ..default() })
+        .insert_resource(HexPropSettings { enabled: props, ..default() })
         .insert_resource(GlobalAmbientLight { brightness: 600.0, ..default() });
     let camera_bundle = (
         Camera3d::default(),
@@ -271,8 +271,8 @@ fn render_scenes(scene: Scene, name: &str) -> (image::RgbImage, Option<image::Rg
         move |mut commands: Commands,
               mut ready: MessageReader<TerrainReady>,
               mut exit: MessageWriter<AppExit>,
-              mut settings: ResMut<PropSettings>,
-              mut lighting: ResMut<TerrainLighting>,
+              mut settings: ResMut<HexPropSettings>,
+              mut lighting: ResMut<HexLightSettings>,
               tasks: Query<(), With<ChunkTask>>| {
             frames += 1;
             if *flag.lock().unwrap() {
