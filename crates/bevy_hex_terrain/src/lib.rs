@@ -12,7 +12,7 @@
 //! | [`Map`](HexTerrainSystems::Map) | [`HexMapPlugin`] | loads `*.map.ron` assets (hot reload, [`LoadHexMap`]) into the [`HexMap`] resource; a bad file is a [`HexMapError`] and the old map stays | [`MapSource`] |
 //! | [`Map`](HexTerrainSystems::Map) | [`HexEditorPlugin`] | the world builder: [`HexMapEdit`] strokes, undo, redo and save run on the async compute pool; each edit makes a [`HexMap`] generation in which only its chunks are rebuilt ([`HexMapEdited`]; one that changes nothing, [`HexMapUnchanged`]) | |
 //! | [`Stream`](HexTerrainSystems::Stream) | [`HexStreamingPlugin`] | keeps [`HexChunk`]s around every [`HexTerrainAgent`], each built on the async compute pool from a snapshot of the settings below; a dropped chunk is hidden at once and its children despawned a budget a frame | [`HexStreamingSettings`] |
-//! | [`Insert`](HexTerrainSystems::Insert) | [`HexStreamingPlugin`] | inserts finished meshes and their [`ChunkContent`] under a per-frame budget, sends [`ChunkSpawned`], [`TerrainReady`] | |
+//! | [`Insert`](HexTerrainSystems::Insert) | [`HexStreamingPlugin`] | inserts finished meshes and their [`ChunkContent`] under a per-frame budget, sends [`ChunkSpawned`], [`TerrainReady`] (once per map), [`TerrainSettled`] | |
 //! | [`Children`](HexTerrainSystems::Children) | [`HexWaterPlugin`], [`HexPropsPlugin`] | spawn each chunk's [`HexWater`] surface and [`HexProp`]s (a budget a frame, nearest chunks first) from its content | [`HexWaterSettings`], [`HexPropSettings`] |
 //! | [`Tiles`](HexTerrainSystems::Tiles) | [`HexTileStatePlugin`] | keeps the [`TileStates`] window (fog of war, owners, lens, highlights) on the map; packs changed rows in `PostUpdate` | [`HexTileStateSettings`], [`HexTileStateStyle`] |
 //! | [`Render`](HexTerrainSystems::Render) | `HexTerrainMaterialPlugin`, `HexLightPlugin` (`render`) | the terrain and water material and its tile state texture; the sun, fog and ambient light of `HexTerrainCamera`s | `HexTerrainMaterialSettings`, `HexLightSettings` |
@@ -98,7 +98,7 @@ pub use crate::props::{HexProp, HexPropSettings, HexPropStats, HexPropsPlugin, P
 pub use crate::streaming::{
     ChunkContent, ChunkDespawned, ChunkSpawned, ChunkStreamer, ChunkTask, ChunkThreads, DEFAULT_COARSE_DISTANCE,
     DETAIL_HYSTERESIS, HexChunk, HexStreamingPlugin, HexStreamingSettings, HexStreamingStats, HexTerrainAgent,
-    HexWorldPosition, MAX_RETIRED_CHUNKS, TerrainReady,
+    HexWorldPosition, MAX_RETIRED_CHUNKS, TerrainReady, TerrainSettled,
 };
 pub use crate::tiles::{
     FogState, HexTileStatePlugin, HexTileStateSettings, HexTileStateStats, HexTileStateStyle, HexTileStateSystems,
@@ -123,8 +123,8 @@ pub mod prelude {
         HexMapEdited, HexMapError, HexMapPlugin, HexMapUnchanged, HexProp, HexPropSettings, HexPropsPlugin,
         HexStreamingPlugin, HexStreamingSettings, HexStreamingStats, HexTerrainAgent, HexTerrainPlugins,
         HexTerrainSystems, HexTileStatePlugin, HexTileStateSettings, HexTileStateStyle, HexWater, HexWaterPlugin,
-        HexWaterSettings, HexWorldPosition, Highlight, LoadHexMap, MapSource, SaveError, TerrainReady, TileHit,
-        TileStateSave, TileStates,
+        HexWaterSettings, HexWorldPosition, Highlight, LoadHexMap, MapSource, SaveError, TerrainReady, TerrainSettled,
+        TileHit, TileStateSave, TileStates,
     };
     pub use hex_terrain::hexx::Hex;
     pub use hex_terrain::{

@@ -14,20 +14,6 @@ use bevy_hex_terrain::prelude::*;
 use bevy_hex_terrain::{EditAction, HexMapSaved, HexMapUnchanged};
 use common::*;
 
-/// Every message of type `M` sent so far (kept in a resource, so none is missed between updates).
-#[derive(Resource)]
-struct Seen<M: Message + Clone>(Vec<M>);
-
-fn keep<M: Message + Clone>(app: &mut App) {
-    app.insert_resource(Seen::<M>(Vec::new())).add_systems(Last, |mut r: MessageReader<M>, mut s: ResMut<Seen<M>>| {
-        s.0.extend(r.read().cloned());
-    });
-}
-
-fn seen<M: Message + Clone>(app: &App) -> Vec<M> {
-    app.world().resource::<Seen<M>>().0.clone()
-}
-
 /// The positions of every chunk's mesh, by chunk.
 fn mesh_positions(app: &mut App) -> Vec<(ChunkCoord, Vec<[f32; 3]>)> {
     let handles = meshed_chunks(app);

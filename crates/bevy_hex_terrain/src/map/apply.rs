@@ -205,8 +205,9 @@ fn apply_asset(
     match Terrain::with_image(asset.config.clone(), asset.image.clone()) {
         Ok(terrain) => {
             info!("hex terrain: map {:?} applied", asset.config.name);
-            // The plugin's first map file and a hot reload keep the map id; another file changes it.
-            if new && !map.waiting_for_asset {
+            // A newly followed file (the plugin's first replacing the placeholder, or another) is
+            // another map; a hot reload keeps the map id.
+            if new {
                 map.replace(terrain);
             } else {
                 map.reload(terrain);

@@ -31,10 +31,12 @@ pub use source::MapSource;
 /// It changes (in Bevy's change detection) only when its terrain does: another map takes
 /// effect, a hot reload applies, or an edit applies ([`HexMapEdited`](crate::HexMapEdited));
 /// streaming never marks it changed. So `resource_changed::<HexMap>` means "new terrain", not
-/// "new map": code that runs once per map compares [`map_id`](Self::map_id), which an edit and a
-/// hot reload keep, and waits while [`is_waiting_for_asset`](Self::is_waiting_for_asset) (the
-/// placeholder shown while a map file loads has the file's `map_id` already). Which chunks are
-/// loaded is [`ChunkStreamer`](crate::ChunkStreamer)'s business.
+/// "new map". Code that runs once per map reads [`TerrainReady`](crate::TerrainReady) (sent once
+/// per map, when its terrain is on screen), or compares [`map_id`](Self::map_id), which an edit
+/// and a hot reload keep. While a map file loads, `HexMap` holds a placeholder (the thesis' Map0,
+/// [`is_waiting_for_asset`](Self::is_waiting_for_asset) true, nothing streamed) whose `map_id`
+/// is its own: the file's map gets another when it applies. Which chunks are loaded is
+/// [`ChunkStreamer`](crate::ChunkStreamer)'s business.
 #[derive(Resource, Debug, Clone, Reflect)]
 #[reflect(from_reflect = false, Debug)]
 pub struct HexMap {
@@ -114,12 +116,18 @@ impl HexMap {
         built.is_some_and(|g| g >= self.chunk_generation(chunk) && g <= self.generation)
     }
 
-    /// Changes each time another map is shown ([`LoadHexMap`] or [`replace`](Self::replace));
-    /// stays the same over hot reloads of the same map file. [`TileStates`](crate::TileStates) is
-    /// cleared when it changes.
+    /// Changes each time another map takes effect (the plugin's map file replacing the
+    /// placeholder, [`LoadHexMap`]); stays the same over edits and hot reloads of the same map
+    /// file. [`TileStates`](crate::TileStates) is cleared when it changes (but keeps what was
+    /// written while the placeholder waited for the map file, on the tiles of the map).
     #[must_use]
     pub fn map_id(&self) -> u64 {
         self.map_id
+    }
+
+    /// The generation of the last new config (another map, a hot reload); edits leave it.
+    pub(crate) fn config_generation(&self) -> u64 {
+        self.base_generation
     }
 
     /// Whether the map still waits for its config asset (no chunks are streamed until then).
@@ -138,9 +146,9 @@ impl HexMap {
         self.appearance_fallback
     }
 
-    /// Replaces the terrain, starting a new generation: every chunk is regenerated. (To load
-    /// another map file, send [`LoadHexMap`].)
-    pub fn replace(&mut self, terrain: Terrain) {
+    /// Another map: a new generation and a new [`map_id`](Self::map_id); every chunk is
+    /// regenerated. (A game sends [`LoadHexMap`].)
+    pub(crate) fn replace(&mut self, terrain: Terrain) {
         self.reload(terrain);
         self.map_id += 1;
     }

@@ -6,17 +6,18 @@ use bevy::tasks::futures::check_ready;
 
 use super::content::ChunkContent;
 use super::state::StreamState;
-use super::{ChunkSpawned, ChunkStreamer, ChunkTask, HexChunk, TerrainReady};
+use super::{ChunkSpawned, ChunkStreamer, ChunkTask, HexChunk, TerrainReady, TerrainSettled};
 
 /// Inserts finished meshes, at most [`HexStreamingSettings::max_inserts_per_frame`] a frame,
-/// and reports [`TerrainReady`] when these inserts make every wanted chunk current.
+/// and reports [`TerrainSettled`] when these inserts make every wanted chunk current, with
+/// [`TerrainReady`] the first time for a map.
 pub(crate) fn insert_ready(
     mut commands: Commands,
     state: StreamState,
     mut meshes: ResMut<Assets<Mesh>>,
     mut tasks: Query<(Entity, &mut HexChunk, Option<&mut ChunkTask>)>,
     mut spawned: MessageWriter<ChunkSpawned>,
-    mut ready: MessageWriter<TerrainReady>,
+    mut messages: (MessageWriter<TerrainReady>, MessageWriter<TerrainSettled>),
 ) {
     let StreamState { mut streamer, mut stats, map, settings } = state;
     let generation = map.generation();
@@ -110,7 +111,13 @@ pub(crate) fn insert_ready(
 
     let now = complete(&streamer);
     if now && !(was_complete && streamer.settled) {
-        ready.write(TerrainReady { generation });
+        let (ready, settled) = &mut messages;
+        settled.write(TerrainSettled { generation });
+        let map_id = map.map_id();
+        if streamer.ready_map != Some(map_id) {
+            streamer.ready_map = Some(map_id);
+            ready.write(TerrainReady { map_id, generation });
+        }
     }
     if streamer.settled != now {
         streamer.settled = now;

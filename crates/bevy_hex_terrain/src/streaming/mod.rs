@@ -158,10 +158,24 @@ pub struct ChunkDespawned {
     pub coord: ChunkCoord,
 }
 
-/// Every wanted chunk has its mesh for the current map generation: units can be placed.
-/// Sent each time the terrain settles (at start, after an agent moved on, after a reload).
-#[derive(Message, Debug, Clone, Copy, Reflect)]
+/// A map's terrain is on screen for the first time: every wanted chunk shows its mesh. Sent
+/// once per map taking effect (per [`HexMap::map_id`](crate::HexMap::map_id): the plugin's
+/// first map, [`LoadHexMap`](crate::LoadHexMap)), never for the placeholder shown while a map
+/// file loads (it streams nothing), never again for the same map's edits, hot reloads or newly
+/// streamed chunks (those are [`TerrainSettled`]). The place to put the players on the map.
+#[derive(Message, Debug, Clone, Copy, PartialEq, Eq, Reflect)]
 pub struct TerrainReady {
+    /// The map now on screen.
+    pub map_id: u64,
+    /// Its generation (see [`HexMap::generation`](crate::HexMap::generation)).
+    pub generation: u64,
+}
+
+/// Every wanted chunk shows its mesh for the current map generation. Sent each time the terrain
+/// settles: the first time for a map (with [`TerrainReady`], in the same frame), and again after
+/// an edit, a hot reload or an agent moving on to new chunks.
+#[derive(Message, Debug, Clone, Copy, PartialEq, Eq, Reflect)]
+pub struct TerrainSettled {
     /// The map generation now complete.
     pub generation: u64,
 }
@@ -182,6 +196,8 @@ pub struct ChunkStreamer {
     current_generation: u64,
     /// Whether every wanted chunk was current at the end of the last frame.
     settled: bool,
+    /// The map [`TerrainReady`] was last sent for.
+    ready_map: Option<u64>,
     /// Dropped chunks whose children are being despawned.
     #[reflect(ignore)]
     retiring: retire::Retiring,
@@ -262,6 +278,7 @@ impl Plugin for HexStreamingPlugin {
             .add_message::<ChunkSpawned>()
             .add_message::<ChunkDespawned>()
             .add_message::<TerrainReady>()
+            .add_message::<TerrainSettled>()
             .register_type::<HexTerrainAgent>()
             .register_type::<HexWorldPosition>()
             .register_type::<HexStreamingSettings>()
@@ -270,6 +287,7 @@ impl Plugin for HexStreamingPlugin {
             .register_type::<ChunkSpawned>()
             .register_type::<ChunkDespawned>()
             .register_type::<TerrainReady>()
+            .register_type::<TerrainSettled>()
             .register_type::<ChunkStreamer>()
             .register_type::<HexStreamingStats>()
             .add_systems(

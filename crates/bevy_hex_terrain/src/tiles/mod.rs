@@ -91,20 +91,20 @@ impl Plugin for HexTileStatePlugin {
             .register_type::<Highlight>()
             // Placed before `Startup`, so the material starts with the window's texture.
             .add_systems(PreStartup, (follow_map, follow_chunks).chain())
-            .add_systems(Update, (follow_map, follow_chunks).chain().in_set(HexTerrainSystems::Tiles))
+            // The map's bounds as soon as a map applies; the window once the frame's chunks are in.
+            .add_systems(Update, follow_map.in_set(HexTerrainSystems::Map).after(crate::map::MapAssets))
+            .add_systems(Update, follow_chunks.in_set(HexTerrainSystems::Tiles))
             .add_systems(PostUpdate, pack_upload.in_set(HexTileStateSystems::Pack));
     }
 }
 
-/// Follows the map: a hot reload keeps the state of tiles still on the map, another map clears
-/// it.
-fn follow_map(map: Res<HexMap>, mut states: ResMut<TileStates>, mut shown: Local<Option<u64>>) {
-    if !map.is_changed() && shown.is_some() {
-        return;
+/// Follows the map (see [`TileStates::follow`]): runs at the end of
+/// [`HexTerrainSystems::Map`], so a system after that set that sees a new [`HexMap`] writes the
+/// states of its tiles.
+fn follow_map(map: Res<HexMap>, mut states: ResMut<TileStates>) {
+    if map.is_changed() {
+        states.follow(map.terrain().geometry(), map.map_id(), map.is_waiting_for_asset(), map.config_generation());
     }
-    let keep = shown.is_none_or(|id| id == map.map_id());
-    *shown = Some(map.map_id());
-    states.set_map(map.terrain().geometry(), keep);
 }
 
 /// Places the window: the whole map when it fits, else around the loaded chunks, following their

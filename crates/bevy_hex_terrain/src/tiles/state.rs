@@ -53,7 +53,14 @@ pub enum TileStateError {
 /// GPU holds a window of tiles around the loaded chunks (the whole map when it fits in
 /// [`HexTileStateSettings::max_window`](super::HexTileStateSettings::max_window)) and receives only the rows that changed, once a frame,
 /// after `Update`. The state is kept when the map file is hot-reloaded (tiles that fall off a
-/// resized map are dropped) and cleared when another map is loaded.
+/// resized map are dropped) and cleared when another map is loaded. What is written while the
+/// plugin's map file loads (from `Startup` on, any tile: the placeholder is not the map) is kept
+/// on the tiles of the map once it applies.
+///
+/// It follows [`HexMap`](crate::HexMap) at the end of
+/// [`HexTerrainSystems::Map`](crate::HexTerrainSystems::Map): write it from a system after that
+/// set (`.after(HexTerrainSystems::Map)`) when the tiles you write come from the map you read,
+/// so that on the frame another map applies you write on the new map's bounds, not the old.
 ///
 /// A write to a tile outside a bounded map, an owner beyond [`MAX_OWNERS`] or a non-finite
 /// overlay color is refused with a [`TileStateError`] and changes nothing.
@@ -79,6 +86,10 @@ pub struct TileStates {
     #[reflect(ignore)]
     journal: Option<Vec<IVec2>>,
     writes: u64,
+    /// The map followed: its id, whether it was the placeholder waiting for its file, and its
+    /// config generation.
+    #[reflect(ignore)]
+    followed: Option<(u64, bool, u64)>,
 }
 
 /// The core's geometry of the map the states follow (an unbounded map before any): one place for
@@ -113,6 +124,7 @@ impl Default for TileStates {
             visible: HashSet::default(),
             journal: None,
             writes: 0,
+            followed: None,
         }
     }
 }
@@ -370,6 +382,25 @@ impl TileStates {
         match &mut self.journal {
             Some(journal) => journal.clear(),
             None => self.journal = Some(Vec::new()),
+        }
+    }
+
+    /// Follows the map: its id, whether it is the placeholder waiting for its file, its config
+    /// generation and its geometry. Another config of the same map (a hot reload) keeps the
+    /// states of tiles still on it; another map clears them, except after the placeholder: what
+    /// was written while the map file loaded (anywhere: the placeholder's tiles are not the
+    /// map's) is kept on the tiles of the map.
+    pub(crate) fn follow(&mut self, geometry: &Geometry, map_id: u64, waiting: bool, config: u64) {
+        let now = (map_id, waiting, config);
+        if self.followed == Some(now) {
+            return;
+        }
+        let keep = self.followed.is_none_or(|(id, was_waiting, _)| was_waiting || id == map_id);
+        self.followed = Some(now);
+        if waiting {
+            self.set_map(&MapGeometry::default(), keep);
+        } else {
+            self.set_map(geometry, keep);
         }
     }
 

@@ -69,7 +69,7 @@ pub fn run_until(app: &mut App, what: &str, mut done: impl FnMut(&mut App) -> bo
 }
 
 pub fn ready(app: &mut App) -> bool {
-    let messages = app.world().resource::<Messages<TerrainReady>>();
+    let messages = app.world().resource::<Messages<TerrainSettled>>();
     let mut cursor = messages.get_cursor();
     cursor.read(messages).last().is_some_and(|r| r.generation == app.world().resource::<HexMap>().generation())
         && app.world_mut().query::<&bevy_hex_terrain::ChunkTask>().iter(app.world()).next().is_none()
@@ -97,4 +97,18 @@ pub fn window(center: ChunkCoord, r: i32) -> HashSet<ChunkCoord> {
 pub fn agent_chunk(app: &App, at: Vec3) -> ChunkCoord {
     let map = app.world().resource::<HexMap>();
     map.chunk_of(map.tile_at(at).unwrap()).unwrap()
+}
+
+/// Every message of type `M` sent so far (kept in a resource, so none is missed between updates).
+#[derive(Resource)]
+pub struct Seen<M: Message + Clone>(pub Vec<M>);
+
+pub fn keep<M: Message + Clone>(app: &mut App) {
+    app.insert_resource(Seen::<M>(Vec::new())).add_systems(Last, |mut r: MessageReader<M>, mut s: ResMut<Seen<M>>| {
+        s.0.extend(r.read().cloned());
+    });
+}
+
+pub fn seen<M: Message + Clone>(app: &App) -> Vec<M> {
+    app.world().resource::<Seen<M>>().0.clone()
 }

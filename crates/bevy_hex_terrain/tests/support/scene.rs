@@ -269,7 +269,7 @@ fn render_scenes(scene: Scene, name: &str) -> (image::RgbImage, Option<image::Rg
     app.add_systems(
         Last,
         move |mut commands: Commands,
-              mut ready: MessageReader<TerrainReady>,
+              mut ready: MessageReader<TerrainSettled>,
               mut exit: MessageWriter<AppExit>,
               mut settings: ResMut<HexPropSettings>,
               mut lighting: ResMut<HexLightSettings>,
