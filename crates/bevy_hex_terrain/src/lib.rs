@@ -53,6 +53,9 @@ mod asset;
 mod editor;
 #[cfg(feature = "big_space")]
 mod far;
+// The guide is built with the `minimap` and `big_space` features, as on docs.rs.
+#[cfg(all(feature = "minimap", feature = "big_space"))]
+pub mod guide;
 #[cfg(feature = "render")]
 mod light;
 mod map;
@@ -93,7 +96,9 @@ pub use crate::minimap::{
     MinimapNavigate, MinimapPicture,
 };
 #[cfg(feature = "picking")]
-pub use crate::picking::{HexPick, HexPickingCamera, HexPickingPlugin, HexPickingSettings, HexPickingStats};
+pub use crate::picking::{
+    HexPick, HexPickingCamera, HexPickingPlugin, HexPickingSettings, HexPickingStats, HoveredTile,
+};
 pub use crate::props::{HexProp, HexPropSettings, HexPropStats, HexPropsPlugin, PropAssets};
 pub use crate::streaming::{
     ChunkContent, ChunkDespawned, ChunkSpawned, ChunkStreamer, ChunkTask, ChunkThreads, DEFAULT_COARSE_DISTANCE,
@@ -117,7 +122,7 @@ pub mod prelude {
     #[cfg(feature = "minimap")]
     pub use crate::minimap::{HexMinimapPlugin, HexMinimapSettings, MinimapNavigate};
     #[cfg(feature = "picking")]
-    pub use crate::picking::{HexPick, HexPickingPlugin, HexPickingSettings};
+    pub use crate::picking::{HexPick, HexPickingPlugin, HexPickingSettings, HoveredTile};
     pub use crate::{
         ChunkContent, ChunkDespawned, ChunkSpawned, ChunkStreamer, FogState, HexChunk, HexEditor, HexMap, HexMapEdit,
         HexMapEdited, HexMapError, HexMapPlugin, HexMapUnchanged, HexProp, HexPropSettings, HexPropsPlugin,

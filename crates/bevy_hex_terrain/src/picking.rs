@@ -7,6 +7,8 @@ use bevy::picking::Pickable;
 use bevy::picking::PickingSystems;
 use bevy::picking::backend::ray::RayMap;
 use bevy::picking::backend::{HitData, PointerHits};
+use bevy::picking::hover::HoverMap;
+use bevy::picking::pointer::PointerId;
 use bevy::prelude::*;
 use hex_terrain::ChunkCoord;
 use hex_terrain::hexx::Hex;
@@ -57,6 +59,27 @@ pub struct HexPickingStats {
     pub time: std::time::Duration,
 }
 
+/// The tile under the mouse pointer, for systems (observers read the tile from their event's
+/// hit): the tile of the nearest terrain hit Bevy's hover map holds for the mouse (the ground, a
+/// prop or the water surface). `None` when no terrain is under the pointer: the sky, a UI node,
+/// a chunk not loaded, or an entity in front that blocks what is behind it (a unit with
+/// `MeshPickingPlugin`). Updated in `PreUpdate` after [`PickingSystems::Hover`], and written only
+/// when the tile changes, so `resource_changed::<HoveredTile>` means "the pointer moved to
+/// another tile".
+#[derive(Resource, Debug, Clone, Copy, Default, PartialEq, Eq, Reflect)]
+#[reflect(Resource, Default)]
+pub struct HoveredTile {
+    tile: Option<Hex>,
+}
+
+impl HoveredTile {
+    /// The tile under the mouse pointer (the map's own tile on a wrapping map), if any.
+    #[must_use]
+    pub fn tile(&self) -> Option<Hex> {
+        self.tile
+    }
+}
+
 /// Marks a camera that picks the terrain when [`HexPickingSettings::require_markers`] is on.
 #[derive(Component, Debug, Clone, Copy, Default, Reflect)]
 #[reflect(Component, Default)]
@@ -100,6 +123,8 @@ pub struct HexPickingCamera;
 /// Bevy's depth order and blocks the terrain behind it unless its `Pickable` says otherwise.
 /// Only loaded chunks are hit: a ray to a chunk not streamed in reports nothing.
 ///
+/// A system that wants the tile under the mouse reads [`HoveredTile`].
+///
 /// Its settings are the [`HexPickingSettings`] resource: a value inserted before the plugin is
 /// added is kept.
 #[derive(Debug, Clone, Copy, Default)]
@@ -117,7 +142,10 @@ impl Plugin for HexPickingPlugin {
             .register_type::<HexPickingSettings>()
             .register_type::<HexPickingStats>()
             .register_type::<HexPickingCamera>()
-            .add_systems(PreUpdate, pick_terrain.in_set(PickingSystems::Backend));
+            .init_resource::<HoveredTile>()
+            .register_type::<HoveredTile>()
+            .add_systems(PreUpdate, pick_terrain.in_set(PickingSystems::Backend))
+            .add_systems(PreUpdate, follow_hover.after(PickingSystems::Hover));
     }
 }
 
@@ -330,4 +358,15 @@ fn pick(
     let entity = streamer.entity(chunk).filter(|_| streamer.is_chunk_loaded(chunk))?;
     let normal = map.surface_normal_f64(hit.point)?.as_vec3();
     Some((entity, hit.distance as f32, normal, HexPick { tile: hit.tile, chunk, world: hit.point }))
+}
+
+/// Sets [`HoveredTile`] from the mouse's hovered entities: the nearest hit that carries a tile.
+fn follow_hover(hover: Option<Res<HoverMap>>, mut hovered: ResMut<HoveredTile>) {
+    let tile = hover.as_ref().and_then(|hover| hover.get(&PointerId::Mouse)).and_then(|hits| {
+        hits.values()
+            .filter_map(|hit| hit.extra_as::<HexPick>().map(|pick| (hit.depth, pick.tile)))
+            .min_by(|a, b| a.0.total_cmp(&b.0))
+            .map(|(_, tile)| tile)
+    });
+    hovered.set_if_neq(HoveredTile { tile });
 }

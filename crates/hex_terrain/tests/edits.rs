@@ -306,6 +306,30 @@ fn a_biome_set_by_hand_stays_until_erased() {
 }
 
 #[test]
+fn setting_a_tiles_own_type_changes_nothing() {
+    let mut editor = Editor::new(bounded(Vec::new())).unwrap();
+    let terrain = editor.terrain().clone();
+    let tiles: Vec<Hex> =
+        (0..16).flat_map(|x| (0..12).map(move |z| [x, z])).map(|o| terrain.tile_from_offset(o)).collect();
+    for kind in [TileKind::Sea, TileKind::Land, TileKind::Mountain] {
+        // A tile of that type: the stroke has nothing to set.
+        if let Some(&own) = tiles.iter().find(|&&t| editor.terrain().tile_kind(t) == Some(kind)) {
+            let change = editor.apply(Stroke { tool: Tool::SetKind(kind), brush: Brush::Range(0), tile: own }).unwrap();
+            assert!(change.edited.is_empty() && change.tiles.is_empty(), "{kind:?} on a {kind:?} tile: {change:?}");
+        }
+        // A tile made that type: a second stroke has nothing to set either.
+        let other = *tiles.iter().find(|&&t| editor.terrain().tile_kind(t) != Some(kind)).unwrap();
+        let first = editor.apply(Stroke { tool: Tool::SetKind(kind), brush: Brush::Range(0), tile: other }).unwrap();
+        assert!(first.edited.contains(&other));
+        assert_eq!(editor.terrain().tile_kind(other), Some(kind));
+        let edits = editor.edits();
+        let again = editor.apply(Stroke { tool: Tool::SetKind(kind), brush: Brush::Range(0), tile: other }).unwrap();
+        assert!(again.edited.is_empty() && again.tiles.is_empty(), "{kind:?} twice: {again:?}");
+        assert_eq!(editor.edits(), edits);
+    }
+}
+
+#[test]
 fn a_raise_moves_the_whole_tile_and_a_second_undo_is_none() {
     let mut editor = Editor::new(bounded(Vec::new())).unwrap();
     let tile = editor.terrain().tile_from_offset([5, 5]);

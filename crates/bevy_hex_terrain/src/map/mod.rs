@@ -309,6 +309,19 @@ impl HexMap {
         self.terrain.neighbors(tile)
     }
 
+    /// The tile at an offset coordinate `[column, row]` (the coordinates of map files, the CLI
+    /// and what a player sees); every input answers.
+    #[must_use]
+    pub fn tile_from_offset(&self, offset: [i32; 2]) -> Hex {
+        self.terrain.tile_from_offset(offset)
+    }
+
+    /// The offset coordinate `[column, row]` of a tile; every input answers.
+    #[must_use]
+    pub fn offset_of(&self, tile: Hex) -> [i32; 2] {
+        self.terrain.offset_of(tile)
+    }
+
     /// Hex distance between two tiles, the short way round on a wrapping map; `None` when
     /// either is past the world's edge.
     #[must_use]

@@ -299,6 +299,10 @@ impl Editor {
                 edit.kind = None;
             }
             Tool::SetKind(kind) => {
+                // A tile of that type already: nothing to set (its height stays its own).
+                if self.terrain.tile_kind(tile) == Some(kind) {
+                    return before;
+                }
                 edit.height = Some(height(tile));
                 edit.kind = Some(kind);
             }
