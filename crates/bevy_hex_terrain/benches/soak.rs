@@ -148,7 +148,7 @@ fn play(app: &mut App, position: Vec3, frame: u64) {
     }
     states.replace_highlight(Highlight::Hovered, [here]);
     if frame.is_multiple_of(30) {
-        let owner = 1 + (frame / 3000 % 8) as u8;
+        let owner = (frame / 3000 % 8) as u32;
         for tile in here.range(1) {
             let _ = states.set_owner(tile, Some(owner));
         }

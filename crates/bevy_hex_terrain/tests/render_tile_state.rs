@@ -105,8 +105,8 @@ fn scenario_fog() {
 }
 
 /// Owners: nobody in the first two rows, player 1 left of column 10, player 2 from it.
-fn owner_of(terrain: &Terrain, h: Hex) -> Option<u8> {
-    (row(terrain, h) >= 2).then_some(if col(terrain, h) < 10 { 1 } else { 2 })
+fn owner_of(terrain: &Terrain, h: Hex) -> Option<u32> {
+    (row(terrain, h) >= 2).then_some(if col(terrain, h) < 10 { 0 } else { 1 })
 }
 
 #[test]
@@ -139,15 +139,15 @@ fn scenario_borders() {
             let mid = (pa + pb) / 2.0;
             let c = at(mid + (pa - mid).normalize() * 0.175);
             match oa {
-                Some(1) => {
+                Some(0) => {
                     assert!(
                         c[0] > c[1] + 0.25 && c[0] > c[2] + 0.25,
-                        "player 1's border in {a:?} towards {b:?}: {c:?}"
+                        "player 0's border in {a:?} towards {b:?}: {c:?}"
                     );
                     red += 1;
                 }
                 Some(_) => {
-                    assert!(c[2] > c[0] + 0.25 && c[2] > c[1] + 0.1, "player 2's border in {a:?} towards {b:?}: {c:?}");
+                    assert!(c[2] > c[0] + 0.25 && c[2] > c[1] + 0.1, "player 1's border in {a:?} towards {b:?}: {c:?}");
                     blue += 1;
                 }
                 None => {

@@ -77,7 +77,7 @@ fn writing_tile_state_never_rebuilds_or_reinserts_a_chunk_mesh() {
             for (i, &t) in tiles.iter().enumerate() {
                 let fog = [FogState::Unexplored, FogState::Explored, FogState::Visible][(i + frame) % 3];
                 states.set_visibility(t, fog).unwrap();
-                states.set_owner(t, Some(((i + frame) % 8) as u8)).unwrap_or_else(|e| panic!("{e}"));
+                states.set_owner(t, Some(((i + frame) % 8) as u32)).unwrap_or_else(|e| panic!("{e}"));
                 if i % 7 == frame {
                     states.set_overlay(t, Some(Color::srgba(0.1, 0.9, 0.2, 0.5))).unwrap();
                 }
@@ -241,7 +241,7 @@ fn with_mirror(mut app: App) -> App {
 }
 
 /// A tile's state as the public API reads it: fog, owner, overlay, each highlight.
-type TileState = (Hex, FogState, Option<u8>, Option<Color>, [bool; 3]);
+type TileState = (Hex, FogState, Option<u32>, Option<Color>, [bool; 3]);
 
 /// Every tile's state, read through the public API.
 fn every_state(app: &App) -> Vec<TileState> {
@@ -271,7 +271,7 @@ fn a_save_mid_game_loads_into_a_fresh_app_bit_for_bit() {
             let _ = states.set_visibility(tile, FogState::Visible);
         }
         for tile in here.range(1) {
-            let _ = states.set_owner(tile, Some(1 + (turn % 5) as u8));
+            let _ = states.set_owner(tile, Some((turn % 5) as u32));
         }
         let _ = states.set_overlay(here, Some(Color::srgba(0.2, 0.8, 0.1, 0.5)));
         states.replace_highlight(Highlight::Reachable, here.range(2));

@@ -287,7 +287,7 @@ impl Geometry {
     }
 
     /// The chunk holding a tile. On a wrapping map, a tile past the map's east or west edge is
-    /// in a chunk placed there (see [`crate::wrap`]).
+    /// in a chunk placed there (see `crate::wrap`).
     #[must_use]
     pub fn chunk_of(&self, tile: Hex) -> ChunkCoord {
         match &self.wrap {

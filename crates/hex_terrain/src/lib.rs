@@ -7,21 +7,21 @@
 //! the whole map) can be generated alone, in any order, on any thread, and meets its neighbors
 //! bit for bit. In the order data flows through them:
 //!
-//! | module | stage |
+//! | module (private: the stages are reached through [`Terrain`] and the types re-exported here) | stage |
 //! | --- | --- |
 //! | [`vocab`] | the words every stage uses: [`TileKind`], [`Biome`], [`TileInfo`], [`PropKind`] (imports nothing of the crate) |
 //! | [`config`] | [`MapConfig`] (RON), validation with the field, value and allowed range of every error |
-//! | [`lattice`], [`chunk`], [`wrap`], [`geometry`] | the hex-in-hex lattice, rectangles and chunks, east-west wrapping; [`Geometry`] composes them: where tiles and points are |
-//! | [`heights`] | [`HeightField`]: Perlin fBm or a heightmap, then the shaping filters |
-//! | [`edits`] | [`Edits`]: a designer's changes ([`TileEdit`]s, the config's `edits`) applied to the raw heights, so every later stage sees them |
-//! | [`kind`] | [`Thresholds`]: a tile's kind from its center height, each kind's height range |
-//! | [`climate`] | [`ClimateModel`]: temperature, moisture and the biome table |
-//! | [`table`], [`water::hydrology`] | [`TileTable`]: every tile's kind and biome and the water network of a bounded map, computed once |
-//! | [`manipulate`], [`relief`], [`water::channels`], [`vertex`] | the vertex chain [`VertexRules`]: manipulation, relief, carving |
-//! | [`pipeline`] | [`Pipeline`]: the stages compiled from one config, and the questions that combine them |
-//! | [`mesh`] | any rectangle of tiles to [`MeshBuffers`], on all cores or the calling thread |
-//! | [`water::surface`], [`props`] | what stands on a generated chunk: its water surface, its trees, rocks and reeds |
-//! | [`query`], [`metrics`] | the surface under a position and ray casts, in f64; sharpness (thesis eq. 4.1, 7.3) |
+//! | `lattice`, `chunk`, `wrap`, `geometry` | the hex-in-hex lattice, rectangles and chunks, east-west wrapping; [`Geometry`] composes them: where tiles and points are |
+//! | `heights` | [`HeightField`]: Perlin fBm or a heightmap, then the shaping filters |
+//! | `edits` | [`Edits`]: a designer's changes ([`TileEdit`]s, the config's `edits`) applied to the raw heights, so every later stage sees them |
+//! | `kind` | [`Thresholds`]: a tile's kind from its center height, each kind's height range |
+//! | `climate` | [`ClimateModel`]: temperature, moisture and the biome table |
+//! | `table`, `water::hydrology` | [`TileTable`]: every tile's kind and biome and the water network of a bounded map, computed once |
+//! | `manipulate`, `relief`, `water::channels`, `vertex` | the vertex chain [`VertexRules`]: manipulation, relief, carving |
+//! | `pipeline` | [`Pipeline`]: the stages compiled from one config, and the questions that combine them |
+//! | `mesh` | any rectangle of tiles to [`MeshBuffers`], on all cores or the calling thread |
+//! | `water::surface`, `props` | what stands on a generated chunk: its water surface, its trees, rocks and reeds |
+//! | `query`, `metrics` | the surface under a position and ray casts, in f64; sharpness (thesis eq. 4.1, 7.3) |
 //! | [`setup`] | [`Setup`]: a game on the map: start positions in regions of equal fertility, resources, natural wonders, and the fairness report (after the terrain; it changes no height) |
 //! | [`terrain`] | [`Terrain`], the facade over all of it |
 //! | [`editor`] | [`Editor`]: strokes of a [`Tool`] with a [`Brush`] that change the config's edits, undo and redo, and the [`Change`] (tiles, chunks) of each |
@@ -43,31 +43,31 @@ pub mod vocab;
 pub mod config;
 pub mod error;
 
-pub mod chunk;
-pub mod geometry;
-pub mod lattice;
-pub mod wrap;
+mod chunk;
+mod geometry;
+mod lattice;
+mod wrap;
 
-pub mod edits;
-pub mod heights;
-pub mod kind;
+mod edits;
+mod heights;
+mod kind;
 
-pub mod climate;
-pub mod table;
-pub mod water;
+mod climate;
+mod table;
+mod water;
 
-pub mod hash;
-pub mod manipulate;
-pub mod relief;
-pub mod vertex;
+mod hash;
+mod manipulate;
+mod relief;
+mod vertex;
 
-pub mod pipeline;
+mod pipeline;
 
-pub mod mesh;
-pub mod props;
+mod mesh;
+mod props;
 
-pub mod metrics;
-pub mod query;
+mod metrics;
+mod query;
 
 pub mod minimap;
 
@@ -96,7 +96,11 @@ pub use editor::{Brush, Change, EditError, EditTimings, Editor, MAX_BRUSH_RADIUS
 pub use edits::Edits;
 pub use error::{ConfigError, LoadError};
 pub use geometry::Geometry;
-pub use heights::{HeightField, HeightImage, ImageError, MAX_IMAGE_PIXELS, MAX_PNG_BYTES};
+/// The stable hash the core places props with, for the plugin's prop meshes. Hidden from the
+/// docs: an internal the two crates share, not an API.
+#[doc(hidden)]
+pub use hash::{hash, unit};
+pub use heights::{FastPerlin, Fbm, HeightField, HeightImage, ImageError, Kernel, MAX_IMAGE_PIXELS, MAX_PNG_BYTES};
 pub use hexx;
 pub use kind::Thresholds;
 pub use lattice::Lattice;

@@ -293,7 +293,7 @@ impl Pipeline {
     }
 
     /// How much of a channel or lake covers lattice point `p` of `tile` (see
-    /// [`channels::cover`]).
+    /// `channels::cover`).
     #[must_use]
     pub fn water_cover(&self, tile: Hex, p: Hex) -> f32 {
         self.water_table().map_or(0.0, |t| channels::cover(&self.geometry, t, tile, p))

@@ -22,7 +22,7 @@ pub struct RayHit {
     pub tile: Hex,
 }
 
-/// Most marching steps of one [`raycast`], each to the next lattice line the ray crosses (a
+/// Most marching steps of one `raycast`, each to the next lattice line the ray crosses (a
 /// few a lattice step): a ray that stays inside the relief is followed for about 2^17 hex
 /// sizes at the default ring count.
 pub const MAX_RAY_STEPS: u32 = 1 << 20;

@@ -12,12 +12,14 @@ use serde::{Deserialize, Serialize};
 
 use crate::config::{MAX_WORLD_TILE, MapConfig, MapSize, Orientation};
 
-/// The format version this crate writes; it reads every version up to it.
-pub const SAVE_VERSION: u32 = 1;
+/// The format version this crate writes; it reads every version up to it. Version 2 numbers
+/// owners as players from 0 (version 1 numbered them from 1: read, they become players from 0).
+pub const SAVE_VERSION: u32 = 2;
 
-/// Highest owner id: owners are `1..=MAX_OWNERS` (Civilization VI's largest map has 12
-/// civilizations and 16 city-states).
-pub const MAX_OWNERS: u8 = 64;
+/// How many players may own tiles: owners are players `0..MAX_OWNERS`, numbered as a game
+/// setup numbers its starts (Civilization VI's largest map has 12 civilizations and 16
+/// city-states).
+pub const MAX_OWNERS: u32 = 64;
 
 /// First bytes of a binary save.
 pub const SAVE_MAGIC: [u8; 4] = *b"HXTS";
@@ -133,7 +135,7 @@ pub struct SavedTile {
     /// What the player knows of it.
     #[serde(default)]
     pub fog: FogState,
-    /// Its owner, `1..=MAX_OWNERS`.
+    /// Its owner, a player `0..MAX_OWNERS` (`None`: nobody).
     #[serde(default)]
     pub owner: Option<u8>,
     /// Its overlay color, sRGB bytes `[r, g, b, a]` (the alpha is the strength).
@@ -254,6 +256,19 @@ impl TileStateSave {
         for tile in &mut save.tiles {
             tile.highlights.sort_by_key(|&h| h as u8);
         }
+        if save.version == 1 {
+            // Version 1 numbered owners from 1.
+            for (index, tile) in save.tiles.iter_mut().enumerate() {
+                if let Some(owner) = tile.owner {
+                    let Some(player) = owner.checked_sub(1) else {
+                        let problem = "owner 0: version 1 saves number owners 1..=64 (None for nobody)".into();
+                        return Err(SaveError::Tile { index, at: tile.at, problem });
+                    };
+                    tile.owner = Some(player);
+                }
+            }
+            save.version = SAVE_VERSION;
+        }
         Ok(save)
     }
 
@@ -269,7 +284,8 @@ impl TileStateSave {
                 .iter()
                 .map(|t| {
                     let bits = t.highlights.iter().fold(0u8, |b, &h| b | 1 << h as u8);
-                    (t.at.0, t.at.1, t.fog as u8, t.owner.unwrap_or(0), bits, t.overlay)
+                    // 0 is nobody, player p is p + 1 (as version 1 stored its owners 1..=64).
+                    (t.at.0, t.at.1, t.fog as u8, t.owner.map_or(0, |o| o.saturating_add(1)), bits, t.overlay)
                 })
                 .collect(),
         };
@@ -332,14 +348,16 @@ impl TileStateSave {
                 )));
             }
             let highlights = Highlight::ALL.into_iter().filter(|&h| bits & (1 << h as u8) != 0).collect();
-            tiles.push(SavedTile { at: (col, row), fog, owner: (owner != 0).then_some(owner), overlay, highlights });
+            let owner = owner.checked_sub(1);
+            tiles.push(SavedTile { at: (col, row), fog, owner, overlay, highlights });
         }
-        Ok(Self { version, map: packed.map, tiles })
+        // Every version stores owners the same way in binary: read, the save is this version's.
+        Ok(Self { version: SAVE_VERSION, map: packed.map, tiles })
     }
 
     /// Checks the save against the map it is to be loaded into: its version, that it is of
     /// this map ([`SavedMap`]), and that every tile is on the map, listed once, with an owner in
-    /// `1..=MAX_OWNERS` and each highlight at most once.
+    /// `0..MAX_OWNERS` and each highlight at most once.
     ///
     /// # Errors
     /// The first problem found, naming the field or the tile.
@@ -370,8 +388,8 @@ impl TileStateSave {
             if !seen.insert(tile.at) {
                 return bad("listed twice: each tile at most once".into());
             }
-            if let Some(owner) = tile.owner.filter(|o| !(1..=MAX_OWNERS).contains(o)) {
-                return bad(format!("owner {owner}: owners are 1..={MAX_OWNERS} (None for nobody)"));
+            if let Some(owner) = tile.owner.filter(|&o| u32::from(o) >= MAX_OWNERS) {
+                return bad(format!("owner {owner}: owners are players 0..{MAX_OWNERS} (None for nobody)"));
             }
             if let Some(h) = Highlight::ALL.iter().find(|h| tile.highlights.iter().filter(|x| x == h).count() > 1) {
                 return bad(format!("highlight {h:?} listed twice: each at most once"));

@@ -78,7 +78,7 @@ impl TileTable {
     }
 
     /// Builds the table of the tiles of `fields`' rectangle from their noise (one height sample
-    /// and the climate's noise a tile, [`TileFields`]): the kinds, then the water network (when
+    /// and the climate's noise a tile, `TileFields`): the kinds, then the water network (when
     /// `rivers` is on) and the biomes.
     #[must_use]
     pub fn build(

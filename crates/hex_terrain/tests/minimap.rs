@@ -125,7 +125,7 @@ proptest! {
     #[test]
     fn a_repaint_equals_a_full_paint_and_stays_local(
         config in config(),
-        writes in prop::collection::vec((0u32..10_000, 0u8..3, prop::option::of(1u8..5)), 1..24),
+        writes in prop::collection::vec((0u32..10_000, 0u8..3, prop::option::of(0u32..5)), 1..24),
     ) {
         let terrain = Terrain::new(config).unwrap();
         let map = minimap(&terrain, [0, 0], [160, 120]);
@@ -160,7 +160,7 @@ proptest! {
         let tiles: Vec<Hex> = region(&terrain, [0, 0]).iter().map(|oc| terrain.tile_from_offset(oc)).collect();
         let tile = tiles[pick as usize % tiles.len()];
         let style = MinimapStyle::default();
-        let owned = map.paint(|t| TileLook { fog: FogState::Visible, owner: (t == tile).then_some(1) });
+        let owned = map.paint(|t| TileLook { fog: FogState::Visible, owner: (t == tile).then_some(0) });
         let plain = map.paint(|_| TileLook::VISIBLE);
         let [cx, _, cz] = terrain.tile_center(tile).unwrap();
         let [px, py] = map.world_to_pixel(cx, cz);

@@ -177,7 +177,7 @@ proptest! {
 
 #[test]
 fn periodic_noise_equals_planar_noise_inside_one_period_and_joins() {
-    let perlin = hex_terrain::heights::FastPerlin::new(42);
+    let perlin = hex_terrain::FastPerlin::new(42);
     for cells in [1_i64, 2, 7, 300] {
         for i in 0..400 {
             let x = (i as f64) * 0.173 % (cells as f64);
@@ -200,9 +200,9 @@ fn periodic_noise_equals_planar_noise_inside_one_period_and_joins() {
 #[test]
 fn wrapped_fbm_keeps_the_octaves_within_half_a_cell_of_the_config() {
     let config = NoiseConfig::default();
-    let planar = hex_terrain::heights::Fbm::new(1, &config);
+    let planar = hex_terrain::Fbm::new(1, &config);
     let width = 1.5 * 106.0;
-    let wrapped = hex_terrain::heights::Fbm::wrapped(1, &config, width);
+    let wrapped = hex_terrain::Fbm::wrapped(1, &config, width);
     let cells = width * 4.0 / config.scale;
     for ((f, a), ((g, b), p)) in planar.octaves().iter().zip(wrapped.octaves().iter().zip(wrapped.periods().unwrap())) {
         assert_eq!(a, b);
@@ -245,7 +245,7 @@ fn the_civ6_presets_wrap() {
 }
 
 /// Chunk-local positions: every vertex within the geometry's stated bound
-/// ([`Geometry::chunk_position_error`](hex_terrain::geometry::Geometry::chunk_position_error)) of
+/// ([`Geometry::chunk_position_error`](hex_terrain::Geometry::chunk_position_error)) of
 /// its exact position, far out and at the largest chunk coordinates the config allows: the
 /// bound does not grow with the distance.
 #[test]

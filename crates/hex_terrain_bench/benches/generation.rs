@@ -4,7 +4,7 @@
 use std::hint::black_box;
 
 use criterion::{Criterion, criterion_group, criterion_main};
-use hex_terrain::heights::FastPerlin;
+use hex_terrain::FastPerlin;
 use hex_terrain_bench::{generate, hexx_columns, noise_floor, noise_floor_reference, terrains};
 use noise::NoiseFn;
 

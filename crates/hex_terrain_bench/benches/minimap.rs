@@ -30,7 +30,7 @@ fn minimap(c: &mut Criterion) {
             } else {
                 FogState::Unexplored
             },
-            owner: (k < 2).then_some(1 + (t.x.rem_euclid(4)) as u8),
+            owner: (k < 2).then_some(t.x.rem_euclid(4) as u32),
         }
     };
     let mut rgba = picture.paint(look);

@@ -15,7 +15,7 @@
 use std::hint::black_box;
 use std::time::{Duration, Instant};
 
-use hex_terrain::heights::{Fbm, Kernel};
+use hex_terrain::{Fbm, Kernel};
 use hex_terrain::{NoiseConfig, Terrain};
 use hex_terrain_bench::{generate, median, noise_floor, terrains};
 use libnoise::Generator;

@@ -433,6 +433,6 @@ pub fn script(
 
 /// Tiles of the map's chunks owned by `player` (the whole map: every preset the script plays is
 /// bounded).
-fn owned(map: &HexMap, states: &TileStates, player: u8) -> usize {
+fn owned(map: &HexMap, states: &TileStates, player: u32) -> usize {
     map.terrain().tiles().filter(|&t| states.owner(t) == Some(player)).count()
 }

@@ -18,7 +18,7 @@ use crate::vision;
 #[derive(Component)]
 pub(crate) struct Unit {
     /// [`vision::HUMAN`] or [`vision::RIVAL`].
-    pub(crate) player: u8,
+    pub(crate) player: u32,
     pub(crate) tile: Hex,
     pub(crate) moves_left: u32,
     /// World positions still to walk through.

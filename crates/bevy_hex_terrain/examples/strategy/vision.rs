@@ -13,10 +13,11 @@ use crate::Game;
 use crate::movement::cost;
 use crate::units::Unit;
 
-/// The human player (the fog shows what this player's units see).
-pub const HUMAN: u8 = 1;
+/// The human player (the fog shows what this player's units see): player 0, on the setup's first
+/// start, as the setup and the tile states number players.
+pub const HUMAN: u32 = 0;
 /// The other player.
-pub const RIVAL: u8 = 2;
+pub const RIVAL: u32 = 1;
 /// Sight radius on flat land.
 pub const SIGHT: u32 = 4;
 /// Territory radius claimed around a player's first unit.
@@ -74,7 +75,7 @@ pub fn update_fog(
 }
 
 /// Claims for `player` the tiles within `radius` of `center` that nobody owns.
-pub fn claim(map: &HexMap, states: &mut TileStates, player: u8, center: Hex, radius: u32) {
+pub fn claim(map: &HexMap, states: &mut TileStates, player: u32, center: Hex, radius: u32) {
     for tile in center.range(radius) {
         if map.contains(tile) && states.owner(tile).is_none() {
             let _ = states.set_owner(tile, Some(player));

@@ -40,7 +40,7 @@ pub(super) const SHADER_DEFS: [(&str, u32); 15] = [
     ("HEX_FLAG_TERRITORY_TINT", flags::TERRITORY_TINT),
     ("HEX_FLAG_LENS", flags::LENS),
     ("HEX_FLAG_SEA_FLOOR", flags::SEA_FLOOR),
-    ("HEX_MAX_OWNERS", MAX_OWNERS as u32),
+    ("HEX_MAX_OWNERS", MAX_OWNERS),
     ("HEX_TEXEL_FOG_MASK", FOG_MASK as u32),
     ("HEX_TEXEL_HOVERED", highlight_bit(Highlight::Hovered) as u32),
     ("HEX_TEXEL_SELECTED", highlight_bit(Highlight::Selected) as u32),
@@ -140,7 +140,8 @@ impl RenderOrigin {
     }
 }
 
-/// Owner colors (linear), owner `n` at index `n - 1`.
+/// Owner colors (linear), player `n` at index `n` (the texel holds `n + 1`, the shader reads
+/// index `texel - 1`).
 #[derive(Debug, Clone, Copy, PartialEq, ShaderType, Reflect)]
 pub struct OwnerColors {
     /// One color an owner.
@@ -247,10 +248,10 @@ fn wrapped_texture_scale(width: Option<f64>, scale: f32) -> f32 {
     (width * scale).round().max(1.0) / width
 }
 
-/// The owner palette of the style ([`HexTileStateStyle::owner_color`]), owner `n` at index `n - 1`.
+/// The owner palette of the style ([`HexTileStateStyle::owner_color`]), player `n` at index `n`.
 #[must_use]
 pub(crate) fn owner_colors(style: &HexTileStateStyle) -> OwnerColors {
-    OwnerColors { colors: std::array::from_fn(|i| linear(style.owner_color(i as u8 + 1))) }
+    OwnerColors { colors: std::array::from_fn(|i| linear(style.owner_color(i as u32))) }
 }
 
 #[cfg(test)]

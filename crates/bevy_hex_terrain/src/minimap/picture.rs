@@ -147,7 +147,7 @@ fn match_terrain(
         style.kind_colors = palette.colors.map(rgb);
     }
     style.fog_of_war &= tiles.fog_of_war;
-    style.owner_colors = (1..=crate::tiles::MAX_OWNERS).map(|owner| rgb(tiles.owner_color(owner))).collect();
+    style.owner_colors = (0..crate::tiles::MAX_OWNERS).map(|owner| rgb(tiles.owner_color(owner))).collect();
 }
 
 /// Shows a finished picture: painted whole with the tiles' state.

@@ -48,7 +48,7 @@ fn merged(parts: Vec<Mesh>) -> Mesh {
 
 /// A small deterministic wobble in `[-1, 1]` for vertex `i` of variant `v`.
 fn wobble(v: u8, i: usize, salt: u32) -> f32 {
-    hex_terrain::hash::unit(hex_terrain::hash::hash(salt, &[i64::from(v), i as i64])) * 2.0 - 1.0
+    hex_terrain::unit(hex_terrain::hash(salt, &[i64::from(v), i as i64])) * 2.0 - 1.0
 }
 
 /// Moves each vertex of a sphere-like mesh in and out by up to `amount` of its radius.

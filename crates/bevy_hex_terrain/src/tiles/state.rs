@@ -31,11 +31,11 @@ pub enum TileStateError {
         /// The map's tiles.
         bounds: TileRect,
     },
-    /// An owner id beyond [`MAX_OWNERS`].
-    #[error("owner {owner} is out of range: owners are 1..={MAX_OWNERS} (None for nobody)")]
+    /// An owner past the last player [`MAX_OWNERS`] allows.
+    #[error("owner {owner} is out of range: owners are players 0..{MAX_OWNERS} (None for nobody)")]
     OwnerOutOfRange {
-        /// The id given.
-        owner: u8,
+        /// The player given.
+        owner: u32,
     },
     /// An overlay color with a NaN or infinite component.
     #[error("overlay color {color:?} is not finite: every component must be a number in 0..=1")]
@@ -140,11 +140,12 @@ impl TileStates {
         FogState::from_bits((self.texel(tile)[0] & FOG_MASK) as u8).unwrap_or(FogState::Visible)
     }
 
-    /// The owner of a tile (`1..=MAX_OWNERS`), if any.
+    /// The owner of a tile, a player `0..MAX_OWNERS` numbered as a game setup numbers its starts
+    /// ([`HexMap::start`](crate::HexMap::start)), if any.
     #[must_use]
-    pub fn owner(&self, tile: Hex) -> Option<u8> {
-        let owner = self.texel(tile)[1] as u8;
-        (owner != 0).then_some(owner)
+    pub fn owner(&self, tile: Hex) -> Option<u32> {
+        // The texel holds the player + 1; 0 is nobody.
+        u32::from(self.texel(tile)[1]).checked_sub(1)
     }
 
     /// The overlay color of a tile, if any (drawn while the lens is on).
@@ -187,17 +188,19 @@ impl TileStates {
         }
     }
 
-    /// Gives a tile to an owner (`1..=MAX_OWNERS`), or to nobody.
+    /// Gives a tile to a player (`0..MAX_OWNERS`, numbered as a game setup numbers its starts),
+    /// or to nobody.
     ///
     /// # Errors
     /// [`TileStateError::OutsideMap`], [`TileStateError::OwnerOutOfRange`]; nothing changes.
-    pub fn set_owner(&mut self, tile: Hex, owner: Option<u8>) -> Result<(), TileStateError> {
+    pub fn set_owner(&mut self, tile: Hex, owner: Option<u32>) -> Result<(), TileStateError> {
         let oc = self.check(tile)?;
-        let owner = owner.unwrap_or(0);
-        if owner > MAX_OWNERS {
+        if let Some(owner) = owner.filter(|&o| o >= MAX_OWNERS) {
             return Err(TileStateError::OwnerOutOfRange { owner });
         }
-        self.update(oc, |t| t[1] = u16::from(owner));
+        // The texel holds the player + 1 (below 65); 0 is nobody.
+        let texel = owner.map_or(0, |o| o as u16 + 1);
+        self.update(oc, |t| t[1] = texel);
         Ok(())
     }
 

@@ -27,7 +27,7 @@ pub struct HexTileStateStyle {
     pub border_inset: f32,
     /// Tint owned tiles lightly in their owner's color.
     pub territory_tint: bool,
-    /// Owner colors: owner `n` takes entry `n - 1`; owners past the list get generated hues
+    /// Owner colors: player `n` takes entry `n`; players past the list get generated hues
     /// ([`owner_color`](Self::owner_color)).
     pub owner_colors: Vec<Color>,
     /// Draw the tiles' overlay colors ([`TileStates::set_overlay`](crate::TileStates::set_overlay)): the lens.
@@ -69,11 +69,11 @@ impl Default for HexTileStateStyle {
 }
 
 impl HexTileStateStyle {
-    /// The color of owner `owner` (1-based; 0 is nobody and gets the first color): its entry in
-    /// [`owner_colors`](Self::owner_colors), or past the list a hue spaced by the golden angle.
+    /// The color of player `owner` (from 0): its entry in [`owner_colors`](Self::owner_colors),
+    /// or past the list a hue spaced by the golden angle.
     #[must_use]
-    pub fn owner_color(&self, owner: u8) -> Color {
-        let i = usize::from(owner.max(1) - 1);
+    pub fn owner_color(&self, owner: u32) -> Color {
+        let i = owner as usize;
         self.owner_colors.get(i).copied().unwrap_or_else(|| Color::hsl((i as f32 * 137.508) % 360.0, 0.75, 0.55))
     }
 }

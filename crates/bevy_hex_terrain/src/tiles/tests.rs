@@ -96,8 +96,8 @@ fn bad_writes_are_refused_by_name_and_change_nothing() {
     assert!(s.set_owner(hex(&s, -1, 0), Some(1)).is_err());
     assert!(s.set_highlight(hex(&s, 0, 10), Highlight::Reachable, true).is_err());
     let inside = hex(&s, 1, 1);
-    let e = s.set_owner(inside, Some(MAX_OWNERS + 1)).unwrap_err();
-    assert!(e.to_string().contains(&format!("1..={MAX_OWNERS}")), "{e}");
+    let e = s.set_owner(inside, Some(MAX_OWNERS)).unwrap_err();
+    assert!(e.to_string().contains(&format!("players 0..{MAX_OWNERS}")), "{e}");
     let e = s.set_overlay(inside, Some(Color::srgba(f32::NAN, 0.0, 0.0, 1.0))).unwrap_err();
     assert!(e.to_string().contains("not finite"), "{e}");
     assert_eq!(s.writes(), writes);
@@ -106,6 +106,9 @@ fn bad_writes_are_refused_by_name_and_change_nothing() {
     // A bulk highlight skips what is outside.
     assert_eq!(s.replace_highlight(Highlight::Reachable, [inside, outside, hex(&s, 5, 99)]), 2);
     assert_eq!(s.highlighted(Highlight::Reachable).collect::<Vec<_>>(), vec![inside]);
+    // Player 0 owns: players are numbered from 0, as a setup numbers its starts.
+    s.set_owner(inside, Some(0)).unwrap();
+    assert_eq!(s.owner(inside), Some(0));
 }
 
 #[test]
@@ -164,7 +167,7 @@ fn a_moving_window_always_mirrors_the_store() {
                             [FogState::Unexplored, FogState::Explored, FogState::Visible][rng.range(0, 3) as usize],
                         )
                         .unwrap(),
-                    1 => s.set_owner(h, Some(rng.range(0, 5) as u8).filter(|&o| o > 0)).unwrap(),
+                    1 => s.set_owner(h, Some(rng.range(0, 5) as u32).filter(|&o| o < 4)).unwrap(),
                     _ => s.set_highlight(h, Highlight::Reachable, rng.range(0, 2) == 1).unwrap(),
                 }
             }
@@ -181,7 +184,7 @@ fn a_moving_window_always_mirrors_the_store() {
                     let t = UVec2::new(oc.x.rem_euclid(size.x as i32) as u32, oc.y.rem_euclid(size.y as i32) as u32);
                     let texel = texture[(t.y * size.x + t.x) as usize];
                     assert_eq!(texel[0] & 3, s.visibility(h) as u16, "seed {seed} tile {oc}");
-                    assert_eq!(texel[1], u16::from(s.owner(h).unwrap_or(0)), "seed {seed} tile {oc}");
+                    assert_eq!(texel[1], s.owner(h).map_or(0, |o| o as u16 + 1), "seed {seed} tile {oc}");
                     assert_eq!(texel[0] & 16 != 0, s.is_highlighted(h, Highlight::Reachable), "seed {seed} tile {oc}");
                 }
             }

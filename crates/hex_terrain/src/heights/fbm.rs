@@ -312,7 +312,7 @@ impl Fbm {
         out[0]
     }
 
-    /// [`Fbm::sample`] at [`LANES`] points at once, octave by octave, so the per-point work
+    /// [`Fbm::sample`] at `LANES` points at once, octave by octave, so the per-point work
     /// vectorises. Every lane gets exactly the bits `sample` gives for its point.
     #[inline]
     pub fn sample_batch(&self, xs: &[f64; LANES], zs: &[f64; LANES], out: &mut [f64; LANES]) {
@@ -355,7 +355,7 @@ impl Fbm {
         }
     }
 
-    /// Samples many points (positions in hex radii), batching them by [`LANES`].
+    /// Samples many points (positions in hex radii), batching them by `LANES`.
     pub fn sample_many(&self, points: &[[f64; 2]], out: &mut [f64]) {
         let mut xs = [0.0; LANES];
         let mut zs = [0.0; LANES];

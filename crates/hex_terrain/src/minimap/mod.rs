@@ -38,9 +38,9 @@ pub struct TileLook {
     /// Fog of war: unexplored tiles are drawn in [`MinimapStyle::unexplored`], explored ones
     /// dimmed.
     pub fog: FogState,
-    /// The owner (`1..=`[`MAX_OWNERS`](crate::save::MAX_OWNERS)), tinting the tile and drawing
+    /// The owner, a player from 0 (as a setup numbers its starts), tinting the tile and drawing
     /// a border along its edges with other owners or nobody.
-    pub owner: Option<u8>,
+    pub owner: Option<u32>,
 }
 
 impl TileLook {
@@ -66,7 +66,7 @@ pub struct MinimapStyle {
     pub unexplored: [u8; 4],
     /// Brightness of explored tiles not in sight, `0..=1` (they are also half desaturated).
     pub explored_brightness: f32,
-    /// Owner colors: owner `n` takes entry `n - 1` (entries repeat past the list's end).
+    /// Owner colors: player `n` takes entry `n` (entries repeat past the list's end).
     pub owner_colors: Vec<[u8; 3]>,
     /// How much an owned tile takes its owner's color, `0..=1`.
     pub territory_tint: f32,
@@ -285,9 +285,9 @@ impl Minimap {
         [c[0].round() as u8, c[1].round() as u8, c[2].round() as u8, 255]
     }
 
-    fn owner_color(&self, owner: u8) -> [u8; 3] {
+    fn owner_color(&self, owner: u32) -> [u8; 3] {
         let colors = &self.style.owner_colors;
-        if colors.is_empty() { [255, 255, 255] } else { colors[(usize::from(owner).max(1) - 1) % colors.len()] }
+        if colors.is_empty() { [255, 255, 255] } else { colors[owner as usize % colors.len()] }
     }
 
     fn tile(&self, t: u32) -> Hex {

@@ -16,7 +16,7 @@ prop_compose! {
         col in 0..columns,
         row in 0..rows,
         fog in 0u8..3,
-        owner in prop::option::of(1..=MAX_OWNERS),
+        owner in prop::option::of(0..MAX_OWNERS as u8),
         overlay in prop::option::of(any::<[u8; 4]>()),
         bits in 0u8..8,
     ) -> SavedTile {
@@ -89,7 +89,7 @@ fn impossible_tiles_and_versions_are_refused_with_the_reason() {
     let cases = [
         (SavedTile { at: (12, 0), ..ok.clone() }, "not on the map: columns 0..12 and rows 0..9"),
         (SavedTile { at: (0, -1), ..ok.clone() }, "not on the map"),
-        (SavedTile { owner: Some(0), ..ok.clone() }, "owners are 1..=64"),
+        (SavedTile { owner: Some(64), ..ok.clone() }, "owners are players 0..64"),
         (SavedTile { owner: Some(65), ..ok.clone() }, "owner 65"),
         (SavedTile { highlights: vec![Highlight::Hovered, Highlight::Hovered], ..ok.clone() }, "listed twice"),
     ];
@@ -123,13 +123,37 @@ fn malformed_ron_names_the_line_and_column() {
     assert!(matches!(e, SaveError::Syntax { line: 4, .. }), "{e:?}");
     assert!(e.to_string().contains("line 4, column"), "{e}");
     // A hand-written save leaves the defaults out.
-    let text = "(version: 1, map: (seed: 9, size: Bounded(x: 12, z: 9), wrap: false, orientation: Flat, offset: (0, 0)), tiles: [(at: (2, 3), owner: Some(4))])";
+    let text = "(version: 2, map: (seed: 9, size: Bounded(x: 12, z: 9), wrap: false, orientation: Flat, offset: (0, 0)), tiles: [(at: (2, 3), owner: Some(0))])";
     let save = TileStateSave::from_ron(text).unwrap();
     assert_eq!(
         save.tiles[0],
-        SavedTile { at: (2, 3), fog: FogState::Unexplored, owner: Some(4), overlay: None, highlights: vec![] }
+        SavedTile { at: (2, 3), fog: FogState::Unexplored, owner: Some(0), overlay: None, highlights: vec![] }
     );
     assert_eq!(save.check(&config(Some((12, 9)), false)), Ok(()));
+}
+
+/// Version 1 numbered owners from 1: its saves read as players from 0, in both encodings.
+#[test]
+fn version_1_saves_read_with_players_from_0() {
+    let map = "map: (seed: 9, size: Bounded(x: 12, z: 9), wrap: false, orientation: Flat, offset: (0, 0))";
+    let v1 = format!("(version: 1, {map}, tiles: [(at: (2, 3), owner: Some(4)), (at: (3, 3), owner: Some(1))])");
+    let save = TileStateSave::from_ron(&v1).unwrap();
+    assert_eq!(save.version, SAVE_VERSION);
+    assert_eq!(save.tiles.iter().map(|t| t.owner).collect::<Vec<_>>(), [Some(3), Some(0)]);
+    let v1_zero = format!("(version: 1, {map}, tiles: [(at: (0, 0)), (at: (2, 3), owner: Some(0))])");
+    let e = TileStateSave::from_ron(&v1_zero).unwrap_err();
+    assert!(e.to_string().contains("tile 1") && e.to_string().contains("owners 1..=64"), "{e}");
+    // A version 1 binary file stored owner 4 as 4: player 3, as version 2 stores player 3.
+    let config = config(Some((12, 9)), false);
+    let tile = SavedTile { at: (2, 3), fog: FogState::Visible, owner: Some(3), overlay: None, highlights: vec![] };
+    let mut bytes =
+        TileStateSave { version: SAVE_VERSION, map: SavedMap::of(&config), tiles: vec![tile.clone()] }.to_bytes();
+    bytes[4..8].copy_from_slice(&1u32.to_le_bytes());
+    let body = bytes.len() - 4;
+    let crc = crc32(&bytes[..body]);
+    bytes[body..].copy_from_slice(&crc.to_le_bytes());
+    let read = TileStateSave::from_bytes(&bytes).unwrap();
+    assert_eq!((read.version, read.tiles), (SAVE_VERSION, vec![tile]));
 }
 
 #[test]

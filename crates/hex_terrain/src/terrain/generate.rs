@@ -82,7 +82,7 @@ impl Terrain {
         mesh::mesh_points(&self.pipeline, rect)
     }
 
-    /// The props of a generated chunk (see [`crate::props`]), at most `max_per_chunk`, with
+    /// The props of a generated chunk (see `crate::props`), at most `max_per_chunk`, with
     /// `density` (in `[0, 1]`, clamped) the share of each tile's props that stand.
     #[must_use]
     pub fn props(&self, chunk: &ChunkMesh, max_per_chunk: usize, density: f32) -> Vec<Prop> {
@@ -100,14 +100,14 @@ impl Terrain {
     }
 
     /// The game setup's markers (starts, resources, wonders) on a generated chunk (see
-    /// [`props::markers`]); none without a setup.
+    /// `props::markers`); none without a setup.
     #[must_use]
     pub fn markers(&self, chunk: &ChunkMesh) -> Vec<props::Marker> {
         props::markers(&self.pipeline, chunk)
     }
 
     /// The setup's resource and wonder markers of a chunk as props (see
-    /// [`props::marker_props`]); none without a setup.
+    /// `props::marker_props`); none without a setup.
     #[must_use]
     pub fn marker_props(&self, chunk: &ChunkMesh) -> Vec<Prop> {
         props::marker_props(&self.pipeline, &props::markers(&self.pipeline, chunk))

@@ -275,7 +275,7 @@ impl Terrain {
 
     /// The chunk holding a tile of the map; `None` for a tile not on the map. On a wrapping
     /// map, a tile past the map's east or west edge is in a chunk placed there (see
-    /// [`crate::wrap`]).
+    /// `crate::wrap`).
     #[must_use]
     pub fn chunk_of(&self, tile: Hex) -> Option<ChunkCoord> {
         self.contains(tile).then(|| self.geometry().chunk_of(tile))

@@ -29,20 +29,20 @@ impl Terrain {
     }
 
     /// World height of the surface (as meshed) at world `(x, z)`; `None` past the world (see
-    /// [`query::surface_height`]).
+    /// `query::surface_height`).
     #[must_use]
     pub fn surface_height(&self, x: f64, z: f64) -> Option<f64> {
         query::surface_height(&self.pipeline, x, z)
     }
 
     /// Upward unit normal of the surface as meshed at world `(x, z)` (see
-    /// [`query::surface_normal`]); `None` past the world.
+    /// `query::surface_normal`); `None` past the world.
     #[must_use]
     pub fn surface_normal(&self, x: f64, z: f64) -> Option<[f64; 3]> {
         query::surface_normal(&self.pipeline, x, z)
     }
 
-    /// First hit of a ray on the surface within `max_distance` (see [`query::raycast`]).
+    /// First hit of a ray on the surface within `max_distance` (see `query::raycast`).
     #[must_use]
     pub fn raycast(&self, origin: [f64; 3], direction: [f64; 3], max_distance: f64) -> Option<RayHit> {
         query::raycast(&self.pipeline, origin, direction, max_distance)

@@ -107,7 +107,7 @@ impl Terrain {
         self.pipeline.sea_level()
     }
 
-    /// The water surface over a generated chunk (see [`crate::water::surface`]); `river_depth`
+    /// The water surface over a generated chunk (see `crate::water::surface`); `river_depth`
     /// is the height of river and lake water over a fully covered vertex, in world units. Empty
     /// for a dry chunk.
     #[must_use]

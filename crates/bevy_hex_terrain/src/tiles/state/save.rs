@@ -21,7 +21,8 @@ impl TileStates {
             .map(|(oc, [t0, owner, rg, ba])| SavedTile {
                 at: (oc.x, oc.y),
                 fog: FogState::from_bits((t0 & FOG_MASK) as u8).unwrap_or(FogState::Visible),
-                owner: (owner != 0).then_some(owner as u8),
+                // The texel holds the player + 1 (below 65); 0 is nobody.
+                owner: owner.checked_sub(1).map(|o| o as u8),
                 overlay: (rg != 0 || ba != 0).then_some([rg as u8, (rg >> 8) as u8, ba as u8, (ba >> 8) as u8]),
                 highlights: Highlight::ALL.into_iter().filter(|&h| t0 & bit(h) != 0).collect(),
             })
@@ -42,7 +43,8 @@ impl TileStates {
             let oc = IVec2::new(tile.at.0, tile.at.1);
             let highlights = tile.highlights.iter().fold(0, |b, &h| b | bit(h));
             let [r, g, b, a] = tile.overlay.unwrap_or([0; 4]).map(u16::from);
-            let texel = [tile.fog as u16 | highlights, u16::from(tile.owner.unwrap_or(0)), r | g << 8, b | a << 8];
+            let texel =
+                [tile.fog as u16 | highlights, tile.owner.map_or(0, |o| u16::from(o) + 1), r | g << 8, b | a << 8];
             self.store(oc, [0; 4], texel);
             for h in tile.highlights.iter().copied() {
                 let hex = self.geometry.tile_from_offset(oc.to_array());
