@@ -22,6 +22,7 @@
 //! | `mesh` | any rectangle of tiles to [`MeshBuffers`], on all cores or the calling thread |
 //! | `water::surface`, `props` | what stands on a generated chunk: its water surface, its trees, rocks and reeds |
 //! | `query`, `metrics` | the surface under a position and ray casts, in f64; sharpness (thesis eq. 4.1, 7.3) |
+//! | `stats` | [`MapStats`]: land and water, landmasses (continents and islands), coast, straits, mountain ranges, biomes, rivers, lakes |
 //! | [`setup`] | [`Setup`]: a game on the map: start positions in regions of equal fertility, resources, natural wonders, and the fairness report (after the terrain; it changes no height) |
 //! | [`terrain`] | [`Terrain`], the facade over all of it |
 //! | [`editor`] | [`Editor`]: strokes of a [`Tool`] with a [`Brush`] that change the config's edits, undo and redo, and the [`Change`] (tiles, chunks) of each |
@@ -68,6 +69,7 @@ mod props;
 
 mod metrics;
 mod query;
+mod stats;
 
 pub mod minimap;
 
@@ -115,6 +117,7 @@ pub use setup::{
     MAX_START_SEARCH_CHECKS, PlacedResource, PlacedWonder, Setup, SetupNote, SetupReport, SetupTimings, Shortfall,
     Stages, StartReport, TileSetup,
 };
+pub use stats::{CONTINENT_MIN_SHARE, CONTINENT_MIN_TILES, Landmass, LandmassKind, MapStats, RiverStats};
 pub use table::TileTable;
 pub use terrain::Terrain;
 pub use vertex::{Sharing, VertexRules, VertexSample};

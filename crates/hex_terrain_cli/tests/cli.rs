@@ -5,7 +5,7 @@ use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
 use hex_terrain::hexx::Hex;
-use hex_terrain::{MapConfig, Terrain, TileKind};
+use hex_terrain::{MapConfig, MapSize, Terrain, TileKind};
 
 fn bin() -> Command {
     Command::new(env!("CARGO_BIN_EXE_hexterrain"))
@@ -294,6 +294,47 @@ fn stats_prints_counts_and_sharpness() {
     }
 }
 
+/// `stats` prints the map statistics of the library (`MapStats`): the strait preset's two
+/// continents and its three-tile strait.
+#[test]
+fn stats_prints_the_map_statistics() {
+    let strait = repo().join("assets/maps/strait.map.ron");
+    let out = ok(&["stats", strait.to_str().unwrap()]);
+    let terrain = Terrain::new(MapConfig::load(&strait).unwrap()).unwrap();
+    let stats = hex_terrain::MapStats::measure(&terrain).unwrap();
+    let sizes: Vec<String> = stats.continents().map(|m| m.tiles.to_string()).collect();
+    for needle in [
+        format!("continents 2 ({} tiles)", sizes.join(", ")),
+        format!("narrowest strait between continents: {} tiles", stats.narrowest_strait.unwrap()),
+        format!("coast: {} tile edges", stats.coast_edges),
+        format!("rivers: {} systems", stats.rivers.systems),
+    ] {
+        assert!(out.contains(&needle), "{needle:?} missing from {out}");
+    }
+}
+
+/// `survey` runs seeds in a row and prints each statistic's min, median and max, which are
+/// those of the maps it made; bad arguments are refused by name.
+#[test]
+fn survey_prints_each_statistic_over_the_seeds() {
+    let map = small_map("survey.map.ron", "seed: 40");
+    let out = ok(&["survey", map.to_str().unwrap(), "--seeds", "5", "--size", "20x14"]);
+    assert!(out.contains("20x14") && out.contains("5 seeds from 40"), "{out}");
+    let mut land: Vec<u32> = (40..45)
+        .map(|seed| {
+            let config = MapConfig { seed, size: MapSize::Bounded { x: 20, z: 14 }, ..MapConfig::load(&map).unwrap() };
+            hex_terrain::MapStats::measure(&Terrain::new(config).unwrap()).unwrap().land_tiles
+        })
+        .collect();
+    land.sort_unstable();
+    let row = out.lines().find(|l| l.starts_with("land tiles")).unwrap_or_else(|| panic!("{out}"));
+    let numbers: Vec<f64> = row.split_whitespace().filter_map(|w| w.parse().ok()).collect();
+    assert_eq!(numbers, [f64::from(land[0]), f64::from(land[2]), f64::from(land[4])], "{row}");
+    fails(&["survey", map.to_str().unwrap(), "--seeds", "0"], &["--seeds 0", "1..=100000"]);
+    let continent = repo().join("assets/maps/continent.map.ron");
+    fails(&["survey", continent.to_str().unwrap(), "--seeds", "2"], &["unbounded", "--size"]);
+}
+
 /// A map file with an `edits` section: `stats` counts the edited tiles and the edits show in
 /// the counts (a tile set to mountain in a sea of Map0's), a bad edit is refused by name.
 #[test]
@@ -427,7 +468,7 @@ fn setup_prints_a_row_a_player_and_marks_the_starts() {
         out.lines().filter(|l| l.trim_start().chars().next().is_some_and(|c| c.is_ascii_digit())).collect();
     assert_eq!(rows.len(), 4, "{out}");
     for (i, row) in rows.iter().enumerate() {
-        assert!(row.trim_start().starts_with(&(i + 1).to_string()), "{row}");
+        assert!(row.trim_start().starts_with(&i.to_string()), "players from 0: {row}");
     }
     assert!(out.contains("spread") && out.contains("bound"), "{out}");
     // The same starts as the library's, with the same config.

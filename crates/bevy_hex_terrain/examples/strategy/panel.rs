@@ -59,7 +59,8 @@ pub(crate) fn panel(
             s += &format!("\nNatural wonder: {}", w.name);
         }
         if let Some(p) = map.start(tile) {
-            s += &format!("\nStart of player {}", p + 1);
+            let yours = if p == vision::HUMAN { " (yours)" } else { "" };
+            s += &format!("\nStart of player {p}{yours}");
         }
     }
     if let Some(unit) = game.selected.and_then(|e| units.get(e).ok()) {

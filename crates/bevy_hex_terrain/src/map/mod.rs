@@ -161,6 +161,15 @@ impl HexMap {
         self.terrain.setup()
     }
 
+    /// The map's statistics ([`MapStats`](hex_terrain::MapStats): land and water, continents and
+    /// islands, coast, straits, mountain ranges, biomes, rivers, lakes, the land of each start),
+    /// measured now (a few milliseconds on the largest Civilization map: keep the answer while
+    /// the map does not change); `None` for an unbounded world.
+    #[must_use]
+    pub fn stats(&self) -> Option<hex_terrain::MapStats> {
+        hex_terrain::MapStats::measure(&self.terrain)
+    }
+
     /// The resource on a tile (any copy of it on a wrapping map).
     #[must_use]
     pub fn resource(&self, tile: Hex) -> Option<&PlacedResource> {

@@ -74,7 +74,7 @@ impl std::fmt::Display for SetupReport {
         )?;
         for s in &self.starts {
             let rival = match s.nearest_rival {
-                Some((p, cost)) => format!("{} (cost {cost})", p + 1),
+                Some((p, cost)) => format!("{p} (cost {cost})"),
                 None => "unreachable".into(),
             };
             let resources =
@@ -82,7 +82,7 @@ impl std::fmt::Display for SetupReport {
             writeln!(
                 f,
                 "{:>6}  {:>10}  {:>7.1}  {:>5.0}  {:>5.0}  {:>5.0}  {:>9}  {:>5}  {:>5}  {:>13}",
-                s.player + 1,
+                s.player,
                 format!("({}, {})", s.offset[0], s.offset[1]),
                 s.value,
                 s.yields.food,
@@ -104,11 +104,11 @@ impl std::fmt::Display for SetupReport {
             self.wonders
         )?;
         if !self.unreachable.is_empty() {
-            let pairs: Vec<String> = self.unreachable.iter().map(|(a, b)| format!("{}-{}", a + 1, b + 1)).collect();
+            let pairs: Vec<String> = self.unreachable.iter().map(|(a, b)| format!("{a}-{b}")).collect();
             writeln!(f, "cannot reach each other by land: {}", pairs.join(", "))?;
         }
         for s in &self.shortfalls {
-            writeln!(f, "player {} finds {} of {} {} near its start", s.player + 1, s.found, s.wanted, s.resource)?;
+            writeln!(f, "player {} finds {} of {} {} near its start", s.player, s.found, s.wanted, s.resource)?;
         }
         for n in &self.notes {
             writeln!(f, "{}: {}", n.field, n.why)?;

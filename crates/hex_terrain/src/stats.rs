@@ -1,0 +1,316 @@
+//! Map statistics: the numbers players judge a map by (how much land, how many continents and
+//! how big, how far apart, where the mountains and rivers are), measured on a compiled bounded
+//! map. A pure function of the terrain: the same on any thread count, whatever was streamed.
+//!
+//! The rules, written once:
+//! - **Water** is sea tiles and lake tiles; **land** is every other tile (mountains included).
+//! - A **landmass** is a set of land tiles connected through their neighbors (across the seam of
+//!   a wrapping map). It is a **continent** when it holds at least [`CONTINENT_MIN_SHARE`] of the
+//!   map's land and at least [`CONTINENT_MIN_TILES`] tiles, an **island** otherwise.
+//! - The **coast** is counted in tile edges between a land tile and a sea tile (a lake shore is
+//!   not coast).
+//! - The **narrowest strait** is the fewest tiles between two continents: the smallest hex
+//!   distance (the short way round on a wrapping map) between tiles of two different continents,
+//!   less one.
+//! - A **mountain range** is a set of three or more mountain tiles connected through their
+//!   neighbors; a lone mountain or a pair is not one.
+//! - A **river system** ends at one mouth: a river tile whose water leaves the rivers (into the
+//!   sea, a lake or off the map). A river's length counts its tiles from a source to its mouth.
+
+use std::collections::{HashMap, VecDeque};
+
+use hexx::Hex;
+
+use crate::terrain::Terrain;
+use crate::vocab::{Biome, TileKind};
+
+/// A landmass is a continent when it holds at least this share of the map's land tiles (and
+/// [`CONTINENT_MIN_TILES`]).
+pub const CONTINENT_MIN_SHARE: f64 = 0.05;
+
+/// A landmass is a continent when it has at least this many tiles (and
+/// [`CONTINENT_MIN_SHARE`] of the land).
+pub const CONTINENT_MIN_TILES: u32 = 16;
+
+/// Whether a landmass is a continent or an island (see the module rules).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "bevy_reflect", derive(bevy_reflect::Reflect))]
+pub enum LandmassKind {
+    /// At least [`CONTINENT_MIN_SHARE`] of the land and [`CONTINENT_MIN_TILES`] tiles.
+    Continent,
+    /// Any smaller landmass.
+    Island,
+}
+
+/// Land tiles connected through their neighbors.
+#[derive(Debug, Clone, PartialEq, Eq)]
+#[cfg_attr(feature = "bevy_reflect", derive(bevy_reflect::Reflect))]
+pub struct Landmass {
+    /// Its first tile, row by row (the smallest offset `(row, column)`): a name that does not
+    /// depend on the order tiles are visited in.
+    pub first: Hex,
+    /// Its tiles.
+    pub tiles: u32,
+    /// Its mountain tiles.
+    pub mountains: u32,
+    /// Its coast, in tile edges to the sea.
+    pub coast_edges: u32,
+    /// Continent or island.
+    pub kind: LandmassKind,
+}
+
+/// The rivers of a map.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+#[cfg_attr(feature = "bevy_reflect", derive(bevy_reflect::Reflect))]
+pub struct RiverStats {
+    /// River systems: one a mouth.
+    pub systems: u32,
+    /// Tiles carrying a river.
+    pub tiles: u32,
+    /// The longest river, in tiles from a source to its mouth.
+    pub longest: u32,
+}
+
+/// The statistics of a bounded map (see the module docs for every rule).
+#[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "bevy_reflect", derive(bevy_reflect::Reflect))]
+pub struct MapStats {
+    /// Tiles of the map.
+    pub tiles: u32,
+    /// Sea tiles.
+    pub sea_tiles: u32,
+    /// Lake tiles.
+    pub lake_tiles: u32,
+    /// Land tiles (every tile neither sea nor lake; mountains included).
+    pub land_tiles: u32,
+    /// Mountain tiles (land).
+    pub mountain_tiles: u32,
+    /// Mountain tiles in ranges (connected groups of three or more).
+    pub range_tiles: u32,
+    /// The landmasses, largest first (ties: the first tile's row, then column).
+    pub landmasses: Vec<Landmass>,
+    /// Coast length, in tile edges between land and sea.
+    pub coast_edges: u32,
+    /// The fewest tiles between two continents; `None` with fewer than two.
+    pub narrowest_strait: Option<u32>,
+    /// Tiles of each biome present, in [`Biome::ALL`]'s order.
+    pub biomes: Vec<(Biome, u32)>,
+    /// Rivers (all zero on a map without rivers).
+    pub rivers: RiverStats,
+    /// Lakes.
+    pub lakes: u32,
+    /// With a game setup: the tiles of the landmass each start stands on, in player order.
+    pub start_landmass_tiles: Vec<u32>,
+}
+
+impl MapStats {
+    /// Measures a bounded map; `None` for an unbounded world (it has no whole to measure).
+    #[must_use]
+    pub fn measure(terrain: &Terrain) -> Option<Self> {
+        let bounds = terrain.bounds()?;
+        let width = (bounds.max[0] - bounds.min[0]) as usize;
+        let index = |tile: Hex| {
+            let [col, row] = terrain.offset_of(tile);
+            (row - bounds.min[1]) as usize * width + (col - bounds.min[0]) as usize
+        };
+        let tiles: Vec<Hex> = terrain.tiles().collect();
+        let infos: Vec<_> = tiles.iter().map(|&t| terrain.tile_info(t).expect("a tile of the map")).collect();
+        let neighbors: Vec<[Option<usize>; 6]> =
+            tiles.iter().map(|&t| terrain.neighbors(t).expect("a tile of the map").map(|n| n.map(index))).collect();
+        let water = |i: usize| infos[i].kind == TileKind::Sea || infos[i].lake.is_some();
+        let sea = |i: usize| infos[i].kind == TileKind::Sea;
+        let mountain = |i: usize| !water(i) && infos[i].kind == TileKind::Mountain;
+
+        let land_tiles = (0..tiles.len()).filter(|&i| !water(i)).count() as u32;
+        let sea_tiles = (0..tiles.len()).filter(|&i| sea(i)).count() as u32;
+        let lake_tiles = (0..tiles.len()).filter(|&i| !sea(i) && infos[i].lake.is_some()).count() as u32;
+        let mountain_tiles = (0..tiles.len()).filter(|&i| mountain(i)).count() as u32;
+        let coast = |i: usize| neighbors[i].iter().flatten().filter(|&&n| sea(n)).count() as u32;
+
+        // Landmasses and mountain groups: flood fills in row order, so the first tile visited is
+        // a component's first tile.
+        let land = components(tiles.len(), &neighbors, |i| !water(i));
+        let ranges = components(tiles.len(), &neighbors, mountain);
+        let range_tiles = ranges.sizes.iter().filter(|&&s| s >= 3).sum::<u32>();
+        let mut landmasses: Vec<Landmass> = land
+            .first
+            .iter()
+            .zip(&land.sizes)
+            .map(|(&first, &size)| Landmass {
+                first: tiles[first],
+                tiles: size,
+                mountains: 0,
+                coast_edges: 0,
+                kind: LandmassKind::Island,
+            })
+            .collect();
+        for i in (0..tiles.len()).filter(|&i| !water(i)) {
+            let mass = &mut landmasses[land.of[i] as usize];
+            mass.mountains += u32::from(mountain(i));
+            mass.coast_edges += coast(i);
+        }
+        for mass in &mut landmasses {
+            let share = f64::from(mass.tiles) / f64::from(land_tiles.max(1));
+            if share >= CONTINENT_MIN_SHARE && mass.tiles >= CONTINENT_MIN_TILES {
+                mass.kind = LandmassKind::Continent;
+            }
+        }
+
+        // The narrowest strait: between the coastal tiles of two continents (a shortest distance
+        // between two landmasses is between tiles on their shores).
+        let continental = |i: usize| {
+            !water(i)
+                && landmasses[land.of[i] as usize].kind == LandmassKind::Continent
+                && neighbors[i].iter().any(|n| n.is_none_or(water))
+        };
+        let shores: Vec<usize> = (0..tiles.len()).filter(|&i| continental(i)).collect();
+        let mut narrowest: Option<u32> = None;
+        for (k, &a) in shores.iter().enumerate() {
+            for &b in &shores[k + 1..] {
+                if land.of[a] != land.of[b] {
+                    let d = terrain.distance(tiles[a], tiles[b]).expect("tiles of the map");
+                    narrowest = Some(narrowest.map_or(d, |n| n.min(d)));
+                }
+            }
+        }
+
+        let mut order: Vec<usize> = (0..landmasses.len()).collect();
+        order.sort_by_key(|&m| {
+            let [col, row] = terrain.offset_of(landmasses[m].first);
+            (std::cmp::Reverse(landmasses[m].tiles), row, col)
+        });
+        let start_landmass_tiles = terrain.setup().map_or_else(Vec::new, |setup| {
+            setup.starts().iter().map(|&s| landmasses[land.of[index(s)] as usize].tiles).collect()
+        });
+        let landmasses: Vec<Landmass> = order.iter().map(|&m| landmasses[m].clone()).collect();
+
+        let biomes = Biome::ALL
+            .into_iter()
+            .map(|b| (b, infos.iter().filter(|t| t.biome == b).count() as u32))
+            .filter(|&(_, n)| n > 0)
+            .collect();
+
+        Some(Self {
+            tiles: tiles.len() as u32,
+            sea_tiles,
+            lake_tiles,
+            land_tiles,
+            mountain_tiles,
+            range_tiles,
+            coast_edges: (0..tiles.len()).filter(|&i| !water(i)).map(coast).sum(),
+            landmasses,
+            narrowest_strait: narrowest.map(|d| d - 1),
+            biomes,
+            rivers: rivers(terrain),
+            lakes: terrain.hydrology().map_or(0, |h| h.lake_count() as u32),
+            start_landmass_tiles,
+        })
+    }
+
+    /// Water's share of the map's tiles (sea and lakes).
+    #[must_use]
+    pub fn water_share(&self) -> f64 {
+        f64::from(self.sea_tiles + self.lake_tiles) / f64::from(self.tiles.max(1))
+    }
+
+    /// Land's share of the map's tiles.
+    #[must_use]
+    pub fn land_share(&self) -> f64 {
+        f64::from(self.land_tiles) / f64::from(self.tiles.max(1))
+    }
+
+    /// The continents, largest first.
+    pub fn continents(&self) -> impl Iterator<Item = &Landmass> {
+        self.landmasses.iter().filter(|m| m.kind == LandmassKind::Continent)
+    }
+
+    /// The islands, largest first.
+    pub fn islands(&self) -> impl Iterator<Item = &Landmass> {
+        self.landmasses.iter().filter(|m| m.kind == LandmassKind::Island)
+    }
+
+    /// The largest landmass' share of the land (0 without land).
+    #[must_use]
+    pub fn largest_landmass_share(&self) -> f64 {
+        self.landmasses.first().map_or(0.0, |m| f64::from(m.tiles) / f64::from(self.land_tiles.max(1)))
+    }
+
+    /// Mountains' share of the land.
+    #[must_use]
+    pub fn mountain_share(&self) -> f64 {
+        f64::from(self.mountain_tiles) / f64::from(self.land_tiles.max(1))
+    }
+
+    /// The share of mountain tiles that lie in ranges (0 without mountains).
+    #[must_use]
+    pub fn range_share(&self) -> f64 {
+        f64::from(self.range_tiles) / f64::from(self.mountain_tiles.max(1))
+    }
+}
+
+/// Connected components of the tiles `member` keeps.
+struct Components {
+    /// Each tile's component (`u32::MAX` for a tile not kept).
+    of: Vec<u32>,
+    /// Each component's first tile (in row order).
+    first: Vec<usize>,
+    /// Each component's size.
+    sizes: Vec<u32>,
+}
+
+fn components(count: usize, neighbors: &[[Option<usize>; 6]], member: impl Fn(usize) -> bool) -> Components {
+    let mut out = Components { of: vec![u32::MAX; count], first: Vec::new(), sizes: Vec::new() };
+    let mut queue = VecDeque::new();
+    for start in 0..count {
+        if out.of[start] != u32::MAX || !member(start) {
+            continue;
+        }
+        let id = out.first.len() as u32;
+        out.first.push(start);
+        out.of[start] = id;
+        let mut size = 0;
+        queue.push_back(start);
+        while let Some(i) = queue.pop_front() {
+            size += 1;
+            for n in neighbors[i].iter().flatten().copied() {
+                if out.of[n] == u32::MAX && member(n) {
+                    out.of[n] = id;
+                    queue.push_back(n);
+                }
+            }
+        }
+        out.sizes.push(size);
+    }
+    out
+}
+
+/// The river systems, river tiles and the longest river.
+fn rivers(terrain: &Terrain) -> RiverStats {
+    let rivers = terrain.rivers();
+    let by_tile: HashMap<Hex, usize> = rivers.iter().enumerate().map(|(i, r)| (r.hex, i)).collect();
+    let next = |i: usize| rivers[i].downstream.and_then(|d| by_tile.get(&d).copied());
+    // Tiles from each river tile to its mouth, computed from the mouths up (rivers never rise,
+    // so following downstream ends).
+    let mut to_mouth = vec![0u32; rivers.len()];
+    let mut pending: Vec<usize> = Vec::new();
+    for start in 0..rivers.len() {
+        let mut i = start;
+        while to_mouth[i] == 0 {
+            pending.push(i);
+            match next(i) {
+                Some(n) if !pending.contains(&n) => i = n,
+                _ => break,
+            }
+        }
+        let mut length = if to_mouth[i] == 0 { 0 } else { to_mouth[i] };
+        while let Some(p) = pending.pop() {
+            length += 1;
+            to_mouth[p] = length;
+        }
+    }
+    RiverStats {
+        systems: (0..rivers.len()).filter(|&i| next(i).is_none()).count() as u32,
+        tiles: rivers.len() as u32,
+        longest: to_mouth.iter().copied().max().unwrap_or(0),
+    }
+}

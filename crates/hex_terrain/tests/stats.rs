@@ -1,0 +1,223 @@
+//! `MapStats` over random bounded maps (wrapping or not, with and without climate, rivers,
+//! shapes and a setup), against the same numbers computed here another way from the public tile
+//! queries: landmasses and ranges by union-find, the coast counted from the sea's side, the
+//! narrowest strait by comparing every pair of tiles, rivers by walking down from each source.
+
+use std::collections::HashMap;
+
+use hex_terrain::hexx::Hex;
+use hex_terrain::{
+    Biome, CONTINENT_MIN_SHARE, CONTINENT_MIN_TILES, LandmassKind, MapConfig, MapSize, MapStats, NoiseConfig,
+    SetupConfig, Shape, Terrain, TileKind,
+};
+use proptest::prelude::*;
+
+mod common;
+
+prop_compose! {
+    fn config()(
+        seed in any::<u32>(),
+        (x, z) in (6u32..40, 6u32..30),
+        scale in 4.0f64..30.0,
+        sea in 0.2f32..0.6,
+        shape in 0u8..4,
+        climate in any::<bool>(),
+        rivers in any::<bool>(),
+        setup in any::<bool>(),
+        wrap in any::<bool>(),
+    ) -> MapConfig {
+        let mut c = MapConfig {
+            seed,
+            size: MapSize::Bounded { x, z },
+            noise: NoiseConfig { scale, ..NoiseConfig::default() },
+            shape: [Shape::None, Shape::None, Shape::Island { a: 3.0, b: 5.0 }, Shape::Mediterranean { a: 3.0, b: 5.0 }][shape as usize].clone(),
+            chunk_size: (8, 8),
+            ..MapConfig::default()
+        };
+        c.terrain.sea_threshold = sea;
+        c.terrain.mountain_threshold = (sea + 0.25).min(0.9);
+        c.climate.enabled = climate;
+        c.rivers.enabled = rivers;
+        if setup {
+            c.setup = Some(SetupConfig { players: 2, min_distance: 2, ..SetupConfig::default() });
+        }
+        common::wrapping(c, wrap)
+    }
+}
+
+/// Union-find over tile indices.
+struct Sets(Vec<usize>);
+
+impl Sets {
+    fn find(&mut self, i: usize) -> usize {
+        let mut root = i;
+        while self.0[root] != root {
+            root = self.0[root];
+        }
+        self.0[i] = root;
+        root
+    }
+
+    fn join(&mut self, a: usize, b: usize) {
+        let (a, b) = (self.find(a), self.find(b));
+        self.0[a.max(b)] = a.min(b);
+    }
+}
+
+/// The sizes of the groups of `member` tiles joined across neighbors (a tile's neighbors from
+/// hexx, brought onto the map with `wrap_tile`), by each tile's group root.
+fn groups(t: &Terrain, tiles: &[Hex], member: impl Fn(Hex) -> bool) -> (Sets, HashMap<usize, u32>) {
+    let index: HashMap<Hex, usize> = tiles.iter().enumerate().map(|(i, &h)| (h, i)).collect();
+    let mut sets = Sets((0..tiles.len()).collect());
+    for (i, &tile) in tiles.iter().enumerate() {
+        if !member(tile) {
+            continue;
+        }
+        for n in tile.all_neighbors() {
+            if let Some(n) = t.wrap_tile(n).filter(|&n| member(n)) {
+                sets.join(i, index[&n]);
+            }
+        }
+    }
+    let mut sizes = HashMap::new();
+    for (i, &tile) in tiles.iter().enumerate() {
+        if member(tile) {
+            *sizes.entry(sets.find(i)).or_insert(0) += 1;
+        }
+    }
+    (sets, sizes)
+}
+
+fn check(t: &Terrain) -> Result<(), TestCaseError> {
+    let stats = MapStats::measure(t).expect("a bounded map");
+    let tiles: Vec<Hex> = t.tiles().collect();
+    let info = |h: Hex| t.tile_info(h).unwrap();
+    let water = |h: Hex| info(h).kind == TileKind::Sea || info(h).lake.is_some();
+    let land = |h: Hex| !water(h);
+    let count = |f: &dyn Fn(Hex) -> bool| tiles.iter().filter(|&&h| f(h)).count() as u32;
+
+    prop_assert_eq!(stats.tiles, tiles.len() as u32);
+    prop_assert_eq!(stats.sea_tiles, count(&|h| info(h).kind == TileKind::Sea));
+    prop_assert_eq!(stats.lake_tiles, count(&|h| info(h).kind != TileKind::Sea && info(h).lake.is_some()));
+    prop_assert_eq!(stats.land_tiles, count(&land));
+    prop_assert_eq!(stats.sea_tiles + stats.lake_tiles + stats.land_tiles, stats.tiles);
+    let mountain = |h: Hex| land(h) && info(h).kind == TileKind::Mountain;
+    prop_assert_eq!(stats.mountain_tiles, count(&mountain));
+
+    // Landmasses: the sizes, largest first, and each one's kind by the rule.
+    let (mut sets, sizes) = groups(t, &tiles, land);
+    let mut expected: Vec<u32> = sizes.values().copied().collect();
+    expected.sort_unstable_by(|a, b| b.cmp(a));
+    prop_assert_eq!(stats.landmasses.iter().map(|m| m.tiles).collect::<Vec<_>>(), expected);
+    for mass in &stats.landmasses {
+        let continent = f64::from(mass.tiles) / f64::from(stats.land_tiles) >= CONTINENT_MIN_SHARE
+            && mass.tiles >= CONTINENT_MIN_TILES;
+        prop_assert_eq!(mass.kind == LandmassKind::Continent, continent);
+        // Its first tile is the landmass' first in row order.
+        let root = sets.find(tiles.iter().position(|&h| h == mass.first).unwrap());
+        let first = tiles.iter().enumerate().find(|&(i, &h)| land(h) && sets.find(i) == root).map(|(_, &h)| h);
+        prop_assert_eq!(Some(mass.first), first);
+    }
+
+    // The coast, counted from the sea's side.
+    let coast: u32 = tiles
+        .iter()
+        .filter(|&&h| info(h).kind == TileKind::Sea)
+        .map(|&h| h.all_neighbors().iter().filter_map(|&n| t.wrap_tile(n)).filter(|&n| land(n)).count() as u32)
+        .sum();
+    prop_assert_eq!(stats.coast_edges, coast);
+    prop_assert_eq!(stats.landmasses.iter().map(|m| m.coast_edges).sum::<u32>(), coast);
+    prop_assert_eq!(stats.landmasses.iter().map(|m| m.mountains).sum::<u32>(), stats.mountain_tiles);
+
+    // The narrowest strait: every pair of tiles of two different continents.
+    let continent_of = |sets: &mut Sets, i: usize| {
+        let root = sets.find(i);
+        (land(tiles[i])
+            && sizes[&root] >= CONTINENT_MIN_TILES
+            && f64::from(sizes[&root]) / f64::from(stats.land_tiles) >= CONTINENT_MIN_SHARE)
+            .then_some(root)
+    };
+    let continental: Vec<(usize, usize)> =
+        (0..tiles.len()).filter_map(|i| continent_of(&mut sets, i).map(|root| (i, root))).collect();
+    let mut narrowest: Option<u32> = None;
+    for (k, &(a, ra)) in continental.iter().enumerate() {
+        for &(b, rb) in &continental[k + 1..] {
+            if ra != rb {
+                let d = t.distance(tiles[a], tiles[b]).unwrap() - 1;
+                narrowest = Some(narrowest.map_or(d, |n| n.min(d)));
+            }
+        }
+    }
+    prop_assert_eq!(stats.narrowest_strait, narrowest);
+    prop_assert_eq!(stats.continents().count() >= 2, narrowest.is_some());
+
+    // Mountain ranges: groups of three or more.
+    let (_, ranges) = groups(t, &tiles, mountain);
+    prop_assert_eq!(stats.range_tiles, ranges.values().filter(|&&s| s >= 3).sum::<u32>());
+
+    // Biomes.
+    for biome in Biome::ALL {
+        let n = count(&|h| info(h).biome == biome);
+        prop_assert_eq!(stats.biomes.iter().find(|b| b.0 == biome).map_or(0, |b| b.1), n);
+    }
+
+    // Rivers: walked down from every source.
+    let rivers = t.rivers();
+    let is_river = |h: Hex| rivers.iter().any(|r| r.hex == h);
+    let mut longest = 0;
+    for source in rivers.iter().filter(|r| r.upstream.is_empty()) {
+        let mut length = 1;
+        let mut at = source.clone();
+        while let Some(next) = at.downstream.filter(|&d| is_river(d)) {
+            length += 1;
+            at = t.river(next).unwrap();
+        }
+        longest = longest.max(length);
+    }
+    prop_assert_eq!(stats.rivers.tiles, rivers.len() as u32);
+    prop_assert_eq!(stats.rivers.longest, longest);
+    prop_assert_eq!(
+        stats.rivers.systems,
+        rivers.iter().filter(|r| r.downstream.is_none_or(|d| !is_river(d))).count() as u32
+    );
+    prop_assert_eq!(stats.lakes, t.hydrology().map_or(0, |h| h.lake_count() as u32));
+
+    // With a setup, each start's landmass.
+    if let Some(setup) = t.setup() {
+        let starts: Vec<u32> =
+            setup.starts().iter().map(|s| sizes[&sets.find(tiles.iter().position(|h| h == s).unwrap())]).collect();
+        prop_assert_eq!(&stats.start_landmass_tiles, &starts);
+    }
+    Ok(())
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 64, ..ProptestConfig::default() })]
+
+    #[test]
+    fn map_stats_equal_their_recomputation(config in config()) {
+        // A setup that does not fit is another test's business.
+        if let Ok(t) = Terrain::new(config) {
+            check(&t)?;
+        }
+    }
+}
+
+#[test]
+fn an_unbounded_world_has_no_stats() {
+    let t = Terrain::new(MapConfig { size: MapSize::Unbounded, ..MapConfig::default() }).unwrap();
+    assert!(MapStats::measure(&t).is_none());
+}
+
+#[test]
+fn two_continents_across_a_strait() {
+    // The World preset cut by a strait: two continents, and the strait is the fewest tiles
+    // between them.
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../assets/maps/strait.map.ron");
+    let t = Terrain::new(MapConfig::from_ron(&std::fs::read_to_string(path).unwrap()).unwrap()).unwrap();
+    let stats = MapStats::measure(&t).unwrap();
+    assert!(stats.continents().count() >= 2, "{stats:?}");
+    let strait = stats.narrowest_strait.unwrap();
+    assert!((1..=4).contains(&strait), "the strait is three tiles wide: {strait}");
+    check(&t).unwrap();
+}
