@@ -314,3 +314,59 @@ fn rivers(terrain: &Terrain) -> RiverStats {
         longest: to_mouth.iter().copied().max().unwrap_or(0),
     }
 }
+
+/// The statistics as `hexterrain stats` prints them (and the demo shows them): a line each for
+/// water and land, mountains, landmasses, coast and strait, rivers and lakes, and the starts'
+/// land.
+impl std::fmt::Display for MapStats {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let percent = |x: f64| x * 100.0;
+        writeln!(
+            f,
+            "water: {:.1} % ({} sea, {} lake tiles); land {:.1} % ({} tiles)",
+            percent(self.water_share()),
+            self.sea_tiles,
+            self.lake_tiles,
+            percent(self.land_share()),
+            self.land_tiles
+        )?;
+        writeln!(
+            f,
+            "mountains: {:.1} % of the land, {:.1} % of them in ranges",
+            percent(self.mountain_share()),
+            percent(self.range_share())
+        )?;
+        let list = |masses: Vec<&Landmass>| match masses.len() {
+            0 => "none".to_owned(),
+            n => {
+                let shown: Vec<String> = masses.iter().take(8).map(|m| m.tiles.to_string()).collect();
+                let more = if n > 8 { format!(" and {} more", n - 8) } else { String::new() };
+                format!("{n} ({}{more} tiles)", shown.join(", "))
+            }
+        };
+        writeln!(
+            f,
+            "landmasses: continents {}; islands {}; the largest holds {:.1} % of the land",
+            list(self.continents().collect()),
+            list(self.islands().collect()),
+            percent(self.largest_landmass_share())
+        )?;
+        match self.narrowest_strait {
+            Some(n) => {
+                writeln!(f, "coast: {} tile edges; narrowest strait between continents: {n} tiles", self.coast_edges)?;
+            }
+            None => writeln!(f, "coast: {} tile edges; one continent or none: no strait", self.coast_edges)?,
+        }
+        write!(
+            f,
+            "rivers: {} systems, {} tiles, the longest {} tiles; {} lakes",
+            self.rivers.systems, self.rivers.tiles, self.rivers.longest, self.lakes
+        )?;
+        if !self.start_landmass_tiles.is_empty() {
+            let starts: Vec<String> =
+                self.start_landmass_tiles.iter().enumerate().map(|(p, n)| format!("player {p} {n}")).collect();
+            write!(f, "\nland each start stands on (tiles): {}", starts.join(", "))?;
+        }
+        Ok(())
+    }
+}

@@ -366,7 +366,7 @@ fn stats(path: &Path) -> CliResult<()> {
     }
     // `stats` takes bounded maps only (`whole_map` above), which always have statistics.
     if let Some(stats) = MapStats::measure(&t) {
-        print_map_stats(&t, &stats);
+        println!("{stats}");
     }
     match config.edits.len() {
         0 => println!("edits: none (the generated map)"),
@@ -382,61 +382,6 @@ fn stats(path: &Path) -> CliResult<()> {
     );
     println!("  mesh (eq. 7.3)   {:.3}   measured directly {:.3}", s.weighted_mesh, s.mesh_average);
     Ok(())
-}
-
-/// The map's statistics (`MapStats`), as `stats` prints them.
-fn print_map_stats(t: &Terrain, stats: &MapStats) {
-    let percent = |x: f64| x * 100.0;
-    println!(
-        "map: water {:.1} % ({} sea, {} lake tiles), land {:.1} % ({} tiles, {:.1} % of them mountains, {:.1} % of those in ranges)",
-        percent(stats.water_share()),
-        stats.sea_tiles,
-        stats.lake_tiles,
-        percent(stats.land_share()),
-        stats.land_tiles,
-        percent(stats.mountain_share()),
-        percent(stats.range_share())
-    );
-    let sizes = |masses: Vec<&hex_terrain::Landmass>| {
-        let shown: Vec<String> = masses.iter().take(8).map(|m| m.tiles.to_string()).collect();
-        let more = if masses.len() > 8 { format!(" and {} more", masses.len() - 8) } else { String::new() };
-        format!("{}{more}", shown.join(", "))
-    };
-    let continents: Vec<_> = stats.continents().collect();
-    let islands: Vec<_> = stats.islands().collect();
-    let list = |masses: Vec<&hex_terrain::Landmass>| match masses.len() {
-        0 => "none".to_owned(),
-        n => format!("{n} ({} tiles)", sizes(masses)),
-    };
-    println!(
-        "landmasses: continents {}; islands {}; the largest holds {:.1} % of the land",
-        list(continents),
-        list(islands),
-        percent(stats.largest_landmass_share())
-    );
-    match stats.narrowest_strait {
-        Some(n) => println!("coast: {} tile edges; narrowest strait between continents: {n} tiles", stats.coast_edges),
-        None => println!("coast: {} tile edges; one continent or none: no strait", stats.coast_edges),
-    }
-    if stats.rivers.tiles > 0 {
-        println!(
-            "rivers: {} systems, {} tiles, the longest {} tiles; {} lakes",
-            stats.rivers.systems, stats.rivers.tiles, stats.rivers.longest, stats.lakes
-        );
-    }
-    if !stats.start_landmass_tiles.is_empty() {
-        let starts: Vec<String> = stats
-            .start_landmass_tiles
-            .iter()
-            .zip(t.setup().map(|s| s.starts()).unwrap_or_default())
-            .enumerate()
-            .map(|(p, (n, &s))| {
-                let [c, r] = t.offset_of(s);
-                format!("player {p} at ({c}, {r}): {n}")
-            })
-            .collect();
-        println!("land each start stands on (tiles): {}", starts.join("; "));
-    }
 }
 
 fn setup(path: &Path, players: Option<u32>, output: Option<&Path>, width: u32) -> CliResult<()> {

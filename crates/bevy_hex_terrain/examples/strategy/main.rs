@@ -11,7 +11,7 @@
 //!
 //! Two players: yours (red) and a rival (blue), at the starts the map's game setup chose (the
 //! World preset has one: regions of equal fertility, resources and wonders, shown as gems and
-//! obelisks; F opens the fairness report), each with territory around its units that grows
+//! obelisks; F opens the fairness report and the map statistics), each with territory around its units that grows
 //! at the end of each turn. Fog of war shows what your units see (mountains block the view, hills
 //! and mountains see farther); rival units out of sight are hidden. All of it is per-tile state
 //! ([`TileStates`]) the terrain shader draws: no mesh is rebuilt.
@@ -211,7 +211,7 @@ fn setup(mut commands: Commands) {
     commands.spawn((
         Text::new(
             "WASD/arrows/edge pan, wheel zoom, Q/E rotate, click unit then tile, Enter end turn, G outlines, \
-             L lens, T tint, V fog, F fairness report, R new seed, 1-7 presets (6 wraps, 7 edited), P pan east, F3 chunks, \
+             L lens, T tint, V fog, F map report, R new seed, 1-7 presets (6 wraps, 7 edited), P pan east, F3 chunks, \
              Tab world builder",
         ),
         TextFont::from_font_size(13.0),

@@ -71,15 +71,20 @@ pub(crate) fn panel(
     }
 }
 
-/// Writes the setup's fairness report into its panel when the map changes.
+/// Writes the setup's fairness report and the map's statistics into their panel when the map
+/// changes.
 pub(crate) fn report_panel(map: Res<HexMap>, mut text: Query<&mut Text, With<ReportPanel>>) {
     if !map.is_changed() {
         return;
     }
-    let report = match map.setup() {
+    let mut report = match map.setup() {
         Some(setup) => format!("Fairness report ({} players)\n{}", setup.starts().len(), setup.report()),
         None => "This map has no game setup (the World preset has one).".to_owned(),
     };
+    // The map's statistics, measured again after every change (an edit, another map).
+    if let Some(stats) = map.stats() {
+        report += &format!("\n\nMap statistics\n{stats}");
+    }
     for mut t in &mut text {
         t.0.clone_from(&report);
     }
