@@ -8,6 +8,7 @@ use crate::error::LoadError;
 mod climate;
 mod edits;
 mod file;
+mod movement;
 mod setup;
 mod validate;
 
@@ -15,6 +16,7 @@ pub use climate::{BiomeRule, ClimateConfig, MAX_BIOME_RULES, MAX_WATER_TILES, Ri
 
 pub use edits::{MAX_EDITS, PropDensity, RiverEdit, TileEdit};
 pub use file::MapFile;
+pub use movement::{MAX_MOVE_COST, MovementConfig};
 pub use setup::{
     MAX_PER_PLAYER, MAX_PLAYERS, MAX_SETUP_DISTANCE, MAX_SETUP_RINGS, MAX_SETUP_RULES, MAX_SETUP_TILES, MAX_YIELD,
     Place, ResourceClass, ResourceRule, SetupConfig, StartOn, ValueWeights, WonderConfig, WonderRule, YieldTable,
@@ -74,6 +76,10 @@ pub struct MapConfig {
     pub rivers: RiverConfig,
     /// Peaks on mountains and swells on hills, inside their ranges (off by default: Map0).
     pub relief: ReliefConfig,
+    /// How units move: the cost of entering each tile, for the game's rules and the setup's
+    /// fairness (see [`MovementConfig`]; left out of a file, the defaults).
+    #[serde(skip_serializing_if = "MovementConfig::is_default")]
+    pub movement: MovementConfig,
     /// Game setup: start positions, resources, natural wonders and the fairness report (off by
     /// default; see [`SetupConfig`]).
     pub setup: Option<SetupConfig>,
@@ -102,6 +108,7 @@ impl Default for MapConfig {
             climate: ClimateConfig::default(),
             rivers: RiverConfig::default(),
             relief: ReliefConfig::default(),
+            movement: MovementConfig::default(),
             setup: None,
             edits: Vec::new(),
         }

@@ -85,13 +85,13 @@ pub use chunk::{ChunkCoord, TileRect};
 pub use climate::{Climate, ClimateModel, TileSample};
 pub use config::{
     AppearanceConfig, BiomeRule, ClimateConfig, HeightSourceConfig, LayoutConfig, MAX_EDITS, ManipulationConfig,
-    MapConfig, MapFile, MapSize, NoiseConfig, Orientation, Place, PropDensity, PullMode, ReliefConfig, ResourceClass,
-    ResourceRule, RiverConfig, RiverEdit, SetupConfig, Shape, StartOn, TerrainConfig, TileEdit, ValueWeights,
-    WonderConfig, WonderRule, YieldTable, Yields,
+    MapConfig, MapFile, MapSize, MovementConfig, NoiseConfig, Orientation, Place, PropDensity, PullMode, ReliefConfig,
+    ResourceClass, ResourceRule, RiverConfig, RiverEdit, SetupConfig, Shape, StartOn, TerrainConfig, TileEdit,
+    ValueWeights, WonderConfig, WonderRule, YieldTable, Yields,
 };
 pub use config::{
-    MAX_BIOME_RULES, MAX_CHUNK_BYTES, MAX_CHUNK_SIDE, MAX_INNER_RINGS, MAX_MAP_BYTES, MAX_OCTAVES, MAX_OFFSET,
-    MAX_PER_PLAYER, MAX_PLAYERS, MAX_SETUP_DISTANCE, MAX_SETUP_RINGS, MAX_SETUP_RULES, MAX_SETUP_TILES,
+    MAX_BIOME_RULES, MAX_CHUNK_BYTES, MAX_CHUNK_SIDE, MAX_INNER_RINGS, MAX_MAP_BYTES, MAX_MOVE_COST, MAX_OCTAVES,
+    MAX_OFFSET, MAX_PER_PLAYER, MAX_PLAYERS, MAX_SETUP_DISTANCE, MAX_SETUP_RINGS, MAX_SETUP_RULES, MAX_SETUP_TILES,
     MAX_WATER_TILES, MAX_WORLD_TILE, MAX_YIELD, MIN_WRAP_COLUMNS,
 };
 pub use editor::{Brush, Change, EditError, EditTimings, Editor, MAX_BRUSH_RADIUS, MAX_FLOOD_TILES, Stroke, Tool};

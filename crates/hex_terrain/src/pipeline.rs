@@ -148,6 +148,7 @@ impl Pipeline {
             thresholds: &self.thresholds,
             climate: &self.climate,
             table: self.table(),
+            movement: &self.config.movement,
         }
     }
 

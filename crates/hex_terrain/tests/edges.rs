@@ -365,6 +365,9 @@ proptest! {
             prop_assert!(on_map || (t.river(tile).is_none() && t.lake(tile).is_none() && t.water_level(tile).is_none()));
             prop_assert!(on_map || (t.tile_setup(tile).is_none() && t.start(tile).is_none() && t.resource(tile).is_none()));
             prop_assert!(on_map || !t.tile_is_wet(tile));
+            // The movement rule: the model's cost of the tile's biome and river, on the map.
+            let rule = t.tile_info(tile).filter(|_| on_map).and_then(|i| t.config().movement.enter(i.biome, i.river_flow > 0.0));
+            prop_assert_eq!(t.move_cost(tile), rule);
             let around = t.neighbors(tile);
             prop_assert_eq!(around.is_some(), on_map);
             if let (Some(around), Some(own), Some(info)) = (around, t.wrap_tile(tile), info) {

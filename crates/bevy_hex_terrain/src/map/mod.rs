@@ -254,6 +254,14 @@ impl HexMap {
         self.terrain.tile_biome(tile)
     }
 
+    /// The cost of entering a tile by the map's movement model (its config's `movement`: the
+    /// biome's cost, plus fording a river); `None` when it cannot be entered or is off the map.
+    /// The game setup's reach and path costs use the same rule.
+    #[must_use]
+    pub fn move_cost(&self, tile: Hex) -> Option<u32> {
+        self.terrain.move_cost(tile)
+    }
+
     /// The river running through a tile (its flow, where it comes from and goes), if any.
     #[must_use]
     pub fn river(&self, tile: Hex) -> Option<RiverTile> {

@@ -66,10 +66,6 @@ pub struct SetupConfig {
     pub yields: YieldTable,
     /// How yields and reachable land add up to a tile's and a start's value.
     pub value: ValueWeights,
-    /// Movement cost of entering a tile of each biome, for reachable land and path costs; 0 is
-    /// impassable. Biomes not listed keep their default: 1 on open land, 2 on hills, forest and
-    /// rainforest, impassable on water, rock and snow peaks.
-    pub costs: BTreeMap<Biome, u32>,
     /// The largest spread of the starts' values allowed, `max / min - 1`, in `[0, 10]`
     /// (0.1: the best start is worth at most 10 % more than the worst).
     pub fairness: f32,
@@ -94,25 +90,12 @@ impl Default for SetupConfig {
             start_on: StartOn::Land,
             yields: YieldTable::default(),
             value: ValueWeights::default(),
-            costs: BTreeMap::new(),
             fairness: 0.1,
             normalize: true,
             resources: ResourceRule::defaults(),
             wonders: WonderConfig::default(),
             area: None,
         }
-    }
-}
-
-impl SetupConfig {
-    /// The movement cost of a biome (0: impassable): the `costs` entry, or the default.
-    #[must_use]
-    pub fn cost(&self, biome: Biome) -> u32 {
-        self.costs.get(&biome).copied().unwrap_or(match biome {
-            Biome::Ocean | Biome::Coast | Biome::Lake | Biome::Rock | Biome::SnowPeak => 0,
-            Biome::Hills | Biome::Forest | Biome::Rainforest => 2,
-            _ => 1,
-        })
     }
 }
 

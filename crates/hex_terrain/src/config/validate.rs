@@ -1,7 +1,7 @@
 //! Validation: every field of a [`MapConfig`] against its allowed range, and the limits that
 //! keep any accepted config from taking minutes or gigabytes.
 
-use super::{HeightSourceConfig, MapConfig, MapSize, NoiseConfig, Orientation, Shape};
+use super::{HeightSourceConfig, MAX_MOVE_COST, MapConfig, MapSize, NoiseConfig, Orientation, Shape};
 use crate::error::ConfigError;
 
 /// Largest number of octaves accepted.
@@ -204,6 +204,15 @@ impl MapConfig {
             }
         }
         self.validate_climate()?;
+        let m = &self.movement;
+        for (biome, &c) in &m.costs {
+            let range = format!("0..={MAX_MOVE_COST} (0: impassable)");
+            check(c <= MAX_MOVE_COST, &format!("movement.costs.{}", biome.name()), c, range)?;
+        }
+        check(m.river <= MAX_MOVE_COST, "movement.river", m.river, format!("0..={MAX_MOVE_COST}"))?;
+        if let Some(embark) = m.embark {
+            check((1..=MAX_MOVE_COST).contains(&embark), "movement.embark", embark, format!("1..={MAX_MOVE_COST}"))?;
+        }
         if let Some(setup) = &self.setup {
             setup.validate(self.size.bounds())?;
         }

@@ -6,7 +6,7 @@ use rayon::prelude::*;
 
 use crate::chunk::TileRect;
 use crate::climate::{ClimateModel, TileSample};
-use crate::config::{SetupConfig, StartOn, Yields};
+use crate::config::{MovementConfig, SetupConfig, StartOn, Yields};
 use crate::geometry::Geometry;
 use crate::heights::HeightField;
 use crate::kind::Thresholds;
@@ -29,6 +29,8 @@ pub struct Stages<'a> {
     pub climate: &'a ClimateModel,
     /// The per-map table (biomes, rivers and lakes of a bounded map), if the map has one.
     pub table: Option<&'a TileTable>,
+    /// The movement model (the map config's), for reach and path costs.
+    pub movement: &'a MovementConfig,
 }
 
 impl Stages<'_> {
@@ -140,7 +142,8 @@ impl Survey {
                 y
             })
             .collect();
-        survey.cost = survey.biomes.iter().map(|&b| config.cost(b)).collect();
+        survey.cost =
+            (0..survey.len()).map(|i| stages.movement.enter(survey.biomes[i], survey.river[i]).unwrap_or(0)).collect();
         survey.eligible = (0..survey.len())
             .map(|i| {
                 let land = survey.kinds[i] == TileKind::Land && !survey.biomes[i].is_water() && survey.cost[i] > 0;

@@ -352,6 +352,16 @@ impl Terrain {
         self.in_world(tile).then(|| self.pipeline.tile_info(tile))
     }
 
+    /// The cost of entering a tile of the map by the map's movement model
+    /// ([`MovementConfig::enter`](crate::MovementConfig::enter) of its biome, with its river);
+    /// `None` when it cannot be entered, or is off the map. The game setup's reach and path
+    /// costs use the same rule.
+    #[must_use]
+    pub fn move_cost(&self, tile: Hex) -> Option<u32> {
+        let info = self.tile_info(self.wrap_tile(tile)?)?;
+        self.config().movement.enter(info.biome, info.river_flow > 0.0)
+    }
+
     /// Temperature and moisture of a tile, `None` when the map has no climate or the tile is
     /// past the world.
     #[must_use]

@@ -40,9 +40,6 @@ impl SetupConfig {
         for (name, v) in [("food", w.food), ("production", w.production), ("gold", w.gold), ("reach", w.reach)] {
             check(finite_in(f64::from(v), 0.0, 100.0), &format!("setup.value.{name}"), v, "[0, 100]")?;
         }
-        for (biome, &c) in &self.costs {
-            check(c <= MAX_YIELD as u32, &format!("setup.costs.{}", biome.name()), c, "0..=100 (0: impassable)")?;
-        }
         check(finite_in(f64::from(self.fairness), 0.0, 10.0), "setup.fairness", self.fairness, "[0, 10]")?;
         check(
             self.resources.len() <= MAX_SETUP_RULES,
