@@ -21,6 +21,7 @@
 //! - [Reliability: hostile input and hours of play](crate::guide::reliability)
 //! - [How it works, and where it departs from the thesis](crate::guide::how_it_works)
 //! - [Recipes](crate::guide::recipes)
+//! - [Rules: movement and paths](crate::guide::rules)
 
 #![allow(clippy::doc_markdown, reason = "the chapters are prose for people, read on GitHub too")]
 
@@ -86,6 +87,10 @@ pub mod how_it_works {
 
 pub mod recipes {
     #![doc = include_str!("../guide/16-recipes.md")]
+}
+
+pub mod rules {
+    #![doc = include_str!("../guide/17-rules.md")]
 }
 
 /// The repository's README, whose snippets are doc tests too.

@@ -22,6 +22,7 @@
 //! | `mesh` | any rectangle of tiles to [`MeshBuffers`], on all cores or the calling thread |
 //! | `water::surface`, `props` | what stands on a generated chunk: its water surface, its trees, rocks and reeds |
 //! | `query`, `metrics` | the surface under a position and ray casts, in f64; sharpness (thesis eq. 4.1, 7.3) |
+//! | `paths` | cheapest paths (A*), the tiles within a budget and a path's turns, by the map's movement model |
 //! | `stats` | [`MapStats`]: land and water, landmasses (continents and islands), coast, straits, mountain ranges, biomes, rivers, lakes |
 //! | [`setup`] | [`Setup`]: a game on the map: start positions in regions of equal fertility, resources, natural wonders, and the fairness report (after the terrain; it changes no height) |
 //! | [`terrain`] | [`Terrain`], the facade over all of it |
@@ -68,6 +69,7 @@ mod mesh;
 mod props;
 
 mod metrics;
+mod paths;
 mod query;
 mod stats;
 
@@ -108,6 +110,7 @@ pub use kind::Thresholds;
 pub use lattice::Lattice;
 pub use mesh::{ChunkMesh, Detail, Diagnostics, GenerateOptions, MeshBuffers, Threads};
 pub use metrics::Sharpness;
+pub use paths::{MAX_PATH_TILES, Path, Turns};
 pub use pipeline::Pipeline;
 pub use props::{Marker, MarkerKind, Prop};
 pub use query::{MAX_RAY_STEPS, RayHit};

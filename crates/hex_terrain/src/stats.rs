@@ -2,20 +2,7 @@
 //! how big, how far apart, where the mountains and rivers are), measured on a compiled bounded
 //! map. A pure function of the terrain: the same on any thread count, whatever was streamed.
 //!
-//! The rules, written once:
-//! - **Water** is sea tiles and lake tiles; **land** is every other tile (mountains included).
-//! - A **landmass** is a set of land tiles connected through their neighbors (across the seam of
-//!   a wrapping map). It is a **continent** when it holds at least [`CONTINENT_MIN_SHARE`] of the
-//!   map's land and at least [`CONTINENT_MIN_TILES`] tiles, an **island** otherwise.
-//! - The **coast** is counted in tile edges between a land tile and a sea tile (a lake shore is
-//!   not coast).
-//! - The **narrowest strait** is the fewest tiles between two continents: the smallest hex
-//!   distance (the short way round on a wrapping map) between tiles of two different continents,
-//!   less one.
-//! - A **mountain range** is a set of three or more mountain tiles connected through their
-//!   neighbors; a lone mountain or a pair is not one.
-//! - A **river system** ends at one mouth: a river tile whose water leaves the rivers (into the
-//!   sea, a lake or off the map). A river's length counts its tiles from a source to its mouth.
+//! The rules are on [`MapStats`].
 
 use std::collections::{HashMap, VecDeque};
 
@@ -32,7 +19,7 @@ pub const CONTINENT_MIN_SHARE: f64 = 0.05;
 /// [`CONTINENT_MIN_SHARE`] of the land).
 pub const CONTINENT_MIN_TILES: u32 = 16;
 
-/// Whether a landmass is a continent or an island (see the module rules).
+/// Whether a landmass is a continent or an island (the rule is on [`MapStats`]).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "bevy_reflect", derive(bevy_reflect::Reflect))]
 pub enum LandmassKind {
@@ -71,7 +58,22 @@ pub struct RiverStats {
     pub longest: u32,
 }
 
-/// The statistics of a bounded map (see the module docs for every rule).
+/// The statistics of a bounded map: [`MapStats::measure`].
+///
+/// The rules, written once:
+/// - **Water** is sea tiles and lake tiles; **land** is every other tile (mountains included).
+/// - A **landmass** is a set of land tiles connected through their neighbors (across the seam of
+///   a wrapping map). It is a **continent** when it holds at least [`CONTINENT_MIN_SHARE`] of the
+///   map's land and at least [`CONTINENT_MIN_TILES`] tiles, an **island** otherwise.
+/// - The **coast** is counted in tile edges between a land tile and a sea tile (a lake shore is
+///   not coast).
+/// - The **narrowest strait** is the fewest tiles between two continents: the smallest hex
+///   distance (the short way round on a wrapping map) between tiles of two different continents,
+///   less one.
+/// - A **mountain range** is a set of three or more mountain tiles connected through their
+///   neighbors; a lone mountain or a pair is not one.
+/// - A **river system** ends at one mouth: a river tile whose water leaves the rivers (into the
+///   sea, a lake or off the map). A river's length counts its tiles from a source to its mouth.
 #[derive(Debug, Clone, PartialEq)]
 #[cfg_attr(feature = "bevy_reflect", derive(bevy_reflect::Reflect))]
 pub struct MapStats {

@@ -262,6 +262,28 @@ impl HexMap {
         self.terrain.move_cost(tile)
     }
 
+    /// The cheapest path between two tiles by the map's movement model
+    /// ([`Terrain::path`](hex_terrain::Terrain::path): A*, across the seam of a wrapping map when
+    /// cheaper, a fixed choice among equal paths); `None` when there is none.
+    #[must_use]
+    pub fn path(&self, from: Hex, to: Hex) -> Option<hex_terrain::Path> {
+        self.terrain.path(from, to)
+    }
+
+    /// Every tile reachable from `from` for at most `budget` movement points, with its cost
+    /// ([`Terrain::reachable`](hex_terrain::Terrain::reachable)).
+    #[must_use]
+    pub fn reachable(&self, from: Hex, budget: u32) -> Vec<(Hex, u32)> {
+        self.terrain.reachable(from, budget)
+    }
+
+    /// A path split into turns ([`Terrain::turns`](hex_terrain::Terrain::turns): Civilization V's
+    /// rule for a tile that costs more than the points left).
+    #[must_use]
+    pub fn turns(&self, path: &hex_terrain::Path, points: u32, left: u32) -> Option<hex_terrain::Turns> {
+        self.terrain.turns(path, points, left)
+    }
+
     /// The river running through a tile (its flow, where it comes from and goes), if any.
     #[must_use]
     pub fn river(&self, tile: Hex) -> Option<RiverTile> {

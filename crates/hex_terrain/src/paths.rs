@@ -1,0 +1,168 @@
+//! Movement over the map by its movement model ([`MovementConfig`](crate::MovementConfig)):
+//! cheapest paths (A*), the tiles within a budget of movement points, and a path split into
+//! turns. Pure functions of the compiled terrain: the same answer on any thread, in any order.
+//!
+//! The rules are on [`Path`].
+
+use std::cmp::Reverse;
+use std::collections::{BinaryHeap, HashMap};
+
+use hexx::Hex;
+
+use crate::terrain::Terrain;
+use crate::vocab::Biome;
+
+/// Most tiles a path or reach search visits (Civilization VI's Huge map has about 7,000).
+pub const MAX_PATH_TILES: usize = 1 << 18;
+
+/// A cheapest path over the map ([`Terrain::path`]).
+///
+/// The rules, written once:
+/// - **Entering** a tile costs [`Terrain::move_cost`](crate::Terrain::move_cost); the start tile
+///   costs nothing; a tile that cannot be entered is never on a path.
+/// - **Paths** run between tiles of the map, across the seam of a wrapping map when that is
+///   cheaper. Of several cheapest paths, one is chosen by a fixed order (the tile's place in the
+///   map's rows), never by thread or hash order.
+/// - **The search** visits at most [`MAX_PATH_TILES`] tiles; on an unbounded world a goal farther
+///   than that allows is not found (`None`), like an unreachable one.
+/// - **Turns** (Civilization V's rule): a unit with any movement points left may enter a tile it
+///   can enter; it pays the tile's cost, or all the points it has left when the cost is more. A
+///   turn ends when no points are left; the next turn starts with the full points.
+#[derive(Debug, Clone, PartialEq, Eq)]
+#[cfg_attr(feature = "bevy_reflect", derive(bevy_reflect::Reflect))]
+pub struct Path {
+    /// The tiles from the start to the goal, both included (the map's own tiles).
+    pub tiles: Vec<Hex>,
+    /// What entering every tile after the first costs.
+    pub cost: u32,
+}
+
+/// Where a path's turns end.
+#[derive(Debug, Clone, PartialEq, Eq)]
+#[cfg_attr(feature = "bevy_reflect", derive(bevy_reflect::Reflect))]
+pub struct Turns {
+    /// For each tile of the path, the turn it is reached in (0: this turn).
+    pub turn: Vec<u32>,
+    /// The turns the path takes (the last tile's turn plus one; 0 for a path of one tile).
+    pub count: u32,
+    /// The tile each turn ends on (the last is the goal).
+    pub ends: Vec<Hex>,
+}
+
+/// The search's order of tiles: cost so far, then the tile's place in the map's rows.
+fn key(terrain: &Terrain, tile: Hex) -> (i32, i32) {
+    let [col, row] = terrain.offset_of(tile);
+    (row, col)
+}
+
+impl Terrain {
+    /// The cheapest path from `from` to `to` by the map's movement model (A*, its estimate the
+    /// hex distance times the cheapest tile, so never above the true cost); `None` when either
+    /// is off the map, `to` cannot be entered, or no path exists within [`MAX_PATH_TILES`]. See
+    /// the rules on [`Path`].
+    #[must_use]
+    pub fn path(&self, from: Hex, to: Hex) -> Option<Path> {
+        let (from, to) = (self.wrap_tile(from)?, self.wrap_tile(to)?);
+        if from == to {
+            return Some(Path { tiles: vec![from], cost: 0 });
+        }
+        self.move_cost(to)?;
+        let cheapest = self.cheapest_move();
+        let estimate = |tile: Hex| self.distance(tile, to).map_or(u32::MAX, |d| d.saturating_mul(cheapest));
+        let mut best: HashMap<Hex, (u32, Hex)> = HashMap::from([(from, (0, from))]);
+        let mut open = BinaryHeap::from([Reverse((estimate(from), 0u32, key(self, from), from.x, from.y))]);
+        let mut visited = 0usize;
+        while let Some(Reverse((_, cost, _, x, y))) = open.pop() {
+            let tile = Hex::new(x, y);
+            if best.get(&tile).is_some_and(|&(c, _)| c < cost) {
+                continue;
+            }
+            if tile == to {
+                let mut tiles = vec![to];
+                let mut at = to;
+                while at != from {
+                    at = best[&at].1;
+                    tiles.push(at);
+                }
+                tiles.reverse();
+                return Some(Path { tiles, cost });
+            }
+            visited += 1;
+            if visited > MAX_PATH_TILES {
+                return None;
+            }
+            for next in self.neighbors(tile)?.into_iter().flatten() {
+                let Some(step) = self.move_cost(next) else { continue };
+                let total = cost + step;
+                if best.get(&next).is_none_or(|&(c, _)| total < c) {
+                    best.insert(next, (total, tile));
+                    open.push(Reverse((total.saturating_add(estimate(next)), total, key(self, next), next.x, next.y)));
+                }
+            }
+        }
+        None
+    }
+
+    /// Every tile reachable from `from` for at most `budget` movement points, with the cost of
+    /// its cheapest path, in order of cost then of the map's rows (`from` first, at 0); empty
+    /// when `from` is off the map. At most [`MAX_PATH_TILES`] tiles.
+    #[must_use]
+    pub fn reachable(&self, from: Hex, budget: u32) -> Vec<(Hex, u32)> {
+        let Some(from) = self.wrap_tile(from) else { return Vec::new() };
+        let mut best: HashMap<Hex, u32> = HashMap::from([(from, 0)]);
+        let mut open = BinaryHeap::from([Reverse((0u32, key(self, from), from.x, from.y))]);
+        let mut out = Vec::new();
+        while let Some(Reverse((cost, _, x, y))) = open.pop() {
+            let tile = Hex::new(x, y);
+            if best.get(&tile).is_some_and(|&c| c < cost) {
+                continue;
+            }
+            out.push((tile, cost));
+            if out.len() >= MAX_PATH_TILES {
+                break;
+            }
+            for next in self.neighbors(tile).into_iter().flatten().flatten() {
+                let Some(step) = self.move_cost(next) else { continue };
+                let total = cost + step;
+                if total <= budget && best.get(&next).is_none_or(|&c| total < c) {
+                    best.insert(next, total);
+                    open.push(Reverse((total, key(self, next), next.x, next.y)));
+                }
+            }
+        }
+        out
+    }
+
+    /// A path split into turns for a unit with `points` movement points a turn and `left` of
+    /// them this turn (Civilization V's rule, on [`Path`]); `None` when `points` is 0 and
+    /// the path has a step, or a tile of it cannot be entered.
+    #[must_use]
+    pub fn turns(&self, path: &Path, points: u32, left: u32) -> Option<Turns> {
+        let mut turn = 0u32;
+        let mut remaining = left.min(points);
+        let mut turns = Turns { turn: vec![0], count: 0, ends: Vec::new() };
+        for (i, &tile) in path.tiles.iter().enumerate().skip(1) {
+            if remaining == 0 {
+                if points == 0 {
+                    return None;
+                }
+                turns.ends.push(path.tiles[i - 1]);
+                turn += 1;
+                remaining = points;
+            }
+            let cost = self.move_cost(tile)?;
+            remaining -= cost.min(remaining);
+            turns.turn.push(turn);
+        }
+        if path.tiles.len() > 1 {
+            turns.ends.push(*path.tiles.last().expect("a step"));
+            turns.count = turn + 1;
+        }
+        Some(turns)
+    }
+
+    /// The least a tile can cost to enter by the map's movement model (at least 1).
+    fn cheapest_move(&self) -> u32 {
+        Biome::ALL.into_iter().filter_map(|b| self.config().movement.enter(b, false)).min().unwrap_or(1).max(1)
+    }
+}
