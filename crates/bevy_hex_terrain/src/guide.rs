@@ -21,7 +21,7 @@
 //! - [Reliability: hostile input and hours of play](crate::guide::reliability)
 //! - [How it works, and where it departs from the thesis](crate::guide::how_it_works)
 //! - [Recipes](crate::guide::recipes)
-//! - [Rules: movement and paths](crate::guide::rules)
+//! - [Rules: movement, paths and sight](crate::guide::rules)
 
 #![allow(clippy::doc_markdown, reason = "the chapters are prose for people, read on GitHub too")]
 

@@ -10,6 +10,7 @@ mod edits;
 mod file;
 mod movement;
 mod setup;
+mod sight;
 mod validate;
 
 pub use climate::{BiomeRule, ClimateConfig, MAX_BIOME_RULES, MAX_WATER_TILES, RiverConfig};
@@ -22,6 +23,7 @@ pub use setup::{
     Place, ResourceClass, ResourceRule, SetupConfig, StartOn, ValueWeights, WonderConfig, WonderRule, YieldTable,
     Yields,
 };
+pub use sight::{MAX_SIGHT_BONUS, SightConfig};
 pub use validate::{
     MAX_CHUNK_BYTES, MAX_CHUNK_SIDE, MAX_INNER_RINGS, MAX_MAP_BYTES, MAX_OCTAVES, MAX_OFFSET, MAX_WORLD_TILE,
     MIN_WRAP_COLUMNS,
@@ -80,6 +82,10 @@ pub struct MapConfig {
     /// fairness (see [`MovementConfig`]; left out of a file, the defaults).
     #[serde(skip_serializing_if = "MovementConfig::is_default")]
     pub movement: MovementConfig,
+    /// What units see: how far, and what blocks their view (see [`SightConfig`]; left out of a
+    /// file, the defaults).
+    #[serde(skip_serializing_if = "SightConfig::is_default")]
+    pub sight: SightConfig,
     /// Game setup: start positions, resources, natural wonders and the fairness report (off by
     /// default; see [`SetupConfig`]).
     pub setup: Option<SetupConfig>,
@@ -109,6 +115,7 @@ impl Default for MapConfig {
             rivers: RiverConfig::default(),
             relief: ReliefConfig::default(),
             movement: MovementConfig::default(),
+            sight: SightConfig::default(),
             setup: None,
             edits: Vec::new(),
         }

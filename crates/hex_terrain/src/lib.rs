@@ -23,6 +23,7 @@
 //! | `water::surface`, `props` | what stands on a generated chunk: its water surface, its trees, rocks and reeds |
 //! | `query`, `metrics` | the surface under a position and ray casts, in f64; sharpness (thesis eq. 4.1, 7.3) |
 //! | `paths` | cheapest paths (A*), the tiles within a budget and a path's turns, by the map's movement model |
+//! | `sight` | what a unit sees from a tile, by the map's sight rule |
 //! | `stats` | [`MapStats`]: land and water, landmasses (continents and islands), coast, straits, mountain ranges, biomes, rivers, lakes |
 //! | [`setup`] | [`Setup`]: a game on the map: start positions in regions of equal fertility, resources, natural wonders, and the fairness report (after the terrain; it changes no height) |
 //! | [`terrain`] | [`Terrain`], the facade over all of it |
@@ -71,6 +72,7 @@ mod props;
 mod metrics;
 mod paths;
 mod query;
+mod sight;
 mod stats;
 
 pub mod minimap;
@@ -88,13 +90,13 @@ pub use climate::{Climate, ClimateModel, TileSample};
 pub use config::{
     AppearanceConfig, BiomeRule, ClimateConfig, HeightSourceConfig, LayoutConfig, MAX_EDITS, ManipulationConfig,
     MapConfig, MapFile, MapSize, MovementConfig, NoiseConfig, Orientation, Place, PropDensity, PullMode, ReliefConfig,
-    ResourceClass, ResourceRule, RiverConfig, RiverEdit, SetupConfig, Shape, StartOn, TerrainConfig, TileEdit,
-    ValueWeights, WonderConfig, WonderRule, YieldTable, Yields,
+    ResourceClass, ResourceRule, RiverConfig, RiverEdit, SetupConfig, Shape, SightConfig, StartOn, TerrainConfig,
+    TileEdit, ValueWeights, WonderConfig, WonderRule, YieldTable, Yields,
 };
 pub use config::{
     MAX_BIOME_RULES, MAX_CHUNK_BYTES, MAX_CHUNK_SIDE, MAX_INNER_RINGS, MAX_MAP_BYTES, MAX_MOVE_COST, MAX_OCTAVES,
     MAX_OFFSET, MAX_PER_PLAYER, MAX_PLAYERS, MAX_SETUP_DISTANCE, MAX_SETUP_RINGS, MAX_SETUP_RULES, MAX_SETUP_TILES,
-    MAX_WATER_TILES, MAX_WORLD_TILE, MAX_YIELD, MIN_WRAP_COLUMNS,
+    MAX_SIGHT_BONUS, MAX_WATER_TILES, MAX_WORLD_TILE, MAX_YIELD, MIN_WRAP_COLUMNS,
 };
 pub use editor::{Brush, Change, EditError, EditTimings, Editor, MAX_BRUSH_RADIUS, MAX_FLOOD_TILES, Stroke, Tool};
 pub use edits::Edits;

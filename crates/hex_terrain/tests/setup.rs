@@ -395,6 +395,8 @@ fn bad_setup_fields_are_named_with_the_allowed_range() {
     // The movement model the setup measures with.
     assert_eq!(field("(movement: (embark: Some(0)))"), "movement.embark");
     assert_eq!(field("(movement: (river: 101))"), "movement.river");
+    assert_eq!(field("(sight: (tall_bonus: 9))"), "sight.tall_bonus");
+    assert_eq!(field("(sight: (mountain_bonus: 9))"), "sight.mountain_bonus");
     assert_eq!(field("(movement: (costs: {Hills: 101}))"), "movement.costs.hills");
     assert!(MapConfig::from_ron("(movement: (costs: {Hills: 100}, river: 0, embark: Some(100)))").is_ok());
     assert_eq!(field("(setup: Some((players: 33)))"), "setup.players");

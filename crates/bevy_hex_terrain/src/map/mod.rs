@@ -284,6 +284,14 @@ impl HexMap {
         self.terrain.turns(path, points, left)
     }
 
+    /// The tiles a unit on `from` sees with sight `radius`, by the map's sight rule
+    /// ([`Terrain::field_of_view`](hex_terrain::Terrain::field_of_view): higher tiles and
+    /// mountains block, tall tiles and mountains see farther).
+    #[must_use]
+    pub fn field_of_view(&self, from: Hex, radius: u32) -> Vec<Hex> {
+        self.terrain.field_of_view(from, radius)
+    }
+
     /// The river running through a tile (its flow, where it comes from and goes), if any.
     #[must_use]
     pub fn river(&self, tile: Hex) -> Option<RiverTile> {

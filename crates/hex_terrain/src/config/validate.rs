@@ -1,7 +1,7 @@
 //! Validation: every field of a [`MapConfig`] against its allowed range, and the limits that
 //! keep any accepted config from taking minutes or gigabytes.
 
-use super::{HeightSourceConfig, MAX_MOVE_COST, MapConfig, MapSize, NoiseConfig, Orientation, Shape};
+use super::{HeightSourceConfig, MAX_MOVE_COST, MAX_SIGHT_BONUS, MapConfig, MapSize, NoiseConfig, Orientation, Shape};
 use crate::error::ConfigError;
 
 /// Largest number of octaves accepted.
@@ -212,6 +212,10 @@ impl MapConfig {
         check(m.river <= MAX_MOVE_COST, "movement.river", m.river, format!("0..={MAX_MOVE_COST}"))?;
         if let Some(embark) = m.embark {
             check((1..=MAX_MOVE_COST).contains(&embark), "movement.embark", embark, format!("1..={MAX_MOVE_COST}"))?;
+        }
+        let s = &self.sight;
+        for (field, bonus) in [("sight.tall_bonus", s.tall_bonus), ("sight.mountain_bonus", s.mountain_bonus)] {
+            check(bonus <= MAX_SIGHT_BONUS, field, bonus, format!("0..={MAX_SIGHT_BONUS}"))?;
         }
         if let Some(setup) = &self.setup {
             setup.validate(self.size.bounds())?;

@@ -1,0 +1,61 @@
+//! What a unit sees from a tile, by the map's sight rule ([`SightConfig`](crate::SightConfig)):
+//! a pure function of the compiled terrain and the tile, the same on any thread.
+
+use std::collections::BTreeSet;
+
+use hexx::Hex;
+
+use crate::terrain::Terrain;
+use crate::vocab::TileKind;
+
+impl Terrain {
+    /// A tile's height for sight ([`SightConfig`](crate::SightConfig)): 2 for a mountain, 1 for
+    /// a tile of a tall biome, 0 otherwise; `None` off the map.
+    #[must_use]
+    pub fn sight_height(&self, tile: Hex) -> Option<u8> {
+        let info = self.tile_info(self.wrap_tile(tile)?)?;
+        Some(if info.kind == TileKind::Mountain && info.lake.is_none() {
+            2
+        } else {
+            u8::from(self.config().sight.tall.contains(&info.biome))
+        })
+    }
+
+    /// The tiles a unit on `from` sees with sight `radius` (plus the bonus of a tall tile or a
+    /// mountain), by the map's sight rule ([`SightConfig`](crate::SightConfig)): each tile of
+    /// the map within reach whose view is not blocked by a higher tile or a mountain strictly
+    /// between (on hexx's line from `from` to the tile's copy nearest it, the short way round a
+    /// wrapping map, drawn with `from` at the origin so that the view does not depend on where
+    /// on the map it is taken). `from` is always seen. The map's own tiles, each once, in the map's row order; empty off the map.
+    #[must_use]
+    pub fn field_of_view(&self, from: Hex, radius: u32) -> Vec<Hex> {
+        let Some(from) = self.wrap_tile(from) else { return Vec::new() };
+        let Some(own) = self.sight_height(from) else { return Vec::new() };
+        let sight = &self.config().sight;
+        let reach = radius.saturating_add(match own {
+            2 => sight.mountain_bonus,
+            1 => sight.tall_bonus,
+            _ => 0,
+        });
+        let blocks = |tile: Hex| self.sight_height(tile).is_some_and(|h| h > own || h == 2);
+        let mut seen: BTreeSet<(i32, i32)> = BTreeSet::new();
+        let mut out = Vec::new();
+        // Lines are drawn around the origin, so far from it they keep their precision.
+        for offset in Hex::ZERO.range(reach) {
+            let Some(target) = self.wrap_tile(from + offset) else { continue };
+            // The copy of a tile nearest the viewer is the one it looks at.
+            if self.tile_near(target, from) != from + offset {
+                continue;
+            }
+            let line = Hex::ZERO.line_to(offset);
+            let steps = line.len();
+            let clear = line.skip(1).take(steps.saturating_sub(2)).all(|step| !blocks(from + step));
+            let [col, row] = self.offset_of(target);
+            if clear && seen.insert((row, col)) {
+                out.push(((row, col), target));
+            }
+        }
+        out.sort_unstable_by_key(|&(key, _)| key);
+        out.into_iter().map(|(_, tile)| tile).collect()
+    }
+}
