@@ -82,4 +82,27 @@ fn public_resources_are_reflected_and_registered() {
         let path = value.reflect_type_path();
         assert!(registry.get_with_type_path(path).is_some(), "{path} is not registered");
     }
+    // Every other resource of the crate a headless app has: registered, as a resource.
+    fn registered<T: Resource>(world: &World, registry: &bevy::reflect::TypeRegistry) {
+        let name = std::any::type_name::<T>();
+        assert!(world.contains_resource::<T>(), "{name} is not in the app");
+        let registration = registry.get(std::any::TypeId::of::<T>());
+        assert!(
+            registration.is_some_and(|r| r.data::<bevy::ecs::reflect::ReflectResource>().is_some()),
+            "{name} is not a registered, reflected resource"
+        );
+    }
+    registered::<bevy_hex_terrain::HexMapHandle>(world, &registry);
+    registered::<bevy_hex_terrain::HexTileStateStats>(world, &registry);
+    registered::<HexTileStateStyle>(world, &registry);
+    registered::<HexTileStateSettings>(world, &registry);
+    registered::<bevy_hex_terrain::TileStateUpload>(world, &registry);
+    registered::<HexWaterSettings>(world, &registry);
+    registered::<HexPropSettings>(world, &registry);
+    registered::<bevy_hex_terrain::HexPropStats>(world, &registry);
+    #[cfg(feature = "picking")]
+    {
+        registered::<HexPickingSettings>(world, &registry);
+        registered::<HoveredTile>(world, &registry);
+    }
 }

@@ -15,7 +15,8 @@ use crate::asset::{HexMapAsset, HexMapLoader, HexMapLoaderError};
 
 /// The map asset the plugin follows, when the map comes from a file. Switch maps with
 /// [`LoadHexMap`]; this resource only says which asset is followed.
-#[derive(Resource, Debug, Clone, Default)]
+#[derive(Resource, Debug, Clone, Default, Reflect)]
+#[reflect(Resource, Debug, Default)]
 pub struct HexMapHandle(Option<Handle<HexMapAsset>>);
 
 impl HexMapHandle {
@@ -68,6 +69,7 @@ impl Plugin for HexMapPlugin {
             .register_type::<HexMapError>()
             .register_type::<LoadHexMap>()
             .register_type::<HexMap>()
+            .register_type::<HexMapHandle>()
             // A new config must be in place before chunks are requested against it, and a
             // chunk must be requested before its mesh can be inserted.
             .configure_sets(

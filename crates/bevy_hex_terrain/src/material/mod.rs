@@ -98,12 +98,14 @@ impl MaterialExtension for HexTerrainExtension {
 }
 
 /// The shared material handle of the chunks.
-#[derive(Resource, Debug, Clone)]
+#[derive(Resource, Debug, Clone, Reflect)]
+#[reflect(Resource, Debug)]
 pub struct HexTerrainMaterialHandle(pub Handle<HexTerrainMaterial>);
 
 /// The shared material handle of the water surfaces ([`HexWater`](crate::HexWater)): the terrain
 /// material's water instance, alpha-blended.
-#[derive(Resource, Debug, Clone)]
+#[derive(Resource, Debug, Clone, Reflect)]
+#[reflect(Resource, Debug)]
 pub struct HexWaterMaterialHandle(pub Handle<HexTerrainMaterial>);
 
 /// The terrain material: registers [`HexTerrainMaterial`], gives every chunk mesh the shared
@@ -138,6 +140,8 @@ impl Plugin for HexTerrainMaterialPlugin {
             .init_resource::<RenderOrigin>()
             .register_type::<HexTerrainMaterialSettings>()
             .register_type::<RenderOrigin>()
+            .register_type::<HexTerrainMaterialHandle>()
+            .register_type::<HexWaterMaterialHandle>()
             .add_systems(Startup, create_material.after(tile_texture::create_texture))
             .add_systems(
                 Update,

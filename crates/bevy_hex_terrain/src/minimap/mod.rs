@@ -190,6 +190,7 @@ impl Plugin for HexMinimapPlugin {
             .init_resource::<MinimapPicture>()
             .add_message::<MinimapNavigate>()
             .register_type::<HexMinimapSettings>()
+            .register_type::<MinimapPicture>()
             .register_type::<HexMinimap>()
             .register_type::<HexMinimapCamera>()
             .register_type::<MinimapNavigate>()

@@ -18,17 +18,22 @@ use super::view::MinimapCameraView;
 use crate::HexMap;
 use crate::tiles::{HexTileStateStyle, TileStates};
 
-/// The picture shown and what it is built from.
-#[derive(Resource, Default)]
+/// The picture shown and what it is built from (the core's picture and the building task are
+/// not reflected).
+#[derive(Resource, Default, Reflect)]
+#[reflect(Resource, Default)]
 pub struct MinimapPicture {
+    #[reflect(ignore)]
     pub(super) picture: Option<Minimap>,
     /// The painted picture without the outline (RGBA8 sRGB).
     pub(super) painted: Vec<u8>,
     /// The outline's pixels drawn over it.
     pub(super) outline: Vec<u32>,
     pub(super) image: Handle<Image>,
+    #[reflect(ignore)]
     pub(super) task: Option<Task<Option<Minimap>>>,
     /// What the shown (or building) picture was made for: the map's generation and the region.
+    #[reflect(ignore)]
     pub(super) made_for: Option<(u64, TileRect)>,
     /// Pixels repainted since the start (figures for tests and the stats overlay).
     pub(super) repainted: u64,

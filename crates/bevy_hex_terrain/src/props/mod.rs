@@ -49,7 +49,8 @@ pub struct HexProp {
 }
 
 /// The shared meshes (by kind and variant) and material of the props, with Bevy's renderer.
-#[derive(Resource, Debug, Clone)]
+#[derive(Resource, Debug, Clone, Reflect)]
+#[reflect(Resource, Debug)]
 pub struct PropAssets {
     /// `meshes[kind as usize][variant]`.
     pub meshes: Vec<Vec<Handle<Mesh>>>,
@@ -81,6 +82,7 @@ impl Plugin for HexPropsPlugin {
             .register_type::<HexPropSettings>()
             .register_type::<HexProp>()
             .register_type::<HexPropStats>()
+            .register_type::<PropAssets>()
             .add_systems(
                 Update,
                 (
