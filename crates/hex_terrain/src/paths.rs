@@ -62,9 +62,20 @@ impl Terrain {
     /// the rules on [`Path`].
     #[must_use]
     pub fn path(&self, from: Hex, to: Hex) -> Option<Path> {
+        self.path_avoiding(from, to, |_| false)
+    }
+
+    /// As [`Terrain::path`], never entering a tile `blocked` says is taken (another unit, a
+    /// city): it is asked about the map's own tiles, never about `from`; a blocked goal has no
+    /// path.
+    #[must_use]
+    pub fn path_avoiding(&self, from: Hex, to: Hex, blocked: impl Fn(Hex) -> bool) -> Option<Path> {
         let (from, to) = (self.wrap_tile(from)?, self.wrap_tile(to)?);
         if from == to {
             return Some(Path { tiles: vec![from], cost: 0 });
+        }
+        if blocked(to) {
+            return None;
         }
         self.move_cost(to)?;
         let cheapest = self.cheapest_move();
@@ -92,7 +103,10 @@ impl Terrain {
                 return None;
             }
             for next in self.neighbors(tile)?.into_iter().flatten() {
-                let Some(step) = self.move_cost(next) else { continue };
+                if next == from {
+                    continue;
+                }
+                let Some(step) = self.move_cost(next).filter(|_| !blocked(next)) else { continue };
                 let total = cost + step;
                 if best.get(&next).is_none_or(|&(c, _)| total < c) {
                     best.insert(next, (total, tile));
@@ -108,6 +122,13 @@ impl Terrain {
     /// when `from` is off the map. At most [`MAX_PATH_TILES`] tiles.
     #[must_use]
     pub fn reachable(&self, from: Hex, budget: u32) -> Vec<(Hex, u32)> {
+        self.reachable_avoiding(from, budget, |_| false)
+    }
+
+    /// As [`Terrain::reachable`], never entering a tile `blocked` says is taken (asked about the
+    /// map's own tiles, never about `from`).
+    #[must_use]
+    pub fn reachable_avoiding(&self, from: Hex, budget: u32, blocked: impl Fn(Hex) -> bool) -> Vec<(Hex, u32)> {
         let Some(from) = self.wrap_tile(from) else { return Vec::new() };
         let mut best: HashMap<Hex, u32> = HashMap::from([(from, 0)]);
         let mut open = BinaryHeap::from([Reverse((0u32, key(self, from), from.x, from.y))]);
@@ -122,7 +143,10 @@ impl Terrain {
                 break;
             }
             for next in self.neighbors(tile).into_iter().flatten().flatten() {
-                let Some(step) = self.move_cost(next) else { continue };
+                if next == from {
+                    continue;
+                }
+                let Some(step) = self.move_cost(next).filter(|_| !blocked(next)) else { continue };
                 let total = cost + step;
                 if total <= budget && best.get(&next).is_none_or(|&c| total < c) {
                     best.insert(next, total);

@@ -62,8 +62,8 @@ fn enter(t: &Terrain, tile: Hex) -> Option<u32> {
 }
 
 /// Dijkstra from `from` over the map's tiles (hexx's neighbors brought onto the map), within
-/// `radius` tiles of `from` on an unbounded world.
-fn dijkstra(t: &Terrain, from: Hex, radius: u32) -> BTreeMap<(i32, i32), u32> {
+/// `radius` tiles of `from` on an unbounded world, never entering `blocked` tiles.
+fn dijkstra(t: &Terrain, from: Hex, radius: u32, blocked: &[Hex]) -> BTreeMap<(i32, i32), u32> {
     let mut dist = BTreeMap::from([((from.x, from.y), 0)]);
     let mut heap = BinaryHeap::from([Reverse((0u32, from.x, from.y))]);
     while let Some(Reverse((d, x, y))) = heap.pop() {
@@ -75,7 +75,7 @@ fn dijkstra(t: &Terrain, from: Hex, radius: u32) -> BTreeMap<(i32, i32), u32> {
             if t.bounds().is_none() && from.unsigned_distance_to(n) > radius {
                 continue;
             }
-            let Some(c) = enter(t, n) else { continue };
+            let Some(c) = enter(t, n).filter(|_| !blocked.contains(&n)) else { continue };
             if dist.get(&(n.x, n.y)).is_none_or(|&e| d + c < e) {
                 dist.insert((n.x, n.y), d + c);
                 heap.push(Reverse((d + c, n.x, n.y)));
@@ -132,7 +132,7 @@ proptest! {
         }
         let from = t.wrap_tile(from).unwrap();
         let radius = 40;
-        let dist = dijkstra(&t, from, radius);
+        let dist = dijkstra(&t, from, radius, &[]);
         for &pick in &picks[1..] {
             let to = tile(pick);
             let path = t.path(from, to);
@@ -173,6 +173,22 @@ proptest! {
             let order = t.reachable(from, budget);
             prop_assert!(order.windows(2).all(|w| w[0].1 <= w[1].1), "in order of cost");
             prop_assert_eq!(order.first().copied(), Some((from, 0)));
+            // Around taken tiles: the picks but the start are taken.
+            let taken: Vec<Hex> = picks[1..].iter().filter_map(|&p| t.wrap_tile(tile(p))).filter(|&h| h != from).collect();
+            let around = dijkstra(&t, from, radius, &taken);
+            let blocked = |h: Hex| taken.contains(&h);
+            let reach: BTreeMap<(i32, i32), u32> =
+                t.reachable_avoiding(from, budget, blocked).into_iter().map(|(h, c)| ((h.x, h.y), c)).collect();
+            let ball: BTreeMap<(i32, i32), u32> = around.iter().filter(|&(_, &d)| d <= budget).map(|(&k, &d)| (k, d)).collect();
+            prop_assert_eq!(reach, ball);
+            for &goal in t.tiles().collect::<Vec<_>>().iter().step_by(7) {
+                let path = t.path_avoiding(from, goal, blocked);
+                prop_assert_eq!(path.as_ref().map(|p| p.cost), if goal == from { Some(0) } else { around.get(&(goal.x, goal.y)).copied() });
+                if let Some(path) = path {
+                    check_path(&t, &path, from, goal)?;
+                    prop_assert!(path.tiles.iter().all(|h| !taken.contains(h)), "a taken tile on the path");
+                }
+            }
         }
     }
 }

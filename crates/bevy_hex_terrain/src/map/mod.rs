@@ -270,6 +270,20 @@ impl HexMap {
         self.terrain.path(from, to)
     }
 
+    /// As [`path`](Self::path), never entering a tile `blocked` says is taken (another unit)
+    /// (the core's `Terrain::path_avoiding`).
+    #[must_use]
+    pub fn path_avoiding(&self, from: Hex, to: Hex, blocked: impl Fn(Hex) -> bool) -> Option<hex_terrain::Path> {
+        self.terrain.path_avoiding(from, to, blocked)
+    }
+
+    /// As [`reachable`](Self::reachable), never entering a tile `blocked` says is taken
+    /// (the core's `Terrain::reachable_avoiding`).
+    #[must_use]
+    pub fn reachable_avoiding(&self, from: Hex, budget: u32, blocked: impl Fn(Hex) -> bool) -> Vec<(Hex, u32)> {
+        self.terrain.reachable_avoiding(from, budget, blocked)
+    }
+
     /// Every tile reachable from `from` for at most `budget` movement points, with its cost
     /// ([`Terrain::reachable`](hex_terrain::Terrain::reachable)).
     #[must_use]
