@@ -1,8 +1,7 @@
 //! A small turn-based strategy game on streamed hex terrain: pan (WASD/arrows or the screen
 //! edge), zoom (wheel), rotate (Q/E); hover a tile to see it; click a unit to select it and see
-//! where it can go this turn; click a tile to walk there along the map's cheapest path (its
-//! movement model: open land 1, hills and forests 2, a river tile 1 more; water, rock and snow
-//! peaks cannot be entered); End Turn (button or Enter)
+//! where it can go this turn; click a tile to walk there along an A* path (land costs 1,
+//! mountain 3, fording a river 1 more, sea and lakes are impassable); End Turn (button or Enter)
 //! restores movement. G toggles tile outlines, L the movement-cost lens, T the territory tint,
 //! V the fog of war, R regenerates with a new seed, 1-6 switch presets (6: Civ6 Standard,
 //! wrapping; 7: a scenario made with the world builder; P pans east across its seam), F3 shows

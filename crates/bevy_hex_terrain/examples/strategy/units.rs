@@ -7,9 +7,10 @@ use bevy::picking::events::{Click, Pointer};
 use bevy::picking::pointer::PointerButton;
 use bevy::prelude::*;
 use bevy_hex_terrain::prelude::*;
+use hexx::algorithms::a_star;
 
 use crate::Game;
-use crate::movement::MOVES;
+use crate::movement::{MOVES, cost, path_cost, reachable, step_cost};
 use crate::panel::EndTurnButton;
 use crate::rig::Rig;
 use crate::vision;
@@ -70,12 +71,12 @@ pub(crate) fn place_units(
         (0..40u32)
             .flat_map(|r| from.ring(r))
             .filter_map(|t| map.wrap_tile(t))
-            .find(|&t| map.move_cost(t) == Some(1) && !taken.contains(&t))
+            .find(|&t| cost(&map, t) == Some(1) && !taken.contains(&t))
     };
     let mut taken = Vec::new();
     if game.spawned {
         for (_, mut unit, mut t) in &mut units {
-            let tile = if map.move_cost(unit.tile).is_some() { Some(unit.tile) } else { land_near(unit.tile, &taken) };
+            let tile = if cost(&map, unit.tile).is_some() { Some(unit.tile) } else { land_near(unit.tile, &taken) };
             if let Some(tile) = tile
                 && let Some(center) = map.tile_center(tile)
             {
@@ -96,7 +97,7 @@ pub(crate) fn place_units(
     // searching from the east.
     let rival_home = match &starts {
         Some(s) => s[1],
-        None => home.ring(RIVAL_DISTANCE).find(|&t| map.move_cost(t) == Some(1)).unwrap_or(home),
+        None => home.ring(RIVAL_DISTANCE).find(|&t| cost(&map, t) == Some(1)).unwrap_or(home),
     };
     let home = starts.as_ref().map_or(home, |s| s[0]);
     let human = [Color::srgb(0.85, 0.2, 0.15), Color::srgb(0.9, 0.75, 0.1), Color::srgb(0.95, 0.45, 0.1)];
@@ -140,14 +141,23 @@ pub(crate) fn click(
         && let Ok((_, mut unit)) = units.get_mut(e)
         && game.reachable.contains(&tile)
     {
-        // The map's rules: other units block the way; on a wrapping map the path takes the short
-        // way, across the seam when that is cheaper (the walk goes to each tile's nearest copy).
-        if let Some(path) = map.path_avoiding(unit.tile, tile, |t| occupied.contains(&t))
-            && path.cost <= unit.moves_left
-        {
-            unit.moves_left -= path.cost;
-            unit.path = path.tiles[1..].iter().filter_map(|&t| map.tile_center(t)).map(|c| c + Vec3::Y * 0.6).collect();
-            unit.tile = tile;
+        // Other units block the way; the mover's own tile (hexx asks for the start's cost) does not.
+        // On a wrapping map the goal is the copy of the tile nearest the unit: A* runs on the
+        // plane and takes the short way, across the seam when that is shorter.
+        let from = unit.tile;
+        let goal = map.tile_near(tile, from);
+        let step = |a: Hex, b: Hex| {
+            let taken = map.wrap_tile(b).is_some_and(|own| occupied.contains(&own)) && b != from;
+            if taken { None } else { step_cost(&map, a, b) }
+        };
+        if let Some(path) = a_star(from, goal, step) {
+            let spent = path_cost(&map, &path);
+            if spent <= unit.moves_left {
+                unit.moves_left -= spent;
+                unit.path =
+                    path.iter().skip(1).filter_map(|&t| map.tile_center(t)).map(|c| c + Vec3::Y * 0.6).collect();
+                unit.tile = map.wrap_tile(goal).unwrap_or(tile);
+            }
         }
     }
     refresh_reachable(&map, &mut game, &units.transmute_lens::<(Entity, &Unit)>().query());
@@ -158,12 +168,9 @@ pub(crate) fn refresh_reachable(map: &HexMap, game: &mut Game, units: &Query<(En
     let Some(e) = game.selected else { return };
     let Ok((_, unit)) = units.get(e) else { return };
     let occupied: HashSet<Hex> = units.iter().filter(|(o, _)| *o != e).map(|(_, u)| u.tile).collect();
-    game.reachable = map
-        .reachable_avoiding(unit.tile, unit.moves_left, |t| occupied.contains(&t))
-        .into_iter()
-        .map(|(tile, _)| tile)
-        .filter(|&tile| tile != unit.tile)
-        .collect();
+    // hexx's field of movement charges per tile entered; fording a river depends on the step,
+    // so the reach is a small Dijkstra over the same step costs as the A* path.
+    game.reachable = reachable(map, unit.tile, unit.moves_left, &occupied);
 }
 
 pub(crate) fn end_turn(

@@ -1,5 +1,5 @@
 //! What the player sees and owns, written into the terrain's per-tile state: fog of war from
-//! the units' sight (the map's sight rule), territory around each
+//! the units' sight (mountains block it, hills and mountains see farther), territory around each
 //! player's units, the movement-cost lens (L), and the highlights of the hovered tile, the
 //! selected unit and its whole reachable set.
 
@@ -7,8 +7,10 @@ use std::collections::HashSet;
 
 use bevy::prelude::*;
 use bevy_hex_terrain::prelude::*;
+use hexx::algorithms::range_fov;
 
 use crate::Game;
+use crate::movement::cost;
 use crate::units::Unit;
 
 /// The human player (the fog shows what this player's units see): player 0, on the setup's first
@@ -21,11 +23,26 @@ pub const SIGHT: u32 = 4;
 /// Territory radius claimed around a player's first unit.
 pub const HOME_RADIUS: u32 = 3;
 
-/// Tiles a unit on `from` sees: the map's sight rule (`HexMap::field_of_view`: higher tiles and
-/// mountains block the view, hills and forests see one tile farther, mountains two) with
-/// [`SIGHT`].
+/// Tiles a unit on `from` sees: [`SIGHT`], one more from hills, two more from a mountain;
+/// mountains block the view behind them (the mountain itself is seen).
 pub fn sight(map: &HexMap, from: Hex) -> HashSet<Hex> {
-    map.field_of_view(from, SIGHT).into_iter().collect()
+    let bonus = match (map.tile_kind(from), map.biome(from)) {
+        (Some(TileKind::Mountain), _) => 2,
+        (_, Some(Biome::Hills)) => 1,
+        _ => 0,
+    };
+    let range = SIGHT + bonus;
+    let blocks = |h: Hex| h != from && map.tile_kind(h) == Some(TileKind::Mountain);
+    let mut seen: HashSet<Hex> = range_fov(from, range, blocks).into_iter().collect();
+    let faces: Vec<Hex> = seen
+        .iter()
+        .flat_map(|h| h.all_neighbors())
+        .filter(|&n| blocks(n) && n.unsigned_distance_to(from) <= range)
+        .collect();
+    seen.extend(faces);
+    seen.insert(from);
+    // The map's own tiles (the view may reach across a wrapping map's seam).
+    seen.into_iter().filter_map(|h| map.wrap_tile(h)).collect()
 }
 
 /// Fog of war: whenever a human unit enters another tile (also while walking) or the map
@@ -84,12 +101,11 @@ pub fn highlight(game: Res<Game>, units: Query<&Unit>, mut states: ResMut<TileSt
     states.replace_highlight(Highlight::Reachable, game.reachable.iter().copied());
 }
 
-/// The movement-cost lens colors, by the map's movement model: green for 1, yellow for 2,
-/// orange for more; what cannot be entered (water, mountains) keeps its color.
+/// The movement-cost lens colors: green for 1, orange for 3; water (impassable) keeps its
+/// color.
 pub fn lens_color(map: &HexMap, tile: Hex) -> Option<Color> {
-    match map.move_cost(tile)? {
+    match cost(map, tile)? {
         1 => Some(Color::srgba(0.2, 0.9, 0.2, 0.55)),
-        2 => Some(Color::srgba(0.95, 0.85, 0.1, 0.6)),
         _ => Some(Color::srgba(1.0, 0.5, 0.05, 0.65)),
     }
 }
