@@ -8,7 +8,6 @@ mod common;
 
 use bevy::prelude::*;
 use bevy_hex_terrain::prelude::*;
-use bevy_hex_terrain::{HexMapAsset, HexMapHandle};
 use common::*;
 
 fn asset_dir(name: &str, text: &str) -> std::path::PathBuf {
@@ -49,13 +48,9 @@ fn terrain_ready_comes_once_per_map_and_settled_each_time() {
     assert_eq!(seen::<TerrainSettled>(&app).last(), Some(&TerrainSettled { generation: edited }));
 
     // A hot reload of the file settles again: not ready again.
-    let handle = app.world().resource::<HexMapHandle>().handle().unwrap().clone();
-    let mut config = app.world().resource::<Assets<HexMapAsset>>().get(&handle).unwrap().config.clone();
-    config.seed = 6;
-    app.world_mut()
-        .resource_mut::<Assets<HexMapAsset>>()
-        .insert(handle.id(), HexMapAsset { config, image: None, appearance_fallback: false })
-        .unwrap();
+    reload_asset(&mut app, |config| {
+        config.seed = 6;
+    });
     run_until(&mut app, "the reload", |app| app.world().resource::<HexMap>().config().seed == 6 && ready(app));
     let reloaded = app.world().resource::<HexMap>().generation();
     assert_eq!(app.world().resource::<HexMap>().map_id(), map_id);

@@ -209,13 +209,9 @@ fn hot_reload_regenerates_every_chunk_and_a_bad_edit_keeps_the_terrain() {
     let generation = app.world().resource::<HexMap>().generation();
 
     // An edit: the asset changes, every chunk gets a mesh of the new generation.
-    let handle = app.world().resource::<HexMapHandle>().handle().unwrap().clone();
-    let mut config = app.world().resource::<Assets<HexMapAsset>>().get(&handle).unwrap().config.clone();
-    config.seed = 6;
-    app.world_mut()
-        .resource_mut::<Assets<HexMapAsset>>()
-        .insert(handle.id(), HexMapAsset { config, image: None, appearance_fallback: false })
-        .unwrap();
+    reload_asset(&mut app, |config| {
+        config.seed = 6;
+    });
     run_until(&mut app, "reloaded map", |app| {
         let g = app.world().resource::<HexMap>().generation();
         g > generation && ready(app)

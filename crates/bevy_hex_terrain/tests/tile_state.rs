@@ -4,9 +4,9 @@
 
 use bevy::asset::AssetPlugin;
 use bevy::prelude::*;
+use bevy_hex_terrain::HexTileStateStats;
 use bevy_hex_terrain::TileStateUpload;
 use bevy_hex_terrain::prelude::*;
-use bevy_hex_terrain::{HexMapAsset, HexMapHandle, HexTileStateStats};
 
 /// The terrain plugins headless (no material), streaming two chunks around agents.
 fn headless(map: impl Into<MapSource>, asset_dir: Option<&std::path::Path>) -> App {
@@ -24,7 +24,7 @@ fn headless(map: impl Into<MapSource>, asset_dir: Option<&std::path::Path>) -> A
 
 mod common;
 
-use common::run_until as settle;
+use common::{reload_asset, run_until as settle};
 
 fn idle(app: &mut App) -> bool {
     app.world_mut().query::<&bevy_hex_terrain::ChunkTask>().iter(app.world()).next().is_none()
@@ -181,14 +181,10 @@ fn a_hot_reload_keeps_the_state_and_another_map_clears_it() {
     }
     let id = app.world().resource::<HexMap>().map_id();
     // A hot reload of the same file that also shrinks the map: state on the map is kept.
-    let handle = app.world().resource::<HexMapHandle>().handle().unwrap().clone();
-    let mut config = app.world().resource::<Assets<HexMapAsset>>().get(&handle).unwrap().config.clone();
-    config.seed = 6;
-    config.size = MapSize::Bounded { x: 12, z: 16 };
-    app.world_mut()
-        .resource_mut::<Assets<HexMapAsset>>()
-        .insert(handle.id(), HexMapAsset { config, image: None, appearance_fallback: false })
-        .unwrap();
+    reload_asset(&mut app, |config| {
+        config.seed = 6;
+        config.size = MapSize::Bounded { x: 12, z: 16 };
+    });
     settle(&mut app, "the reload", |app| app.world().resource::<HexMap>().config().seed == 6);
     app.update();
     assert_eq!(app.world().resource::<HexMap>().map_id(), id, "a reload is the same map");

@@ -112,3 +112,16 @@ pub fn keep<M: Message + Clone>(app: &mut App) {
 pub fn seen<M: Message + Clone>(app: &App) -> Vec<M> {
     app.world().resource::<Seen<M>>().0.clone()
 }
+
+/// Hot-reloads the followed map file as the asset server would: its asset replaced by the same
+/// config changed by `change`.
+pub fn reload_asset(app: &mut App, change: impl FnOnce(&mut MapConfig)) {
+    use bevy_hex_terrain::{HexMapAsset, HexMapHandle};
+    let handle = app.world().resource::<HexMapHandle>().handle().unwrap().clone();
+    let mut config = app.world().resource::<Assets<HexMapAsset>>().get(&handle).unwrap().config.clone();
+    change(&mut config);
+    app.world_mut()
+        .resource_mut::<Assets<HexMapAsset>>()
+        .insert(handle.id(), HexMapAsset { config, image: None, appearance_fallback: false })
+        .unwrap();
+}
