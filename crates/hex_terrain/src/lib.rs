@@ -72,6 +72,7 @@ mod props;
 mod metrics;
 mod paths;
 mod query;
+mod rules;
 mod sight;
 mod stats;
 

@@ -6,19 +6,16 @@ use std::collections::BTreeSet;
 use hexx::Hex;
 
 use crate::terrain::Terrain;
-use crate::vocab::TileKind;
 
 impl Terrain {
     /// A tile's height for sight ([`SightConfig`](crate::SightConfig)): 2 for a mountain, 1 for
     /// a tile of a tall biome, 0 otherwise; `None` off the map.
     #[must_use]
     pub fn sight_height(&self, tile: Hex) -> Option<u8> {
-        let info = self.tile_info(self.wrap_tile(tile)?)?;
-        Some(if info.kind == TileKind::Mountain && info.lake.is_none() {
-            2
-        } else {
-            u8::from(self.config().sight.tall.contains(&info.biome))
-        })
+        match self.rule_table() {
+            Some(table) => Some(table.sight(table.index(self.offset_of(self.wrap_tile(tile)?))?)),
+            None => crate::rules::evaluate_sight(self, tile),
+        }
     }
 
     /// The tiles a unit on `from` sees with sight `radius` (plus the bonus of a tall tile or a

@@ -131,6 +131,10 @@ proptest! {
             return Ok(());
         }
         let from = t.wrap_tile(from).unwrap();
+        // The rules' table (bounded maps) answers as the surface does, tile by tile.
+        for tile in t.tiles() {
+            prop_assert_eq!(t.move_cost(tile), enter(&t, tile), "{:?}", tile);
+        }
         let radius = 40;
         let dist = dijkstra(&t, from, radius, &[]);
         for &pick in &picks[1..] {

@@ -48,7 +48,7 @@ mod setup;
 mod surface;
 mod water;
 
-use std::sync::Arc;
+use std::sync::{Arc, OnceLock};
 
 use hexx::{Hex, HexLayout};
 
@@ -64,6 +64,7 @@ use crate::heights::{Fbm, HeightField, HeightImage};
 use crate::kind::{Thresholds, TileKind};
 use crate::lattice::Lattice;
 use crate::pipeline::Pipeline;
+use crate::rules::{self, RuleTable};
 use crate::vertex::VertexSample;
 use crate::vocab::Biome;
 use crate::wrap::Wrap;
@@ -83,6 +84,8 @@ use crate::wrap::Wrap;
 #[derive(Debug, Clone)]
 pub struct Terrain {
     pipeline: Arc<Pipeline>,
+    /// The rules' table of a bounded map, made on first use and shared by clones.
+    rules: Arc<OnceLock<Option<RuleTable>>>,
 }
 
 impl Terrain {
@@ -93,7 +96,7 @@ impl Terrain {
     /// The first invalid field of the config; `setup.players` or `setup.min_distance` when the
     /// game setup does not fit the generated map.
     pub fn new(config: MapConfig) -> Result<Self, ConfigError> {
-        Ok(Self { pipeline: Arc::new(Pipeline::new(config)?) })
+        Ok(Self::of(Pipeline::new(config)?))
     }
 
     /// Like [`Terrain::new`], with the heightmap of an `Image` source already decoded (from an
@@ -103,7 +106,7 @@ impl Terrain {
     /// The first invalid field of the config, or `source.path` when an `Image` source has no
     /// image.
     pub fn with_image(config: MapConfig, image: Option<Arc<HeightImage>>) -> Result<Self, ConfigError> {
-        Ok(Self { pipeline: Arc::new(Pipeline::with_image(config, image)?) })
+        Ok(Self::of(Pipeline::with_image(config, image)?))
     }
 
     /// The same map with other edits, compiled again from the stages no edit changes (the
@@ -112,7 +115,7 @@ impl Terrain {
     /// # Errors
     /// The first invalid edit.
     pub fn with_edits(&self, edits: Vec<crate::config::TileEdit>) -> Result<Self, ConfigError> {
-        Ok(Self { pipeline: Arc::new(self.pipeline.with_edits(edits)?) })
+        Ok(Self::of(self.pipeline.with_edits(edits)?))
     }
 
     /// The same map with its fBm on another kernel ([`Kernel`](crate::heights::Kernel)), or
@@ -120,7 +123,18 @@ impl Terrain {
     /// bits, so the map is the same).
     #[must_use]
     pub fn with_kernel(&self, kernel: crate::heights::Kernel) -> Option<Self> {
-        Some(Self { pipeline: Arc::new(self.pipeline.with_kernel(kernel)?) })
+        Some(Self::of(self.pipeline.with_kernel(kernel)?))
+    }
+
+    /// A compiled pipeline as a terrain (its rules' table not made yet).
+    fn of(pipeline: Pipeline) -> Self {
+        Self { pipeline: Arc::new(pipeline), rules: Arc::default() }
+    }
+
+    /// The rules' table of a bounded map (made on the first call), `None` for an unbounded
+    /// world.
+    pub(crate) fn rule_table(&self) -> Option<&RuleTable> {
+        self.rules.get_or_init(|| self.bounds().map(|rect| RuleTable::new(self, rect))).as_ref()
     }
 
     /// The compiled stages, for code that composes them itself (a new stage takes the ones it
@@ -358,8 +372,10 @@ impl Terrain {
     /// costs use the same rule.
     #[must_use]
     pub fn move_cost(&self, tile: Hex) -> Option<u32> {
-        let info = self.tile_info(self.wrap_tile(tile)?)?;
-        self.config().movement.enter(info.biome, info.river_flow > 0.0)
+        match self.rule_table() {
+            Some(table) => table.cost(table.index(self.offset_of(self.wrap_tile(tile)?))?),
+            None => rules::evaluate_cost(self, tile),
+        }
     }
 
     /// Temperature and moisture of a tile, `None` when the map has no climate or the tile is

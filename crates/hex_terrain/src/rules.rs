@@ -1,0 +1,84 @@
+//! The rules' view of each tile of a bounded map: what entering it costs and how tall it stands
+//! for sight, computed once on the first rules query (paths, reach, sight, fog) and shared by
+//! every clone of the [`Terrain`]. A table of the answers [`Terrain::move_cost`] and
+//! [`Terrain::sight_height`] give tile by tile, so the searches read an array instead of
+//! evaluating the surface; an unbounded world, which has no end to tabulate, evaluates them
+//! each time. The same answers either way (tested in `tests/paths.rs`).
+
+use hexx::Hex;
+
+use crate::chunk::TileRect;
+use crate::terrain::Terrain;
+use crate::vocab::TileKind;
+
+/// Each tile's rules, row by row over a bounded map.
+#[derive(Debug)]
+pub(crate) struct RuleTable {
+    rect: TileRect,
+    /// Cost of entering, 0 for a tile that cannot be entered (costs are at most twice
+    /// `MAX_MOVE_COST`, so a byte holds them).
+    cost: Vec<u8>,
+    /// Sight height: 0, 1 (tall) or 2 (mountain).
+    sight: Vec<u8>,
+}
+
+impl RuleTable {
+    /// Evaluates every tile of `rect`.
+    pub(crate) fn new(terrain: &Terrain, rect: TileRect) -> Self {
+        let tiles = rect.iter().map(|oc| terrain.tile_from_offset(oc));
+        let (cost, sight) = tiles
+            .map(|tile| {
+                let cost = evaluate_cost(terrain, tile).map_or(0, |c| u8::try_from(c).expect("costs fit a byte"));
+                (cost, evaluate_sight(terrain, tile).unwrap_or(0))
+            })
+            .unzip();
+        Self { rect, cost, sight }
+    }
+
+    /// Row-major index of a map tile's offset coordinate.
+    #[inline]
+    pub(crate) fn index(&self, [c, r]: [i32; 2]) -> Option<usize> {
+        let rect = self.rect;
+        rect.contains([c, r]).then(|| (r - rect.min[1]) as usize * self.columns() + (c - rect.min[0]) as usize)
+    }
+
+    /// Number of tiles.
+    pub(crate) fn len(&self) -> usize {
+        self.cost.len()
+    }
+
+    /// Number of columns.
+    #[inline]
+    fn columns(&self) -> usize {
+        (self.rect.max[0] - self.rect.min[0]) as usize
+    }
+
+    /// The cost of entering the tile at `index`.
+    #[inline]
+    pub(crate) fn cost(&self, index: usize) -> Option<u32> {
+        let c = self.cost[index];
+        (c > 0).then_some(u32::from(c))
+    }
+
+    /// The sight height of the tile at `index`.
+    #[inline]
+    pub(crate) fn sight(&self, index: usize) -> u8 {
+        self.sight[index]
+    }
+}
+
+/// The movement model's cost of entering a tile of the map, from the surface.
+pub(crate) fn evaluate_cost(terrain: &Terrain, tile: Hex) -> Option<u32> {
+    let info = terrain.tile_info(terrain.wrap_tile(tile)?)?;
+    terrain.config().movement.enter(info.biome, info.river_flow > 0.0)
+}
+
+/// The sight rule's height of a tile of the map, from the surface.
+pub(crate) fn evaluate_sight(terrain: &Terrain, tile: Hex) -> Option<u8> {
+    let info = terrain.tile_info(terrain.wrap_tile(tile)?)?;
+    Some(if info.kind == TileKind::Mountain && info.lake.is_none() {
+        2
+    } else {
+        u8::from(terrain.config().sight.tall.contains(&info.biome))
+    })
+}
