@@ -15,6 +15,7 @@
 //! | [`Insert`](HexTerrainSystems::Insert) | [`HexStreamingPlugin`] | inserts finished meshes and their [`ChunkContent`] under a per-frame budget, sends [`ChunkSpawned`], [`TerrainReady`] (once per map), [`TerrainSettled`] | |
 //! | [`Children`](HexTerrainSystems::Children) | [`HexWaterPlugin`], [`HexPropsPlugin`] | spawn each chunk's [`HexWater`] surface and [`HexProp`]s (a budget a frame, nearest chunks first) from its content | [`HexWaterSettings`], [`HexPropSettings`] |
 //! | [`Tiles`](HexTerrainSystems::Tiles) | [`HexTileStatePlugin`] | keeps the [`TileStates`] window (fog of war, owners, lens, highlights) on the map; packs changed rows in `PostUpdate` | [`HexTileStateSettings`], [`HexTileStateStyle`] |
+//! | [`Place`](HexTerrainSystems::Place) | [`HexPlacementPlugin`] | keeps [`OnTile`] entities (units, cities) on the surface of their tiles, walks [`TileWalk`]s, hides entities under the fog the [`TileStates`] show | |
 //! | [`Render`](HexTerrainSystems::Render) | `HexTerrainMaterialPlugin`, `HexLightPlugin` (`render`) | the terrain and water material and its tile state texture; the sun, fog and ambient light of `HexTerrainCamera`s | `HexTerrainMaterialSettings`, `HexLightSettings` |
 //!
 //! Besides them: with the `picking` feature `HexPickingPlugin`, a `bevy_picking` backend whose
@@ -66,6 +67,7 @@ mod mesh;
 mod minimap;
 #[cfg(feature = "picking")]
 mod picking;
+mod placement;
 mod props;
 mod streaming;
 mod tiles;
@@ -99,6 +101,7 @@ pub use crate::minimap::{
 pub use crate::picking::{
     HexPick, HexPickingCamera, HexPickingPlugin, HexPickingSettings, HexPickingStats, HoveredTile,
 };
+pub use crate::placement::{HexPlacementPlugin, OnTile, TileWalk, WalkEnded};
 pub use crate::props::{HexProp, HexPropSettings, HexPropStats, HexPropsPlugin, PropAssets};
 pub use crate::streaming::{
     ChunkContent, ChunkDespawned, ChunkSpawned, ChunkStreamer, ChunkTask, ChunkThreads, DEFAULT_COARSE_DISTANCE,
@@ -128,8 +131,8 @@ pub mod prelude {
         HexMapEdited, HexMapError, HexMapPlugin, HexMapUnchanged, HexProp, HexPropSettings, HexPropsPlugin,
         HexStreamingPlugin, HexStreamingSettings, HexStreamingStats, HexTerrainAgent, HexTerrainPlugins,
         HexTerrainSystems, HexTileStatePlugin, HexTileStateSettings, HexTileStateStyle, HexWater, HexWaterPlugin,
-        HexWaterSettings, HexWorldPosition, Highlight, LoadHexMap, MapSource, SaveError, TerrainReady, TerrainSettled,
-        TileHit, TileStateSave, TileStates,
+        HexWaterSettings, HexWorldPosition, Highlight, LoadHexMap, MapSource, OnTile, SaveError, TerrainReady,
+        TerrainSettled, TileHit, TileStateSave, TileStates, TileWalk, WalkEnded,
     };
     pub use hex_terrain::hexx::Hex;
     pub use hex_terrain::{
@@ -154,6 +157,9 @@ pub enum HexTerrainSystems {
     Children,
     /// Keeps the [`TileStates`] window on the map and around the loaded chunks.
     Tiles,
+    /// Walks [`TileWalk`]s and keeps [`OnTile`] entities on the surface of their tiles
+    /// ([`HexPlacementPlugin`]).
+    Place,
     /// Updates the terrain material (hot reload, its settings, the tile state style, the water's
     /// look, the tile state texture), gives new chunk meshes their material, and lights the
     /// terrain cameras.
@@ -163,7 +169,7 @@ pub enum HexTerrainSystems {
 /// The terrain plugins: [`HexMapPlugin`] (the [`HexMap`] resource, map assets, switching),
 /// [`HexStreamingPlugin`] (chunks around agents), [`HexTileStatePlugin`] (per-tile game state:
 /// fog of war, territory, lenses, highlights), [`HexWaterPlugin`] (the water surface's
-/// entities), [`HexPropsPlugin`] (trees, rocks, reeds), [`HexEditorPlugin`] (the world
+/// entities), [`HexPropsPlugin`] (trees, rocks, reeds), [`HexPlacementPlugin`] (units and cities on tiles), [`HexEditorPlugin`] (the world
 /// builder: edit, undo, redo, save), with the `picking` feature
 /// `HexPickingPlugin` and, with the `render` feature, `HexTerrainMaterialPlugin` (the terrain
 /// and water material, which needs Bevy's `PbrPlugin`) and `HexLightPlugin` (sun, shadows, fog
@@ -206,6 +212,7 @@ impl PluginGroup for HexTerrainPlugins {
             .add(HexTileStatePlugin)
             .add(HexWaterPlugin)
             .add(HexPropsPlugin)
+            .add(HexPlacementPlugin)
             .add(HexEditorPlugin);
         #[cfg(feature = "picking")]
         let group = group.add(picking::HexPickingPlugin);

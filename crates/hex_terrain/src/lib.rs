@@ -69,6 +69,7 @@ mod pipeline;
 mod mesh;
 mod props;
 
+mod fog;
 mod metrics;
 mod paths;
 mod query;
@@ -102,6 +103,7 @@ pub use config::{
 pub use editor::{Brush, Change, EditError, EditTimings, Editor, MAX_BRUSH_RADIUS, MAX_FLOOD_TILES, Stroke, Tool};
 pub use edits::Edits;
 pub use error::{ConfigError, LoadError};
+pub use fog::{FOG_MAGIC, FOG_VERSION, FogError, FogOfWar};
 pub use geometry::Geometry;
 /// The stable hash the core places props with, for the plugin's prop meshes. Hidden from the
 /// docs: an internal the two crates share, not an API.

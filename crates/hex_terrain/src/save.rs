@@ -28,8 +28,8 @@ pub const SAVE_MAGIC: [u8; 4] = *b"HXTS";
 /// (a hostile file cannot make a load allocate more).
 pub const MAX_SAVED_TILES: usize = 1 << 22;
 
-/// What a player knows of a tile.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, Serialize, Deserialize)]
+/// What a player knows of a tile, ordered from least (unexplored) to most (visible).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Default, Serialize, Deserialize)]
 #[cfg_attr(feature = "bevy_reflect", derive(bevy_reflect::Reflect))]
 #[repr(u8)]
 pub enum FogState {
@@ -104,7 +104,7 @@ impl SavedMap {
     }
 
     /// The first field that differs from another map's, with both values.
-    fn difference(&self, other: &Self) -> Option<(&'static str, String, String)> {
+    pub(crate) fn difference(&self, other: &Self) -> Option<(&'static str, String, String)> {
         let d =
             |field, a: &dyn std::fmt::Debug, b: &dyn std::fmt::Debug| Some((field, format!("{a:?}"), format!("{b:?}")));
         if self.seed != other.seed {
@@ -158,7 +158,8 @@ pub struct TileStateSave {
     pub tiles: Vec<SavedTile>,
 }
 
-/// A save that cannot be read, or does not fit the map; nothing was changed.
+/// A save (of tile states, [`TileStateSave`], or of fog, [`FogOfWar`](crate::FogOfWar)) that
+/// cannot be read, or does not fit the map; nothing was changed.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum SaveError {
     /// Malformed RON, with where.
@@ -176,10 +177,12 @@ pub enum SaveError {
     #[error("the save is corrupted: {0}")]
     Corrupt(String),
     /// A format this version cannot read.
-    #[error("the save is format version {found}: this version reads versions 1..={SAVE_VERSION}")]
+    #[error("the save is format version {found}: this version reads versions 1..={newest}")]
     Version {
         /// The save's version.
         found: u32,
+        /// The newest version this crate reads.
+        newest: u32,
     },
     /// A save of another map.
     #[error("the save is of another map: its {field} is {saved}, this map's is {current}")]
@@ -200,6 +203,12 @@ pub enum SaveError {
         at: (i32, i32),
         /// What is wrong, with the allowed range.
         problem: String,
+    },
+    /// A fog save for no players or more than [`MAX_OWNERS`].
+    #[error("the save holds fog for {count} players: 1..={MAX_OWNERS} are allowed")]
+    Players {
+        /// The players it holds.
+        count: usize,
     },
     /// More tiles than any map holds.
     #[error("the save holds {count} tiles: at most {MAX_SAVED_TILES} are allowed")]
@@ -229,6 +238,49 @@ struct Packed {
 /// Header: magic, version (u32 LE), payload length (u64 LE); then the payload and a CRC-32
 /// (u32 LE) of everything before it.
 const HEADER: usize = 4 + 4 + 8;
+
+/// A binary file: `magic`, `version` (u32 LE), the payload's length (u64 LE), the payload, and
+/// a CRC-32 (u32 LE) of everything before it. The envelope of every binary save of the crate.
+pub(crate) fn seal(magic: [u8; 4], version: u32, payload: &[u8]) -> Vec<u8> {
+    let mut out = Vec::with_capacity(HEADER + payload.len() + 4);
+    out.extend_from_slice(&magic);
+    out.extend_from_slice(&version.to_le_bytes());
+    out.extend_from_slice(&(payload.len() as u64).to_le_bytes());
+    out.extend_from_slice(payload);
+    let crc = crc32fast::hash(&out);
+    out.extend_from_slice(&crc.to_le_bytes());
+    out
+}
+
+/// The version and payload of a file [`seal`] made with `magic`, of a version up to `newest`.
+///
+/// # Errors
+/// [`SaveError::Corrupt`] for a wrong magic, a length that does not match or a checksum that
+/// does not; [`SaveError::Version`] for version 0 or one newer than `newest`.
+pub(crate) fn open(bytes: &[u8], magic: [u8; 4], newest: u32) -> Result<(u32, &[u8]), SaveError> {
+    let corrupt = |why: String| Err(SaveError::Corrupt(why));
+    if bytes.len() < HEADER + 4 {
+        return corrupt(format!("{} bytes, shorter than the {}-byte header and checksum", bytes.len(), HEADER + 4));
+    }
+    if bytes[..4] != magic {
+        return corrupt(format!("it starts with {:?}, not {:?}", &bytes[..4], magic));
+    }
+    let version = u32::from_le_bytes(bytes[4..8].try_into().expect("4 bytes"));
+    let length = u64::from_le_bytes(bytes[8..16].try_into().expect("8 bytes"));
+    let expected = bytes.len() - HEADER - 4;
+    if length != expected as u64 {
+        return corrupt(format!("the header gives a {length}-byte payload, the file holds {expected} bytes"));
+    }
+    let (body, crc) = bytes.split_at(bytes.len() - 4);
+    let (stored, computed) = (u32::from_le_bytes(crc.try_into().expect("4 bytes")), crc32fast::hash(body));
+    if stored != computed {
+        return corrupt(format!("checksum {stored:#010x}, the contents give {computed:#010x}"));
+    }
+    if version == 0 || version > newest {
+        return Err(SaveError::Version { found: version, newest });
+    }
+    Ok((version, &body[HEADER..]))
+}
 
 impl TileStateSave {
     /// The save as RON text.
@@ -291,14 +343,7 @@ impl TileStateSave {
         };
         let mut payload = Vec::new();
         ciborium::into_writer(&packed, &mut payload).expect("writing to a Vec cannot fail");
-        let mut out = Vec::with_capacity(HEADER + payload.len() + 4);
-        out.extend_from_slice(&SAVE_MAGIC);
-        out.extend_from_slice(&self.version.to_le_bytes());
-        out.extend_from_slice(&(payload.len() as u64).to_le_bytes());
-        out.extend_from_slice(&payload);
-        let crc = crc32fast::hash(&out);
-        out.extend_from_slice(&crc.to_le_bytes());
-        out
+        seal(SAVE_MAGIC, self.version, &payload)
     }
 
     /// Reads a binary save (not checked against a map: see [`TileStateSave::check`]).
@@ -307,31 +352,9 @@ impl TileStateSave {
     /// [`SaveError::Corrupt`] (magic, length, checksum or payload), [`SaveError::Version`] for
     /// a newer format, [`SaveError::TooManyTiles`].
     pub fn from_bytes(bytes: &[u8]) -> Result<Self, SaveError> {
-        let corrupt = |why: String| Err(SaveError::Corrupt(why));
-        if bytes.len() < HEADER + 4 {
-            return corrupt(format!("{} bytes, shorter than the {}-byte header and checksum", bytes.len(), HEADER + 4));
-        }
-        if bytes[..4] != SAVE_MAGIC {
-            return corrupt(format!("it starts with {:?}, not {:?}", &bytes[..4], SAVE_MAGIC));
-        }
-        let version = u32::from_le_bytes(bytes[4..8].try_into().expect("4 bytes"));
-        let length = u64::from_le_bytes(bytes[8..16].try_into().expect("8 bytes"));
-        let expected = bytes.len() - HEADER - 4;
-        if length != expected as u64 {
-            return corrupt(format!("the header gives a {length}-byte payload, the file holds {expected} bytes"));
-        }
-        let (body, crc) = bytes.split_at(bytes.len() - 4);
-        let (stored, computed) = (u32::from_le_bytes(crc.try_into().expect("4 bytes")), crc32fast::hash(body));
-        if stored != computed {
-            return corrupt(format!("checksum {stored:#010x}, the contents give {computed:#010x}"));
-        }
-        if version == 0 || version > SAVE_VERSION {
-            return Err(SaveError::Version { found: version });
-        }
-        let packed: Packed = match ciborium::from_reader(&body[HEADER..]) {
-            Ok(p) => p,
-            Err(e) => return corrupt(format!("the payload does not decode: {e}")),
-        };
+        let (_, payload) = open(bytes, SAVE_MAGIC, SAVE_VERSION)?;
+        let packed: Packed = ciborium::from_reader(payload)
+            .map_err(|e| SaveError::Corrupt(format!("the payload does not decode: {e}")))?;
         if packed.tiles.len() > MAX_SAVED_TILES {
             return Err(SaveError::TooManyTiles { count: packed.tiles.len() });
         }
@@ -363,7 +386,7 @@ impl TileStateSave {
     /// The first problem found, naming the field or the tile.
     pub fn check(&self, config: &MapConfig) -> Result<(), SaveError> {
         if self.version == 0 || self.version > SAVE_VERSION {
-            return Err(SaveError::Version { found: self.version });
+            return Err(SaveError::Version { found: self.version, newest: SAVE_VERSION });
         }
         if let Some((field, saved, current)) = self.map.difference(&SavedMap::of(config)) {
             return Err(SaveError::OtherMap { field, saved, current });

@@ -1,8 +1,6 @@
 //! What a unit sees from a tile, by the map's sight rule ([`SightConfig`](crate::SightConfig)):
 //! a pure function of the compiled terrain and the tile, the same on any thread.
 
-use std::collections::BTreeSet;
-
 use hexx::Hex;
 
 use crate::terrain::Terrain;
@@ -26,8 +24,21 @@ impl Terrain {
     /// on the map it is taken). `from` is always seen. The map's own tiles, each once, in the map's row order; empty off the map.
     #[must_use]
     pub fn field_of_view(&self, from: Hex, radius: u32) -> Vec<Hex> {
-        let Some(from) = self.wrap_tile(from) else { return Vec::new() };
-        let Some(own) = self.sight_height(from) else { return Vec::new() };
+        let mut out = Vec::new();
+        self.each_seen(from, radius, |tile| {
+            let [col, row] = self.offset_of(tile);
+            out.push(((row, col), tile));
+        });
+        out.sort_unstable_by_key(|&(key, _)| key);
+        out.into_iter().map(|(_, tile)| tile).collect()
+    }
+
+    /// Calls `f` once with each tile of the map a unit on `from` sees with sight `radius` (the
+    /// rule of [`Terrain::field_of_view`], in no particular order; the fog's update reads it
+    /// without collecting).
+    pub(crate) fn each_seen(&self, from: Hex, radius: u32, mut f: impl FnMut(Hex)) {
+        let Some(from) = self.wrap_tile(from) else { return };
+        let Some(own) = self.sight_height(from) else { return };
         let sight = &self.config().sight;
         let reach = radius.saturating_add(match own {
             2 => sight.mountain_bonus,
@@ -35,24 +46,19 @@ impl Terrain {
             _ => 0,
         });
         let blocks = |tile: Hex| self.sight_height(tile).is_some_and(|h| h > own || h == 2);
-        let mut seen: BTreeSet<(i32, i32)> = BTreeSet::new();
-        let mut out = Vec::new();
         // Lines are drawn around the origin, so far from it they keep their precision.
         for offset in Hex::ZERO.range(reach) {
             let Some(target) = self.wrap_tile(from + offset) else { continue };
-            // The copy of a tile nearest the viewer is the one it looks at.
+            // The copy of a tile nearest the viewer is the one it looks at: on a narrow
+            // wrapping map only one copy of each tile passes, so each is seen once.
             if self.tile_near(target, from) != from + offset {
                 continue;
             }
             let line = Hex::ZERO.line_to(offset);
             let steps = line.len();
-            let clear = line.skip(1).take(steps.saturating_sub(2)).all(|step| !blocks(from + step));
-            let [col, row] = self.offset_of(target);
-            if clear && seen.insert((row, col)) {
-                out.push(((row, col), target));
+            if line.skip(1).take(steps.saturating_sub(2)).all(|step| !blocks(from + step)) {
+                f(target);
             }
         }
-        out.sort_unstable_by_key(|&(key, _)| key);
-        out.into_iter().map(|(_, tile)| tile).collect()
     }
 }

@@ -17,6 +17,7 @@ use hex_terrain::{
     Biome, Brush, Editor, GenerateOptions, HeightImage, HeightSourceConfig, MapConfig, MapFile, MapSize, PropDensity,
     Stroke, Terrain, TileKind, TileRect, Tool,
 };
+use hex_terrain::{FogOfWar, FogState};
 
 mod check;
 
@@ -208,6 +209,57 @@ fn read_save(read: Result<TileStateSave, SaveError>, config: &MapConfig, binary:
             }
         }
         Err(error) => check_save_error(&error),
+    }
+}
+
+/// A fog save: bytes → [`FogOfWar::from_bytes`] (and, when the bytes are text,
+/// [`FogOfWar::from_ron`]) into a 12x9 map (wrapping when the first byte is odd), as a game
+/// loads a player's fog. The bytes are also sealed with a good header and checksum, so the
+/// fuzzer reaches the payload's checks. A fog read must encode back to the same fog in both
+/// encodings, with every seen tile on the map and visible tiles listed as visible; a refused one
+/// must say why.
+pub fn fog_save(data: &[u8]) {
+    let config = MapConfig {
+        size: MapSize::Bounded { x: 12, z: 9 },
+        wrap: data.first().is_some_and(|b| b & 1 == 1),
+        ..MapConfig::default()
+    };
+    let terrain = Terrain::new(config).expect("a 12x9 map is valid");
+    read_fog(FogOfWar::from_bytes(data, &terrain), &terrain);
+    if data.len() >= 20 {
+        let mut sealed = data.to_vec();
+        let payload = (data.len() - 20) as u64;
+        sealed[..4].copy_from_slice(&hex_terrain::FOG_MAGIC);
+        sealed[4..8].copy_from_slice(&hex_terrain::FOG_VERSION.to_le_bytes());
+        sealed[8..16].copy_from_slice(&payload.to_le_bytes());
+        let n = sealed.len();
+        let crc = hex_terrain::save::crc32(&sealed[..n - 4]);
+        sealed[n - 4..].copy_from_slice(&crc.to_le_bytes());
+        read_fog(FogOfWar::from_bytes(&sealed, &terrain), &terrain);
+    }
+    if let Ok(text) = std::str::from_utf8(data) {
+        read_fog(FogOfWar::from_ron(text, &terrain), &terrain);
+    }
+}
+
+fn read_fog(read: Result<FogOfWar, SaveError>, terrain: &Terrain) {
+    let fog = match read {
+        Ok(fog) => fog,
+        Err(error) => {
+            let text = error.to_string();
+            if let SaveError::Tile { index, .. } = &error {
+                assert!(text.contains(&format!("tile {index}")) && text.contains("player"), "{text}");
+            }
+            return check_save_error(&error);
+        }
+    };
+    assert_eq!(FogOfWar::from_bytes(&fog.to_bytes(), terrain).as_ref(), Ok(&fog), "binary round trip");
+    assert_eq!(FogOfWar::from_ron(&fog.to_ron(), terrain).as_ref(), Ok(&fog), "RON round trip");
+    for player in 0..fog.players() {
+        for (tile, state) in fog.seen(player) {
+            assert!(terrain.contains(tile) && state != FogState::Unexplored);
+        }
+        assert!(fog.visible(player).all(|tile| fog.state(player, tile) == Some(FogState::Visible)));
     }
 }
 

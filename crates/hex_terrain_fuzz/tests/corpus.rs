@@ -46,3 +46,8 @@ fn map_asset_corpus() {
 fn edits_corpus() {
     replay("edits", hex_terrain_fuzz::edits);
 }
+
+#[test]
+fn fog_save_corpus() {
+    replay("fog_save", hex_terrain_fuzz::fog_save);
+}

@@ -80,6 +80,7 @@ impl Plugin for HexMapPlugin {
                     HexTerrainSystems::Insert,
                     HexTerrainSystems::Children,
                     HexTerrainSystems::Tiles,
+                    HexTerrainSystems::Place,
                     HexTerrainSystems::Render,
                 )
                     .chain(),

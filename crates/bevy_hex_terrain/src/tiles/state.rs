@@ -6,6 +6,7 @@ use bevy::prelude::*;
 use hex_terrain::hexx::{Hex, HexOrientation};
 use hex_terrain::{Geometry, MapConfig, MapSize, TileRect};
 
+mod fog;
 mod save;
 
 use super::store::TileStore;
@@ -36,6 +37,14 @@ pub enum TileStateError {
     OwnerOutOfRange {
         /// The player given.
         owner: u32,
+    },
+    /// A player the fog of war shown ([`TileStates::show_fog`]) does not have.
+    #[error("player {player}: the fog has players 0..{players}")]
+    NoSuchPlayer {
+        /// The player given.
+        player: u32,
+        /// How many players the fog has.
+        players: u32,
     },
     /// An overlay color with a NaN or infinite component.
     #[error("overlay color {color:?} is not finite: every component must be a number in 0..=1")]

@@ -243,3 +243,32 @@ fn a_wrapping_map_takes_tiles_past_its_east_and_west_edges_as_its_own() {
         assert!(s.set_visibility(at(3, -1), FogState::Visible).is_err(), "rows do not wrap");
     }
 }
+
+#[test]
+fn a_players_fog_is_shown_and_another_players_replaces_it() {
+    use hex_terrain::{FogOfWar, Terrain};
+    let config = MapConfig { size: MapSize::Bounded { x: 12, z: 8 }, ..MapConfig::default() };
+    let terrain = Terrain::new(config.clone()).unwrap();
+    let mut s = bounded(12, 8);
+    let mut fog = FogOfWar::new(&terrain, 2).unwrap();
+    let (a, b) = (hex(&s, 2, 2), hex(&s, 9, 5));
+    fog.update(&terrain, 0, [(a, 1)]).unwrap();
+    fog.update(&terrain, 0, [(a + Hex::new(1, 0), 1)]).unwrap();
+    fog.update(&terrain, 1, [(b, 1)]).unwrap();
+    s.set_owner(a, Some(0)).unwrap();
+    for player in [0, 1, 0] {
+        s.show_fog(&fog, player).unwrap();
+        for tile in terrain.tiles() {
+            assert_eq!(Some(s.visibility(tile)), fog.state(player, tile), "player {player}, {tile:?}");
+        }
+    }
+    assert_eq!(s.owner(a), Some(0), "the other states stay");
+    assert_eq!(s.show_fog(&fog, 2), Err(TileStateError::NoSuchPlayer { player: 2, players: 2 }));
+    // A fog of a larger map does not fit.
+    let larger = Terrain::new(MapConfig { size: MapSize::Bounded { x: 20, z: 8 }, ..config }).unwrap();
+    let mut wide = FogOfWar::new(&larger, 1).unwrap();
+    wide.update(&larger, 0, [(hex(&s, 18, 3), 1)]).unwrap();
+    let before = s.visibility(a);
+    assert!(matches!(s.show_fog(&wide, 0), Err(TileStateError::OutsideMap { .. })));
+    assert_eq!(s.visibility(a), before, "a refused fog changes nothing");
+}

@@ -100,8 +100,11 @@ fn impossible_tiles_and_versions_are_refused_with_the_reason() {
     let e = with(vec![ok.clone(), ok.clone()]).check(&config).unwrap_err();
     assert!(e.to_string().contains("tile 1") && e.to_string().contains("listed twice"), "{e}");
     let newer = TileStateSave { version: SAVE_VERSION + 1, ..with(vec![]) };
-    assert_eq!(newer.check(&config), Err(SaveError::Version { found: SAVE_VERSION + 1 }));
-    assert_eq!(TileStateSave::from_bytes(&newer.to_bytes()), Err(SaveError::Version { found: SAVE_VERSION + 1 }));
+    assert_eq!(newer.check(&config), Err(SaveError::Version { found: SAVE_VERSION + 1, newest: SAVE_VERSION }));
+    assert_eq!(
+        TileStateSave::from_bytes(&newer.to_bytes()),
+        Err(SaveError::Version { found: SAVE_VERSION + 1, newest: SAVE_VERSION })
+    );
     // Unbounded maps take any tile of the world.
     let world = config_unbounded();
     let far = TileStateSave {
