@@ -1,7 +1,8 @@
 //! A small turn-based strategy game on streamed hex terrain: pan (WASD/arrows or the screen
 //! edge), zoom (wheel), rotate (Q/E); hover a tile to see it; click a unit to select it and see
-//! where it can go this turn; click a tile to walk there along an A* path (land costs 1,
-//! mountain 3, fording a river 1 more, sea and lakes are impassable); End Turn (button or Enter)
+//! where it can go this turn; click a tile to walk there along the map's cheapest path (its
+//! movement model: open land 1, hills and forests 2, a river tile 1 more; water, rock and snow
+//! peaks cannot be entered); End Turn (button or Enter)
 //! restores movement. G toggles tile outlines, L the movement-cost lens, T the territory tint,
 //! V the fog of war, R regenerates with a new seed, 1-6 switch presets (6: Civ6 Standard,
 //! wrapping; 7: a scenario made with the world builder; P pans east across its seam), F3 shows
@@ -11,9 +12,11 @@
 //!
 //! Two players: yours (red) and a rival (blue), at the starts the map's game setup chose (the
 //! World preset has one: regions of equal fertility, resources and wonders, shown as gems and
-//! obelisks; F opens the fairness report and the map statistics), each with territory around its units that grows
-//! at the end of each turn. Fog of war shows what your units see (mountains block the view, hills
-//! and mountains see farther); rival units out of sight are hidden. All of it is per-tile state
+//! obelisks; F opens the fairness report and the map statistics), each with territory around its
+//! units that grows at the end of each turn. Fog of war shows what your units see, by the map's
+//! sight rule (higher tiles and mountains block the view, hills and forests see one tile farther,
+//! mountains two); rival units out of sight are hidden. Every player's fog is kept, as a server
+//! would keep it. All of it is per-tile state
 //! ([`TileStates`]) the terrain shader draws: no mesh is rebuilt.
 //!
 //! `HEXTERRAIN_SCRIPT=1` plays a scripted turn (select, move, end turn), checks the game state,
@@ -28,7 +31,6 @@ mod editor;
 mod gizmos;
 mod input;
 mod look;
-mod movement;
 mod panel;
 mod rig;
 mod script;
@@ -43,10 +45,9 @@ use bevy_hex_terrain::prelude::*;
 
 use crate::gizmos::chunk_boundaries;
 use crate::input::{hover, keys, leave};
-use crate::movement::walk;
 use crate::panel::{EndTurnButton, Panel, ReportPanel, panel, report_panel};
 use crate::rig::{Rig, camera_controls, follow_minimap};
-use crate::units::{click, end_turn, place_units};
+use crate::units::{click, end_turn, follow_map, place_units, walk_ended};
 
 pub(crate) const PRESETS: [&str; 7] = [
     "maps/world.map.ron",
@@ -80,6 +81,8 @@ pub(crate) struct Game {
     pub(crate) hovered: Option<Hex>,
     pub(crate) reachable: HashSet<Hex>,
     pub(crate) spawned: bool,
+    /// The map the units were placed on (`HexMap::map_id`).
+    pub(crate) map_id: u64,
     pub(crate) show_chunks: bool,
     /// The camera pans east by itself (P): across the seam of a wrapping map, and on.
     pub(crate) auto_pan: bool,
@@ -119,7 +122,6 @@ fn main() -> AppExit {
                 camera_controls,
                 place_units,
                 (end_turn, keys),
-                walk,
                 (panel, report_panel),
                 chunk_boundaries,
                 look::keys,
@@ -135,13 +137,16 @@ fn main() -> AppExit {
         )
         .add_systems(
             Update,
-            (vision::update_fog, vision::highlight, vision::paint_lens).after(HexTerrainSystems::Render).after(walk),
+            (follow_map, vision::update_fog, vision::highlight, vision::paint_lens)
+                .chain()
+                .after(HexTerrainSystems::Render),
         )
         // The pointer through the terrain's picking backend: its events carry the tile.
         .add_observer(hover::<Over>)
         .add_observer(hover::<Move>)
         .add_observer(leave)
-        .add_observer(click);
+        .add_observer(click)
+        .add_observer(walk_ended);
     // The scripted turn for the tests is a plugin of its own: the game's systems carry no test
     // branches.
     if scripted {

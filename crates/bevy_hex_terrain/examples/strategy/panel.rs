@@ -4,8 +4,7 @@
 use bevy::prelude::*;
 use bevy_hex_terrain::prelude::*;
 
-use crate::movement::MOVES;
-use crate::units::Unit;
+use crate::units::{MOVES, Unit};
 use crate::{Game, vision};
 
 #[derive(Component)]
@@ -28,7 +27,7 @@ pub(crate) fn panel(
 ) {
     let mut s = format!("Turn {}", game.turn);
     if style.lens {
-        s += "   Lens: movement cost (green 1, orange 3; water impassable)";
+        s += "   Lens: movement cost (green 1, yellow 2, orange more; water and peaks impassable)";
     }
     if let Some(tile) = game.hovered.filter(|&t| !style.fog_of_war || states.visibility(t) != FogState::Unexplored) {
         let owner = match states.owner(tile) {
@@ -37,6 +36,10 @@ pub(crate) fn panel(
             None => "nobody's",
         };
         s += &format!("\nTerritory: {owner}");
+        match map.move_cost(tile) {
+            Some(cost) => s += &format!("   Move cost: {cost}"),
+            None => s += "   Impassable",
+        }
         let Some(info) = map.tile_info(tile) else { return };
         // Offset coordinates (column, row), as the fairness report gives them.
         let [col, row] = map.terrain().offset_of(tile);
@@ -47,7 +50,8 @@ pub(crate) fn panel(
             info.elevation
         );
         if let Some(river) = map.river(tile) {
-            s += &format!("\nRiver: flow {:.1} (fording costs 1 more)", river.flow);
+            let extra = map.terrain().config().movement.river;
+            s += &format!("\nRiver: flow {:.1} (entering costs {extra} more)", river.flow);
         }
         if let Some(lake) = info.lake {
             s += &format!("\nLake {lake} (impassable)");

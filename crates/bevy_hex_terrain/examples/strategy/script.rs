@@ -12,12 +12,10 @@ use bevy::prelude::*;
 use bevy::render::view::screenshot::{Screenshot, ScreenshotCaptured};
 use bevy::ui::UiGlobalTransform;
 use bevy_hex_terrain::prelude::*;
-use hexx::algorithms::a_star;
 
 use crate::Game;
-use crate::movement::{MOVES, cost, path_cost, step_cost};
 use crate::rig::Rig;
-use crate::units::Unit;
+use crate::units::{LIFT, MOVES, Unit};
 use crate::vision::{self, HUMAN, RIVAL};
 use bevy_hex_terrain::{HexMinimap, MinimapPicture};
 
@@ -145,19 +143,12 @@ fn east_half(map: &HexMap, tile: Hex) -> bool {
 
 /// Checks the fog against what the units see, and with `owned` that every unit stands in its
 /// player's territory (at the start, and after the end of a turn); the first mismatch.
-fn check_vision(
-    map: &HexMap,
-    states: &TileStates,
-    units: &Query<(Entity, &Unit, &Transform, &Visibility)>,
-    owned: bool,
-) -> Result<(), String> {
+fn check_vision(map: &HexMap, states: &TileStates, units: &Query<Seen>, owned: bool) -> Result<(), String> {
     let mut sight = HashSet::new();
-    for (_, unit, t, _) in units.iter().filter(|(_, u, ..)| u.player == HUMAN) {
-        if let Some(tile) = map.tile_at(t.translation) {
-            sight.extend(vision::sight(map, tile));
-        }
-        if owned && states.owner(unit.tile) != Some(HUMAN) {
-            return Err(format!("the human unit's tile {:?} belongs to nobody", unit.tile));
+    for (_, _, on, ..) in units.iter().filter(|(_, u, ..)| u.player == HUMAN) {
+        sight.extend(vision::sight(map, on.tile));
+        if owned && states.owner(on.tile) != Some(HUMAN) {
+            return Err(format!("the human unit's tile {:?} belongs to nobody", on.tile));
         }
     }
     if let Some(t) = sight.iter().find(|&&t| states.visibility(t) != FogState::Visible) {
@@ -168,13 +159,13 @@ fn check_vision(
     if let Some(t) = far.filter(|&t| states.visibility(t) == FogState::Visible) {
         return Err(format!("tile {t:?}, far from every unit, is visible"));
     }
-    for (_, unit, t, visibility) in units.iter().filter(|(_, u, ..)| u.player == RIVAL) {
-        if owned && states.owner(unit.tile) != Some(RIVAL) {
-            return Err(format!("the rival unit's tile {:?} is owned by {:?}", unit.tile, states.owner(unit.tile)));
+    for (_, _, on, _, visibility, _) in units.iter().filter(|(_, u, ..)| u.player == RIVAL) {
+        if owned && states.owner(on.tile) != Some(RIVAL) {
+            return Err(format!("the rival unit's tile {:?} is owned by {:?}", on.tile, states.owner(on.tile)));
         }
-        let in_sight = map.tile_at(t.translation).is_some_and(|tile| sight.contains(&tile));
+        let in_sight = sight.contains(&on.tile);
         if in_sight != (*visibility != Visibility::Hidden) {
-            return Err(format!("rival unit on {:?}: in sight {in_sight}, shown {:?}", unit.tile, visibility));
+            return Err(format!("rival unit on {:?}: in sight {in_sight}, shown {:?}", on.tile, visibility));
         }
     }
     Ok(())
@@ -201,8 +192,12 @@ pub struct Observed<'w, 's> {
     game: Res<'w, Game>,
     map: Res<'w, HexMap>,
     states: Res<'w, TileStates>,
-    units: Query<'w, 's, (Entity, &'static Unit, &'static Transform, &'static Visibility)>,
+    units: Query<'w, 's, Seen>,
 }
+
+/// A unit as the script sees it: its player and moves, its tile, where it is drawn, whether it
+/// is shown, and whether it is walking.
+type Seen = (Entity, &'static Unit, &'static OnTile, &'static Transform, &'static Visibility, Has<TileWalk>);
 
 /// Plays the scripted turn, a step once the previous one shows its effect.
 pub fn script(
@@ -237,11 +232,11 @@ pub fn script(
             s.seen = units
                 .iter()
                 .filter(|(_, u, ..)| u.player == HUMAN)
-                .flat_map(|(_, u, ..)| vision::sight(&map, u.tile))
+                .flat_map(|(_, _, on, ..)| vision::sight(&map, on.tile))
                 .collect();
-            let Some((_, unit, ..)) = units.iter().find(|(_, u, ..)| u.player == HUMAN) else { return };
-            s.start = Some(unit.tile);
-            pointer.click(unit.tile);
+            let Some((_, _, on, ..)) = units.iter().find(|(_, u, ..)| u.player == HUMAN) else { return };
+            s.start = Some(on.tile);
+            pointer.click(on.tile);
             s.step = 1;
         }
         // Selected: pick the reachable tile farthest along (cost > 1 if any) and click it.
@@ -274,22 +269,29 @@ pub fn script(
             }
             options.sort_unstable_by_key(|&h| (std::cmp::Reverse(map.distance(h, start)), h.x, h.y));
             let target = options[0];
-            // The short way: to the copy of the target nearest the start (itself off a seam).
-            let goal = map.tile_near(target, start);
-            let path = a_star(start, goal, |a, b| step_cost(&map, a, b)).unwrap_or_default();
-            if path.len() as u32 > MOVES + 1 {
-                fail(format!("the path to {target:?} takes {} steps", path.len() - 1), &mut exit);
+            // The map's cheapest path around the other units (the short way round, across the
+            // seam when cheaper).
+            let others: HashSet<Hex> = units.iter().map(|(_, _, on, ..)| on.tile).filter(|&t| t != start).collect();
+            let Some(path) = map.path_avoiding(start, target, |t| others.contains(&t)) else {
+                fail(format!("no path to the reachable {target:?}"), &mut exit);
+                return;
+            };
+            if path.tiles.len() as u32 > MOVES + 1 {
+                fail(format!("the path to {target:?} takes {} steps", path.tiles.len() - 1), &mut exit);
                 return;
             }
-            s.expected_cost = path_cost(&map, &path);
+            s.expected_cost = path.cost;
             s.target = Some(target);
             pointer.click(target);
             s.step = 2;
         }
         // Wait for the walk to end, check, then end the turn.
         2 => {
-            let Some((_, unit, t, _)) = units.iter().find(|(_, u, ..)| Some(u.tile) == s.target) else { return };
-            if !unit.path.is_empty() {
+            let Some((_, unit, _, t, _, walking)) = units.iter().find(|(_, _, on, ..)| Some(on.tile) == s.target)
+            else {
+                return;
+            };
+            if walking {
                 return;
             }
             let Some(target) = s.target else { return };
@@ -297,7 +299,7 @@ pub fn script(
                 fail(format!("moves left {} after spending {}", unit.moves_left, s.expected_cost), &mut exit);
                 return;
             }
-            let Some(ground) = map.tile_center(target).map(|c| c.y + 0.6) else { return };
+            let Some(ground) = map.tile_center(target).map(|c| c.y + LIFT) else { return };
             if (t.translation.y - ground).abs() > 0.05 {
                 fail(format!("unit at height {} instead of {ground}", t.translation.y), &mut exit);
                 return;
@@ -341,14 +343,14 @@ pub fn script(
                 fail("G did not toggle the outlines or L the lens".into(), &mut exit);
                 return;
             }
-            let settled = units.iter().all(|(_, u, t, _)| {
-                cost(&map, u.tile).is_some()
-                    && map.tile_center(u.tile).is_some_and(|c| (t.translation.y - (c.y + 0.6)).abs() < 0.05)
+            let settled = units.iter().all(|(_, _, on, t, ..)| {
+                map.move_cost(on.tile).is_some()
+                    && map.tile_center(on.tile).is_some_and(|c| (t.translation.y - (c.y + LIFT)).abs() < 0.05)
             });
             if !settled {
                 return;
             }
-            if let Some(&t) = game.reachable.iter().find(|&&t| cost(&map, t).is_none()) {
+            if let Some(&t) = game.reachable.iter().find(|&&t| map.move_cost(t).is_none()) {
                 fail(format!("tile {t:?} is shown reachable but impassable on the new map"), &mut exit);
                 return;
             }
@@ -357,12 +359,12 @@ pub fn script(
                 fail(format!("after the regeneration: {e}"), &mut exit);
                 return;
             }
-            let Some((_, unit, ..)) = units.iter().next() else { return };
+            let Some((_, _, on, ..)) = units.iter().next() else { return };
             // Overlays are stored in 8 bits a channel.
             let bytes = |c: Option<Color>| c.map(|c| c.to_srgba().to_u8_array());
-            if bytes(states.overlay(unit.tile)) != bytes(vision::lens_color(&map, unit.tile)) {
+            if bytes(states.overlay(on.tile)) != bytes(vision::lens_color(&map, on.tile)) {
                 fail(
-                    format!("the lens color of a unit's tile {:?} is {:?}", unit.tile, states.overlay(unit.tile)),
+                    format!("the lens color of a unit's tile {:?} is {:?}", on.tile, states.overlay(on.tile)),
                     &mut exit,
                 );
                 return;

@@ -1,16 +1,16 @@
-//! What the player sees and owns, written into the terrain's per-tile state: fog of war from
-//! the units' sight (mountains block it, hills and mountains see farther), territory around each
-//! player's units, the movement-cost lens (L), and the highlights of the hovered tile, the
-//! selected unit and its whole reachable set.
+//! What the players see and own: every player's fog of war kept in one `FogOfWar` (the core's,
+//! as a server would keep it) from their units' sight by the map's sight rule, the human's shown
+//! through the terrain's per-tile state; territory around each player's units; the
+//! movement-cost lens (L); and the highlights of the hovered tile, the selected unit and its
+//! whole reachable set.
 
 use std::collections::HashSet;
 
 use bevy::prelude::*;
+use bevy_hex_terrain::hex_terrain::FogOfWar;
 use bevy_hex_terrain::prelude::*;
-use hexx::algorithms::range_fov;
 
 use crate::Game;
-use crate::movement::cost;
 use crate::units::Unit;
 
 /// The human player (the fog shows what this player's units see): player 0, on the setup's first
@@ -23,54 +23,58 @@ pub const SIGHT: u32 = 4;
 /// Territory radius claimed around a player's first unit.
 pub const HOME_RADIUS: u32 = 3;
 
-/// Tiles a unit on `from` sees: [`SIGHT`], one more from hills, two more from a mountain;
-/// mountains block the view behind them (the mountain itself is seen).
+/// Tiles a unit on `from` sees: the map's sight rule (`HexMap::field_of_view`: higher tiles and
+/// mountains block the view, hills and forests see one tile farther, mountains two) with
+/// [`SIGHT`].
 pub fn sight(map: &HexMap, from: Hex) -> HashSet<Hex> {
-    let bonus = match (map.tile_kind(from), map.biome(from)) {
-        (Some(TileKind::Mountain), _) => 2,
-        (_, Some(Biome::Hills)) => 1,
-        _ => 0,
-    };
-    let range = SIGHT + bonus;
-    let blocks = |h: Hex| h != from && map.tile_kind(h) == Some(TileKind::Mountain);
-    let mut seen: HashSet<Hex> = range_fov(from, range, blocks).into_iter().collect();
-    let faces: Vec<Hex> = seen
-        .iter()
-        .flat_map(|h| h.all_neighbors())
-        .filter(|&n| blocks(n) && n.unsigned_distance_to(from) <= range)
-        .collect();
-    seen.extend(faces);
-    seen.insert(from);
-    // The map's own tiles (the view may reach across a wrapping map's seam).
-    seen.into_iter().filter_map(|h| map.wrap_tile(h)).collect()
+    map.field_of_view(from, SIGHT).into_iter().collect()
 }
 
-/// Fog of war: whenever a human unit enters another tile (also while walking) or the map
-/// changes, what was visible becomes explored and what the human units see now becomes
-/// visible; rival units out of sight are hidden.
+/// Every player's fog of war, for the map it was made for.
+#[derive(Resource)]
+pub struct Fogs {
+    /// The map (`HexMap::map_id`).
+    map_id: u64,
+    /// The human's and the rival's fog.
+    pub fog: FogOfWar,
+}
+
+/// Fog of war: whenever a unit enters another tile (also while walking) or the map changes,
+/// each player's fog is updated from its units' sight (what was visible becomes explored, what
+/// they see now visible), and the human's is shown. The plugin hides rival units (`OnTile`)
+/// whose tile is not in sight.
 pub fn update_fog(
+    mut commands: Commands,
     map: Res<HexMap>,
+    fogs: Option<ResMut<Fogs>>,
     mut states: ResMut<TileStates>,
-    mut units: Query<(&Unit, &Transform, &mut Visibility)>,
-    mut seen_from: Local<Vec<Hex>>,
+    units: Query<(&Unit, &OnTile)>,
+    mut seen_from: Local<Vec<(u32, Hex)>>,
 ) {
-    let mut from: Vec<Hex> =
-        units.iter().filter(|(u, ..)| u.player == HUMAN).filter_map(|(_, t, _)| map.tile_at(t.translation)).collect();
-    from.sort_unstable_by_key(|h| (h.x, h.y));
-    if from != *seen_from || map.is_changed() {
-        seen_from.clone_from(&from);
-        states.hide_visible();
-        for &unit in &from {
-            for tile in sight(&map, unit) {
-                // `sight` keeps to the map: no write is refused.
-                let _ = states.set_visibility(tile, FogState::Visible);
-            }
-        }
+    let mut from: Vec<(u32, Hex)> = units.iter().map(|(u, on)| (u.player, on.tile)).collect();
+    from.sort_unstable_by_key(|&(p, h)| (p, h.x, h.y));
+    let new_map = fogs.as_ref().is_none_or(|f| f.map_id != map.map_id());
+    if from == *seen_from && !map.is_changed() && !new_map {
+        return;
     }
-    for (unit, t, mut visibility) in &mut units {
-        let shown = unit.player == HUMAN
-            || map.tile_at(t.translation).is_some_and(|tile| states.visibility(tile) == FogState::Visible);
-        visibility.set_if_neq(if shown { Visibility::Inherited } else { Visibility::Hidden });
+    seen_from.clone_from(&from);
+    let terrain = map.terrain();
+    let mut made = None;
+    let fogs = match fogs {
+        Some(fogs) if !new_map => fogs.into_inner(),
+        _ => {
+            let fog = FogOfWar::new(terrain, 2).expect("two players");
+            made.insert(Fogs { map_id: map.map_id(), fog })
+        }
+    };
+    for player in [HUMAN, RIVAL] {
+        let sight = from.iter().filter(|(p, _)| *p == player).map(|&(_, tile)| (tile, SIGHT));
+        // The fog is of this map, and both players are in it: nothing is refused.
+        let _ = fogs.fog.update(terrain, player, sight);
+    }
+    let _ = states.show_fog(&fogs.fog, HUMAN);
+    if let Some(fogs) = made {
+        commands.insert_resource(fogs);
     }
 }
 
@@ -83,29 +87,39 @@ pub fn claim(map: &HexMap, states: &mut TileStates, player: u32, center: Hex, ra
     }
 }
 
-/// Territory grows at the end of each turn: one ring around every unit.
-pub fn grow_territory(map: &HexMap, states: &mut TileStates, units: &Query<(Entity, &mut Unit)>) {
-    for (_, unit) in units.iter() {
-        claim(map, states, unit.player, unit.tile, 1);
+/// Territory grows at the end of each turn: each player, in turn, claims every tile nobody owns
+/// next to its territory.
+pub fn grow_territory(map: &HexMap, states: &mut TileStates) {
+    for player in [HUMAN, RIVAL] {
+        let border: Vec<Hex> = map
+            .terrain()
+            .tiles()
+            .filter(|&t| states.owner(t).is_none())
+            .filter(|&t| map.neighbors(t).into_iter().flatten().flatten().any(|n| states.owner(n) == Some(player)))
+            .collect();
+        for tile in border {
+            let _ = states.set_owner(tile, Some(player));
+        }
     }
 }
 
 /// The highlights: hovered tile, selected unit, its whole reachable set.
-pub fn highlight(game: Res<Game>, units: Query<&Unit>, mut states: ResMut<TileStates>) {
+pub fn highlight(game: Res<Game>, units: Query<&OnTile, With<Unit>>, mut states: ResMut<TileStates>) {
     if !game.is_changed() {
         return;
     }
     states.replace_highlight(Highlight::Hovered, game.hovered);
-    let selected = game.selected.and_then(|e| units.get(e).ok()).map(|u| u.tile);
+    let selected = game.selected.and_then(|e| units.get(e).ok()).map(|on| on.tile);
     states.replace_highlight(Highlight::Selected, selected);
     states.replace_highlight(Highlight::Reachable, game.reachable.iter().copied());
 }
 
-/// The movement-cost lens colors: green for 1, orange for 3; water (impassable) keeps its
-/// color.
+/// The movement-cost lens colors, by the map's movement model: green for 1, yellow for 2,
+/// orange for more; what cannot be entered (water, mountains) keeps its color.
 pub fn lens_color(map: &HexMap, tile: Hex) -> Option<Color> {
-    match cost(map, tile)? {
+    match map.move_cost(tile)? {
         1 => Some(Color::srgba(0.2, 0.9, 0.2, 0.55)),
+        2 => Some(Color::srgba(0.95, 0.85, 0.1, 0.6)),
         _ => Some(Color::srgba(1.0, 0.5, 0.05, 0.65)),
     }
 }
