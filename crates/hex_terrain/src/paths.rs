@@ -9,6 +9,7 @@ use std::collections::{BinaryHeap, HashMap};
 
 use hexx::Hex;
 
+use crate::rules::RuleTable;
 use crate::terrain::Terrain;
 use crate::vocab::Biome;
 
@@ -49,10 +50,63 @@ pub struct Turns {
     pub ends: Vec<Hex>,
 }
 
-/// The search's order of tiles: cost so far, then the tile's place in the map's rows.
-fn key(terrain: &Terrain, tile: Hex) -> (i32, i32) {
-    let [col, row] = terrain.offset_of(tile);
-    (row, col)
+/// A search's record of each tile it reached: the best cost so far and the tile it came from.
+/// An array in the rules' table's order on a bounded map (its tiles' places in the map's rows),
+/// a hash map on an unbounded world.
+enum Best<'a> {
+    Dense { table: &'a RuleTable, cells: Vec<(u32, Hex)> },
+    Sparse(HashMap<Hex, (u32, Hex)>),
+}
+
+/// A tile as a search holds it: its slot in [`Best`] (its place in the map's rows as one number,
+/// so also the search's order of ties) and what entering it costs.
+#[derive(Clone, Copy)]
+struct Slot {
+    key: i64,
+    enter: Option<u32>,
+}
+
+impl<'a> Best<'a> {
+    fn new(terrain: &'a Terrain) -> Self {
+        match terrain.rule_table() {
+            Some(table) => Self::Dense { table, cells: vec![(u32::MAX, Hex::ZERO); table.len()] },
+            None => Self::Sparse(HashMap::new()),
+        }
+    }
+
+    /// A tile of the map's slot.
+    #[inline]
+    fn slot(&self, terrain: &Terrain, tile: Hex) -> Slot {
+        let [col, row] = terrain.offset_of(tile);
+        match self {
+            Self::Dense { table, .. } => {
+                let index = table.index([col, row]).expect("a tile of the map");
+                Slot { key: index as i64, enter: table.cost(index) }
+            }
+            // Rows and columns are within `MAX_WORLD_TILE`, so this order is the rows' order.
+            Self::Sparse(_) => {
+                Slot { key: (i64::from(row) << 32) + i64::from(col), enter: crate::rules::evaluate_cost(terrain, tile) }
+            }
+        }
+    }
+
+    #[inline]
+    fn get(&self, tile: Hex, slot: Slot) -> Option<(u32, Hex)> {
+        match self {
+            Self::Dense { cells, .. } => Some(cells[slot.key as usize]).filter(|c| c.0 != u32::MAX),
+            Self::Sparse(map) => map.get(&tile).copied(),
+        }
+    }
+
+    #[inline]
+    fn set(&mut self, tile: Hex, slot: Slot, best: (u32, Hex)) {
+        match self {
+            Self::Dense { cells, .. } => cells[slot.key as usize] = best,
+            Self::Sparse(map) => {
+                map.insert(tile, best);
+            }
+        }
+    }
 }
 
 impl Terrain {
@@ -80,19 +134,22 @@ impl Terrain {
         self.move_cost(to)?;
         let cheapest = self.cheapest_move();
         let estimate = |tile: Hex| self.distance(tile, to).map_or(u32::MAX, |d| d.saturating_mul(cheapest));
-        let mut best: HashMap<Hex, (u32, Hex)> = HashMap::from([(from, (0, from))]);
-        let mut open = BinaryHeap::from([Reverse((estimate(from), 0u32, key(self, from), from.x, from.y))]);
+        let mut best = Best::new(self);
+        let start = best.slot(self, from);
+        best.set(from, start, (0, from));
+        let mut open = BinaryHeap::from([Reverse((estimate(from), 0u32, start.key, from.x, from.y))]);
         let mut visited = 0usize;
-        while let Some(Reverse((_, cost, _, x, y))) = open.pop() {
+        while let Some(Reverse((_, cost, key, x, y))) = open.pop() {
             let tile = Hex::new(x, y);
-            if best.get(&tile).is_some_and(|&(c, _)| c < cost) {
+            let slot = Slot { key, enter: None };
+            if best.get(tile, slot).is_some_and(|(c, _)| c < cost) {
                 continue;
             }
             if tile == to {
                 let mut tiles = vec![to];
                 let mut at = to;
                 while at != from {
-                    at = best[&at].1;
+                    at = best.get(at, best.slot(self, at)).expect("a reached tile").1;
                     tiles.push(at);
                 }
                 tiles.reverse();
@@ -106,11 +163,12 @@ impl Terrain {
                 if next == from {
                     continue;
                 }
-                let Some(step) = self.move_cost(next).filter(|_| !blocked(next)) else { continue };
+                let slot = best.slot(self, next);
+                let Some(step) = slot.enter.filter(|_| !blocked(next)) else { continue };
                 let total = cost + step;
-                if best.get(&next).is_none_or(|&(c, _)| total < c) {
-                    best.insert(next, (total, tile));
-                    open.push(Reverse((total.saturating_add(estimate(next)), total, key(self, next), next.x, next.y)));
+                if best.get(next, slot).is_none_or(|(c, _)| total < c) {
+                    best.set(next, slot, (total, tile));
+                    open.push(Reverse((total.saturating_add(estimate(next)), total, slot.key, next.x, next.y)));
                 }
             }
         }
@@ -130,12 +188,14 @@ impl Terrain {
     #[must_use]
     pub fn reachable_avoiding(&self, from: Hex, budget: u32, blocked: impl Fn(Hex) -> bool) -> Vec<(Hex, u32)> {
         let Some(from) = self.wrap_tile(from) else { return Vec::new() };
-        let mut best: HashMap<Hex, u32> = HashMap::from([(from, 0)]);
-        let mut open = BinaryHeap::from([Reverse((0u32, key(self, from), from.x, from.y))]);
+        let mut best = Best::new(self);
+        let start = best.slot(self, from);
+        best.set(from, start, (0, from));
+        let mut open = BinaryHeap::from([Reverse((0u32, start.key, from.x, from.y))]);
         let mut out = Vec::new();
-        while let Some(Reverse((cost, _, x, y))) = open.pop() {
+        while let Some(Reverse((cost, key, x, y))) = open.pop() {
             let tile = Hex::new(x, y);
-            if best.get(&tile).is_some_and(|&c| c < cost) {
+            if best.get(tile, Slot { key, enter: None }).is_some_and(|(c, _)| c < cost) {
                 continue;
             }
             out.push((tile, cost));
@@ -146,11 +206,12 @@ impl Terrain {
                 if next == from {
                     continue;
                 }
-                let Some(step) = self.move_cost(next).filter(|_| !blocked(next)) else { continue };
+                let slot = best.slot(self, next);
+                let Some(step) = slot.enter.filter(|_| !blocked(next)) else { continue };
                 let total = cost + step;
-                if total <= budget && best.get(&next).is_none_or(|&c| total < c) {
-                    best.insert(next, total);
-                    open.push(Reverse((total, key(self, next), next.x, next.y)));
+                if total <= budget && best.get(next, slot).is_none_or(|(c, _)| total < c) {
+                    best.set(next, slot, (total, tile));
+                    open.push(Reverse((total, slot.key, next.x, next.y)));
                 }
             }
         }

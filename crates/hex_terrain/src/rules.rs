@@ -42,6 +42,11 @@ impl RuleTable {
         rect.contains([c, r]).then(|| (r - rect.min[1]) as usize * self.columns() + (c - rect.min[0]) as usize)
     }
 
+    /// Number of tiles.
+    pub(crate) fn len(&self) -> usize {
+        self.cost.len()
+    }
+
     /// Number of columns.
     #[inline]
     fn columns(&self) -> usize {

@@ -46,19 +46,68 @@ impl Terrain {
             _ => 0,
         });
         let blocks = |tile: Hex| self.sight_height(tile).is_some_and(|h| h > own || h == 2);
-        // Lines are drawn around the origin, so far from it they keep their precision.
-        for offset in Hex::ZERO.range(reach) {
-            let Some(target) = self.wrap_tile(from + offset) else { continue };
+        let mut look = |offset: Hex, between: &mut dyn Iterator<Item = Hex>| {
+            let Some(target) = self.wrap_tile(from + offset) else { return };
             // The copy of a tile nearest the viewer is the one it looks at: on a narrow
             // wrapping map only one copy of each tile passes, so each is seen once.
             if self.tile_near(target, from) != from + offset {
-                continue;
+                return;
             }
-            let line = Hex::ZERO.line_to(offset);
-            let steps = line.len();
-            if line.skip(1).take(steps.saturating_sub(2)).all(|step| !blocks(from + step)) {
-                f(target);
+            for step in between {
+                if blocks(from + step) {
+                    return;
+                }
+            }
+            f(target);
+        };
+        let lines = lines();
+        if reach <= CACHED_REACH {
+            // The lines drawn once for every viewer, nearest tiles first.
+            let count = Hex::range_count(reach) as usize;
+            for (offset, steps) in &lines.tiles[..count] {
+                look(*offset, &mut lines.steps[steps.clone()].iter().copied());
+            }
+        } else {
+            for offset in Hex::ZERO.range(reach) {
+                look(offset, &mut interior(offset));
             }
         }
     }
+}
+
+/// The reach up to which the lines of sight are drawn once, for every viewer (a sight radius
+/// plus its bonus is rarely more).
+const CACHED_REACH: u32 = 12;
+
+/// The lines of sight from the origin to every tile within [`CACHED_REACH`], nearest first:
+/// each tile with the range of `steps` holding the tiles strictly between it and the origin.
+struct Lines {
+    tiles: Vec<(Hex, std::ops::Range<usize>)>,
+    steps: Vec<Hex>,
+}
+
+fn lines() -> &'static Lines {
+    static LINES: std::sync::OnceLock<Lines> = std::sync::OnceLock::new();
+    LINES.get_or_init(|| {
+        let mut offsets: Vec<Hex> = Hex::ZERO.range(CACHED_REACH).collect();
+        offsets.sort_by_key(|h| (h.unsigned_distance_to(Hex::ZERO), h.x, h.y));
+        let mut steps = Vec::new();
+        let tiles = offsets
+            .into_iter()
+            .map(|offset| {
+                let start = steps.len();
+                steps.extend(interior(offset));
+                (offset, start..steps.len())
+            })
+            .collect();
+        Lines { tiles, steps }
+    })
+}
+
+/// The tiles strictly between the origin and `offset` on hexx's line (drawn around the origin,
+/// so far from it the lines keep their precision).
+fn interior(offset: Hex) -> impl Iterator<Item = Hex> {
+    let line = Hex::ZERO.line_to(offset);
+    let steps = line.len();
+    line.skip(1).take(steps.saturating_sub(2))
 }

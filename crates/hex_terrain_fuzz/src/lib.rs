@@ -219,13 +219,16 @@ fn read_save(read: Result<TileStateSave, SaveError>, config: &MapConfig, binary:
 /// encodings, with every seen tile on the map and visible tiles listed as visible; a refused one
 /// must say why.
 pub fn fog_save(data: &[u8]) {
-    let config = MapConfig {
-        size: MapSize::Bounded { x: 12, z: 9 },
-        wrap: data.first().is_some_and(|b| b & 1 == 1),
-        ..MapConfig::default()
-    };
-    let terrain = Terrain::new(config).expect("a 12x9 map is valid");
-    read_fog(FogOfWar::from_bytes(data, &terrain), &terrain);
+    // The two maps are made once: the fuzzer spends its time on the fog, not the terrain.
+    static MAPS: std::sync::OnceLock<[Terrain; 2]> = std::sync::OnceLock::new();
+    let maps = MAPS.get_or_init(|| {
+        [false, true].map(|wrap| {
+            let config = MapConfig { size: MapSize::Bounded { x: 12, z: 9 }, wrap, ..MapConfig::default() };
+            Terrain::new(config).expect("a 12x9 map is valid")
+        })
+    });
+    let terrain = &maps[usize::from(data.first().is_some_and(|b| b & 1 == 1))];
+    read_fog(FogOfWar::from_bytes(data, terrain), terrain);
     if data.len() >= 20 {
         let mut sealed = data.to_vec();
         let payload = (data.len() - 20) as u64;
@@ -235,10 +238,10 @@ pub fn fog_save(data: &[u8]) {
         let n = sealed.len();
         let crc = hex_terrain::save::crc32(&sealed[..n - 4]);
         sealed[n - 4..].copy_from_slice(&crc.to_le_bytes());
-        read_fog(FogOfWar::from_bytes(&sealed, &terrain), &terrain);
+        read_fog(FogOfWar::from_bytes(&sealed, terrain), terrain);
     }
     if let Ok(text) = std::str::from_utf8(data) {
-        read_fog(FogOfWar::from_ron(text, &terrain), &terrain);
+        read_fog(FogOfWar::from_ron(text, terrain), terrain);
     }
 }
 
