@@ -153,8 +153,13 @@ proptest! {
                         // Unbounded: Dijkstra searched a disc, which holds paths at least as dear.
                         prop_assert!(expected.is_none_or(|&e| path.cost <= e));
                     }
+                    // The same path again, and on another thread from a terrain compiled there.
                     let again = t.path(from, to);
                     prop_assert_eq!(again.as_ref(), Some(path), "the same path again");
+                    let config = t.config().clone();
+                    let there = std::thread::spawn(move || Terrain::new(config).unwrap().path(from, to));
+                    let there = there.join().unwrap();
+                    prop_assert_eq!(there.as_ref(), Some(path), "the same path on another thread");
                     let turns = t.turns(path, points, left).unwrap();
                     let (each, count) = simulate(&t, path, points, left);
                     prop_assert_eq!(&turns.turn, &each);

@@ -124,6 +124,19 @@ fn check_setup(t: &Terrain) -> Result<(), TestCaseError> {
     let report = setup.report();
     prop_assert_eq!(starts.len(), cfg.players as usize);
     prop_assert_eq!(report.starts.len(), starts.len());
+    // The report's path costs are the rules' paths (one movement model for both); within a
+    // setup area, paths that stay in it, at least as dear.
+    let whole = cfg.area.is_none();
+    for (a, &from) in starts.iter().enumerate() {
+        for (b, &to) in starts.iter().enumerate() {
+            let rules = t.path(from, to).map(|p| p.cost);
+            if whole {
+                prop_assert_eq!(report.costs[a][b], rules, "players {} and {}", a, b);
+            } else if let Some(inside) = report.costs[a][b] {
+                prop_assert!(rules.is_some_and(|c| c <= inside), "players {} and {}: {:?} vs {}", a, b, rules, inside);
+            }
+        }
+    }
     // Start rules and distances.
     for (p, &s) in starts.iter().enumerate() {
         prop_assert!(area.contains(t.offset_of(s)), "start {p} outside the area");

@@ -50,7 +50,9 @@ pub struct SetupReport {
     pub bound: f32,
     /// Whether `spread <= bound`.
     pub within_bound: bool,
-    /// Path cost over land between every two starts (`costs[a][b]`), `None` when one cannot
+    /// Path cost between every two starts (`costs[a][b]`) by the map's movement model: the
+    /// cost of `Terrain::path` between them, kept inside the setup's area when it has one;
+    /// `None` when one cannot
     /// reach the other.
     pub costs: Vec<Vec<Option<u32>>>,
     /// Pairs of players (lower first) that cannot reach each other by land.
