@@ -73,7 +73,6 @@ mod fog;
 mod metrics;
 mod paths;
 mod query;
-mod rules;
 mod sight;
 mod stats;
 

@@ -9,8 +9,8 @@ use std::collections::{BinaryHeap, HashMap};
 
 use hexx::Hex;
 
-use crate::rules::RuleTable;
 use crate::terrain::Terrain;
+use crate::terrain::rules::RuleTable;
 use crate::vocab::Biome;
 
 /// Most tiles a path or reach search visits (Civilization VI's Huge map has about 7,000).
@@ -84,9 +84,10 @@ impl<'a> Best<'a> {
                 Slot { key: index as i64, enter: table.cost(index) }
             }
             // Rows and columns are within `MAX_WORLD_TILE`, so this order is the rows' order.
-            Self::Sparse(_) => {
-                Slot { key: (i64::from(row) << 32) + i64::from(col), enter: crate::rules::evaluate_cost(terrain, tile) }
-            }
+            Self::Sparse(_) => Slot {
+                key: (i64::from(row) << 32) + i64::from(col),
+                enter: crate::terrain::rules::evaluate_cost(terrain, tile),
+            },
         }
     }
 

@@ -12,7 +12,7 @@ impl Terrain {
     pub fn sight_height(&self, tile: Hex) -> Option<u8> {
         match self.rule_table() {
             Some(table) => Some(table.sight(table.index(self.offset_of(self.wrap_tile(tile)?))?)),
-            None => crate::rules::evaluate_sight(self, tile),
+            None => crate::terrain::rules::evaluate_sight(self, tile),
         }
     }
 

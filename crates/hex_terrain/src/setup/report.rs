@@ -52,8 +52,7 @@ pub struct SetupReport {
     pub within_bound: bool,
     /// Path cost between every two starts (`costs[a][b]`) by the map's movement model: the
     /// cost of `Terrain::path` between them, kept inside the setup's area when it has one;
-    /// `None` when one cannot
-    /// reach the other.
+    /// `None` when one cannot reach the other.
     pub costs: Vec<Vec<Option<u32>>>,
     /// Pairs of players (lower first) that cannot reach each other by land.
     pub unreachable: Vec<(u32, u32)>,

@@ -44,6 +44,7 @@
 //!   queries never return errors.
 
 mod generate;
+pub(crate) mod rules;
 mod setup;
 mod surface;
 mod water;
@@ -55,6 +56,7 @@ use hexx::{Hex, HexLayout};
 pub use crate::geometry::{OFFSET_MODE, hex_orientation};
 pub use crate::vocab::TileInfo;
 
+use self::rules::RuleTable;
 use crate::chunk::{ChunkCoord, TileRect};
 use crate::climate::{Climate, ClimateModel};
 use crate::config::MapConfig;
@@ -64,7 +66,6 @@ use crate::heights::{Fbm, HeightField, HeightImage};
 use crate::kind::{Thresholds, TileKind};
 use crate::lattice::Lattice;
 use crate::pipeline::Pipeline;
-use crate::rules::{self, RuleTable};
 use crate::vertex::VertexSample;
 use crate::vocab::Biome;
 use crate::wrap::Wrap;

@@ -7,8 +7,8 @@
 
 use hexx::Hex;
 
+use super::Terrain;
 use crate::chunk::TileRect;
-use crate::terrain::Terrain;
 use crate::vocab::TileKind;
 
 /// Each tile's rules, row by row over a bounded map.
