@@ -1,6 +1,6 @@
 //! Entities on tiles: [`OnTile`] keeps a unit, a city or a marker standing on the surface of its
 //! tile, [`TileWalk`] walks it along a path over frames, and the fog of war the
-//! [`TileStates`] show hides it.
+//! [`TileStates`](crate::TileStates) show hides it.
 //!
 //! Where an entity stands is a pure function of the map and its tile: the tile's center on the
 //! surface ([`HexMap::tile_center`]) plus the entity's offset, lifted by its `lift`. The center
@@ -17,12 +17,14 @@ use hex_terrain::hexx::Hex;
 use crate::HexTerrainSystems;
 use crate::map::HexMap;
 use crate::streaming::{HexTerrainAgent, HexWorldPosition};
-use crate::tiles::{FogState, TileStates};
+use crate::tiles::FogState;
+#[cfg(feature = "render")]
+use crate::tiles::TileStates;
 
 /// Puts an entity on a tile of the map: its `Transform` is kept on the surface at the tile's
 /// center (plus [`offset`](Self::offset), lifted by [`lift`](Self::lift)) through edits,
 /// hot reloads and level-of-detail changes, and its `Visibility` follows the fog of war the
-/// [`TileStates`] show (see [`shown_from`](Self::shown_from)). Change `tile` to move it at
+/// [`TileStates`](crate::TileStates) show (see [`shown_from`](Self::shown_from)). Change `tile` to move it at
 /// once; add [`TileWalk`] to walk it there.
 ///
 /// ```
@@ -40,7 +42,8 @@ use crate::tiles::{FogState, TileStates};
 /// ```
 #[derive(Component, Debug, Clone, Copy, PartialEq, Reflect)]
 #[reflect(Component)]
-#[require(Transform, Visibility)]
+#[cfg_attr(feature = "render", require(Transform, Visibility))]
+#[cfg_attr(not(feature = "render"), require(Transform))]
 pub struct OnTile {
     /// The tile (any copy of it on a wrapping map).
     pub tile: Hex,
@@ -53,7 +56,8 @@ pub struct OnTile {
     /// The least the viewer must know of the tile for the entity to show: `Visible` (a unit:
     /// hidden unless its tile is in sight), `Explored` (a city: shown once seen), `Unexplored`
     /// (always shown). The plugin sets its `Visibility` to `Hidden` under the fog and back to
-    /// `Inherited` when it shows, only when that changes.
+    /// `Inherited` when it shows, only when that changes (with the `render` feature: a
+    /// headless build draws nothing).
     pub shown_from: FogState,
 }
 
@@ -106,8 +110,9 @@ impl Plugin for HexPlacementPlugin {
     fn build(&self, app: &mut App) {
         app.register_type::<OnTile>()
             .register_type::<TileWalk>()
-            .add_systems(Update, (walk, place).chain().in_set(HexTerrainSystems::Place))
-            .add_systems(PostUpdate, hide_under_fog.before(bevy::transform::TransformSystems::Propagate));
+            .add_systems(Update, (walk, place).chain().in_set(HexTerrainSystems::Place));
+        #[cfg(feature = "render")]
+        app.add_systems(PostUpdate, hide_under_fog.before(bevy::transform::TransformSystems::Propagate));
     }
 }
 
@@ -239,6 +244,7 @@ fn walk(
     }
 }
 
+#[cfg(feature = "render")]
 /// Hides [`OnTile`] entities whose tile the viewer knows less of than their
 /// [`shown_from`](OnTile::shown_from), and shows them again, writing `Visibility` only when
 /// that changes.

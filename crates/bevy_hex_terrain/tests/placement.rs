@@ -108,6 +108,8 @@ fn on_a_wrapping_map_a_unit_is_drawn_at_the_copy_nearest_the_agent() {
     assert!((at.x - center.x).abs() < 1e-3, "drawn at {at}, the tile's center is {center}");
 }
 
+/// The fog hides entities where something is drawn (the `render` feature).
+#[cfg(feature = "render")]
 #[test]
 fn a_unit_hides_under_the_fog_and_a_city_shows_once_explored() {
     let mut app = app(bounded(16, 12), 2);
