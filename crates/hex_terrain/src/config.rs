@@ -8,6 +8,7 @@ use crate::error::LoadError;
 mod climate;
 mod edits;
 mod file;
+mod map_type;
 mod movement;
 mod setup;
 mod sight;
@@ -17,6 +18,7 @@ pub use climate::{BiomeRule, ClimateConfig, MAX_BIOME_RULES, MAX_WATER_TILES, Ri
 
 pub use edits::{MAX_EDITS, PropDensity, RiverEdit, TileEdit};
 pub use file::MapFile;
+pub use map_type::{MAX_MOUNTAIN_SHARE, MapType, MapTypeConfig, SEA_SHARE_TOLERANCE, WaterLevel};
 pub use movement::{MAX_MOVE_COST, MovementConfig};
 pub use setup::{
     MAX_PER_PLAYER, MAX_PLAYERS, MAX_SETUP_DISTANCE, MAX_SETUP_RINGS, MAX_SETUP_RULES, MAX_SETUP_TILES, MAX_YIELD,
@@ -26,7 +28,7 @@ pub use setup::{
 pub use sight::{MAX_SIGHT_BONUS, SightConfig};
 pub use validate::{
     MAX_CHUNK_BYTES, MAX_CHUNK_SIDE, MAX_INNER_RINGS, MAX_MAP_BYTES, MAX_OCTAVES, MAX_OFFSET, MAX_WORLD_TILE,
-    MIN_WRAP_COLUMNS,
+    MIN_MAP_TYPE_SIDE, MIN_WRAP_COLUMNS,
 };
 
 /// The whole description of a map. Defaults reproduce the thesis' Map0 (tables 2-4) on a
@@ -64,6 +66,10 @@ pub struct MapConfig {
     pub terrain: TerrainConfig,
     /// Shaping filter of section 7.1 (island, mediterranean, inland, gradient).
     pub shape: Shape,
+    /// The map's type (Pangaea, Continents, Archipelago...; see [`MapTypeConfig`]), in place of
+    /// the shape on a bounded map; `None` (the default): the shape.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub map_type: Option<MapTypeConfig>,
     /// Which manipulation stages run; all off gives the raw map of the thesis figures.
     pub manipulation: ManipulationConfig,
     /// Hexagon size and orientation.
@@ -107,6 +113,7 @@ impl Default for MapConfig {
             noise: NoiseConfig::default(),
             terrain: TerrainConfig::default(),
             shape: Shape::None,
+            map_type: None,
             manipulation: ManipulationConfig::default(),
             layout: LayoutConfig::default(),
             chunk_size: (16, 16),

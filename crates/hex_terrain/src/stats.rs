@@ -11,13 +11,7 @@ use hexx::Hex;
 use crate::terrain::Terrain;
 use crate::vocab::{Biome, TileKind};
 
-/// A landmass is a continent when it holds at least this share of the map's land tiles (and
-/// [`CONTINENT_MIN_TILES`]).
-pub const CONTINENT_MIN_SHARE: f64 = 0.05;
-
-/// A landmass is a continent when it has at least this many tiles (and
-/// [`CONTINENT_MIN_SHARE`] of the land).
-pub const CONTINENT_MIN_TILES: u32 = 16;
+pub use crate::heights::targets::{CONTINENT_MIN_SHARE, CONTINENT_MIN_TILES};
 
 /// Whether a landmass is a continent or an island (the rule is on [`MapStats`]).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]

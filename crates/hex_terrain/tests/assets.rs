@@ -24,7 +24,7 @@ fn every_asset_loads_round_trips_and_generates() {
     let mut files = Vec::new();
     ron_files(&maps_dir(), &mut files);
     files.sort();
-    assert!(files.len() >= 16 + 6 + 4, "thesis maps, Civ6 presets and demo maps: {files:?}");
+    assert!(files.len() >= 16 + 6 + 6 + 4, "thesis maps, Civ6 presets, map types and demo maps: {files:?}");
     for path in files {
         // The Bevy plugin's loader claims `*.map.ron` only: every shipped map must be loadable.
         assert!(path.to_string_lossy().ends_with(".map.ron"), "{} is not a .map.ron", path.display());
@@ -60,7 +60,7 @@ fn thesis_maps_are_the_sixteen_of_section_7() {
 /// a change to climate, rivers or lakes changes these and must update the table in the same
 /// commit. The continent is unbounded (climate only): its counts are of the 48x32 tiles at the
 /// origin.
-const PRESETS: [(&str, [usize; 13], usize, usize); 11] = include!("presets_golden.in");
+const PRESETS: [(&str, [usize; 13], usize, usize); 17] = include!("presets_golden.in");
 
 #[test]
 fn presets_keep_their_biomes_rivers_and_lakes() {

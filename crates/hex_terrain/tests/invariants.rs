@@ -5,8 +5,9 @@ use std::collections::HashMap;
 
 use hex_terrain::hexx::Hex;
 use hex_terrain::{
-    ChunkCoord, ChunkMesh, Detail, GenerateOptions, ManipulationConfig, MapConfig, MapSize, NoiseConfig, Orientation,
-    PullMode, ReliefConfig, RiverConfig, Shape, Terrain, TerrainConfig, Threads, TileKind, TileRect,
+    ChunkCoord, ChunkMesh, Detail, GenerateOptions, ManipulationConfig, MapConfig, MapSize, MapType, MapTypeConfig,
+    NoiseConfig, Orientation, PullMode, ReliefConfig, RiverConfig, Shape, Terrain, TerrainConfig, Threads, TileKind,
+    TileRect, WaterLevel,
 };
 use proptest::prelude::*;
 
@@ -70,6 +71,7 @@ prop_compose! {
         wrap in any::<bool>(),
         rivers in prop::option::of((1.0f32..12.0, 0.0f32..0.05, 0.0f32..=1.0, 0.5f32..=4.0)),
         relief in prop::option::of((0.0f32..=1.0, 0.0f32..=1.0, 0.0f32..=1.0)),
+        map_type in prop::option::weighted(0.25, (0usize..6, 0usize..3, 0.0f32..0.3)),
     ) -> MapConfig {
         let mut c = MapConfig {
             seed,
@@ -94,8 +96,27 @@ prop_compose! {
         }
         c.layout.orientation = if pointy { Orientation::Pointy } else { Orientation::Flat };
         c.layout.hex_size = hex_size;
-        common::wrapping(c, wrap)
+        let map_type = map_type.map(|(kind, water, mountains)| MapTypeConfig {
+            kind: MapType::ALL[kind],
+            water: WaterLevel::ALL[water],
+            mountains,
+        });
+        typed(common::wrapping(c, wrap), map_type)
     }
+}
+
+/// `c` with a map type, made valid for it: left as it is when unbounded (map types need the
+/// map's bounds), else at least [`MIN_MAP_TYPE_SIDE`](hex_terrain::MIN_MAP_TYPE_SIDE) tiles a
+/// side and no shape (the type shapes the land in its place). Call it after `common::wrapping`.
+#[must_use]
+pub fn typed(mut c: MapConfig, map_type: Option<hex_terrain::MapTypeConfig>) -> MapConfig {
+    let (Some(map_type), Some((x, z))) = (map_type, c.size.bounds()) else { return c };
+    let side = hex_terrain::MIN_MAP_TYPE_SIDE;
+    // The side is even: a wrapping map of flat tiles keeps an even width.
+    c.size = MapSize::Bounded { x: x.max(side), z: z.max(side) };
+    c.shape = Shape::None;
+    c.map_type = Some(map_type);
+    c
 }
 
 /// The area compared: the whole bounded map, or a 3x3-chunk window of an unbounded world.
@@ -341,7 +362,7 @@ proptest! {
 
     /// Invariant 6: every invalid value is refused with the field named, never a panic.
     #[test]
-    fn invalid_configs_are_refused_with_the_field(config in config(), which in 0usize..10, bad in prop_oneof![
+    fn invalid_configs_are_refused_with_the_field(config in config(), which in 0usize..11, bad in prop_oneof![
         Just(f64::NAN), Just(f64::INFINITY), Just(f64::NEG_INFINITY), Just(-1.0), Just(0.0), Just(1e12)]) {
         let mut c = config;
         let field = match which {
@@ -354,6 +375,10 @@ proptest! {
             6 => { c.noise.octaves = 0; "noise.octaves" }
             7 => { c.terrain.inner_rings = 0; "terrain.inner_rings" }
             8 => { c.relief.ridges = if (0.0..=1.0).contains(&bad) { -0.5 } else { bad as f32 }; "relief.ridges" }
+            9 => match &mut c.map_type {
+                Some(m) => { m.mountains = if (0.0..=0.5).contains(&bad) { 0.75 } else { bad as f32 }; "map_type.mountains" }
+                None => { c.noise.octaves = 0; "noise.octaves" }
+            },
             _ => { c.appearance.blend = if (0.0..=1.0).contains(&bad) { 1.5 } else { bad as f32 }; "appearance.blend" }
         };
         let err = Terrain::new(c).expect_err("invalid config accepted");

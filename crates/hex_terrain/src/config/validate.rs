@@ -1,7 +1,10 @@
 //! Validation: every field of a [`MapConfig`] against its allowed range, and the limits that
 //! keep any accepted config from taking minutes or gigabytes.
 
-use super::{HeightSourceConfig, MAX_MOVE_COST, MAX_SIGHT_BONUS, MapConfig, MapSize, NoiseConfig, Orientation, Shape};
+use super::{
+    HeightSourceConfig, MAX_MOUNTAIN_SHARE, MAX_MOVE_COST, MAX_SIGHT_BONUS, MapConfig, MapSize, NoiseConfig,
+    Orientation, Shape,
+};
 use crate::error::ConfigError;
 
 /// Largest number of octaves accepted.
@@ -15,6 +18,8 @@ pub const MIN_WRAP_COLUMNS: u32 = 4;
 /// Largest absolute tile column or row of an unbounded world: lattice coordinates stay within
 /// `i32` for every ring count. Chunks beyond it do not exist.
 pub const MAX_WORLD_TILE: i32 = 1 << 24;
+/// Fewest columns and rows of a map with a map type.
+pub const MIN_MAP_TYPE_SIDE: u32 = 8;
 /// Largest chunk side, in tiles.
 pub const MAX_CHUNK_SIDE: u32 = 512;
 /// Largest estimated size of one chunk's mesh, in bytes: a chunk is generated on one thread
@@ -189,6 +194,42 @@ impl MapConfig {
                 "Gradient on a wrapping map",
                 "None, Island, Mediterranean or Inland on a wrapping map (the gradient rises from the west \
                  edge, which a wrapping map does not have)",
+            )?;
+        }
+
+        if let Some(map_type) = &self.map_type {
+            let Some((x, z)) = self.size.bounds() else {
+                return Err(ConfigError::new(
+                    "map_type",
+                    format!("{:?} on an Unbounded map", map_type.kind),
+                    "None for an Unbounded map (a map type arranges a bounded map's land and sea; an unbounded \
+                     world keeps the thesis' shapes)"
+                        .into(),
+                ));
+            };
+            check(
+                x >= MIN_MAP_TYPE_SIDE && z >= MIN_MAP_TYPE_SIDE,
+                "size",
+                format!("{x}x{z}"),
+                format!("at least {MIN_MAP_TYPE_SIDE}x{MIN_MAP_TYPE_SIDE} hexes with a map type"),
+            )?;
+            check(
+                self.shape == Shape::None,
+                "shape",
+                format!("{:?} with a map type", self.shape),
+                "None with a map type (the type shapes the land in its place)",
+            )?;
+            check(
+                self.source == HeightSourceConfig::Noise,
+                "source",
+                "Image with a map type",
+                "Noise with a map type (a heightmap has its land and sea already)",
+            )?;
+            check(
+                finite_in(f64::from(map_type.mountains), 0.0, f64::from(MAX_MOUNTAIN_SHARE)),
+                "map_type.mountains",
+                map_type.mountains,
+                format!("[0, {MAX_MOUNTAIN_SHARE}]"),
             )?;
         }
 

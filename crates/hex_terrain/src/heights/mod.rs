@@ -1,17 +1,22 @@
 //! Heights, the second stage: where every vertex's raw (unmanipulated) height comes from.
 //!
 //! The source is Perlin fBm ([`Fbm`], thesis Algorithm 2) or a greyscale heightmap
-//! ([`HeightImage`], the thesis' filter use), then a shaping filter of thesis section 7.1
-//! ([`shape`]: island, mediterranean, inland, gradient) for bounded maps. Each is a pure function
+//! ([`HeightImage`], the thesis' filter use), then, for bounded maps, a shaping filter of
+//! thesis section 7.1 ([`shape`]: island, mediterranean, inland, gradient) or a map type
+//! ([`map_type`]: Pangaea, Continents, Archipelago... with their [`targets`]). Each is a pure function
 //! of the lattice point, so any chunk samples the same heights as the whole map.
 
 pub mod fbm;
 pub mod image;
+pub mod map_type;
 pub mod shape;
+pub mod targets;
 
 pub use fbm::{FastPerlin, Fbm, Kernel};
 pub use image::{HeightImage, ImageError, MAX_IMAGE_PIXELS, MAX_PNG_BYTES, remap_sea_level};
+pub use map_type::{MAX_LAYOUTS, MAX_TRIES, MapTypeField, SEA_STEPS};
 pub use shape::ShapeBounds;
+pub use targets::{MapTypeReport, Target, TargetCheck};
 
 use std::sync::Arc;
 
@@ -31,7 +36,10 @@ pub struct HeightField {
     image: Option<(Arc<HeightImage>, f64)>,
     shape: Shape,
     shape_bounds: Option<ShapeBounds>,
-    /// Whether a shaping filter changes heights (a bounded map with a shape other than `None`).
+    /// The map type of a bounded map whose config has one (in place of the shape).
+    map_type: Option<Arc<MapTypeField>>,
+    /// Whether a shaping filter changes heights (a bounded map with a shape other than `None`,
+    /// or a map type).
     shaping: bool,
     sea_threshold: f64,
     /// A designer's edits, applied after shaping (`None`: the generated heights).
@@ -84,15 +92,30 @@ impl HeightField {
             let min_u = if max_x > min_x { step / (max_x - min_x) } else { 1.0 };
             ShapeBounds { min_x, max_x, min_z, max_z, min_u }
         });
-        Ok(Self {
+        let mut field = Self {
             fbm,
             image,
             shape: config.shape.clone(),
             shaping: shape_bounds.is_some() && config.shape != Shape::None,
             shape_bounds,
+            map_type: None,
             sea_threshold: f64::from(config.terrain.sea_threshold),
             edits: None,
-        })
+        };
+        if let (Some(map_type), Some(bounds)) = (&config.map_type, shape_bounds) {
+            let thresholds = (config.terrain.sea_threshold, config.terrain.mountain_threshold);
+            let built = MapTypeField::build(map_type, config.seed, geometry, &field, &bounds, thresholds);
+            field.map_type = Some(Arc::new(built));
+            field.shaping = true;
+        }
+        Ok(field)
+    }
+
+    /// What came of the map's type (its targets measured, the tries it took); `None` without
+    /// one.
+    #[must_use]
+    pub fn map_type(&self) -> Option<&MapTypeReport> {
+        self.map_type.as_deref().map(MapTypeField::report)
     }
 
     /// The same field with `edits` applied after shaping (none when they are empty).
@@ -142,7 +165,10 @@ impl HeightField {
     pub fn shaped(&self, geometry: &Geometry, source: f64, p: Hex) -> f32 {
         let raw = if self.shaping {
             let [x, z] = geometry.lattice().world(geometry.wrap_point(p));
-            shape::apply(&self.shape, self.shape_bounds.as_ref(), source, x, z) as f32
+            match &self.map_type {
+                Some(map_type) => map_type.apply(source, x, z) as f32,
+                None => shape::apply(&self.shape, self.shape_bounds.as_ref(), source, x, z) as f32,
+            }
         } else {
             source as f32
         };

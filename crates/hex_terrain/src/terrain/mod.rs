@@ -163,6 +163,22 @@ impl Terrain {
         self.pipeline.heights()
     }
 
+    /// What came of the map's type: every target measured and the tries it took; `None` for a
+    /// map without a type.
+    ///
+    /// ```
+    /// use hex_terrain::{MapConfig, Terrain};
+    ///
+    /// let config = MapConfig::from_ron("(size: Bounded(x: 44, z: 26), wrap: true, map_type: Some((kind: Pangaea)))").unwrap();
+    /// let terrain = Terrain::new(config).unwrap();
+    /// let report = terrain.map_type().unwrap();
+    /// assert!(report.met(), "{report}");
+    /// ```
+    #[must_use]
+    pub fn map_type(&self) -> Option<&crate::MapTypeReport> {
+        self.pipeline.heights().map_type()
+    }
+
     /// The climate stage.
     #[must_use]
     pub fn climate(&self) -> &ClimateModel {

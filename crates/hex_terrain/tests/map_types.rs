@@ -1,0 +1,289 @@
+//! Map types: every report's numbers against the same numbers computed here another way from
+//! the public tile queries (sea and mountains counted, landmasses and seas by union-find, the
+//! strait by comparing every pair of continental tiles, the edge from the offsets), and every
+//! type meeting its targets on the Civilization sizes, wrapping or not, at every water level.
+
+use hex_terrain::hexx::Hex;
+use hex_terrain::{
+    CONTINENT_MIN_SHARE, CONTINENT_MIN_TILES, LoadError, MAX_TRIES, MapConfig, MapSize, MapType, MapTypeConfig,
+    MapTypeReport, NoiseConfig, Target, Terrain, TileKind, WaterLevel,
+};
+use proptest::prelude::*;
+
+/// Civilization VI's map sizes (columns, rows): Duel to Huge.
+const CIV6_SIZES: [(&str, u32, u32); 6] =
+    [("Duel", 44, 26), ("Tiny", 60, 38), ("Small", 74, 46), ("Standard", 84, 54), ("Large", 96, 60), ("Huge", 106, 66)];
+
+fn config(kind: MapType, water: WaterLevel, (x, z): (u32, u32), wrap: bool, seed: u32, scale: f64) -> MapConfig {
+    MapConfig {
+        seed,
+        size: MapSize::Bounded { x, z },
+        wrap,
+        noise: NoiseConfig { octaves: 8, persistence: 0.5, lacunarity: 2.0, scale },
+        map_type: Some(MapTypeConfig { kind, water, ..MapTypeConfig::default() }),
+        ..MapConfig::default()
+    }
+}
+
+/// Union-find over tile indices.
+struct Sets(Vec<usize>);
+
+impl Sets {
+    fn find(&mut self, i: usize) -> usize {
+        let mut root = i;
+        while self.0[root] != root {
+            root = self.0[root];
+        }
+        let mut i = i;
+        while self.0[i] != root {
+            let next = self.0[i];
+            self.0[i] = root;
+            i = next;
+        }
+        root
+    }
+
+    fn join(&mut self, a: usize, b: usize) {
+        let (a, b) = (self.find(a), self.find(b));
+        self.0[a.max(b)] = a.min(b);
+    }
+}
+
+/// The targets' numbers, computed from the tile queries.
+struct Recount {
+    sea_share: f64,
+    mountain_share: f64,
+    landmasses: usize,
+    continents: usize,
+    largest_share: f64,
+    second_share: f64,
+    strait: f64,
+    largest_sea_share: f64,
+    largest_sea_edge_tiles: usize,
+}
+
+fn recount(t: &Terrain) -> Recount {
+    let tiles: Vec<Hex> = t.tiles().collect();
+    let n = tiles.len();
+    let at = |h: Hex| tiles.iter().position(|&x| x == h).unwrap();
+    let kinds: Vec<TileKind> = tiles.iter().map(|&h| t.tile_kind(h).unwrap()).collect();
+    let sea: Vec<bool> = kinds.iter().map(|&k| k == TileKind::Sea).collect();
+    let land = sea.iter().filter(|&&s| !s).count();
+    let mountains = kinds.iter().filter(|&&k| k == TileKind::Mountain).count();
+    let groups = |member: &dyn Fn(usize) -> bool| {
+        let mut sets = Sets((0..n).collect());
+        for (i, &h) in tiles.iter().enumerate() {
+            for nb in t.neighbors(h).unwrap().into_iter().flatten() {
+                let j = at(nb);
+                if member(i) && member(j) {
+                    sets.join(i, j);
+                }
+            }
+        }
+        let roots: Vec<Option<usize>> = (0..n).map(|i| member(i).then(|| sets.find(i))).collect();
+        let mut sizes = std::collections::HashMap::<usize, usize>::new();
+        for r in roots.iter().flatten() {
+            *sizes.entry(*r).or_default() += 1;
+        }
+        (roots, sizes)
+    };
+    let (mass, mass_sizes) = groups(&|i| !sea[i]);
+    let mut sizes: Vec<usize> = mass_sizes.values().copied().collect();
+    sizes.sort_unstable_by(|a, b| b.cmp(a));
+    let share = |a: usize, b: usize| a as f64 / b.max(1) as f64;
+    let continent = |size: usize| size >= CONTINENT_MIN_TILES as usize && share(size, land) >= CONTINENT_MIN_SHARE;
+    let continental: Vec<usize> = (0..n).filter(|&i| mass[i].is_some_and(|r| continent(mass_sizes[&r]))).collect();
+    let mut strait = f64::INFINITY;
+    for (k, &a) in continental.iter().enumerate() {
+        for &b in &continental[k + 1..] {
+            if mass[a] != mass[b] {
+                strait = strait.min(f64::from(t.distance(tiles[a], tiles[b]).unwrap() - 1));
+            }
+        }
+    }
+    let (seas, sea_sizes) = groups(&|i| sea[i]);
+    let biggest = sea_sizes.iter().max_by_key(|&(&root, &size)| (size, std::cmp::Reverse(root))).map(|(&r, _)| r);
+    let rect = t.bounds().unwrap();
+    let on_edge = |h: Hex| {
+        let [col, row] = t.offset_of(h);
+        row == rect.min[1]
+            || row == rect.max[1] - 1
+            || (t.wrap().is_none() && (col == rect.min[0] || col == rect.max[0] - 1))
+    };
+    Recount {
+        sea_share: share(n - land, n),
+        mountain_share: share(mountains, land),
+        landmasses: sizes.len(),
+        continents: sizes.iter().filter(|&&s| continent(s)).count(),
+        largest_share: share(sizes.first().copied().unwrap_or(0), land),
+        second_share: share(sizes.get(1).copied().unwrap_or(0), land),
+        strait,
+        largest_sea_share: share(biggest.map_or(0, |r| sea_sizes[&r]), n - land),
+        largest_sea_edge_tiles: (0..n)
+            .filter(|&i| biggest.is_some() && seas[i] == biggest && on_edge(tiles[i]))
+            .count(),
+    }
+}
+
+/// Every number of the report equals the recount; a missed target is named in the report.
+fn check_report(t: &Terrain) -> Result<MapTypeReport, TestCaseError> {
+    let report = t.map_type().expect("a map type's report").clone();
+    let r = recount(t);
+    prop_assert!((1..=MAX_TRIES).contains(&report.tries));
+    for check in &report.checks {
+        let expected = match check.target {
+            Target::SeaShare => r.sea_share,
+            Target::MountainShare => r.mountain_share,
+            Target::Continents => r.continents as f64,
+            Target::SecondContinentShare => r.second_share,
+            Target::LargestLandmassShare => r.largest_share,
+            Target::Landmasses => r.landmasses as f64,
+            Target::NarrowestStrait => r.strait,
+            Target::LargestSeaShare => r.largest_sea_share,
+            Target::LargestSeaEdgeTiles => r.largest_sea_edge_tiles as f64,
+        };
+        prop_assert_eq!(check.measured, expected, "{:?} of {}", check.target, report);
+        let line = check.to_string();
+        prop_assert!(line.starts_with(check.target.name()));
+        prop_assert_eq!(check.met(), !line.contains("MISSED"), "{}", line);
+    }
+    let wanted: &[Target] = match report.kind {
+        MapType::Pangaea => &[Target::LargestLandmassShare],
+        MapType::Continents => &[Target::Continents, Target::SecondContinentShare, Target::NarrowestStrait],
+        MapType::SmallContinents => &[Target::Continents, Target::LargestLandmassShare, Target::NarrowestStrait],
+        MapType::Archipelago => &[Target::Landmasses, Target::LargestLandmassShare],
+        MapType::Fractal => &[],
+        MapType::InlandSea => &[Target::LargestSeaShare, Target::LargestSeaEdgeTiles, Target::LargestLandmassShare],
+    };
+    for target in [Target::SeaShare, Target::MountainShare].iter().chain(wanted) {
+        prop_assert!(report.check(*target).is_some(), "{:?} missing from {}", target, report);
+    }
+    prop_assert_eq!(report.checks.len(), 2 + wanted.len());
+    Ok(report)
+}
+
+fn kind() -> impl Strategy<Value = MapType> {
+    prop::sample::select(MapType::ALL.to_vec())
+}
+
+fn water() -> impl Strategy<Value = WaterLevel> {
+    prop::sample::select(WaterLevel::ALL.to_vec())
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 64, ..ProptestConfig::default() })]
+
+    /// Over random types, water levels, sizes, wrap, noise and mountain shares: every number of
+    /// the report is the recount's, every missed target is named, the tries stay bounded.
+    #[test]
+    fn reports_equal_a_recount(
+        kind in kind(),
+        water in water(),
+        (x, z) in (8u32..60, 8u32..40),
+        wrap in any::<bool>(),
+        seed in any::<u32>(),
+        (octaves, persistence, scale) in (3u32..10, 0.25f64..0.6, 8.0f64..90.0),
+        mountains in 0.0f32..0.3,
+    ) {
+        let mut c = config(kind, water, (x + x % 2, z), wrap, seed, scale);
+        c.noise.octaves = octaves;
+        c.noise.persistence = persistence;
+        c.map_type = Some(MapTypeConfig { kind, water, mountains });
+        check_report(&Terrain::new(c).unwrap())?;
+    }
+}
+
+/// The promise: every type meets its targets on every Civilization VI size, wrapping or not, at
+/// every water level, with the presets' noise. Over these 216 maps (seeds fixed), at most one in
+/// twenty may miss (the smallest sizes, where a few continents or twenty islands barely fit);
+/// `hexterrain survey` measures the rate over hundreds of seeds.
+#[test]
+fn every_type_meets_its_targets_on_every_civ_size() {
+    let mut missed = Vec::new();
+    let mut maps = 0;
+    for (k, kind) in MapType::ALL.into_iter().enumerate() {
+        for &(name, x, z) in &CIV6_SIZES {
+            for wrap in [false, true] {
+                for water in WaterLevel::ALL {
+                    let seed = 7919 * maps + k as u32;
+                    maps += 1;
+                    let t = Terrain::new(config(kind, water, (x, z), wrap, seed, 60.0)).unwrap();
+                    let report = t.map_type().unwrap();
+                    if !report.met() {
+                        missed.push(format!("{name} wrap {wrap} {water:?} seed {seed}: {report}"));
+                    }
+                }
+            }
+        }
+    }
+    assert_eq!(maps, 216);
+    println!("{} of {maps} maps missed a target:\n{}", missed.len(), missed.join("\n"));
+    assert!(missed.len() * 20 <= maps as usize, "{} of {maps} maps missed:\n{}", missed.len(), missed.join("\n"));
+    // Every type keeps its promise on the Standard size and larger.
+    assert!(!missed.iter().any(|m| ["Standard", "Large", "Huge"].iter().any(|s| m.starts_with(s))), "{missed:?}");
+}
+
+/// A map type is compiled once from the config: the same report and tiles on one thread as on
+/// many, and from a config read back from its RON.
+#[test]
+fn the_same_map_on_any_thread_and_after_a_round_trip() {
+    for kind in MapType::ALL {
+        let c = config(kind, WaterLevel::Normal, (44, 26), true, 11, 60.0);
+        let kinds = |t: &Terrain| t.tiles().map(|h| t.tile_kind(h).unwrap()).collect::<Vec<_>>();
+        let here = Terrain::new(c.clone()).unwrap();
+        let single = rayon::ThreadPoolBuilder::new().num_threads(1).build().unwrap();
+        let there = single.install(|| Terrain::new(c.clone()).unwrap());
+        let read = Terrain::new(MapConfig::from_ron(&c.to_ron()).unwrap()).unwrap();
+        for other in [&there, &read] {
+            assert_eq!(here.map_type(), other.map_type());
+            assert_eq!(kinds(&here), kinds(other));
+        }
+    }
+}
+
+#[test]
+fn refused_configs_name_their_field() {
+    // The default size is 30x30.
+    let typed = |ron: &str| MapConfig::from_ron(&format!("(map_type: Some((kind: Pangaea)), {ron})"));
+    let field = |ron: &str| match typed(ron) {
+        Err(LoadError::Invalid(error)) => error.field,
+        other => panic!("{ron}: {other:?}"),
+    };
+    assert_eq!(field("size: Unbounded"), "map_type");
+    assert_eq!(field("shape: Island(a: 2.0, b: 5.0)"), "shape");
+    assert_eq!(field("source: Image(path: \"x.png\", sea_level: 0.3)"), "source");
+    assert_eq!(field("size: Bounded(x: 7, z: 30)"), "size");
+    assert!(Terrain::new(typed("size: Bounded(x: 8, z: 8)").unwrap()).is_ok());
+    let mut mountains = typed("size: Bounded(x: 40, z: 30)").unwrap();
+    mountains.map_type.as_mut().unwrap().mountains = 0.9;
+    let error = Terrain::new(mountains).unwrap_err();
+    assert_eq!((error.field.as_str(), error.value.as_str()), ("map_type.mountains", "0.9"));
+    // An unknown type or field is a parse error naming line and column.
+    let unknown = MapConfig::from_ron("(map_type: Some((kind: Pangea)))").unwrap_err().to_string();
+    assert!(unknown.contains("Pangea") && unknown.contains("1:"), "{unknown}");
+}
+
+/// One map of each type pinned: the tiles' kinds hashed (FNV-1a) and the tries. A change is a
+/// deliberate change to the generator: update the table and say why.
+#[test]
+fn one_map_of_each_type_is_pinned() {
+    const GOLDEN: [(MapType, u64, u32); 6] = [
+        (MapType::Pangaea, 0x796a_6ca1_a703_ff75, 1),
+        (MapType::Continents, 0x7b02_924b_2045_7ac6, 1),
+        (MapType::SmallContinents, 0x6c9f_4e79_be8f_f51c, 1),
+        (MapType::Archipelago, 0xe506_c0c4_abb9_8f9d, 1),
+        (MapType::Fractal, 0x8299_e6fb_ea79_6603, 1),
+        (MapType::InlandSea, 0x9e68_6e00_806d_600a, 1),
+    ];
+    let mut rows = Vec::new();
+    for (kind, _, _) in GOLDEN {
+        let t = Terrain::new(config(kind, WaterLevel::Normal, (84, 54), true, 2024, 60.0)).unwrap();
+        let mut h: u64 = 0xcbf2_9ce4_8422_2325;
+        for tile in t.tiles() {
+            h ^= t.tile_kind(tile).unwrap() as u64;
+            h = h.wrapping_mul(0x0100_0000_01b3);
+        }
+        rows.push((kind, h, t.map_type().unwrap().tries));
+    }
+    assert_eq!(rows, GOLDEN, "if intended, GOLDEN becomes {rows:#x?}");
+}
