@@ -15,7 +15,7 @@ use std::time::Instant;
 use clap::{Parser, Subcommand};
 use hex_terrain::{
     Biome, ChunkMesh, HeightSourceConfig, ManipulationConfig, MapConfig, MapSize, MapStats, Sharpness, Terrain,
-    TileKind,
+    TileKind, WaterLevel,
 };
 
 /// Generate, preview, export and measure 3D hexagonal tiled terrain.
@@ -123,9 +123,11 @@ enum Command {
         width: u32,
     },
     /// Generate a map config over many seeds and print each statistic's minimum, median and
-    /// maximum (water, landmasses, coast, mountains, rivers, lakes, straits) and the time taken.
+    /// maximum (water, landmasses, coast, mountains, rivers, lakes, straits) and the time taken;
+    /// for a map type, how many maps met every target, each target's spread and the tries.
     Survey {
-        /// Map config (RON); its seed is the first surveyed.
+        /// Map config (RON), or a map type's name for its preset (pangaea, continents,
+        /// small-continents, archipelago, fractal, inland-sea); its seed is the first surveyed.
         map: PathBuf,
         /// How many seeds (the config's, then the next ones).
         #[arg(long, default_value_t = 50)]
@@ -133,6 +135,9 @@ enum Command {
         /// The map's size instead of the config's, as `COLUMNSxROWS` (e.g. `84x54`).
         #[arg(long, value_parser = parse_size)]
         size: Option<(u32, u32)>,
+        /// The water level of a map type instead of the config's: low, normal or high.
+        #[arg(long, value_parser = parse_water)]
+        water: Option<WaterLevel>,
     },
     /// Write the tileable sea, grass and mountain textures of the material's texture mode.
     Textures {
@@ -177,10 +182,19 @@ fn parse_size(s: &str) -> Result<(u32, u32), String> {
     Ok((x, z))
 }
 
+fn parse_water(s: &str) -> Result<WaterLevel, String> {
+    match s.to_ascii_lowercase().as_str() {
+        "low" => Ok(WaterLevel::Low),
+        "normal" => Ok(WaterLevel::Normal),
+        "high" => Ok(WaterLevel::High),
+        _ => Err(format!("expected low, normal or high, got {s:?}")),
+    }
+}
+
 /// An error for the user: printed after `error:`, exit code 1.
 pub(crate) type CliResult<T> = Result<T, String>;
 
-fn load(path: &Path) -> CliResult<MapConfig> {
+pub(crate) fn load(path: &Path) -> CliResult<MapConfig> {
     MapConfig::load(path).map_err(|e| format!("{}: {e}", path.display()))
 }
 
@@ -306,7 +320,10 @@ fn run(cli: Cli) -> CliResult<()> {
             check_width(width)?;
             setup(&map, players, output.as_deref(), width)
         }
-        Command::Survey { map, seeds, size } => survey::run(&map, load(&map)?, seeds, size),
+        Command::Survey { map, seeds, size, water } => {
+            let config = survey::map_or_type(&map)?;
+            survey::run(&map, config, &survey::Options { seeds, size, water })
+        }
         Command::Textures { out, size } => textures::write(&out, size),
         Command::Experiments { out, maps, rings, runs, max_hexes, width } => {
             check_width(width)?;
@@ -367,6 +384,9 @@ fn stats(path: &Path) -> CliResult<()> {
     // `stats` takes bounded maps only (`whole_map` above), which always have statistics.
     if let Some(stats) = MapStats::measure(&t) {
         println!("{stats}");
+    }
+    if let Some(report) = t.map_type() {
+        println!("map type {report}");
     }
     match config.edits.len() {
         0 => println!("edits: none (the generated map)"),

@@ -5,21 +5,60 @@
 use std::path::Path;
 use std::time::Instant;
 
-use hex_terrain::{MapConfig, MapSize, MapStats, Terrain};
+use hex_terrain::{MapConfig, MapSize, MapStats, MapTypeReport, Target, Terrain, WaterLevel};
 
 use crate::CliResult;
 
 /// Most seeds a survey runs (a survey of more is a benchmark).
 const MAX_SEEDS: u32 = 100_000;
 
-/// Runs the survey of `config` over `seeds` seeds (the config's seed, then the next ones), at
-/// `size` when given.
-pub fn run(path: &Path, mut config: MapConfig, seeds: u32, size: Option<(u32, u32)>) -> CliResult<()> {
+/// The map types' presets (Civilization VI Standard, wrapping), by the name `survey` takes.
+const TYPE_PRESETS: [(&str, &str); 6] = [
+    ("pangaea", include_str!("../../../assets/maps/types/pangaea.map.ron")),
+    ("continents", include_str!("../../../assets/maps/types/continents.map.ron")),
+    ("small-continents", include_str!("../../../assets/maps/types/small_continents.map.ron")),
+    ("archipelago", include_str!("../../../assets/maps/types/archipelago.map.ron")),
+    ("fractal", include_str!("../../../assets/maps/types/fractal.map.ron")),
+    ("inland-sea", include_str!("../../../assets/maps/types/inland_sea.map.ron")),
+];
+
+/// The map config at `path`, or the preset of the map type `path` names when no such file
+/// exists.
+pub fn map_or_type(path: &Path) -> CliResult<MapConfig> {
+    let name = path.to_string_lossy().to_ascii_lowercase().replace('_', "-");
+    match TYPE_PRESETS.iter().find(|(n, _)| *n == name) {
+        Some((_, preset)) if !path.exists() => {
+            MapConfig::from_ron(preset).map_err(|e| format!("the {name} preset: {e}"))
+        }
+        _ => crate::load(path),
+    }
+}
+
+/// What `survey` varies besides the seed.
+pub struct Options {
+    /// How many seeds.
+    pub seeds: u32,
+    /// The map's size instead of the config's.
+    pub size: Option<(u32, u32)>,
+    /// A map type's water level instead of the config's.
+    pub water: Option<WaterLevel>,
+}
+
+/// Runs the survey of `config` over `options.seeds` seeds (the config's seed, then the next
+/// ones), at `options.size` and `options.water` when given.
+pub fn run(path: &Path, mut config: MapConfig, options: &Options) -> CliResult<()> {
+    let seeds = options.seeds;
     if !(1..=MAX_SEEDS).contains(&seeds) {
         return Err(format!("--seeds {seeds} is out of range: 1..={MAX_SEEDS} are allowed"));
     }
-    if let Some((x, z)) = size {
+    if let Some((x, z)) = options.size {
         config.size = MapSize::Bounded { x, z };
+    }
+    if let Some(water) = options.water {
+        let Some(map_type) = config.map_type.as_mut() else {
+            return Err(format!("{}: --water needs a map with a map type (its `map_type`)", path.display()));
+        };
+        map_type.water = water;
     }
     if config.size.bounds().is_none() {
         return Err(format!("{}: an unbounded world has no whole to survey; give --size COLUMNSxROWS", path.display()));
@@ -41,7 +80,12 @@ pub fn run(path: &Path, mut config: MapConfig, seeds: u32, size: Option<(u32, u3
         let compiled = began.elapsed();
         let stats = MapStats::measure(&terrain).expect("a bounded map");
         let measured = began.elapsed() - compiled;
-        rows.push(Row { stats, compile_ms: compiled.as_secs_f64() * 1e3, measure_ms: measured.as_secs_f64() * 1e3 });
+        rows.push(Row {
+            stats,
+            map_type: terrain.map_type().cloned(),
+            compile_ms: compiled.as_secs_f64() * 1e3,
+            measure_ms: measured.as_secs_f64() * 1e3,
+        });
     }
     let (x, z) = config.size.bounds().expect("bounded");
     println!(
@@ -87,10 +131,58 @@ pub fn run(path: &Path, mut config: MapConfig, seeds: u32, size: Option<(u32, u3
             _ => println!("{name:<34} {:>10}", "none"),
         }
     }
+    let reports: Vec<&MapTypeReport> = rows.iter().filter_map(|r| r.map_type.as_ref()).collect();
+    if let Some(first) = reports.first() {
+        print_map_type(first.kind.name(), &reports);
+    }
     for line in &refused {
         println!("refused: {line}");
     }
     Ok(())
+}
+
+/// The map type's lines: how many maps met every target, the tries they took, and each
+/// target's spread and misses.
+fn print_map_type(name: &str, reports: &[&MapTypeReport]) {
+    let met = reports.iter().filter(|r| r.met()).count();
+    let mut tries: Vec<u32> = reports.iter().map(|r| r.tries).collect();
+    tries.sort_unstable();
+    let within = |lo: u32, hi: u32| tries.iter().filter(|&&t| (lo..=hi).contains(&t)).count();
+    println!(
+        "map type {name}: {met} of {} maps met every target; tries min {} median {} max {} \
+         (1: {}, 2-5: {}, 6-20: {}, more: {})",
+        reports.len(),
+        tries[0],
+        tries[tries.len() / 2],
+        tries[tries.len() - 1],
+        within(1, 1),
+        within(2, 5),
+        within(6, 20),
+        within(21, u32::MAX),
+    );
+    println!("{:<40} {:>10} {:>10} {:>10} {:>8}", "target", "min", "median", "max", "missed");
+    let targets: Vec<Target> = reports[0].checks.iter().map(|c| c.target).collect();
+    for target in targets {
+        let checks: Vec<_> = reports.iter().filter_map(|r| r.check(target)).collect();
+        let scale = if target_is_share(target) { 100.0 } else { 1.0 };
+        let mut values: Vec<f64> = checks.iter().map(|c| c.measured * scale).collect();
+        values.sort_by(f64::total_cmp);
+        let missed = checks.iter().filter(|c| !c.met()).count();
+        let unit = if scale == 100.0 { " (%)" } else { "" };
+        let shown = |v: f64| if v.is_infinite() { "none".to_owned() } else { format!("{v:.1}") };
+        println!(
+            "{:<40} {:>10} {:>10} {:>10} {missed:>8}",
+            format!("{}{unit}", target.name()),
+            shown(values[0]),
+            shown(values[values.len() / 2]),
+            shown(values[values.len() - 1]),
+        );
+    }
+}
+
+/// Whether a target is a share (printed in percent).
+fn target_is_share(target: Target) -> bool {
+    !matches!(target, Target::Continents | Target::Landmasses | Target::NarrowestStrait | Target::LargestSeaEdgeTiles)
 }
 
 /// How a statistic is read from a seed's map.
@@ -99,6 +191,8 @@ type Statistic = Box<dyn Fn(&Row) -> f64>;
 /// One seed's map.
 struct Row {
     stats: MapStats,
+    /// What came of the map's type, if it has one.
+    map_type: Option<MapTypeReport>,
     /// `Terrain::new`.
     compile_ms: f64,
     /// `MapStats::measure`.

@@ -335,6 +335,36 @@ fn survey_prints_each_statistic_over_the_seeds() {
     fails(&["survey", continent.to_str().unwrap(), "--seeds", "2"], &["unbounded", "--size"]);
 }
 
+/// `survey` takes a map type's name for its preset: it prints how many maps met every target
+/// and each target's spread, as the library measured them; `--water` sets the level, and needs a
+/// map type; `stats` prints a typed map's report.
+#[test]
+fn survey_and_stats_report_a_map_types_targets() {
+    let out = ok(&["survey", "small-continents", "--seeds", "4", "--size", "44x26", "--water", "high"]);
+    let preset = MapConfig::load(repo().join("assets/maps/types/small_continents.map.ron")).unwrap();
+    let reports: Vec<_> = (0..4)
+        .map(|i| {
+            let mut config =
+                MapConfig { seed: preset.seed + i, size: MapSize::Bounded { x: 44, z: 26 }, ..preset.clone() };
+            config.map_type.as_mut().unwrap().water = hex_terrain::WaterLevel::High;
+            Terrain::new(config).unwrap().map_type().unwrap().clone()
+        })
+        .collect();
+    let met = reports.iter().filter(|r| r.met()).count();
+    assert!(out.contains(&format!("map type Small Continents: {met} of 4 maps met every target")), "{out}");
+    let mut sea: Vec<f64> =
+        reports.iter().map(|r| r.check(hex_terrain::Target::SeaShare).unwrap().measured * 100.0).collect();
+    sea.sort_by(f64::total_cmp);
+    let row = out.lines().find(|l| l.starts_with("sea share (%)")).unwrap_or_else(|| panic!("{out}"));
+    assert!(row.contains(&format!("{:.1}", sea[0])) && row.contains(&format!("{:.1}", sea[3])), "{row} vs {sea:?}");
+    let plain = small_map("untyped.map.ron", "seed: 3");
+    fails(&["survey", plain.to_str().unwrap(), "--water", "low"], &["--water", "map_type"]);
+    fails(&["survey", "continents", "--water", "deep"], &["low, normal or high"]);
+
+    let stats = ok(&["stats", repo().join("assets/maps/types/archipelago.map.ron").to_str().unwrap()]);
+    assert!(stats.contains("map type Archipelago: every target met") && stats.contains("landmasses: "), "{stats}");
+}
+
 /// A map file with an `edits` section: `stats` counts the edited tiles and the edits show in
 /// the counts (a tile set to mountain in a sea of Map0's), a bad edit is refused by name.
 #[test]
