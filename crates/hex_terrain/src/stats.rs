@@ -65,7 +65,9 @@ pub struct RiverStats {
 ///   distance (the short way round on a wrapping map) between tiles of two different continents,
 ///   less one.
 /// - A **mountain range** is a set of three or more mountain tiles connected through their
-///   neighbors; a lone mountain or a pair is not one.
+///   neighbors; a lone mountain or a pair is not one. Its shape shows in how many mountain
+///   neighbors a mountain has on average (2 or fewer in a chain, up to 6 inside a massif) and in
+///   the longest range's length end to end.
 /// - A **river system** ends at one mouth: a river tile whose water leaves the rivers (into the
 ///   sea, a lake or off the map). A river's length counts its tiles from a source to its mouth.
 #[derive(Debug, Clone, PartialEq)]
@@ -83,6 +85,14 @@ pub struct MapStats {
     pub mountain_tiles: u32,
     /// Mountain tiles in ranges (connected groups of three or more).
     pub range_tiles: u32,
+    /// Neighbor pairs of mountain tiles, each pair counted from both sides: over
+    /// `mountain_tiles`, how many mountain neighbors a mountain has on average
+    /// ([`MapStats::mountain_neighbors`]).
+    pub mountain_adjacencies: u32,
+    /// The longest range end to end, in tiles: the most tiles a straight hex line crosses
+    /// between two tiles of one range (the largest hex distance between them, plus one); 0
+    /// without a range.
+    pub longest_range: u32,
     /// The landmasses, largest first (ties: the first tile's row, then column).
     pub landmasses: Vec<Landmass>,
     /// Coast length, in tile edges between land and sea.
@@ -128,6 +138,29 @@ impl MapStats {
         let land = components(tiles.len(), &neighbors, |i| !water(i));
         let ranges = components(tiles.len(), &neighbors, mountain);
         let range_tiles = ranges.sizes.iter().filter(|&&s| s >= 3).sum::<u32>();
+        let mountain_adjacencies = (0..tiles.len())
+            .filter(|&i| mountain(i))
+            .map(|i| neighbors[i].iter().flatten().filter(|&&n| mountain(n)).count() as u32)
+            .sum();
+        // Each range's length: the largest distance between two of its tiles.
+        let mut members: Vec<Vec<usize>> = vec![Vec::new(); ranges.sizes.len()];
+        for i in (0..tiles.len()).filter(|&i| mountain(i)) {
+            members[ranges.of[i] as usize].push(i);
+        }
+        let longest_range = members
+            .iter()
+            .filter(|m| m.len() >= 3)
+            .map(|m| {
+                let mut far = 0;
+                for (k, &a) in m.iter().enumerate() {
+                    for &b in &m[k + 1..] {
+                        far = far.max(terrain.distance(tiles[a], tiles[b]).expect("tiles of the map"));
+                    }
+                }
+                far + 1
+            })
+            .max()
+            .unwrap_or(0);
         let mut landmasses: Vec<Landmass> = land
             .first
             .iter()
@@ -193,6 +226,8 @@ impl MapStats {
             land_tiles,
             mountain_tiles,
             range_tiles,
+            mountain_adjacencies,
+            longest_range,
             coast_edges: (0..tiles.len()).filter(|&i| !water(i)).map(coast).sum(),
             landmasses,
             narrowest_strait: narrowest.map(|d| d - 1),
@@ -235,6 +270,13 @@ impl MapStats {
     #[must_use]
     pub fn mountain_share(&self) -> f64 {
         f64::from(self.mountain_tiles) / f64::from(self.land_tiles.max(1))
+    }
+
+    /// How many mountain neighbors a mountain tile has on average (0 without mountains): about
+    /// 2 when the mountains run in chains, more in massifs.
+    #[must_use]
+    pub fn mountain_neighbors(&self) -> f64 {
+        f64::from(self.mountain_adjacencies) / f64::from(self.mountain_tiles.max(1))
     }
 
     /// The share of mountain tiles that lie in ranges (0 without mountains).
@@ -328,9 +370,12 @@ impl std::fmt::Display for MapStats {
         )?;
         writeln!(
             f,
-            "mountains: {:.1} % of the land, {:.1} % of them in ranges",
+            "mountains: {:.1} % of the land, {:.1} % of them in ranges, the longest {} tiles end to end; {:.1} \
+             mountain neighbors a mountain",
             percent(self.mountain_share()),
-            percent(self.range_share())
+            percent(self.range_share()),
+            self.longest_range,
+            self.mountain_neighbors()
         )?;
         let list = |masses: Vec<&Landmass>| match masses.len() {
             0 => "none".to_owned(),

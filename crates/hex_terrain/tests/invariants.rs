@@ -71,7 +71,7 @@ prop_compose! {
         wrap in any::<bool>(),
         rivers in prop::option::of((1.0f32..12.0, 0.0f32..0.05, 0.0f32..=1.0, 0.5f32..=4.0)),
         relief in prop::option::of((0.0f32..=1.0, 0.0f32..=1.0, 0.0f32..=1.0)),
-        map_type in prop::option::weighted(0.25, (0usize..6, 0usize..3, 0.0f32..0.3)),
+        map_type in prop::option::weighted(0.25, (0usize..6, 0usize..3, 0.0f32..0.3, any::<bool>())),
     ) -> MapConfig {
         let mut c = MapConfig {
             seed,
@@ -96,10 +96,11 @@ prop_compose! {
         }
         c.layout.orientation = if pointy { Orientation::Pointy } else { Orientation::Flat };
         c.layout.hex_size = hex_size;
-        let map_type = map_type.map(|(kind, water, mountains)| MapTypeConfig {
+        let map_type = map_type.map(|(kind, water, mountains, ranges)| MapTypeConfig {
             kind: MapType::ALL[kind],
             water: WaterLevel::ALL[water],
             mountains,
+            ranges,
         });
         typed(common::wrapping(c, wrap), map_type)
     }

@@ -184,11 +184,12 @@ proptest! {
         seed in any::<u32>(),
         (octaves, persistence, scale) in (3u32..10, 0.25f64..0.6, 8.0f64..90.0),
         mountains in 0.0f32..0.3,
+        ranges in any::<bool>(),
     ) {
         let mut c = config(kind, water, (x + x % 2, z), wrap, seed, scale);
         c.noise.octaves = octaves;
         c.noise.persistence = persistence;
-        c.map_type = Some(MapTypeConfig { kind, water, mountains });
+        c.map_type = Some(MapTypeConfig { kind, water, mountains, ranges });
         check_report(&Terrain::new(c).unwrap())?;
     }
 }
@@ -206,8 +207,10 @@ fn every_type_meets_its_targets_on_every_civ_size() {
             for wrap in [false, true] {
                 for water in WaterLevel::ALL {
                     let seed = 7919 * maps + k as u32;
+                    let mut c = config(kind, water, (x, z), wrap, seed, 60.0);
+                    c.map_type.as_mut().unwrap().ranges = maps % 2 == 1;
                     maps += 1;
-                    let t = Terrain::new(config(kind, water, (x, z), wrap, seed, 60.0)).unwrap();
+                    let t = Terrain::new(c).unwrap();
                     let report = t.map_type().unwrap();
                     if !report.met() {
                         missed.push(format!("{name} wrap {wrap} {water:?} seed {seed}: {report}"));
@@ -221,6 +224,40 @@ fn every_type_meets_its_targets_on_every_civ_size() {
     assert!(missed.len() * 20 <= maps as usize, "{} of {maps} maps missed:\n{}", missed.len(), missed.join("\n"));
     // Every type keeps its promise on the Standard size and larger.
     assert!(!missed.iter().any(|m| ["Standard", "Large", "Huge"].iter().any(|s| m.starts_with(s))), "{missed:?}");
+}
+
+/// Mountain ranges: the same share of mountains in chains along the plates' meeting lines, so a
+/// mountain has fewer mountain neighbors and the longest range runs at least as far, on every
+/// type, on average over seeds.
+#[test]
+fn ranges_run_in_chains() {
+    for kind in MapType::ALL {
+        let (mut neighbors, mut longest) = ([0.0; 2], [0.0; 2]);
+        for seed in 0..12 {
+            for (r, ranges) in [false, true].into_iter().enumerate() {
+                let mut c = config(kind, WaterLevel::Normal, (84, 54), true, seed, 60.0);
+                c.map_type.as_mut().unwrap().ranges = ranges;
+                let t = Terrain::new(c).unwrap();
+                let stats = hex_terrain::MapStats::measure(&t).unwrap();
+                neighbors[r] += stats.mountain_neighbors() / 12.0;
+                longest[r] += f64::from(stats.longest_range) / 12.0;
+            }
+        }
+        println!(
+            "{}: mountain neighbors {:.2} -> {:.2}, longest range {:.1} -> {:.1}",
+            kind.name(),
+            neighbors[0],
+            neighbors[1],
+            longest[0],
+            longest[1]
+        );
+        assert!(neighbors[1] < neighbors[0], "{kind:?}: {neighbors:?}");
+        // An archipelago's islands are too small for long ranges: fewer neighbors is all.
+        if kind != MapType::Archipelago {
+            assert!(neighbors[1] < neighbors[0] - 0.2, "{kind:?}: {neighbors:?}");
+            assert!(longest[1] >= longest[0], "{kind:?}: {longest:?}");
+        }
+    }
 }
 
 /// A map type is compiled once from the config: the same report and tiles on one thread as on

@@ -7,8 +7,8 @@ use std::collections::HashMap;
 
 use hex_terrain::hexx::Hex;
 use hex_terrain::{
-    Biome, CONTINENT_MIN_SHARE, CONTINENT_MIN_TILES, LandmassKind, MapConfig, MapSize, MapStats, NoiseConfig,
-    SetupConfig, Shape, Terrain, TileKind,
+    Biome, CONTINENT_MIN_SHARE, CONTINENT_MIN_TILES, LandmassKind, MapConfig, MapSize, MapStats, MapType,
+    MapTypeConfig, NoiseConfig, SetupConfig, Shape, Terrain, TileKind, WaterLevel,
 };
 use proptest::prelude::*;
 
@@ -25,6 +25,7 @@ prop_compose! {
         rivers in any::<bool>(),
         setup in any::<bool>(),
         wrap in any::<bool>(),
+        map_type in prop::option::weighted(0.3, (0usize..6, 0usize..3, any::<bool>())),
     ) -> MapConfig {
         let mut c = MapConfig {
             seed,
@@ -40,6 +41,11 @@ prop_compose! {
         c.rivers.enabled = rivers;
         if setup {
             c.setup = Some(SetupConfig { players: 2, min_distance: 2, ..SetupConfig::default() });
+        }
+        if let Some((kind, water, ranges)) = map_type {
+            c.size = MapSize::Bounded { x: x.max(8), z: z.max(8) };
+            c.shape = Shape::None;
+            c.map_type = Some(MapTypeConfig { kind: MapType::ALL[kind], water: WaterLevel::ALL[water], ranges, ..MapTypeConfig::default() });
         }
         common::wrapping(c, wrap)
     }
@@ -152,8 +158,27 @@ fn check(t: &Terrain) -> Result<(), TestCaseError> {
     prop_assert_eq!(stats.continents().count() >= 2, narrowest.is_some());
 
     // Mountain ranges: groups of three or more.
-    let (_, ranges) = groups(t, &tiles, mountain);
+    let (mut range_sets, ranges) = groups(t, &tiles, mountain);
     prop_assert_eq!(stats.range_tiles, ranges.values().filter(|&&s| s >= 3).sum::<u32>());
+    // Their shape: mountain neighbors counted from each mountain, and the farthest two tiles of
+    // one range (every pair of mountains compared).
+    let neighbors: u32 = tiles
+        .iter()
+        .filter(|&&h| mountain(h))
+        .map(|&h| h.all_neighbors().iter().filter_map(|&n| t.wrap_tile(n)).filter(|&n| mountain(n)).count() as u32)
+        .sum();
+    prop_assert_eq!(stats.mountain_adjacencies, neighbors);
+    let peaks: Vec<(usize, usize)> =
+        (0..tiles.len()).filter(|&i| mountain(tiles[i])).map(|i| (i, range_sets.find(i))).collect();
+    let mut longest = 0;
+    for &(a, ra) in &peaks {
+        for &(b, rb) in &peaks {
+            if ra == rb && ranges[&ra] >= 3 {
+                longest = longest.max(t.distance(tiles[a], tiles[b]).unwrap() + 1);
+            }
+        }
+    }
+    prop_assert_eq!(stats.longest_range, longest);
 
     // Biomes.
     for biome in Biome::ALL {

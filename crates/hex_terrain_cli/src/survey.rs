@@ -99,7 +99,7 @@ pub fn run(path: &Path, mut config: MapConfig, options: &Options) -> CliResult<(
     println!("{:<34} {:>10} {:>10} {:>10}", "statistic", "min", "median", "max");
     let percent = |f: fn(&MapStats) -> f64| move |r: &Row| 100.0 * f(&r.stats);
     let count = |f: fn(&MapStats) -> u32| move |r: &Row| f64::from(f(&r.stats));
-    let lines: [(&str, Statistic); 14] = [
+    let lines: [(&str, Statistic); 16] = [
         ("water share (%)", Box::new(percent(MapStats::water_share))),
         ("land tiles", Box::new(count(|s| s.land_tiles))),
         ("continents", Box::new(count(|s| s.continents().count() as u32))),
@@ -108,6 +108,8 @@ pub fn run(path: &Path, mut config: MapConfig, options: &Options) -> CliResult<(
         ("coast (tile edges)", Box::new(count(|s| s.coast_edges))),
         ("mountains (% of land)", Box::new(percent(MapStats::mountain_share))),
         ("mountains in ranges (%)", Box::new(percent(MapStats::range_share))),
+        ("mountain neighbors a mountain", Box::new(|r: &Row| r.stats.mountain_neighbors())),
+        ("longest range (tiles end to end)", Box::new(count(|s| s.longest_range))),
         ("river systems", Box::new(count(|s| s.rivers.systems))),
         ("longest river (tiles)", Box::new(count(|s| s.rivers.longest))),
         ("lakes", Box::new(count(|s| s.lakes))),

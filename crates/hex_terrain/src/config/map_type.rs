@@ -29,6 +29,11 @@ pub struct MapTypeConfig {
     /// Mountains' share of the land tiles, in `[0, MAX_MOUNTAIN_SHARE]`: the highest land
     /// becomes mountains until it holds this share.
     pub mountains: f32,
+    /// Mountains in ranges along the lines where tectonic plates meet (as Civilization V's
+    /// map scripts raise them), rather than on the highest land wherever it lies: the
+    /// mountains' share is the same, their shape is chains (see
+    /// [`MapStats::mountain_neighbors`](crate::MapStats::mountain_neighbors)). Off by default.
+    pub ranges: bool,
 }
 
 /// Largest mountain share of a map type's land.
@@ -36,7 +41,7 @@ pub const MAX_MOUNTAIN_SHARE: f32 = 0.5;
 
 impl Default for MapTypeConfig {
     fn default() -> Self {
-        Self { kind: MapType::Continents, water: WaterLevel::Normal, mountains: 0.08 }
+        Self { kind: MapType::Continents, water: WaterLevel::Normal, mountains: 0.08, ranges: false }
     }
 }
 

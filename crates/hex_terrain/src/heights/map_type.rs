@@ -31,6 +31,7 @@ use crate::config::{MapType, MapTypeConfig, SEA_SHARE_TOLERANCE};
 use crate::geometry::Geometry;
 use crate::hash::{hash, unit};
 
+use super::ranges::Plates;
 use super::targets::{self, MapTypeReport, TargetCheck, TileGraph};
 use super::{HeightField, ShapeBounds};
 
@@ -100,7 +101,14 @@ impl MapTypeField {
         let mut tries = 0;
         'layouts: for layout in 0..MAX_LAYOUTS {
             let blobs = draw_layout(config.kind, seed, layout, &frame, land_share, n);
-            let mask = Mask::new(&blobs, config.kind == MapType::InlandSea, &frame, nu, nv);
+            let mut mask = Mask::new(&blobs, config.kind == MapType::InlandSea, &frame, nu, nv);
+            if config.ranges {
+                // Drawn apart from the blobs, so a layout's land is the same with ranges or not.
+                let mut draw = Draw { seed, layout, count: 1 << 40 };
+                let plates = Plates::draw(Plates::count(n), frame.wraps, frame.aspect, nv, || draw.next());
+                // Fractal has no layout: its ridges rise wherever they run (island arcs at sea).
+                mask.add_ridges(&plates, RIDGE_HEIGHT, config.kind != MapType::Fractal);
+            }
             let values: Vec<f64> = uv.iter().zip(&noise).map(|(&(u, v), z)| mask.at(u, v) + z).collect();
             let mut sorted = values.clone();
             sorted.sort_unstable_by(f64::total_cmp);
@@ -248,6 +256,10 @@ struct Blob {
     radius: f64,
 }
 
+/// How much a ridge of [`Plates`] raises the land (in units of the mask's step from sea to
+/// land), so the highest land, the mountains, lies along the ridges.
+const RIDGE_HEIGHT: f64 = 2.0;
+
 /// How far from the north and south edges (in `v`) the land of a layout fades out, so
 /// continents keep off the poles.
 const POLAR_FADE: f64 = 0.1;
@@ -326,6 +338,25 @@ impl Mask {
             }
         }
         Self { nu, nv, wraps, values }
+    }
+
+    /// Where node `(i, j)` lies.
+    fn node(&self, i: usize, j: usize) -> (f64, f64) {
+        let u = if self.wraps { i as f64 / self.nu as f64 } else { i as f64 / (self.nu - 1) as f64 };
+        (u, j as f64 / (self.nv - 1) as f64)
+    }
+
+    /// Raises the land along the plates' ridges, by `height` at most; `on_land`: in proportion
+    /// to the layout's land (a ridge under its sea stays there).
+    fn add_ridges(&mut self, plates: &Plates, height: f64, on_land: bool) {
+        for j in 0..self.nv {
+            for i in 0..self.nu {
+                let (u, v) = self.node(i, j);
+                let value = &mut self.values[j * self.nu + i];
+                let land = if on_land { value.clamp(0.0, 1.0) } else { 1.0 };
+                *value += height * land * plates.ridge(u, v);
+            }
+        }
     }
 
     #[inline]

@@ -9,6 +9,7 @@
 pub mod fbm;
 pub mod image;
 pub mod map_type;
+pub mod ranges;
 pub mod shape;
 pub mod targets;
 
