@@ -7,7 +7,7 @@ use bevy::prelude::*;
 use bevy_hex_terrain::prelude::*;
 
 use crate::panel::ReportPanel;
-use crate::{DIGITS, Game, PRESETS};
+use crate::{DIGITS, Game, MAP_TYPES, PRESETS};
 
 /// A pointer event that carries the terrain hit it is about.
 pub(crate) trait TerrainHit {
@@ -88,6 +88,12 @@ pub(crate) fn keys(
         let mut config = map.config().clone();
         config.seed = config.seed.wrapping_mul(747_796_405).wrapping_add(2_891_336_453);
         load.write(LoadHexMap(config.into()));
+    }
+    // The map types in turn: Pangaea, Continents, Small Continents, Archipelago, Fractal, Inland
+    // Sea (the report panel, F, says what each met).
+    if keys.just_pressed(KeyCode::KeyM) {
+        load.write(LoadHexMap(MAP_TYPES[game.map_types % MAP_TYPES.len()].into()));
+        game.map_types += 1;
     }
     for (i, key) in DIGITS.into_iter().take(PRESETS.len()).enumerate() {
         if keys.just_pressed(key) {

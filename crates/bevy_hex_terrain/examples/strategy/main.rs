@@ -61,6 +61,16 @@ pub(crate) const PRESETS: [&str; 7] = [
     "maps/strait.map.ron",
 ];
 
+/// The map types' presets (Civilization VI Standard, wrapping), in the order M cycles them.
+pub(crate) const MAP_TYPES: [&str; 6] = [
+    "maps/types/pangaea.map.ron",
+    "maps/types/continents.map.ron",
+    "maps/types/small_continents.map.ron",
+    "maps/types/archipelago.map.ron",
+    "maps/types/fractal.map.ron",
+    "maps/types/inland_sea.map.ron",
+];
+
 /// The digit keys 1-9, in order: presets in the game, tools in the world builder.
 pub(crate) const DIGITS: [KeyCode; 9] = [
     KeyCode::Digit1,
@@ -88,6 +98,8 @@ pub(crate) struct Game {
     pub(crate) auto_pan: bool,
     /// The world builder is open (Tab): clicks paint, the digits pick tools.
     pub(crate) editing: bool,
+    /// How many times M was pressed: the next map type is `MAP_TYPES[map_types % 6]`.
+    pub(crate) map_types: usize,
 }
 
 fn main() -> AppExit {
@@ -216,7 +228,8 @@ fn setup(mut commands: Commands) {
     commands.spawn((
         Text::new(
             "WASD/arrows/edge pan, wheel zoom, Q/E rotate, click unit then tile, Enter end turn, G outlines, \
-             L lens, T tint, V fog, F map report, R new seed, 1-7 presets (6 wraps, 7 edited), P pan east, F3 chunks, \
+             L lens, T tint, V fog, F map report, R new seed, 1-7 presets (6 wraps, 7 edited), M map types, P pan east, \
+             F3 chunks, \
              Tab world builder",
         ),
         TextFont::from_font_size(13.0),

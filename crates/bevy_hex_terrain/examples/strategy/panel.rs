@@ -89,6 +89,10 @@ pub(crate) fn report_panel(map: Res<HexMap>, mut text: Query<&mut Text, With<Rep
     if let Some(stats) = map.stats() {
         report += &format!("\n\nMap statistics\n{stats}");
     }
+    // A map type's targets, as the generator measured them.
+    if let Some(map_type) = map.terrain().map_type() {
+        report += &format!("\n\nMap type {map_type}");
+    }
     for mut t in &mut text {
         t.0.clone_from(&report);
     }

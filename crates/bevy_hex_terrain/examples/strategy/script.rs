@@ -211,7 +211,7 @@ pub fn script(
 ) {
     let Observed { material, style, game, map, states, units } = observed;
     s.frame += 1;
-    for key in [KeyCode::Enter, KeyCode::KeyG, KeyCode::KeyR, KeyCode::KeyL] {
+    for key in [KeyCode::Enter, KeyCode::KeyG, KeyCode::KeyR, KeyCode::KeyL, KeyCode::KeyM] {
         keys.release(key);
     }
     let fail = |msg: String, exit: &mut MessageWriter<AppExit>| {
@@ -399,12 +399,31 @@ pub fn script(
                 return;
             }
             println!("SCRIPT: a press on the minimap sent the camera to {tile:?}");
+            // M: the first map type, Pangaea.
+            s.generation = map.generation();
+            keys.press(KeyCode::KeyM);
             s.step = 7;
         }
-        7 if s.frame.is_multiple_of(5) => {
+        // The Pangaea preset, its targets met, every unit on its land.
+        7 if map.generation() > s.generation && s.frame.is_multiple_of(10) => {
+            let Some(report) = map.terrain().map_type() else {
+                fail("M did not load a map type".into(), &mut exit);
+                return;
+            };
+            if report.kind != MapType::Pangaea || !report.met() {
+                fail(format!("M loaded {report}"), &mut exit);
+                return;
+            }
+            if !units.iter().all(|(_, _, on, ..)| map.move_cost(on.tile).is_some()) {
+                return;
+            }
+            println!("SCRIPT: M loaded the Pangaea map type, every target met, the units on its land");
+            s.step = 8;
+        }
+        8 if s.frame.is_multiple_of(5) => {
             println!(
                 "SCRIPT OK: unit moved {:?} -> {:?} for {} moves{}; turn {}; fog and territory checked; outlines \
-                 off; lens on; regenerated, units on land; the minimap moved the camera",
+                 off; lens on; regenerated, units on land; the minimap moved the camera; M loaded a map type",
                 s.start,
                 s.target,
                 s.expected_cost,
@@ -421,11 +440,11 @@ pub fn script(
                             exit.write(AppExit::Success);
                         },
                     );
-                    s.step = 8;
+                    s.step = 9;
                 }
                 None => {
                     exit.write(AppExit::Success);
-                    s.step = 8;
+                    s.step = 9;
                 }
             }
         }
