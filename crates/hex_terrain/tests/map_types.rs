@@ -260,8 +260,8 @@ fn ranges_run_in_chains() {
     }
 }
 
-/// A map type is compiled once from the config: the same report and tiles on one thread as on
-/// many, and from a config read back from its RON.
+/// A map type is compiled once from the config: the same report, tiles and statistics on one
+/// thread as on many, and from a config read back from its RON.
 #[test]
 fn the_same_map_on_any_thread_and_after_a_round_trip() {
     for kind in MapType::ALL {
@@ -271,10 +271,12 @@ fn the_same_map_on_any_thread_and_after_a_round_trip() {
         let single = rayon::ThreadPoolBuilder::new().num_threads(1).build().unwrap();
         let there = single.install(|| Terrain::new(c.clone()).unwrap());
         let read = Terrain::new(MapConfig::from_ron(&c.to_ron()).unwrap()).unwrap();
+        let stats = hex_terrain::MapStats::measure(&here);
         for other in [&there, &read] {
             assert_eq!(here.map_type(), other.map_type());
             assert_eq!(kinds(&here), kinds(other));
         }
+        assert_eq!(stats, single.install(|| hex_terrain::MapStats::measure(&there)));
     }
 }
 

@@ -57,6 +57,23 @@ fn split(v: f64) -> (i64, f64) {
     (c, clamp01(v - c as f64))
 }
 
+/// `noise`'s `PermutationTable::new(seed)`: `0..=255` shuffled by an `XorShiftRng` seeded with
+/// 1 and the seed's little-endian bytes three times.
+fn permutation(seed: u32) -> [u8; TABLE] {
+    use rand::SeedableRng;
+    use rand::seq::SliceRandom;
+
+    let mut bytes = [0_u8; 16];
+    bytes[0] = 1;
+    for i in 1..4 {
+        bytes[i * 4..i * 4 + 4].copy_from_slice(&seed.to_le_bytes());
+    }
+    let mut rng = rand_xorshift::XorShiftRng::from_seed(bytes);
+    let mut table: [u8; TABLE] = std::array::from_fn(|i| i as u8);
+    table.shuffle(&mut rng);
+    table
+}
+
 /// 2D Perlin noise equal to `noise::Perlin::new(seed)` on `[f64; 2]` points.
 #[derive(Clone)]
 pub struct FastPerlin {
@@ -75,38 +92,21 @@ impl std::fmt::Debug for FastPerlin {
 impl FastPerlin {
     /// Builds the gradient table of `noise::Perlin::new(seed)`.
     ///
-    /// `noise` keeps its permutation table private, so the table is read back from the noise
-    /// itself: just past a lattice corner the noise equals the corner's gradient term alone
-    /// (the fade curve is ~1e-8 there), and the four gradients give four distinct values.
+    /// `noise` keeps its permutation table private, so it is made here the way `noise` makes
+    /// it (`PermutationTable::new`: a `rand_xorshift` generator seeded from the seed's bytes
+    /// shuffling `0..=255` with `rand` 0.8's `shuffle`, the same crates `noise` uses), and a
+    /// corner's gradient is `noise`'s hash of it: `table[table[x] ^ y] & 3`. A test reads the
+    /// gradients back from `noise::Perlin` itself, for many seeds, and compares.
     #[must_use]
     pub fn new(seed: u32) -> Self {
-        let reference = Perlin::new(seed);
-        let (dx, dy) = (1.0 / 1024.0, 1.0 / 512.0);
-        // Gradient terms times the scale: (dx + dy), (-dx + dy), (dx - dy), (-dx - dy).
-        let split = (dx + dy + (dy - dx)) * 0.5 * SCALE_2D;
-        let mut gradients = vec![0_u8; TABLE * TABLE].into_boxed_slice();
-        for x in 0..TABLE {
-            for y in 0..TABLE {
-                let v = reference.get([x as f64 + dx, y as f64 + dy]);
-                gradients[x * TABLE + y] = if v > split {
-                    0
-                } else if v > 0.0 {
-                    1
-                } else if v > -split {
-                    2
-                } else {
-                    3
-                };
-            }
-        }
+        let table = permutation(seed);
+        let gradient = |x: usize, y: usize| table[usize::from(table[x]) ^ y] & 3;
         let mut cells = Box::new([0_u8; TABLE * TABLE]);
         for x in 0..TABLE {
             for y in 0..TABLE {
                 let (x1, y1) = ((x + 1) % TABLE, (y + 1) % TABLE);
-                cells[x * TABLE + y] = gradients[x * TABLE + y]
-                    | gradients[x1 * TABLE + y] << 2
-                    | gradients[x * TABLE + y1] << 4
-                    | gradients[x1 * TABLE + y1] << 6;
+                cells[x * TABLE + y] =
+                    gradient(x, y) | gradient(x1, y) << 2 | gradient(x, y1) << 4 | gradient(x1, y1) << 6;
             }
         }
         Self { cells }
