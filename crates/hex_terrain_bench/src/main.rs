@@ -228,6 +228,52 @@ fn wrap_row(label: &str, x: u32, z: u32, args: &Args) -> f64 {
     times[1] / times[0]
 }
 
+/// Players of a Civilization VI game at each size (Duel to Huge).
+const CIV6_PLAYERS: [u32; 6] = [2, 4, 6, 8, 10, 12];
+
+/// One row of the start-of-game table: the whole world a game gets on a Civ6 size (its preset:
+/// climate, rivers, lakes, relief, wrapping), interleaved in one run: compiling it, its game
+/// setup for the size's players, meshing it whole, and all of it again with the Continents map
+/// type (mountain ranges on).
+fn start_row(name: &str, players: u32, args: &Args) {
+    let path = format!("{}/../../assets/maps/civ6/{}.map.ron", env!("CARGO_MANIFEST_DIR"), name.to_lowercase());
+    let plain = hex_terrain::MapConfig::load(&path).expect("the Civ6 preset");
+    let setup = Some(hex_terrain::SetupConfig { players, ..hex_terrain::SetupConfig::default() });
+    let with_setup = hex_terrain::MapConfig { setup: setup.clone(), ..plain.clone() };
+    let map_type = hex_terrain::MapTypeConfig { ranges: true, ..hex_terrain::MapTypeConfig::default() };
+    let typed = hex_terrain::MapConfig { map_type: Some(map_type), ..with_setup.clone() };
+    let world = Terrain::new(with_setup.clone()).expect("the preset takes its players");
+    let times = time_interleaved(
+        args.runs,
+        &mut [
+            &mut || {
+                black_box(Terrain::new(plain.clone()).expect("valid"));
+            },
+            &mut || {
+                black_box(Terrain::new(with_setup.clone()).expect("valid"));
+            },
+            &mut || {
+                black_box(generate(&world));
+            },
+            &mut || {
+                black_box(generate(&Terrain::new(with_setup.clone()).expect("valid")));
+            },
+            &mut || {
+                black_box(generate(&Terrain::new(typed.clone()).expect("valid")));
+            },
+        ],
+    );
+    let (x, z) = plain.size.bounds().expect("bounded");
+    println!(
+        "| Civ6 {name} | {x}x{z} | {players} | {:.2} | {:.2} | {:.2} | {:.2} | {:.2} |",
+        times[0],
+        times[1] - times[0],
+        times[2],
+        times[3],
+        times[4]
+    );
+}
+
 /// Runs this program again with [`KEEP_MEMORY`] in its environment, unless it is there already
 /// (or `--fresh-pages` was given); returns whether it did, with the child's exit code.
 fn rerun_keeping_memory(args: &Args) -> Option<i32> {
@@ -309,5 +355,17 @@ fn main() {
             TABLE_9.iter().map(|&(name, x, z)| wrap_row(&format!("Civ6 {name}"), x, z, &args)).fold(0.0, f64::max);
         println!();
         println!("wrapping noise sampling costs at most {worst:.2}x the planar sampling (limit 1.5x)");
+        println!();
+        println!(
+            "The whole world a game gets at start, each Civ6 preset (climate, rivers, lakes, relief, wrapping), same run:"
+        );
+        println!();
+        println!(
+            "| map | size | players | compile ms | setup ms | meshes ms | whole world ms | whole world, Continents map type ms |"
+        );
+        println!("|---|---|---|---|---|---|---|---|");
+        for ((name, _, _), players) in TABLE_9.into_iter().zip(CIV6_PLAYERS) {
+            start_row(name, players, &args);
+        }
     }
 }
