@@ -6,8 +6,9 @@
 //! table, so that [`Fbm::sample_batch`] vectorises over several points.
 //!
 //! A batch runs on a [`Kernel`] picked once, at run time, from what the CPU has: the portable
-//! loops, or the AVX2 kernel (module `avx2`) on x86-64. Every kernel does the same IEEE operations in
-//! the same order (no fused multiply-add), so each gives the same bits for the same point.
+//! loops, or the AVX2 or AVX-512 kernel (modules `avx2`, `avx512`) on x86-64. Every kernel does
+//! the same IEEE operations in the same order (no fused multiply-add), so each gives the same
+//! bits for the same point.
 //! The periodic noise of east-west wrapping maps is `fbm/periodic.rs`.
 
 use noise::{NoiseFn, Perlin};
@@ -16,6 +17,8 @@ use crate::config::NoiseConfig;
 
 #[cfg(target_arch = "x86_64")]
 mod avx2;
+#[cfg(target_arch = "x86_64")]
+mod avx512;
 mod periodic;
 
 use periodic::{PeriodicCells, reduce};
@@ -170,16 +173,18 @@ pub enum Kernel {
     Portable,
     /// x86-64 with AVX2: the batch as two vectors of four f64 lanes, interleaved.
     Avx2,
+    /// x86-64 with AVX-512F: the batch as one vector of eight f64 lanes.
+    Avx512,
 }
 
 impl Kernel {
     /// Every kernel, supported here or not.
-    pub const ALL: [Kernel; 2] = [Kernel::Portable, Kernel::Avx2];
+    pub const ALL: [Kernel; 3] = [Kernel::Portable, Kernel::Avx2, Kernel::Avx512];
 
     /// The fastest kernel this CPU runs (checked at run time, once per process).
     #[must_use]
     pub fn detect() -> Self {
-        if Kernel::Avx2.is_supported() { Kernel::Avx2 } else { Kernel::Portable }
+        [Kernel::Avx512, Kernel::Avx2].into_iter().find(|k| k.is_supported()).unwrap_or(Kernel::Portable)
     }
 
     /// Whether this CPU runs the kernel.
@@ -189,8 +194,10 @@ impl Kernel {
             Kernel::Portable => true,
             #[cfg(target_arch = "x86_64")]
             Kernel::Avx2 => avx2::supported(),
+            #[cfg(target_arch = "x86_64")]
+            Kernel::Avx512 => avx512::supported(),
             #[cfg(not(target_arch = "x86_64"))]
-            Kernel::Avx2 => false,
+            Kernel::Avx2 | Kernel::Avx512 => false,
         }
     }
 
@@ -200,6 +207,7 @@ impl Kernel {
         match self {
             Kernel::Portable => "portable",
             Kernel::Avx2 => "avx2",
+            Kernel::Avx512 => "avx512",
         }
     }
 }
@@ -319,6 +327,8 @@ impl Fbm {
         match self.kernel {
             #[cfg(target_arch = "x86_64")]
             Kernel::Avx2 => avx2::sample_batch(self, xs, zs, out),
+            #[cfg(target_arch = "x86_64")]
+            Kernel::Avx512 => avx512::sample_batch(self, xs, zs, out),
             _ => self.sample_lanes::<LANES>(xs, zs, out),
         }
     }

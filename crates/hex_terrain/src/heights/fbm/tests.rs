@@ -185,7 +185,10 @@ fn detection_picks_a_supported_kernel() {
     assert!(Kernel::Portable.is_supported());
     assert_eq!(Fbm::new(1, &NoiseConfig::default()).kernel(), kernel);
     #[cfg(target_arch = "x86_64")]
-    assert_eq!(Kernel::Avx2.is_supported(), std::arch::is_x86_feature_detected!("avx2"));
+    {
+        assert_eq!(Kernel::Avx2.is_supported(), std::arch::is_x86_feature_detected!("avx2"));
+        assert_eq!(Kernel::Avx512.is_supported(), std::arch::is_x86_feature_detected!("avx512f"));
+    }
 }
 
 proptest::proptest! {
