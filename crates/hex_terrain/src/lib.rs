@@ -111,7 +111,7 @@ pub use geometry::Geometry;
 pub use hash::{hash, unit};
 pub use heights::{
     FastPerlin, Fbm, HeightField, HeightImage, ImageError, Kernel, MAX_IMAGE_PIXELS, MAX_LAYOUTS, MAX_PNG_BYTES,
-    MAX_TRIES, MapTypeReport, SEA_STEPS, Target, TargetCheck,
+    MAX_TRIES, MapTypeReport, MapTypeTarget, SEA_STEPS, TargetCheck,
 };
 pub use hexx;
 pub use kind::Thresholds;

@@ -6,7 +6,7 @@
 use hex_terrain::hexx::Hex;
 use hex_terrain::{
     CONTINENT_MIN_SHARE, CONTINENT_MIN_TILES, LoadError, MAX_TRIES, MapConfig, MapSize, MapType, MapTypeConfig,
-    MapTypeReport, NoiseConfig, Target, Terrain, TileKind, WaterLevel,
+    MapTypeReport, MapTypeTarget, NoiseConfig, Terrain, TileKind, WaterLevel,
 };
 use proptest::prelude::*;
 
@@ -132,30 +132,36 @@ fn check_report(t: &Terrain) -> Result<MapTypeReport, TestCaseError> {
     prop_assert!((1..=MAX_TRIES).contains(&report.tries));
     for check in &report.checks {
         let expected = match check.target {
-            Target::SeaShare => r.sea_share,
-            Target::MountainShare => r.mountain_share,
-            Target::Continents => r.continents as f64,
-            Target::SecondContinentShare => r.second_share,
-            Target::LargestLandmassShare => r.largest_share,
-            Target::Landmasses => r.landmasses as f64,
-            Target::NarrowestStrait => r.strait,
-            Target::LargestSeaShare => r.largest_sea_share,
-            Target::LargestSeaEdgeTiles => r.largest_sea_edge_tiles as f64,
+            MapTypeTarget::SeaShare => r.sea_share,
+            MapTypeTarget::MountainShare => r.mountain_share,
+            MapTypeTarget::Continents => r.continents as f64,
+            MapTypeTarget::SecondContinentShare => r.second_share,
+            MapTypeTarget::LargestLandmassShare => r.largest_share,
+            MapTypeTarget::Landmasses => r.landmasses as f64,
+            MapTypeTarget::NarrowestStrait => r.strait,
+            MapTypeTarget::LargestSeaShare => r.largest_sea_share,
+            MapTypeTarget::LargestSeaEdgeTiles => r.largest_sea_edge_tiles as f64,
         };
         prop_assert_eq!(check.measured, expected, "{:?} of {}", check.target, report);
         let line = check.to_string();
         prop_assert!(line.starts_with(check.target.name()));
         prop_assert_eq!(check.met(), !line.contains("MISSED"), "{}", line);
     }
-    let wanted: &[Target] = match report.kind {
-        MapType::Pangaea => &[Target::LargestLandmassShare],
-        MapType::Continents => &[Target::Continents, Target::SecondContinentShare, Target::NarrowestStrait],
-        MapType::SmallContinents => &[Target::Continents, Target::LargestLandmassShare, Target::NarrowestStrait],
-        MapType::Archipelago => &[Target::Landmasses, Target::LargestLandmassShare],
+    let wanted: &[MapTypeTarget] = match report.kind {
+        MapType::Pangaea => &[MapTypeTarget::LargestLandmassShare],
+        MapType::Continents => {
+            &[MapTypeTarget::Continents, MapTypeTarget::SecondContinentShare, MapTypeTarget::NarrowestStrait]
+        }
+        MapType::SmallContinents => {
+            &[MapTypeTarget::Continents, MapTypeTarget::LargestLandmassShare, MapTypeTarget::NarrowestStrait]
+        }
+        MapType::Archipelago => &[MapTypeTarget::Landmasses, MapTypeTarget::LargestLandmassShare],
         MapType::Fractal => &[],
-        MapType::InlandSea => &[Target::LargestSeaShare, Target::LargestSeaEdgeTiles, Target::LargestLandmassShare],
+        MapType::InlandSea => {
+            &[MapTypeTarget::LargestSeaShare, MapTypeTarget::LargestSeaEdgeTiles, MapTypeTarget::LargestLandmassShare]
+        }
     };
-    for target in [Target::SeaShare, Target::MountainShare].iter().chain(wanted) {
+    for target in [MapTypeTarget::SeaShare, MapTypeTarget::MountainShare].iter().chain(wanted) {
         prop_assert!(report.check(*target).is_some(), "{:?} missing from {}", target, report);
     }
     prop_assert_eq!(report.checks.len(), 2 + wanted.len());

@@ -5,7 +5,7 @@
 use std::path::Path;
 use std::time::Instant;
 
-use hex_terrain::{MapConfig, MapSize, MapStats, MapTypeReport, Target, Terrain, WaterLevel};
+use hex_terrain::{MapConfig, MapSize, MapStats, MapTypeReport, MapTypeTarget, Terrain, WaterLevel};
 
 use crate::CliResult;
 
@@ -163,7 +163,7 @@ fn print_map_type(name: &str, reports: &[&MapTypeReport]) {
         within(21, u32::MAX),
     );
     println!("{:<40} {:>10} {:>10} {:>10} {:>8}", "target", "min", "median", "max", "missed");
-    let targets: Vec<Target> = reports[0].checks.iter().map(|c| c.target).collect();
+    let targets: Vec<MapTypeTarget> = reports[0].checks.iter().map(|c| c.target).collect();
     for target in targets {
         let checks: Vec<_> = reports.iter().filter_map(|r| r.check(target)).collect();
         let scale = if target_is_share(target) { 100.0 } else { 1.0 };
@@ -183,8 +183,14 @@ fn print_map_type(name: &str, reports: &[&MapTypeReport]) {
 }
 
 /// Whether a target is a share (printed in percent).
-fn target_is_share(target: Target) -> bool {
-    !matches!(target, Target::Continents | Target::Landmasses | Target::NarrowestStrait | Target::LargestSeaEdgeTiles)
+fn target_is_share(target: MapTypeTarget) -> bool {
+    !matches!(
+        target,
+        MapTypeTarget::Continents
+            | MapTypeTarget::Landmasses
+            | MapTypeTarget::NarrowestStrait
+            | MapTypeTarget::LargestSeaEdgeTiles
+    )
 }
 
 /// How a statistic is read from a seed's map.

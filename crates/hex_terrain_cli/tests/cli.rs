@@ -353,7 +353,7 @@ fn survey_and_stats_report_a_map_types_targets() {
     let met = reports.iter().filter(|r| r.met()).count();
     assert!(out.contains(&format!("map type Small Continents: {met} of 4 maps met every target")), "{out}");
     let mut sea: Vec<f64> =
-        reports.iter().map(|r| r.check(hex_terrain::Target::SeaShare).unwrap().measured * 100.0).collect();
+        reports.iter().map(|r| r.check(hex_terrain::MapTypeTarget::SeaShare).unwrap().measured * 100.0).collect();
     sea.sort_by(f64::total_cmp);
     let row = out.lines().find(|l| l.starts_with("sea share (%)")).unwrap_or_else(|| panic!("{out}"));
     assert!(row.contains(&format!("{:.1}", sea[0])) && row.contains(&format!("{:.1}", sea[3])), "{row} vs {sea:?}");

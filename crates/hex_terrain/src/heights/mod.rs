@@ -17,7 +17,7 @@ pub use fbm::{FastPerlin, Fbm, Kernel};
 pub use image::{HeightImage, ImageError, MAX_IMAGE_PIXELS, MAX_PNG_BYTES, remap_sea_level};
 pub use map_type::{MAX_LAYOUTS, MAX_TRIES, MapTypeField, SEA_STEPS};
 pub use shape::ShapeBounds;
-pub use targets::{MapTypeReport, Target, TargetCheck};
+pub use targets::{MapTypeReport, MapTypeTarget, TargetCheck};
 
 use std::sync::Arc;
 

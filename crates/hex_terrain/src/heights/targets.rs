@@ -21,7 +21,7 @@ pub const CONTINENT_MIN_TILES: u32 = 16;
 /// What a map type promises, one number each (see the table on [`MapType`]).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "bevy_reflect", derive(bevy_reflect::Reflect))]
-pub enum Target {
+pub enum MapTypeTarget {
     /// The sea's share of the map's tiles.
     SeaShare,
     /// The mountains' share of the land tiles.
@@ -43,7 +43,7 @@ pub enum Target {
     LargestSeaEdgeTiles,
 }
 
-impl Target {
+impl MapTypeTarget {
     /// The target's name, as the report prints it.
     #[must_use]
     pub fn name(self) -> &'static str {
@@ -77,7 +77,7 @@ impl Target {
 #[cfg_attr(feature = "bevy_reflect", derive(bevy_reflect::Reflect))]
 pub struct TargetCheck {
     /// Which target.
-    pub target: Target,
+    pub target: MapTypeTarget,
     /// What the map has.
     pub measured: f64,
     /// The smallest value allowed.
@@ -158,7 +158,7 @@ impl MapTypeReport {
 
     /// The check of one target, if the type has it.
     #[must_use]
-    pub fn check(&self, target: Target) -> Option<&TargetCheck> {
+    pub fn check(&self, target: MapTypeTarget) -> Option<&TargetCheck> {
         self.checks.iter().find(|c| c.target == target)
     }
 }
@@ -252,9 +252,14 @@ pub(crate) fn measure(config: &MapTypeConfig, graph: &TileGraph, sea: &[bool], m
     let wanted_mountains = (f64::from(config.mountains) * land_tiles as f64).round();
     let mountains = mountain.iter().zip(&land).filter(|&(&m, &l)| m && l).count();
     let mut checks = vec![
-        check(Target::SeaShare, share(n - land_tiles, n), level - SEA_SHARE_TOLERANCE, level + SEA_SHARE_TOLERANCE),
         check(
-            Target::MountainShare,
+            MapTypeTarget::SeaShare,
+            share(n - land_tiles, n),
+            level - SEA_SHARE_TOLERANCE,
+            level + SEA_SHARE_TOLERANCE,
+        ),
+        check(
+            MapTypeTarget::MountainShare,
             share(mountains, land_tiles),
             share((wanted_mountains - 1.0).max(0.0) as usize, land_tiles),
             share(wanted_mountains as usize + 1, land_tiles),
@@ -275,21 +280,21 @@ pub(crate) fn measure(config: &MapTypeConfig, graph: &TileGraph, sea: &[bool], m
         nearest_between(graph, &label).map_or(f64::INFINITY, f64::from)
     };
     match config.kind {
-        MapType::Pangaea => checks.push(check(Target::LargestLandmassShare, largest, 0.8, 1.0)),
+        MapType::Pangaea => checks.push(check(MapTypeTarget::LargestLandmassShare, largest, 0.8, 1.0)),
         MapType::Continents => {
-            checks.push(check(Target::Continents, continents as f64, 2.0, 3.0));
+            checks.push(check(MapTypeTarget::Continents, continents as f64, 2.0, 3.0));
             let second = share(sorted.get(1).copied().unwrap_or(0) as usize, land_tiles);
-            checks.push(check(Target::SecondContinentShare, second, 0.25, 1.0));
-            checks.push(check(Target::NarrowestStrait, strait(), 2.0, f64::INFINITY));
+            checks.push(check(MapTypeTarget::SecondContinentShare, second, 0.25, 1.0));
+            checks.push(check(MapTypeTarget::NarrowestStrait, strait(), 2.0, f64::INFINITY));
         }
         MapType::SmallContinents => {
-            checks.push(check(Target::Continents, continents as f64, 4.0, 8.0));
-            checks.push(check(Target::LargestLandmassShare, largest, 0.0, 0.4));
-            checks.push(check(Target::NarrowestStrait, strait(), 2.0, f64::INFINITY));
+            checks.push(check(MapTypeTarget::Continents, continents as f64, 4.0, 8.0));
+            checks.push(check(MapTypeTarget::LargestLandmassShare, largest, 0.0, 0.4));
+            checks.push(check(MapTypeTarget::NarrowestStrait, strait(), 2.0, f64::INFINITY));
         }
         MapType::Archipelago => {
-            checks.push(check(Target::Landmasses, masses.len() as f64, 10.0, f64::INFINITY));
-            checks.push(check(Target::LargestLandmassShare, largest, 0.0, 0.15));
+            checks.push(check(MapTypeTarget::Landmasses, masses.len() as f64, 10.0, f64::INFINITY));
+            checks.push(check(MapTypeTarget::LargestLandmassShare, largest, 0.0, 0.15));
         }
         MapType::Fractal => {}
         MapType::InlandSea => {
@@ -301,9 +306,9 @@ pub(crate) fn measure(config: &MapTypeConfig, graph: &TileGraph, sea: &[bool], m
                 .max_by_key(|&(i, &s)| (s, std::cmp::Reverse(i)))
                 .map_or((u32::MAX, 0), |(i, &s)| (i as u32, s));
             let on_edge = (0..n).filter(|&i| graph.edge[i] && sea_of[i] == biggest && biggest != u32::MAX).count();
-            checks.push(check(Target::LargestSeaShare, share(size as usize, sea_tiles), 0.8, 1.0));
-            checks.push(check(Target::LargestSeaEdgeTiles, on_edge as f64, 0.0, 0.0));
-            checks.push(check(Target::LargestLandmassShare, largest, 0.9, 1.0));
+            checks.push(check(MapTypeTarget::LargestSeaShare, share(size as usize, sea_tiles), 0.8, 1.0));
+            checks.push(check(MapTypeTarget::LargestSeaEdgeTiles, on_edge as f64, 0.0, 0.0));
+            checks.push(check(MapTypeTarget::LargestLandmassShare, largest, 0.9, 1.0));
         }
     }
     checks
