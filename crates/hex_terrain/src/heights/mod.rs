@@ -8,6 +8,7 @@
 
 pub mod fbm;
 pub mod image;
+mod layout;
 pub mod map_type;
 pub mod ranges;
 pub mod shape;

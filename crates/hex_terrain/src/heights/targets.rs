@@ -9,6 +9,7 @@
 use std::collections::VecDeque;
 
 use crate::config::{MapType, MapTypeConfig, SEA_SHARE_TOLERANCE};
+use crate::geometry::Geometry;
 
 /// A landmass is a continent when it holds at least this share of the map's land tiles (and
 /// [`CONTINENT_MIN_TILES`]).
@@ -181,6 +182,29 @@ pub(crate) struct TileGraph {
     pub neighbors: Vec<[Option<u32>; 6]>,
     /// Whether a tile lies on the map's edge.
     pub edge: Vec<bool>,
+}
+
+impl TileGraph {
+    /// The tiles of a bounded map by row (none for an unbounded world).
+    pub(crate) fn of(geometry: &Geometry) -> Self {
+        let Some(rect) = geometry.bounds() else { return Self { neighbors: Vec::new(), edge: Vec::new() } };
+        let width = rect.max[0] - rect.min[0];
+        let index = |[col, row]: [i32; 2]| ((row - rect.min[1]) * width + (col - rect.min[0])) as u32;
+        let wraps = geometry.wrap().is_some();
+        let mut neighbors = Vec::with_capacity(rect.len());
+        let mut edge = Vec::with_capacity(rect.len());
+        for tile in geometry.tiles() {
+            let [col, row] = geometry.offset_of(tile);
+            let around = geometry.wrapped_neighbors(tile);
+            neighbors.push(around.map(|nb| geometry.contains(nb).then(|| index(geometry.offset_of(nb)))));
+            edge.push(
+                row == rect.min[1]
+                    || row == rect.max[1] - 1
+                    || (!wraps && (col == rect.min[0] || col == rect.max[0] - 1)),
+            );
+        }
+        TileGraph { neighbors, edge }
+    }
 }
 
 /// Connected components of the tiles `member` keeps: each tile's component (`u32::MAX` for
