@@ -4,7 +4,7 @@
 //!
 //! The rules are on [`MapStats`].
 
-use std::collections::{HashMap, VecDeque};
+use std::collections::HashMap;
 
 use hexx::Hex;
 
@@ -12,6 +12,7 @@ use crate::terrain::Terrain;
 use crate::vocab::{Biome, TileKind};
 
 pub use crate::heights::targets::{CONTINENT_MIN_SHARE, CONTINENT_MIN_TILES};
+use crate::heights::targets::{components, nearest_between};
 
 /// Whether a landmass is a continent or an island (the rule is on [`MapStats`]).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -121,8 +122,11 @@ impl MapStats {
         };
         let tiles: Vec<Hex> = terrain.tiles().collect();
         let infos: Vec<_> = tiles.iter().map(|&t| terrain.tile_info(t).expect("a tile of the map")).collect();
-        let neighbors: Vec<[Option<usize>; 6]> =
-            tiles.iter().map(|&t| terrain.neighbors(t).expect("a tile of the map").map(|n| n.map(index))).collect();
+        let neighbors: Vec<[Option<u32>; 6]> = tiles
+            .iter()
+            .map(|&t| terrain.neighbors(t).expect("a tile of the map").map(|n| n.map(|n| index(n) as u32)))
+            .collect();
+        let around = |i: usize| neighbors[i].iter().flatten().map(|&n| n as usize);
         let water = |i: usize| infos[i].kind == TileKind::Sea || infos[i].lake.is_some();
         let sea = |i: usize| infos[i].kind == TileKind::Sea;
         let mountain = |i: usize| !water(i) && infos[i].kind == TileKind::Mountain;
@@ -131,17 +135,15 @@ impl MapStats {
         let sea_tiles = (0..tiles.len()).filter(|&i| sea(i)).count() as u32;
         let lake_tiles = (0..tiles.len()).filter(|&i| !sea(i) && infos[i].lake.is_some()).count() as u32;
         let mountain_tiles = (0..tiles.len()).filter(|&i| mountain(i)).count() as u32;
-        let coast = |i: usize| neighbors[i].iter().flatten().filter(|&&n| sea(n)).count() as u32;
+        let coast = |i: usize| around(i).filter(|&n| sea(n)).count() as u32;
 
         // Landmasses and mountain groups: flood fills in row order, so the first tile visited is
         // a component's first tile.
-        let land = components(tiles.len(), &neighbors, |i| !water(i));
-        let ranges = components(tiles.len(), &neighbors, mountain);
+        let land = components(&neighbors, |i| !water(i));
+        let ranges = components(&neighbors, mountain);
         let range_tiles = ranges.sizes.iter().filter(|&&s| s >= 3).sum::<u32>();
-        let mountain_adjacencies = (0..tiles.len())
-            .filter(|&i| mountain(i))
-            .map(|i| neighbors[i].iter().flatten().filter(|&&n| mountain(n)).count() as u32)
-            .sum();
+        let mountain_adjacencies =
+            (0..tiles.len()).filter(|&i| mountain(i)).map(|i| around(i).filter(|&n| mountain(n)).count() as u32).sum();
         // Each range's length: the largest distance between two of its tiles.
         let mut members: Vec<Vec<usize>> = vec![Vec::new(); ranges.sizes.len()];
         for i in (0..tiles.len()).filter(|&i| mountain(i)) {
@@ -185,23 +187,16 @@ impl MapStats {
             }
         }
 
-        // The narrowest strait: between the coastal tiles of two continents (a shortest distance
-        // between two landmasses is between tiles on their shores).
-        let continental = |i: usize| {
-            !water(i)
-                && landmasses[land.of[i] as usize].kind == LandmassKind::Continent
-                && neighbors[i].iter().any(|n| n.is_none_or(water))
-        };
-        let shores: Vec<usize> = (0..tiles.len()).filter(|&i| continental(i)).collect();
-        let mut narrowest: Option<u32> = None;
-        for (k, &a) in shores.iter().enumerate() {
-            for &b in &shores[k + 1..] {
-                if land.of[a] != land.of[b] {
-                    let d = terrain.distance(tiles[a], tiles[b]).expect("tiles of the map");
-                    narrowest = Some(narrowest.map_or(d, |n| n.min(d)));
-                }
-            }
-        }
+        // The narrowest strait: a search from every continent's tiles at once.
+        let continent: Vec<u32> = land
+            .of
+            .iter()
+            .map(|&m| match landmasses.get(m as usize) {
+                Some(mass) if mass.kind == LandmassKind::Continent => m,
+                _ => u32::MAX,
+            })
+            .collect();
+        let narrowest = nearest_between(&neighbors, &continent);
 
         let mut order: Vec<usize> = (0..landmasses.len()).collect();
         order.sort_by_key(|&m| {
@@ -230,7 +225,7 @@ impl MapStats {
             longest_range,
             coast_edges: (0..tiles.len()).filter(|&i| !water(i)).map(coast).sum(),
             landmasses,
-            narrowest_strait: narrowest.map(|d| d - 1),
+            narrowest_strait: narrowest,
             biomes,
             rivers: rivers(terrain),
             lakes: terrain.hydrology().map_or(0, |h| h.lake_count() as u32),
@@ -284,42 +279,6 @@ impl MapStats {
     pub fn range_share(&self) -> f64 {
         f64::from(self.range_tiles) / f64::from(self.mountain_tiles.max(1))
     }
-}
-
-/// Connected components of the tiles `member` keeps.
-struct Components {
-    /// Each tile's component (`u32::MAX` for a tile not kept).
-    of: Vec<u32>,
-    /// Each component's first tile (in row order).
-    first: Vec<usize>,
-    /// Each component's size.
-    sizes: Vec<u32>,
-}
-
-fn components(count: usize, neighbors: &[[Option<usize>; 6]], member: impl Fn(usize) -> bool) -> Components {
-    let mut out = Components { of: vec![u32::MAX; count], first: Vec::new(), sizes: Vec::new() };
-    let mut queue = VecDeque::new();
-    for start in 0..count {
-        if out.of[start] != u32::MAX || !member(start) {
-            continue;
-        }
-        let id = out.first.len() as u32;
-        out.first.push(start);
-        out.of[start] = id;
-        let mut size = 0;
-        queue.push_back(start);
-        while let Some(i) = queue.pop_front() {
-            size += 1;
-            for n in neighbors[i].iter().flatten().copied() {
-                if out.of[n] == u32::MAX && member(n) {
-                    out.of[n] = id;
-                    queue.push_back(n);
-                }
-            }
-        }
-        out.sizes.push(size);
-    }
-    out
 }
 
 /// The river systems, river tiles and the longest river.

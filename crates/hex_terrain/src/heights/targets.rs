@@ -207,38 +207,50 @@ impl TileGraph {
     }
 }
 
-/// Connected components of the tiles `member` keeps: each tile's component (`u32::MAX` for
-/// one not kept) and each component's size.
-fn components(graph: &TileGraph, member: &[bool]) -> (Vec<u32>, Vec<u32>) {
-    let n = member.len();
-    let (mut of, mut sizes) = (vec![u32::MAX; n], Vec::new());
+/// Connected components of the tiles a [`components`] search kept.
+pub(crate) struct Components {
+    /// Each tile's component (`u32::MAX` for a tile not kept).
+    pub of: Vec<u32>,
+    /// Each component's first tile (in index order: row by row on a map).
+    pub first: Vec<usize>,
+    /// Each component's size.
+    pub sizes: Vec<u32>,
+}
+
+/// The connected components of the tiles `member` keeps, over `neighbors` (each tile's
+/// neighbors by index), found in index order: a component's first tile is its lowest index.
+pub(crate) fn components(neighbors: &[[Option<u32>; 6]], member: impl Fn(usize) -> bool) -> Components {
+    let n = neighbors.len();
+    let mut out = Components { of: vec![u32::MAX; n], first: Vec::new(), sizes: Vec::new() };
     let mut queue = VecDeque::new();
     for start in 0..n {
-        if of[start] != u32::MAX || !member[start] {
+        if out.of[start] != u32::MAX || !member(start) {
             continue;
         }
-        let id = sizes.len() as u32;
-        of[start] = id;
+        let id = out.sizes.len() as u32;
+        out.of[start] = id;
+        out.first.push(start);
         queue.push_back(start);
         let mut size = 0;
         while let Some(i) = queue.pop_front() {
             size += 1;
-            for nb in graph.neighbors[i].iter().flatten().map(|&nb| nb as usize) {
-                if of[nb] == u32::MAX && member[nb] {
-                    of[nb] = id;
+            for nb in neighbors[i].iter().flatten().map(|&nb| nb as usize) {
+                if out.of[nb] == u32::MAX && member(nb) {
+                    out.of[nb] = id;
                     queue.push_back(nb);
                 }
             }
         }
-        sizes.push(size);
+        out.sizes.push(size);
     }
-    (of, sizes)
+    out
 }
 
-/// The fewest tiles between two different labelled groups: a breadth-first search from every
+/// The fewest tiles between two different labelled groups (`label[i]`, `u32::MAX` for a tile in
+/// none), over `neighbors`: a breadth-first search from every
 /// labelled tile at once, each tile taking the label that reaches it first; two groups are
 /// nearest across an edge between tiles of different labels. `None` with fewer than two labels.
-fn nearest_between(graph: &TileGraph, label: &[u32]) -> Option<u32> {
+pub(crate) fn nearest_between(neighbors: &[[Option<u32>; 6]], label: &[u32]) -> Option<u32> {
     let n = label.len();
     let (mut dist, mut owner) = (vec![u32::MAX; n], vec![u32::MAX; n]);
     let mut queue = VecDeque::new();
@@ -250,7 +262,7 @@ fn nearest_between(graph: &TileGraph, label: &[u32]) -> Option<u32> {
     }
     let mut best: Option<u32> = None;
     while let Some(i) = queue.pop_front() {
-        for nb in graph.neighbors[i].iter().flatten().map(|&nb| nb as usize) {
+        for nb in neighbors[i].iter().flatten().map(|&nb| nb as usize) {
             if owner[nb] == u32::MAX {
                 (dist[nb], owner[nb]) = (dist[i] + 1, owner[i]);
                 queue.push_back(nb);
@@ -290,7 +302,7 @@ pub(crate) fn measure(config: &MapTypeConfig, graph: &TileGraph, sea: &[bool], m
         ),
     ];
 
-    let (mass_of, masses) = components(graph, &land);
+    let Components { of: mass_of, sizes: masses, .. } = components(&graph.neighbors, |i| land[i]);
     let mut sorted = masses.clone();
     sorted.sort_unstable_by(|a, b| b.cmp(a));
     let largest = share(sorted.first().copied().unwrap_or(0) as usize, land_tiles);
@@ -301,7 +313,7 @@ pub(crate) fn measure(config: &MapTypeConfig, graph: &TileGraph, sea: &[bool], m
             .iter()
             .map(|&m| if m != u32::MAX && continent(masses[m as usize]) { m } else { u32::MAX })
             .collect();
-        nearest_between(graph, &label).map_or(f64::INFINITY, f64::from)
+        nearest_between(&graph.neighbors, &label).map_or(f64::INFINITY, f64::from)
     };
     match config.kind {
         MapType::Pangaea => checks.push(check(MapTypeTarget::LargestLandmassShare, largest, 0.8, 1.0)),
@@ -322,7 +334,7 @@ pub(crate) fn measure(config: &MapTypeConfig, graph: &TileGraph, sea: &[bool], m
         }
         MapType::Fractal => {}
         MapType::InlandSea => {
-            let (sea_of, seas) = components(graph, sea);
+            let Components { of: sea_of, sizes: seas, .. } = components(&graph.neighbors, |i| sea[i]);
             let sea_tiles = n - land_tiles;
             let (biggest, size) = seas
                 .iter()
