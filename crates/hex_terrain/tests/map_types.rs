@@ -10,6 +10,10 @@ use hex_terrain::{
 };
 use proptest::prelude::*;
 
+#[path = "common/sets.rs"]
+mod sets;
+use sets::Sets;
+
 /// Civilization VI's map sizes (columns, rows): Duel to Huge.
 const CIV6_SIZES: [(&str, u32, u32); 6] =
     [("Duel", 44, 26), ("Tiny", 60, 38), ("Small", 74, 46), ("Standard", 84, 54), ("Large", 96, 60), ("Huge", 106, 66)];
@@ -22,30 +26,6 @@ fn config(kind: MapType, water: WaterLevel, (x, z): (u32, u32), wrap: bool, seed
         noise: NoiseConfig { octaves: 8, persistence: 0.5, lacunarity: 2.0, scale },
         map_type: Some(MapTypeConfig { kind, water, ..MapTypeConfig::default() }),
         ..MapConfig::default()
-    }
-}
-
-/// Union-find over tile indices.
-struct Sets(Vec<usize>);
-
-impl Sets {
-    fn find(&mut self, i: usize) -> usize {
-        let mut root = i;
-        while self.0[root] != root {
-            root = self.0[root];
-        }
-        let mut i = i;
-        while self.0[i] != root {
-            let next = self.0[i];
-            self.0[i] = root;
-            i = next;
-        }
-        root
-    }
-
-    fn join(&mut self, a: usize, b: usize) {
-        let (a, b) = (self.find(a), self.find(b));
-        self.0[a.max(b)] = a.min(b);
     }
 }
 
@@ -71,7 +51,7 @@ fn recount(t: &Terrain) -> Recount {
     let land = sea.iter().filter(|&&s| !s).count();
     let mountains = kinds.iter().filter(|&&k| k == TileKind::Mountain).count();
     let groups = |member: &dyn Fn(usize) -> bool| {
-        let mut sets = Sets((0..n).collect());
+        let mut sets = Sets::new(n);
         for (i, &h) in tiles.iter().enumerate() {
             for nb in t.neighbors(h).unwrap().into_iter().flatten() {
                 let j = at(nb);

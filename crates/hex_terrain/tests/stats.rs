@@ -13,6 +13,9 @@ use hex_terrain::{
 use proptest::prelude::*;
 
 mod common;
+#[path = "common/sets.rs"]
+mod sets;
+use sets::Sets;
 
 prop_compose! {
     fn config()(
@@ -51,30 +54,11 @@ prop_compose! {
     }
 }
 
-/// Union-find over tile indices.
-struct Sets(Vec<usize>);
-
-impl Sets {
-    fn find(&mut self, i: usize) -> usize {
-        let mut root = i;
-        while self.0[root] != root {
-            root = self.0[root];
-        }
-        self.0[i] = root;
-        root
-    }
-
-    fn join(&mut self, a: usize, b: usize) {
-        let (a, b) = (self.find(a), self.find(b));
-        self.0[a.max(b)] = a.min(b);
-    }
-}
-
 /// The sizes of the groups of `member` tiles joined across neighbors (a tile's neighbors from
 /// hexx, brought onto the map with `wrap_tile`), by each tile's group root.
 fn groups(t: &Terrain, tiles: &[Hex], member: impl Fn(Hex) -> bool) -> (Sets, HashMap<usize, u32>) {
     let index: HashMap<Hex, usize> = tiles.iter().enumerate().map(|(i, &h)| (h, i)).collect();
-    let mut sets = Sets((0..tiles.len()).collect());
+    let mut sets = Sets::new(tiles.len());
     for (i, &tile) in tiles.iter().enumerate() {
         if !member(tile) {
             continue;
