@@ -166,7 +166,7 @@ fn print_map_type(name: &str, reports: &[&MapTypeReport]) {
     let targets: Vec<MapTypeTarget> = reports[0].checks.iter().map(|c| c.target).collect();
     for target in targets {
         let checks: Vec<_> = reports.iter().filter_map(|r| r.check(target)).collect();
-        let scale = if target_is_share(target) { 100.0 } else { 1.0 };
+        let scale = if target.is_share() { 100.0 } else { 1.0 };
         let mut values: Vec<f64> = checks.iter().map(|c| c.measured * scale).collect();
         values.sort_by(f64::total_cmp);
         let missed = checks.iter().filter(|c| !c.met()).count();
@@ -180,17 +180,6 @@ fn print_map_type(name: &str, reports: &[&MapTypeReport]) {
             shown(values[values.len() - 1]),
         );
     }
-}
-
-/// Whether a target is a share (printed in percent).
-fn target_is_share(target: MapTypeTarget) -> bool {
-    !matches!(
-        target,
-        MapTypeTarget::Continents
-            | MapTypeTarget::Landmasses
-            | MapTypeTarget::NarrowestStrait
-            | MapTypeTarget::LargestSeaEdgeTiles
-    )
 }
 
 /// How a statistic is read from a seed's map.

@@ -61,7 +61,10 @@ impl MapTypeTarget {
         }
     }
 
-    fn is_share(self) -> bool {
+    /// Whether it is a share (of the map, the land or the sea; printed in percent) rather than a
+    /// count.
+    #[must_use]
+    pub fn is_share(self) -> bool {
         matches!(
             self,
             Self::SeaShare
