@@ -119,14 +119,12 @@ pub(crate) fn follow_map(
     mut game: ResMut<Game>,
     mut states: ResMut<TileStates>,
     mut units: Query<(Entity, &Unit, &mut OnTile)>,
-    mut rigs: Query<&mut Rig>,
 ) {
     if !map.is_changed() || !game.spawned {
         return;
     }
     let another = std::mem::replace(&mut game.map_id, map.map_id()) != map.map_id();
     let mut taken = Vec::new();
-    let mut looked = false;
     for (entity, unit, mut on) in &mut units {
         let tile = if map.move_cost(on.tile).is_some() { Some(on.tile) } else { land_near(&map, on.tile, &taken) };
         if let Some(tile) = tile {
@@ -135,15 +133,6 @@ pub(crate) fn follow_map(
             if another {
                 commands.entity(entity).remove::<TileWalk>();
                 vision::claim(&map, &mut states, unit.player, tile, vision::HOME_RADIUS - 1);
-                // On another map the camera goes to your first unit (it may have moved ashore).
-                if unit.player == vision::HUMAN && !looked {
-                    looked = true;
-                    if let Some(center) = map.tile_center(tile) {
-                        for mut rig in &mut rigs {
-                            rig.target_focus = Vec3::new(center.x, 0.0, center.z);
-                        }
-                    }
-                }
             }
         }
     }
