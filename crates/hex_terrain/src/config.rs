@@ -14,7 +14,9 @@ mod setup;
 mod sight;
 mod validate;
 
-pub use climate::{BiomeRule, ClimateConfig, MAX_BIOME_RULES, MAX_WATER_TILES, RiverConfig};
+pub use climate::{
+    BiomeRule, ClimateConfig, MAX_BIOME_RULES, MAX_WATER_TILES, MAX_WIND_BANDS, RiverConfig, WindConfig, WindPattern,
+};
 
 pub use edits::{MAX_EDITS, PropDensity, RiverEdit, TileEdit};
 pub use file::MapFile;

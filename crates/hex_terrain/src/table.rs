@@ -6,6 +6,7 @@
 use hexx::Hex;
 
 use crate::chunk::TileRect;
+use crate::climate::winds::{self, RainInput};
 use crate::climate::{Climate, ClimateModel, TileSample};
 use crate::config::{RiverConfig, RiverEdit};
 use crate::geometry::Geometry;
@@ -21,6 +22,8 @@ pub struct TileTable {
     raw: Vec<f32>,
     kinds: Vec<TileKind>,
     biomes: Vec<Biome>,
+    /// Each tile's climate; empty on a map without one.
+    climates: Vec<Climate>,
     hydrology: Option<Hydrology>,
 }
 
@@ -94,17 +97,28 @@ impl TileTable {
         let centers: Vec<Hex> = tiles.iter().map(|&t| geometry.lattice().tile_center(t)).collect();
         let raw: Vec<f32> = fields.source.iter().zip(&centers).map(|(&n, &p)| heights.shaped(geometry, n, p)).collect();
         let kinds: Vec<TileKind> = raw.iter().map(|&h| thresholds.classify(h)).collect();
-        let mut table = Self { rect, raw, kinds, biomes: Vec::new(), hydrology: None };
+        let mut table = Self { rect, raw, kinds, biomes: Vec::new(), climates: Vec::new(), hydrology: None };
         let samples: Vec<TileSample> = tiles.iter().enumerate().map(|(i, &t)| table.sample(geometry, i, t)).collect();
-        // Each land tile's climate, once: rain and biome both read it.
-        let climates: Vec<Option<Climate>> = tiles
+        // Each tile's climate, once: rain and biome both read it.
+        let winds = climate.winds().map(|winds| {
+            let input = RainInput { rect, raw: &table.raw, kinds: &table.kinds, sea: thresholds.sea };
+            winds::rainfall(winds, geometry, &input, |t| table.index(geometry, t))
+        });
+        table.climates = tiles
             .iter()
             .zip(&samples)
             .zip(&fields.climate)
-            .map(|((&t, s), noise)| match noise {
-                Some(noise) if s.kind != TileKind::Sea => Some(climate.climate_with(geometry, t, s, *noise)),
-                _ => None,
+            .enumerate()
+            .filter_map(|(i, ((&t, s), noise))| {
+                let noise = (*noise)?;
+                Some(match &winds {
+                    Some(rain) => climate.climate_with_rain(geometry, t, s, noise, rain[i]),
+                    None => climate.climate_with(geometry, t, s, noise),
+                })
             })
+            .collect();
+        let climates: Vec<Option<Climate>> = (0..tiles.len())
+            .map(|i| table.climates.get(i).copied().filter(|_| samples[i].kind != TileKind::Sea))
             .collect();
         if rivers.enabled {
             let sea = thresholds.sea;
@@ -174,6 +188,12 @@ impl TileTable {
     #[must_use]
     pub fn biome(&self, geometry: &Geometry, tile: Hex) -> Option<Biome> {
         self.index(geometry, tile).map(|i| self.biomes[i])
+    }
+
+    /// The climate of an in-map tile, `None` on a map without one.
+    #[must_use]
+    pub fn climate(&self, geometry: &Geometry, tile: Hex) -> Option<Climate> {
+        self.climates.get(self.index(geometry, tile)?).copied()
     }
 
     /// The map's water network: `None` on a map without rivers.

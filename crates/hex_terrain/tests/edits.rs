@@ -32,6 +32,7 @@ prop_compose! {
         relief in any::<bool>(),
         unity in any::<bool>(),
         wrap in any::<bool>(),
+        winds in any::<bool>(),
     ) -> MapConfig {
         let mut c = MapConfig {
             seed,
@@ -44,6 +45,9 @@ prop_compose! {
         c.terrain.inner_rings = rings;
         c.layout.orientation = if pointy { Orientation::Pointy } else { Orientation::Flat };
         c.climate.enabled = climate;
+        if climate && winds && bounded.is_some() {
+            c.climate.winds = Some(hex_terrain::WindConfig::default());
+        }
         c.rivers.enabled = rivers && bounded.is_some();
         c.rivers.threshold = 3.0;
         c.manipulation.hex_unity = unity;

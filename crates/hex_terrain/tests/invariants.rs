@@ -7,7 +7,7 @@ use hex_terrain::hexx::Hex;
 use hex_terrain::{
     ChunkCoord, ChunkMesh, Detail, GenerateOptions, ManipulationConfig, MapConfig, MapSize, MapType, MapTypeConfig,
     NoiseConfig, Orientation, PullMode, ReliefConfig, RiverConfig, Shape, Terrain, TerrainConfig, Threads, TileKind,
-    TileRect, WaterLevel,
+    TileRect, WaterLevel, WindConfig, WindPattern,
 };
 use proptest::prelude::*;
 
@@ -72,6 +72,7 @@ prop_compose! {
         rivers in prop::option::of((1.0f32..12.0, 0.0f32..0.05, 0.0f32..=1.0, 0.5f32..=4.0)),
         relief in prop::option::of((0.0f32..=1.0, 0.0f32..=1.0, 0.0f32..=1.0)),
         map_type in prop::option::weighted(0.25, (0usize..6, 0usize..3, 0.0f32..0.3, any::<bool>())),
+        winds in prop::option::weighted(0.3, (prop::collection::vec(0.0f32..360.0, 1..4), any::<bool>(), 0.0f32..=1.0)),
     ) -> MapConfig {
         let mut c = MapConfig {
             seed,
@@ -88,6 +89,10 @@ prop_compose! {
             c.shape = Shape::None;
         }
         c.climate.enabled = climate;
+        if let (true, Some((bands, one, shadow)), MapSize::Bounded { .. }) = (climate, winds, c.size) {
+            let pattern = if one { WindPattern::One(bands[0]) } else { WindPattern::Bands(bands) };
+            c.climate.winds = Some(WindConfig { pattern, rain_shadow: shadow, ..WindConfig::default() });
+        }
         if let (Some((threshold, min_lake_depth, carve, width)), MapSize::Bounded { .. }) = (rivers, c.size) {
             c.rivers = RiverConfig { enabled: true, threshold, lakes: true, min_lake_depth, carve, width };
         }

@@ -38,6 +38,9 @@ pub(crate) struct ClimateFields {
     wrapped_temperature: Option<Fbm>,
 }
 
+/// Moisture per unit of rain from the winds (rain about 1 on a windward coast).
+const RAIN_TO_MOISTURE: f32 = 0.9;
+
 /// Where the temperature field is read in the moisture fBm's space, away from moisture.
 const TEMPERATURE_SHIFT: f64 = 7.0e4;
 
@@ -137,6 +140,12 @@ impl ClimateModel {
         Self { fields, config: config.climate.clone(), thresholds }
     }
 
+    /// The climate's winds, when it has them.
+    #[must_use]
+    pub fn winds(&self) -> Option<&crate::config::WindConfig> {
+        self.fields.as_ref().and(self.config.winds.as_ref())
+    }
+
     /// Whether the map has a climate.
     #[must_use]
     pub fn is_enabled(&self) -> bool {
@@ -164,24 +173,51 @@ impl ClimateModel {
     /// Temperature and moisture of a tile from its sample and its noise ([`fields_at`](Self::fields_at)).
     #[must_use]
     pub fn climate_with(&self, geometry: &Geometry, tile: Hex, s: &TileSample, [field, wet]: [f64; 2]) -> Climate {
+        let mut moisture = stretch(wet, 2.4);
+        if s.next_to_sea {
+            moisture = (moisture + self.config.coast_moisture).min(1.0);
+        }
+        Climate { temperature: self.temperature(geometry, tile, s, field), moisture }
+    }
+
+    /// Temperature and moisture of a tile on a map with winds, from its sample, its noise and
+    /// the rain the winds bring it ([`winds::rainfall`]): the moisture is the rain's, moved up
+    /// or down by the moisture fBm (by up to half of `variety`) for local variety.
+    pub(crate) fn climate_with_rain(
+        &self,
+        geometry: &Geometry,
+        tile: Hex,
+        s: &TileSample,
+        [field, wet]: [f64; 2],
+        rain: f32,
+    ) -> Climate {
+        let variety = self.config.winds.as_ref().map_or(0.0, |w| w.variety);
+        let moisture = rain * RAIN_TO_MOISTURE + variety * (stretch(wet, 2.4) - 0.5);
+        Climate { temperature: self.temperature(geometry, tile, s, field), moisture: moisture.clamp(0.0, 1.0) }
+    }
+
+    /// A tile's temperature: from its latitude on a bounded map (bent by the temperature
+    /// field; with winds, by the sun's height), from the field on an unbounded one, cooler the
+    /// higher it lies.
+    fn temperature(&self, geometry: &Geometry, tile: Hex, s: &TileSample, field: f64) -> f32 {
         let c = &self.config;
         let base = match geometry.bounds() {
             Some(bounds) => {
-                let rows = (bounds.max[1] - bounds.min[1]).max(1) as f32;
-                let row = geometry.offset_of(tile)[1] as f32;
-                let latitude = ((row + 0.5) / rows - 0.5).abs() * 2.0;
-                1.0 - latitude + c.temperature_jitter * (2.0 * field as f32 - 1.0)
+                let (latitude, _) = winds::latitude(bounds, geometry.offset_of(tile)[1]);
+                // With winds, halfway to the sun's height (the cosine of the latitude): the
+                // tropics stay hot out to the horse latitudes, where the deserts lie, and the
+                // middle latitudes cool faster.
+                let sun = match c.winds {
+                    Some(_) => 0.5 * ((latitude * std::f32::consts::FRAC_PI_2).cos() + 1.0 - latitude),
+                    None => 1.0 - latitude,
+                };
+                sun + c.temperature_jitter * (2.0 * field as f32 - 1.0)
             }
             None => stretch(field, 3.0),
         };
         let sea = self.thresholds.sea;
         let above = ((s.raw - sea) / (1.0 - sea).max(f32::EPSILON)).max(0.0);
-        let temperature = (base - c.lapse_rate * above).clamp(0.0, 1.0);
-        let mut moisture = stretch(wet, 2.4);
-        if s.next_to_sea {
-            moisture = (moisture + c.coast_moisture).min(1.0);
-        }
-        Climate { temperature, moisture }
+        (base - c.lapse_rate * above).clamp(0.0, 1.0)
     }
 
     /// The climate a tile's biome needs: `None` without a climate, and for sea and lake tiles.
@@ -235,3 +271,4 @@ impl ClimateModel {
 
 #[cfg(test)]
 mod tests;
+pub(crate) mod winds;

@@ -396,12 +396,19 @@ impl Terrain {
     }
 
     /// Temperature and moisture of a tile, `None` when the map has no climate or the tile is
-    /// past the world.
+    /// past the world. A tile of a map with a tile table (a bounded map with climate or rivers)
+    /// reads the table's, where the winds' rain is; any other tile, the climate's fields at its
+    /// center.
     #[must_use]
     pub fn tile_climate(&self, tile: Hex) -> Option<Climate> {
         let climate = self.climate();
-        (climate.is_enabled() && self.in_world(tile))
-            .then(|| climate.climate_of(self.geometry(), self.heights(), tile, &self.pipeline.tile_sample(tile)))
+        if !(climate.is_enabled() && self.in_world(tile)) {
+            return None;
+        }
+        if let Some(found) = self.pipeline.table().and_then(|table| table.climate(self.geometry(), tile)) {
+            return Some(found);
+        }
+        Some(climate.climate_of(self.geometry(), self.heights(), tile, &self.pipeline.tile_sample(tile)))
     }
 
     /// A tile's biome; `None` past the world. The one rule, which [`TileInfo::biome`], chunk

@@ -1,0 +1,227 @@
+//! Prevailing winds, a step of the per-map tile table on maps whose climate has `winds`: the
+//! rain each tile gets from the air that blows over it.
+//!
+//! Every tile has the wind of its latitude band ([`WindPattern`]). Its air comes from its
+//! upwind neighbors (the neighbors lying against its wind whose own wind blows toward it),
+//! weighted by how squarely they lie upwind; air from past a map's edge is sea air. Over the sea
+//! the air picks up humidity; over land a share of its humidity rains out (`raininess`), the air
+//! dries a little (`drying`), and where the land is higher than the air's humidity allows (it
+//! holds 1 at sea level, falling with the square of the height to 0 at the top of the relief,
+//! so a quarter halfway up) a share of the excess rains out on the
+//! slope (`rain_shadow`), so the land behind a range gets drier air. The rain is then raised
+//! where the bands' winds meet and lowered where they part (`uplift`).
+//!
+//! Tiles are taken in order along their own wind (each band's tiles after those upwind of them),
+//! twice over: the second lap carries the air that crossed a wrapping map's seam, or a band's
+//! edge, in the first. A fixed order and a fixed number of laps over the whole map's tiles make
+//! the rain a pure function of the tiles' heights and kinds: every chunk, thread and order reads
+//! the same table.
+
+use hexx::Hex;
+
+use crate::chunk::TileRect;
+use crate::config::{WindConfig, WindPattern};
+use crate::geometry::Geometry;
+use crate::vocab::TileKind;
+
+/// Laps over the map: the first carries air along each band, the second across the seam of a
+/// wrapping map and the bands' edges.
+const LAPS: usize = 2;
+
+/// A neighbor lies upwind when the cosine between the wind and the step to it is below minus
+/// this (a neighbor square to the wind is neither upwind nor downwind).
+const ACROSS: f32 = 1e-3;
+
+/// The humidity of air that has crossed open sea (and of air blowing in past a map's edge).
+const SEA_AIR: f32 = 1.0;
+
+/// The tiles of a map with what the rain needs of them, row by row.
+pub(crate) struct RainInput<'a> {
+    /// The map's tiles.
+    pub rect: TileRect,
+    /// Each tile's center height, raw (normalised).
+    pub raw: &'a [f32],
+    /// Each tile's kind.
+    pub kinds: &'a [TileKind],
+    /// The sea threshold: land at it is at sea level, 1 is the top of the relief.
+    pub sea: f32,
+}
+
+/// A tile's latitude on a map of `rect`: 0 on the middle row (the equator), 1 at the first and
+/// last rows' outer edges (the poles), and whether it lies in the northern half.
+#[must_use]
+pub(crate) fn latitude(rect: TileRect, row: i32) -> (f32, bool) {
+    let rows = (rect.max[1] - rect.min[1]).max(1) as f32;
+    let v = ((row - rect.min[1]) as f32 + 0.5) / rows - 0.5;
+    (v.abs() * 2.0, v < 0.0)
+}
+
+/// The unit vector (world `x`, `z`) the air moves along under a wind blowing from `bearing`
+/// degrees clockwise from north (`-z`).
+fn moving(bearing: f32) -> [f32; 2] {
+    let b = bearing.to_radians();
+    [-b.sin(), b.cos()]
+}
+
+/// The winds of a map: the direction of each band's air in each half.
+struct Bands {
+    /// The air's direction in band `i` of the northern half, equator first.
+    north: Vec<[f32; 2]>,
+}
+
+impl Bands {
+    fn new(pattern: &WindPattern) -> Self {
+        let bearings = match pattern {
+            WindPattern::Bands(b) => b.clone(),
+            WindPattern::One(b) => vec![*b],
+        };
+        Self { north: bearings.into_iter().map(moving).collect() }
+    }
+
+    /// The band of a latitude.
+    fn band(&self, latitude: f32) -> usize {
+        ((latitude * self.north.len() as f32) as usize).min(self.north.len() - 1)
+    }
+
+    /// The air's direction at a latitude; the southern half mirrors the northern north to
+    /// south.
+    fn wind(&self, pattern: &WindPattern, latitude: f32, north: bool) -> [f32; 2] {
+        let [x, z] = self.north[self.band(latitude)];
+        match pattern {
+            WindPattern::One(_) => [x, z],
+            WindPattern::Bands(_) if north => [x, z],
+            WindPattern::Bands(_) => [x, -z],
+        }
+    }
+
+    /// The air's speed toward the pole in band `i` (the same in both halves).
+    fn poleward(&self, i: usize) -> f32 {
+        -self.north[i][1]
+    }
+
+    /// How much the rain is raised (above 1) or lowered at a latitude: at each band's edge, by
+    /// how squarely the winds on its two sides blow toward it (meeting, rising air) or away
+    /// from it (parting, sinking air), fading to nothing half a band away.
+    fn uplift(&self, pattern: &WindPattern, uplift: f32, latitude: f32) -> f32 {
+        if matches!(pattern, WindPattern::One(_)) {
+            return 1.0;
+        }
+        let n = self.north.len();
+        let half = 0.5 / n as f32;
+        let mut sum = 0.0;
+        for k in 0..n {
+            // Edge k: the equator (both halves' first band) or between bands k - 1 and k.
+            let meet = if k == 0 { -self.poleward(0) } else { 0.5 * (self.poleward(k - 1) - self.poleward(k)) };
+            let d = ((latitude - k as f32 / n as f32).abs() / half).min(1.0);
+            let fade = 0.5 + 0.5 * (d * std::f32::consts::PI).cos();
+            sum += meet * fade;
+        }
+        (1.0 + uplift * sum).max(0.0)
+    }
+}
+
+/// Each tile's rain (row by row over `input.rect`, `0` and above, about 1 on a windward coast),
+/// with `index` giving the row-major index of a neighbor in the map (any copy of it on a
+/// wrapping map), `None` past the map's edge.
+#[must_use]
+pub(crate) fn rainfall(
+    config: &WindConfig,
+    geometry: &Geometry,
+    input: &RainInput<'_>,
+    index: impl Fn(Hex) -> Option<usize>,
+) -> Vec<f32> {
+    let rect = input.rect;
+    let bands = Bands::new(&config.pattern);
+    let lattice = geometry.lattice();
+    let position = |t: Hex| lattice.world(lattice.tile_center(t)).map(|v| v as f32);
+    // The unit step toward each neighbor, the same from every tile.
+    let origin = position(Hex::ZERO);
+    let steps: [[f32; 2]; 6] = Hex::ZERO.all_neighbors().map(|nb| {
+        let [x, z] = position(nb);
+        let (dx, dz) = (x - origin[0], z - origin[1]);
+        let len = dx.hypot(dz);
+        [dx / len, dz / len]
+    });
+    let dot = |a: [f32; 2], b: [f32; 2]| a[0] * b[0] + a[1] * b[1];
+    let tiles: Vec<Hex> = rect.iter().map(|oc| geometry.tile_from_offset(oc)).collect();
+    let latitudes: Vec<(f32, bool)> = rect.iter().map(|[_, r]| latitude(rect, r)).collect();
+    let winds: Vec<[f32; 2]> = latitudes.iter().map(|&(lat, north)| bands.wind(&config.pattern, lat, north)).collect();
+    // Each tile's upwind neighbors and their weights (`None`: sea air from past the edge).
+    let upwind: Vec<Vec<(Option<usize>, f32)>> = tiles
+        .iter()
+        .enumerate()
+        .map(|(i, &t)| {
+            let mut from = Vec::new();
+            for (d, nb) in t.all_neighbors().into_iter().enumerate() {
+                let toward = dot(steps[d], winds[i]);
+                if toward >= -ACROSS {
+                    continue;
+                }
+                match index(nb) {
+                    Some(j) if dot(steps[d], winds[j]) < -ACROSS => from.push((Some(j), -toward)),
+                    Some(_) => {}
+                    None => from.push((None, -toward)),
+                }
+            }
+            from
+        })
+        .collect();
+    // Upwind tiles first: by position along the tile's own wind, then row-major.
+    let mut order: Vec<usize> = (0..tiles.len()).collect();
+    let keys: Vec<f32> = tiles.iter().zip(&winds).map(|(&t, &w)| dot(position(t), w)).collect();
+    order.sort_by(|&a, &b| keys[a].total_cmp(&keys[b]).then(a.cmp(&b)));
+
+    let land_range = (1.0 - input.sea).max(f32::EPSILON);
+    let mut humidity = vec![SEA_AIR; tiles.len()];
+    let mut rain = vec![0.0; tiles.len()];
+    for _ in 0..LAPS {
+        for &i in &order {
+            let (mut sum, mut weight) = (0.0, 0.0);
+            for &(j, w) in &upwind[i] {
+                sum += w * j.map_or(SEA_AIR, |j| humidity[j]);
+                weight += w;
+            }
+            // No air from upwind: sinking, dry air.
+            let arriving = if weight > 0.0 { sum / weight } else { 0.0 };
+            if input.kinds[i] == TileKind::Sea {
+                humidity[i] = (arriving + config.evaporation).min(SEA_AIR);
+                rain[i] = config.raininess * arriving;
+                continue;
+            }
+            let height = ((input.raw[i] - input.sea) / land_range).clamp(0.0, 1.0);
+            let mut air = arriving * (1.0 - config.drying);
+            let holds = (1.0 - height) * (1.0 - height);
+            let shadow = if air > holds { config.rain_shadow * (air - holds) } else { 0.0 };
+            air -= shadow;
+            humidity[i] = air;
+            rain[i] = config.raininess * arriving + shadow;
+        }
+    }
+    for (r, &(lat, _)) in rain.iter_mut().zip(&latitudes) {
+        *r *= bands.uplift(&config.pattern, config.uplift, lat);
+    }
+    rain
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn earth_bands_part_at_the_horse_latitudes_and_meet_at_the_equator() {
+        let pattern = WindPattern::default();
+        let bands = Bands::new(&pattern);
+        let at = |lat: f32| bands.uplift(&pattern, 0.5, lat);
+        assert!(at(0.0) > 1.3, "equator {}", at(0.0));
+        assert!(at(1.0 / 3.0) < 0.7, "horse latitudes {}", at(1.0 / 3.0));
+        assert!(at(2.0 / 3.0) > 1.3, "polar front {}", at(2.0 / 3.0));
+        assert!((at(1.0 / 6.0) - 1.0).abs() < 1e-6, "mid-band {}", at(1.0 / 6.0));
+        // The trade winds blow toward the equator and west in the north, toward it and west in
+        // the south.
+        let [x, z] = bands.wind(&pattern, 0.1, true);
+        assert!(x < 0.0 && z > 0.0, "north trades move south-west: {x} {z}");
+        let [x, z] = bands.wind(&pattern, 0.1, false);
+        assert!(x < 0.0 && z < 0.0, "south trades move north-west: {x} {z}");
+        assert_eq!(Bands::new(&WindPattern::One(90.0)).uplift(&WindPattern::One(90.0), 1.0, 0.33), 1.0);
+    }
+}
