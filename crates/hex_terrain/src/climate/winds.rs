@@ -32,6 +32,12 @@ const LAPS: usize = 2;
 /// this (a neighbor square to the wind is neither upwind nor downwind).
 const ACROSS: f32 = 1e-3;
 
+/// An upwind slot with no neighbor in it.
+const NONE: u32 = u32::MAX;
+
+/// An upwind neighbor past the map's edge: sea air.
+const SEA: u32 = u32::MAX - 1;
+
 /// The humidity of air that has crossed open sea (and of air blowing in past a map's edge).
 const SEA_AIR: f32 = 1.0;
 
@@ -144,31 +150,36 @@ pub(crate) fn rainfall(
     });
     let dot = |a: [f32; 2], b: [f32; 2]| a[0] * b[0] + a[1] * b[1];
     let tiles: Vec<Hex> = rect.iter().map(|oc| geometry.tile_from_offset(oc)).collect();
-    let latitudes: Vec<(f32, bool)> = rect.iter().map(|[_, r]| latitude(rect, r)).collect();
-    let winds: Vec<[f32; 2]> = latitudes.iter().map(|&(lat, north)| bands.wind(&config.pattern, lat, north)).collect();
-    // Each tile's upwind neighbors and their weights (`None`: sea air from past the edge).
-    let upwind: Vec<Vec<(Option<usize>, f32)>> = tiles
-        .iter()
-        .enumerate()
-        .map(|(i, &t)| {
-            let mut from = Vec::new();
-            for (d, nb) in t.all_neighbors().into_iter().enumerate() {
-                let toward = dot(steps[d], winds[i]);
-                if toward >= -ACROSS {
-                    continue;
-                }
-                match index(nb) {
-                    Some(j) if dot(steps[d], winds[j]) < -ACROSS => from.push((Some(j), -toward)),
-                    Some(_) => {}
-                    None => from.push((None, -toward)),
-                }
-            }
-            from
+    let cols = (rect.max[0] - rect.min[0]).max(0) as usize;
+    // Each row's latitude, wind and uplift.
+    let rows: Vec<(f32, [f32; 2], f32)> = (rect.min[1]..rect.max[1])
+        .map(|r| {
+            let (lat, north) = latitude(rect, r);
+            (lat, bands.wind(&config.pattern, lat, north), bands.uplift(&config.pattern, config.uplift, lat))
         })
         .collect();
+    let wind = |i: usize| rows[i / cols.max(1)].1;
+    // Each tile's upwind neighbors and their weights (`SEA`: sea air from past the edge).
+    let mut upwind: Vec<[(u32, f32); 6]> = vec![[(NONE, 0.0); 6]; tiles.len()];
+    for (i, &t) in tiles.iter().enumerate() {
+        let mut n = 0;
+        for (d, nb) in t.all_neighbors().into_iter().enumerate() {
+            let toward = dot(steps[d], wind(i));
+            if toward >= -ACROSS {
+                continue;
+            }
+            let from = match index(nb) {
+                Some(j) if dot(steps[d], wind(j)) < -ACROSS => j as u32,
+                Some(_) => continue,
+                None => SEA,
+            };
+            upwind[i][n] = (from, -toward);
+            n += 1;
+        }
+    }
     // Upwind tiles first: by position along the tile's own wind, then row-major.
     let mut order: Vec<usize> = (0..tiles.len()).collect();
-    let keys: Vec<f32> = tiles.iter().zip(&winds).map(|(&t, &w)| dot(position(t), w)).collect();
+    let keys: Vec<f32> = tiles.iter().enumerate().map(|(i, &t)| dot(position(t), wind(i))).collect();
     order.sort_by(|&a, &b| keys[a].total_cmp(&keys[b]).then(a.cmp(&b)));
 
     let land_range = (1.0 - input.sea).max(f32::EPSILON);
@@ -177,8 +188,8 @@ pub(crate) fn rainfall(
     for _ in 0..LAPS {
         for &i in &order {
             let (mut sum, mut weight) = (0.0, 0.0);
-            for &(j, w) in &upwind[i] {
-                sum += w * j.map_or(SEA_AIR, |j| humidity[j]);
+            for &(j, w) in upwind[i].iter().take_while(|(j, _)| *j != NONE) {
+                sum += w * if j == SEA { SEA_AIR } else { humidity[j as usize] };
                 weight += w;
             }
             // No air from upwind: sinking, dry air.
@@ -197,8 +208,8 @@ pub(crate) fn rainfall(
             rain[i] = config.raininess * arriving + shadow;
         }
     }
-    for (r, &(lat, _)) in rain.iter_mut().zip(&latitudes) {
-        *r *= bands.uplift(&config.pattern, config.uplift, lat);
+    for (i, r) in rain.iter_mut().enumerate() {
+        *r *= rows[i / cols.max(1)].2;
     }
     rain
 }
