@@ -193,6 +193,7 @@ pub struct Observed<'w, 's> {
     map: Res<'w, HexMap>,
     states: Res<'w, TileStates>,
     units: Query<'w, 's, Seen>,
+    chunks: Query<'w, 's, &'static HexChunk>,
 }
 
 /// A unit as the script sees it: its player and moves, its tile, where it is drawn, whether it
@@ -209,7 +210,7 @@ pub fn script(
     mut keys: ResMut<ButtonInput<KeyCode>>,
     mut exit: MessageWriter<AppExit>,
 ) {
-    let Observed { material, style, game, map, states, units } = observed;
+    let Observed { material, style, game, map, states, units, chunks } = observed;
     s.frame += 1;
     for key in [KeyCode::Enter, KeyCode::KeyG, KeyCode::KeyR, KeyCode::KeyL, KeyCode::KeyM] {
         keys.release(key);
@@ -343,9 +344,17 @@ pub fn script(
                 fail("G did not toggle the outlines or L the lens".into(), &mut exit);
                 return;
             }
+            // The chunk under each unit shows the new map (so its lens colors are painted: the
+            // game paints a chunk's tiles when it arrives, in the frame before this one).
+            let terrain = map.terrain();
+            let shown = |tile: Hex| {
+                let Some(mine) = terrain.chunk_of(tile).map(|c| terrain.wrap_chunk(c).0) else { return false };
+                chunks.iter().any(|c| terrain.wrap_chunk(c.coord).0 == mine && c.generation == Some(map.generation()))
+            };
             let settled = units.iter().all(|(_, _, on, t, ..)| {
                 map.move_cost(on.tile).is_some()
                     && map.tile_center(on.tile).is_some_and(|c| (t.translation.y - (c.y + LIFT)).abs() < 0.05)
+                    && shown(on.tile)
             });
             if !settled {
                 return;
