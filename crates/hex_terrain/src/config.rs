@@ -15,7 +15,8 @@ mod sight;
 mod validate;
 
 pub use climate::{
-    BiomeRule, ClimateConfig, MAX_BIOME_RULES, MAX_WATER_TILES, MAX_WIND_BANDS, RiverConfig, WindConfig, WindPattern,
+    BiomeRule, ClimateConfig, MAX_BIOME_RULES, MAX_SEA_DISTANCE, MAX_WATER_TILES, MAX_WIND_BANDS, RiverConfig,
+    RiverModel, WindConfig, WindPattern,
 };
 
 pub use edits::{MAX_EDITS, PropDensity, RiverEdit, TileEdit};

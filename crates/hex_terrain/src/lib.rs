@@ -91,15 +91,15 @@ pub use climate::{Climate, ClimateModel, TileSample};
 pub use config::{
     AppearanceConfig, BiomeRule, ClimateConfig, HeightSourceConfig, LayoutConfig, MAX_EDITS, ManipulationConfig,
     MapConfig, MapFile, MapSize, MapType, MapTypeConfig, MovementConfig, NoiseConfig, Orientation, Place, PropDensity,
-    PullMode, ReliefConfig, ResourceClass, ResourceRule, RiverConfig, RiverEdit, SetupConfig, Shape, SightConfig,
-    StartOn, TerrainConfig, TileEdit, ValueWeights, WaterLevel, WindConfig, WindPattern, WonderConfig, WonderRule,
-    YieldTable, Yields,
+    PullMode, ReliefConfig, ResourceClass, ResourceRule, RiverConfig, RiverEdit, RiverModel, SetupConfig, Shape,
+    SightConfig, StartOn, TerrainConfig, TileEdit, ValueWeights, WaterLevel, WindConfig, WindPattern, WonderConfig,
+    WonderRule, YieldTable, Yields,
 };
 pub use config::{
     MAX_BIOME_RULES, MAX_CHUNK_BYTES, MAX_CHUNK_SIDE, MAX_INNER_RINGS, MAX_MAP_BYTES, MAX_MOUNTAIN_SHARE,
-    MAX_MOVE_COST, MAX_OCTAVES, MAX_OFFSET, MAX_PER_PLAYER, MAX_PLAYERS, MAX_SETUP_DISTANCE, MAX_SETUP_RINGS,
-    MAX_SETUP_RULES, MAX_SETUP_TILES, MAX_SIGHT_BONUS, MAX_WATER_TILES, MAX_WIND_BANDS, MAX_WORLD_TILE, MAX_YIELD,
-    MIN_MAP_TYPE_SIDE, MIN_WRAP_COLUMNS, SEA_SHARE_TOLERANCE,
+    MAX_MOVE_COST, MAX_OCTAVES, MAX_OFFSET, MAX_PER_PLAYER, MAX_PLAYERS, MAX_SEA_DISTANCE, MAX_SETUP_DISTANCE,
+    MAX_SETUP_RINGS, MAX_SETUP_RULES, MAX_SETUP_TILES, MAX_SIGHT_BONUS, MAX_WATER_TILES, MAX_WIND_BANDS,
+    MAX_WORLD_TILE, MAX_YIELD, MIN_MAP_TYPE_SIDE, MIN_WRAP_COLUMNS, SEA_SHARE_TOLERANCE,
 };
 pub use editor::{Brush, Change, EditError, EditTimings, Editor, MAX_BRUSH_RADIUS, MAX_FLOOD_TILES, Stroke, Tool};
 pub use edits::Edits;
@@ -134,5 +134,5 @@ pub use table::TileTable;
 pub use terrain::Terrain;
 pub use vertex::{Sharing, VertexRules, VertexSample};
 pub use vocab::{Biome, PROP_VARIANTS, PropKind, TileInfo, TileKind};
-pub use water::{Hydrology, RiverTile, WaterBuffers};
+pub use water::{EdgeRivers, Hydrology, RiverEdge, RiverTile, WaterBuffers};
 pub use wrap::Wrap;

@@ -19,22 +19,24 @@ pub const MAX_PATH_TILES: usize = 1 << 18;
 /// A cheapest path over the map ([`Terrain::path`]).
 ///
 /// The rules, written once:
-/// - **Entering** a tile costs [`Terrain::move_cost`](crate::Terrain::move_cost); the start tile
-///   costs nothing; a tile that cannot be entered is never on a path.
+/// - **A step** costs [`Terrain::step_cost`](crate::Terrain::step_cost): entering the tile
+///   ([`Terrain::move_cost`](crate::Terrain::move_cost)), plus the movement model's `river`
+///   when a river runs on the edge crossed (`rivers.model: Edges`); the start tile costs
+///   nothing; a tile that cannot be entered is never on a path.
 /// - **Paths** run between tiles of the map, across the seam of a wrapping map when that is
 ///   cheaper. Of several cheapest paths, one is chosen by a fixed order (the tile's place in the
 ///   map's rows), never by thread or hash order.
 /// - **The search** visits at most [`MAX_PATH_TILES`] tiles; on an unbounded world a goal farther
 ///   than that allows is not found (`None`), like an unreachable one.
 /// - **Turns** (Civilization V's rule): a unit with any movement points left may enter a tile it
-///   can enter; it pays the tile's cost, or all the points it has left when the cost is more. A
+///   can enter; it pays the step's cost, or all the points it has left when the cost is more. A
 ///   turn ends when no points are left; the next turn starts with the full points.
 #[derive(Debug, Clone, PartialEq, Eq)]
 #[cfg_attr(feature = "bevy_reflect", derive(bevy_reflect::Reflect))]
 pub struct Path {
     /// The tiles from the start to the goal, both included (the map's own tiles).
     pub tiles: Vec<Hex>,
-    /// What entering every tile after the first costs.
+    /// What every step costs, added up.
     pub cost: u32,
 }
 
@@ -88,6 +90,16 @@ impl<'a> Best<'a> {
                 key: (i64::from(row) << 32) + i64::from(col),
                 enter: crate::terrain::rules::evaluate_cost(terrain, tile),
             },
+        }
+    }
+
+    /// What crossing the edge of the tile in `slot` toward its neighbor `d` adds to the step:
+    /// a river on it (rivers on edges are on bounded maps, which have a rule table).
+    #[inline]
+    fn crossing(&self, slot: Slot, d: usize) -> u32 {
+        match self {
+            Self::Dense { table, .. } => table.crossing(slot.key as usize, d),
+            Self::Sparse(_) => 0,
         }
     }
 
@@ -160,13 +172,11 @@ impl Terrain {
             if visited > MAX_PATH_TILES {
                 return None;
             }
-            for next in self.neighbors(tile)?.into_iter().flatten() {
-                if next == from {
-                    continue;
-                }
+            for (d, next) in self.neighbors(tile)?.into_iter().enumerate() {
+                let Some(next) = next.filter(|&n| n != from) else { continue };
                 let slot = best.slot(self, next);
                 let Some(step) = slot.enter.filter(|_| !blocked(next)) else { continue };
-                let total = cost + step;
+                let total = cost + step + best.crossing(Slot { key, enter: None }, d);
                 if best.get(next, slot).is_none_or(|(c, _)| total < c) {
                     best.set(next, slot, (total, tile));
                     open.push(Reverse((total.saturating_add(estimate(next)), total, slot.key, next.x, next.y)));
@@ -203,13 +213,12 @@ impl Terrain {
             if out.len() >= MAX_PATH_TILES {
                 break;
             }
-            for next in self.neighbors(tile).into_iter().flatten().flatten() {
-                if next == from {
-                    continue;
-                }
+            let Some(neighbors) = self.neighbors(tile) else { continue };
+            for (d, next) in neighbors.into_iter().enumerate() {
+                let Some(next) = next.filter(|&n| n != from) else { continue };
                 let slot = best.slot(self, next);
                 let Some(step) = slot.enter.filter(|_| !blocked(next)) else { continue };
-                let total = cost + step;
+                let total = cost + step + best.crossing(Slot { key, enter: None }, d);
                 if total <= budget && best.get(next, slot).is_none_or(|(c, _)| total < c) {
                     best.set(next, slot, (total, tile));
                     open.push(Reverse((total, slot.key, next.x, next.y)));
@@ -236,7 +245,7 @@ impl Terrain {
                 turn += 1;
                 remaining = points;
             }
-            let cost = self.move_cost(tile)?;
+            let cost = self.step_cost(path.tiles[i - 1], tile)?;
             remaining -= cost.min(remaining);
             turns.turn.push(turn);
         }
@@ -245,6 +254,17 @@ impl Terrain {
             turns.count = turn + 1;
         }
         Some(turns)
+    }
+
+    /// What the step from `from` to its neighbor `to` costs by the map's movement model:
+    /// entering `to` ([`Terrain::move_cost`]), plus the model's `river` when a river runs on the
+    /// edge between them ([`Terrain::crosses_river`]); `None` when `to` cannot be entered or
+    /// they are not neighbors on the map.
+    #[must_use]
+    pub fn step_cost(&self, from: Hex, to: Hex) -> Option<u32> {
+        self.step_direction(from, to)?;
+        let across = if self.crosses_river(from, to) { self.config().movement.river } else { 0 };
+        Some(self.move_cost(to)? + across)
     }
 
     /// The least a tile can cost to enter by the map's movement model (at least 1).

@@ -8,11 +8,12 @@ use hexx::Hex;
 use crate::chunk::TileRect;
 use crate::climate::winds::{self, RainInput};
 use crate::climate::{Climate, ClimateModel, TileSample};
-use crate::config::{RiverConfig, RiverEdit};
+use crate::config::{RiverConfig, RiverEdit, RiverModel};
 use crate::geometry::Geometry;
 use crate::heights::HeightField;
 use crate::kind::Thresholds;
 use crate::vocab::{Biome, TileKind};
+use crate::water::edges::{EdgeInput, EdgeRivers, RiverEdge};
 use crate::water::hydrology::{Hydrology, RiverTile};
 
 /// Per-tile data of a bounded map, row by row.
@@ -25,6 +26,8 @@ pub struct TileTable {
     /// Each tile's climate; empty on a map without one.
     climates: Vec<Climate>,
     hydrology: Option<Hydrology>,
+    /// The rivers on tile edges of a map whose rivers run there.
+    edge_rivers: Option<EdgeRivers>,
 }
 
 /// What the tile table is built from that no edit changes: each tile center's source height (the
@@ -97,7 +100,8 @@ impl TileTable {
         let centers: Vec<Hex> = tiles.iter().map(|&t| geometry.lattice().tile_center(t)).collect();
         let raw: Vec<f32> = fields.source.iter().zip(&centers).map(|(&n, &p)| heights.shaped(geometry, n, p)).collect();
         let kinds: Vec<TileKind> = raw.iter().map(|&h| thresholds.classify(h)).collect();
-        let mut table = Self { rect, raw, kinds, biomes: Vec::new(), climates: Vec::new(), hydrology: None };
+        let mut table =
+            Self { rect, raw, kinds, biomes: Vec::new(), climates: Vec::new(), hydrology: None, edge_rivers: None };
         let samples: Vec<TileSample> = tiles.iter().enumerate().map(|(i, &t)| table.sample(geometry, i, t)).collect();
         // Each tile's climate, once: rain and biome both read it.
         let winds = climate.winds().map(|winds| {
@@ -142,7 +146,18 @@ impl TileTable {
                 None => Vec::new(),
             };
             let neighbor = |i: usize, d: usize| table.index(geometry, tiles[i].all_neighbors()[d]);
-            table.hydrology = Some(Hydrology::build(rivers, &table.raw, &table.kinds, &rain, &by_hand, neighbor));
+            if rivers.model == RiverModel::Centers {
+                table.hydrology = Some(Hydrology::build(rivers, &table.raw, &table.kinds, &rain, &by_hand, neighbor));
+            } else {
+                // The tiles' network gives the lakes (and the water levels); its rivers run on the
+                // edges instead.
+                let lakes_only = RiverConfig { threshold: f32::INFINITY, ..rivers.clone() };
+                let hydrology = Hydrology::build(&lakes_only, &table.raw, &table.kinds, &rain, &[], neighbor);
+                let lakes: Vec<bool> = (0..tiles.len()).map(|i| hydrology.lake_of(i).is_some()).collect();
+                let input = EdgeInput { rect, raw: &table.raw, kinds: &table.kinds, lakes: &lakes, rain: &rain };
+                table.edge_rivers = Some(EdgeRivers::build(rivers, geometry, &input, |t| table.index(geometry, t)));
+                table.hydrology = Some(hydrology);
+            }
         }
         table.biomes = samples
             .iter()
@@ -176,6 +191,11 @@ impl TileTable {
                 (None, None) => true,
                 _ => false,
             }
+            && match (&self.edge_rivers, &other.edge_rivers) {
+                (Some(a), Some(b)) => a.same_tile(b, i),
+                (None, None) => true,
+                _ => false,
+            }
     }
 
     /// Tile `i`'s sample, its neighbors' kinds read from the table.
@@ -194,6 +214,33 @@ impl TileTable {
     #[must_use]
     pub fn climate(&self, geometry: &Geometry, tile: Hex) -> Option<Climate> {
         self.climates.get(self.index(geometry, tile)?).copied()
+    }
+
+    /// The rivers on tile edges: `None` on a map whose rivers run through tile centers, or
+    /// without rivers.
+    #[must_use]
+    pub fn edge_rivers(&self) -> Option<&EdgeRivers> {
+        self.edge_rivers.as_ref()
+    }
+
+    /// The river edges of an in-map tile, from its side (empty without edge rivers).
+    #[must_use]
+    pub fn river_edges(&self, geometry: &Geometry, tile: Hex) -> Vec<RiverEdge> {
+        match (&self.edge_rivers, self.index(geometry, tile)) {
+            (Some(rivers), Some(i)) => rivers.river_edges(geometry, tile, i),
+            _ => Vec::new(),
+        }
+    }
+
+    /// Which of an in-map tile's edges carry a river: bit `d` for the edge toward
+    /// `all_neighbors()[d]` (0 without edge rivers).
+    #[must_use]
+    #[inline]
+    pub fn river_edge_mask(&self, geometry: &Geometry, tile: Hex) -> u8 {
+        match (&self.edge_rivers, self.index(geometry, tile)) {
+            (Some(rivers), Some(i)) => rivers.edges_of(i),
+            _ => 0,
+        }
     }
 
     /// The map's water network: `None` on a map without rivers.

@@ -6,8 +6,8 @@ use std::collections::HashMap;
 use hex_terrain::hexx::Hex;
 use hex_terrain::{
     ChunkCoord, ChunkMesh, Detail, GenerateOptions, ManipulationConfig, MapConfig, MapSize, MapType, MapTypeConfig,
-    NoiseConfig, Orientation, PullMode, ReliefConfig, RiverConfig, Shape, Terrain, TerrainConfig, Threads, TileKind,
-    TileRect, WaterLevel, WindConfig, WindPattern,
+    NoiseConfig, Orientation, PullMode, ReliefConfig, RiverConfig, RiverModel, Shape, Terrain, TerrainConfig, Threads,
+    TileKind, TileRect, WaterLevel, WindConfig, WindPattern,
 };
 use proptest::prelude::*;
 
@@ -70,6 +70,7 @@ prop_compose! {
         climate in any::<bool>(),
         wrap in any::<bool>(),
         rivers in prop::option::of((1.0f32..12.0, 0.0f32..0.05, 0.0f32..=1.0, 0.5f32..=4.0)),
+        on_edges in any::<bool>(),
         relief in prop::option::of((0.0f32..=1.0, 0.0f32..=1.0, 0.0f32..=1.0)),
         map_type in prop::option::weighted(0.25, (0usize..6, 0usize..3, 0.0f32..0.3, any::<bool>())),
         winds in prop::option::weighted(0.3, (prop::collection::vec(0.0f32..360.0, 1..4), any::<bool>(), 0.0f32..=1.0)),
@@ -94,7 +95,8 @@ prop_compose! {
             c.climate.winds = Some(WindConfig { pattern, rain_shadow: shadow, ..WindConfig::default() });
         }
         if let (Some((threshold, min_lake_depth, carve, width)), MapSize::Bounded { .. }) = (rivers, c.size) {
-            c.rivers = RiverConfig { enabled: true, threshold, lakes: true, min_lake_depth, carve, width };
+            let model = if on_edges { RiverModel::Edges } else { RiverModel::Centers };
+            c.rivers = RiverConfig { enabled: true, threshold, lakes: true, min_lake_depth, carve, width, model, ..RiverConfig::default() };
         }
         if let Some((peaks, ridges, hills)) = relief {
             c.relief = ReliefConfig { peaks, ridges, hills };

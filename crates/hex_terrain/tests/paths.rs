@@ -6,7 +6,9 @@ use std::cmp::Reverse;
 use std::collections::{BTreeMap, BinaryHeap};
 
 use hex_terrain::hexx::Hex;
-use hex_terrain::{Biome, MapConfig, MapSize, MovementConfig, NoiseConfig, Path, Terrain, TileEdit, TileKind};
+use hex_terrain::{
+    Biome, MapConfig, MapSize, MovementConfig, NoiseConfig, Path, RiverModel, Terrain, TileEdit, TileKind,
+};
 use proptest::prelude::*;
 
 mod common;
@@ -30,6 +32,7 @@ prop_compose! {
         scale in 4.0f64..20.0,
         climate in any::<bool>(),
         rivers in any::<bool>(),
+        on_edges in any::<bool>(),
         wrap in any::<bool>(),
         movement in movement(),
         edits in prop::collection::btree_map((0i32..6, 0i32..6), 0usize..3, 0..6),
@@ -45,6 +48,10 @@ prop_compose! {
         };
         c.climate.enabled = climate;
         c.rivers.enabled = rivers && !unbounded;
+        c.rivers.threshold = 4.0;
+        if on_edges {
+            c.rivers.model = RiverModel::Edges;
+        }
         if !unbounded {
             c.edits = edits
                 .into_iter()
@@ -61,6 +68,13 @@ fn enter(t: &Terrain, tile: Hex) -> Option<u32> {
     t.config().movement.enter(info.biome, info.river_flow > 0.0)
 }
 
+/// The cost of the step from `from` to its neighbor `to`: entering `to`, and the model's river
+/// cost when `from`'s river edges hold one toward `to` (its edge's far tile, brought onto the map).
+fn step(t: &Terrain, from: Hex, to: Hex) -> Option<u32> {
+    let across = t.river_edges(from).iter().any(|r| t.wrap_tile(r.edge.destination()) == Some(to));
+    Some(enter(t, to)? + if across { t.config().movement.river } else { 0 })
+}
+
 /// Dijkstra from `from` over the map's tiles (hexx's neighbors brought onto the map), within
 /// `radius` tiles of `from` on an unbounded world, never entering `blocked` tiles.
 fn dijkstra(t: &Terrain, from: Hex, radius: u32, blocked: &[Hex]) -> BTreeMap<(i32, i32), u32> {
@@ -75,7 +89,7 @@ fn dijkstra(t: &Terrain, from: Hex, radius: u32, blocked: &[Hex]) -> BTreeMap<(i
             if t.bounds().is_none() && from.unsigned_distance_to(n) > radius {
                 continue;
             }
-            let Some(c) = enter(t, n).filter(|_| !blocked.contains(&n)) else { continue };
+            let Some(c) = step(t, Hex::new(x, y), n).filter(|_| !blocked.contains(&n)) else { continue };
             if dist.get(&(n.x, n.y)).is_none_or(|&e| d + c < e) {
                 dist.insert((n.x, n.y), d + c);
                 heap.push(Reverse((d + c, n.x, n.y)));
@@ -92,7 +106,7 @@ fn check_path(t: &Terrain, path: &Path, from: Hex, to: Hex) -> Result<(), TestCa
     let mut cost = 0;
     for pair in path.tiles.windows(2) {
         prop_assert_eq!(t.distance(pair[0], pair[1]), Some(1), "{:?} is not a step", pair);
-        cost += enter(t, pair[1]).expect("a passable step");
+        cost += step(t, pair[0], pair[1]).expect("a passable step");
     }
     prop_assert_eq!(cost, path.cost);
     Ok(())
@@ -101,12 +115,12 @@ fn check_path(t: &Terrain, path: &Path, from: Hex, to: Hex) -> Result<(), TestCa
 /// The turn rule, simulated: enter with any points left, paying the cost or all that is left.
 fn simulate(t: &Terrain, path: &Path, points: u32, left: u32) -> (Vec<u32>, u32) {
     let (mut turn, mut have, mut turns) = (0, left.min(points), vec![0]);
-    for &tile in &path.tiles[1..] {
+    for pair in path.tiles.windows(2) {
         if have == 0 {
             turn += 1;
             have = points;
         }
-        have = have.saturating_sub(enter(t, tile).unwrap());
+        have = have.saturating_sub(step(t, pair[0], pair[1]).unwrap());
         turns.push(turn);
     }
     let count = if path.tiles.len() > 1 { turn + 1 } else { 0 };
@@ -134,6 +148,11 @@ proptest! {
         // The rules' table (bounded maps) answers as the surface does, tile by tile.
         for tile in t.tiles() {
             prop_assert_eq!(t.move_cost(tile), enter(&t, tile), "{:?}", tile);
+            // A step's cost adds the river on the edge it crosses, the same both ways.
+            for nb in tile.all_neighbors().into_iter().filter_map(|n| t.wrap_tile(n)).filter(|&n| t.contains(n)) {
+                prop_assert_eq!(t.step_cost(tile, nb), step(&t, tile, nb), "{:?} -> {:?}", tile, nb);
+                prop_assert_eq!(t.crosses_river(tile, nb), t.crosses_river(nb, tile));
+            }
         }
         let radius = 40;
         let dist = dijkstra(&t, from, radius, &[]);

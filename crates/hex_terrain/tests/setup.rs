@@ -37,7 +37,7 @@ fn yields(t: &Terrain, cfg: &SetupConfig, tile: Hex) -> Yields {
     if let Some(k) = cfg.yields.kinds.get(&info.kind) {
         y += *k;
     }
-    if info.river_flow > 0.0 {
+    if has_river(t, tile) {
         y += cfg.yields.river;
     }
     if info.kind != TileKind::Sea && next_to_sea(t, tile) {
@@ -52,6 +52,11 @@ fn yields(t: &Terrain, cfg: &SetupConfig, tile: Hex) -> Yields {
     y
 }
 
+/// Whether a river runs through a tile or along one of its edges.
+fn has_river(t: &Terrain, tile: Hex) -> bool {
+    t.tile_info(tile).unwrap().river_flow > 0.0 || !t.river_edges(tile).is_empty()
+}
+
 /// Whether a tile of the map has a sea neighbor (sea, not a lake) anywhere on the map.
 fn next_to_sea(t: &Terrain, tile: Hex) -> bool {
     t.neighbors(tile)
@@ -63,7 +68,7 @@ fn next_to_sea(t: &Terrain, tile: Hex) -> bool {
 
 /// Whether a tile keeps the setup's `start_on` rule (coast: next to the sea; river: on one).
 fn keeps_start_on(t: &Terrain, start_on: StartOn, tile: Hex) -> bool {
-    let (coast, river) = (next_to_sea(t, tile), t.tile_info(tile).unwrap().river_flow > 0.0);
+    let (coast, river) = (next_to_sea(t, tile), has_river(t, tile));
     match start_on {
         StartOn::Land => true,
         StartOn::Coast => coast,
@@ -81,7 +86,8 @@ fn allowed(t: &Terrain, tile: Hex, on: &[Place]) -> bool {
 }
 
 /// Path costs from `from` over the area's passable tiles (entering a tile costs what the map's
-/// movement model says of its biome and river).
+/// movement model says of its biome and river through it, crossing a river on an edge its river
+/// cost more).
 fn dijkstra(t: &Terrain, area: TileRect, from: Hex) -> BTreeMap<(i32, i32), u32> {
     let inside = |h: Hex| t.wrap_tile(h).is_some_and(|h| area.contains(t.offset_of(h)));
     let mut dist = BTreeMap::new();
@@ -93,13 +99,17 @@ fn dijkstra(t: &Terrain, area: TileRect, from: Hex) -> BTreeMap<(i32, i32), u32>
         if dist.get(&(x, y)).is_some_and(|&e| e < d) {
             continue;
         }
-        for n in t.neighbors(Hex::new(x, y)).unwrap().into_iter().flatten() {
+        let here = Hex::new(x, y);
+        for n in t.neighbors(here).unwrap().into_iter().flatten() {
             if !inside(n) {
                 continue;
             }
             let info = t.tile_info(n).unwrap();
-            let Some(c) = t.config().movement.enter(info.biome, info.river_flow > 0.0) else { continue };
-            assert_eq!(t.move_cost(n), Some(c), "the terrain's rule is the model's");
+            let Some(enter) = t.config().movement.enter(info.biome, info.river_flow > 0.0) else { continue };
+            assert_eq!(t.move_cost(n), Some(enter), "the terrain's rule is the model's");
+            // A river on the edge crossed costs the model's river more.
+            let across = t.river_edges(here).iter().any(|r| t.wrap_tile(r.edge.destination()) == Some(n));
+            let c = enter + if across { t.config().movement.river } else { 0 };
             if dist.get(&(n.x, n.y)).is_none_or(|&e| d + c < e) {
                 dist.insert((n.x, n.y), d + c);
                 heap.push(Reverse((d + c, n.x, n.y)));
@@ -243,10 +253,11 @@ fn check_setup(t: &Terrain) -> Result<(), TestCaseError> {
     Ok(())
 }
 
-/// A random bounded map (wrapping or not, with or without climate and rivers) and setup.
+/// A random bounded map (wrapping or not, with or without climate and rivers, through tile
+/// centers or on edges) and setup.
 fn arb_map() -> impl Strategy<Value = MapConfig> {
     (
-        (24u32..56, 16u32..36, any::<u32>(), any::<bool>(), 0u8..3),
+        (24u32..56, 16u32..36, any::<u32>(), any::<bool>(), 0u8..4),
         (1u32..7, 1u32..4, 2u32..9, 0u8..4, 0.02f32..0.4, any::<bool>(), 0u32..3, 0u32..5),
         // A part of the map as the setup's area, as fractions of its columns and rows.
         prop::option::weighted(0.5, (0.0f64..0.5, 0.0f64..0.5, 0.5f64..1.0, 0.5f64..1.0)),
@@ -257,6 +268,10 @@ fn arb_map() -> impl Strategy<Value = MapConfig> {
                     MapConfig { seed, size: MapSize::Bounded { x, z }, chunk_size: (8, 8), ..MapConfig::default() };
                 config.climate.enabled = water > 0;
                 config.rivers.enabled = water > 1;
+                if water > 2 {
+                    config.rivers.model = hex_terrain::RiverModel::Edges;
+                    config.rivers.threshold = 3.0;
+                }
                 let mut setup = SetupConfig {
                     players,
                     rings,

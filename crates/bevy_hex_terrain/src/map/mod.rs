@@ -255,11 +255,19 @@ impl HexMap {
     }
 
     /// The cost of entering a tile by the map's movement model (its config's `movement`: the
-    /// biome's cost, plus fording a river); `None` when it cannot be entered or is off the map.
-    /// The game setup's reach and path costs use the same rule.
+    /// biome's cost, plus fording a river through it); `None` when it cannot be entered or is
+    /// off the map. The game setup's reach and path costs use the same rule.
     #[must_use]
     pub fn move_cost(&self, tile: Hex) -> Option<u32> {
         self.terrain.move_cost(tile)
+    }
+
+    /// The cost of the step between two neighbors: entering `to`, plus crossing a river on the
+    /// edge between them ([`Terrain::step_cost`](hex_terrain::Terrain::step_cost)); what paths
+    /// add up.
+    #[must_use]
+    pub fn step_cost(&self, from: Hex, to: Hex) -> Option<u32> {
+        self.terrain.step_cost(from, to)
     }
 
     /// The cheapest path between two tiles by the map's movement model

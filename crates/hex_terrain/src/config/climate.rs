@@ -237,12 +237,43 @@ pub struct RiverConfig {
     /// Half-width of the channel at the threshold flow, in lattice steps, in `[0.5, 4]`; it
     /// grows with the square root of the flow, up to twice that.
     pub width: f32,
+    /// Where rivers run: through tile centers (the default) or along the edges between tiles.
+    pub model: RiverModel,
+    /// Edge rivers: a river rises at least this many tiles from the sea, in
+    /// `0..=MAX_SEA_DISTANCE` (Civilization VI starts its rivers 2 tiles from the sea); streams
+    /// rising nearer are dropped.
+    pub sea_distance: u32,
 }
 
 impl Default for RiverConfig {
     fn default() -> Self {
-        Self { enabled: false, threshold: 8.0, lakes: true, min_lake_depth: 0.015, carve: 0.8, width: 1.0 }
+        Self {
+            enabled: false,
+            threshold: 8.0,
+            lakes: true,
+            min_lake_depth: 0.015,
+            carve: 0.8,
+            width: 1.0,
+            model: RiverModel::Centers,
+            sea_distance: 2,
+        }
     }
+}
+
+/// Largest `rivers.sea_distance`.
+pub const MAX_SEA_DISTANCE: u32 = 16;
+
+/// Where a map's rivers run (Catlike Coding's Hex Map names the models).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[cfg_attr(feature = "bevy_reflect", derive(bevy_reflect::Reflect))]
+pub enum RiverModel {
+    /// Through tile centers, tile to tile (Endless Legend): a river is a property of the tiles
+    /// it runs through, which a unit stands on.
+    #[default]
+    Centers,
+    /// Along the edges between tiles, corner to corner (Civilization V and VI, Unciv): a river
+    /// lies between two tiles, which a step between them crosses.
+    Edges,
 }
 
 impl super::MapConfig {
@@ -304,6 +335,12 @@ impl super::MapConfig {
         check(unit(r.min_lake_depth), "rivers.min_lake_depth", r.min_lake_depth, "[0, 1]")?;
         check(unit(r.carve), "rivers.carve", r.carve, "[0, 1]")?;
         check(finite_in(f64::from(r.width), 0.5, 4.0), "rivers.width", r.width, "[0.5, 4]")?;
+        check(
+            r.sea_distance <= MAX_SEA_DISTANCE,
+            "rivers.sea_distance",
+            r.sea_distance,
+            format!("0..={MAX_SEA_DISTANCE} tiles"),
+        )?;
         if let (true, Some((x, z))) = (r.enabled, self.size.bounds()) {
             let tiles = u64::from(x) * u64::from(z);
             check(

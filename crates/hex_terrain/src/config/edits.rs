@@ -5,7 +5,7 @@
 use serde::{Deserialize, Serialize};
 
 use super::validate::{check, finite_in};
-use super::{MAX_WORLD_TILE, MapSize};
+use super::{MAX_WORLD_TILE, MapSize, RiverConfig, RiverModel};
 use crate::error::ConfigError;
 use crate::vocab::{Biome, TileKind};
 
@@ -102,8 +102,13 @@ impl TileEdit {
 
 /// Checks the edits of a map of `size`: every tile on the map (within the world's edge on an
 /// unbounded one), once; every height finite in `[0, 1]`; a type the map can have; at most
-/// [`MAX_EDITS`]; a river only on a map with rivers.
-pub(super) fn validate(edits: &[TileEdit], size: MapSize, sea_threshold: f32, rivers: bool) -> Result<(), ConfigError> {
+/// [`MAX_EDITS`]; a river only on a map with rivers through tile centers.
+pub(super) fn validate(
+    edits: &[TileEdit],
+    size: MapSize,
+    sea_threshold: f32,
+    rivers: &RiverConfig,
+) -> Result<(), ConfigError> {
     check(edits.len() <= MAX_EDITS, "edits", format!("{} edited tiles", edits.len()), format!("at most {MAX_EDITS}"))?;
     let mut seen = std::collections::HashSet::with_capacity(edits.len());
     for (i, edit) in edits.iter().enumerate() {
@@ -135,10 +140,16 @@ pub(super) fn validate(edits: &[TileEdit], size: MapSize, sea_threshold: f32, ri
         )?;
         if let Some(river) = edit.river {
             check(
-                rivers && size.bounds().is_some(),
+                rivers.enabled && size.bounds().is_some(),
                 &format!("edits[{i}].river"),
                 format!("{river:?}"),
                 "none: rivers are off (rivers.enabled is false, or the map is unbounded)",
+            )?;
+            check(
+                rivers.model == RiverModel::Centers,
+                &format!("edits[{i}].river"),
+                format!("{river:?} on a map whose rivers run on tile edges"),
+                "none: a river set by hand runs through tile centers (rivers.model: Centers)",
             )?;
         }
     }

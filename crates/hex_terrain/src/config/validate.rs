@@ -261,7 +261,7 @@ impl MapConfig {
         if let Some(setup) = &self.setup {
             setup.validate(self.size.bounds())?;
         }
-        super::edits::validate(&self.edits, self.size, self.terrain.sea_threshold, self.rivers.enabled)
+        super::edits::validate(&self.edits, self.size, self.terrain.sea_threshold, &self.rivers)
     }
 }
 

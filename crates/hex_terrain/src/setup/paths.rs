@@ -6,7 +6,8 @@ use super::survey::{NONE, Survey};
 /// Unreached.
 pub(crate) const FAR: u32 = u32::MAX;
 
-/// Path cost from `sources` to every tile (entering a tile costs its movement cost; impassable
+/// Path cost from `sources` to every tile (entering a tile costs its movement cost, crossing a
+/// river on an edge the movement model's river cost more; impassable
 /// tiles are never entered). Each tile also gets the source nearest it, and whether two
 /// sources reach it at the same cost (contested).
 pub(crate) struct Costs {
@@ -23,7 +24,7 @@ pub(crate) fn costs(survey: &Survey, sources: &[usize]) -> Costs {
     let mut dist = vec![FAR; n];
     let mut owner = vec![NONE; n];
     let mut contested = vec![false; n];
-    let ring = survey.cost.iter().copied().max().unwrap_or(0) as usize + 1;
+    let ring = (survey.cost.iter().copied().max().unwrap_or(0) + survey.river_cost) as usize + 1;
     let mut buckets: Vec<Vec<u32>> = vec![Vec::new(); ring];
     let mut queued = 0usize;
     for (k, &s) in sources.iter().enumerate() {
@@ -46,7 +47,7 @@ pub(crate) fn costs(survey: &Survey, sources: &[usize]) -> Costs {
             if dist[u] != d {
                 continue;
             }
-            for &v in &survey.neighbors[u] {
+            for (k, &v) in survey.neighbors[u].iter().enumerate() {
                 if v == NONE {
                     continue;
                 }
@@ -55,7 +56,8 @@ pub(crate) fn costs(survey: &Survey, sources: &[usize]) -> Costs {
                 if c == 0 {
                     continue;
                 }
-                let nd = d + c;
+                let across = if survey.crossing[u] & (1 << k) != 0 { survey.river_cost } else { 0 };
+                let nd = d + c + across;
                 if nd < dist[v] {
                     dist[v] = nd;
                     owner[v] = owner[u];

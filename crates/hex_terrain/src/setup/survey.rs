@@ -62,12 +62,18 @@ pub(crate) struct Survey {
     pub tiles: Vec<Hex>,
     pub kinds: Vec<TileKind>,
     pub biomes: Vec<Biome>,
+    /// A river through it or on one of its edges.
     pub river: Vec<bool>,
+    /// Which of its edges carry a river (bit `d`: toward `all_neighbors()[d]`), each crossed for
+    /// `river_cost` more.
+    pub crossing: Vec<u8>,
+    /// The movement model's cost of crossing a river.
+    pub river_cost: u32,
     /// Land next to the sea.
     pub coast: Vec<bool>,
     /// Yields of the terrain alone.
     pub yields: Vec<Yields>,
-    /// Movement cost of entering it, 0 impassable.
+    /// Movement cost of entering it (a river through it included), 0 impassable.
     pub cost: Vec<u32>,
     /// Whether a start may stand on it.
     pub eligible: Vec<bool>,
@@ -88,8 +94,12 @@ impl Survey {
             .map(|&t| stages.thresholds.map_tile_kind(geometry, stages.heights, t).unwrap_or(TileKind::Sea))
             .collect();
         let biomes: Vec<Biome> = tiles.par_iter().zip(&kinds).map(|(&t, &kind)| stages.biome(t, kind)).collect();
-        let river: Vec<bool> =
+        // A river through the tile, or on one of its edges.
+        let center_river: Vec<bool> =
             tiles.iter().map(|&t| stages.table.is_some_and(|table| table.river_flow(geometry, t) > 0.0)).collect();
+        let crossing: Vec<u8> =
+            tiles.iter().map(|&t| stages.table.map_or(0, |table| table.river_edge_mask(geometry, t))).collect();
+        let river: Vec<bool> = center_river.iter().zip(&crossing).map(|(&c, &e)| c || e != 0).collect();
         let mut survey = Self {
             rect,
             cols,
@@ -98,6 +108,8 @@ impl Survey {
             kinds,
             biomes,
             river,
+            crossing,
+            river_cost: stages.movement.river,
             coast: Vec::new(),
             yields: Vec::new(),
             cost: Vec::new(),
@@ -143,7 +155,7 @@ impl Survey {
             })
             .collect();
         survey.cost =
-            (0..survey.len()).map(|i| stages.movement.enter(survey.biomes[i], survey.river[i]).unwrap_or(0)).collect();
+            (0..survey.len()).map(|i| stages.movement.enter(survey.biomes[i], center_river[i]).unwrap_or(0)).collect();
         survey.eligible = (0..survey.len())
             .map(|i| {
                 let land = survey.kinds[i] == TileKind::Land && !survey.biomes[i].is_water() && survey.cost[i] > 0;

@@ -1,5 +1,5 @@
-//! The rules' view of each tile of a bounded map: what entering it costs and how tall it stands
-//! for sight, computed once on the first rules query (paths, reach, sight, fog) and shared by
+//! The rules' view of each tile of a bounded map: what entering it costs, which of its edges a
+//! step crosses a river on, and how tall it stands for sight, computed once on the first rules query (paths, reach, sight, fog) and shared by
 //! every clone of the [`Terrain`]. A table of the answers [`Terrain::move_cost`] and
 //! [`Terrain::sight_height`] give tile by tile, so the searches read an array instead of
 //! evaluating the surface; an unbounded world, which has no end to tabulate, evaluates them
@@ -20,19 +20,34 @@ pub(crate) struct RuleTable {
     cost: Vec<u8>,
     /// Sight height: 0, 1 (tall) or 2 (mountain).
     sight: Vec<u8>,
+    /// Which edges carry a river (bit `d`: toward `all_neighbors()[d]`).
+    crossing: Vec<u8>,
+    /// The movement model's cost of crossing a river on an edge.
+    river: u32,
 }
 
 impl RuleTable {
     /// Evaluates every tile of `rect`.
     pub(crate) fn new(terrain: &Terrain, rect: TileRect) -> Self {
-        let tiles = rect.iter().map(|oc| terrain.tile_from_offset(oc));
+        let tiles: Vec<Hex> = rect.iter().map(|oc| terrain.tile_from_offset(oc)).collect();
         let (cost, sight) = tiles
-            .map(|tile| {
+            .iter()
+            .map(|&tile| {
                 let cost = evaluate_cost(terrain, tile).map_or(0, |c| u8::try_from(c).expect("costs fit a byte"));
                 (cost, evaluate_sight(terrain, tile).unwrap_or(0))
             })
             .unzip();
-        Self { rect, cost, sight }
+        let crossing = match terrain.pipeline.table() {
+            Some(table) => tiles.iter().map(|&t| table.river_edge_mask(terrain.geometry(), t)).collect(),
+            None => vec![0; tiles.len()],
+        };
+        Self { rect, cost, sight, crossing, river: terrain.config().movement.river }
+    }
+
+    /// What crossing the edge of the tile at `index` toward its neighbor `d` adds to a step.
+    #[inline]
+    pub(crate) fn crossing(&self, index: usize, d: usize) -> u32 {
+        if self.crossing[index] & (1 << d) != 0 { self.river } else { 0 }
     }
 
     /// Row-major index of a map tile's offset coordinate.

@@ -1,12 +1,12 @@
 //! The water methods of [`Terrain`]: rivers, lakes, channel cover, vertex colors and the water
 //! surface of a chunk.
 
-use hexx::Hex;
+use hexx::{GridEdge, Hex};
 
 use super::Terrain;
 use crate::mesh::{self, ChunkMesh};
 use crate::vocab::Biome;
-use crate::water::{self, Hydrology, RiverTile, WaterBuffers};
+use crate::water::{self, Hydrology, RiverEdge, RiverTile, WaterBuffers};
 
 impl Terrain {
     /// The map's water network: `None` on a map without rivers.
@@ -32,6 +32,46 @@ impl Terrain {
             return None;
         }
         Some(self.pipeline.table().map_or(0.0, |t| t.river_flow(self.geometry(), tile)))
+    }
+
+    /// The river edges of a tile of the map (`rivers.model: Edges`), from its side: which of
+    /// its edges carry a river, the flow and the corner it flows toward. Empty for a tile with
+    /// none, off the map, or on a map whose rivers run through tile centers.
+    #[must_use]
+    pub fn river_edges(&self, tile: Hex) -> Vec<RiverEdge> {
+        let Some(tile) = self.wrap_tile(tile).filter(|&t| self.contains(t)) else { return Vec::new() };
+        self.pipeline.table().map_or_else(Vec::new, |t| t.river_edges(self.geometry(), tile))
+    }
+
+    /// Whether the step from `from` to its neighbor `to` crosses a river on the edge between
+    /// them (`rivers.model: Edges`); `false` when they are not neighbors on the map.
+    #[must_use]
+    pub fn crosses_river(&self, from: Hex, to: Hex) -> bool {
+        let Some(d) = self.step_direction(from, to) else { return false };
+        let Some(from) = self.wrap_tile(from) else { return false };
+        self.pipeline.table().is_some_and(|t| t.river_edge_mask(self.geometry(), from) & (1 << d) != 0)
+    }
+
+    /// The index into `all_neighbors` of the step from `from` to its neighbor `to` (any copies
+    /// of them on a wrapping map), when both are on the map.
+    pub(crate) fn step_direction(&self, from: Hex, to: Hex) -> Option<usize> {
+        let (a, b) = (self.wrap_tile(from)?, self.wrap_tile(to)?);
+        if !(self.contains(a) && self.contains(b)) {
+            return None;
+        }
+        a.all_neighbors().iter().position(|&nb| self.wrap_tile(nb) == Some(b))
+    }
+
+    /// The course of the river on `edge` (an edge carrying a river, named from either side)
+    /// down to where it ends (the sea, a lake or the map's edge): each edge, named from a tile
+    /// beside it, in order, `edge` first. Empty when `edge` carries no river.
+    #[must_use]
+    pub fn river_course(&self, edge: GridEdge) -> Vec<GridEdge> {
+        let Some(origin) = self.wrap_tile(edge.origin).filter(|&t| self.contains(t)) else { return Vec::new() };
+        match self.pipeline.table().and_then(|t| t.edge_rivers()) {
+            Some(rivers) => rivers.course(self.geometry(), GridEdge { origin, ..edge }),
+            None => Vec::new(),
+        }
     }
 
     /// The lake a tile belongs to (an id, 0 for the first lake), if it is a lake tile.

@@ -1,0 +1,198 @@
+//! Rivers on the edges between tiles (`rivers.model: Edges`) over random bounded maps, wrapping
+//! or not: every river edge lies between two land tiles of the map and is the same seen from
+//! either side, a step crosses exactly the river edges, every course runs downstream (its level
+//! never rises, its flow grows) to the sea, a lake or the map's edge without a loop, and every
+//! river rises at least `sea_distance` tiles from the sea (distances counted here, by a
+//! breadth-first search of the test's own).
+
+use std::collections::{HashSet, VecDeque};
+
+use hex_terrain::hexx::{GridEdge, GridVertex, Hex};
+use hex_terrain::{MapConfig, MapSize, NoiseConfig, Orientation, RiverEdge, RiverModel, Terrain, TileKind};
+use proptest::prelude::*;
+
+mod common;
+
+prop_compose! {
+    fn config()(
+        seed in any::<u32>(),
+        (x, z) in (8u32..40, 8u32..30),
+        scale in 6.0f64..30.0,
+        sea in 0.15f32..0.45,
+        climate in any::<bool>(),
+        pointy in any::<bool>(),
+        wrap in any::<bool>(),
+        threshold in 1.0f32..10.0,
+        sea_distance in 0u32..4,
+        lakes in any::<bool>(),
+    ) -> MapConfig {
+        let mut c = MapConfig {
+            seed,
+            size: MapSize::Bounded { x, z },
+            noise: NoiseConfig { scale, ..NoiseConfig::default() },
+            chunk_size: (8, 8),
+            ..MapConfig::default()
+        };
+        c.terrain.sea_threshold = sea;
+        c.climate.enabled = climate;
+        c.layout.orientation = if pointy { Orientation::Pointy } else { Orientation::Flat };
+        c.rivers.enabled = true;
+        c.rivers.model = RiverModel::Edges;
+        c.rivers.threshold = threshold;
+        c.rivers.sea_distance = sea_distance;
+        c.rivers.lakes = lakes;
+        common::wrapping(c, wrap)
+    }
+}
+
+/// A tile brought onto the map, if it is on it.
+fn on_map(t: &Terrain, tile: Hex) -> Option<Hex> {
+    t.wrap_tile(tile).filter(|&h| t.contains(h))
+}
+
+/// Whether a tile holds water: sea or lake.
+fn wet(t: &Terrain, tile: Hex) -> bool {
+    t.tile_kind(tile) == Some(TileKind::Sea) || t.lake(tile).is_some()
+}
+
+/// A corner as the tiles it joins, brought onto the map (so the names of a corner from either
+/// side of a wrapping map's seam compare equal).
+fn corner(t: &Terrain, v: GridVertex) -> Vec<Option<Hex>> {
+    let mut tiles: Vec<Option<Hex>> = v.coordinates().into_iter().map(|c| t.wrap_tile(c)).collect();
+    tiles.sort_by_key(|h| h.map(|h| (h.x, h.y)));
+    tiles
+}
+
+/// An edge as the two tiles it lies between, brought onto the map.
+fn side(t: &Terrain, e: GridEdge) -> Vec<Option<Hex>> {
+    let mut tiles = vec![t.wrap_tile(e.origin), t.wrap_tile(e.destination())];
+    tiles.sort_by_key(|h| h.map(|h| (h.x, h.y)));
+    tiles
+}
+
+/// The river edge `edge` names, looked up from its origin's side.
+fn river_on(t: &Terrain, edge: GridEdge) -> Option<RiverEdge> {
+    let origin = on_map(t, edge.origin)?;
+    t.river_edges(origin).into_iter().find(|r| r.edge.direction == edge.direction)
+}
+
+/// Each tile's distance to the nearest sea tile, in steps over the map.
+fn sea_distance(t: &Terrain) -> std::collections::HashMap<Hex, u32> {
+    let mut far = std::collections::HashMap::new();
+    let mut queue = VecDeque::new();
+    for tile in t.tiles() {
+        if t.tile_kind(tile) == Some(TileKind::Sea) {
+            far.insert(tile, 0);
+            queue.push_back(tile);
+        }
+    }
+    while let Some(tile) = queue.pop_front() {
+        let d = far[&tile];
+        for nb in tile.all_neighbors().into_iter().filter_map(|n| on_map(t, n)) {
+            far.entry(nb).or_insert_with(|| {
+                queue.push_back(nb);
+                d + 1
+            });
+        }
+    }
+    far
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(48))]
+
+    #[test]
+    fn edge_rivers_run_downstream_between_land_tiles_to_the_sea_a_lake_or_the_edge(config in config()) {
+        let threshold = config.rivers.threshold;
+        let min_sea = config.rivers.sea_distance;
+        let t = Terrain::new(config.clone()).unwrap();
+        // No river runs through a tile center on such a map.
+        prop_assert!(t.rivers().is_empty());
+        let far = sea_distance(&t);
+        let mut all = Vec::new();
+        for tile in t.tiles() {
+            prop_assert_eq!(t.river_flow(tile), Some(0.0));
+            let edges = t.river_edges(tile);
+            for (d, nb) in tile.all_neighbors().into_iter().enumerate() {
+                let Some(nb) = on_map(&t, nb) else {
+                    prop_assert!(edges.iter().all(|r| r.edge.direction.index() as usize != d), "a river on the map's edge");
+                    continue;
+                };
+                let river = edges.iter().find(|r| r.edge.direction.index() as usize == d);
+                prop_assert_eq!(t.crosses_river(tile, nb), river.is_some(), "{:?} -> {:?}", tile, nb);
+                let Some(r) = river else { continue };
+                prop_assert_eq!(r.edge.origin, tile);
+                prop_assert!(!wet(&t, tile) && !wet(&t, nb), "a river edge beside water at {:?} -> {:?}", tile, nb);
+                prop_assert!(r.flow >= threshold, "flow {} below the threshold", r.flow);
+                let [p, q] = r.edge.vertices();
+                prop_assert!(r.downstream == p || r.downstream == q);
+                // The same river seen from the other side.
+                let back = t.river_edges(nb).into_iter().find(|b| on_map(&t, b.edge.destination()) == Some(tile));
+                prop_assert!(back.is_some(), "{:?} has no river toward {:?}", nb, tile);
+                let back = back.unwrap();
+                prop_assert_eq!(back.flow.to_bits(), r.flow.to_bits());
+                prop_assert_eq!(back.level.to_bits(), r.level.to_bits());
+                prop_assert_eq!(corner(&t, back.downstream), corner(&t, r.downstream));
+                all.push(*r);
+            }
+        }
+        // Every course: connected, downstream, no loop, ending at water or the map's edge.
+        for r in &all {
+            let course = t.river_course(r.edge);
+            prop_assert!(!course.is_empty() && course.len() <= all.len() / 2, "course of {} edges", course.len());
+            prop_assert_eq!(side(&t, course[0]), side(&t, r.edge));
+            let mut seen = HashSet::new();
+            let mut last: Option<RiverEdge> = None;
+            for &edge in &course {
+                let here = river_on(&t, edge);
+                prop_assert!(here.is_some(), "{:?} on the course carries no river", edge);
+                let here = here.unwrap();
+                let key = (on_map(&t, edge.origin), edge.direction);
+                prop_assert!(seen.insert(key), "the course loops at {:?}", edge);
+                if let Some(before) = last {
+                    let [p, q] = edge.vertices();
+                    let at = corner(&t, before.downstream);
+                    prop_assert!(corner(&t, p) == at || corner(&t, q) == at, "a gap before {:?}", edge);
+                    prop_assert!(here.level <= before.level, "the river rises: {} after {}", here.level, before.level);
+                    prop_assert!(here.flow > before.flow, "the flow shrinks: {} after {}", here.flow, before.flow);
+                }
+                last = Some(here);
+            }
+            let mouth: GridVertex = last.unwrap().downstream;
+            let ends = mouth.coordinates().into_iter().any(|c| on_map(&t, c).is_none_or(|c| wet(&t, c)));
+            prop_assert!(ends, "a river ends at {:?}, away from water and the map's edge", mouth);
+        }
+        // Sources: an edge no river flows into rises at least `sea_distance` from the sea.
+        for r in &all {
+            let [p, q] = r.edge.vertices();
+            let source = if r.downstream == q { p } else { q };
+            let fed = all.iter().any(|o| corner(&t, o.downstream) == corner(&t, source) && side(&t, o.edge) != side(&t, r.edge));
+            if !fed {
+                let nearest = source.coordinates().into_iter().filter_map(|c| on_map(&t, c)).map(|c| far.get(&c).copied().unwrap_or(u32::MAX)).min();
+                prop_assert!(nearest.is_some_and(|d| d >= min_sea), "a source {} from the sea", nearest.unwrap_or(0));
+            }
+        }
+        // The same network on another thread.
+        let there = std::thread::spawn(move || Terrain::new(config).unwrap()).join().unwrap();
+        for tile in t.tiles() {
+            prop_assert_eq!(t.river_edges(tile), there.river_edges(tile));
+        }
+    }
+}
+
+/// The World preset with edge rivers: how many river edges a land tile has, printed, and some.
+#[test]
+fn the_world_preset_has_edge_rivers() {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../bevy_hex_terrain/assets/maps/world.map.ron");
+    let mut config = MapConfig::load(path).unwrap();
+    config.setup = None;
+    config.rivers.model = RiverModel::Edges;
+    let t = Terrain::new(config).unwrap();
+    let land = t.tiles().filter(|&h| !wet(&t, h)).count();
+    let edges: usize = t.tiles().map(|h| t.river_edges(h).len()).sum::<usize>() / 2;
+    println!(
+        "World preset, edge rivers: {edges} river edges over {land} land tiles (one per {:.1})",
+        land as f64 / edges as f64
+    );
+    assert!(edges > land / 40, "{edges} river edges over {land} land tiles");
+}
