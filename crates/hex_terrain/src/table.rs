@@ -227,7 +227,7 @@ impl TileTable {
     #[must_use]
     pub fn river_edges(&self, geometry: &Geometry, tile: Hex) -> Vec<RiverEdge> {
         match (&self.edge_rivers, self.index(geometry, tile)) {
-            (Some(rivers), Some(i)) => rivers.river_edges(geometry, tile, i),
+            (Some(rivers), Some(i)) => rivers.river_edges(geometry.wrap_tile(tile), i),
             _ => Vec::new(),
         }
     }

@@ -133,6 +133,17 @@ proptest! {
                 prop_assert_eq!(back.flow.to_bits(), r.flow.to_bits());
                 prop_assert_eq!(back.level.to_bits(), r.level.to_bits());
                 prop_assert_eq!(corner(&t, back.downstream), corner(&t, r.downstream));
+                // The channel: the point halfway between the two centers (when the lattice has
+                // one) lies on the edge, covered by water in full as either tile reads it.
+                let lattice = t.lattice();
+                let (a, b) = (lattice.tile_center(tile), lattice.tile_center(r.edge.destination()));
+                let d = b - a;
+                if d.x % 2 == 0 && d.y % 2 == 0 {
+                    let mid = a + Hex::new(d.x / 2, d.y / 2);
+                    prop_assert_eq!(t.water_cover(tile, mid), Some(1.0));
+                    prop_assert_eq!(t.water_cover(nb, t.lattice().tile_center(nb) + (mid - b)), Some(1.0));
+                }
+                prop_assert!(t.tile_is_wet(tile) && t.tile_is_wet(nb));
                 all.push(*r);
             }
         }

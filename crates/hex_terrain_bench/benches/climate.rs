@@ -1,5 +1,6 @@
-//! The climate's winds on Civ6 Huge (106x66, wrapping, climate, rivers and relief: the Huge
-//! preset), beside the same preset with the moisture fBm's climate, in one run: per seed,
+//! The climate's winds and rivers on tile edges on Civ6 Huge (106x66, wrapping, climate, rivers
+//! and relief: the Huge preset), beside the same preset with the moisture fBm's climate and
+//! rivers through tile centers, in one run: per seed,
 //! compiling the map (where the climate, the rain and the rivers are computed), then the median
 //! over the seeds and the ratio.
 //!
@@ -8,7 +9,7 @@
 
 use std::time::{Duration, Instant};
 
-use hex_terrain::{MapConfig, Terrain, WindConfig, WindPattern};
+use hex_terrain::{MapConfig, RiverModel, Terrain, WindConfig, WindPattern};
 use hex_terrain_bench::{median, ms};
 
 fn main() {
@@ -20,10 +21,13 @@ fn main() {
         config.climate.winds = Some(WindConfig { pattern, ..WindConfig::default() });
         config
     };
+    let mut on_edges = with_winds(WindPattern::default());
+    on_edges.rivers.model = RiverModel::Edges;
     let configs = [
         ("moisture fBm (before)", preset.clone()),
         ("winds, Earth's bands", with_winds(WindPattern::default())),
         ("winds, one bearing", with_winds(WindPattern::One(270.0))),
+        ("winds, rivers on edges", on_edges),
     ];
     let mut times: Vec<Vec<Duration>> = vec![Vec::new(); configs.len()];
     std::hint::black_box(Terrain::new(preset.clone()).expect("a valid config"));

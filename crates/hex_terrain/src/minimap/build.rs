@@ -67,6 +67,11 @@ impl Minimap {
             .collect();
         let colors: Vec<[u8; 3]> = tiles.iter().map(|&t| tile_color(terrain, &style, t)).collect();
         let rivers: Vec<Vec<usize>> = tiles.iter().map(|&t| river_slots(terrain, t)).collect();
+        // Rivers on edges: which edges of each tile carry one.
+        let edge_rivers: Vec<u8> = tiles
+            .iter()
+            .map(|&t| terrain.river_edges(t).iter().fold(0, |m, r| m | 1 << r.edge.direction.index()))
+            .collect();
         let river_half = (style.river_width * s / 2.0).max(0.6 * step).min(0.5 * apothem);
 
         let pixels = (size[0] * size[1]) as usize;
@@ -91,9 +96,11 @@ impl Minimap {
                 pixel_tile[i] = t;
                 pixel_edge[i] = (slot as u8, (distance / s) as f32);
                 let mut color = colors[t as usize];
-                if rivers[t as usize]
-                    .iter()
-                    .any(|&k| segment_distance(d, directions[k].0, directions[k].1) < river_half)
+                let on_edge = edge_rivers[t as usize] & (1 << slot) != 0 && distance < river_half;
+                if on_edge
+                    || rivers[t as usize]
+                        .iter()
+                        .any(|&k| segment_distance(d, directions[k].0, directions[k].1) < river_half)
                 {
                     color = style.water_color;
                 }

@@ -67,10 +67,10 @@ impl Terrain {
     /// beside it, in order, `edge` first. Empty when `edge` carries no river.
     #[must_use]
     pub fn river_course(&self, edge: GridEdge) -> Vec<GridEdge> {
-        let Some(origin) = self.wrap_tile(edge.origin).filter(|&t| self.contains(t)) else { return Vec::new() };
-        match self.pipeline.table().and_then(|t| t.edge_rivers()) {
-            Some(rivers) => rivers.course(self.geometry(), GridEdge { origin, ..edge }),
-            None => Vec::new(),
+        let Some(table) = self.pipeline.table() else { return Vec::new() };
+        match (table.edge_rivers(), table.index(self.geometry(), edge.origin)) {
+            (Some(rivers), Some(i)) => rivers.course(i, usize::from(edge.direction.index())),
+            _ => Vec::new(),
         }
     }
 

@@ -4,7 +4,8 @@
 //!
 //! A corner's height is the mean of its tiles' in the map; a corner touching the sea, a lake or
 //! the map's edge is an outlet. A priority flood from the outlets (lowest water level first,
-//! ties in the order pushed) gives every other corner a downstream corner, one of its three
+//! ties in the order pushed, a corner filling a depression right after the corner it is reached
+//! from) gives every other corner a downstream corner, one of its three
 //! neighbors, and a water level (its height, or the level of the corner it drains into when
 //! that is higher, so a depression fills to its spill height): every path downstream ends at an
 //! outlet, never rises in level and never loops. Each land tile's rain goes a sixth to each of
@@ -13,7 +14,7 @@
 //! of that river rises nearer the sea than `rivers.sea_distance` tiles. A non-outlet corner's
 //! tiles are all land in the map, so every river edge lies between two land tiles of the map.
 
-use std::cmp::Ordering;
+use std::cmp::Reverse;
 use std::collections::{BinaryHeap, VecDeque};
 
 use hexx::{EdgeDirection, GridEdge, GridVertex, Hex};
@@ -45,7 +46,15 @@ pub struct RiverEdge {
 /// The edge river network of a bounded map.
 #[derive(Debug, Clone)]
 pub struct EdgeRivers {
-    grid: CornerGrid,
+    /// The map's tiles, row by row.
+    tiles: Vec<Hex>,
+    /// Each map tile's six corners, in hexx's vertex direction order.
+    corners: Vec<[u32; 6]>,
+    /// The vertex directions at the ends of each edge direction.
+    ends: [(usize, usize); 6],
+    /// Each corner's neighbors: the corner across each edge meeting there, with the edge as a
+    /// map tile beside it and its direction from that tile ([`NONE`] past the map).
+    links: Vec<[Link; 3]>,
     /// Downstream corner of each corner; [`NONE`] for outlets and unused corners.
     down: Vec<u32>,
     /// Water level of each corner.
@@ -54,11 +63,47 @@ pub struct EdgeRivers {
     flow: Vec<f32>,
     /// Whether the edge from each corner to its downstream corner carries a river.
     river: Vec<bool>,
-    /// The vertex each corner is known by (its owner tile as first met, its direction 0 or 1).
-    vertex: Vec<GridVertex>,
     /// Per map tile, row-major: bit `d` set when its edge toward `all_neighbors()[d]` carries a
     /// river.
     edges: Vec<u8>,
+    /// Per map tile, the channel's half-width in lattice steps along each of its six edges (0:
+    /// no river there); the two tiles of an edge give it the same.
+    widths: Vec<[f32; 6]>,
+}
+
+/// An edge from a corner: the corner at its other end, a map tile beside it and the edge's
+/// direction from that tile.
+#[derive(Debug, Clone, Copy)]
+struct Link {
+    to: u32,
+    tile: u32,
+    direction: u8,
+}
+
+const NO_LINK: Link = Link { to: NONE, tile: NONE, direction: 0 };
+
+/// How a tile's corners and edges are named, the same for every tile: for each vertex
+/// direction, the corner's owner (the tile seeing it in direction 0 or 1) relative to the tile
+/// and that direction; for each edge direction, the two vertex directions at its ends.
+struct Shape {
+    owners: [(Hex, u8); 6],
+    ends: [(usize, usize); 6],
+}
+
+impl Shape {
+    fn new() -> Self {
+        let vertices = Hex::ZERO.all_vertices();
+        let owners = vertices.map(|v| {
+            let c = canonical(v);
+            (c.origin, c.direction.index())
+        });
+        let ends = EdgeDirection::ALL_DIRECTIONS.map(|d| {
+            let [p, q] = GridEdge { origin: Hex::ZERO, direction: d }.vertices();
+            let slot = |v: GridVertex| vertices.iter().position(|w| w.equivalent(&v)).expect("a vertex of the tile");
+            (slot(p), slot(q))
+        });
+        Self { owners, ends }
+    }
 }
 
 /// Where corners are kept: two a tile (its vertices 0 and 1), over the map's tiles with a row
@@ -67,35 +112,32 @@ pub struct EdgeRivers {
 struct CornerGrid {
     rect: TileRect,
     wraps: bool,
+    cols: i32,
     width: usize,
     height: usize,
 }
 
 impl CornerGrid {
     fn new(rect: TileRect, wraps: bool) -> Self {
-        let cols = (rect.max[0] - rect.min[0]) as usize;
+        let cols = rect.max[0] - rect.min[0];
         let rows = (rect.max[1] - rect.min[1]) as usize;
-        Self { rect, wraps, width: if wraps { cols } else { cols + 2 }, height: rows + 2 }
+        let width = if wraps { cols as usize } else { cols as usize + 2 };
+        Self { rect, wraps, cols, width, height: rows + 2 }
     }
 
     fn len(&self) -> usize {
         self.width * self.height * 2
     }
 
-    /// The index of a vertex's corner (any of its three names, any copy on a wrapping map);
-    /// `None` for a corner of no tile of the map.
-    fn get(&self, geometry: &Geometry, v: GridVertex) -> Option<usize> {
-        let c = canonical(v);
-        let owner = if self.wraps { geometry.wrap_tile(c.origin) } else { c.origin };
+    /// The index of the corner `owner` sees in direction `k` (0 or 1), `owner` any copy of a
+    /// tile next to the map (a wrapping map's columns repeat every `cols`, their parity kept).
+    fn index(&self, geometry: &Geometry, owner: Hex, k: u8) -> usize {
         let [col, row] = geometry.offset_of(owner);
-        let col = usize::try_from(col - self.rect.min[0] + i32::from(!self.wraps)).ok()?;
-        let row = usize::try_from(row - self.rect.min[1] + 1).ok()?;
-        (col < self.width && row < self.height).then(|| (row * self.width + col) * 2 + usize::from(c.direction.index()))
-    }
-
-    /// The index of a corner of a tile of the map.
-    fn index(&self, geometry: &Geometry, v: GridVertex) -> usize {
-        self.get(geometry, v).expect("a corner of a tile of the map")
+        let col = col - self.rect.min[0];
+        let col = if self.wraps { col.rem_euclid(self.cols) } else { col + 1 };
+        let row = (row - self.rect.min[1] + 1) as usize;
+        debug_assert!((col as usize) < self.width && row < self.height, "a corner of a map tile");
+        (row * self.width + col as usize) * 2 + usize::from(k)
     }
 }
 
@@ -113,41 +155,12 @@ fn canonical(v: GridVertex) -> GridVertex {
     .expect("one of a corner's three names has direction 0 or 1")
 }
 
-/// The three edges meeting at a corner, each named from one of its tiles, and the corner at
-/// its other end.
-fn links(v: GridVertex) -> [(GridEdge, GridVertex); 3] {
-    let d = v.direction;
-    let [a, b] = v.side_edges();
-    // The third edge lies between the corner's two other tiles.
-    let other = v.origin + d.direction_cw();
-    let toward = v.origin + d.direction_ccw();
-    let third_dir = EdgeDirection::ALL_DIRECTIONS
-        .into_iter()
-        .find(|&e| other + e == toward)
-        .expect("a corner's other two tiles are neighbors");
-    let third = GridEdge { origin: other, direction: third_dir };
-    [a, b, third].map(|edge| {
-        let [p, q] = edge.vertices();
-        (edge, if p.equivalent(&v) { q } else { p })
-    })
-}
-
-/// Heap entry: lowest level first, then first pushed.
-#[derive(PartialEq)]
-struct Entry(f32, u32, u32);
-
-impl Eq for Entry {}
-
-impl Ord for Entry {
-    fn cmp(&self, other: &Self) -> Ordering {
-        other.0.total_cmp(&self.0).then(other.1.cmp(&self.1))
-    }
-}
-
-impl PartialOrd for Entry {
-    fn partial_cmp(&self, other: &Self) -> Option<Ordering> {
-        Some(self.cmp(other))
-    }
+/// A heap key: the level's bits turned so integers order as the levels do (`f32::total_cmp`),
+/// then the order pushed; the smallest first.
+fn key(level: f32, seq: u32) -> Reverse<u64> {
+    let bits = level.to_bits();
+    let ordered = if bits >> 31 == 1 { !bits } else { bits | 0x8000_0000 };
+    Reverse((u64::from(ordered) << 32) | u64::from(seq))
 }
 
 /// What the network is built from: the map's tiles, row by row.
@@ -175,67 +188,85 @@ impl EdgeRivers {
     ) -> Self {
         let rect = input.rect;
         let grid = CornerGrid::new(rect, geometry.wrap().is_some());
+        let shape = Shape::new();
         let n = grid.len();
         let tiles: Vec<Hex> = rect.iter().map(|oc| geometry.tile_from_offset(oc)).collect();
-        // Every corner of a map tile, by the name its first tile gives it.
-        let mut vertex = vec![Hex::ZERO.all_vertices()[0]; n];
-        let mut used = vec![false; n];
-        for &t in &tiles {
-            for v in t.all_vertices() {
-                let c = grid.index(geometry, v);
-                if !used[c] {
-                    used[c] = true;
-                    vertex[c] = canonical(v);
-                }
+        let corners: Vec<[u32; 6]> =
+            tiles.iter().map(|&t| shape.owners.map(|(owner, k)| grid.index(geometry, t + owner, k) as u32)).collect();
+        // Each corner's height (its map tiles' mean), whether it is an outlet (beside water or
+        // the map's edge: fewer than three map tiles), and its links, from every tile's ring.
+        let (mut sum, mut count) = (vec![0.0_f32; n], vec![0_u8; n]);
+        let mut outlet = vec![false; n];
+        let mut links = vec![[NO_LINK; 3]; n];
+        let mut link = |from: u32, to: u32, tile: usize, direction: usize| {
+            let slots = &mut links[from as usize];
+            if slots.iter().any(|l| l.to == to) {
+                return;
+            }
+            let free = slots.iter_mut().find(|l| l.to == NONE).expect("a corner has three edges");
+            *free = Link { to, tile: tile as u32, direction: direction as u8 };
+        };
+        for (i, ring) in corners.iter().enumerate() {
+            let water = input.kinds[i] == TileKind::Sea || input.lakes[i];
+            for &c in ring {
+                sum[c as usize] += input.raw[i];
+                count[c as usize] += 1;
+                outlet[c as usize] |= water;
+            }
+            for (d, &(a, b)) in shape.ends.iter().enumerate() {
+                link(ring[a], ring[b], i, d);
+                link(ring[b], ring[a], i, d);
             }
         }
-        let mut height = vec![0.0_f32; n];
-        let mut outlet = vec![false; n];
-        for c in (0..n).filter(|&c| used[c]) {
-            let (mut sum, mut count) = (0.0, 0.0);
-            for t in vertex[c].coordinates() {
-                match index(t) {
-                    Some(i) => {
-                        sum += input.raw[i];
-                        count += 1.0;
-                        outlet[c] |= input.kinds[i] == TileKind::Sea || input.lakes[i];
-                    }
-                    None => outlet[c] = true,
-                }
-            }
-            height[c] = sum / count;
+        let used: Vec<bool> = count.iter().map(|&c| c > 0).collect();
+        let mut level: Vec<f32> = (0..n).map(|c| if used[c] { sum[c] / f32::from(count[c]) } else { 0.0 }).collect();
+        for c in 0..n {
+            outlet[c] |= used[c] && count[c] < 3;
         }
         // Priority flood from the outlets.
-        let mut level = height.clone();
         let mut down = vec![NONE; n];
         let mut taken = outlet.clone();
         let mut heap = BinaryHeap::new();
         let mut seq = 0_u32;
         for c in (0..n).filter(|&c| used[c] && outlet[c]) {
-            heap.push(Entry(level[c], seq, c as u32));
+            heap.push((key(level[c], seq), c as u32));
             seq += 1;
         }
+        // A corner no higher than the level it is reached at fills to that level: it is taken
+        // next, from a queue, before any corner the heap holds (Barnes, Lehman and Mulla's
+        // Priority-Flood+FIFO), which gives the same levels with fewer heap operations.
         let mut order = Vec::with_capacity(n);
-        while let Some(Entry(l, _, c)) = heap.pop() {
-            let c = c as usize;
-            order.push(c);
-            for (_, next) in links(vertex[c]) {
-                let Some(j) = grid.get(geometry, next) else { continue };
-                if used[j] && !taken[j] {
+        let mut pit = VecDeque::new();
+        loop {
+            let (l, c) = match pit.pop_front() {
+                Some(c) => (level[c as usize], c),
+                None => match heap.pop() {
+                    Some((_, c)) => (level[c as usize], c),
+                    None => break,
+                },
+            };
+            order.push(c as usize);
+            for next in links[c as usize].iter().take_while(|l| l.to != NONE) {
+                let j = next.to as usize;
+                if !taken[j] {
                     taken[j] = true;
-                    level[j] = level[j].max(l);
-                    down[j] = c as u32;
-                    heap.push(Entry(level[j], seq, j as u32));
-                    seq += 1;
+                    down[j] = c;
+                    if level[j] <= l {
+                        level[j] = l;
+                        pit.push_back(j as u32);
+                    } else {
+                        heap.push((key(level[j], seq), j as u32));
+                        seq += 1;
+                    }
                 }
             }
         }
         // Rain: a sixth of each land tile's to each of its corners, then downstream.
         let mut flow = vec![0.0_f32; n];
-        for (i, &t) in tiles.iter().enumerate() {
+        for (i, ring) in corners.iter().enumerate() {
             if input.kinds[i] != TileKind::Sea && !input.lakes[i] {
-                for v in t.all_vertices() {
-                    flow[grid.index(geometry, v)] += input.rain[i] / 6.0;
+                for &c in ring {
+                    flow[c as usize] += input.rain[i] / 6.0;
                 }
             }
         }
@@ -244,15 +275,30 @@ impl EdgeRivers {
                 flow[down[c] as usize] += flow[c];
             }
         }
-        let river = Self::rivers(config, geometry, input, &index, (&vertex, &down, &flow, &order));
-        let mut network = Self { grid, down, level, flow, river, vertex, edges: vec![0; tiles.len()] };
+        let count = tiles.len();
+        let mut network = Self {
+            tiles,
+            corners,
+            ends: shape.ends,
+            links,
+            down,
+            level,
+            flow,
+            river: Vec::new(),
+            edges: vec![0; count],
+            widths: vec![[0.0; 6]; count],
+        };
+        network.river = network.rivers(config, geometry, input, &index, &order);
+        let width = |flow: f32| config.width * (flow / config.threshold).sqrt().clamp(1.0, 2.0);
         for c in 0..n {
             if network.river[c] {
-                let edge = network.edge_down(geometry, c).expect("a river corner drains");
-                for (from, to) in [(edge.origin, edge.destination()), (edge.destination(), edge.origin)] {
-                    let d = from.all_neighbors().iter().position(|&nb| nb == to).expect("an edge joins neighbors");
-                    let i = index(from).expect("a river edge lies between tiles of the map");
-                    network.edges[i] |= 1 << d;
+                let edge = network.link_down(c);
+                let (i, d) = (edge.tile as usize, usize::from(edge.direction));
+                let other = index(network.tiles[i].all_neighbors()[d]).expect("a river edge lies between map tiles");
+                let w = width(network.flow[c]);
+                for (tile, d) in [(i, d), (other, (d + 3) % 6)] {
+                    network.edges[tile] |= 1 << d;
+                    network.widths[tile][d] = w;
                 }
             }
         }
@@ -263,12 +309,14 @@ impl EdgeRivers {
     /// downstream of a source (a river corner no river flows into) at least `sea_distance`
     /// tiles from the sea.
     fn rivers(
+        &self,
         config: &RiverConfig,
         geometry: &Geometry,
         input: &EdgeInput<'_>,
         index: &impl Fn(Hex) -> Option<usize>,
-        (vertex, down, flow, order): (&[GridVertex], &[u32], &[f32], &[usize]),
+        order: &[usize],
     ) -> Vec<bool> {
+        let (down, flow) = (&self.down, &self.flow);
         let n = down.len();
         let wet: Vec<bool> = (0..n).map(|c| down[c] != NONE && flow[c] >= config.threshold).collect();
         let mut fed = vec![false; n];
@@ -277,15 +325,21 @@ impl EdgeRivers {
                 fed[down[c] as usize] = true;
             }
         }
+        // The distance of a corner to the sea: its nearest map tile's.
         let far = sea_distances(geometry, input, index);
+        let mut near = vec![u32::MAX; n];
+        for (i, ring) in self.corners.iter().enumerate() {
+            for &c in ring {
+                near[c as usize] = near[c as usize].min(far[i]);
+            }
+        }
         let mut keep = vec![false; n];
         for &c in order.iter().rev() {
             if !wet[c] {
                 continue;
             }
             if !fed[c] {
-                let nearest = vertex[c].coordinates().iter().filter_map(|&t| index(t)).map(|i| far[i]).min();
-                keep[c] = nearest.is_some_and(|d| d >= config.sea_distance);
+                keep[c] = near[c] >= config.sea_distance;
             }
             let next = down[c] as usize;
             if keep[c] && wet[next] {
@@ -295,16 +349,9 @@ impl EdgeRivers {
         keep
     }
 
-    /// The edge from corner `c` to its downstream corner, named from one of its tiles.
-    fn edge_down(&self, geometry: &Geometry, c: usize) -> Option<GridEdge> {
-        let next = self.down[c];
-        (next != NONE).then(|| {
-            links(self.vertex[c])
-                .into_iter()
-                .find(|&(_, v)| self.grid.get(geometry, v) == Some(next as usize))
-                .map(|(edge, _)| edge)
-                .expect("the downstream corner is a neighbor")
-        })
+    /// The edge from corner `c` to its downstream corner.
+    fn link_down(&self, c: usize) -> Link {
+        *self.links[c].iter().find(|l| l.to == self.down[c]).expect("the downstream corner is a neighbor")
     }
 
     /// The river edges of map tile `i`, a bit for each neighbor direction.
@@ -314,29 +361,42 @@ impl EdgeRivers {
         self.edges[i]
     }
 
+    /// The channel half-widths of map tile `i` along its six edges, in lattice steps (0: none).
+    #[must_use]
+    #[inline]
+    pub(crate) fn widths(&self, i: usize) -> &[f32; 6] {
+        &self.widths[i]
+    }
+
+    /// The two corners at the ends of map tile `i`'s edge `d`, in the order of the edge's
+    /// vertices.
+    fn ends(&self, i: usize, d: usize) -> (usize, usize) {
+        let (a, b) = self.ends[d];
+        (self.corners[i][a] as usize, self.corners[i][b] as usize)
+    }
+
     /// The river edges of `tile` (map tile `i`), from its side.
-    pub(crate) fn river_edges(&self, geometry: &Geometry, tile: Hex, i: usize) -> Vec<RiverEdge> {
+    pub(crate) fn river_edges(&self, tile: Hex, i: usize) -> Vec<RiverEdge> {
         let mask = self.edges[i];
         EdgeDirection::ALL_DIRECTIONS
             .into_iter()
             .enumerate()
             .filter(|&(d, _)| mask & (1 << d) != 0)
-            .map(|(_, direction)| {
+            .map(|(d, direction)| {
                 let edge = GridEdge { origin: tile, direction };
                 let [p, q] = edge.vertices();
-                let (a, b) = (self.grid.index(geometry, p), self.grid.index(geometry, q));
+                let (a, b) = self.ends(i, d);
                 // The river runs from one end to the other: the end whose downstream is the other.
-                let (from, to) = if self.down[a] == b as u32 && self.river[a] { (a, q) } else { (b, p) };
+                let (from, to) = if self.river[a] && self.down[a] == b as u32 { (a, q) } else { (b, p) };
                 RiverEdge { edge, flow: self.flow[from], downstream: to, level: self.level[from] }
             })
             .collect()
     }
 
-    /// The river's course from `edge` (a river edge) down to where it ends: each edge, named
-    /// from a tile beside it, in order.
-    pub(crate) fn course(&self, geometry: &Geometry, edge: GridEdge) -> Vec<GridEdge> {
-        let [p, q] = edge.vertices();
-        let (a, b) = (self.grid.index(geometry, p), self.grid.index(geometry, q));
+    /// The river's course from map tile `i`'s edge `d` (a river edge) down to where it ends:
+    /// each edge, named from a map tile beside it, in order.
+    pub(crate) fn course(&self, i: usize, d: usize) -> Vec<GridEdge> {
+        let (a, b) = self.ends(i, d);
         let mut at = if self.river[a] && self.down[a] == b as u32 {
             a
         } else if self.river[b] && self.down[b] == a as u32 {
@@ -346,7 +406,9 @@ impl EdgeRivers {
         };
         let mut out = Vec::new();
         while self.river[at] {
-            out.push(self.edge_down(geometry, at).expect("a river corner drains"));
+            let link = self.link_down(at);
+            let direction = EdgeDirection::ALL_DIRECTIONS[usize::from(link.direction)];
+            out.push(GridEdge { origin: self.tiles[link.tile as usize], direction });
             at = self.down[at] as usize;
         }
         out
@@ -388,10 +450,10 @@ fn sea_distances(geometry: &Geometry, input: &EdgeInput<'_>, index: &impl Fn(Hex
 mod tests {
     use super::*;
 
-    /// A corner's three names give one corner, its links are three other corners, and each
-    /// link's edge has the corner at one end.
+    /// A corner's three names give one corner; the shape's owners name a tile's corners, and
+    /// the ends of each edge are two of them, next to each other around the tile.
     #[test]
-    fn corners_have_one_name_and_three_links() {
+    fn corners_have_one_name_and_edges_two_ends() {
         for t in [Hex::ZERO, Hex::new(3, -5), Hex::new(-7, 2)] {
             for v in t.all_vertices() {
                 let c = canonical(v);
@@ -404,14 +466,18 @@ mod tests {
                 for name in names {
                     assert_eq!(canonical(name), c, "{v:?} as {name:?}");
                 }
-                let ends: Vec<GridVertex> = links(v).into_iter().map(|(_, end)| canonical(end)).collect();
-                assert_eq!(ends.len(), 3);
-                assert!(ends[0] != ends[1] && ends[1] != ends[2] && ends[0] != ends[2], "{ends:?}");
-                for (edge, end) in links(v) {
-                    let [p, q] = edge.vertices();
-                    assert!((p.equivalent(&v) && q == end) || (q.equivalent(&v) && p == end), "{edge:?}");
-                }
             }
+        }
+        let shape = Shape::new();
+        for (j, v) in Hex::ZERO.all_vertices().into_iter().enumerate() {
+            let (owner, k) = shape.owners[j];
+            assert!(
+                GridVertex { origin: owner, direction: hexx::VertexDirection::ALL_DIRECTIONS[usize::from(k)] }
+                    .equivalent(&v)
+            );
+        }
+        for &(a, b) in &shape.ends {
+            assert!(a != b && (a + 1) % 6 == b || (b + 1) % 6 == a, "{a} {b}");
         }
         // `all_neighbors` runs in the edge directions' order.
         for (d, nb) in Hex::ZERO.all_neighbors().into_iter().enumerate() {
