@@ -4,6 +4,7 @@
 //! chunk ([`surface`]).
 
 pub mod channels;
+mod corners;
 pub mod edges;
 pub mod hydrology;
 pub mod surface;
