@@ -154,7 +154,14 @@ impl TileTable {
                 let lakes_only = RiverConfig { threshold: f32::INFINITY, ..rivers.clone() };
                 let hydrology = Hydrology::build(&lakes_only, &table.raw, &table.kinds, &rain, &[], neighbor);
                 let lakes: Vec<bool> = (0..tiles.len()).map(|i| hydrology.lake_of(i).is_some()).collect();
-                let input = EdgeInput { rect, raw: &table.raw, kinds: &table.kinds, lakes: &lakes, rain: &rain };
+                let input = EdgeInput {
+                    rect,
+                    raw: &table.raw,
+                    kinds: &table.kinds,
+                    lakes: &lakes,
+                    rain: &rain,
+                    by_hand: &by_hand,
+                };
                 table.edge_rivers = Some(EdgeRivers::build(rivers, geometry, &input, |t| table.index(geometry, t)));
                 table.hydrology = Some(hydrology);
             }

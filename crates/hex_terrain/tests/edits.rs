@@ -33,6 +33,7 @@ prop_compose! {
         unity in any::<bool>(),
         wrap in any::<bool>(),
         winds in any::<bool>(),
+        on_edges in any::<bool>(),
     ) -> MapConfig {
         let mut c = MapConfig {
             seed,
@@ -50,6 +51,9 @@ prop_compose! {
         }
         c.rivers.enabled = rivers && bounded.is_some();
         c.rivers.threshold = 3.0;
+        if on_edges {
+            c.rivers.model = hex_terrain::RiverModel::Edges;
+        }
         c.manipulation.hex_unity = unity;
         if relief {
             c.relief = ReliefConfig::MOUNTAINS;
@@ -126,6 +130,36 @@ fn apply_all(editor: &mut Editor, strokes: &[((i32, i32), Tool, Brush)]) -> usiz
         }
     }
     applied
+}
+
+/// Rivers on edges run down (their level never rises) without coming back to an edge, and end
+/// at a corner beside the sea, a lake or the map's edge.
+fn assert_edge_rivers_flow_down(t: &Terrain) -> Result<(), TestCaseError> {
+    let edges: usize = t.tiles().map(|h| t.river_edges(h).len()).sum();
+    for tile in t.tiles() {
+        for r in t.river_edges(tile) {
+            let course = t.river_course(r.edge);
+            prop_assert!(!course.is_empty() && course.len() <= edges, "a course of {} edges", course.len());
+            let mut level = f32::INFINITY;
+            let mut mouth = None;
+            for edge in course {
+                let origin = t.wrap_tile(edge.origin).unwrap();
+                let here = t.river_edges(origin).into_iter().find(|e| e.edge.direction == edge.direction);
+                prop_assert!(here.is_some(), "{:?} on a course carries no river", edge);
+                let here = here.unwrap();
+                prop_assert!(here.level <= level, "a river rises at {:?}", edge);
+                level = here.level;
+                mouth = Some(here.downstream);
+            }
+            let ends = mouth.unwrap().coordinates().into_iter().any(|c| {
+                t.wrap_tile(c)
+                    .filter(|&c| t.contains(c))
+                    .is_none_or(|c| t.tile_kind(c) == Some(TileKind::Sea) || t.lake(c).is_some())
+            });
+            prop_assert!(ends, "a river on edges ends inland at {:?}", mouth);
+        }
+    }
+    Ok(())
 }
 
 /// Rivers flow to tiles whose water level is not higher and end in the sea, a lake or off the
@@ -223,6 +257,7 @@ proptest! {
             }
         }
         assert_rivers_flow_down(t)?;
+        assert_edge_rivers_flow_down(t)?;
     }
 
     /// Undoing every operation gives back the generated map bit for bit; redoing every one the
@@ -456,6 +491,54 @@ fn an_added_river_runs_to_an_outlet_and_a_removed_one_is_gone_upstream() {
     assert_rivers_flow_down(dry).unwrap();
     while editor.undo().is_some() {}
     assert_eq!(editor.terrain().rivers(), t.rivers());
+}
+
+/// On a map whose rivers run on edges, a river added on an inland tile rises at one of its
+/// corners and runs to the sea, a lake or the edge; a tile made dry has no river along or ending
+/// on its edges; undo brings the network back; the map file keeps the rivers set by hand.
+#[test]
+fn an_edge_river_added_rises_at_the_tile_and_a_dry_tile_has_none() {
+    let mut config = watered();
+    config.rivers.model = hex_terrain::RiverModel::Edges;
+    config.rivers.threshold = 4.0;
+    let mut editor = Editor::new(config).unwrap();
+    let t = editor.terrain().clone();
+    let corners = |tile: Hex| tile.all_vertices();
+    let touches = |t: &Terrain, tile: Hex| {
+        tile.all_neighbors().into_iter().chain([tile]).any(|h| {
+            t.river_edges(h)
+                .iter()
+                .any(|r| r.edge.vertices().iter().any(|v| corners(tile).iter().any(|c| c.equivalent(v))))
+        })
+    };
+    let tile = t
+        .tiles()
+        .find(|&x| {
+            x.range(2).all(|n| t.contains(n) && t.tile_kind(n) == Some(TileKind::Land) && t.lake(n).is_none())
+                && !touches(&t, x)
+        })
+        .expect("an inland tile away from rivers");
+    let change = editor.apply(Stroke { tool: Tool::AddRiver, brush: Brush::Range(0), tile }).unwrap();
+    let after = editor.terrain().clone();
+    assert!(touches(&after, tile), "no river rises at a corner of {tile:?}");
+    assert!(change.tiles.contains(&tile), "the source's tile is reported");
+    assert_edge_rivers_flow_down(&after).unwrap();
+    let saved = MapConfig::from_ron(&editor.config().to_ron()).unwrap();
+    let again = Terrain::new(saved).unwrap();
+    for h in after.tiles() {
+        assert_eq!(again.river_edges(h), after.river_edges(h), "the saved map replays to other rivers at {h:?}");
+    }
+    // A tile beside a river made dry: nothing runs along or ends on the
+    // dry tile's edges.
+    let crossing = after.tiles().find(|&h| after.river_edges(h).len() >= 2).expect("a tile beside a river");
+    editor.apply(Stroke { tool: Tool::RemoveRiver, brush: Brush::Range(0), tile: crossing }).unwrap();
+    let dry = editor.terrain().clone();
+    assert!(!touches(&dry, crossing), "a river still touches {crossing:?}");
+    assert_edge_rivers_flow_down(&dry).unwrap();
+    while editor.undo().is_some() {}
+    for h in t.tiles() {
+        assert_eq!(editor.terrain().river_edges(h), t.river_edges(h));
+    }
 }
 
 /// A lake dug into land fills with water; draining it gives land at its surface and no lake.

@@ -5,7 +5,7 @@
 use serde::{Deserialize, Serialize};
 
 use super::validate::{check, finite_in};
-use super::{MAX_WORLD_TILE, MapSize, RiverConfig, RiverModel};
+use super::{MAX_WORLD_TILE, MapSize, RiverConfig};
 use crate::error::ConfigError;
 use crate::vocab::{Biome, TileKind};
 
@@ -63,10 +63,13 @@ pub struct TileEdit {
 pub enum RiverEdit {
     /// A river rises on the tile and runs down the drainage, as generated rivers do, to the sea,
     /// a lake or the map's edge (merging with the rivers it meets). On a sea tile it does nothing.
+    /// With rivers on tile edges it rises at the tile's lowest corner that drains (none beside
+    /// water or the map's edge: then it does nothing), wherever that lies from the sea.
     Source,
     /// No water runs through the tile: neither the tile nor any tile draining through it carries
     /// a river, and the rivers downstream carry less (they may end where their flow falls below
-    /// the threshold, or rise again where tributaries join).
+    /// the threshold, or rise again where tributaries join). With rivers on tile edges: no
+    /// water runs through the tile's corners, so no river runs along or ends on its edges.
     Dry,
 }
 
@@ -102,7 +105,7 @@ impl TileEdit {
 
 /// Checks the edits of a map of `size`: every tile on the map (within the world's edge on an
 /// unbounded one), once; every height finite in `[0, 1]`; a type the map can have; at most
-/// [`MAX_EDITS`]; a river only on a map with rivers through tile centers.
+/// [`MAX_EDITS`]; a river only on a map with rivers.
 pub(super) fn validate(
     edits: &[TileEdit],
     size: MapSize,
@@ -144,12 +147,6 @@ pub(super) fn validate(
                 &format!("edits[{i}].river"),
                 format!("{river:?}"),
                 "none: rivers are off (rivers.enabled is false, or the map is unbounded)",
-            )?;
-            check(
-                rivers.model == RiverModel::Centers,
-                &format!("edits[{i}].river"),
-                format!("{river:?} on a map whose rivers run on tile edges"),
-                "none: a river set by hand runs through tile centers (rivers.model: Centers)",
             )?;
         }
     }

@@ -11,7 +11,9 @@
 //! outlet, never rises in level and never loops. Each land tile's rain goes a sixth to each of
 //! its corners and flows downstream, added up in reverse order of the flood. An edge carries a
 //! river where the flow of its upstream corner reaches `rivers.threshold`, unless every source
-//! of that river rises nearer the sea than `rivers.sea_distance` tiles. A non-outlet corner's
+//! of that river rises nearer the sea than `rivers.sea_distance` tiles. A river set by hand
+//! ([`RiverEdit`]) rises at its tile's lowest corner that drains (`Source`, wherever it lies),
+//! or keeps every corner of its tile, and all that drains through them, dry (`Dry`). A non-outlet corner's
 //! tiles are all land in the map, so every river edge lies between two land tiles of the map.
 
 use std::cmp::Reverse;
@@ -22,7 +24,7 @@ use serde::{Deserialize, Serialize};
 
 use super::corners::{CornerGrid, Shape};
 use crate::chunk::TileRect;
-use crate::config::RiverConfig;
+use crate::config::{RiverConfig, RiverEdit};
 use crate::geometry::Geometry;
 use crate::vocab::TileKind;
 
@@ -103,6 +105,8 @@ pub(crate) struct EdgeInput<'a> {
     pub lakes: &'a [bool],
     /// Each tile's rain.
     pub rain: &'a [f32],
+    /// Each tile's river set by hand (empty when no tile has one).
+    pub by_hand: &'a [Option<RiverEdit>],
 }
 
 impl EdgeRivers {
@@ -198,6 +202,38 @@ impl EdgeRivers {
                 }
             }
         }
+        // Rivers set by hand: a dry tile's corners, and every corner draining through them,
+        // carry nothing; a source rises at the tile's lowest corner that drains.
+        let mut source = vec![false; n];
+        if !input.by_hand.is_empty() {
+            let mut dry = vec![false; n];
+            for (i, ring) in corners.iter().enumerate() {
+                match input.by_hand[i] {
+                    Some(RiverEdit::Dry) => ring.iter().for_each(|&c| dry[c as usize] = true),
+                    Some(RiverEdit::Source) => {
+                        let lowest = ring
+                            .iter()
+                            .map(|&c| c as usize)
+                            .filter(|&c| down[c] != NONE)
+                            .min_by(|&a, &b| level[a].total_cmp(&level[b]));
+                        if let Some(c) = lowest {
+                            source[c] = true;
+                        }
+                    }
+                    None => {}
+                }
+            }
+            // Downstream first: a corner is dry when it or the corner it drains into is.
+            for &c in &order {
+                dry[c] |= down[c] != NONE && dry[down[c] as usize];
+                if dry[c] {
+                    flow[c] = 0.0;
+                    source[c] = false;
+                } else if source[c] {
+                    flow[c] = flow[c].max(config.threshold);
+                }
+            }
+        }
         for &c in order.iter().rev() {
             if down[c] != NONE {
                 flow[down[c] as usize] += flow[c];
@@ -216,7 +252,7 @@ impl EdgeRivers {
             edges: vec![0; count],
             widths: vec![[0.0; 6]; count],
         };
-        network.river = network.rivers(config, geometry, input, &index, &order);
+        network.river = network.rivers(config, geometry, input, &index, (&order, &source));
         let width = |flow: f32| config.width * (flow / config.threshold).sqrt().clamp(1.0, 2.0);
         for c in 0..n {
             if network.river[c] {
@@ -242,7 +278,7 @@ impl EdgeRivers {
         geometry: &Geometry,
         input: &EdgeInput<'_>,
         index: &impl Fn(Hex) -> Option<usize>,
-        order: &[usize],
+        (order, by_hand): (&[usize], &[bool]),
     ) -> Vec<bool> {
         let (down, flow) = (&self.down, &self.flow);
         let n = down.len();
@@ -267,7 +303,7 @@ impl EdgeRivers {
                 continue;
             }
             if !fed[c] {
-                keep[c] = near[c] >= config.sea_distance;
+                keep[c] = by_hand[c] || near[c] >= config.sea_distance;
             }
             let next = down[c] as usize;
             if keep[c] && wet[next] {
@@ -342,10 +378,10 @@ impl EdgeRivers {
         out
     }
 
-    /// Whether map tile `i` has the same river edges in `self` and `other`.
+    /// Whether map tile `i` has the same river edges, as wide, in `self` and `other`.
     #[must_use]
     pub(crate) fn same_tile(&self, other: &Self, i: usize) -> bool {
-        self.edges[i] == other.edges[i]
+        self.edges[i] == other.edges[i] && self.widths[i].map(f32::to_bits) == other.widths[i].map(f32::to_bits)
     }
 }
 
