@@ -16,13 +16,12 @@
 //! or keeps every corner of its tile, and all that drains through them, dry (`Dry`). A non-outlet corner's
 //! tiles are all land in the map, so every river edge lies between two land tiles of the map.
 
-use std::cmp::Reverse;
-use std::collections::{BinaryHeap, VecDeque};
+use std::collections::VecDeque;
 
 use hexx::{EdgeDirection, GridEdge, GridVertex, Hex};
 use serde::{Deserialize, Serialize};
 
-use super::corners::{CornerGrid, Shape};
+use super::corners::{CornerGrid, Owners, RadixHeap, Shape, key};
 use crate::chunk::TileRect;
 use crate::config::{RiverConfig, RiverEdit};
 use crate::geometry::Geometry;
@@ -85,14 +84,6 @@ struct Link {
 
 const NO_LINK: Link = Link { to: NONE, tile: NONE, direction: 0 };
 
-/// A heap key: the level's bits turned so integers order as the levels do (`f32::total_cmp`),
-/// then the order pushed; the smallest first.
-fn key(level: f32, seq: u32) -> Reverse<u64> {
-    let bits = level.to_bits();
-    let ordered = if bits >> 31 == 1 { !bits } else { bits | 0x8000_0000 };
-    Reverse((u64::from(ordered) << 32) | u64::from(seq))
-}
-
 /// What the network is built from: the map's tiles, row by row.
 pub(crate) struct EdgeInput<'a> {
     /// The map's tiles.
@@ -121,10 +112,10 @@ impl EdgeRivers {
         let rect = input.rect;
         let grid = CornerGrid::new(rect, geometry.wrap().is_some());
         let shape = Shape::new();
+        let owners = Owners::new(geometry, &shape);
         let n = grid.len();
         let tiles: Vec<Hex> = rect.iter().map(|oc| geometry.tile_from_offset(oc)).collect();
-        let corners: Vec<[u32; 6]> =
-            tiles.iter().map(|&t| shape.owners.map(|(owner, k)| grid.index(geometry, t + owner, k) as u32)).collect();
+        let corners: Vec<[u32; 6]> = rect.iter().map(|oc| grid.tile_corners(&shape, &owners, oc)).collect();
         // Each corner's height (its map tiles' mean), whether it is an outlet (beside water or
         // the map's edge: fewer than three map tiles), and its links, from every tile's ring.
         let (mut sum, mut count) = (vec![0.0_f32; n], vec![0_u8; n]);
@@ -158,10 +149,12 @@ impl EdgeRivers {
         // Priority flood from the outlets.
         let mut down = vec![NONE; n];
         let mut taken = outlet.clone();
-        let mut heap = BinaryHeap::new();
+        let mut heap = RadixHeap::new();
         let mut seq = 0_u32;
-        for c in (0..n).filter(|&c| used[c] && outlet[c]) {
-            heap.push((key(level[c], seq), c as u32));
+        // Only the outlets beside a corner that drains matter (the open sea's corners do not).
+        let shore = |c: usize| links[c].iter().take_while(|l| l.to != NONE).any(|l| !outlet[l.to as usize]);
+        for c in (0..n).filter(|&c| used[c] && outlet[c] && shore(c)) {
+            heap.push(key(level[c], seq), c as u32);
             seq += 1;
         }
         // A corner no higher than the level it is reached at fills to that level: it is taken
@@ -173,7 +166,7 @@ impl EdgeRivers {
             let (l, c) = match pit.pop_front() {
                 Some(c) => (level[c as usize], c),
                 None => match heap.pop() {
-                    Some((_, c)) => (level[c as usize], c),
+                    Some(c) => (level[c as usize], c),
                     None => break,
                 },
             };
@@ -187,7 +180,7 @@ impl EdgeRivers {
                         level[j] = l;
                         pit.push_back(j as u32);
                     } else {
-                        heap.push((key(level[j], seq), j as u32));
+                        heap.push(key(level[j], seq), j as u32);
                         seq += 1;
                     }
                 }
