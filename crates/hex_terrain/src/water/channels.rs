@@ -24,27 +24,8 @@ pub fn cover(geometry: &Geometry, table: &TileTable, tile: Hex, p: Hex) -> f32 {
     if let Some(edges) = table.edge_rivers() {
         return edge_cover(geometry, edges.widths(i), tile, p);
     }
-    let channels = h.channels(i);
-    if channels.iter().all(|&w| w == 0.0) {
-        return 0.0;
-    }
-    let lattice = geometry.lattice();
-    let center = lattice.tile_center(tile);
-    let step = geometry.step();
-    let [px, pz] = lattice.world(p - center);
-    let mut best = 0.0_f64;
-    for (nb, &w) in tile.all_neighbors().iter().zip(channels) {
-        if w == 0.0 {
-            continue;
-        }
-        let [ex, ez] = lattice.world(lattice.tile_center(*nb) - center);
-        let (mx, mz) = (ex * 0.5, ez * 0.5);
-        let t = ((px * mx + pz * mz) / (mx * mx + mz * mz)).clamp(0.0, 1.0);
-        let (dx, dz) = (px - t * mx, pz - t * mz);
-        let x = ((dx * dx + dz * dz).sqrt() / (step * f64::from(w))).min(1.0);
-        best = best.max(1.0 - x * x * (3.0 - 2.0 * x));
-    }
-    best as f32
+    // A channel toward a neighbor runs from the tile's center to the edge's middle.
+    channels_cover(geometry, h.channels(i), tile, p, |m| ([0.0, 0.0], m, (0.0, 1.0)))
 }
 
 /// How much of the channels along a tile's edges (`widths`, in lattice steps, 0 where no river
@@ -52,6 +33,23 @@ pub fn cover(geometry: &Geometry, table: &TileTable, tile: Hex, p: Hex) -> f32 {
 /// tile on the other side shares, read the same edge), falling smoothly to 0 at the channel's
 /// half-width into the tile.
 fn edge_cover(geometry: &Geometry, widths: &[f32; 6], tile: Hex, p: Hex) -> f32 {
+    // The edge: through the middle between the centers, square to them, as long as a side of
+    // the hexagon (the middle's distance over the square root of 3 either way).
+    channels_cover(geometry, widths, tile, p, |[mx, mz]| ([mx, mz], [-mz / 3f64.sqrt(), mx / 3f64.sqrt()], (-1.0, 1.0)))
+}
+
+/// How much of a tile's channels covers lattice point `p`: for each neighbor with a channel
+/// (`widths[d]` lattice steps wide, 0 for none), the channel's segment, given by `segment` from
+/// the middle `m` between the two centers (world offsets from the tile's center) as
+/// `from + t * along` for `t` in `range`. 1 on a segment, falling smoothly to 0 at the channel's
+/// half-width.
+fn channels_cover(
+    geometry: &Geometry,
+    widths: &[f32; 6],
+    tile: Hex,
+    p: Hex,
+    segment: impl Fn([f64; 2]) -> ([f64; 2], [f64; 2], (f64, f64)),
+) -> f32 {
     if widths.iter().all(|&w| w == 0.0) {
         return 0.0;
     }
@@ -64,13 +62,10 @@ fn edge_cover(geometry: &Geometry, widths: &[f32; 6], tile: Hex, p: Hex) -> f32 
         if w == 0.0 {
             continue;
         }
-        // The edge: through the midpoint between the centers, square to them, as long as a side
-        // of the hexagon (the midpoint's distance over the square root of 3 either way).
         let [ex, ez] = lattice.world(lattice.tile_center(*nb) - center);
-        let (mx, mz) = (ex * 0.5, ez * 0.5);
-        let (ux, uz) = (-mz / 3f64.sqrt(), mx / 3f64.sqrt());
-        let (qx, qz) = (px - mx, pz - mz);
-        let t = ((qx * ux + qz * uz) / (ux * ux + uz * uz)).clamp(-1.0, 1.0);
+        let ([ax, az], [ux, uz], (lo, hi)) = segment([ex * 0.5, ez * 0.5]);
+        let (qx, qz) = (px - ax, pz - az);
+        let t = ((qx * ux + qz * uz) / (ux * ux + uz * uz)).clamp(lo, hi);
         let (dx, dz) = (qx - t * ux, qz - t * uz);
         let x = ((dx * dx + dz * dz).sqrt() / (step * f64::from(w))).min(1.0);
         best = best.max(1.0 - x * x * (3.0 - 2.0 * x));
