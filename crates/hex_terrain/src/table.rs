@@ -105,7 +105,7 @@ impl TileTable {
         let samples: Vec<TileSample> = tiles.iter().enumerate().map(|(i, &t)| table.sample(geometry, i, t)).collect();
         // Each tile's climate, once: rain and biome both read it.
         let winds = climate.winds().map(|winds| {
-            let input = RainInput { rect, raw: &table.raw, kinds: &table.kinds, sea: thresholds.sea };
+            let input = RainInput { rect, tiles: &tiles, raw: &table.raw, kinds: &table.kinds, sea: thresholds.sea };
             winds::rainfall(winds, geometry, &input, |t| table.index(geometry, t))
         });
         table.climates = tiles
@@ -156,6 +156,7 @@ impl TileTable {
                 let lakes: Vec<bool> = (0..tiles.len()).map(|i| hydrology.lake_of(i).is_some()).collect();
                 let input = EdgeInput {
                     rect,
+                    tiles: &tiles,
                     raw: &table.raw,
                     kinds: &table.kinds,
                     lakes: &lakes,

@@ -43,8 +43,9 @@ const SEA_AIR: f32 = 1.0;
 
 /// The tiles of a map with what the rain needs of them, row by row.
 pub(crate) struct RainInput<'a> {
-    /// The map's tiles.
+    /// The map's tiles: their rectangle, and each tile row by row.
     pub rect: TileRect,
+    pub tiles: &'a [Hex],
     /// Each tile's center height, raw (normalised).
     pub raw: &'a [f32],
     /// Each tile's kind.
@@ -73,15 +74,17 @@ fn moving(bearing: f32) -> [f32; 2] {
 struct Bands {
     /// The air's direction in band `i` of the northern half, equator first.
     north: Vec<[f32; 2]>,
+    /// Whether it is one wind over the whole map (not mirrored, no band edges).
+    one: bool,
 }
 
 impl Bands {
     fn new(pattern: &WindPattern) -> Self {
-        let bearings = match pattern {
-            WindPattern::Bands(b) => b.clone(),
-            WindPattern::One(b) => vec![*b],
+        let (bearings, one) = match pattern {
+            WindPattern::Bands(b) => (b.clone(), false),
+            WindPattern::One(b) => (vec![*b], true),
         };
-        Self { north: bearings.into_iter().map(moving).collect() }
+        Self { north: bearings.into_iter().map(moving).collect(), one }
     }
 
     /// The band of a latitude.
@@ -91,13 +94,9 @@ impl Bands {
 
     /// The air's direction at a latitude; the southern half mirrors the northern north to
     /// south.
-    fn wind(&self, pattern: &WindPattern, latitude: f32, north: bool) -> [f32; 2] {
+    fn wind(&self, latitude: f32, north: bool) -> [f32; 2] {
         let [x, z] = self.north[self.band(latitude)];
-        match pattern {
-            WindPattern::One(_) => [x, z],
-            WindPattern::Bands(_) if north => [x, z],
-            WindPattern::Bands(_) => [x, -z],
-        }
+        if self.one || north { [x, z] } else { [x, -z] }
     }
 
     /// The air's speed toward the pole in band `i` (the same in both halves).
@@ -108,8 +107,8 @@ impl Bands {
     /// How much the rain is raised (above 1) or lowered at a latitude: at each band's edge, by
     /// how squarely the winds on its two sides blow toward it (meeting, rising air) or away
     /// from it (parting, sinking air), fading to nothing half a band away.
-    fn uplift(&self, pattern: &WindPattern, uplift: f32, latitude: f32) -> f32 {
-        if matches!(pattern, WindPattern::One(_)) {
+    fn uplift(&self, uplift: f32, latitude: f32) -> f32 {
+        if self.one {
             return 1.0;
         }
         let n = self.north.len();
@@ -149,13 +148,13 @@ pub(crate) fn rainfall(
         [dx / len, dz / len]
     });
     let dot = |a: [f32; 2], b: [f32; 2]| a[0] * b[0] + a[1] * b[1];
-    let tiles: Vec<Hex> = rect.iter().map(|oc| geometry.tile_from_offset(oc)).collect();
+    let tiles = input.tiles;
     let cols = (rect.max[0] - rect.min[0]).max(0) as usize;
     // Each row's latitude, wind and uplift.
     let rows: Vec<(f32, [f32; 2], f32)> = (rect.min[1]..rect.max[1])
         .map(|r| {
             let (lat, north) = latitude(rect, r);
-            (lat, bands.wind(&config.pattern, lat, north), bands.uplift(&config.pattern, config.uplift, lat))
+            (lat, bands.wind(lat, north), bands.uplift(config.uplift, lat))
         })
         .collect();
     let wind = |i: usize| rows[i / cols.max(1)].1;
@@ -222,17 +221,17 @@ mod tests {
     fn earth_bands_part_at_the_horse_latitudes_and_meet_at_the_equator() {
         let pattern = WindPattern::default();
         let bands = Bands::new(&pattern);
-        let at = |lat: f32| bands.uplift(&pattern, 0.5, lat);
+        let at = |lat: f32| bands.uplift(0.5, lat);
         assert!(at(0.0) > 1.3, "equator {}", at(0.0));
         assert!(at(1.0 / 3.0) < 0.7, "horse latitudes {}", at(1.0 / 3.0));
         assert!(at(2.0 / 3.0) > 1.3, "polar front {}", at(2.0 / 3.0));
         assert!((at(1.0 / 6.0) - 1.0).abs() < 1e-6, "mid-band {}", at(1.0 / 6.0));
         // The trade winds blow toward the equator and west in the north, toward it and west in
         // the south.
-        let [x, z] = bands.wind(&pattern, 0.1, true);
+        let [x, z] = bands.wind(0.1, true);
         assert!(x < 0.0 && z > 0.0, "north trades move south-west: {x} {z}");
-        let [x, z] = bands.wind(&pattern, 0.1, false);
+        let [x, z] = bands.wind(0.1, false);
         assert!(x < 0.0 && z < 0.0, "south trades move north-west: {x} {z}");
-        assert_eq!(Bands::new(&WindPattern::One(90.0)).uplift(&WindPattern::One(90.0), 1.0, 0.33), 1.0);
+        assert_eq!(Bands::new(&WindPattern::One(90.0)).uplift(1.0, 0.33), 1.0);
     }
 }

@@ -86,8 +86,9 @@ const NO_LINK: Link = Link { to: NONE, tile: NONE, direction: 0 };
 
 /// What the network is built from: the map's tiles, row by row.
 pub(crate) struct EdgeInput<'a> {
-    /// The map's tiles.
+    /// The map's tiles: their rectangle, and each tile row by row.
     pub rect: TileRect,
+    pub tiles: &'a [Hex],
     /// Each tile's center height, raw.
     pub raw: &'a [f32],
     /// Each tile's kind.
@@ -114,7 +115,7 @@ impl EdgeRivers {
         let shape = Shape::new();
         let owners = Owners::new(geometry, &shape);
         let n = grid.len();
-        let tiles: Vec<Hex> = rect.iter().map(|oc| geometry.tile_from_offset(oc)).collect();
+        let tiles = input.tiles.to_vec();
         let corners: Vec<[u32; 6]> = rect.iter().map(|oc| grid.tile_corners(&shape, &owners, oc)).collect();
         // Each corner's height (its map tiles' mean), whether it is an outlet (beside water or
         // the map's edge: fewer than three map tiles), and its links, from every tile's ring.
@@ -245,7 +246,7 @@ impl EdgeRivers {
             edges: vec![0; count],
             widths: vec![[0.0; 6]; count],
         };
-        network.river = network.rivers(config, geometry, input, &index, (&order, &source));
+        network.river = network.rivers(config, input, &index, (&order, &source));
         let width = |flow: f32| config.width * (flow / config.threshold).sqrt().clamp(1.0, 2.0);
         for c in 0..n {
             if network.river[c] {
@@ -268,7 +269,6 @@ impl EdgeRivers {
     fn rivers(
         &self,
         config: &RiverConfig,
-        geometry: &Geometry,
         input: &EdgeInput<'_>,
         index: &impl Fn(Hex) -> Option<usize>,
         (order, by_hand): (&[usize], &[bool]),
@@ -283,7 +283,7 @@ impl EdgeRivers {
             }
         }
         // The distance of a corner to the sea: its nearest map tile's.
-        let far = sea_distances(geometry, input, index);
+        let far = sea_distances(input, index);
         let mut near = vec![u32::MAX; n];
         for (i, ring) in self.corners.iter().enumerate() {
             for &c in ring {
@@ -380,8 +380,8 @@ impl EdgeRivers {
 
 /// Each map tile's distance in tiles to the nearest sea tile (a breadth-first search from every
 /// sea tile at once); `u32::MAX` on a map without sea.
-fn sea_distances(geometry: &Geometry, input: &EdgeInput<'_>, index: &impl Fn(Hex) -> Option<usize>) -> Vec<u32> {
-    let tiles: Vec<Hex> = input.rect.iter().map(|oc| geometry.tile_from_offset(oc)).collect();
+fn sea_distances(input: &EdgeInput<'_>, index: &impl Fn(Hex) -> Option<usize>) -> Vec<u32> {
+    let tiles = input.tiles;
     let mut far = vec![u32::MAX; tiles.len()];
     let mut queue = VecDeque::new();
     for (i, &kind) in input.kinds.iter().enumerate() {
