@@ -13,11 +13,12 @@ mod movement;
 mod setup;
 mod sight;
 mod validate;
+mod winds;
 
 pub use climate::{
-    BiomeRule, ClimateConfig, MAX_BIOME_RULES, MAX_SEA_DISTANCE, MAX_WATER_TILES, MAX_WIND_BANDS, RiverConfig,
-    RiverModel, WindConfig, WindPattern,
+    BiomeRule, ClimateConfig, MAX_BIOME_RULES, MAX_SEA_DISTANCE, MAX_WATER_TILES, RiverConfig, RiverModel,
 };
+pub use winds::{MAX_WIND_BANDS, WindConfig, WindPattern};
 
 pub use edits::{MAX_EDITS, PropDensity, RiverEdit, TileEdit};
 pub use file::MapFile;
