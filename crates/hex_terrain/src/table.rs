@@ -163,7 +163,7 @@ impl TileTable {
                     rain: &rain,
                     by_hand: &by_hand,
                 };
-                table.edge_rivers = Some(EdgeRivers::build(rivers, geometry, &input, |t| table.index(geometry, t)));
+                table.edge_rivers = Some(EdgeRivers::build(rivers, geometry, &input));
                 table.hydrology = Some(hydrology);
             }
         }

@@ -22,6 +22,7 @@ use hexx::Hex;
 use crate::chunk::TileRect;
 use crate::config::{WindConfig, WindPattern};
 use crate::geometry::Geometry;
+use crate::hash::order_key;
 use crate::vocab::TileKind;
 
 /// Laps over the map: the first carries air along each band, the second across the seam of a
@@ -177,9 +178,10 @@ pub(crate) fn rainfall(
         }
     }
     // Upwind tiles first: by position along the tile's own wind, then row-major.
-    let mut order: Vec<usize> = (0..tiles.len()).collect();
-    let keys: Vec<f32> = tiles.iter().enumerate().map(|(i, &t)| dot(position(t), wind(i))).collect();
-    order.sort_by(|&a, &b| keys[a].total_cmp(&keys[b]).then(a.cmp(&b)));
+    let mut keys: Vec<u64> =
+        tiles.iter().enumerate().map(|(i, &t)| order_key(dot(position(t), wind(i)), i as u32)).collect();
+    keys.sort_unstable();
+    let order: Vec<usize> = keys.iter().map(|&k| (k & u64::from(u32::MAX)) as usize).collect();
 
     let land_range = (1.0 - input.sea).max(f32::EPSILON);
     let mut humidity = vec![SEA_AIR; tiles.len()];

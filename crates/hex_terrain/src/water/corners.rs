@@ -1,7 +1,7 @@
 //! The corners of a bounded map's tiles, where three tiles meet, as the edge river network
 //! ([`super::edges`]) keeps them: one name a corner (hexx's `GridVertex` seen in direction 0 or
-//! 1), two corners a tile in a grid over the map, and the same names from every tile; and the
-//! queue the network's flood takes them from.
+//! 1), two corners a tile in a grid over the map, the same names from every tile, and each
+//! corner's tiles and neighbors from a few stencils.
 
 use hexx::{EdgeDirection, GridEdge, GridVertex, Hex};
 
@@ -11,6 +11,7 @@ use crate::geometry::Geometry;
 /// How a tile's corners and edges are named, the same for every tile: for each vertex
 /// direction, the corner's owner (the tile seeing it in direction 0 or 1) relative to the tile
 /// and that direction; for each edge direction, the two vertex directions at its ends.
+#[derive(Debug, Clone)]
 pub(super) struct Shape {
     pub(super) owners: [(Hex, u8); 6],
     pub(super) ends: [(usize, usize); 6],
@@ -35,6 +36,7 @@ impl Shape {
 /// The offsets (in offset coordinates) from a tile to the owners of its six corners, which
 /// depend on the parity of the tile's row (pointy tiles: odd rows are shoved) or column (flat
 /// tiles) alone, so two tables serve every tile of the map.
+#[derive(Debug, Clone)]
 pub(super) struct Owners {
     /// For even (`[0]`) and odd (`[1]`) rows or columns.
     offsets: [[[i32; 2]; 6]; 2],
@@ -54,6 +56,131 @@ impl Owners {
             })
         });
         Self { offsets, by_row: geometry.layout().orientation == hexx::HexOrientation::Pointy }
+    }
+}
+
+/// The corners around a corner, the same for every corner of one kind (direction 0 or 1) whose
+/// owner has the same parity: offsets (in offset coordinates) from the owner to the corner's
+/// three tiles, to the owners of the three corners it has edges to (with their direction), and
+/// for each of those edges a tile beside it and the edge's direction from that tile.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct Stencil {
+    pub(super) tiles: [[i32; 2]; 3],
+    pub(super) links: [([i32; 2], u8); 3],
+    pub(super) edges: [([i32; 2], u8); 3],
+}
+
+/// The four stencils of a map's corners, by the owner's parity (as [`Owners`]) and direction.
+#[derive(Debug, Clone)]
+pub(super) struct Stencils {
+    by_parity: [[Stencil; 2]; 2],
+    /// Offsets from a tile to its neighbors in `Hex::all_neighbors` order, by parity.
+    neighbors: [[[i32; 2]; 6]; 2],
+    by_row: bool,
+}
+
+impl Stencils {
+    pub(super) fn new(geometry: &Geometry) -> Self {
+        // A tile of each parity along both axes, so it serves either layout, and offsets from it.
+        let reference = |parity: usize| geometry.tile_from_offset([2 + parity as i32, 2 + parity as i32]);
+        let offset = |parity: usize, h: Hex| {
+            let [rc, rr] = geometry.offset_of(reference(parity));
+            let [c, r] = geometry.offset_of(h);
+            [c - rc, r - rr]
+        };
+        let neighbors = std::array::from_fn(|parity| reference(parity).all_neighbors().map(|n| offset(parity, n)));
+        let by_parity = std::array::from_fn(|parity| {
+            let reference = reference(parity);
+            let offset = |h: Hex| offset(parity, h);
+            std::array::from_fn(|k| {
+                let corner = GridVertex { origin: reference, direction: hexx::VertexDirection::ALL_DIRECTIONS[k] };
+                let tiles = corner.coordinates();
+                // Each edge from the corner lies between two of its tiles; its other end is the
+                // corner across it.
+                let pairs = [(0, 1), (1, 2), (2, 0)];
+                let edge = |m: usize| {
+                    let (a, b) = (tiles[pairs[m].0], tiles[pairs[m].1]);
+                    let d = a.all_neighbors().iter().position(|&n| n == b).expect("a corner's tiles are neighbors");
+                    GridEdge { origin: a, direction: EdgeDirection::ALL_DIRECTIONS[d] }
+                };
+                Stencil {
+                    tiles: tiles.map(offset),
+                    links: std::array::from_fn(|m| {
+                        let [p, q] = edge(m).vertices();
+                        let other = canonical(if p.equivalent(&corner) { q } else { p });
+                        (offset(other.origin), other.direction.index())
+                    }),
+                    edges: std::array::from_fn(|m| {
+                        let e = edge(m);
+                        (offset(e.origin), e.direction.index())
+                    }),
+                }
+            })
+        });
+        Self { by_parity, neighbors, by_row: geometry.layout().orientation == hexx::HexOrientation::Pointy }
+    }
+
+    /// The offsets from the tile at offset `[col, row]` to its neighbors, in `Hex::all_neighbors`
+    /// order.
+    #[inline]
+    pub(super) fn neighbors(&self, [col, row]: [i32; 2]) -> &[[i32; 2]; 6] {
+        &self.neighbors[self.parity([col, row])]
+    }
+
+    #[inline]
+    fn parity(&self, [col, row]: [i32; 2]) -> usize {
+        ((if self.by_row { row } else { col }) & 1) as usize
+    }
+
+    /// How far (in columns or rows) a stencil reaches from a corner's owner.
+    pub(super) fn reach(&self) -> i32 {
+        let mut reach = 0;
+        for stencil in self.by_parity.iter().flatten() {
+            let offsets = stencil.tiles.iter().chain(stencil.links.iter().map(|(d, _)| d));
+            reach = offsets.fold(reach, |r, [dc, dr]| r.max(dc.abs()).max(dr.abs()));
+        }
+        reach
+    }
+
+    /// The stencils as index shifts, for a corner away from the map's edges: to each of its
+    /// tiles from its owner's row-major index in a map `cols` wide, and to each of its links
+    /// from its own index in a grid whose rows hold `row_corners` corners.
+    pub(super) fn shifts(&self, cols: isize, row_corners: isize) -> Shifts {
+        Shifts {
+            by_parity: self.by_parity.map(|kinds| {
+                let mut k = 0;
+                kinds.map(|stencil| {
+                    let tiles = stencil.tiles.map(|[dc, dr]| dr as isize * cols + dc as isize);
+                    let links = stencil
+                        .links
+                        .map(|([dc, dr], to)| dr as isize * row_corners + dc as isize * 2 + isize::from(to) - k);
+                    k += 1;
+                    (tiles, links)
+                })
+            }),
+            by_row: self.by_row,
+        }
+    }
+
+    /// The stencil of the corner the tile at offset `[col, row]` sees in direction `k`.
+    #[inline]
+    pub(super) fn of(&self, offset: [i32; 2], k: usize) -> &Stencil {
+        &self.by_parity[self.parity(offset)][k]
+    }
+}
+
+/// [`Stencils`] as index shifts away from the map's edges.
+pub(super) struct Shifts {
+    by_parity: [[([isize; 3], [isize; 3]); 2]; 2],
+    by_row: bool,
+}
+
+impl Shifts {
+    /// The shifts to the tiles and links of the corner the tile at offset `[col, row]` sees in
+    /// direction `k`.
+    #[inline]
+    pub(super) fn of(&self, [col, row]: [i32; 2], k: usize) -> &([isize; 3], [isize; 3]) {
+        &self.by_parity[((if self.by_row { row } else { col }) & 1) as usize][k]
     }
 }
 
@@ -80,13 +207,80 @@ impl CornerGrid {
         self.width * self.height * 2
     }
 
+    /// The grid's width and height in tiles (each two corners).
+    pub(super) fn size(&self) -> (usize, usize) {
+        (self.width, self.height)
+    }
+
+    /// The offset coordinate of the tile at column `col` and row `row` of the grid.
+    #[inline]
+    pub(super) fn offset_at(&self, col: usize, row: usize) -> [i32; 2] {
+        let col = if self.wraps { col as i32 } else { col as i32 - 1 };
+        [self.rect.min[0] + col, self.rect.min[1] + row as i32 - 1]
+    }
+
+    /// A column of the map, brought onto it on a wrapping map (`col` at most a map's width
+    /// past it).
+    #[inline]
+    fn wrap_col(&self, col: i32) -> i32 {
+        if !self.wraps {
+            col
+        } else if col < 0 {
+            col + self.cols
+        } else if col >= self.cols {
+            col - self.cols
+        } else {
+            col
+        }
+    }
+
+    /// The map's width and height in tiles.
+    pub(super) fn map_size(&self) -> (i32, i32) {
+        (self.cols, self.height as i32 - 2)
+    }
+
+    /// The column and row in the map of offset `[col, row]` (past the map for a tile past it).
+    #[inline]
+    pub(super) fn map_col_row(&self, [col, row]: [i32; 2]) -> (i32, i32) {
+        (col - self.rect.min[0], row - self.rect.min[1])
+    }
+
+    /// The links of corner `c`, owned by the tile at offset `owner` with this stencil: the
+    /// corners across its edges, the corner itself past the grid.
+    pub(super) fn links(&self, stencil: &Stencil, [col, row]: [i32; 2], c: usize) -> [u32; 3] {
+        stencil.links.map(|([dc, dr], k)| self.at([col + dc, row + dr], k).map_or(c as u32, |j| j as u32))
+    }
+
+    /// The offset coordinate of the tile that owns corner `c`, and the direction it sees it in.
+    #[inline]
+    pub(super) fn owner(&self, c: usize) -> ([i32; 2], usize) {
+        let slot = c / 2;
+        (self.offset_at(slot % self.width, slot / self.width), c % 2)
+    }
+
+    /// The row-major index in the map of the tile at offset `[col, row]` (any copy of it on a
+    /// wrapping map), `None` past the map.
+    #[inline]
+    pub(super) fn tile(&self, [col, row]: [i32; 2]) -> Option<usize> {
+        let (col, row) = (self.wrap_col(col - self.rect.min[0]), row - self.rect.min[1]);
+        (row >= 0 && row < self.height as i32 - 2 && col >= 0 && col < self.cols)
+            .then(|| row as usize * self.cols as usize + col as usize)
+    }
+
+    /// The offset coordinate of map tile `i`.
+    #[inline]
+    pub(super) fn tile_offset(&self, i: usize) -> [i32; 2] {
+        let cols = self.cols as usize;
+        [self.rect.min[0] + (i % cols) as i32, self.rect.min[1] + (i / cols) as i32]
+    }
+
     /// The six corners of the map tile at offset `[col, row]`.
     pub(super) fn tile_corners(&self, shape: &Shape, owners: &Owners, [col, row]: [i32; 2]) -> [u32; 6] {
         let parity = (if owners.by_row { row } else { col }).rem_euclid(2) as usize;
         let deltas = &owners.offsets[parity];
         std::array::from_fn(|j| {
             let [dc, dr] = deltas[j];
-            self.at([col + dc, row + dr], shape.owners[j].1) as u32
+            self.at([col + dc, row + dr], shape.owners[j].1).expect("a map tile's corner is in the grid") as u32
         })
     }
 
@@ -94,16 +288,17 @@ impl CornerGrid {
     /// tile next to the map (a wrapping map's columns repeat every `cols`, their parity kept).
     #[cfg(test)]
     fn index(&self, geometry: &Geometry, owner: Hex, k: u8) -> usize {
-        self.at(geometry.offset_of(owner), k)
+        self.at(geometry.offset_of(owner), k).expect("a corner in the grid")
     }
 
-    /// The index of the corner the tile at offset `[col, row]` sees in direction `k`.
-    fn at(&self, [col, row]: [i32; 2], k: u8) -> usize {
-        let col = col - self.rect.min[0];
-        let col = if self.wraps { col.rem_euclid(self.cols) } else { col + 1 };
-        let row = (row - self.rect.min[1] + 1) as usize;
-        debug_assert!((col as usize) < self.width && row < self.height, "a corner of a map tile");
-        (row * self.width + col as usize) * 2 + usize::from(k)
+    /// The index of the corner the tile at offset `[col, row]` sees in direction `k`, `None`
+    /// past the grid.
+    #[inline]
+    pub(super) fn at(&self, [col, row]: [i32; 2], k: u8) -> Option<usize> {
+        let col = self.wrap_col(col - self.rect.min[0]) + i32::from(!self.wraps);
+        let row = row - self.rect.min[1] + 1;
+        (col >= 0 && (col as usize) < self.width && row >= 0 && (row as usize) < self.height)
+            .then(|| (row as usize * self.width + col as usize) * 2 + usize::from(k))
     }
 }
 
@@ -121,89 +316,9 @@ fn canonical(v: GridVertex) -> GridVertex {
     .expect("one of a corner's three names has direction 0 or 1")
 }
 
-/// A queue key: the level's bits turned so integers order as the levels do (`f32::total_cmp`),
-/// then the order pushed; the smallest first.
-pub(super) fn key(level: f32, seq: u32) -> u64 {
-    let bits = level.to_bits();
-    let ordered = if bits >> 31 == 1 { !bits } else { bits | 0x8000_0000 };
-    (u64::from(ordered) << 32) | u64::from(seq)
-}
-
-/// A radix heap: a priority queue for keys that never fall below the last one taken (a priority
-/// flood's levels only rise), taking them smallest first in constant time amortised. Keys are
-/// unique (the order pushed is in them), so the order taken is the keys' alone.
-pub(super) struct RadixHeap {
-    last: u64,
-    /// Bucket `b` holds the keys whose highest bit differing from `last` is bit `b - 1` (bucket
-    /// 0: `last` itself).
-    buckets: [Vec<(u64, u32)>; 65],
-}
-
-impl RadixHeap {
-    pub(super) fn new() -> Self {
-        Self { last: 0, buckets: std::array::from_fn(|_| Vec::new()) }
-    }
-
-    fn bucket(&self, key: u64) -> usize {
-        64 - (key ^ self.last).leading_zeros() as usize
-    }
-
-    pub(super) fn push(&mut self, key: u64, value: u32) {
-        debug_assert!(key >= self.last, "a key below the last one taken");
-        let b = self.bucket(key);
-        self.buckets[b].push((key, value));
-    }
-
-    pub(super) fn pop(&mut self) -> Option<u32> {
-        if self.buckets[0].is_empty() {
-            let b = self.buckets.iter().position(|v| !v.is_empty())?;
-            let moved = std::mem::take(&mut self.buckets[b]);
-            self.last = moved.iter().map(|&(k, _)| k).min().expect("a bucket that is not empty");
-            for (k, v) in moved {
-                let to = self.bucket(k);
-                self.buckets[to].push((k, v));
-            }
-        }
-        self.buckets[0].pop().map(|(_, v)| v)
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    /// The radix heap takes keys smallest first, as a sort does, while pushes never go below
-    /// the last key taken (as in a flood); the keys order as the levels (then the pushes) do.
-    #[test]
-    fn the_radix_heap_takes_keys_in_order() {
-        assert!(key(-0.5, 9) < key(0.0, 0) && key(0.0, 3) < key(0.0, 4) && key(0.25, 0) < key(0.5, 0));
-        let mut heap = RadixHeap::new();
-        let (mut taken, mut pushed) = (Vec::new(), Vec::new());
-        let mut seed = 12345_u64;
-        let mut next = || {
-            seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
-            (seed >> 33) as u32
-        };
-        let mut last = 0.0_f32;
-        for round in 0..2000_u32 {
-            for _ in 0..next() % 4 {
-                let k = key(last + (next() % 1000) as f32 / 100.0, round * 8 + pushed.len() as u32 % 8);
-                heap.push(k, pushed.len() as u32);
-                pushed.push(k);
-            }
-            if next() % 3 > 0
-                && let Some(v) = heap.pop()
-            {
-                taken.push(pushed[v as usize]);
-                last = f32::from_bits(((pushed[v as usize] >> 32) as u32) & 0x7fff_ffff);
-            }
-        }
-        while let Some(v) = heap.pop() {
-            taken.push(pushed[v as usize]);
-        }
-        assert_eq!(taken.len(), pushed.len());
-        assert!(taken.windows(2).all(|w| w[0] < w[1]), "keys taken out of order");
-    }
 
     /// A corner's three names give one corner; the shape's owners name a tile's corners, and
     /// the ends of each edge are two of them, next to each other around the tile.
@@ -244,6 +359,7 @@ mod tests {
             let rect = geometry.bounds().unwrap();
             let grid = CornerGrid::new(rect, wrap);
             let owners = Owners::new(&geometry, &shape);
+            let stencils = Stencils::new(&geometry);
             for oc in rect.iter() {
                 let tile = geometry.tile_from_offset(oc);
                 let named = tile.all_vertices().map(|v| {
@@ -251,8 +367,63 @@ mod tests {
                     let owner = if wrap { geometry.wrap_tile(c.origin) } else { c.origin };
                     grid.index(&geometry, owner, c.direction.index()) as u32
                 });
-                assert_eq!(grid.tile_corners(&shape, &owners, oc), named, "{orientation:?} {oc:?}");
+                let ring = grid.tile_corners(&shape, &owners, oc);
+                assert_eq!(ring, named, "{orientation:?} {oc:?}");
+                // Each corner's stencil names this tile among its tiles, and the corner next to
+                // it around the tile among its links, with an edge that is the tile's edge
+                // between them; the tile's neighbors by offset are its neighbors.
+                let i = grid.tile(oc).unwrap();
+                assert_eq!(grid.tile_offset(i), oc);
+                for (d, &(a, b)) in shape.ends.iter().enumerate() {
+                    let (owner, k) = grid.owner(ring[a] as usize);
+                    let stencil = stencils.of(owner, k);
+                    let at = |[dc, dr]: [i32; 2]| [owner[0] + dc, owner[1] + dr];
+                    assert!(stencil.tiles.iter().any(|&t| grid.tile(at(t)) == Some(i)), "{oc:?} corner {a}");
+                    let m = (0..3)
+                        .find(|&m| grid.at(at(stencil.links[m].0), stencil.links[m].1) == Some(ring[b] as usize))
+                        .expect("the next corner around the tile is a link");
+                    let (t, direction) = stencil.edges[m];
+                    let edge = GridEdge {
+                        origin: geometry.tile_from_offset(at(t)),
+                        direction: EdgeDirection::ALL_DIRECTIONS[usize::from(direction)],
+                    };
+                    let mine = GridEdge { origin: tile, direction: EdgeDirection::ALL_DIRECTIONS[d] };
+                    let same = |e: GridEdge| [e.origin, e.destination()].map(|h| grid.tile(geometry.offset_of(h)));
+                    let (mut x, mut y) = (same(edge), same(mine));
+                    x.sort();
+                    y.sort();
+                    assert_eq!(x, y, "{orientation:?} {oc:?} edge {d}");
+                    let [dc, dr] = stencils.neighbors(oc)[d];
+                    let nb = geometry.offset_of(tile.all_neighbors()[d]);
+                    assert_eq!(grid.tile([oc[0] + dc, oc[1] + dr]), grid.tile(nb));
+                }
             }
+            // Away from the map's edges, the shifts give the stencils' tiles and links.
+            let (width, height) = grid.size();
+            let (cols, rows) = grid.map_size();
+            let shifts = stencils.shifts(cols as isize, width as isize * 2);
+            let reach = stencils.reach();
+            assert!((1..=2).contains(&reach), "{reach}");
+            let mut inside = 0;
+            for c in 0..width * height * 2 {
+                let (owner, k) = grid.owner(c);
+                let (mc, mr) = grid.map_col_row(owner);
+                if mc < reach || mc >= cols - reach || mr < reach || mr >= rows - reach {
+                    continue;
+                }
+                inside += 1;
+                let stencil = stencils.of(owner, k);
+                let (tiles, links) = shifts.of(owner, k);
+                let base = (mr * cols + mc) as isize;
+                let by_stencil = stencil.tiles.map(|[dc, dr]| grid.tile([owner[0] + dc, owner[1] + dr]));
+                assert_eq!(tiles.map(|d| Some((base + d) as usize)), by_stencil, "{orientation:?} corner {c}");
+                assert_eq!(
+                    links.map(|d| (c as isize + d) as u32),
+                    grid.links(stencil, owner, c),
+                    "{orientation:?} corner {c}"
+                );
+            }
+            assert!(inside > 0);
         }
         // `all_neighbors` runs in the edge directions' order.
         for (d, nb) in Hex::ZERO.all_neighbors().into_iter().enumerate() {

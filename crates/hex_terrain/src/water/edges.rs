@@ -3,32 +3,30 @@
 //! between them, from the tiles' center heights, kinds, lakes and rain.
 //!
 //! A corner's height is the mean of its tiles' in the map; a corner touching the sea, a lake or
-//! the map's edge is an outlet. A priority flood from the outlets (lowest water level first,
-//! ties in the order pushed, a corner filling a depression right after the corner it is reached
-//! from) gives every other corner a downstream corner, one of its three
-//! neighbors, and a water level (its height, or the level of the corner it drains into when
-//! that is higher, so a depression fills to its spill height): every path downstream ends at an
-//! outlet, never rises in level and never loops. Each land tile's rain goes a sixth to each of
-//! its corners and flows downstream, added up in reverse order of the flood. An edge carries a
+//! the map's edge is an outlet. Every other corner drains into one of its three neighbors
+//! ([`super::descent`]: down the steepest slope, and out of a depression over its spill point,
+//! the depression filled to that height), so every path downstream ends at an outlet, never
+//! rises in water level and never loops. Each land tile's rain goes a sixth to each of its
+//! corners and flows downstream, added up from the top of each path down. An edge carries a
 //! river where the flow of its upstream corner reaches `rivers.threshold`, unless every source
 //! of that river rises nearer the sea than `rivers.sea_distance` tiles. A river set by hand
 //! ([`RiverEdit`]) rises at its tile's lowest corner that drains (`Source`, wherever it lies),
-//! or keeps every corner of its tile, and all that drains through them, dry (`Dry`). A non-outlet corner's
-//! tiles are all land in the map, so every river edge lies between two land tiles of the map.
+//! or keeps every corner of its tile, and all that drains through them, dry (`Dry`). A corner
+//! that drains has three land tiles of the map, so every river edge lies between two land
+//! tiles of the map.
+//!
+//! The corners are kept in a grid over the map, two a tile ([`super::corners`]), and read
+//! their tiles and neighbors from a few stencils: fixed index shifts away from the map's edges.
 
-use std::collections::VecDeque;
-
-use hexx::{EdgeDirection, GridEdge, GridVertex, Hex};
+use hexx::{EdgeDirection, GridEdge, GridVertex, Hex, HexOrientation};
 use serde::{Deserialize, Serialize};
 
-use super::corners::{CornerGrid, Owners, RadixHeap, Shape, key};
+use super::corners::{CornerGrid, Owners, Shape, Stencils};
+use super::descent::{Drainage, NONE, Role, drain};
 use crate::chunk::TileRect;
 use crate::config::{RiverConfig, RiverEdit};
-use crate::geometry::Geometry;
+use crate::geometry::{Geometry, OFFSET_MODE};
 use crate::vocab::TileKind;
-
-/// No corner: an outlet's downstream, an empty slot.
-const NONE: u32 = u32::MAX;
 
 /// A river edge of a tile.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
@@ -48,15 +46,13 @@ pub struct RiverEdge {
 /// The edge river network of a bounded map.
 #[derive(Debug, Clone)]
 pub struct EdgeRivers {
-    /// The map's tiles, row by row.
-    tiles: Vec<Hex>,
-    /// Each map tile's six corners, in hexx's vertex direction order.
-    corners: Vec<[u32; 6]>,
-    /// The vertex directions at the ends of each edge direction.
-    ends: [(usize, usize); 6],
-    /// Each corner's neighbors: the corner across each edge meeting there, with the edge as a
-    /// map tile beside it and its direction from that tile ([`NONE`] past the map).
-    links: Vec<[Link; 3]>,
+    /// The map's orientation, to name its tiles.
+    orientation: HexOrientation,
+    /// Where the corners are kept, how a tile names its corners, and each corner's neighbors.
+    grid: CornerGrid,
+    shape: Shape,
+    owners: Owners,
+    stencils: Stencils,
     /// Downstream corner of each corner; [`NONE`] for outlets and unused corners.
     down: Vec<u32>,
     /// Water level of each corner.
@@ -68,21 +64,15 @@ pub struct EdgeRivers {
     /// Per map tile, row-major: bit `d` set when its edge toward `all_neighbors()[d]` carries a
     /// river.
     edges: Vec<u8>,
-    /// Per map tile, the channel's half-width in lattice steps along each of its six edges (0:
-    /// no river there); the two tiles of an edge give it the same.
+    /// Per map tile with a river edge, its place in `widths` ([`NONE`] for the others).
+    river_tile: Vec<u32>,
+    /// Per map tile with a river edge, the channel's half-width in lattice steps along each of
+    /// its six edges (0: no river there); the two tiles of an edge give it the same.
     widths: Vec<[f32; 6]>,
 }
 
-/// An edge from a corner: the corner at its other end, a map tile beside it and the edge's
-/// direction from that tile.
-#[derive(Debug, Clone, Copy)]
-struct Link {
-    to: u32,
-    tile: u32,
-    direction: u8,
-}
-
-const NO_LINK: Link = Link { to: NONE, tile: NONE, direction: 0 };
+/// The channel half-widths of a tile without a river edge.
+const NO_WIDTHS: [f32; 6] = [0.0; 6];
 
 /// What the network is built from: the map's tiles, row by row.
 pub(crate) struct EdgeInput<'a> {
@@ -101,110 +91,42 @@ pub(crate) struct EdgeInput<'a> {
     pub by_hand: &'a [Option<RiverEdit>],
 }
 
+/// What the corner pass gives each corner.
+struct Corners {
+    roles: Vec<Role>,
+    /// Whether its tiles all lie at least `sea_distance` from the sea.
+    inland: Vec<bool>,
+    /// Its height (the mean of its tiles'), to become its water level.
+    level: Vec<f32>,
+    /// The rain falling on it.
+    rain: Vec<f32>,
+    /// The corners across its edges, the corner itself past the grid.
+    links: Vec<[u32; 3]>,
+}
+
 impl EdgeRivers {
-    /// Builds the network; `index` gives a tile's row-major index in the map (any copy of it on
-    /// a wrapping map), `None` past the map's edge.
-    pub(crate) fn build(
-        config: &RiverConfig,
-        geometry: &Geometry,
-        input: &EdgeInput<'_>,
-        index: impl Fn(Hex) -> Option<usize>,
-    ) -> Self {
-        let rect = input.rect;
-        let grid = CornerGrid::new(rect, geometry.wrap().is_some());
+    /// Builds the network.
+    pub(crate) fn build(config: &RiverConfig, geometry: &Geometry, input: &EdgeInput<'_>) -> Self {
+        let grid = CornerGrid::new(input.rect, geometry.wrap().is_some());
         let shape = Shape::new();
         let owners = Owners::new(geometry, &shape);
+        let stencils = Stencils::new(geometry);
+        let near = near_sea(input, config.sea_distance, &grid, &stencils);
+        let Corners { roles, inland, mut level, rain, links } = corners(&grid, &stencils, input, &near);
         let n = grid.len();
-        let tiles = input.tiles.to_vec();
-        let corners: Vec<[u32; 6]> = rect.iter().map(|oc| grid.tile_corners(&shape, &owners, oc)).collect();
-        // Each corner's height (its map tiles' mean), whether it is an outlet (beside water or
-        // the map's edge: fewer than three map tiles), and its links, from every tile's ring.
-        let (mut sum, mut count) = (vec![0.0_f32; n], vec![0_u8; n]);
-        let mut outlet = vec![false; n];
-        let mut links = vec![[NO_LINK; 3]; n];
-        let mut link = |from: u32, to: u32, tile: usize, direction: usize| {
-            let slots = &mut links[from as usize];
-            if slots.iter().any(|l| l.to == to) {
-                return;
-            }
-            let free = slots.iter_mut().find(|l| l.to == NONE).expect("a corner has three edges");
-            *free = Link { to, tile: tile as u32, direction: direction as u8 };
-        };
-        for (i, ring) in corners.iter().enumerate() {
-            let water = input.kinds[i] == TileKind::Sea || input.lakes[i];
-            for &c in ring {
-                sum[c as usize] += input.raw[i];
-                count[c as usize] += 1;
-                outlet[c as usize] |= water;
-            }
-            for (d, &(a, b)) in shape.ends.iter().enumerate() {
-                link(ring[a], ring[b], i, d);
-                link(ring[b], ring[a], i, d);
-            }
-        }
-        let used: Vec<bool> = count.iter().map(|&c| c > 0).collect();
-        let mut level: Vec<f32> = (0..n).map(|c| if used[c] { sum[c] / f32::from(count[c]) } else { 0.0 }).collect();
-        for c in 0..n {
-            outlet[c] |= used[c] && count[c] < 3;
-        }
-        // Priority flood from the outlets.
-        let mut down = vec![NONE; n];
-        let mut taken = outlet.clone();
-        let mut heap = RadixHeap::new();
-        let mut seq = 0_u32;
-        // Only the outlets beside a corner that drains matter (the open sea's corners do not).
-        let shore = |c: usize| links[c].iter().take_while(|l| l.to != NONE).any(|l| !outlet[l.to as usize]);
-        for c in (0..n).filter(|&c| used[c] && outlet[c] && shore(c)) {
-            heap.push(key(level[c], seq), c as u32);
-            seq += 1;
-        }
-        // A corner no higher than the level it is reached at fills to that level: it is taken
-        // next, from a queue, before any corner the heap holds (Barnes, Lehman and Mulla's
-        // Priority-Flood+FIFO), which gives the same levels with fewer heap operations.
-        let mut order = Vec::with_capacity(n);
-        let mut pit = VecDeque::new();
-        loop {
-            let (l, c) = match pit.pop_front() {
-                Some(c) => (level[c as usize], c),
-                None => match heap.pop() {
-                    Some(c) => (level[c as usize], c),
-                    None => break,
-                },
-            };
-            order.push(c as usize);
-            for next in links[c as usize].iter().take_while(|l| l.to != NONE) {
-                let j = next.to as usize;
-                if !taken[j] {
-                    taken[j] = true;
-                    down[j] = c;
-                    if level[j] <= l {
-                        level[j] = l;
-                        pit.push_back(j as u32);
-                    } else {
-                        heap.push(key(level[j], seq), j as u32);
-                        seq += 1;
-                    }
-                }
-            }
-        }
-        // Rain: a sixth of each land tile's to each of its corners, then downstream.
-        let mut flow = vec![0.0_f32; n];
-        for (i, ring) in corners.iter().enumerate() {
-            if input.kinds[i] != TileKind::Sea && !input.lakes[i] {
-                for &c in ring {
-                    flow[c as usize] += input.rain[i] / 6.0;
-                }
-            }
-        }
+        let Drainage { down, order } = drain(&roles, &mut level, &links);
+        let mut flow = rain;
         // Rivers set by hand: a dry tile's corners, and every corner draining through them,
         // carry nothing; a source rises at the tile's lowest corner that drains.
         let mut source = vec![false; n];
         if !input.by_hand.is_empty() {
             let mut dry = vec![false; n];
-            for (i, ring) in corners.iter().enumerate() {
-                match input.by_hand[i] {
-                    Some(RiverEdit::Dry) => ring.iter().for_each(|&c| dry[c as usize] = true),
-                    Some(RiverEdit::Source) => {
+            for (i, edit) in input.by_hand.iter().enumerate() {
+                let Some(edit) = edit else { continue };
+                let ring = grid.tile_corners(&shape, &owners, grid.tile_offset(i));
+                match edit {
+                    RiverEdit::Dry => ring.iter().for_each(|&c| dry[c as usize] = true),
+                    RiverEdit::Source => {
                         let lowest = ring
                             .iter()
                             .map(|&c| c as usize)
@@ -214,11 +136,10 @@ impl EdgeRivers {
                             source[c] = true;
                         }
                     }
-                    None => {}
                 }
             }
             // Downstream first: a corner is dry when it or the corner it drains into is.
-            for &c in &order {
+            for c in order.iter().map(|&c| c as usize) {
                 dry[c] |= down[c] != NONE && dry[down[c] as usize];
                 if dry[c] {
                     flow[c] = 0.0;
@@ -228,35 +149,42 @@ impl EdgeRivers {
                 }
             }
         }
-        for &c in order.iter().rev() {
+        for c in order.iter().rev().map(|&c| c as usize) {
             if down[c] != NONE {
                 flow[down[c] as usize] += flow[c];
             }
         }
-        let count = tiles.len();
+        let count = input.tiles.len();
         let mut network = Self {
-            tiles,
-            corners,
-            ends: shape.ends,
-            links,
+            orientation: geometry.layout().orientation,
+            grid,
+            shape,
+            owners,
+            stencils,
             down,
             level,
             flow,
             river: Vec::new(),
             edges: vec![0; count],
-            widths: vec![[0.0; 6]; count],
+            river_tile: vec![NONE; count],
+            widths: Vec::new(),
         };
-        network.river = network.rivers(config, input, &index, (&order, &source));
+        network.river = network.rivers(config, &order, &inland, &source);
         let width = |flow: f32| config.width * (flow / config.threshold).sqrt().clamp(1.0, 2.0);
-        for c in 0..n {
+        for (c, links) in links.iter().enumerate() {
             if network.river[c] {
-                let edge = network.link_down(c);
-                let (i, d) = (edge.tile as usize, usize::from(edge.direction));
-                let other = index(network.tiles[i].all_neighbors()[d]).expect("a river edge lies between map tiles");
+                let (i, d) = network.edge_down(c, links);
+                let [col, row] = network.grid.tile_offset(i);
+                let [dc, dr] = network.stencils.neighbors([col, row])[d];
+                let other = network.grid.tile([col + dc, row + dr]).expect("a river edge lies between map tiles");
                 let w = width(network.flow[c]);
                 for (tile, d) in [(i, d), (other, (d + 3) % 6)] {
+                    if network.river_tile[tile] == NONE {
+                        network.river_tile[tile] = network.widths.len() as u32;
+                        network.widths.push(NO_WIDTHS);
+                    }
                     network.edges[tile] |= 1 << d;
-                    network.widths[tile][d] = w;
+                    network.widths[network.river_tile[tile] as usize][d] = w;
                 }
             }
         }
@@ -264,15 +192,9 @@ impl EdgeRivers {
     }
 
     /// Which corners' downstream edges carry a river: those whose flow reaches the threshold,
-    /// downstream of a source (a river corner no river flows into) at least `sea_distance`
-    /// tiles from the sea.
-    fn rivers(
-        &self,
-        config: &RiverConfig,
-        input: &EdgeInput<'_>,
-        index: &impl Fn(Hex) -> Option<usize>,
-        (order, by_hand): (&[usize], &[bool]),
-    ) -> Vec<bool> {
+    /// downstream of a source (a river corner no river flows into) whose tiles all lie at least
+    /// `sea_distance` from the sea, or set by hand.
+    fn rivers(&self, config: &RiverConfig, order: &[u32], inland: &[bool], by_hand: &[bool]) -> Vec<bool> {
         let (down, flow) = (&self.down, &self.flow);
         let n = down.len();
         let wet: Vec<bool> = (0..n).map(|c| down[c] != NONE && flow[c] >= config.threshold).collect();
@@ -282,21 +204,13 @@ impl EdgeRivers {
                 fed[down[c] as usize] = true;
             }
         }
-        // The distance of a corner to the sea: its nearest map tile's.
-        let far = sea_distances(input, index);
-        let mut near = vec![u32::MAX; n];
-        for (i, ring) in self.corners.iter().enumerate() {
-            for &c in ring {
-                near[c as usize] = near[c as usize].min(far[i]);
-            }
-        }
         let mut keep = vec![false; n];
-        for &c in order.iter().rev() {
+        for c in order.iter().rev().map(|&c| c as usize) {
             if !wet[c] {
                 continue;
             }
             if !fed[c] {
-                keep[c] = by_hand[c] || near[c] >= config.sea_distance;
+                keep[c] = by_hand[c] || inland[c];
             }
             let next = down[c] as usize;
             if keep[c] && wet[next] {
@@ -306,9 +220,14 @@ impl EdgeRivers {
         keep
     }
 
-    /// The edge from corner `c` to its downstream corner.
-    fn link_down(&self, c: usize) -> Link {
-        *self.links[c].iter().find(|l| l.to == self.down[c]).expect("the downstream corner is a neighbor")
+    /// The edge from corner `c` (its `links`) to its downstream corner: a map tile beside it and
+    /// its direction from that tile.
+    fn edge_down(&self, c: usize, links: &[u32; 3]) -> (usize, usize) {
+        let m = links.iter().position(|&j| j == self.down[c]).expect("the downstream corner is a neighbor");
+        let (owner, k) = self.grid.owner(c);
+        let ([dc, dr], direction) = self.stencils.of(owner, k).edges[m];
+        let tile = self.grid.tile([owner[0] + dc, owner[1] + dr]).expect("a river edge lies between map tiles");
+        (tile, usize::from(direction))
     }
 
     /// The river edges of map tile `i`, a bit for each neighbor direction.
@@ -322,14 +241,26 @@ impl EdgeRivers {
     #[must_use]
     #[inline]
     pub(crate) fn widths(&self, i: usize) -> &[f32; 6] {
-        &self.widths[i]
+        self.widths.get(self.river_tile[i] as usize).unwrap_or(&NO_WIDTHS)
+    }
+
+    /// Map tile `i`'s hexagon.
+    fn tile(&self, i: usize) -> Hex {
+        Hex::from_offset_coordinates(self.grid.tile_offset(i), OFFSET_MODE, self.orientation)
+    }
+
+    /// The links of corner `c`: the corners across its edges (the corner itself past the grid).
+    fn links(&self, c: usize) -> [u32; 3] {
+        let (owner, k) = self.grid.owner(c);
+        self.grid.links(self.stencils.of(owner, k), owner, c)
     }
 
     /// The two corners at the ends of map tile `i`'s edge `d`, in the order of the edge's
     /// vertices.
     fn ends(&self, i: usize, d: usize) -> (usize, usize) {
-        let (a, b) = self.ends[d];
-        (self.corners[i][a] as usize, self.corners[i][b] as usize)
+        let ring = self.grid.tile_corners(&self.shape, &self.owners, self.grid.tile_offset(i));
+        let (a, b) = self.shape.ends[d];
+        (ring[a] as usize, ring[b] as usize)
     }
 
     /// The river edges of `tile` (map tile `i`), from its side.
@@ -363,9 +294,8 @@ impl EdgeRivers {
         };
         let mut out = Vec::new();
         while self.river[at] {
-            let link = self.link_down(at);
-            let direction = EdgeDirection::ALL_DIRECTIONS[usize::from(link.direction)];
-            out.push(GridEdge { origin: self.tiles[link.tile as usize], direction });
+            let (tile, d) = self.edge_down(at, &self.links(at));
+            out.push(GridEdge { origin: self.tile(tile), direction: EdgeDirection::ALL_DIRECTIONS[d] });
             at = self.down[at] as usize;
         }
         out
@@ -374,31 +304,117 @@ impl EdgeRivers {
     /// Whether map tile `i` has the same river edges, as wide, in `self` and `other`.
     #[must_use]
     pub(crate) fn same_tile(&self, other: &Self, i: usize) -> bool {
-        self.edges[i] == other.edges[i] && self.widths[i].map(f32::to_bits) == other.widths[i].map(f32::to_bits)
+        self.edges[i] == other.edges[i] && self.widths(i).map(f32::to_bits) == other.widths(i).map(f32::to_bits)
     }
 }
 
-/// Each map tile's distance in tiles to the nearest sea tile (a breadth-first search from every
-/// sea tile at once); `u32::MAX` on a map without sea.
-fn sea_distances(input: &EdgeInput<'_>, index: &impl Fn(Hex) -> Option<usize>) -> Vec<u32> {
-    let tiles = input.tiles;
-    let mut far = vec![u32::MAX; tiles.len()];
-    let mut queue = VecDeque::new();
-    for (i, &kind) in input.kinds.iter().enumerate() {
-        if kind == TileKind::Sea {
-            far[i] = 0;
-            queue.push_back(i);
-        }
-    }
-    while let Some(i) = queue.pop_front() {
-        for nb in tiles[i].all_neighbors() {
-            if let Some(j) = index(nb)
-                && far[j] == u32::MAX
-            {
-                far[j] = far[i] + 1;
-                queue.push_back(j);
+/// A tile on water.
+const WET: u8 = 1;
+/// A tile at least `sea_distance` from the sea.
+const INLAND: u8 = 2;
+
+/// What a corner reads of each of its tiles.
+#[derive(Clone, Copy)]
+struct TileInfo {
+    raw: f32,
+    /// A sixth of its rain (0 on water).
+    rain: f32,
+    /// [`WET`], and [`INLAND`] when at least `sea_distance` from the sea.
+    flags: u8,
+}
+
+/// Each corner's flags, height, rain and links, in one pass over the corner grid's rows.
+fn corners(grid: &CornerGrid, stencils: &Stencils, input: &EdgeInput<'_>, near: &[bool]) -> Corners {
+    let info: Vec<TileInfo> = (0..input.raw.len())
+        .map(|i| {
+            let wet = input.kinds[i] == TileKind::Sea || input.lakes[i];
+            TileInfo {
+                raw: input.raw[i],
+                rain: if wet { 0.0 } else { input.rain[i] / 6.0 },
+                flags: if wet { WET } else { 0 } | if near[i] { 0 } else { INLAND },
+            }
+        })
+        .collect();
+    let n = grid.len();
+    let mut out = Corners {
+        roles: vec![Role::Unused; n],
+        inland: vec![false; n],
+        level: vec![0.0; n],
+        rain: vec![0.0; n],
+        links: vec![[NONE; 3]; n],
+    };
+    let (width, height) = grid.size();
+    let (cols, rows) = grid.map_size();
+    // Inside the map by the stencils' reach, a corner's tiles and links lie at fixed distances
+    // in the tile rows and the corner grid: no wrap, no bound to check.
+    let reach = stencils.reach();
+    let inside = |[col, row]: [i32; 2]| {
+        let (col, row) = grid.map_col_row([col, row]);
+        col >= reach && col < cols - reach && row >= reach && row < rows - reach
+    };
+    let shifts = stencils.shifts(cols as isize, width as isize * 2);
+    for row in 0..height {
+        for col in 0..width {
+            let owner = grid.offset_at(col, row);
+            let inside = inside(owner);
+            for k in 0..2 {
+                let c = (row * width + col) * 2 + k;
+                let (tiles, links) = if inside {
+                    let (tiles, links) = shifts.of(owner, k);
+                    let (mc, mr) = grid.map_col_row(owner);
+                    let base = mr as isize * cols as isize + mc as isize;
+                    (tiles.map(|d| (base + d) as u32), links.map(|d| (c as isize + d) as u32))
+                } else {
+                    let stencil = stencils.of(owner, k);
+                    let at = |[dc, dr]: [i32; 2]| [owner[0] + dc, owner[1] + dr];
+                    (stencil.tiles.map(|d| grid.tile(at(d)).map_or(NONE, |i| i as u32)), grid.links(stencil, owner, c))
+                };
+                let (mut sum, mut count, mut rain, mut flags) = (0.0_f32, 0_u8, 0.0_f32, INLAND);
+                for i in tiles {
+                    if i != NONE {
+                        let tile = info[i as usize];
+                        sum += tile.raw;
+                        count += 1;
+                        rain += tile.rain;
+                        flags = (flags | (tile.flags & WET)) & (tile.flags | !INLAND);
+                    }
+                }
+                if count > 0 {
+                    out.roles[c] = if count < 3 || flags & WET != 0 { Role::Outlet } else { Role::Drains };
+                    out.inland[c] = flags & INLAND != 0;
+                    out.level[c] = sum / f32::from(count);
+                    out.rain[c] = rain;
+                    out.links[c] = links;
+                }
             }
         }
     }
-    far
+    out
+}
+
+/// Whether each map tile lies nearer the sea than `distance` tiles (a breadth-first search from
+/// every sea tile at once, `distance` steps deep).
+fn near_sea(input: &EdgeInput<'_>, distance: u32, grid: &CornerGrid, stencils: &Stencils) -> Vec<bool> {
+    let mut near = vec![false; input.kinds.len()];
+    if distance == 0 {
+        return near;
+    }
+    let mut front: Vec<usize> = (0..input.kinds.len()).filter(|&i| input.kinds[i] == TileKind::Sea).collect();
+    front.iter().for_each(|&i| near[i] = true);
+    for _ in 1..distance {
+        let mut next = Vec::new();
+        for &i in &front {
+            let [col, row] = grid.tile_offset(i);
+            for [dc, dr] in stencils.neighbors([col, row]) {
+                if let Some(j) = grid.tile([col + dc, row + dr])
+                    && !near[j]
+                {
+                    near[j] = true;
+                    next.push(j);
+                }
+            }
+        }
+        front = next;
+    }
+    near
 }

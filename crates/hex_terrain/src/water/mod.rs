@@ -5,6 +5,7 @@
 
 pub mod channels;
 mod corners;
+mod descent;
 pub mod edges;
 pub mod hydrology;
 pub mod surface;
