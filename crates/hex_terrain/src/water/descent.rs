@@ -82,7 +82,7 @@ pub(super) fn drain(roles: &[Role], level: &mut [f32], links: &[[u32; 3]]) -> Dr
         taken[c as usize] = true;
     }
     let (low, high) = level.iter().fold((f32::INFINITY, f32::NEG_INFINITY), |(lo, hi), &l| (lo.min(l), hi.max(l)));
-    let mut queue = LevelQueue::new(n, low, high.max(low));
+    let mut queue = LevelQueue::new(n / 4, low, high.max(low));
     let mut rim = vec![false; n];
     for c in 0..n {
         if !taken[c] {
@@ -101,7 +101,7 @@ pub(super) fn drain(roles: &[Role], level: &mut [f32], links: &[[u32; 3]]) -> Dr
     loop {
         let c = match pit.pop_front() {
             Some(c) => c,
-            None => match queue.pop(level) {
+            None => match queue.pop() {
                 Some(c) => c,
                 None => break,
             },
@@ -127,22 +127,22 @@ pub(super) fn drain(roles: &[Role], level: &mut [f32], links: &[[u32; 3]]) -> Dr
     Drainage { down, order }
 }
 
-/// No corner in a bucket's list.
+/// No entry in a bucket's list.
 const END: u32 = NONE;
 
 /// The flood's priority queue, for levels that never fall below the last one taken (a priority
-/// flood's levels only rise) and a corner pushed at most once: corners lowest level first,
-/// ties by corner index. The level range is cut into buckets, each a list threaded through the
-/// corners; the lowest bucket with corners is sorted when reached and taken in order, a corner
-/// pushed into it meanwhile put in its place. A push costs a link, a take a short sort.
+/// flood's levels only rise): corners lowest level first, ties by corner index. The level range
+/// is cut into buckets, each a list of entries; the lowest bucket with entries is sorted when
+/// reached and taken in order, a corner pushed into it meanwhile put in its place. A push costs
+/// an entry, a take a short sort.
 struct LevelQueue {
     low: f32,
     scale: f32,
-    /// The first corner of each bucket's list, [`END`] when empty.
+    /// The first entry of each bucket's list, [`END`] when empty.
     heads: Vec<u32>,
-    /// The next corner in its bucket's list.
-    next: Vec<u32>,
-    /// How many corners the lists hold.
+    /// Each entry's key (`order_key` of its level and corner) and the next entry in its list.
+    entries: Vec<(u64, u32)>,
+    /// How many entries the lists hold.
     listed: usize,
     /// The bucket being taken.
     at: usize,
@@ -151,12 +151,12 @@ struct LevelQueue {
 }
 
 impl LevelQueue {
-    /// A queue for `corners` corners whose levels lie in `low..=high`.
-    fn new(corners: usize, low: f32, high: f32) -> Self {
-        let buckets = (corners / 4).clamp(16, 1 << 16);
+    /// A queue with `buckets` buckets over the levels `low..=high`.
+    fn new(buckets: usize, low: f32, high: f32) -> Self {
+        let buckets = buckets.clamp(16, 1 << 16);
         let span = high - low;
         let scale = if span > 0.0 { (buckets - 1) as f32 / span } else { 0.0 };
-        Self { low, scale, heads: vec![END; buckets], next: vec![END; corners], listed: 0, at: 0, current: Vec::new() }
+        Self { low, scale, heads: vec![END; buckets], entries: Vec::new(), listed: 0, at: 0, current: Vec::new() }
     }
 
     /// The bucket of a level: rounding keeps it monotone in the level.
@@ -168,28 +168,29 @@ impl LevelQueue {
     fn push(&mut self, level: f32, corner: u32) {
         let b = self.bucket(level);
         debug_assert!(b >= self.at, "a level below the last one taken");
+        let k = key(level, corner);
         if b == self.at {
-            let k = key(level, corner);
             let at = self.current.partition_point(|&x| x > k);
             self.current.insert(at, k);
         } else {
-            self.next[corner as usize] = self.heads[b];
-            self.heads[b] = corner;
+            self.entries.push((k, self.heads[b]));
+            self.heads[b] = (self.entries.len() - 1) as u32;
             self.listed += 1;
         }
     }
 
-    /// The next corner, `levels` (each corner's level as pushed) read for a bucket's sort.
-    fn pop(&mut self, levels: &[f32]) -> Option<u32> {
+    /// The next corner.
+    fn pop(&mut self) -> Option<u32> {
         while self.current.is_empty() {
             if self.listed == 0 {
                 return None;
             }
             self.at += 1;
-            let mut c = std::mem::replace(&mut self.heads[self.at], END);
-            while c != END {
-                self.current.push(key(levels[c as usize], c));
-                c = self.next[c as usize];
+            let mut e = std::mem::replace(&mut self.heads[self.at], END);
+            while e != END {
+                let (k, next) = self.entries[e as usize];
+                self.current.push(k);
+                e = next;
                 self.listed -= 1;
             }
             self.current.sort_unstable_by(|a, b| b.cmp(a));
@@ -222,7 +223,7 @@ mod tests {
         };
         for (corners, high) in [(5000_usize, 11.0_f32), (40, 0.5), (3000, 0.0)] {
             let mut levels = vec![0.0_f32; corners];
-            let mut queue = LevelQueue::new(corners, -1.0_f32.min(high), high);
+            let mut queue = LevelQueue::new(corners / 4, -1.0_f32.min(high), high);
             let mut waiting = std::collections::BTreeSet::new();
             let (mut pushed, mut taken, mut last) = (0_usize, 0_usize, -1.0_f32.min(high));
             while taken < corners {
@@ -243,14 +244,14 @@ mod tests {
                 }
                 if next() % 3 > 0 || pushed == corners {
                     let expected = waiting.pop_first().map(|k| k as u32);
-                    assert_eq!(queue.pop(&levels), expected, "corners {corners}, taken {taken}");
+                    assert_eq!(queue.pop(), expected, "corners {corners}, taken {taken}");
                     if let Some(c) = expected {
                         last = levels[c as usize];
                         taken += 1;
                     }
                 }
             }
-            assert_eq!(queue.pop(&levels), None);
+            assert_eq!(queue.pop(), None);
         }
     }
 

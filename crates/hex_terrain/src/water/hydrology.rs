@@ -27,6 +27,9 @@ use serde::{Deserialize, Serialize};
 use crate::config::{RiverConfig, RiverEdit};
 use crate::vocab::TileKind;
 
+/// The channels of a tile without a river.
+const NO_CHANNELS: [f32; 6] = [0.0; 6];
+
 /// No downstream tile: the tile is sea (an outlet).
 const OUTLET: u8 = 6;
 
@@ -44,7 +47,8 @@ pub struct Hydrology {
     lake: Vec<u32>,
     /// Spill height of each lake.
     spill: Vec<f32>,
-    /// Channel half-width in lattice steps towards each of the six neighbors (0: no channel).
+    /// Channel half-width in lattice steps towards each of the six neighbors (0: no channel);
+    /// empty when no tile carries a river.
     channels: Vec<[f32; 6]>,
     threshold: f32,
 }
@@ -157,12 +161,14 @@ impl Hydrology {
         let (lake, spill) = Self::lakes(config.lakes, config.min_lake_depth, raw, &level, kinds, &order, |i| {
             (0..6).filter_map(move |d| neighbor(i, d))
         });
-        let mut hydrology =
-            Self { level, down, flow, lake, spill, channels: vec![[0.0; 6]; count], threshold: config.threshold };
+        let mut hydrology = Self { level, down, flow, lake, spill, channels: Vec::new(), threshold: config.threshold };
         let width = |flow: f32| config.width * (flow / config.threshold).sqrt().clamp(1.0, 2.0);
         for i in 0..count {
             if !hydrology.river_at(i) {
                 continue;
+            }
+            if hydrology.channels.is_empty() {
+                hydrology.channels = vec![NO_CHANNELS; count];
             }
             let d = usize::from(hydrology.down[i]);
             hydrology.channels[i][d] = width(hydrology.flow[i]);
@@ -220,7 +226,7 @@ impl Hydrology {
             && self.flow[i].to_bits() == other.flow[i].to_bits()
             && self.down[i] == other.down[i]
             && (self.lake[i] == 0) == (other.lake[i] == 0)
-            && self.channels[i].map(f32::to_bits) == other.channels[i].map(f32::to_bits)
+            && self.channels(i).map(f32::to_bits) == other.channels(i).map(f32::to_bits)
     }
 
     /// Lake id of tile `i` (row-major index in the map), if it is a lake tile.
@@ -243,7 +249,7 @@ impl Hydrology {
     /// Channel half-widths of tile `i` towards its six neighbors (0: none).
     #[inline]
     pub(crate) fn channels(&self, i: usize) -> &[f32; 6] {
-        &self.channels[i]
+        self.channels.get(i).unwrap_or(&NO_CHANNELS)
     }
 
     /// Water level of tile `i`.
