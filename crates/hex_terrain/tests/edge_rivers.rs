@@ -16,7 +16,7 @@ mod common;
 prop_compose! {
     fn config()(
         seed in any::<u32>(),
-        (x, z) in (8u32..40, 8u32..30),
+        (x, z) in (4u32..40, 1u32..30),
         scale in 6.0f64..30.0,
         sea in 0.15f32..0.45,
         climate in any::<bool>(),

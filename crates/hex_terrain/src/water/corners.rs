@@ -351,9 +351,15 @@ mod tests {
         }
         // A tile's corners from the owners' offset tables are the corners its vertices name,
         // for both layouts, wrapping or not.
-        for (orientation, wrap) in [(crate::Orientation::Pointy, false), (crate::Orientation::Flat, true)] {
-            let mut config =
-                crate::MapConfig { size: crate::MapSize::Bounded { x: 12, z: 9 }, wrap, ..Default::default() };
+        // Both layouts, wrapping or not, down to the narrowest wrapping map (4 columns).
+        let maps = [
+            (crate::Orientation::Pointy, false, 12, 9),
+            (crate::Orientation::Flat, true, 12, 9),
+            (crate::Orientation::Pointy, true, 4, 3),
+            (crate::Orientation::Flat, true, 4, 2),
+        ];
+        for (orientation, wrap, x, z) in maps {
+            let mut config = crate::MapConfig { size: crate::MapSize::Bounded { x, z }, wrap, ..Default::default() };
             config.layout.orientation = orientation;
             let geometry = Geometry::new(&config);
             let rect = geometry.bounds().unwrap();
@@ -423,7 +429,20 @@ mod tests {
                     "{orientation:?} corner {c}"
                 );
             }
-            assert!(inside > 0);
+            assert!(inside > 0 || x < 6 || z < 6);
+            // A corner among three map tiles has three other corners as its links.
+            for c in 0..width * height * 2 {
+                let (owner, k) = grid.owner(c);
+                let stencil = stencils.of(owner, k);
+                if stencil.tiles.iter().all(|&[dc, dr]| grid.tile([owner[0] + dc, owner[1] + dr]).is_some()) {
+                    let links = grid.links(stencil, owner, c);
+                    assert!(
+                        links[0] != links[1] && links[1] != links[2] && links[0] != links[2],
+                        "{orientation:?} {x}x{z} corner {c}: {links:?}"
+                    );
+                    assert!(!links.contains(&(c as u32)), "{orientation:?} {x}x{z} corner {c}: {links:?}");
+                }
+            }
         }
         // `all_neighbors` runs in the edge directions' order.
         for (d, nb) in Hex::ZERO.all_neighbors().into_iter().enumerate() {
