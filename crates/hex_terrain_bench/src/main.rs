@@ -234,7 +234,8 @@ const CIV6_PLAYERS: [u32; 6] = [2, 4, 6, 8, 10, 12];
 /// One row of the start-of-game table: the whole world a game gets on a Civ6 size (its preset:
 /// climate, rivers, lakes, relief, wrapping), interleaved in one run: compiling it, its game
 /// setup for the size's players, meshing it whole, and all of it again with the Continents map
-/// type (mountain ranges on).
+/// type (mountain ranges on), and with the weather (Earth's prevailing winds) and rivers on the
+/// tiles' edges.
 fn start_row(name: &str, players: u32, args: &Args) {
     let path = format!("{}/../../assets/maps/civ6/{}.map.ron", env!("CARGO_MANIFEST_DIR"), name.to_lowercase());
     let plain = hex_terrain::MapConfig::load(&path).expect("the Civ6 preset");
@@ -242,6 +243,9 @@ fn start_row(name: &str, players: u32, args: &Args) {
     let with_setup = hex_terrain::MapConfig { setup: setup.clone(), ..plain.clone() };
     let map_type = hex_terrain::MapTypeConfig { ranges: true, ..hex_terrain::MapTypeConfig::default() };
     let typed = hex_terrain::MapConfig { map_type: Some(map_type), ..with_setup.clone() };
+    let mut weather = with_setup.clone();
+    weather.climate.winds = Some(hex_terrain::WindConfig::default());
+    weather.rivers.model = hex_terrain::RiverModel::Edges;
     let world = Terrain::new(with_setup.clone()).expect("the preset takes its players");
     let times = time_interleaved(
         args.runs,
@@ -261,16 +265,20 @@ fn start_row(name: &str, players: u32, args: &Args) {
             &mut || {
                 black_box(generate(&Terrain::new(typed.clone()).expect("valid")));
             },
+            &mut || {
+                black_box(generate(&Terrain::new(weather.clone()).expect("valid")));
+            },
         ],
     );
     let (x, z) = plain.size.bounds().expect("bounded");
     println!(
-        "| Civ6 {name} | {x}x{z} | {players} | {:.2} | {:.2} | {:.2} | {:.2} | {:.2} |",
+        "| Civ6 {name} | {x}x{z} | {players} | {:.2} | {:.2} | {:.2} | {:.2} | {:.2} | {:.2} |",
         times[0],
         times[1] - times[0],
         times[2],
         times[3],
-        times[4]
+        times[4],
+        times[5]
     );
 }
 
@@ -357,13 +365,13 @@ fn main() {
         println!("wrapping noise sampling costs at most {worst:.2}x the planar sampling (limit 1.5x)");
         println!();
         println!(
-            "The whole world a game gets at start, each Civ6 preset (climate, rivers, lakes, relief, wrapping), same run:"
+            "The whole world a game gets at start, each Civ6 preset (climate, rivers, lakes, relief, wrapping), same run; then with the Continents map type, and with the winds and rivers on edges:"
         );
         println!();
         println!(
-            "| map | size | players | compile ms | setup ms | meshes ms | whole world ms | whole world, Continents map type ms |"
+            "| map | size | players | compile ms | setup ms | meshes ms | whole world ms | whole world, Continents map type ms | whole world, winds and edge rivers ms |"
         );
-        println!("|---|---|---|---|---|---|---|---|");
+        println!("|---|---|---|---|---|---|---|---|---|");
         for ((name, _, _), players) in TABLE_9.into_iter().zip(CIV6_PLAYERS) {
             start_row(name, players, &args);
         }
