@@ -151,8 +151,7 @@ impl TileTable {
             } else {
                 // The tiles' network gives the lakes (and the water levels); its rivers run on the
                 // edges instead.
-                let lakes_only = RiverConfig { threshold: f32::INFINITY, ..rivers.clone() };
-                let hydrology = Hydrology::build(&lakes_only, &table.raw, &table.kinds, &rain, &[], neighbor);
+                let hydrology = Hydrology::lakes_only(rivers, geometry, rect, (&table.raw, &table.kinds, &rain));
                 let lakes: Vec<bool> = (0..tiles.len()).map(|i| hydrology.lake_of(i).is_some()).collect();
                 let input = EdgeInput {
                     rect,

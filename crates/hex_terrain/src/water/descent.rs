@@ -41,7 +41,9 @@ pub(super) struct Drainage {
 /// The drainage of corners with these roles, heights (`level`, which become the water levels)
 /// and links (the corners across each edge, the corner itself for an edge past the grid; every
 /// corner that drains reaches an outlet through the links, and its links are used corners).
-pub(super) fn drain(roles: &[Role], level: &mut [f32], links: &[[u32; 3]]) -> Drainage {
+/// Any graph of this kind drains the same way: a tile's six neighbors are its links in the
+/// tiles' own flood ([`super::hydrology::Hydrology::lakes_only`]).
+pub(super) fn drain<const N: usize>(roles: &[Role], level: &mut [f32], links: &[[u32; N]]) -> Drainage {
     let n = roles.len();
     // Steepest descent: to the lowest neighbor lower than the corner (the first in link order
     // among equals).
@@ -61,10 +63,10 @@ pub(super) fn drain(roles: &[Role], level: &mut [f32], links: &[[u32; 3]]) -> Dr
     // Up the descent from the outlets: every corner whose descent reaches one, each after the
     // corner it drains into. A corner drains into one corner, so it is met once; the order has
     // room for a link written past its end and not counted.
-    let mut order: Vec<u32> = Vec::with_capacity(n + 3);
+    let mut order: Vec<u32> = Vec::with_capacity(n + 1);
     order.extend((0..n as u32).filter(|&c| roles[c as usize] == Role::Outlet));
     let mut len = order.len();
-    order.resize(n + 3, NONE);
+    order.resize(n + 1, NONE);
     let mut at = 0;
     while at < len {
         let c = order[at];

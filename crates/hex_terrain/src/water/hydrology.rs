@@ -24,7 +24,11 @@ use std::collections::BinaryHeap;
 use hexx::Hex;
 use serde::{Deserialize, Serialize};
 
+use super::corners::{CornerGrid, Stencils};
+use super::descent::{Drainage, NONE, Role, drain};
+use crate::chunk::TileRect;
 use crate::config::{RiverConfig, RiverEdit};
+use crate::geometry::Geometry;
 use crate::vocab::TileKind;
 
 /// The channels of a tile without a river.
@@ -181,6 +185,65 @@ impl Hydrology {
         hydrology
     }
 
+    /// The network of a map whose rivers run on the tiles' edges: its water levels and lakes,
+    /// no tile carrying a river. A tile drains down the steepest slope, and out of a depression
+    /// by a flood from the tiles round it ([`super::descent`], as the edge network's corners do);
+    /// the water levels are the filled heights, which do not depend on the order tiles are taken
+    /// in, so the lakes are the tiles and spill heights [`Hydrology::build`] finds, at a fraction
+    /// of its cost (lake ids count the lakes in this order instead).
+    pub(crate) fn lakes_only(
+        config: &RiverConfig,
+        geometry: &Geometry,
+        rect: TileRect,
+        (raw, kinds, rain): (&[f32], &[TileKind], &[f32]),
+    ) -> Self {
+        let grid = CornerGrid::new(rect, geometry.wrap().is_some());
+        let stencils = Stencils::new(geometry);
+        let count = raw.len();
+        // Each tile's neighbors by index, the tile itself past the map.
+        let links: Vec<[u32; 6]> = (0..count)
+            .map(|i| {
+                let [c, r] = grid.tile_offset(i);
+                stencils.neighbors([c, r]).map(|[dc, dr]| grid.tile([c + dc, r + dr]).map_or(i as u32, |j| j as u32))
+            })
+            .collect();
+        // The sea and the map's edge tiles are the outlets, as in `build`.
+        let roles: Vec<Role> =
+            (0..count)
+                .map(|i| {
+                    if kinds[i] == TileKind::Sea || links[i].contains(&(i as u32)) {
+                        Role::Outlet
+                    } else {
+                        Role::Drains
+                    }
+                })
+                .collect();
+        let mut level = raw.to_vec();
+        let Drainage { down: to, order } = drain(&roles, &mut level, &links);
+        let down: Vec<u8> = (0..count)
+            .map(|i| {
+                let toward = |t: u32| links[i].iter().position(|&j| j == t).map_or(OUTLET, |d| d as u8);
+                match (kinds[i], to[i]) {
+                    (TileKind::Sea, _) => OUTLET,
+                    // A land tile on the map's edge drains off it, toward its first missing neighbor.
+                    (_, NONE) => toward(i as u32),
+                    (_, t) => toward(t),
+                }
+            })
+            .collect();
+        let mut flow = rain.to_vec();
+        for &i in order.iter().rev() {
+            if let Some(&t) = to.get(i as usize).filter(|&&t| t != NONE) {
+                flow[t as usize] += flow[i as usize];
+            }
+        }
+        let order: Vec<usize> = order.iter().map(|&i| i as usize).collect();
+        let (lake, spill) = Self::lakes(config.lakes, config.min_lake_depth, raw, &level, kinds, &order, |i| {
+            links[i].into_iter().filter(move |&j| j as usize != i).map(|j| j as usize)
+        });
+        Self { level, down, flow, lake, spill, channels: Vec::new(), threshold: f32::INFINITY }
+    }
+
     /// Lake ids (connected tiles filled above their center by more than `min_depth`) and each
     /// lake's spill height; adjacent filled tiles always share one level.
     fn lakes<I: Iterator<Item = usize>>(
@@ -270,5 +333,78 @@ impl Hydrology {
     /// Downstream direction of tile `i` (`None` for sea).
     pub(crate) fn down(&self, i: usize) -> Option<usize> {
         (self.down[i] < OUTLET).then_some(usize::from(self.down[i]))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// On random heights over maps of both layouts, wrapping or not (a third of them with only a
+    /// few distinct heights, so flats and ties abound), the lakes-only network has the water
+    /// levels of `build`'s flood bit for bit, the same lake tiles grouped into the same lakes
+    /// with the same spill heights, and every tile draining toward a neighbor no higher.
+    #[test]
+    fn lakes_only_finds_the_lakes_and_levels_of_the_full_flood() {
+        let mut seed = 2024_u64;
+        let mut next = move || {
+            seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+            (seed >> 33) as u32
+        };
+        for round in 0..120 {
+            let (x, z) = (4 + next() % 30, 1 + next() % 24);
+            let wrap = next() % 2 == 0;
+            let mut config =
+                crate::MapConfig { size: crate::MapSize::Bounded { x: x + x % 2, z }, wrap, ..Default::default() };
+            config.layout.orientation =
+                if next() % 2 == 0 { crate::Orientation::Pointy } else { crate::Orientation::Flat };
+            config.rivers.min_lake_depth = [0.0, 0.01][round % 2];
+            let geometry = Geometry::new(&config);
+            let rect = geometry.bounds().unwrap();
+            let tiles: Vec<hexx::Hex> = rect.iter().map(|oc| geometry.tile_from_offset(oc)).collect();
+            let levels = if round % 3 == 0 { 4 } else { 1000 };
+            let raw: Vec<f32> = tiles.iter().map(|_| (next() % levels) as f32 / levels as f32).collect();
+            let kinds: Vec<TileKind> = raw
+                .iter()
+                .map(|&h| {
+                    if h < 0.3 {
+                        TileKind::Sea
+                    } else if h > 0.8 {
+                        TileKind::Mountain
+                    } else {
+                        TileKind::Land
+                    }
+                })
+                .collect();
+            let rain: Vec<f32> = tiles.iter().map(|_| (next() % 100) as f32 / 50.0).collect();
+            let index = |t: hexx::Hex| {
+                let [c, r] = geometry.offset_of(geometry.wrap_tile(t));
+                rect.contains([c, r])
+                    .then(|| ((r - rect.min[1]) * (rect.max[0] - rect.min[0]) + c - rect.min[0]) as usize)
+            };
+            let neighbor = |i: usize, d: usize| index(tiles[i].all_neighbors()[d]);
+            let lakes_config = RiverConfig { threshold: f32::INFINITY, ..config.rivers.clone() };
+            let full = Hydrology::build(&lakes_config, &raw, &kinds, &rain, &[], neighbor);
+            let fast = Hydrology::lakes_only(&config.rivers, &geometry, rect, (&raw, &kinds, &rain));
+            let mut pairs = std::collections::HashMap::new();
+            for i in 0..tiles.len() {
+                assert_eq!(fast.level(i).to_bits(), full.level(i).to_bits(), "round {round}: tile {i}'s level");
+                match (full.lake_of(i), fast.lake_of(i)) {
+                    (None, None) => {}
+                    (Some(a), Some(b)) => {
+                        assert_eq!(*pairs.entry(a).or_insert(b), b, "round {round}: lake {a} split");
+                        assert_eq!(full.spill_height(a), fast.spill_height(b), "round {round}: lake {a}'s spill");
+                    }
+                    other => panic!("round {round}: tile {i} is a lake in one network only: {other:?}"),
+                }
+                if let Some(d) = fast.down(i)
+                    && let Some(j) = neighbor(i, d)
+                {
+                    assert!(fast.level(j) <= fast.level(i), "round {round}: tile {i} drains uphill");
+                }
+                assert!(!fast.river_at(i));
+            }
+            assert_eq!(full.lake_count(), fast.lake_count(), "round {round}");
+        }
     }
 }
