@@ -14,7 +14,7 @@ use crate::heights::HeightField;
 use crate::kind::Thresholds;
 use crate::vocab::{Biome, TileKind};
 use crate::water::edges::{EdgeInput, EdgeRivers, RiverEdge};
-use crate::water::hydrology::{Hydrology, RiverTile};
+use crate::water::hydrology::{Hydrology, RiverTile, tile_links};
 
 /// Per-tile data of a bounded map, row by row.
 #[derive(Debug, Clone)]
@@ -103,10 +103,13 @@ impl TileTable {
         let mut table =
             Self { rect, raw, kinds, biomes: Vec::new(), climates: Vec::new(), hydrology: None, edge_rivers: None };
         let samples: Vec<TileSample> = tiles.iter().enumerate().map(|(i, &t)| table.sample(geometry, i, t)).collect();
+        // Each tile's neighbors, for the winds and the water network.
+        let links = if climate.winds().is_some() || rivers.enabled { tile_links(geometry, rect) } else { Vec::new() };
+        let neighbor = |i: usize, d: usize| Some(links[i][d] as usize).filter(|&j| j != i);
         // Each tile's climate, once: rain and biome both read it.
         let winds = climate.winds().map(|winds| {
             let input = RainInput { rect, tiles: &tiles, raw: &table.raw, kinds: &table.kinds, sea: thresholds.sea };
-            winds::rainfall(winds, geometry, &input, |t| table.index(geometry, t))
+            winds::rainfall(winds, geometry, &input, neighbor)
         });
         table.climates = tiles
             .iter()
@@ -145,13 +148,12 @@ impl TileTable {
                 Some(edits) => tiles.iter().map(|&t| edits.river(geometry, t)).collect(),
                 None => Vec::new(),
             };
-            let neighbor = |i: usize, d: usize| table.index(geometry, tiles[i].all_neighbors()[d]);
             if rivers.model == RiverModel::Centers {
                 table.hydrology = Some(Hydrology::build(rivers, &table.raw, &table.kinds, &rain, &by_hand, neighbor));
             } else {
                 // The tiles' network gives the lakes (and the water levels); its rivers run on the
                 // edges instead.
-                let hydrology = Hydrology::lakes_only(rivers, geometry, rect, (&table.raw, &table.kinds, &rain));
+                let hydrology = Hydrology::lakes_only(rivers, &links, (&table.raw, &table.kinds, &rain));
                 let lakes: Vec<bool> = (0..tiles.len()).map(|i| hydrology.lake_of(i).is_some()).collect();
                 let input = EdgeInput {
                     rect,

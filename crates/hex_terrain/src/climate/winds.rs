@@ -127,14 +127,14 @@ impl Bands {
 }
 
 /// Each tile's rain (row by row over `input.rect`, `0` and above, about 1 on a windward coast),
-/// with `index` giving the row-major index of a neighbor in the map (any copy of it on a
-/// wrapping map), `None` past the map's edge.
+/// with `neighbor(i, d)` giving the row-major index of tile `i`'s neighbor in direction `d`
+/// (`Hex::all_neighbors` order; any copy of it on a wrapping map), `None` past the map's edge.
 #[must_use]
 pub(crate) fn rainfall(
     config: &WindConfig,
     geometry: &Geometry,
     input: &RainInput<'_>,
-    index: impl Fn(Hex) -> Option<usize>,
+    neighbor: impl Fn(usize, usize) -> Option<usize>,
 ) -> Vec<f32> {
     let rect = input.rect;
     let bands = Bands::new(&config.pattern);
@@ -161,19 +161,19 @@ pub(crate) fn rainfall(
     let wind = |i: usize| rows[i / cols.max(1)].1;
     // Each tile's upwind neighbors and their weights (`SEA`: sea air from past the edge).
     let mut upwind: Vec<[(u32, f32); 6]> = vec![[(NONE, 0.0); 6]; tiles.len()];
-    for (i, &t) in tiles.iter().enumerate() {
+    for (i, slots) in upwind.iter_mut().enumerate() {
         let mut n = 0;
-        for (d, nb) in t.all_neighbors().into_iter().enumerate() {
-            let toward = dot(steps[d], wind(i));
+        for (d, &step) in steps.iter().enumerate() {
+            let toward = dot(step, wind(i));
             if toward >= -ACROSS {
                 continue;
             }
-            let from = match index(nb) {
-                Some(j) if dot(steps[d], wind(j)) < -ACROSS => j as u32,
+            let from = match neighbor(i, d) {
+                Some(j) if dot(step, wind(j)) < -ACROSS => j as u32,
                 Some(_) => continue,
                 None => SEA,
             };
-            upwind[i][n] = (from, -toward);
+            slots[n] = (from, -toward);
             n += 1;
         }
     }

@@ -133,11 +133,12 @@ pub(super) fn drain<const N: usize>(roles: &[Role], level: &mut [f32], links: &[
 const END: u32 = NONE;
 
 /// The flood's priority queue, for levels that never fall below the last one taken (a priority
-/// flood's levels only rise): corners lowest level first, ties by corner index. The level range
+/// flood's levels only rise): corners (or any `u32` names) lowest level first, ties by name; the
+/// tiles' flood names its pushes in the order made, so its ties go first pushed, first taken. The level range
 /// is cut into buckets, each a list of entries; the lowest bucket with entries is sorted when
 /// reached and taken in order, a corner pushed into it meanwhile put in its place. A push costs
 /// an entry, a take a short sort.
-struct LevelQueue {
+pub(super) struct LevelQueue {
     low: f32,
     scale: f32,
     /// The first entry of each bucket's list, [`END`] when empty.
@@ -154,7 +155,7 @@ struct LevelQueue {
 
 impl LevelQueue {
     /// A queue with `buckets` buckets over the levels `low..=high`.
-    fn new(buckets: usize, low: f32, high: f32) -> Self {
+    pub(super) fn new(buckets: usize, low: f32, high: f32) -> Self {
         let buckets = buckets.clamp(16, 1 << 16);
         let span = high - low;
         let scale = if span > 0.0 { (buckets - 1) as f32 / span } else { 0.0 };
@@ -167,7 +168,7 @@ impl LevelQueue {
         (((level - self.low) * self.scale) as usize).min(self.heads.len() - 1)
     }
 
-    fn push(&mut self, level: f32, corner: u32) {
+    pub(super) fn push(&mut self, level: f32, corner: u32) {
         let b = self.bucket(level);
         debug_assert!(b >= self.at, "a level below the last one taken");
         let k = key(level, corner);
@@ -182,7 +183,7 @@ impl LevelQueue {
     }
 
     /// The next corner.
-    fn pop(&mut self) -> Option<u32> {
+    pub(super) fn pop(&mut self) -> Option<u32> {
         while self.current.is_empty() {
             if self.listed == 0 {
                 return None;

@@ -18,14 +18,11 @@
 //! downstream, so a river is read as a tile property (a unit stands on it) and the channel uses
 //! the lattice's own points from center to edge.
 
-use std::cmp::Ordering;
-use std::collections::BinaryHeap;
-
 use hexx::Hex;
 use serde::{Deserialize, Serialize};
 
 use super::corners::{CornerGrid, Stencils};
-use super::descent::{Drainage, NONE, Role, drain};
+use super::descent::{Drainage, LevelQueue, NONE, Role, drain};
 use crate::chunk::TileRect;
 use crate::config::{RiverConfig, RiverEdit};
 use crate::geometry::Geometry;
@@ -73,22 +70,17 @@ pub struct RiverTile {
     pub upstream: Vec<Hex>,
 }
 
-/// Heap entry: lowest level first, then first pushed.
-#[derive(PartialEq)]
-struct Entry(f32, u32, u32);
-
-impl Eq for Entry {}
-
-impl Ord for Entry {
-    fn cmp(&self, other: &Self) -> Ordering {
-        other.0.total_cmp(&self.0).then(other.1.cmp(&self.1))
-    }
-}
-
-impl PartialOrd for Entry {
-    fn partial_cmp(&self, other: &Self) -> Option<Ordering> {
-        Some(self.cmp(other))
-    }
+/// Each map tile's six neighbors (row-major indices, in `Hex::all_neighbors` order; the tile
+/// itself past the map's edge) of the map's rectangle `rect`: what the tiles' floods read.
+pub(crate) fn tile_links(geometry: &Geometry, rect: TileRect) -> Vec<[u32; 6]> {
+    let grid = CornerGrid::new(rect, geometry.wrap().is_some());
+    let stencils = Stencils::new(geometry);
+    (0..rect.len())
+        .map(|i| {
+            let [c, r] = grid.tile_offset(i);
+            stencils.neighbors([c, r]).map(|[dc, dr]| grid.tile([c + dc, r + dr]).map_or(i as u32, |j| j as u32))
+        })
+        .collect()
 }
 
 impl Hydrology {
@@ -113,8 +105,11 @@ impl Hydrology {
         let mut level = raw.to_vec();
         let mut down = vec![OUTLET; count];
         let mut taken = vec![false; count];
-        let mut heap = BinaryHeap::new();
-        let mut seq = 0_u32;
+        // Lowest level first, then first pushed: the queue's ties go by the order pushed, and
+        // `pushed` names the tile of each push.
+        let (low, high) = raw.iter().fold((f32::INFINITY, f32::NEG_INFINITY), |(lo, hi), &l| (lo.min(l), hi.max(l)));
+        let mut queue = LevelQueue::new(count / 4, low, high.max(low));
+        let mut pushed: Vec<u32> = Vec::with_capacity(count);
         for i in 0..count {
             let off_map = (0..6).find(|&d| neighbor(i, d).is_none());
             if kinds[i] == TileKind::Sea || off_map.is_some() {
@@ -122,13 +117,14 @@ impl Hydrology {
                     down[i] = off_map.unwrap_or(0) as u8;
                 }
                 taken[i] = true;
-                heap.push(Entry(level[i], seq, i as u32));
-                seq += 1;
+                queue.push(level[i], pushed.len() as u32);
+                pushed.push(i as u32);
             }
         }
         let mut order = Vec::with_capacity(count);
-        while let Some(Entry(l, _, i)) = heap.pop() {
-            let i = i as usize;
+        while let Some(k) = queue.pop() {
+            let i = pushed[k as usize] as usize;
+            let l = level[i];
             order.push(i);
             for d in 0..6 {
                 if let Some(j) = neighbor(i, d)
@@ -137,8 +133,8 @@ impl Hydrology {
                     taken[j] = true;
                     level[j] = level[j].max(l);
                     down[j] = ((d + 3) % 6) as u8;
-                    heap.push(Entry(level[j], seq, j as u32));
-                    seq += 1;
+                    queue.push(level[j], pushed.len() as u32);
+                    pushed.push(j as u32);
                 }
             }
         }
@@ -193,20 +189,10 @@ impl Hydrology {
     /// of its cost (lake ids count the lakes in this order instead).
     pub(crate) fn lakes_only(
         config: &RiverConfig,
-        geometry: &Geometry,
-        rect: TileRect,
+        links: &[[u32; 6]],
         (raw, kinds, rain): (&[f32], &[TileKind], &[f32]),
     ) -> Self {
-        let grid = CornerGrid::new(rect, geometry.wrap().is_some());
-        let stencils = Stencils::new(geometry);
         let count = raw.len();
-        // Each tile's neighbors by index, the tile itself past the map.
-        let links: Vec<[u32; 6]> = (0..count)
-            .map(|i| {
-                let [c, r] = grid.tile_offset(i);
-                stencils.neighbors([c, r]).map(|[dc, dr]| grid.tile([c + dc, r + dr]).map_or(i as u32, |j| j as u32))
-            })
-            .collect();
         // The sea and the map's edge tiles are the outlets, as in `build`.
         let roles: Vec<Role> =
             (0..count)
@@ -219,7 +205,7 @@ impl Hydrology {
                 })
                 .collect();
         let mut level = raw.to_vec();
-        let Drainage { down: to, order } = drain(&roles, &mut level, &links);
+        let Drainage { down: to, order } = drain(&roles, &mut level, links);
         let down: Vec<u8> = (0..count)
             .map(|i| {
                 let toward = |t: u32| links[i].iter().position(|&j| j == t).map_or(OUTLET, |d| d as u8);
@@ -385,7 +371,14 @@ mod tests {
             let neighbor = |i: usize, d: usize| index(tiles[i].all_neighbors()[d]);
             let lakes_config = RiverConfig { threshold: f32::INFINITY, ..config.rivers.clone() };
             let full = Hydrology::build(&lakes_config, &raw, &kinds, &rain, &[], neighbor);
-            let fast = Hydrology::lakes_only(&config.rivers, &geometry, rect, (&raw, &kinds, &rain));
+            let links = tile_links(&geometry, rect);
+            for (i, l) in links.iter().enumerate() {
+                for (d, &j) in l.iter().enumerate() {
+                    let by_link = (j as usize != i).then_some(j as usize);
+                    assert_eq!(by_link, neighbor(i, d), "round {round}: tile {i}'s link {d}");
+                }
+            }
+            let fast = Hydrology::lakes_only(&config.rivers, &links, (&raw, &kinds, &rain));
             let mut pairs = std::collections::HashMap::new();
             for i in 0..tiles.len() {
                 assert_eq!(fast.level(i).to_bits(), full.level(i).to_bits(), "round {round}: tile {i}'s level");
