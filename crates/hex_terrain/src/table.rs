@@ -157,7 +157,7 @@ impl TileTable {
                 let lakes: Vec<bool> = (0..tiles.len()).map(|i| hydrology.lake_of(i).is_some()).collect();
                 let input = EdgeInput {
                     rect,
-                    tiles: &tiles,
+                    links: &links,
                     raw: &table.raw,
                     kinds: &table.kinds,
                     lakes: &lakes,

@@ -76,9 +76,10 @@ const NO_WIDTHS: [f32; 6] = [0.0; 6];
 
 /// What the network is built from: the map's tiles, row by row.
 pub(crate) struct EdgeInput<'a> {
-    /// The map's tiles: their rectangle, and each tile row by row.
+    /// The map's tiles' rectangle.
     pub rect: TileRect,
-    pub tiles: &'a [Hex],
+    /// Each tile's six neighbors (`hydrology::tile_links`: the tile itself past the map).
+    pub links: &'a [[u32; 6]],
     /// Each tile's center height, raw.
     pub raw: &'a [f32],
     /// Each tile's kind.
@@ -111,7 +112,7 @@ impl EdgeRivers {
         let shape = Shape::new();
         let owners = Owners::new(geometry, &shape);
         let stencils = Stencils::new(geometry);
-        let near = near_sea(input, config.sea_distance, &grid, &stencils);
+        let near = near_sea(input, config.sea_distance);
         let Corners { roles, inland, mut level, rain, links } = corners(&grid, &stencils, input, &near);
         let n = grid.len();
         let Drainage { down, order } = drain(&roles, &mut level, &links);
@@ -154,7 +155,7 @@ impl EdgeRivers {
                 flow[down[c] as usize] += flow[c];
             }
         }
-        let count = input.tiles.len();
+        let count = input.raw.len();
         let mut network = Self {
             orientation: geometry.layout().orientation,
             grid,
@@ -174,9 +175,8 @@ impl EdgeRivers {
         for (c, links) in links.iter().enumerate() {
             if network.river[c] {
                 let (i, d) = network.edge_down(c, links);
-                let [col, row] = network.grid.tile_offset(i);
-                let [dc, dr] = network.stencils.neighbors([col, row])[d];
-                let other = network.grid.tile([col + dc, row + dr]).expect("a river edge lies between map tiles");
+                let other = input.links[i][d] as usize;
+                debug_assert_ne!(other, i, "a river edge lies between map tiles");
                 let w = width(network.flow[c]);
                 for (tile, d) in [(i, d), (other, (d + 3) % 6)] {
                     if network.river_tile[tile] == NONE {
@@ -394,7 +394,7 @@ fn corners(grid: &CornerGrid, stencils: &Stencils, input: &EdgeInput<'_>, near: 
 
 /// Whether each map tile lies nearer the sea than `distance` tiles (a breadth-first search from
 /// every sea tile at once, `distance` steps deep).
-fn near_sea(input: &EdgeInput<'_>, distance: u32, grid: &CornerGrid, stencils: &Stencils) -> Vec<bool> {
+fn near_sea(input: &EdgeInput<'_>, distance: u32) -> Vec<bool> {
     let mut near = vec![false; input.kinds.len()];
     if distance == 0 {
         return near;
@@ -404,13 +404,10 @@ fn near_sea(input: &EdgeInput<'_>, distance: u32, grid: &CornerGrid, stencils: &
     for _ in 1..distance {
         let mut next = Vec::new();
         for &i in &front {
-            let [col, row] = grid.tile_offset(i);
-            for [dc, dr] in stencils.neighbors([col, row]) {
-                if let Some(j) = grid.tile([col + dc, row + dr])
-                    && !near[j]
-                {
-                    near[j] = true;
-                    next.push(j);
+            for &j in &input.links[i] {
+                if !near[j as usize] {
+                    near[j as usize] = true;
+                    next.push(j as usize);
                 }
             }
         }
