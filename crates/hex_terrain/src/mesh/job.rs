@@ -9,7 +9,8 @@
 
 use hexx::Hex;
 
-use super::grid::{GridShape, Owner, Points, TEMPLATE_MAX};
+use super::grid::{GridShape, Owner, Points};
+use super::lanes::{Kernel, OWN};
 use super::parallel::{BATCH, Outputs, Split, in_batches};
 use super::{Buffers, ChunkMesh, Diagnostics, GenerateOptions, Threads, vertex_color};
 use crate::chunk::TileRect;
@@ -438,14 +439,16 @@ impl<'a> Job<'a> {
     /// Triangle indices, tile by tile, from the template's triangles and the grid.
     fn indices_pass(&self, points: &Points, indices: &mut [u32]) {
         let ppt = self.lattice.points_per_tile();
-        let per_tile = self.lattice.triangles_per_tile() * 3;
-        self.split.for_each_chunk(indices, per_tile, 16, |t, out| {
-            let mut own = [0_u32; TEMPLATE_MAX];
-            points.grid.template_points(self.lattice.tile_center(self.tiles[t]), &self.offsets, &mut own[..ppt]);
-            for (tri, dst) in self.lattice.template_triangle_indices().iter().zip(out.chunks_exact_mut(3)) {
-                for (&k, d) in tri.iter().zip(dst) {
-                    *d = own[usize::from(k)];
-                }
+        let table = self.lattice.template_triangle_indices().as_flattened();
+        let kernel = Kernel::detect();
+        // Tiles a task takes together, sharing one table of their points.
+        const TILES: usize = 16;
+        self.split.for_each_chunk(indices, table.len() * TILES, 1, |g, out| {
+            let mut own = [0_u32; OWN];
+            for (t, out) in out.chunks_mut(table.len()).enumerate() {
+                let center = self.lattice.tile_center(self.tiles[g * TILES + t]);
+                points.grid.template_points(center, &self.offsets, &mut own[..ppt]);
+                kernel.indices(&own, table, out);
             }
         });
     }

@@ -6,12 +6,14 @@
 //! | `grid.rs` | the point grid: lattice coordinates to point indices, and the enumeration of a rectangle's points |
 //! | `job.rs` | one generation as a job whose passes are methods: tile kinds, owned vertices, halo, indices |
 //! | `normals.rs` | the normals pass |
+//! | `lanes.rs` | the vector loops of the normals and the indices, built for AVX2 and AVX-512 and picked at run time |
 //! | `parallel.rs` | the parallel policy: batches, pool entry, disjoint output slices |
 //! | `coarse.rs` | level of detail: a generated mesh as a fan a tile, its outline kept whole ([`Detail`]) |
 
 pub(crate) mod coarse;
 mod grid;
 mod job;
+mod lanes;
 mod normals;
 mod parallel;
 

@@ -1,12 +1,11 @@
 //! Smooth vertex normals from the height grid: each vertex's normal is the area-weighted sum of
-//! the six lattice triangles around it, computed eight vertices at a time.
+//! the six lattice triangles around it, computed a vector of vertices at a time (sixteen on
+//! AVX-512, eight elsewhere; module `lanes` picks the instruction set at run time).
 
 use super::grid::{AROUND, Points};
 use super::job::Job;
+use super::lanes::Kernel;
 use super::parallel::BATCH;
-
-/// Vertices whose normals are computed together.
-pub(super) const NORMAL_LANES: usize = 8;
 
 /// Coefficients of the smooth normal: the sum of the six lattice triangles' face normals
 /// (area-weighted) around a vertex is `(Σ dₖ·x[k], y, Σ dₖ·z[k])`, with `dₖ` the height of the
@@ -31,33 +30,38 @@ impl NormalCoefficients {
         Self { x, y, z }
     }
 
-    /// Unit normal at a vertex of height `h0`; the same inputs give the same bits in every chunk.
-    #[cfg(test)]
+    /// Unit normal at one vertex of height `h0` whose k-th neighbor has height `height(k)`.
+    /// [`NormalCoefficients::lanes`] does the same operations in the same order in every lane,
+    /// so a vertex gets these bits in any lane, chunk and instruction set.
+    #[inline(always)]
     pub fn normal(&self, h0: f32, height: impl Fn(usize) -> f32) -> [f32; 3] {
-        let mut around = [[0.0; NORMAL_LANES]; 6];
-        for (k, a) in around.iter_mut().enumerate() {
-            a[0] = height(k);
+        let (mut nx, mut nz) = (0.0_f32, 0.0_f32);
+        for (k, (&x, &z)) in self.x.iter().zip(&self.z).enumerate() {
+            let d = height(k) - h0;
+            nx += d * x;
+            nz += d * z;
         }
-        let mut out = [[0.0; 3]; NORMAL_LANES];
-        self.normals(&[h0; NORMAL_LANES], &around, &mut out);
-        out[0]
+        let len = (nx * nx + self.y * self.y + nz * nz).sqrt();
+        if len > 0.0 && len.is_finite() { [nx / len, self.y / len, nz / len] } else { [0.0, 1.0, 0.0] }
     }
 
-    /// [`NormalCoefficients::normal`] of [`NORMAL_LANES`] vertices at once (heights `h0`, the
-    /// k-th neighbors' heights in `around[k]`), lane by lane so that it vectorises; every lane
-    /// does the same operations in the same order, so a vertex gets the same bits in any lane.
+    /// [`NormalCoefficients::normal`] of `L` vertices in consecutive slots from `slot` (their
+    /// neighbors `around[k]` slots away), lane by lane so that it vectorises.
     #[inline(always)]
-    fn normals(&self, h0: &[f32; NORMAL_LANES], around: &[[f32; NORMAL_LANES]; 6], out: &mut [[f32; 3]; NORMAL_LANES]) {
-        let (mut nx, mut nz) = ([0.0_f32; NORMAL_LANES], [0.0_f32; NORMAL_LANES]);
-        for ((heights, x), z) in around.iter().zip(self.x).zip(self.z) {
-            for l in 0..NORMAL_LANES {
-                let d = heights[l] - h0[l];
+    fn lanes<const L: usize>(&self, heights: &[f32], slot: usize, around: [isize; 6], out: &mut [[f32; 3]; L]) {
+        let h0: &[f32; L] = heights[slot..slot + L].try_into().expect("L heights");
+        let (mut nx, mut nz) = ([0.0_f32; L], [0.0_f32; L]);
+        for ((&step, &x), &z) in around.iter().zip(&self.x).zip(&self.z) {
+            let s = slot.wrapping_add_signed(step);
+            let a: &[f32; L] = heights[s..s + L].try_into().expect("L heights");
+            for l in 0..L {
+                let d = a[l] - h0[l];
                 nx[l] += d * x;
                 nz[l] += d * z;
             }
         }
         let y2 = self.y * self.y;
-        for l in 0..NORMAL_LANES {
+        for l in 0..L {
             let len = (nx[l] * nx[l] + y2 + nz[l] * nz[l]).sqrt();
             out[l] =
                 if len > 0.0 && len.is_finite() { [nx[l] / len, self.y / len, nz[l] / len] } else { [0.0, 1.0, 0.0] };
@@ -65,10 +69,53 @@ impl NormalCoefficients {
     }
 }
 
+/// What the normals of a batch read: the points, their heights by slot and the coefficients.
+pub(super) struct Batch<'a> {
+    points: &'a Points,
+    heights: &'a [f32],
+    coefficients: &'a NormalCoefficients,
+}
+
+impl Batch<'_> {
+    /// The normals of points `first..first + out.len()`: `L` at a time where `L` points sit in
+    /// consecutive slots of one row (nearly everywhere), else one by one.
+    #[inline(always)]
+    pub(super) fn normals<const L: usize>(&self, first: usize, out: &mut [[f32; 3]]) {
+        let (points, heights) = (self.points, self.heights);
+        let width = points.grid.shape.width;
+        let mut groups = out.chunks_exact_mut(L);
+        let mut i = first;
+        for group in &mut groups {
+            let slot = points.slot_of(i);
+            let around = points.grid.around(points.lattice[i]);
+            let group: &mut [[f32; 3]; L] = group.try_into().expect("L normals");
+            if points.slot_of(i + L - 1) == slot + L - 1 && slot / width == (slot + L - 1) / width {
+                self.coefficients.lanes(heights, slot, around, group);
+            } else {
+                for (l, normal) in group.iter_mut().enumerate() {
+                    *normal = self.single(i + l);
+                }
+            }
+            i += L;
+        }
+        for (l, normal) in groups.into_remainder().iter_mut().enumerate() {
+            *normal = self.single(i + l);
+        }
+    }
+
+    /// The normal of point `i`.
+    #[inline(always)]
+    fn single(&self, i: usize) -> [f32; 3] {
+        let slot = self.points.slot_of(i);
+        let around = self.points.grid.around(self.points.lattice[i]);
+        self.coefficients.normal(self.heights[slot], |k| self.heights[slot.wrapping_add_signed(around[k])])
+    }
+}
+
 impl Job<'_> {
     /// The normals pass: every neighbor of an owned point is an owned or a halo point, so its
-    /// height is in the grid. Eight points in consecutive slots of one row read eight
-    /// consecutive heights per direction.
+    /// height is in the grid. A vector of points in consecutive slots of one row reads a vector
+    /// of consecutive heights per direction.
     pub(super) fn normals_pass(&self, points: &Points, heights: &[f32], normals: &mut [[f32; 3]]) {
         let (step_a, step_b) = self.lattice.steps();
         let around: [[f32; 2]; 6] = AROUND.map(|d| {
@@ -76,36 +123,11 @@ impl Job<'_> {
             [(i * step_a[0] + j * step_b[0]) as f32, (i * step_a[1] + j * step_b[1]) as f32]
         });
         let coefficients = NormalCoefficients::new(&around);
-        let (grid, width) = (&points.grid, points.grid.shape.width);
-        self.split.for_each_chunk(normals, BATCH, 1, |c, normals| {
-            let mut h0 = [0.0; NORMAL_LANES];
-            let mut around = [[0.0; NORMAL_LANES]; 6];
-            let mut out = [[0.0; 3]; NORMAL_LANES];
-            for (g, normals) in normals.chunks_mut(NORMAL_LANES).enumerate() {
-                let first = c * BATCH + g * NORMAL_LANES;
-                let slot = points.slot_of(first);
-                let last = first + NORMAL_LANES - 1;
-                if normals.len() == NORMAL_LANES
-                    && points.slot_of(last) == slot + NORMAL_LANES - 1
-                    && slot / width == (slot + NORMAL_LANES - 1) / width
-                {
-                    h0.copy_from_slice(&heights[slot..slot + NORMAL_LANES]);
-                    for (a, d) in around.iter_mut().zip(grid.around(points.lattice[first])) {
-                        let s = slot.wrapping_add_signed(d);
-                        a.copy_from_slice(&heights[s..s + NORMAL_LANES]);
-                    }
-                } else {
-                    for l in 0..normals.len() {
-                        let slot = points.slot_of(first + l);
-                        h0[l] = heights[slot];
-                        for (a, d) in around.iter_mut().zip(grid.around(points.lattice[first + l])) {
-                            a[l] = heights[slot.wrapping_add_signed(d)];
-                        }
-                    }
-                }
-                coefficients.normals(&h0, &around, &mut out);
-                normals.copy_from_slice(&out[..normals.len()]);
-            }
-        });
+        let batch = Batch { points, heights, coefficients: &coefficients };
+        let kernel = Kernel::detect();
+        self.split.for_each_chunk(normals, BATCH, 1, |c, normals| kernel.normals(&batch, c * BATCH, normals));
     }
 }
+
+#[cfg(test)]
+mod tests;

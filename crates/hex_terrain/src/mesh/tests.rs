@@ -152,3 +152,21 @@ fn vertex_colors_do_not_depend_on_the_order_of_the_tiles() {
     assert_eq!(vertex_color(&a, 0.3), vertex_color(&b, 0.3));
     assert_eq!(vertex_color(&[crate::Biome::Snow], 1.0), [238, 242, 246, 255]);
 }
+
+/// Every indices kernel this CPU runs copies each template point's index, at every length.
+#[test]
+fn every_kernel_copies_the_template_points_indices() {
+    use super::grid::TEMPLATE_MAX;
+    use super::lanes::{Kernel, OWN};
+    let own: [u32; OWN] = std::array::from_fn(|i| crate::hash::hash(7, &[i as i64]) as u32);
+    for len in [0, 1, 7, 8, 15, 16, 17, 100, 5202] {
+        let table: Vec<u16> =
+            (0..len).map(|i| (crate::hash::hash(9, &[i as i64]) % TEMPLATE_MAX as u64) as u16).collect();
+        let expected: Vec<u32> = table.iter().map(|&k| own[usize::from(k)]).collect();
+        for kernel in Kernel::supported() {
+            let mut out = vec![0; len];
+            kernel.indices(&own, &table, &mut out);
+            assert_eq!(out, expected, "{kernel:?} length {len}");
+        }
+    }
+}
