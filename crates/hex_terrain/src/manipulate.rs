@@ -19,13 +19,16 @@ impl Thresholds {
             return h;
         }
         let (s, m) = (self.sea, self.mountain);
-        if h < s {
-            linear(h, 0.0, s, 0.0, s - t)
+        // The range's bounds are chosen, then mapped once: selects rather than branches, as
+        // heights near a threshold go either way.
+        let (in_min, in_max, out_min, out_max) = if h < s {
+            (0.0, s, 0.0, s - t)
         } else if h < m {
-            linear(h, s, m, s + t, m - t)
+            (s, m, s + t, m - t)
         } else {
-            linear(h, m, 1.0, m + t, 1.0)
-        }
+            (m, 1.0, m + t, 1.0)
+        };
+        linear(h, in_min, in_max, out_min, out_max)
     }
 
     /// Height of a border vertex between tiles of different kinds: the threshold between them;
@@ -47,12 +50,23 @@ impl Thresholds {
     pub fn pull(&self, h: f32, kind: TileKind, mode: PullMode) -> f32 {
         let (lo, hi) = self.range(kind);
         match mode {
-            PullMode::Clamp => h.clamp(lo, hi),
-            PullMode::Thesis => {
+            // `f32::clamp`'s comparisons, without its check of the bounds (a branch that would
+            // keep a batch of vertices from vectorising).
+            PullMode::Clamp => {
                 if h < lo {
-                    (lo + h) * 0.5
+                    lo
                 } else if h > hi {
-                    (hi + h) * 0.5
+                    hi
+                } else {
+                    h
+                }
+            }
+            PullMode::Thesis => {
+                let (below, above) = ((lo + h) * 0.5, (hi + h) * 0.5);
+                if h < lo {
+                    below
+                } else if h > hi {
+                    above
                 } else {
                     h
                 }
@@ -64,10 +78,8 @@ impl Thresholds {
 /// Maps `x` from `[in_min, in_max]` to `[out_min, out_max]` (Algorithm 4).
 #[inline]
 fn linear(x: f32, in_min: f32, in_max: f32, out_min: f32, out_max: f32) -> f32 {
-    if in_max <= in_min {
-        return out_min;
-    }
-    out_min + (x - in_min) * (out_max - out_min) / (in_max - in_min)
+    let mapped = out_min + (x - in_min) * (out_max - out_min) / (in_max - in_min);
+    if in_max <= in_min { out_min } else { mapped }
 }
 
 /// What manipulation did to one vertex.
@@ -80,10 +92,20 @@ pub struct Manipulated {
     pub moved: bool,
 }
 
+/// The lowest and highest of the kinds of the in-map tiles sharing a vertex (`None` when no
+/// tile of the map holds it).
+#[must_use]
+#[inline]
+pub fn span(kinds: &[TileKind]) -> Option<(TileKind, TileKind)> {
+    let (&first, rest) = kinds.split_first()?;
+    Some(rest.iter().fold((first, first), |(lo, hi), &k| (lo.min(k), hi.max(k))))
+}
+
 /// Applies the enabled stages to a vertex with raw height `raw`.
 ///
-/// `ring`/`n` locate it in its tile; `kinds` are the kinds of the in-map tiles sharing it (one
-/// for an inner vertex, up to three on a border; none outside the map).
+/// `ring`/`n` locate it in its tile; `span` is the lowest and highest kind of the in-map tiles
+/// sharing it ([`span`]; an inner vertex has one tile, a border vertex up to three; `None`
+/// outside the map). The one-vertex case of [`manipulate_lanes`], so the same bits.
 #[must_use]
 #[inline(always)]
 pub fn manipulate(
@@ -92,30 +114,70 @@ pub fn manipulate(
     raw: f32,
     ring: u32,
     n: u32,
-    kinds: &[TileKind],
+    span: Option<(TileKind, TileKind)>,
 ) -> Manipulated {
-    let h = thresholds.interpolate(raw);
-    let Some(&first) = kinds.first() else {
-        return Manipulated { height: h, moved: false };
+    let Some((lo, hi)) = span else {
+        return Manipulated { height: thresholds.interpolate(raw), moved: false };
     };
-    let out = if ring < n {
-        if config.hex_unity && ring > 0 { thresholds.pull(h, first, config.pull) } else { h }
-    } else {
-        let (lo, hi) = kinds.iter().fold((first, first), |(lo, hi), &k| (lo.min(k), hi.max(k)));
-        if lo == hi {
-            if config.edge_correction {
-                let (a, b) = thresholds.range(lo);
-                h.clamp(a, b)
-            } else {
-                h
-            }
-        } else if config.hex_unity {
-            thresholds.border(lo, hi)
+    let mut out = [Manipulated { height: 0.0, moved: false }];
+    manipulate_lanes(thresholds, config, n, &Lanes { raw: [raw], ring: [ring], lo: [lo], hi: [hi] }, &mut out);
+    out[0]
+}
+
+/// `L` vertices for [`manipulate_lanes`]: raw heights, rings and the lowest and highest kind of
+/// the tiles sharing each (all in the map).
+#[derive(Debug, Clone, Copy)]
+pub struct Lanes<const L: usize> {
+    /// Raw heights.
+    pub raw: [f32; L],
+    /// Rings in their tiles (`n` on a border).
+    pub ring: [u32; L],
+    /// Lowest kind of the tiles sharing each vertex.
+    pub lo: [TileKind; L],
+    /// Highest kind of the tiles sharing each vertex.
+    pub hi: [TileKind; L],
+}
+
+/// [`manipulate`] of `L` vertices in the map at once. Every case is computed and one selected,
+/// each step a loop over the lanes, so that it vectorises; every lane does the operations of the
+/// one-vertex case in the same order.
+#[inline(always)]
+pub fn manipulate_lanes<const L: usize>(
+    thresholds: &Thresholds,
+    config: &ManipulationConfig,
+    n: u32,
+    v: &Lanes<L>,
+    out: &mut [Manipulated; L],
+) {
+    let mut h = [0.0_f32; L];
+    for (h, &raw) in h.iter_mut().zip(&v.raw) {
+        *h = thresholds.interpolate(raw);
+    }
+    for l in 0..L {
+        let (h, lo, hi) = (h[l], v.lo[l], v.hi[l]);
+        let (a, b) = thresholds.range(lo);
+        // An inner vertex has one tile (`lo == hi`): hex unity pulls it into that tile's range.
+        let inner = if config.hex_unity && v.ring[l] > 0 { thresholds.pull(h, lo, config.pull) } else { h };
+        // A border vertex between tiles of one kind: edge correction clamps it into the range
+        // (`f32::clamp`'s comparisons, without its check of the bounds).
+        let clamped = if h < a {
+            a
+        } else if h > b {
+            b
         } else {
             h
-        }
-    };
-    Manipulated { height: out, moved: out != h }
+        };
+        let one_kind = if config.edge_correction { clamped } else { h };
+        let between = if config.hex_unity { thresholds.border(lo, hi) } else { h };
+        let height = if v.ring[l] < n {
+            inner
+        } else if lo == hi {
+            one_kind
+        } else {
+            between
+        };
+        out[l] = Manipulated { height, moved: height != h };
+    }
 }
 
 #[cfg(test)]

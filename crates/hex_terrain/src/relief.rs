@@ -56,6 +56,12 @@ impl Relief {
         }
     }
 
+    /// Whether relief lifts anything (else [`Relief::apply`] returns the height it is given).
+    #[must_use]
+    pub(crate) fn is_active(&self) -> bool {
+        self.active
+    }
+
     /// Applies relief to a manipulated height `h` (raw height `raw`) of lattice point `p` at
     /// `ring`, shared by tiles of `kinds`. The identity when the config's relief is off.
     #[must_use]

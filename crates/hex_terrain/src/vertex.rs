@@ -14,7 +14,7 @@ use crate::config::{ManipulationConfig, MapConfig};
 use crate::geometry::Geometry;
 use crate::heights::HeightField;
 use crate::kind::{Thresholds, TileKind};
-use crate::manipulate::{Manipulated, manipulate};
+use crate::manipulate::{Lanes, Manipulated, manipulate, manipulate_lanes, span};
 use crate::relief::Relief;
 use crate::table::TileTable;
 use crate::water::channels;
@@ -126,15 +126,63 @@ impl VertexRules {
         ring: u32,
         sharing: Sharing<'_>,
     ) -> VertexSample {
-        let kinds = sharing.kinds;
-        let Manipulated { height, moved } = if self.manipulation.any() {
-            manipulate(&self.thresholds, &self.manipulation, raw, ring, self.subdivisions, kinds)
+        let m = self.manipulated(raw, ring, span(sharing.kinds));
+        self.finish_manipulated(geometry, water, raw, p, ring, sharing, m)
+    }
+
+    /// The chain's first step, manipulation, of a vertex of raw height `raw` at `ring` whose
+    /// sharing tiles' kinds span `span` ([`span`]). Branch-free in the height: the mesh runs it
+    /// over a batch of vertices in one loop, then [`VertexRules::finish_manipulated`].
+    #[must_use]
+    #[inline(always)]
+    pub(crate) fn manipulated(&self, raw: f32, ring: u32, span: Option<(TileKind, TileKind)>) -> Manipulated {
+        if self.manipulation.any() {
+            manipulate(&self.thresholds, &self.manipulation, raw, ring, self.subdivisions, span)
         } else {
             Manipulated { height: raw, moved: false }
-        };
+        }
+    }
+
+    /// [`VertexRules::manipulated`] of `L` vertices in the map at once, in loops that vectorise
+    /// (the same bits).
+    #[inline(always)]
+    pub(crate) fn manipulated_lanes<const L: usize>(&self, v: &Lanes<L>, out: &mut [Manipulated; L]) {
+        if self.manipulation.any() {
+            manipulate_lanes(&self.thresholds, &self.manipulation, self.subdivisions, v, out);
+        } else {
+            for (m, &raw) in out.iter_mut().zip(&v.raw) {
+                *m = Manipulated { height: raw, moved: false };
+            }
+        }
+    }
+
+    /// Whether the chain ends at manipulation for a vertex of a map with `water`: no relief and
+    /// no water to carve, so [`VertexRules::finish_manipulated`] only adds the kind (the highest
+    /// of the tiles sharing the vertex).
+    #[must_use]
+    pub(crate) fn ends_at_manipulation(&self, water: Option<&TileTable>) -> bool {
+        !self.relief.is_active() && water.is_none_or(|t| t.hydrology().is_none())
+    }
+
+    /// The chain after manipulation `m` of the vertex: its kind, relief and carving (see
+    /// [`VertexRules::finish`]).
+    #[must_use]
+    #[inline(always)]
+    #[allow(clippy::too_many_arguments)]
+    pub(crate) fn finish_manipulated(
+        &self,
+        geometry: &Geometry,
+        water: Option<&TileTable>,
+        raw: f32,
+        p: Hex,
+        ring: u32,
+        sharing: Sharing<'_>,
+        m: Manipulated,
+    ) -> VertexSample {
+        let kinds = sharing.kinds;
         let kind = kinds.iter().copied().max().unwrap_or_else(|| self.thresholds.classify(raw));
-        let height = self.relief.apply(geometry, height, raw, p, ring, kinds);
-        let s = VertexSample { raw, height, moved, ring, kind, water: 0.0 };
+        let height = self.relief.apply(geometry, m.height, raw, p, ring, kinds);
+        let s = VertexSample { raw, height, moved: m.moved, ring, kind, water: 0.0 };
         match water {
             Some(table) if table.hydrology().is_some() => self.carve(geometry, table, p, sharing, s),
             _ => s,

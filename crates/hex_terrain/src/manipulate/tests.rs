@@ -31,9 +31,9 @@ fn inner_vertices_end_in_range_with_clamp_but_not_always_with_thesis() {
         let (lo, hi) = t.range(kind);
         for i in 0..=100 {
             let raw = i as f32 / 100.0;
-            let m = manipulate(&t, &config, raw, 1, 2, &[kind]);
+            let m = manipulate(&t, &config, raw, 1, 2, Some((kind, kind)));
             assert!(m.height >= lo && m.height <= hi);
-            let m = manipulate(&t, &thesis, raw, 1, 2, &[kind]);
+            let m = manipulate(&t, &thesis, raw, 1, 2, Some((kind, kind)));
             thesis_outside += usize::from(m.height < lo || m.height > hi);
         }
     }
@@ -45,16 +45,16 @@ fn borders_go_to_the_threshold_between_types() {
     let t = thresholds(0.03);
     let c = ManipulationConfig::default();
     use TileKind::*;
-    assert_eq!(manipulate(&t, &c, 0.9, 2, 2, &[Sea, Land]).height, 0.3);
-    assert_eq!(manipulate(&t, &c, 0.1, 2, 2, &[Mountain, Land]).height, 0.7);
-    assert_eq!(manipulate(&t, &c, 0.1, 2, 2, &[Mountain, Sea, Land]).height, 0.5);
+    assert_eq!(manipulate(&t, &c, 0.9, 2, 2, span(&[Sea, Land])).height, 0.3);
+    assert_eq!(manipulate(&t, &c, 0.1, 2, 2, span(&[Mountain, Land])).height, 0.7);
+    assert_eq!(manipulate(&t, &c, 0.1, 2, 2, span(&[Mountain, Sea, Land])).height, 0.5);
     // same type: edge correction pulls into the range
-    let m = manipulate(&t, &c, 0.9, 2, 2, &[Land, Land]);
+    let m = manipulate(&t, &c, 0.9, 2, 2, span(&[Land, Land]));
     assert_eq!(m.height, 0.67);
     assert!(m.moved);
     // off: untouched apart from interpolation
     let off = ManipulationConfig { edge_correction: false, ..c.clone() };
-    assert_eq!(manipulate(&t, &off, 0.9, 2, 2, &[Land, Land]).height, t.interpolate(0.9));
+    assert_eq!(manipulate(&t, &off, 0.9, 2, 2, span(&[Land, Land])).height, t.interpolate(0.9));
     // outside the map: nothing to unify with
-    assert_eq!(manipulate(&t, &c, 0.9, 2, 2, &[]).height, t.interpolate(0.9));
+    assert_eq!(manipulate(&t, &c, 0.9, 2, 2, None).height, t.interpolate(0.9));
 }

@@ -17,9 +17,13 @@ use crate::chunk::TileRect;
 use crate::climate::TileSample;
 use crate::geometry::Geometry;
 use crate::lattice::Lattice;
+use crate::manipulate::Manipulated;
 use crate::pipeline::Pipeline;
 use crate::vertex::{Sharing, VertexSample};
 use crate::vocab::{Biome, TileInfo, TileKind};
+
+/// No direction: a border point's slot for a sharing neighbor that is not in the map.
+const NONE: u8 = u8::MAX;
 
 /// A generation of one rectangle of tiles.
 pub(super) struct Job<'a> {
@@ -318,51 +322,77 @@ impl<'a> Job<'a> {
         let origin = self.origin;
         let inv_n = 1.0 / n as f32;
         let diagnostics = self.diagnostics;
+        let plain = rules.ends_at_manipulation(water) && !pipeline.has_vertex_colors();
+        let kernel = Kernel::detect();
         in_batches(self.split, outputs, 0, &|i| points.slot_of(i), &|start, o: Outputs<'_>| {
-            let pts = &points.lattice[start..start + o.len()];
+            let len = o.len();
+            let pts = &points.lattice[start..start + len];
+            let owners = &points.owner[start..start + len];
             let mut noise = [0.0; BATCH];
-            self.batch_noise(
-                pts,
-                &points.owner[start..start + pts.len()],
-                &kinds.center_noise,
-                &mut noise[..pts.len()],
-            );
-            for (j, &p) in pts.iter().enumerate() {
-                let Owner { tile, k } = points.owner[start + j];
+            self.batch_noise(pts, owners, &kinds.center_noise, &mut noise[..len]);
+            // Each point's raw height, ring and the kinds of the tiles sharing it: its own
+            // tile's, and on a border the neighbors' in the directions `shared` lists (`NONE`
+            // where no tile of the map lies).
+            let mut raws = [0.0_f32; BATCH];
+            let mut rings = [0_u32; BATCH];
+            let mut spans = [(TileKind::Sea, TileKind::Sea); BATCH];
+            let mut shared = [[NONE; 2]; BATCH];
+            for j in 0..len {
+                let Owner { tile, k } = owners[j];
                 let k = usize::from(k);
                 let ring = template[k].ring;
-                let raw = heights.shaped(geometry, noise[j], p);
                 let (own, around) = &kinds.around[tile as usize];
-                let hex = self.tiles[tile as usize];
-                let mut hexes = [hex; 3];
-                let mut sharing = [*own; 3];
-                let mut dirs = [0_usize; 3];
-                let mut len = 1;
+                let (mut lo, mut hi) = (*own, *own);
                 if ring == n {
-                    for d in lattice.shared_tiles(k) {
+                    for (dir, d) in shared[j].iter_mut().zip(lattice.shared_tiles(k)) {
                         if let Some(&Some(kind)) = around.get(usize::from(d)) {
-                            sharing[len] = kind;
-                            hexes[len] = hex.all_neighbors()[usize::from(d)];
-                            dirs[len] = usize::from(d);
-                            len += 1;
+                            (lo, hi) = (lo.min(kind), hi.max(kind));
+                            *dir = d;
                         }
                     }
                 }
-                // Only points of wet tiles are carved: the others read no water.
-                let wet = kinds
-                    .wet
-                    .get(tile as usize)
-                    .is_some_and(|(own_wet, around_wet)| *own_wet || dirs[1..len].iter().any(|&d| around_wet[d]));
-                let shared = Sharing { tiles: &hexes[..len], kinds: &sharing[..len] };
-                let s = rules.finish(geometry, water.filter(|_| wet), raw, p, ring, shared);
-                if !o.colors.is_empty() {
-                    let (own_biome, around_biomes) = &kinds.biomes[tile as usize];
-                    let mut biomes = [*own_biome; 3];
-                    for (b, &d) in biomes.iter_mut().zip(&dirs).skip(1).take(len - 1) {
-                        *b = around_biomes[d].unwrap_or(*own_biome);
+                raws[j] = heights.shaped(geometry, noise[j], pts[j]);
+                rings[j] = ring;
+                spans[j] = (lo, hi);
+            }
+            // Manipulation, a vector of points at a time.
+            let mut manipulated = [Manipulated { height: 0.0, moved: false }; BATCH];
+            kernel.manipulate(rules, &raws[..len], &rings[..len], &spans[..len], &mut manipulated[..len]);
+            for j in 0..len {
+                let (p, raw, ring, m) = (pts[j], raws[j], rings[j], manipulated[j]);
+                let s = if plain {
+                    VertexSample { raw, height: m.height, moved: m.moved, ring, kind: spans[j].1, water: 0.0 }
+                } else {
+                    let tile = owners[j].tile as usize;
+                    let (own, around) = &kinds.around[tile];
+                    let hex = self.tiles[tile];
+                    let mut hexes = [hex; 3];
+                    let mut sharing = [*own; 3];
+                    let mut dirs = [0_usize; 3];
+                    let mut count = 1;
+                    for &d in shared[j].iter().filter(|&&d| d != NONE) {
+                        let d = usize::from(d);
+                        (hexes[count], sharing[count], dirs[count]) =
+                            (hex + Hex::NEIGHBORS_COORDS[d], around[d].unwrap_or(*own), d);
+                        count += 1;
                     }
-                    o.colors[j] = vertex_color(&biomes[..len], s.water);
-                }
+                    // Only points of wet tiles are carved: the others read no water.
+                    let wet = kinds
+                        .wet
+                        .get(tile)
+                        .is_some_and(|(own_wet, around_wet)| *own_wet || dirs[1..count].iter().any(|&d| around_wet[d]));
+                    let tiles = Sharing { tiles: &hexes[..count], kinds: &sharing[..count] };
+                    let s = rules.finish_manipulated(geometry, water.filter(|_| wet), raw, p, ring, tiles, m);
+                    if !o.colors.is_empty() {
+                        let (own_biome, around_biomes) = &kinds.biomes[tile];
+                        let mut biomes = [*own_biome; 3];
+                        for (b, &d) in biomes.iter_mut().zip(&dirs).skip(1).take(count - 1) {
+                            *b = around_biomes[d].unwrap_or(*own_biome);
+                        }
+                        o.colors[j] = vertex_color(&biomes[..count], s.water);
+                    }
+                    s
+                };
                 let height = s.height * max_elevation;
                 // Relative to the origin from the integer lattice offset: exact however far out.
                 let [x, z] = lattice.world(p - origin);

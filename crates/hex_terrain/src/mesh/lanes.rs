@@ -13,6 +13,9 @@
 
 use super::grid::TEMPLATE_MAX;
 use super::normals::Batch;
+use crate::kind::TileKind;
+use crate::manipulate::{Lanes, Manipulated};
+use crate::vertex::VertexRules;
 
 /// The instruction set the mesh's vector loops run on.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -87,6 +90,79 @@ impl Kernel {
             Self::Avx512 => unsafe { indices_avx512(own, table, out) },
         }
     }
+}
+
+impl Kernel {
+    /// Manipulation of the points of a batch ([`VertexRules::manipulated_lanes`]), sixteen at a
+    /// time, the tail one by one: the same bits as one by one. As [`Kernel::normals`] for the
+    /// kernels.
+    pub fn manipulate(
+        self,
+        rules: &VertexRules,
+        raws: &[f32],
+        rings: &[u32],
+        spans: &[(TileKind, TileKind)],
+        out: &mut [Manipulated],
+    ) {
+        match self {
+            Self::Portable => manipulate(rules, raws, rings, spans, out),
+            // SAFETY: the CPU has AVX2 (see above).
+            #[cfg(target_arch = "x86_64")]
+            Self::Avx2 => unsafe { manipulate_avx2(rules, raws, rings, spans, out) },
+            // SAFETY: the CPU has AVX-512F (see above).
+            #[cfg(target_arch = "x86_64")]
+            Self::Avx512 => unsafe { manipulate_avx512(rules, raws, rings, spans, out) },
+        }
+    }
+}
+
+#[inline(always)]
+fn manipulate(
+    rules: &VertexRules,
+    raws: &[f32],
+    rings: &[u32],
+    spans: &[(TileKind, TileKind)],
+    out: &mut [Manipulated],
+) {
+    const L: usize = 16;
+    let done = out.len() / L * L;
+    let mut lanes = Lanes { raw: [0.0; L], ring: [0; L], lo: [TileKind::Sea; L], hi: [TileKind::Sea; L] };
+    for (c, out) in out.chunks_exact_mut(L).enumerate() {
+        let range = c * L..(c + 1) * L;
+        lanes.raw.copy_from_slice(&raws[range.clone()]);
+        lanes.ring.copy_from_slice(&rings[range.clone()]);
+        for (l, &(lo, hi)) in spans[range].iter().enumerate() {
+            (lanes.lo[l], lanes.hi[l]) = (lo, hi);
+        }
+        rules.manipulated_lanes(&lanes, out.try_into().expect("L points"));
+    }
+    for (i, m) in out.iter_mut().enumerate().skip(done) {
+        *m = rules.manipulated(raws[i], rings[i], Some(spans[i]));
+    }
+}
+
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+fn manipulate_avx2(
+    rules: &VertexRules,
+    raws: &[f32],
+    rings: &[u32],
+    spans: &[(TileKind, TileKind)],
+    out: &mut [Manipulated],
+) {
+    manipulate(rules, raws, rings, spans, out);
+}
+
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx512f")]
+fn manipulate_avx512(
+    rules: &VertexRules,
+    raws: &[f32],
+    rings: &[u32],
+    spans: &[(TileKind, TileKind)],
+    out: &mut [Manipulated],
+) {
+    manipulate(rules, raws, rings, spans, out);
 }
 
 /// Slots of a tile's point indices: a power of two at least [`TEMPLATE_MAX`], so that an index

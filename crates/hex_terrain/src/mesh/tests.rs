@@ -170,3 +170,58 @@ fn every_kernel_copies_the_template_points_indices() {
         }
     }
 }
+
+/// Every manipulation kernel this CPU runs gives each point the bits of the one-vertex chain,
+/// for every manipulation config, at every batch length (the vector part and the tail).
+#[test]
+fn every_kernel_manipulates_as_one_vertex() {
+    use super::lanes::Kernel;
+    use crate::config::PullMode;
+    use crate::kind::TileKind;
+    use crate::vertex::VertexRules;
+    let h = |seed: u32, i: usize| crate::hash::hash(seed, &[i as i64]);
+    for (c, (hex_unity, edge_correction, interpolation, pull)) in [
+        (true, true, true, PullMode::Clamp),
+        (true, true, true, PullMode::Thesis),
+        (false, true, true, PullMode::Clamp),
+        (true, false, false, PullMode::Thesis),
+        (false, false, false, PullMode::Clamp),
+    ]
+    .into_iter()
+    .enumerate()
+    {
+        let mut config = MapConfig::default();
+        config.terrain.inner_rings = 2;
+        config.manipulation.hex_unity = hex_unity;
+        config.manipulation.edge_correction = edge_correction;
+        config.manipulation.interpolation = interpolation;
+        config.manipulation.pull = pull;
+        let t = Terrain::new(config).unwrap();
+        let rules: &VertexRules = t.pipeline().vertex_rules();
+        let n = t.lattice().subdivisions();
+        for len in [0, 1, 15, 16, 17, 40, 1024] {
+            let kind = |v: u64| TileKind::ALL[(v % 3) as usize];
+            let raws: Vec<f32> = (0..len).map(|i| crate::hash::unit(h(c as u32, i)) * 1.2 - 0.1).collect();
+            let rings: Vec<u32> = (0..len).map(|i| (h(50 + c as u32, i) % u64::from(n + 1)) as u32).collect();
+            let spans: Vec<(TileKind, TileKind)> = (0..len)
+                .map(|i| {
+                    let (a, b) = (kind(h(90, i)), kind(h(91, i)));
+                    // An inner vertex has one tile.
+                    if rings[i] < n { (a, a) } else { (a.min(b), a.max(b)) }
+                })
+                .collect();
+            let expected: Vec<_> = (0..len).map(|i| rules.manipulated(raws[i], rings[i], Some(spans[i]))).collect();
+            for kernel in Kernel::supported() {
+                let mut out = vec![crate::manipulate::Manipulated { height: f32::NAN, moved: true }; len];
+                kernel.manipulate(rules, &raws, &rings, &spans, &mut out);
+                for (i, (got, want)) in out.iter().zip(&expected).enumerate() {
+                    assert_eq!(
+                        (got.height.to_bits(), got.moved),
+                        (want.height.to_bits(), want.moved),
+                        "{kernel:?} config {c} point {i}"
+                    );
+                }
+            }
+        }
+    }
+}
