@@ -37,10 +37,14 @@ impl Thresholds {
     #[must_use]
     #[inline]
     pub fn border(&self, lowest: TileKind, highest: TileKind) -> f32 {
-        match (lowest, highest) {
-            (TileKind::Sea, TileKind::Land) => self.sea,
-            (TileKind::Land, TileKind::Mountain) => self.mountain,
-            _ => (self.sea + self.mountain) * 0.5,
+        // Selects rather than a `match`, so that a loop over many vertices vectorises.
+        let middle = (self.sea + self.mountain) * 0.5;
+        if lowest == TileKind::Sea && highest == TileKind::Land {
+            self.sea
+        } else if lowest == TileKind::Land && highest == TileKind::Mountain {
+            self.mountain
+        } else {
+            middle
         }
     }
 
@@ -49,6 +53,13 @@ impl Thresholds {
     #[inline]
     pub fn pull(&self, h: f32, kind: TileKind, mode: PullMode) -> f32 {
         let (lo, hi) = self.range(kind);
+        self.pull_into(h, lo, hi, mode)
+    }
+
+    /// [`Thresholds::pull`] into the range `lo..=hi` (of the vertex's tile kind).
+    #[must_use]
+    #[inline]
+    pub fn pull_into(&self, h: f32, lo: f32, hi: f32, mode: PullMode) -> f32 {
         match mode {
             // `f32::clamp`'s comparisons, without its check of the bounds (a branch that would
             // keep a batch of vertices from vectorising).
@@ -153,11 +164,13 @@ pub fn manipulate_lanes<const L: usize>(
     for (h, &raw) in h.iter_mut().zip(&v.raw) {
         *h = thresholds.interpolate(raw);
     }
+    let mut height = [0.0_f32; L];
     for l in 0..L {
-        let (h, lo, hi) = (h[l], v.lo[l], v.hi[l]);
+        let (h, lo, hi, ring) = (h[l], v.lo[l], v.hi[l], v.ring[l]);
         let (a, b) = thresholds.range(lo);
         // An inner vertex has one tile (`lo == hi`): hex unity pulls it into that tile's range.
-        let inner = if config.hex_unity && v.ring[l] > 0 { thresholds.pull(h, lo, config.pull) } else { h };
+        let pulled = thresholds.pull_into(h, a, b, config.pull);
+        let inner = if config.hex_unity && ring > 0 { pulled } else { h };
         // A border vertex between tiles of one kind: edge correction clamps it into the range
         // (`f32::clamp`'s comparisons, without its check of the bounds).
         let clamped = if h < a {
@@ -169,14 +182,16 @@ pub fn manipulate_lanes<const L: usize>(
         };
         let one_kind = if config.edge_correction { clamped } else { h };
         let between = if config.hex_unity { thresholds.border(lo, hi) } else { h };
-        let height = if v.ring[l] < n {
+        height[l] = if ring < n {
             inner
         } else if lo == hi {
             one_kind
         } else {
             between
         };
-        out[l] = Manipulated { height, moved: height != h };
+    }
+    for ((o, &height), &h) in out.iter_mut().zip(&height).zip(&h) {
+        *o = Manipulated { height, moved: height != h };
     }
 }
 

@@ -180,6 +180,21 @@ impl HeightField {
         }
     }
 
+    /// [`HeightField::shaped`] of many points: `out[i]` from `sources[i]` at `points[i]` (a
+    /// plain conversion, which vectorises, when no filter and no edit applies).
+    #[inline]
+    pub fn shaped_many(&self, geometry: &Geometry, sources: &[f64], points: &[Hex], out: &mut [f32]) {
+        if self.shaping || self.edits.is_some() {
+            for ((o, &source), &p) in out.iter_mut().zip(sources).zip(points) {
+                *o = self.shaped(geometry, source, p);
+            }
+        } else {
+            for (o, &source) in out.iter_mut().zip(sources) {
+                *o = source as f32;
+            }
+        }
+    }
+
     /// Bare source height (fBm or heightmap, no shaping) at a lattice point.
     #[must_use]
     #[inline]

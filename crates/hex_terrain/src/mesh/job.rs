@@ -334,6 +334,7 @@ impl<'a> Job<'a> {
             // tile's, and on a border the neighbors' in the directions `shared` lists (`NONE`
             // where no tile of the map lies).
             let mut raws = [0.0_f32; BATCH];
+            heights.shaped_many(geometry, &noise[..len], pts, &mut raws[..len]);
             let mut rings = [0_u32; BATCH];
             let mut spans = [(TileKind::Sea, TileKind::Sea); BATCH];
             let mut shared = [[NONE; 2]; BATCH];
@@ -351,7 +352,6 @@ impl<'a> Job<'a> {
                         }
                     }
                 }
-                raws[j] = heights.shaped(geometry, noise[j], pts[j]);
                 rings[j] = ring;
                 spans[j] = (lo, hi);
             }
