@@ -146,13 +146,40 @@ impl VertexRules {
     /// [`VertexRules::manipulated`] of `L` vertices in the map at once, in loops that vectorise
     /// (the same bits).
     #[inline(always)]
-    pub(crate) fn manipulated_lanes<const L: usize>(&self, v: &Lanes<L>, out: &mut [Manipulated; L]) {
+    fn manipulated_lanes<const L: usize>(&self, v: &Lanes<L>, out: &mut [Manipulated; L]) {
         if self.manipulation.any() {
             manipulate_lanes(&self.thresholds, &self.manipulation, self.subdivisions, v, out);
         } else {
             for (m, &raw) in out.iter_mut().zip(&v.raw) {
                 *m = Manipulated { height: raw, moved: false };
             }
+        }
+    }
+
+    /// [`VertexRules::manipulated`] of many vertices in the map (kinds spanning `spans`), sixteen
+    /// at a time in loops that vectorise, the rest one by one: the same bits as one by one.
+    #[inline(always)]
+    pub(crate) fn manipulated_many(
+        &self,
+        raws: &[f32],
+        rings: &[u32],
+        spans: &[(TileKind, TileKind)],
+        out: &mut [Manipulated],
+    ) {
+        const L: usize = 16;
+        let whole = out.len() / L * L;
+        let mut lanes = Lanes { raw: [0.0; L], ring: [0; L], lo: [TileKind::Sea; L], hi: [TileKind::Sea; L] };
+        for (c, out) in out[..whole].chunks_exact_mut(L).enumerate() {
+            let range = c * L..(c + 1) * L;
+            lanes.raw.copy_from_slice(&raws[range.clone()]);
+            lanes.ring.copy_from_slice(&rings[range.clone()]);
+            for (l, &(lo, hi)) in spans[range].iter().enumerate() {
+                (lanes.lo[l], lanes.hi[l]) = (lo, hi);
+            }
+            self.manipulated_lanes(&lanes, out.try_into().expect("L vertices"));
+        }
+        for (i, m) in out.iter_mut().enumerate().skip(whole) {
+            *m = self.manipulated(raws[i], rings[i], Some(spans[i]));
         }
     }
 

@@ -9,8 +9,8 @@
 
 use hexx::Hex;
 
-use super::grid::{GridShape, Owner, Points};
-use super::lanes::{Kernel, OWN};
+use super::grid::{GridShape, Owner, Points, TEMPLATE_MAX};
+use super::lanes;
 use super::parallel::{BATCH, Outputs, Split, in_batches};
 use super::{Buffers, ChunkMesh, Diagnostics, GenerateOptions, Threads, vertex_color};
 use crate::chunk::TileRect;
@@ -21,6 +21,10 @@ use crate::manipulate::Manipulated;
 use crate::pipeline::Pipeline;
 use crate::vertex::{Sharing, VertexSample};
 use crate::vocab::{Biome, TileInfo, TileKind};
+
+/// Slots of a tile's point indices: a power of two at least [`TEMPLATE_MAX`], so that a
+/// template index masked into it stays in it.
+const OWN: usize = TEMPLATE_MAX.next_power_of_two();
 
 /// No direction: a border point's slot for a sharing neighbor that is not in the map.
 const NONE: u8 = u8::MAX;
@@ -323,90 +327,117 @@ impl<'a> Job<'a> {
         let inv_n = 1.0 / n as f32;
         let diagnostics = self.diagnostics;
         let plain = rules.ends_at_manipulation(water) && !pipeline.has_vertex_colors();
-        let kernel = Kernel::detect();
+        let kernel = heights.fbm().kernel();
         in_batches(self.split, outputs, 0, &|i| points.slot_of(i), &|start, o: Outputs<'_>| {
-            let len = o.len();
-            let pts = &points.lattice[start..start + len];
-            let owners = &points.owner[start..start + len];
-            let mut noise = [0.0; BATCH];
-            self.batch_noise(pts, owners, &kinds.center_noise, &mut noise[..len]);
-            // Each point's raw height, ring and the kinds of the tiles sharing it: its own
-            // tile's, and on a border the neighbors' in the directions `shared` lists (`NONE`
-            // where no tile of the map lies).
-            let mut raws = [0.0_f32; BATCH];
-            heights.shaped_many(geometry, &noise[..len], pts, &mut raws[..len]);
-            let mut rings = [0_u32; BATCH];
-            let mut spans = [(TileKind::Sea, TileKind::Sea); BATCH];
-            let mut shared = [[NONE; 2]; BATCH];
-            for j in 0..len {
-                let Owner { tile, k } = owners[j];
-                let k = usize::from(k);
-                let ring = template[k].ring;
-                let (own, around) = &kinds.around[tile as usize];
-                let (mut lo, mut hi) = (*own, *own);
-                if ring == n {
-                    for (dir, d) in shared[j].iter_mut().zip(lattice.shared_tiles(k)) {
-                        if let Some(&Some(kind)) = around.get(usize::from(d)) {
-                            (lo, hi) = (lo.min(kind), hi.max(kind));
-                            *dir = d;
+            lanes::run(
+                kernel,
+                #[inline(always)]
+                || {
+                    let len = o.len();
+                    let pts = &points.lattice[start..start + len];
+                    let owners = &points.owner[start..start + len];
+                    let mut noise = [0.0; BATCH];
+                    self.batch_noise(pts, owners, &kinds.center_noise, &mut noise[..len]);
+                    // Each point's raw height, ring and the kinds of the tiles sharing it: its own
+                    // tile's, and on a border the neighbors' in the directions `shared` lists (`NONE`
+                    // where no tile of the map lies).
+                    let mut raws = [0.0_f32; BATCH];
+                    heights.shaped_many(geometry, &noise[..len], pts, &mut raws[..len]);
+                    let mut rings = [0_u32; BATCH];
+                    let mut spans = [(TileKind::Sea, TileKind::Sea); BATCH];
+                    let mut shared = [[NONE; 2]; BATCH];
+                    for j in 0..len {
+                        let Owner { tile, k } = owners[j];
+                        let k = usize::from(k);
+                        let ring = template[k].ring;
+                        let (own, around) = &kinds.around[tile as usize];
+                        let (mut lo, mut hi) = (*own, *own);
+                        if ring == n {
+                            for (dir, d) in shared[j].iter_mut().zip(lattice.shared_tiles(k)) {
+                                if let Some(&Some(kind)) = around.get(usize::from(d)) {
+                                    (lo, hi) = (lo.min(kind), hi.max(kind));
+                                    *dir = d;
+                                }
+                            }
+                        }
+                        rings[j] = ring;
+                        spans[j] = (lo, hi);
+                    }
+                    // Manipulation, a vector of points at a time.
+                    let mut manipulated = [Manipulated { height: 0.0, moved: false }; BATCH];
+                    rules.manipulated_many(&raws[..len], &rings[..len], &spans[..len], &mut manipulated[..len]);
+                    // The rest of the chain (relief, carving, colors) where the map has any of them;
+                    // else a vertex is its manipulation and the highest kind sharing it.
+                    let mut finished = [0.0_f32; BATCH];
+                    let mut kind_of = [TileKind::Sea; BATCH];
+                    if plain {
+                        for j in 0..len {
+                            (finished[j], kind_of[j]) = (manipulated[j].height, spans[j].1);
+                        }
+                    } else {
+                        for j in 0..len {
+                            let tile = owners[j].tile as usize;
+                            let (own, around) = &kinds.around[tile];
+                            let hex = self.tiles[tile];
+                            let mut hexes = [hex; 3];
+                            let mut sharing = [*own; 3];
+                            let mut dirs = [0_usize; 3];
+                            let mut count = 1;
+                            for &d in shared[j].iter().filter(|&&d| d != NONE) {
+                                let d = usize::from(d);
+                                (hexes[count], sharing[count], dirs[count]) =
+                                    (hex + Hex::NEIGHBORS_COORDS[d], around[d].unwrap_or(*own), d);
+                                count += 1;
+                            }
+                            // Only points of wet tiles are carved: the others read no water.
+                            let wet = kinds.wet.get(tile).is_some_and(|(own_wet, around_wet)| {
+                                *own_wet || dirs[1..count].iter().any(|&d| around_wet[d])
+                            });
+                            let tiles = Sharing { tiles: &hexes[..count], kinds: &sharing[..count] };
+                            let s = rules.finish_manipulated(
+                                geometry,
+                                water.filter(|_| wet),
+                                raws[j],
+                                pts[j],
+                                rings[j],
+                                tiles,
+                                manipulated[j],
+                            );
+                            if !o.colors.is_empty() {
+                                let (own_biome, around_biomes) = &kinds.biomes[tile];
+                                let mut biomes = [*own_biome; 3];
+                                for (b, &d) in biomes.iter_mut().zip(&dirs).skip(1).take(count - 1) {
+                                    *b = around_biomes[d].unwrap_or(*own_biome);
+                                }
+                                o.colors[j] = vertex_color(&biomes[..count], s.water);
+                            }
+                            (finished[j], kind_of[j], manipulated[j].moved) = (s.height, s.kind, s.moved);
                         }
                     }
-                }
-                rings[j] = ring;
-                spans[j] = (lo, hi);
-            }
-            // Manipulation, a vector of points at a time.
-            let mut manipulated = [Manipulated { height: 0.0, moved: false }; BATCH];
-            kernel.manipulate(rules, &raws[..len], &rings[..len], &spans[..len], &mut manipulated[..len]);
-            for j in 0..len {
-                let (p, raw, ring, m) = (pts[j], raws[j], rings[j], manipulated[j]);
-                let s = if plain {
-                    VertexSample { raw, height: m.height, moved: m.moved, ring, kind: spans[j].1, water: 0.0 }
-                } else {
-                    let tile = owners[j].tile as usize;
-                    let (own, around) = &kinds.around[tile];
-                    let hex = self.tiles[tile];
-                    let mut hexes = [hex; 3];
-                    let mut sharing = [*own; 3];
-                    let mut dirs = [0_usize; 3];
-                    let mut count = 1;
-                    for &d in shared[j].iter().filter(|&&d| d != NONE) {
-                        let d = usize::from(d);
-                        (hexes[count], sharing[count], dirs[count]) =
-                            (hex + Hex::NEIGHBORS_COORDS[d], around[d].unwrap_or(*own), d);
-                        count += 1;
+                    // The buffers, each in a loop of its own.
+                    for (((position, uv), &p), &finished) in
+                        o.positions.iter_mut().zip(o.uvs.iter_mut()).zip(pts).zip(&finished)
+                    {
+                        // Relative to the origin from the integer lattice offset: exact however far out.
+                        let [x, z] = lattice.world(p - origin);
+                        *position = [x as f32, finished * max_elevation, z as f32];
+                        *uv = [(uv_origin[0] + x * uv_scale) as f32, (uv_origin[1] + z * uv_scale) as f32];
                     }
-                    // Only points of wet tiles are carved: the others read no water.
-                    let wet = kinds
-                        .wet
-                        .get(tile)
-                        .is_some_and(|(own_wet, around_wet)| *own_wet || dirs[1..count].iter().any(|&d| around_wet[d]));
-                    let tiles = Sharing { tiles: &hexes[..count], kinds: &sharing[..count] };
-                    let s = rules.finish_manipulated(geometry, water.filter(|_| wet), raw, p, ring, tiles, m);
-                    if !o.colors.is_empty() {
-                        let (own_biome, around_biomes) = &kinds.biomes[tile];
-                        let mut biomes = [*own_biome; 3];
-                        for (b, &d) in biomes.iter_mut().zip(&dirs).skip(1).take(count - 1) {
-                            *b = around_biomes[d].unwrap_or(*own_biome);
+                    for (&p, &finished) in pts.iter().zip(&finished) {
+                        o.heights[points.grid.slot(p) - o.first_slot] = finished * max_elevation;
+                    }
+                    for (((kind, distance), &k), &ring) in
+                        o.kinds.iter_mut().zip(o.distances.iter_mut()).zip(&kind_of).zip(&rings)
+                    {
+                        (*kind, *distance) = (k as u32, ring as f32 * inv_n);
+                    }
+                    if diagnostics {
+                        for j in 0..len {
+                            (o.raws[j], o.moved[j], o.rings[j]) = (raws[j], manipulated[j].moved, rings[j] as u8);
                         }
-                        o.colors[j] = vertex_color(&biomes[..count], s.water);
                     }
-                    s
-                };
-                let height = s.height * max_elevation;
-                // Relative to the origin from the integer lattice offset: exact however far out.
-                let [x, z] = lattice.world(p - origin);
-                o.positions[j] = [x as f32, height, z as f32];
-                o.heights[points.grid.slot(p) - o.first_slot] = height;
-                o.uvs[j] = [(uv_origin[0] + x * uv_scale) as f32, (uv_origin[1] + z * uv_scale) as f32];
-                o.kinds[j] = s.kind as u32;
-                o.distances[j] = ring as f32 * inv_n;
-                if diagnostics {
-                    o.raws[j] = raw;
-                    o.moved[j] = s.moved;
-                    o.rings[j] = ring as u8;
-                }
-            }
+                },
+            );
         });
     }
 
@@ -470,16 +501,26 @@ impl<'a> Job<'a> {
     fn indices_pass(&self, points: &Points, indices: &mut [u32]) {
         let ppt = self.lattice.points_per_tile();
         let table = self.lattice.template_triangle_indices().as_flattened();
-        let kernel = Kernel::detect();
+        let kernel = self.pipeline.heights().fbm().kernel();
         // Tiles a task takes together, sharing one table of their points.
         const TILES: usize = 16;
         self.split.for_each_chunk(indices, table.len() * TILES, 1, |g, out| {
-            let mut own = [0_u32; OWN];
-            for (t, out) in out.chunks_mut(table.len()).enumerate() {
-                let center = self.lattice.tile_center(self.tiles[g * TILES + t]);
-                points.grid.template_points(center, &self.offsets, &mut own[..ppt]);
-                kernel.indices(&own, table, out);
-            }
+            lanes::run(
+                kernel,
+                #[inline(always)]
+                || {
+                    let mut own = [0_u32; OWN];
+                    for (t, out) in out.chunks_mut(table.len()).enumerate() {
+                        let center = self.lattice.tile_center(self.tiles[g * TILES + t]);
+                        points.grid.template_points(center, &self.offsets, &mut own[..ppt]);
+                        // A template index masked into `own` needs no bounds check, so the copy
+                        // vectorises into gathers.
+                        for (d, &k) in out.iter_mut().zip(table) {
+                            *d = own[usize::from(k) & (OWN - 1)];
+                        }
+                    }
+                },
+            );
         });
     }
 }

@@ -6,7 +6,7 @@
 //! | `grid.rs` | the point grid: lattice coordinates to point indices, and the enumeration of a rectangle's points |
 //! | `job.rs` | one generation as a job whose passes are methods: tile kinds, owned vertices, halo, indices |
 //! | `normals.rs` | the normals pass |
-//! | `lanes.rs` | the vector loops of the normals and the indices, built for AVX2 and AVX-512 and picked at run time |
+//! | `lanes.rs` | the passes' loops compiled for the instruction set of the map's kernel (AVX2, AVX-512), checked at run time |
 //! | `parallel.rs` | the parallel policy: batches, pool entry, disjoint output slices |
 //! | `coarse.rs` | level of detail: a generated mesh as a fan a tile, its outline kept whole ([`Detail`]) |
 

@@ -1,11 +1,12 @@
 //! Smooth vertex normals from the height grid: each vertex's normal is the area-weighted sum of
 //! the six lattice triangles around it, computed a vector of vertices at a time (sixteen on
-//! AVX-512, eight elsewhere; module `lanes` picks the instruction set at run time).
+//! AVX-512, eight elsewhere: module `lanes`).
 
 use super::grid::{AROUND, Points};
 use super::job::Job;
-use super::lanes::Kernel;
+use super::lanes;
 use super::parallel::BATCH;
+use crate::heights::Kernel;
 
 /// Coefficients of the smooth normal: the sum of the six lattice triangles' face normals
 /// (area-weighted) around a vertex is `(Σ dₖ·x[k], y, Σ dₖ·z[k])`, with `dₖ` the height of the
@@ -80,7 +81,7 @@ impl Batch<'_> {
     /// The normals of points `first..first + out.len()`: `L` at a time where `L` points sit in
     /// consecutive slots of one row (nearly everywhere), else one by one.
     #[inline(always)]
-    pub(super) fn normals<const L: usize>(&self, first: usize, out: &mut [[f32; 3]]) {
+    fn normals<const L: usize>(&self, first: usize, out: &mut [[f32; 3]]) {
         let (points, heights) = (self.points, self.heights);
         let width = points.grid.shape.width;
         let mut groups = out.chunks_exact_mut(L);
@@ -100,6 +101,23 @@ impl Batch<'_> {
         }
         for (l, normal) in groups.into_remainder().iter_mut().enumerate() {
             *normal = self.single(i + l);
+        }
+    }
+
+    /// [`Batch::normals`] compiled for `kernel`, as many lanes as its vectors hold.
+    pub(super) fn normals_on(&self, kernel: Kernel, first: usize, out: &mut [[f32; 3]]) {
+        if lanes::f32_lanes(kernel) == 16 {
+            lanes::run(
+                kernel,
+                #[inline(always)]
+                || self.normals::<16>(first, out),
+            );
+        } else {
+            lanes::run(
+                kernel,
+                #[inline(always)]
+                || self.normals::<8>(first, out),
+            );
         }
     }
 
@@ -124,8 +142,8 @@ impl Job<'_> {
         });
         let coefficients = NormalCoefficients::new(&around);
         let batch = Batch { points, heights, coefficients: &coefficients };
-        let kernel = Kernel::detect();
-        self.split.for_each_chunk(normals, BATCH, 1, |c, normals| kernel.normals(&batch, c * BATCH, normals));
+        let kernel = self.pipeline.heights().fbm().kernel();
+        self.split.for_each_chunk(normals, BATCH, 1, |c, normals| batch.normals_on(kernel, c * BATCH, normals));
     }
 }
 

@@ -153,30 +153,14 @@ fn vertex_colors_do_not_depend_on_the_order_of_the_tiles() {
     assert_eq!(vertex_color(&[crate::Biome::Snow], 1.0), [238, 242, 246, 255]);
 }
 
-/// Every indices kernel this CPU runs copies each template point's index, at every length.
-#[test]
-fn every_kernel_copies_the_template_points_indices() {
-    use super::grid::TEMPLATE_MAX;
-    use super::lanes::{Kernel, OWN};
-    let own: [u32; OWN] = std::array::from_fn(|i| crate::hash::hash(7, &[i as i64]) as u32);
-    for len in [0, 1, 7, 8, 15, 16, 17, 100, 5202] {
-        let table: Vec<u16> =
-            (0..len).map(|i| (crate::hash::hash(9, &[i as i64]) % TEMPLATE_MAX as u64) as u16).collect();
-        let expected: Vec<u32> = table.iter().map(|&k| own[usize::from(k)]).collect();
-        for kernel in Kernel::supported() {
-            let mut out = vec![0; len];
-            kernel.indices(&own, &table, &mut out);
-            assert_eq!(out, expected, "{kernel:?} length {len}");
-        }
-    }
-}
-
-/// Every manipulation kernel this CPU runs gives each point the bits of the one-vertex chain,
-/// for every manipulation config, at every batch length (the vector part and the tail).
+/// Manipulation of a batch compiled for every kernel this CPU runs gives each point the bits of
+/// the one-vertex chain, for every manipulation config, at every batch length (the vector part
+/// and the tail).
 #[test]
 fn every_kernel_manipulates_as_one_vertex() {
-    use super::lanes::Kernel;
+    use super::lanes;
     use crate::config::PullMode;
+    use crate::heights::Kernel;
     use crate::kind::TileKind;
     use crate::vertex::VertexRules;
     let h = |seed: u32, i: usize| crate::hash::hash(seed, &[i as i64]);
@@ -211,9 +195,13 @@ fn every_kernel_manipulates_as_one_vertex() {
                 })
                 .collect();
             let expected: Vec<_> = (0..len).map(|i| rules.manipulated(raws[i], rings[i], Some(spans[i]))).collect();
-            for kernel in Kernel::supported() {
+            for kernel in Kernel::ALL.into_iter().filter(|k| k.is_supported()) {
                 let mut out = vec![crate::manipulate::Manipulated { height: f32::NAN, moved: true }; len];
-                kernel.manipulate(rules, &raws, &rings, &spans, &mut out);
+                lanes::run(
+                    kernel,
+                    #[inline(always)]
+                    || rules.manipulated_many(&raws, &rings, &spans, &mut out),
+                );
                 for (i, (got, want)) in out.iter().zip(&expected).enumerate() {
                     assert_eq!(
                         (got.height.to_bits(), got.moved),

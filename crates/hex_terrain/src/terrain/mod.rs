@@ -119,9 +119,9 @@ impl Terrain {
         Ok(Self::of(self.pipeline.with_edits(edits)?))
     }
 
-    /// The same map with its fBm on another kernel ([`Kernel`](crate::heights::Kernel)), or
-    /// `None` if this CPU does not run it: for comparing kernels (every kernel gives the same
-    /// bits, so the map is the same).
+    /// The same map with its fBm, and generation's vector loops, on another kernel
+    /// ([`Kernel`](crate::heights::Kernel)), or `None` if this CPU does not run it: for comparing
+    /// kernels (every kernel gives the same bits, so the map is the same).
     #[must_use]
     pub fn with_kernel(&self, kernel: crate::heights::Kernel) -> Option<Self> {
         Some(Self::of(self.pipeline.with_kernel(kernel)?))
