@@ -60,20 +60,17 @@ pub fn generate_with_diagnostics(terrain: &Terrain) -> usize {
 const BATCH: usize = 1024;
 
 /// Bare fBm (our Perlin) at exactly the points generation evaluates, enumerated the same way
-/// and sampled in the same batches on all cores: the noise floor of generation. Returns the sum
-/// of the samples so the work cannot be elided.
+/// and sampled the way generation samples them (the same call, on the same batches, on all
+/// cores): the noise floor of generation. Returns the sum of the samples so the work cannot be
+/// elided.
 #[must_use]
 pub fn noise_floor(terrain: &Terrain) -> f64 {
     let Some(rect) = terrain.bounds() else { return 0.0 };
     let points = terrain.mesh_points(rect);
     let mut out = vec![0.0; points.len()];
     out.par_chunks_mut(BATCH).enumerate().for_each(|(k, chunk)| {
-        let mut positions = [[0.0; 2]; BATCH];
         let points = &points[k * BATCH..k * BATCH + chunk.len()];
-        for (position, &p) in positions.iter_mut().zip(points) {
-            *position = terrain.heights().noise_position(terrain.geometry(), p);
-        }
-        terrain.fbm().sample_many(&positions[..points.len()], chunk);
+        terrain.heights().source_heights(terrain.geometry(), points, chunk);
     });
     out.iter().sum()
 }

@@ -61,8 +61,6 @@ struct Kinds {
     /// Per tile of the job, on a map with rivers: whether water lies on it and on each neighbor
     /// (only points of wet tiles are carved).
     wet: Vec<(bool, [bool; 6])>,
-    /// Height-source sample at each job tile's center.
-    center_noise: Vec<f64>,
 }
 
 impl Kinds {
@@ -245,8 +243,7 @@ impl<'a> Job<'a> {
             .split
             .map(tiles.len(), |k| geometry.contains(tiles[k]).then(|| pipeline.thresholds().classify(raws[k])));
         let mut out =
-            Kinds { halo, kinds, around: Vec::new(), biomes: Vec::new(), wet: Vec::new(), center_noise: Vec::new() };
-        out.center_noise = self.rect.iter().map(|oc| noise[out.index(oc)]).collect();
+            Kinds { halo, kinds, around: Vec::new(), biomes: Vec::new(), wet: Vec::new() };
         out.around = self
             .tiles
             .iter()
@@ -283,30 +280,6 @@ impl<'a> Job<'a> {
         out
     }
 
-    /// Height-source samples of a batch of owned points; a tile's center (template point 0)
-    /// takes the sample already taken for its tile's kind.
-    fn batch_noise(&self, points: &[Hex], owners: &[Owner], center_noise: &[f64], out: &mut [f64]) {
-        let heights = self.pipeline.heights();
-        if !heights.samples_noise() {
-            heights.source_heights(self.geometry, points, out);
-            return;
-        }
-        let mut positions = [[0.0; 2]; BATCH];
-        let mut sampled = [0.0; BATCH];
-        let mut len = 0;
-        for (&p, owner) in points.iter().zip(owners) {
-            if owner.k != 0 {
-                positions[len] = heights.noise_position(self.geometry, p);
-                len += 1;
-            }
-        }
-        heights.fbm().sample_many(&positions[..len], &mut sampled[..len]);
-        let mut next = sampled.iter();
-        for (o, owner) in out.iter_mut().zip(owners) {
-            *o = if owner.k == 0 { center_noise[owner.tile as usize] } else { next.next().copied().unwrap_or(0.0) };
-        }
-    }
-
     /// The tiles' own vertices: their tiles are known, so no lookup is needed.
     fn owned_pass(&self, points: &Points, kinds: &Kinds, outputs: Outputs<'_>) {
         let pipeline = self.pipeline;
@@ -337,7 +310,7 @@ impl<'a> Job<'a> {
                     let pts = &points.lattice[start..start + len];
                     let owners = &points.owner[start..start + len];
                     let mut noise = [0.0; BATCH];
-                    self.batch_noise(pts, owners, &kinds.center_noise, &mut noise[..len]);
+                    heights.source_heights(geometry, pts, &mut noise[..len]);
                     // Each point's raw height, ring and the kinds of the tiles sharing it: its own
                     // tile's, and on a border the neighbors' in the directions `shared` lists (`NONE`
                     // where no tile of the map lies).
