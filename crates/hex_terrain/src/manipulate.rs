@@ -130,41 +130,42 @@ pub fn manipulate(
     let Some((lo, hi)) = span else {
         return Manipulated { height: thresholds.interpolate(raw), moved: false };
     };
-    let mut out = [Manipulated { height: 0.0, moved: false }];
-    manipulate_lanes(thresholds, config, n, &Lanes { raw: [raw], ring: [ring], lo: [lo], hi: [hi] }, &mut out);
-    out[0]
+    let (mut height, mut moved) = ([0.0], [false]);
+    let v = Lanes { raw: &[raw], ring: &[ring], lo: &[lo], hi: &[hi] };
+    manipulate_lanes(thresholds, config, n, &v, &mut height, &mut moved);
+    Manipulated { height: height[0], moved: moved[0] }
 }
 
-/// `L` vertices for [`manipulate_lanes`]: raw heights, rings and the lowest and highest kind of
-/// the tiles sharing each (all in the map).
+/// `L` vertices for [`manipulate_lanes`], an array a quantity: raw heights, rings and the
+/// lowest and highest kind of the tiles sharing each (all in the map).
 #[derive(Debug, Clone, Copy)]
-pub struct Lanes<const L: usize> {
+pub struct Lanes<'a, const L: usize> {
     /// Raw heights.
-    pub raw: [f32; L],
+    pub raw: &'a [f32; L],
     /// Rings in their tiles (`n` on a border).
-    pub ring: [u32; L],
+    pub ring: &'a [u32; L],
     /// Lowest kind of the tiles sharing each vertex.
-    pub lo: [TileKind; L],
+    pub lo: &'a [TileKind; L],
     /// Highest kind of the tiles sharing each vertex.
-    pub hi: [TileKind; L],
+    pub hi: &'a [TileKind; L],
 }
 
-/// [`manipulate`] of `L` vertices in the map at once. Every case is computed and one selected,
-/// each step a loop over the lanes, so that it vectorises; every lane does the operations of the
-/// one-vertex case in the same order.
+/// [`manipulate`] of `L` vertices in the map at once, into `height` and `moved`. Every case is
+/// computed and one selected, each step a loop over the lanes, so that it vectorises; every
+/// lane does the operations of the one-vertex case in the same order.
 #[inline(always)]
 pub fn manipulate_lanes<const L: usize>(
     thresholds: &Thresholds,
     config: &ManipulationConfig,
     n: u32,
-    v: &Lanes<L>,
-    out: &mut [Manipulated; L],
+    v: &Lanes<'_, L>,
+    height: &mut [f32; L],
+    moved: &mut [bool; L],
 ) {
     let mut h = [0.0_f32; L];
-    for (h, &raw) in h.iter_mut().zip(&v.raw) {
+    for (h, &raw) in h.iter_mut().zip(v.raw) {
         *h = thresholds.interpolate(raw);
     }
-    let mut height = [0.0_f32; L];
     for l in 0..L {
         let (h, lo, hi, ring) = (h[l], v.lo[l], v.hi[l], v.ring[l]);
         let (a, b) = thresholds.range(lo);
@@ -190,8 +191,8 @@ pub fn manipulate_lanes<const L: usize>(
             between
         };
     }
-    for ((o, &height), &h) in out.iter_mut().zip(&height).zip(&h) {
-        *o = Manipulated { height, moved: height != h };
+    for ((moved, &height), &h) in moved.iter_mut().zip(height.iter()).zip(&h) {
+        *moved = height != h;
     }
 }
 

@@ -146,40 +146,46 @@ impl VertexRules {
     /// [`VertexRules::manipulated`] of `L` vertices in the map at once, in loops that vectorise
     /// (the same bits).
     #[inline(always)]
-    fn manipulated_lanes<const L: usize>(&self, v: &Lanes<L>, out: &mut [Manipulated; L]) {
+    fn manipulated_lanes<const L: usize>(&self, v: &Lanes<'_, L>, height: &mut [f32; L], moved: &mut [bool; L]) {
         if self.manipulation.any() {
-            manipulate_lanes(&self.thresholds, &self.manipulation, self.subdivisions, v, out);
+            manipulate_lanes(&self.thresholds, &self.manipulation, self.subdivisions, v, height, moved);
         } else {
-            for (m, &raw) in out.iter_mut().zip(&v.raw) {
-                *m = Manipulated { height: raw, moved: false };
-            }
+            *height = *v.raw;
+            *moved = [false; L];
         }
     }
 
-    /// [`VertexRules::manipulated`] of many vertices in the map (kinds spanning `spans`), sixteen
-    /// at a time in loops that vectorise, the rest one by one: the same bits as one by one.
+    /// [`VertexRules::manipulated`] of many vertices in the map (raw heights and rings, and the
+    /// lowest and highest kinds of the tiles sharing each) into `heights` and `moved`, sixteen at
+    /// a time in loops that vectorise, the rest one by one: the same bits as one by one.
     #[inline(always)]
     pub(crate) fn manipulated_many(
         &self,
-        raws: &[f32],
-        rings: &[u32],
-        spans: &[(TileKind, TileKind)],
-        out: &mut [Manipulated],
+        (raws, rings): (&[f32], &[u32]),
+        (los, his): (&[TileKind], &[TileKind]),
+        heights: &mut [f32],
+        moved: &mut [bool],
     ) {
         const L: usize = 16;
-        let whole = out.len() / L * L;
-        let mut lanes = Lanes { raw: [0.0; L], ring: [0; L], lo: [TileKind::Sea; L], hi: [TileKind::Sea; L] };
-        for (c, out) in out[..whole].chunks_exact_mut(L).enumerate() {
+        let whole = heights.len() / L * L;
+        let chunks = heights[..whole].chunks_exact_mut(L).zip(moved[..whole].chunks_exact_mut(L));
+        for (c, (height, moved)) in chunks.enumerate() {
             let range = c * L..(c + 1) * L;
-            lanes.raw.copy_from_slice(&raws[range.clone()]);
-            lanes.ring.copy_from_slice(&rings[range.clone()]);
-            for (l, &(lo, hi)) in spans[range].iter().enumerate() {
-                (lanes.lo[l], lanes.hi[l]) = (lo, hi);
-            }
-            self.manipulated_lanes(&lanes, out.try_into().expect("L vertices"));
+            let lanes: Lanes<'_, L> = Lanes {
+                raw: raws[range.clone()].try_into().expect("L vertices"),
+                ring: rings[range.clone()].try_into().expect("L vertices"),
+                lo: los[range.clone()].try_into().expect("L vertices"),
+                hi: his[range].try_into().expect("L vertices"),
+            };
+            self.manipulated_lanes(
+                &lanes,
+                height.try_into().expect("L vertices"),
+                moved.try_into().expect("L vertices"),
+            );
         }
-        for (i, m) in out.iter_mut().enumerate().skip(whole) {
-            *m = self.manipulated(raws[i], rings[i], Some(spans[i]));
+        for i in whole..heights.len() {
+            let m = self.manipulated(raws[i], rings[i], Some((los[i], his[i])));
+            (heights[i], moved[i]) = (m.height, m.moved);
         }
     }
 

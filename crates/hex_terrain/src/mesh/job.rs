@@ -242,8 +242,7 @@ impl<'a> Job<'a> {
         let kinds = self
             .split
             .map(tiles.len(), |k| geometry.contains(tiles[k]).then(|| pipeline.thresholds().classify(raws[k])));
-        let mut out =
-            Kinds { halo, kinds, around: Vec::new(), biomes: Vec::new(), wet: Vec::new() };
+        let mut out = Kinds { halo, kinds, around: Vec::new(), biomes: Vec::new(), wet: Vec::new() };
         out.around = self
             .tiles
             .iter()
@@ -317,7 +316,7 @@ impl<'a> Job<'a> {
                     let mut raws = [0.0_f32; BATCH];
                     heights.shaped_many(geometry, &noise[..len], pts, &mut raws[..len]);
                     let mut rings = [0_u32; BATCH];
-                    let mut spans = [(TileKind::Sea, TileKind::Sea); BATCH];
+                    let (mut los, mut his) = ([TileKind::Sea; BATCH], [TileKind::Sea; BATCH]);
                     let mut shared = [[NONE; 2]; BATCH];
                     for j in 0..len {
                         let Owner { tile, k } = owners[j];
@@ -334,18 +333,23 @@ impl<'a> Job<'a> {
                             }
                         }
                         rings[j] = ring;
-                        spans[j] = (lo, hi);
+                        (los[j], his[j]) = (lo, hi);
                     }
                     // Manipulation, a vector of points at a time.
-                    let mut manipulated = [Manipulated { height: 0.0, moved: false }; BATCH];
-                    rules.manipulated_many(&raws[..len], &rings[..len], &spans[..len], &mut manipulated[..len]);
+                    let (mut manipulated, mut moved) = ([0.0_f32; BATCH], [false; BATCH]);
+                    rules.manipulated_many(
+                        (&raws[..len], &rings[..len]),
+                        (&los[..len], &his[..len]),
+                        &mut manipulated[..len],
+                        &mut moved[..len],
+                    );
                     // The rest of the chain (relief, carving, colors) where the map has any of them;
                     // else a vertex is its manipulation and the highest kind sharing it.
                     let mut finished = [0.0_f32; BATCH];
                     let mut kind_of = [TileKind::Sea; BATCH];
                     if plain {
                         for j in 0..len {
-                            (finished[j], kind_of[j]) = (manipulated[j].height, spans[j].1);
+                            (finished[j], kind_of[j]) = (manipulated[j], his[j]);
                         }
                     } else {
                         for j in 0..len {
@@ -374,7 +378,7 @@ impl<'a> Job<'a> {
                                 pts[j],
                                 rings[j],
                                 tiles,
-                                manipulated[j],
+                                Manipulated { height: manipulated[j], moved: moved[j] },
                             );
                             if !o.colors.is_empty() {
                                 let (own_biome, around_biomes) = &kinds.biomes[tile];
@@ -384,7 +388,7 @@ impl<'a> Job<'a> {
                                 }
                                 o.colors[j] = vertex_color(&biomes[..count], s.water);
                             }
-                            (finished[j], kind_of[j], manipulated[j].moved) = (s.height, s.kind, s.moved);
+                            (finished[j], kind_of[j], moved[j]) = (s.height, s.kind, s.moved);
                         }
                     }
                     // The buffers, each in a loop of its own.
@@ -406,7 +410,7 @@ impl<'a> Job<'a> {
                     }
                     if diagnostics {
                         for j in 0..len {
-                            (o.raws[j], o.moved[j], o.rings[j]) = (raws[j], manipulated[j].moved, rings[j] as u8);
+                            (o.raws[j], o.moved[j], o.rings[j]) = (raws[j], moved[j], rings[j] as u8);
                         }
                     }
                 },
