@@ -59,7 +59,7 @@ impl Thresholds {
     /// [`Thresholds::pull`] into the range `lo..=hi` (of the vertex's tile kind).
     #[must_use]
     #[inline]
-    pub fn pull_into(&self, h: f32, lo: f32, hi: f32, mode: PullMode) -> f32 {
+    pub(crate) fn pull_into(&self, h: f32, lo: f32, hi: f32, mode: PullMode) -> f32 {
         match mode {
             // `f32::clamp`'s comparisons, without its check of the bounds (a branch that would
             // keep a batch of vertices from vectorising).

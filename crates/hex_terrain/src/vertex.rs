@@ -126,8 +126,11 @@ impl VertexRules {
         ring: u32,
         sharing: Sharing<'_>,
     ) -> VertexSample {
-        let m = self.manipulated(raw, ring, span(sharing.kinds));
-        self.finish_manipulated(geometry, water, raw, p, ring, sharing, m)
+        let span = span(sharing.kinds);
+        let m = self.manipulated(raw, ring, span);
+        let kind = span.map_or_else(|| self.thresholds.classify(raw), |(_, highest)| highest);
+        let s = VertexSample { raw, height: m.height, moved: m.moved, ring, kind, water: 0.0 };
+        self.finish_manipulated(geometry, water, p, sharing, s)
     }
 
     /// The chain's first step, manipulation, of a vertex of raw height `raw` at `ring` whose
@@ -190,32 +193,26 @@ impl VertexRules {
     }
 
     /// Whether the chain ends at manipulation for a vertex of a map with `water`: no relief and
-    /// no water to carve, so [`VertexRules::finish_manipulated`] only adds the kind (the highest
-    /// of the tiles sharing the vertex).
+    /// no water to carve, so [`VertexRules::finish_manipulated`] changes nothing.
     #[must_use]
     pub(crate) fn ends_at_manipulation(&self, water: Option<&TileTable>) -> bool {
         !self.relief.is_active() && water.is_none_or(|t| t.hydrology().is_none())
     }
 
-    /// The chain after manipulation `m` of the vertex: its kind, relief and carving (see
-    /// [`VertexRules::finish`]).
+    /// The chain after manipulation: relief and carving of vertex `s` at `p` (its height
+    /// manipulated, its kind the highest of the tiles of `sharing`; see [`VertexRules::finish`]).
     #[must_use]
     #[inline(always)]
-    #[allow(clippy::too_many_arguments)]
     pub(crate) fn finish_manipulated(
         &self,
         geometry: &Geometry,
         water: Option<&TileTable>,
-        raw: f32,
         p: Hex,
-        ring: u32,
         sharing: Sharing<'_>,
-        m: Manipulated,
+        s: VertexSample,
     ) -> VertexSample {
-        let kinds = sharing.kinds;
-        let kind = kinds.iter().copied().max().unwrap_or_else(|| self.thresholds.classify(raw));
-        let height = self.relief.apply(geometry, m.height, raw, p, ring, kinds);
-        let s = VertexSample { raw, height, moved: m.moved, ring, kind, water: 0.0 };
+        let height = self.relief.apply(geometry, s.height, s.raw, p, s.ring, sharing.kinds);
+        let s = VertexSample { height, ..s };
         match water {
             Some(table) if table.hydrology().is_some() => self.carve(geometry, table, p, sharing, s),
             _ => s,

@@ -206,12 +206,6 @@ impl HeightField {
         self.fbm.sample(ux, uz)
     }
 
-    /// Whether heights come from fBm (rather than a heightmap image).
-    #[must_use]
-    pub fn samples_noise(&self) -> bool {
-        self.image.is_none()
-    }
-
     /// Source heights of many lattice points (batched for the noise).
     pub fn source_heights(&self, geometry: &Geometry, points: &[Hex], out: &mut [f64]) {
         if let Some((image, sea_level)) = &self.image {

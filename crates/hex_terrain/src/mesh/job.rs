@@ -9,25 +9,21 @@
 
 use hexx::Hex;
 
-use super::grid::{GridShape, Owner, Points, TEMPLATE_MAX};
+use super::grid::{GridShape, Points, TEMPLATE_MAX};
 use super::lanes;
-use super::parallel::{BATCH, Outputs, Split, in_batches};
-use super::{Buffers, ChunkMesh, Diagnostics, GenerateOptions, Threads, vertex_color};
+use super::parallel::{BATCH, Outputs, Split};
+use super::{Buffers, ChunkMesh, Diagnostics, GenerateOptions, Threads};
 use crate::chunk::TileRect;
 use crate::climate::TileSample;
 use crate::geometry::Geometry;
+use crate::heights::Kernel;
 use crate::lattice::Lattice;
-use crate::manipulate::Manipulated;
 use crate::pipeline::Pipeline;
-use crate::vertex::{Sharing, VertexSample};
 use crate::vocab::{Biome, TileInfo, TileKind};
 
 /// Slots of a tile's point indices: a power of two at least [`TEMPLATE_MAX`], so that a
 /// template index masked into it stays in it.
 const OWN: usize = TEMPLATE_MAX.next_power_of_two();
-
-/// No direction: a border point's slot for a sharing neighbor that is not in the map.
-const NONE: u8 = u8::MAX;
 
 /// A generation of one rectangle of tiles.
 pub(super) struct Job<'a> {
@@ -37,30 +33,32 @@ pub(super) struct Job<'a> {
     /// The tiles (clipped to the map).
     rect: TileRect,
     /// The tiles of `rect`, row by row.
-    tiles: Vec<Hex>,
+    pub tiles: Vec<Hex>,
     shape: GridShape,
     /// Slot offsets of each template point from its tile's center, by the center's parity.
     offsets: [Vec<isize>; 2],
     pub split: Split,
-    diagnostics: bool,
+    pub diagnostics: bool,
     /// The lattice point positions are relative to ([`Geometry::rect_origin`]).
-    origin: Hex,
+    pub origin: Hex,
+    /// The map's kernel, which the passes' loops are compiled for (module `lanes`).
+    pub kernel: Kernel,
 }
 
 /// Kinds of the tiles of a job and of the ring around them, and their center samples.
-struct Kinds {
+pub(super) struct Kinds {
     /// The job's rectangle grown by one tile (two when biomes are computed here, which need
     /// the kinds around each tile of the first ring).
     halo: TileRect,
     /// Kind of each tile of `halo` (row by row), `None` outside the map.
     kinds: Vec<Option<TileKind>>,
     /// Per tile of the job: its own kind and its six neighbors' (`all_neighbors` order).
-    around: Vec<(TileKind, [Option<TileKind>; 6])>,
+    pub around: Vec<(TileKind, [Option<TileKind>; 6])>,
     /// Per tile of the job, when meshes have vertex colors: its biome and its neighbors'.
-    biomes: Vec<(Biome, [Option<Biome>; 6])>,
+    pub biomes: Vec<(Biome, [Option<Biome>; 6])>,
     /// Per tile of the job, on a map with rivers: whether water lies on it and on each neighbor
     /// (only points of wet tiles are carved).
-    wet: Vec<(bool, [bool; 6])>,
+    pub wet: Vec<(bool, [bool; 6])>,
 }
 
 impl Kinds {
@@ -71,7 +69,7 @@ impl Kinds {
 
     /// Kind of a tile, `None` outside the map; every vertex of the job lies in a tile of `halo`.
     #[inline]
-    fn get(&self, pipeline: &Pipeline, tile: Hex) -> Option<TileKind> {
+    pub fn get(&self, pipeline: &Pipeline, tile: Hex) -> Option<TileKind> {
         let oc = pipeline.geometry().offset_of(tile);
         if self.halo.contains(oc) { self.kinds[self.index(oc)] } else { pipeline.map_tile_kind(tile) }
     }
@@ -99,6 +97,7 @@ impl<'a> Job<'a> {
             split,
             diagnostics: options.diagnostics,
             origin,
+            kernel: pipeline.heights().fbm().kernel(),
         }
     }
 
@@ -279,211 +278,15 @@ impl<'a> Job<'a> {
         out
     }
 
-    /// The tiles' own vertices: their tiles are known, so no lookup is needed.
-    fn owned_pass(&self, points: &Points, kinds: &Kinds, outputs: Outputs<'_>) {
-        let pipeline = self.pipeline;
-        let geometry = self.geometry;
-        let heights = pipeline.heights();
-        let rules = pipeline.vertex_rules();
-        let water = pipeline.water_table();
-        let lattice = self.lattice;
-        let n = lattice.subdivisions();
-        let template = lattice.template();
-        let max_elevation = pipeline.max_elevation();
-        let uv_scale = 0.5 / geometry.hex_size();
-        // UVs are world-space modulo whole texture repeats: the origin's fraction plus the
-        // local offset, so they stay small (and exact) anywhere in the world.
-        let [ox, oz] = lattice.world(self.origin);
-        let uv_origin = [(ox * uv_scale).rem_euclid(1.0), (oz * uv_scale).rem_euclid(1.0)];
-        let origin = self.origin;
-        let inv_n = 1.0 / n as f32;
-        let diagnostics = self.diagnostics;
-        let plain = rules.ends_at_manipulation(water) && !pipeline.has_vertex_colors();
-        let kernel = heights.fbm().kernel();
-        in_batches(self.split, outputs, 0, &|i| points.slot_of(i), &|start, o: Outputs<'_>| {
-            lanes::run(
-                kernel,
-                #[inline(always)]
-                || {
-                    let len = o.len();
-                    let pts = &points.lattice[start..start + len];
-                    let owners = &points.owner[start..start + len];
-                    let mut noise = [0.0; BATCH];
-                    heights.source_heights(geometry, pts, &mut noise[..len]);
-                    // Each point's raw height, ring and the kinds of the tiles sharing it: its own
-                    // tile's, and on a border the neighbors' in the directions `shared` lists (`NONE`
-                    // where no tile of the map lies).
-                    let mut raws = [0.0_f32; BATCH];
-                    heights.shaped_many(geometry, &noise[..len], pts, &mut raws[..len]);
-                    let mut rings = [0_u32; BATCH];
-                    let (mut los, mut his) = ([TileKind::Sea; BATCH], [TileKind::Sea; BATCH]);
-                    let mut shared = [[NONE; 2]; BATCH];
-                    for j in 0..len {
-                        let Owner { tile, k } = owners[j];
-                        let k = usize::from(k);
-                        let ring = template[k].ring;
-                        let (own, around) = &kinds.around[tile as usize];
-                        let (mut lo, mut hi) = (*own, *own);
-                        if ring == n {
-                            for (dir, d) in shared[j].iter_mut().zip(lattice.shared_tiles(k)) {
-                                if let Some(&Some(kind)) = around.get(usize::from(d)) {
-                                    (lo, hi) = (lo.min(kind), hi.max(kind));
-                                    *dir = d;
-                                }
-                            }
-                        }
-                        rings[j] = ring;
-                        (los[j], his[j]) = (lo, hi);
-                    }
-                    // Manipulation, a vector of points at a time.
-                    let (mut manipulated, mut moved) = ([0.0_f32; BATCH], [false; BATCH]);
-                    rules.manipulated_many(
-                        (&raws[..len], &rings[..len]),
-                        (&los[..len], &his[..len]),
-                        &mut manipulated[..len],
-                        &mut moved[..len],
-                    );
-                    // The rest of the chain (relief, carving, colors) where the map has any of them;
-                    // else a vertex is its manipulation and the highest kind sharing it.
-                    let mut finished = [0.0_f32; BATCH];
-                    let mut kind_of = [TileKind::Sea; BATCH];
-                    if plain {
-                        for j in 0..len {
-                            (finished[j], kind_of[j]) = (manipulated[j], his[j]);
-                        }
-                    } else {
-                        for j in 0..len {
-                            let tile = owners[j].tile as usize;
-                            let (own, around) = &kinds.around[tile];
-                            let hex = self.tiles[tile];
-                            let mut hexes = [hex; 3];
-                            let mut sharing = [*own; 3];
-                            let mut dirs = [0_usize; 3];
-                            let mut count = 1;
-                            for &d in shared[j].iter().filter(|&&d| d != NONE) {
-                                let d = usize::from(d);
-                                (hexes[count], sharing[count], dirs[count]) =
-                                    (hex + Hex::NEIGHBORS_COORDS[d], around[d].unwrap_or(*own), d);
-                                count += 1;
-                            }
-                            // Only points of wet tiles are carved: the others read no water.
-                            let wet = kinds.wet.get(tile).is_some_and(|(own_wet, around_wet)| {
-                                *own_wet || dirs[1..count].iter().any(|&d| around_wet[d])
-                            });
-                            let tiles = Sharing { tiles: &hexes[..count], kinds: &sharing[..count] };
-                            let s = rules.finish_manipulated(
-                                geometry,
-                                water.filter(|_| wet),
-                                raws[j],
-                                pts[j],
-                                rings[j],
-                                tiles,
-                                Manipulated { height: manipulated[j], moved: moved[j] },
-                            );
-                            if !o.colors.is_empty() {
-                                let (own_biome, around_biomes) = &kinds.biomes[tile];
-                                let mut biomes = [*own_biome; 3];
-                                for (b, &d) in biomes.iter_mut().zip(&dirs).skip(1).take(count - 1) {
-                                    *b = around_biomes[d].unwrap_or(*own_biome);
-                                }
-                                o.colors[j] = vertex_color(&biomes[..count], s.water);
-                            }
-                            (finished[j], kind_of[j], moved[j]) = (s.height, s.kind, s.moved);
-                        }
-                    }
-                    // The buffers, each in a loop of its own.
-                    for (((position, uv), &p), &finished) in
-                        o.positions.iter_mut().zip(o.uvs.iter_mut()).zip(pts).zip(&finished)
-                    {
-                        // Relative to the origin from the integer lattice offset: exact however far out.
-                        let [x, z] = lattice.world(p - origin);
-                        *position = [x as f32, finished * max_elevation, z as f32];
-                        *uv = [(uv_origin[0] + x * uv_scale) as f32, (uv_origin[1] + z * uv_scale) as f32];
-                    }
-                    for (&p, &finished) in pts.iter().zip(&finished) {
-                        o.heights[points.grid.slot(p) - o.first_slot] = finished * max_elevation;
-                    }
-                    for (((kind, distance), &k), &ring) in
-                        o.kinds.iter_mut().zip(o.distances.iter_mut()).zip(&kind_of).zip(&rings)
-                    {
-                        (*kind, *distance) = (k as u32, ring as f32 * inv_n);
-                    }
-                    if diagnostics {
-                        for j in 0..len {
-                            (o.raws[j], o.moved[j], o.rings[j]) = (raws[j], moved[j], rings[j] as u8);
-                        }
-                    }
-                },
-            );
-        });
-    }
-
-    /// A halo point, one step from a border point of the rectangle, whose tile and template
-    /// index tell which tiles hold the halo point (a table of the lattice), so it needs no
-    /// search of its own.
-    fn halo_vertex(&self, points: &Points, kinds: &Kinds, p: Hex, raw: f32) -> VertexSample {
-        let n = self.lattice.subdivisions();
-        let template = self.lattice.template();
-        let pipeline = self.pipeline;
-        let rules = pipeline.vertex_rules();
-        let water = pipeline.water_table();
-        let kind_of = |tile: Hex| kinds.get(pipeline, tile);
-        let slot = points.grid.slot(p);
-        for (d, step) in points.grid.around(p).into_iter().enumerate() {
-            let i = points.grid.slots[slot.wrapping_add_signed(step)] as usize;
-            if i >= points.owned {
-                continue;
-            }
-            let Owner { tile, k } = points.owner[i];
-            let k = usize::from(k);
-            if template[k].ring == n {
-                // `p` is the neighbor of point `i` in the opposite direction.
-                let set = self.lattice.around_tiles(k, (d + 3) % 6);
-                let base = self.tiles[tile as usize];
-                let mut sharing = [TileKind::Sea; 3];
-                let mut hexes = [Hex::ZERO; 3];
-                let mut len = 0;
-                for &t in set.tiles() {
-                    if let Some(kind) = kind_of(base + t) {
-                        sharing[len] = kind;
-                        hexes[len] = base + t;
-                        len += 1;
-                    }
-                }
-                let shared = Sharing { tiles: &hexes[..len], kinds: &sharing[..len] };
-                return rules.finish(self.geometry, water, raw, p, set.ring, shared);
-            }
-        }
-        rules.finish_at(self.geometry, water, raw, p, kind_of)
-    }
-
-    /// The halo's heights, for the normals of border vertices.
-    fn halo_pass(&self, points: &Points, kinds: &Kinds) -> Vec<f32> {
-        let halo = &points.lattice[points.owned..];
-        let heights = self.pipeline.heights();
-        let max_elevation = self.pipeline.max_elevation();
-        let mut out = vec![0.0_f32; halo.len()];
-        self.split.for_each_chunk(&mut out, BATCH, 1, |c, out| {
-            let pts = &halo[c * BATCH..c * BATCH + out.len()];
-            let mut noise = [0.0; BATCH];
-            heights.source_heights(self.geometry, pts, &mut noise[..pts.len()]);
-            for ((h, &p), &noise) in out.iter_mut().zip(pts).zip(&noise) {
-                *h = self.halo_vertex(points, kinds, p, heights.shaped(self.geometry, noise, p)).height * max_elevation;
-            }
-        });
-        out
-    }
-
     /// Triangle indices, tile by tile, from the template's triangles and the grid.
     fn indices_pass(&self, points: &Points, indices: &mut [u32]) {
         let ppt = self.lattice.points_per_tile();
         let table = self.lattice.template_triangle_indices().as_flattened();
-        let kernel = self.pipeline.heights().fbm().kernel();
         // Tiles a task takes together, sharing one table of their points.
         const TILES: usize = 16;
         self.split.for_each_chunk(indices, table.len() * TILES, 1, |g, out| {
             lanes::run(
-                kernel,
+                self.kernel,
                 #[inline(always)]
                 || {
                     let mut own = [0_u32; OWN];

@@ -142,8 +142,7 @@ impl Job<'_> {
         });
         let coefficients = NormalCoefficients::new(&around);
         let batch = Batch { points, heights, coefficients: &coefficients };
-        let kernel = self.pipeline.heights().fbm().kernel();
-        self.split.for_each_chunk(normals, BATCH, 1, |c, normals| batch.normals_on(kernel, c * BATCH, normals));
+        self.split.for_each_chunk(normals, BATCH, 1, |c, normals| batch.normals_on(self.kernel, c * BATCH, normals));
     }
 }
 
