@@ -341,6 +341,15 @@ proptest! {
         let tiles: std::collections::HashSet<Hex> = m.tiles.iter().map(|i| i.hex).collect();
         let boundary: usize = tiles.iter().map(|h| h.all_neighbors().iter().filter(|x| !tiles.contains(x)).count()).sum();
         prop_assert_eq!(b.vertex_count(), t.lattice().mesh_vertex_count(tiles.len(), boundary));
+        // Tile by tile, each triangle is the template's about the tile's center, in order.
+        let template = t.lattice().template_triangles();
+        for (info, tris) in m.tiles.iter().zip(b.indices.chunks_exact(3 * template.len())) {
+            let center = t.lattice().tile_center(info.hex);
+            for (tri, want) in tris.chunks_exact(3).zip(template) {
+                let got = [tri[0], tri[1], tri[2]].map(|i| d.lattice[i as usize]);
+                prop_assert_eq!(got, want.map(|o| center + o), "a triangle of tile {:?}", info.hex);
+            }
+        }
 
         let unity = config.manipulation.hex_unity && config.manipulation.pull == PullMode::Clamp;
         let max = config.terrain.max_elevation;

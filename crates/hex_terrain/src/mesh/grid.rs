@@ -10,12 +10,6 @@ use crate::lattice::Lattice;
 /// Lattice directions around a vertex, counter-clockwise in lattice space.
 pub(super) const AROUND: [Hex; 6] = crate::lattice::NEIGHBORS;
 
-/// Most points of a tile template (`1 + 3n(n + 1)` for the largest `n`).
-pub(super) const TEMPLATE_MAX: usize = {
-    let n = crate::config::MAX_INNER_RINGS as usize + 1;
-    1 + 3 * n * (n + 1)
-};
-
 /// The tile whose template enumerated a point first, and the point's index in that template.
 #[derive(Clone, Copy)]
 pub(super) struct Owner {
@@ -112,12 +106,12 @@ impl GridShape {
 
     /// Parity of `p`'s row: which of the tables of [`GridShape::offsets`] applies.
     #[inline]
-    fn parity(&self, p: Hex) -> usize {
+    pub fn parity(&self, p: Hex) -> usize {
         (if self.pointy { p.x } else { p.y } & 1) as usize
     }
 
     /// Slot offset of lattice offset `d` from a point whose row has `parity`.
-    fn offset(&self, parity: i32, d: Hex) -> isize {
+    pub fn offset(&self, parity: i32, d: Hex) -> isize {
         let p = if self.pointy { Hex::new(parity, 0) } else { Hex::new(0, parity) };
         let [c0, r0] = Self::coords(self.pointy, p);
         let [c, r] = Self::coords(self.pointy, p + d);
@@ -156,15 +150,6 @@ impl Grid {
     #[inline]
     pub fn around(&self, p: Hex) -> [isize; 6] {
         self.around[self.shape.parity(p)]
-    }
-
-    /// Point indices of the template points of the tile centered on `center`, in template order.
-    #[inline]
-    pub fn template_points(&self, center: Hex, offsets: &[Vec<isize>; 2], out: &mut [u32]) {
-        let base = self.slot(center);
-        for (o, &d) in out.iter_mut().zip(&offsets[self.shape.parity(center)]) {
-            *o = self.slots[base.wrapping_add_signed(d)];
-        }
     }
 }
 

@@ -9,8 +9,8 @@
 
 use hexx::Hex;
 
-use super::grid::{GridShape, Points, TEMPLATE_MAX};
-use super::lanes;
+use super::grid::{GridShape, Points};
+use super::indices::Rows;
 use super::parallel::{BATCH, Outputs, Split};
 use super::{Buffers, ChunkMesh, Diagnostics, GenerateOptions, Threads};
 use crate::chunk::TileRect;
@@ -20,10 +20,6 @@ use crate::heights::Kernel;
 use crate::lattice::Lattice;
 use crate::pipeline::Pipeline;
 use crate::vocab::{Biome, TileInfo, TileKind};
-
-/// Slots of a tile's point indices: a power of two at least [`TEMPLATE_MAX`], so that a
-/// template index masked into it stays in it.
-const OWN: usize = TEMPLATE_MAX.next_power_of_two();
 
 /// A generation of one rectangle of tiles.
 pub(super) struct Job<'a> {
@@ -43,6 +39,8 @@ pub(super) struct Job<'a> {
     pub origin: Hex,
     /// The map's kernel, which the passes' loops are compiled for (module `lanes`).
     pub kernel: Kernel,
+    /// The template's rows, for the indices.
+    pub rows: Rows,
 }
 
 /// Kinds of the tiles of a job and of the ring around them, and their center samples.
@@ -86,6 +84,7 @@ impl<'a> Job<'a> {
         let shape = GridShape::around(lattice, &tiles);
         let offsets = shape.template_offsets(lattice);
         let origin = geometry.rect_origin(rect);
+        let rows = Rows::new(lattice, &shape);
         Self {
             pipeline,
             geometry,
@@ -98,6 +97,7 @@ impl<'a> Job<'a> {
             diagnostics: options.diagnostics,
             origin,
             kernel: pipeline.heights().fbm().kernel(),
+            rows,
         }
     }
 
@@ -276,31 +276,5 @@ impl<'a> Job<'a> {
                 self.tiles.iter().map(|&t| (biome(t).unwrap_or(Biome::Ocean), t.all_neighbors().map(biome))).collect();
         }
         out
-    }
-
-    /// Triangle indices, tile by tile, from the template's triangles and the grid.
-    fn indices_pass(&self, points: &Points, indices: &mut [u32]) {
-        let ppt = self.lattice.points_per_tile();
-        let table = self.lattice.template_triangle_indices().as_flattened();
-        // Tiles a task takes together, sharing one table of their points.
-        const TILES: usize = 16;
-        self.split.for_each_chunk(indices, table.len() * TILES, 1, |g, out| {
-            lanes::run(
-                self.kernel,
-                #[inline(always)]
-                || {
-                    let mut own = [0_u32; OWN];
-                    for (t, out) in out.chunks_mut(table.len()).enumerate() {
-                        let center = self.lattice.tile_center(self.tiles[g * TILES + t]);
-                        points.grid.template_points(center, &self.offsets, &mut own[..ppt]);
-                        // A template index masked into `own` needs no bounds check, so the copy
-                        // vectorises into gathers.
-                        for (d, &k) in out.iter_mut().zip(table) {
-                            *d = own[usize::from(k) & (OWN - 1)];
-                        }
-                    }
-                },
-            );
-        });
     }
 }

@@ -4,7 +4,8 @@
 //! | --- | --- |
 //! | `mod.rs` | the public buffers ([`MeshBuffers`], [`ChunkMesh`], [`Diagnostics`]), options ([`GenerateOptions`]), [`generate`] and [`vertex_color`] |
 //! | `grid.rs` | the point grid: lattice coordinates to point indices, and the enumeration of a rectangle's points |
-//! | `job.rs` | one generation as a job whose passes are methods: the prelude (points, buffers, tile kinds), the indices |
+//! | `job.rs` | one generation as a job whose passes are methods: the prelude (points, buffers, tile kinds) |
+//! | `indices.rs` | the indices pass: a tile's triangles from one grid lookup a template row |
 //! | `vertices.rs` | the vertex passes: the owned points in stages over batches, the halo's heights |
 //! | `normals.rs` | the normals pass |
 //! | `lanes.rs` | the passes' loops compiled for the instruction set of the map's kernel (AVX2, AVX-512), checked at run time |
@@ -13,6 +14,7 @@
 
 pub(crate) mod coarse;
 mod grid;
+mod indices;
 mod job;
 mod lanes;
 mod normals;

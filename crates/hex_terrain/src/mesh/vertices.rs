@@ -13,9 +13,6 @@ use super::vertex_color;
 use crate::vertex::{Sharing, VertexSample};
 use crate::vocab::TileKind;
 
-/// No direction: a border point's slot for a sharing neighbor that is not in the map.
-const NONE: u8 = u8::MAX;
-
 /// The points of one batch, an array a quantity (the first `len` of each used).
 struct Stage {
     len: usize,
@@ -25,9 +22,6 @@ struct Stage {
     los: [TileKind; BATCH],
     /// Highest kind of the tiles sharing each point: the vertex's kind.
     his: [TileKind; BATCH],
-    /// On a border, the directions of the neighbors sharing the point (`NONE` where no tile of
-    /// the map lies).
-    shared: [[u8; 2]; BATCH],
     /// Normalised heights: manipulated, then finished.
     heights: [f32; BATCH],
     moved: [bool; BATCH],
@@ -58,7 +52,6 @@ impl Job<'_> {
             rings: [0; BATCH],
             los: [TileKind::Sea; BATCH],
             his: [TileKind::Sea; BATCH],
-            shared: [[NONE; 2]; BATCH],
             heights: [0.0; BATCH],
             moved: [false; BATCH],
         };
@@ -80,8 +73,8 @@ impl Job<'_> {
         self.write(points, pts, &stage, o);
     }
 
-    /// Each point's ring and the kinds of the tiles sharing it: its own tile's, and on a border
-    /// the neighbors' in the directions the lattice lists.
+    /// Each point's ring and the lowest and highest kind of the tiles sharing it: its own tile's,
+    /// and on a border the in-map neighbors' in the directions the lattice lists.
     #[inline(always)]
     fn sharing(&self, kinds: &Kinds, owners: &[Owner], stage: &mut Stage) {
         let (n, template) = (self.lattice.subdivisions(), self.lattice.template());
@@ -91,10 +84,9 @@ impl Job<'_> {
             let (own, around) = &kinds.around[tile as usize];
             let (mut lo, mut hi) = (*own, *own);
             if ring == n {
-                for (dir, d) in stage.shared[j].iter_mut().zip(self.lattice.shared_tiles(k)) {
+                for d in self.lattice.shared_tiles(k) {
                     if let Some(&Some(kind)) = around.get(usize::from(d)) {
                         (lo, hi) = (lo.min(kind), hi.max(kind));
-                        *dir = d;
                     }
                 }
             }
@@ -114,11 +106,13 @@ impl Job<'_> {
             let mut sharing = [*own; 3];
             let mut dirs = [0_usize; 3];
             let mut count = 1;
-            for &d in stage.shared[j].iter().filter(|&&d| d != NONE) {
-                let d = usize::from(d);
-                (hexes[count], sharing[count], dirs[count]) =
-                    (hex + Hex::NEIGHBORS_COORDS[d], around[d].unwrap_or(*own), d);
-                count += 1;
+            if stage.rings[j] == self.lattice.subdivisions() {
+                for d in self.lattice.shared_tiles(usize::from(owners[j].k)).map(usize::from) {
+                    if let Some(&Some(kind)) = around.get(d) {
+                        (hexes[count], sharing[count], dirs[count]) = (hex + Hex::NEIGHBORS_COORDS[d], kind, d);
+                        count += 1;
+                    }
+                }
             }
             // Only points of wet tiles are carved: the others read no water.
             let wet = kinds
