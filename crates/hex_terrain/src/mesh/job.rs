@@ -1,17 +1,21 @@
 //! One generation as a job: the tiles of a rectangle, the grid over them and the passes that
 //! fill the buffers.
 //!
-//! While the points are enumerated (sequentially), other threads classify the tiles and
-//! allocate the buffers ([`Job::prelude`]). Then one pass computes the owned vertices (noise,
+//! While the points are enumerated (sequentially), other threads classify the tiles, allocate
+//! the buffers and then sample the noise at the first tiles' points until the enumeration ends
+//! ([`Job::prelude`], [`Early`]). Then one pass computes the owned vertices (noise,
 //! shaping, manipulation and every attribute but the normal, [`Job::owned_pass`]) while another
 //! computes the halo's heights ([`Job::halo_pass`]); then the normals, which need the heights of
 //! the six lattice neighbors, and the indices. Each pass runs on all cores when the job splits.
+
+use std::sync::atomic::{AtomicBool, Ordering};
 
 use hexx::Hex;
 
 use super::grid::{GridShape, Points};
 use super::indices::Rows;
 use super::parallel::{BATCH, Outputs, Split};
+use super::vertices::Early;
 use super::{Buffers, ChunkMesh, Diagnostics, GenerateOptions, Threads};
 use crate::chunk::TileRect;
 use crate::climate::TileSample;
@@ -27,7 +31,7 @@ pub(super) struct Job<'a> {
     pub geometry: &'a Geometry,
     pub lattice: &'a Lattice,
     /// The tiles (clipped to the map).
-    rect: TileRect,
+    pub rect: TileRect,
     /// The tiles of `rect`, row by row.
     pub tiles: Vec<Hex>,
     shape: GridShape,
@@ -109,7 +113,12 @@ impl<'a> Job<'a> {
 
     /// Runs every pass and returns the chunk.
     pub fn run(self) -> ChunkMesh {
-        let (points, out, kinds) = self.split.in_pool(|| self.prelude());
+        let (points, out, kinds, early) = self.split.in_pool(|| self.prelude());
+        self.passes(points, out, kinds, &early)
+    }
+
+    /// The passes after the prelude.
+    pub(super) fn passes(self, points: Points, out: Buffers, kinds: Kinds, early: &Early) -> ChunkMesh {
         let Buffers { mut b, mut raws, mut moved, mut rings, mut heights } =
             out.fit(points.owned, self.diagnostics, self.pipeline.has_vertex_colors());
         // Every pass from here on, in one visit to the thread pool.
@@ -126,8 +135,9 @@ impl<'a> Job<'a> {
                 heights: &mut heights,
                 first_slot: 0,
             };
-            let ((), halo_heights) =
-                self.split.join(|| self.owned_pass(&points, &kinds, outputs), || self.halo_pass(&points, &kinds));
+            let ((), halo_heights) = self
+                .split
+                .join(|| self.owned_pass(&points, &kinds, early, outputs), || self.halo_pass(&points, &kinds));
             for (&p, h) in points.lattice[points.owned..].iter().zip(halo_heights) {
                 heights[points.grid.slot(p)] = h;
             }
@@ -171,26 +181,35 @@ impl<'a> Job<'a> {
     /// The work before the passes: the point enumeration beside the tile kinds and the buffers
     /// (on other threads, unless the rectangle is small: then the side work is shorter than
     /// waking a second thread and letting it fall asleep again).
-    fn prelude(&self) -> (Points, Buffers, Kinds) {
+    ///
+    /// What time the side threads have left before the enumeration ends goes to the noise of
+    /// the first tiles' points ([`Early`]).
+    pub(super) fn prelude(&self) -> (Points, Buffers, Kinds, Early) {
         let side = Split(self.split.0 && self.tiles.len() * self.lattice.points_per_tile() > Split::SIDE_MIN_POINTS);
-        let ((points, buffers), kinds) = side.join(
+        let enumerated = AtomicBool::new(false);
+        let ((points, (buffers, early)), kinds) = side.join(
             || {
                 side.join(
-                    || Points::collect(self.lattice, &self.tiles, self.shape, &self.offsets),
                     || {
-                        Buffers::new(
+                        let points = Points::collect(self.lattice, &self.tiles, self.shape, &self.offsets);
+                        enumerated.store(true, Ordering::Relaxed);
+                        points
+                    },
+                    || {
+                        let buffers = Buffers::new(
                             self.vertex_count(),
                             self.tiles.len() * self.lattice.triangles_per_tile() * 3,
                             self.shape.len(),
                             self.diagnostics,
                             self.pipeline.has_vertex_colors(),
-                        )
+                        );
+                        (buffers, self.early_noise(|| enumerated.load(Ordering::Relaxed)))
                     },
                 )
             },
             || self.kinds(),
         );
-        (points, buffers, kinds)
+        (points, buffers, kinds, early)
     }
 
     /// Vertex count of the mesh, from the count formula

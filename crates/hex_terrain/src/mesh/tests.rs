@@ -215,3 +215,30 @@ fn every_kernel_manipulates_as_one_vertex() {
         }
     }
 }
+
+/// The noise a side thread samples while the points are enumerated, however many tiles it got
+/// to, leaves the mesh the same bits: every tile sampled early against none, on maps of each
+/// orientation, wrapping, with climate and rivers, whole and in part.
+#[test]
+fn early_noise_changes_no_bit() {
+    for (orientation, wrap, rings, climate) in [
+        (Orientation::Flat, false, 3, false),
+        (Orientation::Pointy, false, 2, true),
+        (Orientation::Flat, true, 1, true),
+    ] {
+        let mut c = MapConfig { size: MapSize::Bounded { x: 14, z: 9 }, wrap, ..MapConfig::default() };
+        (c.layout.orientation, c.terrain.inner_rings) = (orientation, rings);
+        (c.climate.enabled, c.rivers.enabled) = (climate, climate);
+        let t = Terrain::new(c).unwrap();
+        for rect in [t.bounds().unwrap(), TileRect::new([3, 2], [5, 4]), TileRect::new([9, 0], [4, 9])] {
+            let run = |all: bool| {
+                let job = job::Job::new(t.pipeline(), rect, GenerateOptions::DIAGNOSTICS);
+                let (points, buffers, kinds, _) = job.prelude();
+                let early = if all { job.early_noise(|| false) } else { vertices::Early::default() };
+                assert_eq!(early.tiles, if all { rect.len() } else { 0 });
+                job.passes(points, buffers, kinds, &early)
+            };
+            assert_eq!(run(true), run(false), "{orientation:?} wrap {wrap} rings {rings} rect {rect:?}");
+        }
+    }
+}

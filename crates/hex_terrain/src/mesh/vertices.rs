@@ -1,5 +1,6 @@
 //! The vertex passes: the tiles' own points in stages over batches of [`BATCH`], compiled for
-//! the map's kernel (raw heights, the kinds of the tiles sharing each point, manipulation
+//! the map's kernel (the noise, read where a side thread sampled it during the enumeration
+//! ([`Early`]) and sampled together for the rest; raw heights, the kinds of the tiles sharing each point, manipulation
 //! sixteen at a time, the rest of the chain where the map has any, then a loop a buffer), and
 //! the halo's heights that the border normals read.
 
@@ -12,6 +13,18 @@ use super::parallel::{BATCH, Outputs, in_batches};
 use super::vertex_color;
 use crate::vertex::{Sharing, VertexSample};
 use crate::vocab::TileKind;
+
+/// The noise at the points of the first tiles, sampled by a side thread while the points are
+/// enumerated: every point of each template in tile order, the first `tiles` tiles' worth. A
+/// pure function of the points, so the mesh is the same bits however many tiles it holds.
+#[derive(Default)]
+pub(super) struct Early {
+    pub tiles: usize,
+    noise: Vec<f64>,
+}
+
+/// Tiles whose points the side thread samples together.
+const EARLY_TILES: usize = 8;
 
 /// The points of one batch, an array a quantity (the first `len` of each used).
 struct Stage {
@@ -28,20 +41,91 @@ struct Stage {
 }
 
 impl Job<'_> {
+    /// The noise at the points of the first tiles, until `stop()` (asked between groups of
+    /// tiles, so it stops soon after). A point shared with an earlier tile of the job is that
+    /// tile's ([`Points::collect`]'s rule), so only each tile's own points are sampled.
+    pub(super) fn early_noise(&self, stop: impl Fn() -> bool) -> Early {
+        let (heights, template, rect) = (self.pipeline.heights(), self.lattice.template(), self.rect);
+        let ppt = template.len();
+        // The directions of the neighbors sharing each template point, as bits.
+        let shared: Vec<u8> = (0..ppt)
+            .map(|k| self.lattice.shared_tiles(k).iter().filter(|&&d| d != u8::MAX).fold(0, |m, &d| m | 1 << d))
+            .collect();
+        let width = (rect.max[0] - rect.min[0]) as usize;
+        let index = |oc: [i32; 2]| {
+            rect.contains(oc).then(|| (oc[1] - rect.min[1]) as usize * width + (oc[0] - rect.min[0]) as usize)
+        };
+        let (mut tiles, mut noise) = (0, Vec::new());
+        let (mut pts, mut at, mut sampled) = (Vec::new(), Vec::new(), Vec::new());
+        while tiles < self.tiles.len() && !stop() {
+            let end = (tiles + EARLY_TILES).min(self.tiles.len());
+            pts.clear();
+            at.clear();
+            for (t, &tile) in self.tiles.iter().enumerate().take(end).skip(tiles) {
+                let earlier = (0..6)
+                    .filter(|&d| {
+                        let nb = tile + Hex::NEIGHBORS_COORDS[d];
+                        index(self.geometry.offset_of(nb)).is_some_and(|i| i < t && self.tiles[i] == nb)
+                    })
+                    .fold(0_u8, |m, d| m | 1 << d);
+                let center = self.lattice.tile_center(tile);
+                for (k, tp) in template.iter().enumerate().filter(|&(k, _)| shared[k] & earlier == 0) {
+                    pts.push(center + tp.offset);
+                    at.push(t * ppt + k);
+                }
+            }
+            sampled.resize(pts.len(), 0.0);
+            heights.source_heights(self.geometry, &pts, &mut sampled);
+            noise.resize(end * ppt, 0.0);
+            for (&i, &h) in at.iter().zip(&sampled) {
+                noise[i] = h;
+            }
+            tiles = end;
+        }
+        Early { tiles, noise }
+    }
+
+    /// The noise at a batch's points: from [`Early`] where their tile's points were sampled,
+    /// else sampled here, together.
+    #[inline(always)]
+    fn batch_noise(&self, early: &Early, pts: &[Hex], owners: &[Owner], noise: &mut [f64]) {
+        let heights = self.pipeline.heights();
+        let ppt = self.lattice.points_per_tile();
+        let known = |o: &Owner| (o.tile as usize) < early.tiles;
+        if !owners.iter().any(known) {
+            heights.source_heights(self.geometry, pts, noise);
+            return;
+        }
+        let (mut missing, mut at, mut m) = ([Hex::ZERO; BATCH], [0_u16; BATCH], 0);
+        for (j, (o, &p)) in owners.iter().zip(pts).enumerate() {
+            if known(o) {
+                noise[j] = early.noise[o.tile as usize * ppt + usize::from(o.k)];
+            } else {
+                (missing[m], at[m]) = (p, j as u16);
+                m += 1;
+            }
+        }
+        let mut sampled = [0.0; BATCH];
+        heights.source_heights(self.geometry, &missing[..m], &mut sampled[..m]);
+        for (&j, &h) in at[..m].iter().zip(&sampled) {
+            noise[usize::from(j)] = h;
+        }
+    }
+
     /// The tiles' own vertices: their tiles are known, so no lookup is needed.
-    pub(super) fn owned_pass(&self, points: &Points, kinds: &Kinds, outputs: Outputs<'_>) {
+    pub(super) fn owned_pass(&self, points: &Points, kinds: &Kinds, early: &Early, outputs: Outputs<'_>) {
         in_batches(self.split, outputs, 0, &|i| points.slot_of(i), &|start, o: Outputs<'_>| {
             lanes::run(
                 self.kernel,
                 #[inline(always)]
-                || self.owned_batch(points, kinds, start, o),
+                || self.owned_batch(points, kinds, early, start, o),
             );
         });
     }
 
     /// The owned points `start..start + o.len()` into `o`.
     #[inline(always)]
-    fn owned_batch(&self, points: &Points, kinds: &Kinds, start: usize, o: Outputs<'_>) {
+    fn owned_batch(&self, points: &Points, kinds: &Kinds, early: &Early, start: usize, o: Outputs<'_>) {
         let (geometry, heights) = (self.geometry, self.pipeline.heights());
         let len = o.len();
         let pts = &points.lattice[start..start + len];
@@ -56,7 +140,7 @@ impl Job<'_> {
             moved: [false; BATCH],
         };
         let mut noise = [0.0; BATCH];
-        heights.source_heights(geometry, pts, &mut noise[..len]);
+        self.batch_noise(early, pts, owners, &mut noise[..len]);
         heights.shaped_many(geometry, &noise[..len], pts, &mut stage.raws[..len]);
         self.sharing(kinds, owners, &mut stage);
         let rules = self.pipeline.vertex_rules();
