@@ -166,9 +166,26 @@ pub fn manipulate_lanes<const L: usize>(
     for (h, &raw) in h.iter_mut().zip(v.raw) {
         *h = thresholds.interpolate(raw);
     }
+    // The ranges and border heights as values, not fields read in the loop (which the compiler
+    // would read lane by lane, as gathers): a lane selects among them.
+    let [(sea_lo, sea_hi), (land_lo, land_hi), (mountain_lo, mountain_hi)] = TileKind::ALL.map(|k| thresholds.range(k));
+    let [sea_land, land_mountain, sea_mountain] = [
+        thresholds.border(TileKind::Sea, TileKind::Land),
+        thresholds.border(TileKind::Land, TileKind::Mountain),
+        thresholds.border(TileKind::Sea, TileKind::Mountain),
+    ];
+    let pick = |kind: TileKind, [sea, land, mountain]: [f32; 3]| {
+        if kind == TileKind::Sea {
+            sea
+        } else if kind == TileKind::Land {
+            land
+        } else {
+            mountain
+        }
+    };
     for l in 0..L {
         let (h, lo, hi, ring) = (h[l], v.lo[l], v.hi[l], v.ring[l]);
-        let (a, b) = thresholds.range(lo);
+        let (a, b) = (pick(lo, [sea_lo, land_lo, mountain_lo]), pick(lo, [sea_hi, land_hi, mountain_hi]));
         // An inner vertex has one tile (`lo == hi`): hex unity pulls it into that tile's range.
         let pulled = thresholds.pull_into(h, a, b, config.pull);
         let inner = if config.hex_unity && ring > 0 { pulled } else { h };
@@ -182,7 +199,15 @@ pub fn manipulate_lanes<const L: usize>(
             h
         };
         let one_kind = if config.edge_correction { clamped } else { h };
-        let between = if config.hex_unity { thresholds.border(lo, hi) } else { h };
+        // `Thresholds::border`: between sea and land, land and mountain, else the middle.
+        let border = if lo == TileKind::Sea && hi == TileKind::Land {
+            sea_land
+        } else if lo == TileKind::Land && hi == TileKind::Mountain {
+            land_mountain
+        } else {
+            sea_mountain
+        };
+        let between = if config.hex_unity { border } else { h };
         height[l] = if ring < n {
             inner
         } else if lo == hi {

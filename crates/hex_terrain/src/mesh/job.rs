@@ -34,7 +34,7 @@ pub(super) struct Job<'a> {
     pub rect: TileRect,
     /// The tiles of `rect`, row by row.
     pub tiles: Vec<Hex>,
-    shape: GridShape,
+    pub shape: GridShape,
     /// Slot offsets of each template point from its tile's center, by the center's parity.
     offsets: [Vec<isize>; 2],
     pub split: Split,

@@ -15,12 +15,15 @@ use crate::vertex::{Sharing, VertexSample};
 use crate::vocab::TileKind;
 
 /// The noise at the points of the first tiles, sampled by a side thread while the points are
-/// enumerated: every point of each template in tile order, the first `tiles` tiles' worth. A
-/// pure function of the points, so the mesh is the same bits however many tiles it holds.
+/// enumerated: a tile's template points in order, the first `tiles` tiles' worth (each tile's
+/// own points; the others are left at zero and never read). A pure function of the points, so
+/// the mesh is the same bits however many tiles it holds.
 #[derive(Default)]
 pub(super) struct Early {
     pub tiles: usize,
     noise: Vec<f64>,
+    /// The last grid slot of the points sampled: a batch starting past it reads none.
+    last_slot: usize,
 }
 
 /// Tiles whose points the side thread samples together.
@@ -55,7 +58,7 @@ impl Job<'_> {
         let index = |oc: [i32; 2]| {
             rect.contains(oc).then(|| (oc[1] - rect.min[1]) as usize * width + (oc[0] - rect.min[0]) as usize)
         };
-        let (mut tiles, mut noise) = (0, Vec::new());
+        let (mut tiles, mut noise, mut last_slot) = (0, Vec::new(), 0);
         let (mut pts, mut at, mut sampled) = (Vec::new(), Vec::new(), Vec::new());
         while tiles < self.tiles.len() && !stop() {
             let end = (tiles + EARLY_TILES).min(self.tiles.len());
@@ -70,7 +73,9 @@ impl Job<'_> {
                     .fold(0_u8, |m, d| m | 1 << d);
                 let center = self.lattice.tile_center(tile);
                 for (k, tp) in template.iter().enumerate().filter(|&(k, _)| shared[k] & earlier == 0) {
-                    pts.push(center + tp.offset);
+                    let p = center + tp.offset;
+                    last_slot = last_slot.max(self.shape.slot(p));
+                    pts.push(p);
                     at.push(t * ppt + k);
                 }
             }
@@ -82,7 +87,7 @@ impl Job<'_> {
             }
             tiles = end;
         }
-        Early { tiles, noise }
+        Early { tiles, noise, last_slot }
     }
 
     /// The noise at a batch's points: from [`Early`] where their tile's points were sampled,
@@ -92,7 +97,8 @@ impl Job<'_> {
         let heights = self.pipeline.heights();
         let ppt = self.lattice.points_per_tile();
         let known = |o: &Owner| (o.tile as usize) < early.tiles;
-        if !owners.iter().any(known) {
+        // Points run in slot order.
+        if pts.first().is_none_or(|&p| early.tiles == 0 || self.shape.slot(p) > early.last_slot) {
             heights.source_heights(self.geometry, pts, noise);
             return;
         }
