@@ -111,17 +111,19 @@ impl<'a> Job<'a> {
         Points::collect(self.lattice, &self.tiles, self.shape, &self.offsets).lattice
     }
 
-    /// Runs every pass and returns the chunk.
+    /// Runs every pass and returns the chunk, in one visit to the thread pool.
     pub fn run(self) -> ChunkMesh {
-        let (points, out, kinds, early) = self.split.in_pool(|| self.prelude());
-        self.passes(points, out, kinds, &early)
+        self.split.in_pool(|| {
+            let (points, out, kinds, early) = self.prelude();
+            self.passes(points, out, kinds, &early)
+        })
     }
 
     /// The passes after the prelude.
     pub(super) fn passes(self, points: Points, out: Buffers, kinds: Kinds, early: &Early) -> ChunkMesh {
         let Buffers { mut b, mut raws, mut moved, mut rings, mut heights } =
             out.fit(points.owned, self.diagnostics, self.pipeline.has_vertex_colors());
-        // Every pass from here on, in one visit to the thread pool.
+        // In the thread pool already when `run` called this.
         self.split.in_pool(|| {
             let outputs = Outputs {
                 positions: &mut b.positions,
