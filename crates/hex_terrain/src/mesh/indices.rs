@@ -48,22 +48,25 @@ impl Rows {
         // column the steps from the row's first point; rows run from `-n` to `n`.
         let pointy = lattice.orientation() == crate::config::Orientation::Pointy;
         let row = |h: Hex| if pointy { (h.x, h.y) } else { (h.y, h.x) };
-        let first_along = |r: i32| -> i32 {
-            template.iter().map(|tp| row(tp.offset)).filter(|&(rr, _)| rr == r).map(|(_, a)| a).min().unwrap_or(0)
-        };
+        // The first step along each row, rows `-n..=n` at `0..=2n`.
+        let mut first_along = vec![i32::MAX; 2 * n as usize + 1];
+        for tp in template {
+            let (r, a) = row(tp.offset);
+            let f = &mut first_along[(r + n) as usize];
+            *f = (*f).min(a);
+        }
         let firsts = [0, 1].map(|parity| {
             (-n..=n)
-                .map(|r| {
-                    let first = if pointy { Hex::new(r, first_along(r)) } else { Hex::new(first_along(r), r) };
-                    shape.offset(parity, first)
-                })
+                .zip(&first_along)
+                .map(|(r, &a)| shape.offset(parity, if pointy { Hex::new(r, a) } else { Hex::new(a, r) }))
                 .collect()
         });
         let (mut row_of, mut column) = (Vec::new(), Vec::new());
         for &k in lattice.template_triangle_indices().as_flattened() {
             let (r, a) = row(template[usize::from(k)].offset);
-            row_of.push((r + n) as usize);
-            column.push((a - first_along(r)) as u32);
+            let r = (r + n) as usize;
+            row_of.push(r);
+            column.push((a - first_along[r]) as u32);
         }
         Self { firsts, center: n as usize, row_of, column }
     }
