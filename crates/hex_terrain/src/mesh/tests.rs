@@ -217,28 +217,42 @@ fn every_kernel_manipulates_as_one_vertex() {
 }
 
 /// The noise a side thread samples while the points are enumerated, however many tiles it got
-/// to, leaves the mesh the same bits: every tile sampled early against none, on maps of each
-/// orientation, wrapping, with climate and rivers, whole and in part.
-#[test]
-fn early_noise_changes_no_bit() {
-    for (orientation, wrap, rings, climate) in [
-        (Orientation::Flat, false, 3, false),
-        (Orientation::Pointy, false, 2, true),
-        (Orientation::Flat, true, 1, true),
-    ] {
-        let mut c = MapConfig { size: MapSize::Bounded { x: 14, z: 9 }, wrap, ..MapConfig::default() };
-        (c.layout.orientation, c.terrain.inner_rings) = (orientation, rings);
-        (c.climate.enabled, c.rivers.enabled) = (climate, climate);
-        let t = Terrain::new(c).unwrap();
-        for rect in [t.bounds().unwrap(), TileRect::new([3, 2], [5, 4]), TileRect::new([9, 0], [4, 9])] {
+/// to, leaves the mesh the same bits: every tile sampled early against none, over random maps
+/// (each orientation, 1-4 inner rings, bounded, wrapping or unbounded, with or without climate
+/// and rivers) and random rectangles of them (negative coordinates on an unbounded world).
+mod early_noise {
+    use proptest::prelude::*;
+
+    use super::*;
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(48))]
+        #[test]
+        fn changes_no_bit(
+            pointy in any::<bool>(),
+            world in 0..3_u8,
+            rings in 1..=4_u32,
+            climate in any::<bool>(),
+            seed in any::<u32>(),
+            (x, z) in (2..=12_u32, 1..=10_u32),
+            (c0, r0, w, h) in (-8..=12_i32, -8..=10_i32, 1..=14_u32, 1..=12_u32),
+        ) {
+            let size = if world == 2 { MapSize::Unbounded } else { MapSize::Bounded { x: 2 * x, z } };
+            let mut c = MapConfig { seed, size, wrap: world == 1, ..MapConfig::default() };
+            c.layout.orientation = if pointy { Orientation::Pointy } else { Orientation::Flat };
+            c.terrain.inner_rings = rings;
+            (c.climate.enabled, c.rivers.enabled) = (climate && world != 2, climate && world != 2);
+            let t = Terrain::new(c).unwrap();
+            let rect = TileRect::new([c0, r0], [w, h]);
             let run = |all: bool| {
                 let job = job::Job::new(t.pipeline(), rect, GenerateOptions::DIAGNOSTICS);
+                let tiles = job.tiles.len();
                 let (points, buffers, kinds, _) = job.prelude();
                 let early = if all { job.early_noise(|| false) } else { vertices::Early::default() };
-                assert_eq!(early.tiles, if all { rect.len() } else { 0 });
+                assert_eq!(early.tiles, if all { tiles } else { 0 });
                 job.passes(points, buffers, kinds, &early)
             };
-            assert_eq!(run(true), run(false), "{orientation:?} wrap {wrap} rings {rings} rect {rect:?}");
+            prop_assert_eq!(run(true), run(false));
         }
     }
 }
