@@ -1,8 +1,8 @@
 //! The vertex passes: the tiles' own points in stages over batches of [`BATCH`], compiled for
 //! the map's kernel (the noise, read where a side thread sampled it during the enumeration
-//! ([`Early`]) and sampled together for the rest; raw heights, the kinds of the tiles sharing each point, manipulation
-//! sixteen at a time, the rest of the chain where the map has any, then a loop a buffer), and
-//! the halo's heights that the border normals read.
+//! ([`Early`]) and sampled together for the rest; raw heights; the kinds of the tiles sharing
+//! each point; manipulation sixteen at a time; the rest of the chain where the map has any; then
+//! a loop a buffer), and the halo's heights that the border normals read.
 
 use hexx::Hex;
 
