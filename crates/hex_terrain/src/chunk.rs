@@ -42,6 +42,15 @@ impl TileRect {
         col >= self.min[0] && col < self.max[0] && row >= self.min[1] && row < self.max[1]
     }
 
+    /// Row-major index of offset coordinate `[col, row]` (the order of [`TileRect::iter`]),
+    /// `None` outside.
+    #[must_use]
+    #[inline]
+    pub fn index(&self, [col, row]: [i32; 2]) -> Option<usize> {
+        let width = (self.max[0] - self.min[0]) as usize;
+        self.contains([col, row]).then(|| (row - self.min[1]) as usize * width + (col - self.min[0]) as usize)
+    }
+
     /// The overlap of two rectangles (possibly empty).
     #[must_use]
     pub fn intersect(&self, other: &Self) -> Self {

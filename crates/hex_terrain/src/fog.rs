@@ -122,10 +122,7 @@ impl Cells {
 
     /// Index of a tile's `(row, column)` in a dense store.
     fn index(rect: TileRect, (row, col): (i32, i32)) -> Option<usize> {
-        rect.contains([col, row]).then(|| {
-            let columns = (rect.max[0] - rect.min[0]) as usize;
-            (row - rect.min[1]) as usize * columns + (col - rect.min[0]) as usize
-        })
+        rect.index([col, row])
     }
 
     fn get(&self, at: (i32, i32)) -> FogState {

@@ -73,14 +73,7 @@ impl TileTable {
     #[must_use]
     #[inline]
     pub fn index_of(&self, [c, r]: [i32; 2]) -> Option<usize> {
-        let rect = self.rect;
-        rect.contains([c, r]).then(|| (r - rect.min[1]) as usize * self.cols() + (c - rect.min[0]) as usize)
-    }
-
-    /// Number of columns.
-    #[inline]
-    fn cols(&self) -> usize {
-        (self.rect.max[0] - self.rect.min[0]) as usize
+        self.rect.index([c, r])
     }
 
     /// Builds the table of the tiles of `fields`' rectangle from their noise (one height sample

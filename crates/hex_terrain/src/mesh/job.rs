@@ -64,16 +64,11 @@ pub(super) struct Kinds {
 }
 
 impl Kinds {
-    fn index(&self, [c, r]: [i32; 2]) -> usize {
-        let width = (self.halo.max[0] - self.halo.min[0]) as usize;
-        (r - self.halo.min[1]) as usize * width + (c - self.halo.min[0]) as usize
-    }
-
     /// Kind of a tile, `None` outside the map; every vertex of the job lies in a tile of `halo`.
     #[inline]
     pub fn get(&self, pipeline: &Pipeline, tile: Hex) -> Option<TileKind> {
         let oc = pipeline.geometry().offset_of(tile);
-        if self.halo.contains(oc) { self.kinds[self.index(oc)] } else { pipeline.map_tile_kind(tile) }
+        self.halo.index(oc).map_or_else(|| pipeline.map_tile_kind(tile), |i| self.kinds[i])
     }
 }
 
@@ -288,7 +283,7 @@ impl<'a> Job<'a> {
                 if let Some(biome) = heights.edits().and_then(|e| e.biome(geometry, t)) {
                     return Some(biome);
                 }
-                let i = out.index(geometry.offset_of(t));
+                let i = out.halo.index(geometry.offset_of(t)).expect("a tile within two of the job's");
                 let kind = out.kinds[i].unwrap_or(TileKind::Sea);
                 let sample = TileSample::new(raws[i], kind, t.all_neighbors().map(|nb| out.get(pipeline, nb)));
                 Some(pipeline.climate().biome_of(geometry, heights, t, &sample, false))

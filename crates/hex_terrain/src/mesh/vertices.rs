@@ -54,10 +54,6 @@ impl Job<'_> {
         let shared: Vec<u8> = (0..ppt)
             .map(|k| self.lattice.shared_tiles(k).iter().filter(|&&d| d != u8::MAX).fold(0, |m, &d| m | 1 << d))
             .collect();
-        let width = (rect.max[0] - rect.min[0]) as usize;
-        let index = |oc: [i32; 2]| {
-            rect.contains(oc).then(|| (oc[1] - rect.min[1]) as usize * width + (oc[0] - rect.min[0]) as usize)
-        };
         let (mut tiles, mut noise, mut last_slot) = (0, Vec::new(), 0);
         let (mut pts, mut at, mut sampled) = (Vec::new(), Vec::new(), Vec::new());
         while tiles < self.tiles.len() && !stop() {
@@ -68,7 +64,7 @@ impl Job<'_> {
                 let earlier = (0..6)
                     .filter(|&d| {
                         let nb = tile + Hex::NEIGHBORS_COORDS[d];
-                        index(self.geometry.offset_of(nb)).is_some_and(|i| i < t && self.tiles[i] == nb)
+                        rect.index(self.geometry.offset_of(nb)).is_some_and(|i| i < t && self.tiles[i] == nb)
                     })
                     .fold(0_u8, |m, d| m | 1 << d);
                 let center = self.lattice.tile_center(tile);

@@ -204,6 +204,5 @@ pub(crate) fn area_index(rect: TileRect, geometry: &Geometry, tile: Hex) -> Opti
         return None;
     }
     let [c, r] = geometry.offset_of(geometry.wrap_tile(tile));
-    let cols = (rect.max[0] - rect.min[0]) as usize;
-    rect.contains([c, r]).then(|| (r - rect.min[1]) as usize * cols + (c - rect.min[0]) as usize)
+    rect.index([c, r])
 }

@@ -53,19 +53,12 @@ impl RuleTable {
     /// Row-major index of a map tile's offset coordinate.
     #[inline]
     pub(crate) fn index(&self, [c, r]: [i32; 2]) -> Option<usize> {
-        let rect = self.rect;
-        rect.contains([c, r]).then(|| (r - rect.min[1]) as usize * self.columns() + (c - rect.min[0]) as usize)
+        self.rect.index([c, r])
     }
 
     /// Number of tiles.
     pub(crate) fn len(&self) -> usize {
         self.cost.len()
-    }
-
-    /// Number of columns.
-    #[inline]
-    fn columns(&self) -> usize {
-        (self.rect.max[0] - self.rect.min[0]) as usize
     }
 
     /// The cost of entering the tile at `index`.
