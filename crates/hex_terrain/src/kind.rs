@@ -48,23 +48,11 @@ impl Thresholds {
     #[must_use]
     #[inline]
     pub fn range(&self, kind: TileKind) -> (f32, f32) {
-        // Selects rather than a `match`, so that a loop over many vertices vectorises.
-        let (sea, land) = (kind == TileKind::Sea, kind == TileKind::Land);
-        let lo = if sea {
-            0.0
-        } else if land {
-            self.sea + self.tolerance
-        } else {
-            self.mountain + self.tolerance
-        };
-        let hi = if sea {
-            self.sea - self.tolerance
-        } else if land {
-            self.mountain - self.tolerance
-        } else {
-            1.0
-        };
-        (lo, hi)
+        match kind {
+            TileKind::Sea => (0.0, self.sea - self.tolerance),
+            TileKind::Land => (self.sea + self.tolerance, self.mountain - self.tolerance),
+            TileKind::Mountain => (self.mountain + self.tolerance, 1.0),
+        }
     }
 }
 

@@ -37,15 +37,7 @@ impl Thresholds {
     #[must_use]
     #[inline]
     pub fn border(&self, lowest: TileKind, highest: TileKind) -> f32 {
-        // Selects rather than a `match`, so that a loop over many vertices vectorises.
-        let middle = (self.sea + self.mountain) * 0.5;
-        if lowest == TileKind::Sea && highest == TileKind::Land {
-            self.sea
-        } else if lowest == TileKind::Land && highest == TileKind::Mountain {
-            self.mountain
-        } else {
-            middle
-        }
+        KindHeights::of(self).border(lowest, highest)
     }
 
     /// Pulls an inner vertex (ring `1..n`) of a tile of `kind` towards its range.
@@ -82,6 +74,56 @@ impl Thresholds {
                     h
                 }
             }
+        }
+    }
+}
+
+/// The heights manipulation selects among, as values: each kind's [`Thresholds::range`] and the
+/// border heights of [`Thresholds::border`]. A loop over many vertices selects among them;
+/// reading the thresholds' fields inside it instead, the compiler read them lane by lane, as
+/// gathers.
+#[derive(Clone, Copy)]
+struct KindHeights {
+    /// Sea's, land's and mountain's ranges.
+    ranges: [(f32, f32); 3],
+    sea_land: f32,
+    land_mountain: f32,
+    /// Sea next to mountain: the middle of the land range.
+    middle: f32,
+}
+
+impl KindHeights {
+    #[inline(always)]
+    fn of(t: &Thresholds) -> Self {
+        Self {
+            ranges: TileKind::ALL.map(|kind| t.range(kind)),
+            sea_land: t.sea,
+            land_mountain: t.mountain,
+            middle: (t.sea + t.mountain) * 0.5,
+        }
+    }
+
+    /// [`Thresholds::range`], selected (no `match`, so that it vectorises).
+    #[inline(always)]
+    fn range(&self, kind: TileKind) -> (f32, f32) {
+        let [sea, land, mountain] = self.ranges;
+        if kind == TileKind::Sea {
+            sea
+        } else if kind == TileKind::Land {
+            land
+        } else {
+            mountain
+        }
+    }
+
+    #[inline(always)]
+    fn border(&self, lowest: TileKind, highest: TileKind) -> f32 {
+        if lowest == TileKind::Sea && highest == TileKind::Land {
+            self.sea_land
+        } else if lowest == TileKind::Land && highest == TileKind::Mountain {
+            self.land_mountain
+        } else {
+            self.middle
         }
     }
 }
@@ -166,26 +208,10 @@ pub fn manipulate_lanes<const L: usize>(
     for (h, &raw) in h.iter_mut().zip(v.raw) {
         *h = thresholds.interpolate(raw);
     }
-    // The ranges and border heights as values, not fields read in the loop (which the compiler
-    // would read lane by lane, as gathers): a lane selects among them.
-    let [(sea_lo, sea_hi), (land_lo, land_hi), (mountain_lo, mountain_hi)] = TileKind::ALL.map(|k| thresholds.range(k));
-    let [sea_land, land_mountain, sea_mountain] = [
-        thresholds.border(TileKind::Sea, TileKind::Land),
-        thresholds.border(TileKind::Land, TileKind::Mountain),
-        thresholds.border(TileKind::Sea, TileKind::Mountain),
-    ];
-    let pick = |kind: TileKind, [sea, land, mountain]: [f32; 3]| {
-        if kind == TileKind::Sea {
-            sea
-        } else if kind == TileKind::Land {
-            land
-        } else {
-            mountain
-        }
-    };
+    let heights = KindHeights::of(thresholds);
     for l in 0..L {
         let (h, lo, hi, ring) = (h[l], v.lo[l], v.hi[l], v.ring[l]);
-        let (a, b) = (pick(lo, [sea_lo, land_lo, mountain_lo]), pick(lo, [sea_hi, land_hi, mountain_hi]));
+        let (a, b) = heights.range(lo);
         // An inner vertex has one tile (`lo == hi`): hex unity pulls it into that tile's range.
         let pulled = thresholds.pull_into(h, a, b, config.pull);
         let inner = if config.hex_unity && ring > 0 { pulled } else { h };
@@ -199,15 +225,7 @@ pub fn manipulate_lanes<const L: usize>(
             h
         };
         let one_kind = if config.edge_correction { clamped } else { h };
-        // `Thresholds::border`: between sea and land, land and mountain, else the middle.
-        let border = if lo == TileKind::Sea && hi == TileKind::Land {
-            sea_land
-        } else if lo == TileKind::Land && hi == TileKind::Mountain {
-            land_mountain
-        } else {
-            sea_mountain
-        };
-        let between = if config.hex_unity { border } else { h };
+        let between = if config.hex_unity { heights.border(lo, hi) } else { h };
         height[l] = if ring < n {
             inner
         } else if lo == hi {
