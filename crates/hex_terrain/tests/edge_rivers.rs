@@ -8,7 +8,10 @@
 use std::collections::{HashSet, VecDeque};
 
 use hex_terrain::hexx::{GridEdge, GridVertex, Hex};
-use hex_terrain::{MapConfig, MapSize, NoiseConfig, Orientation, RiverEdge, RiverModel, Terrain, TileKind};
+use hex_terrain::{
+    MapConfig, MapSize, MapType, MapTypeConfig, NoiseConfig, Orientation, RiverEdge, RiverEdit, RiverModel, Terrain,
+    TileEdit, TileKind, WaterLevel,
+};
 use proptest::prelude::*;
 
 mod common;
@@ -77,7 +80,7 @@ fn river_on(t: &Terrain, edge: GridEdge) -> Option<RiverEdge> {
 }
 
 /// Each tile's distance to the nearest sea tile, in steps over the map.
-fn sea_distance(t: &Terrain) -> std::collections::HashMap<Hex, u32> {
+fn sea_distance_of(t: &Terrain) -> std::collections::HashMap<Hex, u32> {
     let mut far = std::collections::HashMap::new();
     let mut queue = VecDeque::new();
     for tile in t.tiles() {
@@ -108,7 +111,7 @@ proptest! {
         let t = Terrain::new(config.clone()).unwrap();
         // No river runs through a tile center on such a map.
         prop_assert!(t.rivers().is_empty());
-        let far = sea_distance(&t);
+        let far = sea_distance_of(&t);
         let mut all = Vec::new();
         for tile in t.tiles() {
             prop_assert_eq!(t.river_flow(tile), Some(0.0));
@@ -189,6 +192,89 @@ proptest! {
             prop_assert_eq!(t.river_edges(tile), there.river_edges(tile));
         }
     }
+}
+
+/// Every river edge of the map, each once (named from the first of its two tiles visited).
+fn all_river_edges(t: &Terrain) -> Vec<RiverEdge> {
+    let mut seen = HashSet::new();
+    t.tiles().flat_map(|tile| t.river_edges(tile)).filter(|r| seen.insert(side(t, r.edge))).collect()
+}
+
+/// Whether a corner drains: its three tiles lie on the map and are land without a lake (a
+/// corner touching water or the map's edge is an outlet).
+fn drains(t: &Terrain, v: GridVertex) -> bool {
+    v.coordinates().into_iter().all(|c| on_map(t, c).is_some_and(|c| !wet(t, c)))
+}
+
+/// Whether a river edge touches one of `tile`'s corners that drain.
+fn river_at_a_corner(t: &Terrain, all: &[RiverEdge], tile: Hex) -> bool {
+    let corners: Vec<_> = tile.all_vertices().into_iter().filter(|&v| drains(t, v)).map(|v| corner(t, v)).collect();
+    all.iter().any(|r| r.edge.vertices().into_iter().any(|v| corners.contains(&corner(t, v))))
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(48))]
+
+    /// A river set by hand rises at its tile wherever that lies from the sea: a tile with a corner
+    /// that drains has a river edge at one of them, whatever flows in from upstream (a stream
+    /// dropped for rising near the sea, too).
+    #[test]
+    fn a_source_set_by_hand_always_rises(
+        config in config(),
+        sea_distance in 1u32..6,
+        picks in proptest::collection::vec(any::<u32>(), 1..24),
+    ) {
+        let mut config = config;
+        config.rivers.sea_distance = sea_distance;
+        let t = Terrain::new(config.clone()).unwrap();
+        // Sources on land, most of them near the sea, where streams are dropped for rising too
+        // near it.
+        let far = sea_distance_of(&t);
+        let land: Vec<Hex> = t.tiles().filter(|&h| !wet(&t, h)).collect();
+        let near: Vec<Hex> = land.iter().copied().filter(|h| far.get(h).is_some_and(|&d| d < sea_distance)).collect();
+        prop_assume!(!land.is_empty());
+        let sources: Vec<Hex> = picks
+            .iter()
+            .map(|&p| if p % 4 != 0 && !near.is_empty() { near[p as usize / 4 % near.len()] } else { land[p as usize % land.len()] })
+            .collect();
+        let mut edited = config;
+        for &tile in &sources {
+            let [col, row] = t.offset_of(tile);
+            if !edited.edits.iter().any(|e| e.at == (col, row)) {
+                edited.edits.push(TileEdit { river: Some(RiverEdit::Source), ..TileEdit::at((col, row)) });
+            }
+        }
+        let e = Terrain::new(edited).unwrap();
+        let all = all_river_edges(&e);
+        for &tile in &sources {
+            if tile.all_vertices().into_iter().any(|v| drains(&e, v)) {
+                prop_assert!(river_at_a_corner(&e, &all, tile), "no river rises at {:?}", e.offset_of(tile));
+            }
+        }
+    }
+}
+
+/// The case that was found: a source set by hand where a stream dropped for rising within
+/// `sea_distance` of the sea already flows into the tile's lowest corner.
+#[test]
+fn a_source_set_by_hand_rises_where_a_dropped_stream_flows_in() {
+    let mut c = MapConfig {
+        seed: 2_791_030_992,
+        size: MapSize::Bounded { x: 40, z: 19 },
+        map_type: Some(MapTypeConfig { kind: MapType::SmallContinents, water: WaterLevel::Low, mountains: 0.08, ranges: false }),
+        ..MapConfig::default()
+    };
+    c.layout.orientation = Orientation::Pointy;
+    c.rivers.enabled = true;
+    c.rivers.threshold = 1.395_399_6;
+    c.rivers.min_lake_depth = 0.0;
+    c.rivers.model = RiverModel::Edges;
+    c.rivers.sea_distance = 4;
+    c.edits.push(TileEdit { river: Some(RiverEdit::Source), ..TileEdit::at((22, 7)) });
+    let t = Terrain::new(c).unwrap();
+    let tile = t.tile_from_offset([22, 7]);
+    assert!(tile.all_vertices().into_iter().any(|v| drains(&t, v)), "the tile has a corner that drains");
+    assert!(river_at_a_corner(&t, &all_river_edges(&t), tile), "a river rises at the tile");
 }
 
 /// The World preset with edge rivers: how many river edges a land tile has, printed, and some.

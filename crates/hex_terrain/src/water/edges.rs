@@ -193,7 +193,8 @@ impl EdgeRivers {
 
     /// Which corners' downstream edges carry a river: those whose flow reaches the threshold,
     /// downstream of a source (a river corner no river flows into) whose tiles all lie at least
-    /// `sea_distance` from the sea, or set by hand.
+    /// `sea_distance` from the sea, or downstream of a corner set by hand (whatever flows into
+    /// it).
     fn rivers(&self, config: &RiverConfig, order: &[u32], inland: &[bool], by_hand: &[bool]) -> Vec<bool> {
         let (down, flow) = (&self.down, &self.flow);
         let n = down.len();
@@ -209,8 +210,10 @@ impl EdgeRivers {
             if !wet[c] {
                 continue;
             }
-            if !fed[c] {
-                keep[c] = by_hand[c] || inland[c];
+            // A river set by hand rises here even where a stream dropped for rising too near
+            // the sea already flows in.
+            if by_hand[c] || (!fed[c] && inland[c]) {
+                keep[c] = true;
             }
             let next = down[c] as usize;
             if keep[c] && wet[next] {
