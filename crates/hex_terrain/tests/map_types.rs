@@ -96,7 +96,8 @@ fn recount(t: &Terrain) -> Recount {
         landmasses: sizes.len(),
         continents: sizes.iter().filter(|&&s| continent(s)).count(),
         largest_share: share(sizes.first().copied().unwrap_or(0), land),
-        second_share: share(sizes.get(1).copied().unwrap_or(0), land),
+        // The second of the continents (islands are not continents): none with fewer than two.
+        second_share: share(sizes.iter().copied().filter(|&s| continent(s)).nth(1).unwrap_or(0), land),
         strait,
         largest_sea_share: share(biggest.map_or(0, |r| sea_sizes[&r]), n - land),
         largest_sea_edge_tiles: (0..n)
@@ -178,6 +179,31 @@ proptest! {
         c.map_type = Some(MapTypeConfig { kind, water, mountains, ranges });
         check_report(&Terrain::new(c).unwrap())?;
     }
+}
+
+/// The case that was found: on a map too small for two continents (8x8, Continents) the report
+/// named the second landmass' share the second continent's, and met the target. Over the first
+/// seeds, each with fewer than two continents and an island beside the largest landmass reports
+/// no second continent and misses the target.
+#[test]
+fn the_second_continent_is_a_continent() {
+    let mut cases = 0;
+    for seed in 0..64 {
+        let c = MapConfig::from_ron(&format!(
+            "(seed: {seed}, size: Bounded(x: 8, z: 8), chunk_size: (8, 16), \
+             map_type: Some((kind: Continents, water: Normal, mountains: 0.08, ranges: false)))"
+        ))
+        .unwrap();
+        let t = Terrain::new(c).unwrap();
+        let (report, r) = (t.map_type().unwrap(), recount(&t));
+        if r.continents < 2 && r.landmasses >= 2 {
+            cases += 1;
+            let second = report.check(MapTypeTarget::SecondContinentShare).unwrap();
+            assert_eq!(second.measured, 0.0, "seed {seed}: {report}");
+            assert!(!second.met(), "seed {seed}: {report}");
+        }
+    }
+    assert!(cases > 0, "no seed gave an island beside fewer than two continents");
 }
 
 /// The promise: every type meets its targets on every Civilization VI size, wrapping or not, at

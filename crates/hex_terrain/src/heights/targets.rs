@@ -29,7 +29,7 @@ pub enum MapTypeTarget {
     MountainShare,
     /// How many continents.
     Continents,
-    /// The second largest continent's share of the land.
+    /// The second largest continent's share of the land (0 with fewer than two continents).
     SecondContinentShare,
     /// The largest landmass' share of the land.
     LargestLandmassShare,
@@ -322,7 +322,9 @@ pub(crate) fn measure(config: &MapTypeConfig, graph: &TileGraph, sea: &[bool], m
         MapType::Pangaea => checks.push(check(MapTypeTarget::LargestLandmassShare, largest, 0.8, 1.0)),
         MapType::Continents => {
             checks.push(check(MapTypeTarget::Continents, continents as f64, 2.0, 3.0));
-            let second = share(sorted.get(1).copied().unwrap_or(0) as usize, land_tiles);
+            // The second continent, not the second landmass: an island is no continent.
+            let second = sorted.get(1).copied().filter(|&s| continent(s)).unwrap_or(0);
+            let second = share(second as usize, land_tiles);
             checks.push(check(MapTypeTarget::SecondContinentShare, second, 0.25, 1.0));
             checks.push(check(MapTypeTarget::NarrowestStrait, strait(), 2.0, f64::INFINITY));
         }
