@@ -21,6 +21,7 @@ use crate::chunk::TileRect;
 use crate::config::MAX_WORLD_TILE;
 use crate::geometry::Geometry;
 use crate::save::{self, FogState, MAX_OWNERS, MAX_SAVED_TILES, SaveError, SavedMap};
+use crate::sight::SightError;
 use crate::terrain::Terrain;
 
 /// The fog format version this crate writes; it reads every version up to it.
@@ -45,6 +46,14 @@ pub enum FogError {
         player: u32,
         /// How many players it has.
         players: u32,
+    },
+    /// A unit whose sight an unbounded world refuses ([`Terrain::field_of_view`]).
+    #[error("the unit on {tile:?}: {error}")]
+    Sight {
+        /// The unit's tile.
+        tile: Hex,
+        /// What is refused.
+        error: SightError,
     },
     /// A terrain of another map than the fog's.
     #[error("the terrain is of another map: its {field} is {terrain}, the fog's map's is {fog}")]
@@ -214,7 +223,8 @@ impl FogOfWar {
     ///
     /// # Errors
     /// [`FogError::Player`] for a player it does not have, [`FogError::OtherMap`] for a terrain
-    /// of another map; the fog is unchanged then.
+    /// of another map, [`FogError::Sight`] for a unit whose sight an unbounded world refuses
+    /// (past [`MAX_UNBOUNDED_SIGHT`](crate::MAX_UNBOUNDED_SIGHT)); the fog is unchanged then.
     pub fn update(
         &mut self,
         terrain: &Terrain,
@@ -228,12 +238,16 @@ impl FogOfWar {
         let Some(view) = self.views.get_mut(player as usize) else {
             return Err(FogError::Player { player, players });
         };
+        let viewers = units
+            .into_iter()
+            .map(|(tile, radius)| terrain.viewer(tile, radius).map_err(|error| FogError::Sight { tile, error }))
+            .collect::<Result<Vec<_>, _>>()?;
         for &at in &view.visible {
             view.cells.set(at, FogState::Explored);
         }
         view.visible.clear();
-        for (unit, radius) in units {
-            terrain.each_seen(unit, radius, |tile| {
+        for viewer in viewers.into_iter().flatten() {
+            terrain.each_seen(viewer, |tile| {
                 let [col, row] = terrain.offset_of(tile);
                 if view.cells.get((row, col)) != FogState::Visible {
                     view.cells.set((row, col), FogState::Visible);

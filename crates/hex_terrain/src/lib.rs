@@ -125,6 +125,7 @@ pub use props::{Marker, MarkerKind, Prop};
 pub use query::{MAX_RAY_STEPS, RayHit};
 pub use relief::Relief;
 pub use save::{FogState, Highlight, MAX_OWNERS, MAX_SAVED_TILES, SAVE_VERSION, SaveError, TileStateSave};
+pub use sight::{MAX_UNBOUNDED_SIGHT, SightError};
 pub use setup::{
     MAX_START_SEARCH_CHECKS, PlacedResource, PlacedWonder, Setup, SetupNote, SetupReport, SetupTimings, Shortfall,
     Stages, StartReport, TileSetup,

@@ -30,7 +30,14 @@ pub const MAX_PATH_TILES: usize = 1 << 18;
 ///   than that allows is not found (`None`), like an unreachable one.
 /// - **Turns** (Civilization V's rule): a unit with any movement points left may enter a tile it
 ///   can enter; it pays the step's cost, or all the points it has left when the cost is more. A
-///   turn ends when no points are left; the next turn starts with the full points.
+///   turn ends when no points are left; the next turn starts with the full points. The points
+///   left this turn may be more than the full points (a bonus for this turn): they are spent as
+///   they are.
+/// - **Wrapping maps**: a path walks the map's own tiles, across the seam where that is cheaper;
+///   there are no copies to choose between, only paths, and ties between paths go by the fixed
+///   order above.
+/// - **Any number**: a budget or points up to `u32::MAX` are answered without overflow, and the
+///   work is bounded by [`MAX_PATH_TILES`], never by the number.
 #[derive(Debug, Clone, PartialEq, Eq)]
 #[cfg_attr(feature = "bevy_reflect", derive(bevy_reflect::Reflect))]
 pub struct Path {
@@ -50,6 +57,9 @@ pub struct Turns {
     pub count: u32,
     /// The tile each turn ends on (the last is the goal).
     pub ends: Vec<Hex>,
+    /// For each tile of the path, the movement points left on reaching it, in its turn (the
+    /// first: the points left this turn): what a walk stopped there has not spent.
+    pub left: Vec<u32>,
 }
 
 /// A search's record of each tile it reached: the best cost so far and the tile it came from.
@@ -228,14 +238,15 @@ impl Terrain {
         out
     }
 
-    /// A path split into turns for a unit with `points` movement points a turn and `left` of
-    /// them this turn (Civilization V's rule, on [`Path`]); `None` when `points` is 0 and
-    /// the path has a step, or a tile of it cannot be entered.
+    /// A path split into turns for a unit with `points` movement points a turn and `left` this
+    /// turn (Civilization V's rule, on [`Path`]; `left` may be more than `points`, a bonus spent
+    /// this turn); `None` when the path has a step and neither `left` nor `points` can pay for
+    /// it (both 0, or `points` 0 once `left` is spent), or a tile of it cannot be entered.
     #[must_use]
     pub fn turns(&self, path: &Path, points: u32, left: u32) -> Option<Turns> {
         let mut turn = 0u32;
-        let mut remaining = left.min(points);
-        let mut turns = Turns { turn: vec![0], count: 0, ends: Vec::new() };
+        let mut remaining = left;
+        let mut turns = Turns { turn: vec![0], count: 0, ends: Vec::new(), left: vec![left] };
         for (i, &tile) in path.tiles.iter().enumerate().skip(1) {
             if remaining == 0 {
                 if points == 0 {
@@ -248,6 +259,7 @@ impl Terrain {
             let cost = self.step_cost(path.tiles[i - 1], tile)?;
             remaining -= cost.min(remaining);
             turns.turn.push(turn);
+            turns.left.push(remaining);
         }
         if path.tiles.len() > 1 {
             turns.ends.push(*path.tiles.last().expect("a step"));

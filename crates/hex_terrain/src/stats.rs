@@ -41,15 +41,20 @@ pub struct Landmass {
     pub kind: LandmassKind,
 }
 
-/// The rivers of a map.
+/// The rivers of a map, by either river model ([`RiverModel`](crate::RiverModel)).
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
 #[cfg_attr(feature = "bevy_reflect", derive(bevy_reflect::Reflect))]
 pub struct RiverStats {
-    /// River systems: one a mouth.
+    /// River systems: one a mouth (rivers through tile centers: a river tile whose water leaves
+    /// the rivers; rivers on edges: a river's last edge, whose downstream corner no river leaves).
     pub systems: u32,
-    /// Tiles carrying a river.
+    /// Tiles on a river: carrying one (through tile centers) or with a river on an edge (on
+    /// edges).
     pub tiles: u32,
-    /// The longest river, in tiles from a source to its mouth.
+    /// River edges (rivers on edges; 0 for rivers through tile centers).
+    pub edges: u32,
+    /// The longest river from a source to its mouth: in tiles through tile centers, in edges on
+    /// edges.
     pub longest: u32,
 }
 
@@ -71,6 +76,8 @@ pub struct RiverStats {
 ///   the longest range's length end to end.
 /// - A **river system** ends at one mouth: a river tile whose water leaves the rivers (into the
 ///   sea, a lake or off the map). A river's length counts its tiles from a source to its mouth.
+///   Rivers on tile edges count the same way in edges: a system ends at a last edge, a length is
+///   the edges from a source to the mouth, and a tile is on a river when an edge of it is.
 #[derive(Debug, Clone, PartialEq)]
 #[cfg_attr(feature = "bevy_reflect", derive(bevy_reflect::Reflect))]
 pub struct MapStats {
@@ -283,6 +290,10 @@ impl MapStats {
 
 /// The river systems, river tiles and the longest river.
 fn rivers(terrain: &Terrain) -> RiverStats {
+    if let Some(network) = terrain.pipeline().table().and_then(|t| t.edge_rivers()) {
+        let [systems, tiles, edges, longest] = network.figures();
+        return RiverStats { systems, tiles, edges, longest };
+    }
     let rivers = terrain.rivers();
     let by_tile: HashMap<Hex, usize> = rivers.iter().enumerate().map(|(i, r)| (r.hex, i)).collect();
     let next = |i: usize| rivers[i].downstream.and_then(|d| by_tile.get(&d).copied());
@@ -308,6 +319,7 @@ fn rivers(terrain: &Terrain) -> RiverStats {
     RiverStats {
         systems: (0..rivers.len()).filter(|&i| next(i).is_none()).count() as u32,
         tiles: rivers.len() as u32,
+        edges: 0,
         longest: to_mouth.iter().copied().max().unwrap_or(0),
     }
 }
@@ -357,11 +369,16 @@ impl std::fmt::Display for MapStats {
             }
             None => writeln!(f, "coast: {} tile edges; one continent or none: no strait", self.coast_edges)?,
         }
-        write!(
-            f,
-            "rivers: {} systems, {} tiles, the longest {} tiles; {} lakes",
-            self.rivers.systems, self.rivers.tiles, self.rivers.longest, self.lakes
-        )?;
+        let r = &self.rivers;
+        if r.edges > 0 {
+            write!(
+                f,
+                "rivers: {} systems on {} edges, {} tiles on a river, the longest {} edges; {} lakes",
+                r.systems, r.edges, r.tiles, r.longest, self.lakes
+            )?;
+        } else {
+            write!(f, "rivers: {} systems, {} tiles, the longest {} tiles; {} lakes", r.systems, r.tiles, r.longest, self.lakes)?;
+        }
         if !self.start_landmass_tiles.is_empty() {
             let starts: Vec<String> =
                 self.start_landmass_tiles.iter().enumerate().map(|(p, n)| format!("player {p} {n}")).collect();

@@ -82,7 +82,7 @@ proptest! {
                     *state = FogState::Explored;
                 }
                 let visible: BTreeSet<(i32, i32)> =
-                    units.iter().flat_map(|&(u, s)| t.field_of_view(u, s)).map(|h| key(&t, h)).collect();
+                    units.iter().flat_map(|&(u, s)| t.field_of_view(u, s).unwrap()).map(|h| key(&t, h)).collect();
                 for &at in &visible {
                     view.insert(at, FogState::Visible);
                 }

@@ -112,9 +112,11 @@ fn check_path(t: &Terrain, path: &Path, from: Hex, to: Hex) -> Result<(), TestCa
     Ok(())
 }
 
-/// The turn rule, simulated: enter with any points left, paying the cost or all that is left.
-fn simulate(t: &Terrain, path: &Path, points: u32, left: u32) -> (Vec<u32>, u32) {
-    let (mut turn, mut have, mut turns) = (0, left.min(points), vec![0]);
+/// The turn rule, simulated: enter with any points left (this turn's as given, a bonus above the
+/// full points too), paying the cost or all that is left; the turn of each tile, the points left
+/// there, and the turns.
+fn simulate(t: &Terrain, path: &Path, points: u32, left: u32) -> (Vec<u32>, Vec<u32>, u32) {
+    let (mut turn, mut have, mut turns, mut lefts) = (0, left, vec![0], vec![left]);
     for pair in path.tiles.windows(2) {
         if have == 0 {
             turn += 1;
@@ -122,9 +124,10 @@ fn simulate(t: &Terrain, path: &Path, points: u32, left: u32) -> (Vec<u32>, u32)
         }
         have = have.saturating_sub(step(t, pair[0], pair[1]).unwrap());
         turns.push(turn);
+        lefts.push(have);
     }
     let count = if path.tiles.len() > 1 { turn + 1 } else { 0 };
-    (turns, count)
+    (turns, lefts, count)
 }
 
 proptest! {
@@ -134,8 +137,8 @@ proptest! {
     fn paths_and_reach_equal_dijkstra_and_turns_follow_the_rule(
         config in config(),
         picks in prop::collection::vec((0i32..40, 0i32..30), 2..6),
-        budget in 0u32..12,
-        (points, left) in (1u32..6, 0u32..6),
+        budget in prop_oneof![0u32..12, Just(u32::MAX), u32::MAX - 8..=u32::MAX],
+        (points, left) in (prop_oneof![1u32..6, Just(u32::MAX)], prop_oneof![0u32..10, Just(u32::MAX)]),
     ) {
         let t = Terrain::new(config).unwrap();
         let tile = |(c, r): (i32, i32)| t.tile_from_offset([c, r]);
@@ -180,8 +183,9 @@ proptest! {
                     let there = there.join().unwrap();
                     prop_assert_eq!(there.as_ref(), Some(path), "the same path on another thread");
                     let turns = t.turns(path, points, left).unwrap();
-                    let (each, count) = simulate(&t, path, points, left);
+                    let (each, lefts, count) = simulate(&t, path, points, left);
                     prop_assert_eq!(&turns.turn, &each);
+                    prop_assert_eq!(&turns.left, &lefts);
                     prop_assert_eq!(turns.count, count);
                     prop_assert_eq!(turns.ends.len() as u32, count);
                     prop_assert_eq!(turns.ends.last().copied(), (path.tiles.len() > 1).then_some(own));
@@ -249,5 +253,34 @@ fn turns_pay_what_is_left_when_a_tile_costs_more() {
     let turns = t.turns(&path, 2, 2).unwrap();
     assert_eq!(turns.turn, (0..path.tiles.len() as u32).map(|i| i.saturating_sub(1)).collect::<Vec<_>>());
     assert_eq!(turns.count, path.tiles.len() as u32 - 1);
+    assert_eq!(turns.left, vec![2, 0, 0, 0, 0]);
     assert!(t.turns(&path, 0, 0).is_none());
+    // Seven points left this turn, more than the two of a full turn: a bonus, spent as it is.
+    assert_eq!(path.tiles.len(), 5);
+    let bonus = t.turns(&path, 2, 7).unwrap();
+    assert_eq!(bonus.turn, vec![0, 0, 0, 0, 1]);
+    assert_eq!(bonus.left, vec![7, 4, 1, 0, 0]);
+    assert_eq!(bonus.ends, vec![path.tiles[3], path.tiles[4]]);
+    // No points a turn: what is left this turn walks as far as it pays, then no more.
+    assert!(t.turns(&path, 0, 7).is_none());
+    let short = hex_terrain::Path { tiles: path.tiles[..3].to_vec(), cost: 6 };
+    assert_eq!(t.turns(&short, 0, 7).unwrap().left, vec![7, 4, 1]);
+}
+
+/// Any budget, on an unbounded world too: the reach stops at `MAX_PATH_TILES` tiles, in order of
+/// cost, without overflow (this runs in the overflow-checked build too), and a goal that cannot
+/// be reached is searched for no longer.
+#[test]
+fn the_largest_budget_is_bounded_by_the_search() {
+    let config = MapConfig::from_ron("(size: Unbounded, movement: (embark: Some(1)))").unwrap();
+    let t = Terrain::new(config).unwrap();
+    let from = (0..).map(|c| t.tile_from_offset([c, 0])).find(|&h| t.move_cost(h).is_some()).unwrap();
+    let reach = t.reachable(from, u32::MAX);
+    assert_eq!(reach.len(), hex_terrain::MAX_PATH_TILES);
+    assert_eq!(reach[0], (from, 0));
+    assert!(reach.windows(2).all(|w| w[0].1 <= w[1].1), "in order of cost");
+    let far = t.tile_from_offset([1 << 20, 0]);
+    if t.move_cost(far).is_some() {
+        assert!(t.path(from, far).is_none(), "beyond the search");
+    }
 }

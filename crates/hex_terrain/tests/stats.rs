@@ -8,7 +8,7 @@ use std::collections::HashMap;
 use hex_terrain::hexx::Hex;
 use hex_terrain::{
     Biome, CONTINENT_MIN_SHARE, CONTINENT_MIN_TILES, LandmassKind, MapConfig, MapSize, MapStats, MapType,
-    MapTypeConfig, NoiseConfig, SetupConfig, Shape, Terrain, TileKind, WaterLevel,
+    MapTypeConfig, NoiseConfig, RiverModel, SetupConfig, Shape, Terrain, TileKind, WaterLevel,
 };
 use proptest::prelude::*;
 
@@ -26,6 +26,7 @@ prop_compose! {
         shape in 0u8..4,
         climate in any::<bool>(),
         rivers in any::<bool>(),
+        on_edges in any::<bool>(),
         setup in any::<bool>(),
         wrap in any::<bool>(),
         map_type in prop::option::weighted(0.3, (0usize..6, 0usize..3, any::<bool>())),
@@ -42,6 +43,9 @@ prop_compose! {
         c.terrain.mountain_threshold = (sea + 0.25).min(0.9);
         c.climate.enabled = climate;
         c.rivers.enabled = rivers;
+        if on_edges {
+            c.rivers.model = RiverModel::Edges;
+        }
         if setup {
             c.setup = Some(SetupConfig { players: 2, min_distance: 2, ..SetupConfig::default() });
         }
@@ -170,7 +174,12 @@ fn check(t: &Terrain) -> Result<(), TestCaseError> {
         prop_assert_eq!(stats.biomes.iter().find(|b| b.0 == biome).map_or(0, |b| b.1), n);
     }
 
-    // Rivers: walked down from every source.
+    // Rivers on edges: walked down from every edge.
+    if t.config().rivers.model == RiverModel::Edges {
+        prop_assert_eq!(stats.rivers, edge_rivers(t));
+        prop_assert!(t.rivers().is_empty());
+    }
+    // Rivers through tile centers: walked down from every source.
     let rivers = t.rivers();
     let is_river = |h: Hex| rivers.iter().any(|r| r.hex == h);
     let mut longest = 0;
@@ -183,6 +192,11 @@ fn check(t: &Terrain) -> Result<(), TestCaseError> {
         }
         longest = longest.max(length);
     }
+    if t.config().rivers.model == RiverModel::Edges {
+        prop_assert_eq!(stats.lakes, t.hydrology().map_or(0, |h| h.lake_count() as u32));
+        return Ok(());
+    }
+    prop_assert_eq!(stats.rivers.edges, 0);
     prop_assert_eq!(stats.rivers.tiles, rivers.len() as u32);
     prop_assert_eq!(stats.rivers.longest, longest);
     prop_assert_eq!(
@@ -198,6 +212,51 @@ fn check(t: &Terrain) -> Result<(), TestCaseError> {
         prop_assert_eq!(&stats.start_landmass_tiles, &starts);
     }
     Ok(())
+}
+
+/// Rivers on edges, counted from `river_edges` alone: each edge once (named by the two tiles it
+/// lies between), its corners by the tiles they join; a system ends at an edge whose downstream
+/// corner no river edge leaves; a river's length is the edges walked down from it to there.
+fn edge_rivers(t: &Terrain) -> hex_terrain::RiverStats {
+    let on_map = |h: Hex| t.wrap_tile(h).unwrap_or(h);
+    let corner = |v: hex_terrain::hexx::GridVertex| {
+        let mut tiles = v.coordinates().map(on_map);
+        tiles.sort_by_key(|h| (h.x, h.y));
+        tiles
+    };
+    let mut seen = std::collections::HashSet::new();
+    let mut down: HashMap<[Hex; 3], [Hex; 3]> = HashMap::new();
+    let mut tiles = 0;
+    for tile in t.tiles() {
+        let edges = t.river_edges(tile);
+        tiles += u32::from(!edges.is_empty());
+        for r in edges {
+            let mut side = [on_map(r.edge.origin), on_map(r.edge.destination())];
+            side.sort_by_key(|h| (h.x, h.y));
+            if !seen.insert(side) {
+                continue;
+            }
+            let [p, q] = r.edge.vertices();
+            let upstream = if corner(r.downstream) == corner(q) { p } else { q };
+            assert!(down.insert(corner(upstream), corner(r.downstream)).is_none(), "one edge leaves a corner");
+        }
+    }
+    let mut longest = 0;
+    for &start in down.keys() {
+        let (mut at, mut length) = (start, 0);
+        while let Some(&next) = down.get(&at) {
+            length += 1;
+            at = next;
+            assert!(length <= down.len(), "a river loops");
+        }
+        longest = longest.max(length as u32);
+    }
+    hex_terrain::RiverStats {
+        systems: down.values().filter(|to| !down.contains_key(*to)).count() as u32,
+        tiles,
+        edges: down.len() as u32,
+        longest,
+    }
 }
 
 proptest! {
@@ -229,4 +288,25 @@ fn two_continents_across_a_strait() {
     let strait = stats.narrowest_strait.unwrap();
     assert!((1..=4).contains(&strait), "the strait is three tiles wide: {strait}");
     check(&t).unwrap();
+}
+
+/// The maps whose rivers run on edges count them: the Jacksboro map and the World preset with
+/// edge rivers have river systems, edges and tiles on a river, as walked from `river_edges`.
+#[test]
+fn edge_river_maps_count_their_rivers() {
+    let maps = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../bevy_hex_terrain/assets/maps");
+    let jacksboro = MapConfig::load(maps.join("jacksboro.map.ron")).unwrap();
+    assert_eq!(jacksboro.rivers.model, RiverModel::Edges);
+    let mut world = MapConfig::load(maps.join("world.map.ron")).unwrap();
+    world.rivers.model = RiverModel::Edges;
+    for (name, mut config) in [("jacksboro", jacksboro), ("world", world)] {
+        config.setup = None;
+        let t = Terrain::new(config).unwrap();
+        let stats = MapStats::measure(&t).unwrap();
+        let r = stats.rivers;
+        println!("{name}: {r:?}");
+        assert!(r.systems > 0 && r.edges >= r.systems && r.tiles > r.edges / 2 && r.longest > 1, "{name}: {r:?}");
+        assert_eq!(r, edge_rivers(&t), "{name}");
+        assert!(stats.to_string().contains(&format!("{} systems on {} edges", r.systems, r.edges)), "{stats}");
+    }
 }

@@ -106,7 +106,7 @@ fn main() {
     let reach = 3 + terrain.config().sight.mountain_bonus;
     println!(
         "field of view from a mountain (ours {} tiles, hexx {}):",
-        terrain.field_of_view(mountain, 3).len(),
+        terrain.field_of_view(mountain, 3).expect("a bounded map").len(),
         range_fov(mountain, reach, |h| h != mountain && blocks.contains(&h)).len()
     );
     row(

@@ -14,8 +14,8 @@ use std::time::Instant;
 
 use clap::{Parser, Subcommand};
 use hex_terrain::{
-    Biome, ChunkMesh, HeightSourceConfig, ManipulationConfig, MapConfig, MapSize, MapStats, Sharpness, Terrain,
-    TileKind, WaterLevel,
+    Biome, ChunkMesh, HeightSourceConfig, ManipulationConfig, MapConfig, MapSize, MapStats, RiverModel, Sharpness,
+    Terrain, TileKind, WaterLevel,
 };
 
 /// Generate, preview, export and measure 3D hexagonal tiled terrain.
@@ -356,7 +356,19 @@ fn stats(path: &Path) -> CliResult<()> {
             }
         }
     }
-    if let Some(h) = t.hydrology() {
+    let edge_rivers = MapStats::measure(&t).filter(|_| t.config().rivers.model == RiverModel::Edges);
+    if let (Some(h), Some(stats)) = (t.hydrology(), &edge_rivers) {
+        let r = stats.rivers;
+        println!(
+            "water: rivers on {} tile edges ({} systems, {} tiles on a river, the longest {} edges); {} lakes ({} tiles)",
+            r.edges,
+            r.systems,
+            r.tiles,
+            r.longest,
+            h.lake_count(),
+            mesh.tiles.iter().filter(|t| t.lake.is_some()).count()
+        );
+    } else if let Some(h) = t.hydrology() {
         let rivers = t.rivers();
         let sources = rivers.iter().filter(|r| r.upstream.is_empty()).count();
         let mouths = rivers.iter().filter(|r| r.downstream.is_none_or(|d| t.river(d).is_none())).count();

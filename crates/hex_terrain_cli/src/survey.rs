@@ -96,10 +96,10 @@ pub fn run(path: &Path, mut config: MapConfig, options: &Options) -> CliResult<(
         seeds,
         start.elapsed().as_secs_f64()
     );
-    println!("{:<34} {:>10} {:>10} {:>10}", "statistic", "min", "median", "max");
+    println!("{:<40} {:>10} {:>10} {:>10}", "statistic", "min", "median", "max");
     let percent = |f: fn(&MapStats) -> f64| move |r: &Row| 100.0 * f(&r.stats);
     let count = |f: fn(&MapStats) -> u32| move |r: &Row| f64::from(f(&r.stats));
-    let lines: [(&str, Statistic); 16] = [
+    let lines: [(&str, Statistic); 18] = [
         ("water share (%)", Box::new(percent(MapStats::water_share))),
         ("land tiles", Box::new(count(|s| s.land_tiles))),
         ("continents", Box::new(count(|s| s.continents().count() as u32))),
@@ -111,7 +111,9 @@ pub fn run(path: &Path, mut config: MapConfig, options: &Options) -> CliResult<(
         ("mountain neighbors a mountain", Box::new(|r: &Row| r.stats.mountain_neighbors())),
         ("longest range (tiles end to end)", Box::new(count(|s| s.longest_range))),
         ("river systems", Box::new(count(|s| s.rivers.systems))),
-        ("longest river (tiles)", Box::new(count(|s| s.rivers.longest))),
+        ("tiles on a river", Box::new(count(|s| s.rivers.tiles))),
+        ("river edges (rivers on edges)", Box::new(count(|s| s.rivers.edges))),
+        ("longest river (tiles; on edges, edges)", Box::new(count(|s| s.rivers.longest))),
         ("lakes", Box::new(count(|s| s.lakes))),
         ("narrowest strait (tiles)", Box::new(|r: &Row| r.stats.narrowest_strait.map_or(f64::NAN, f64::from))),
         ("compile the map (ms)", Box::new(|r: &Row| r.compile_ms)),
@@ -128,9 +130,9 @@ pub fn run(path: &Path, mut config: MapConfig, options: &Options) -> CliResult<(
                 } else {
                     String::new()
                 };
-                println!("{name:<34} {min:>10.1} {median:>10.1} {max:>10.1}{shown}");
+                println!("{name:<40} {min:>10.1} {median:>10.1} {max:>10.1}{shown}");
             }
-            _ => println!("{name:<34} {:>10}", "none"),
+            _ => println!("{name:<40} {:>10}", "none"),
         }
     }
     let reports: Vec<&MapTypeReport> = rows.iter().filter_map(|r| r.map_type.as_ref()).collect();

@@ -313,6 +313,20 @@ fn stats_prints_the_map_statistics() {
     }
 }
 
+/// `stats` on a map whose rivers run on tile edges counts them (it printed none): the Jacksboro
+/// map's river edges, systems and tiles, as `MapStats` measures them.
+#[test]
+fn stats_counts_rivers_on_edges() {
+    let path = repo().join("assets/maps/jacksboro.map.ron");
+    let out = ok(&["stats", path.to_str().unwrap()]);
+    let terrain = Terrain::new(MapConfig::load(&path).unwrap()).unwrap();
+    let r = hex_terrain::MapStats::measure(&terrain).unwrap().rivers;
+    assert!(r.edges > 0 && r.systems > 0, "{r:?}");
+    let needle = format!("water: rivers on {} tile edges ({} systems, {} tiles on a river", r.edges, r.systems, r.tiles);
+    assert!(out.contains(&needle), "{needle:?} missing from {out}");
+    assert!(out.contains(&format!("rivers: {} systems on {} edges", r.systems, r.edges)), "{out}");
+}
+
 /// `survey` runs seeds in a row and prints each statistic's min, median and max, which are
 /// those of the maps it made; bad arguments are refused by name.
 #[test]

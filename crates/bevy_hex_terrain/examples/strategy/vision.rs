@@ -27,7 +27,8 @@ pub const HOME_RADIUS: u32 = 3;
 /// mountains block the view, hills and forests see one tile farther, mountains two) with
 /// [`SIGHT`].
 pub fn sight(map: &HexMap, from: Hex) -> HashSet<Hex> {
-    map.field_of_view(from, SIGHT).into_iter().collect()
+    // A reach of at most `SIGHT` plus the bonus of a mountain is within every map's limit.
+    map.field_of_view(from, SIGHT).unwrap_or_default().into_iter().collect()
 }
 
 /// Every player's fog of war, for the map it was made for.

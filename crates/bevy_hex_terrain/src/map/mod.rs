@@ -308,9 +308,12 @@ impl HexMap {
 
     /// The tiles a unit on `from` sees with sight `radius`, by the map's sight rule
     /// ([`Terrain::field_of_view`](hex_terrain::Terrain::field_of_view): higher tiles and
-    /// mountains block, tall tiles and mountains see farther).
-    #[must_use]
-    pub fn field_of_view(&self, from: Hex, radius: u32) -> Vec<Hex> {
+    /// mountains block, tall tiles and mountains see farther; any radius on a bounded map).
+    ///
+    /// # Errors
+    /// [`SightError`](hex_terrain::SightError) on an unbounded world, for a radius that with the
+    /// viewer's bonus passes [`MAX_UNBOUNDED_SIGHT`](hex_terrain::MAX_UNBOUNDED_SIGHT).
+    pub fn field_of_view(&self, from: Hex, radius: u32) -> Result<Vec<Hex>, hex_terrain::SightError> {
         self.terrain.field_of_view(from, radius)
     }
 

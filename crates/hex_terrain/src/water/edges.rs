@@ -233,6 +233,35 @@ impl EdgeRivers {
         (tile, usize::from(direction))
     }
 
+    /// The network's figures: river systems (one a last edge, whose downstream corner no
+    /// river leaves), map tiles with a river edge, river edges, and the most edges from a source
+    /// to its mouth.
+    pub(crate) fn figures(&self) -> [u32; 4] {
+        let n = self.down.len();
+        let river = |c: usize| self.river[c];
+        let next = |c: usize| Some(self.down[c] as usize).filter(|&d| self.down[c] != NONE && river(d));
+        // Edges from each river corner to its mouth, found walking down from each corner until a
+        // corner already measured (courses never loop).
+        let mut to_mouth = vec![0u32; n];
+        let mut walk = Vec::new();
+        for start in (0..n).filter(|&c| river(c)) {
+            let mut at = Some(start);
+            while let Some(c) = at.filter(|&c| to_mouth[c] == 0) {
+                walk.push(c);
+                at = next(c);
+            }
+            let mut length = at.map_or(0, |c| to_mouth[c]);
+            while let Some(c) = walk.pop() {
+                length += 1;
+                to_mouth[c] = length;
+            }
+        }
+        let systems = (0..n).filter(|&c| river(c) && next(c).is_none()).count() as u32;
+        let tiles = self.edges.iter().filter(|&&e| e != 0).count() as u32;
+        let edges = (0..n).filter(|&c| river(c)).count() as u32;
+        [systems, tiles, edges, to_mouth.into_iter().max().unwrap_or(0)]
+    }
+
     /// The river edges of map tile `i`, a bit for each neighbor direction.
     #[must_use]
     #[inline]
