@@ -125,11 +125,11 @@ pub use props::{Marker, MarkerKind, Prop};
 pub use query::{MAX_RAY_STEPS, RayHit};
 pub use relief::Relief;
 pub use save::{FogState, Highlight, MAX_OWNERS, MAX_SAVED_TILES, SAVE_VERSION, SaveError, TileStateSave};
-pub use sight::{MAX_UNBOUNDED_SIGHT, SightError};
 pub use setup::{
     MAX_START_SEARCH_CHECKS, PlacedResource, PlacedWonder, Setup, SetupNote, SetupReport, SetupTimings, Shortfall,
     Stages, StartReport, TileSetup,
 };
+pub use sight::{MAX_UNBOUNDED_SIGHT, SightError};
 pub use stats::{CONTINENT_MIN_SHARE, CONTINENT_MIN_TILES, Landmass, LandmassKind, MapStats, RiverStats};
 pub use table::TileTable;
 pub use terrain::Terrain;

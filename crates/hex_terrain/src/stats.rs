@@ -377,7 +377,11 @@ impl std::fmt::Display for MapStats {
                 r.systems, r.edges, r.tiles, r.longest, self.lakes
             )?;
         } else {
-            write!(f, "rivers: {} systems, {} tiles, the longest {} tiles; {} lakes", r.systems, r.tiles, r.longest, self.lakes)?;
+            write!(
+                f,
+                "rivers: {} systems, {} tiles, the longest {} tiles; {} lakes",
+                r.systems, r.tiles, r.longest, self.lakes
+            )?;
         }
         if !self.start_landmass_tiles.is_empty() {
             let starts: Vec<String> =

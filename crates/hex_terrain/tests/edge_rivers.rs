@@ -261,7 +261,12 @@ fn a_source_set_by_hand_rises_where_a_dropped_stream_flows_in() {
     let mut c = MapConfig {
         seed: 2_791_030_992,
         size: MapSize::Bounded { x: 40, z: 19 },
-        map_type: Some(MapTypeConfig { kind: MapType::SmallContinents, water: WaterLevel::Low, mountains: 0.08, ranges: false }),
+        map_type: Some(MapTypeConfig {
+            kind: MapType::SmallContinents,
+            water: WaterLevel::Low,
+            mountains: 0.08,
+            ranges: false,
+        }),
         ..MapConfig::default()
     };
     c.layout.orientation = Orientation::Pointy;

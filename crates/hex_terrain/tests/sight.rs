@@ -52,7 +52,10 @@ fn height(t: &Terrain, tile: Hex) -> Option<u8> {
 /// column) of two equally near; the tile itself on a map that does not wrap.
 fn nearest_copy(t: &Terrain, tile: Hex, from: Hex) -> Hex {
     let Some(wrap) = t.wrap() else { return tile };
-    (-2..=2).map(|k| tile + wrap.tile_shift * k).min_by_key(|&c| (from.unsigned_distance_to(c), t.offset_of(c)[0])).unwrap()
+    (-2..=2)
+        .map(|k| tile + wrap.tile_shift * k)
+        .min_by_key(|&c| (from.unsigned_distance_to(c), t.offset_of(c)[0]))
+        .unwrap()
 }
 
 /// The field of view by the rule, tile by tile; `reach` is the radius plus the viewer's bonus.

@@ -322,7 +322,8 @@ fn stats_counts_rivers_on_edges() {
     let terrain = Terrain::new(MapConfig::load(&path).unwrap()).unwrap();
     let r = hex_terrain::MapStats::measure(&terrain).unwrap().rivers;
     assert!(r.edges > 0 && r.systems > 0, "{r:?}");
-    let needle = format!("water: rivers on {} tile edges ({} systems, {} tiles on a river", r.edges, r.systems, r.tiles);
+    let needle =
+        format!("water: rivers on {} tile edges ({} systems, {} tiles on a river", r.edges, r.systems, r.tiles);
     assert!(out.contains(&needle), "{needle:?} missing from {out}");
     assert!(out.contains(&format!("rivers: {} systems on {} edges", r.systems, r.edges)), "{out}");
 }
