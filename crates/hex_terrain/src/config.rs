@@ -5,6 +5,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::error::LoadError;
 
+mod check;
 mod climate;
 mod edits;
 mod file;

@@ -196,7 +196,8 @@ pub enum RiverModel {
 impl super::MapConfig {
     /// Checks the climate and river settings (part of [`super::MapConfig::validate`]).
     pub(super) fn validate_climate(&self) -> Result<(), crate::error::ConfigError> {
-        use super::validate::{check, check_noise, finite_in};
+        use super::check::{check, finite_in};
+        use super::validate::check_noise;
         let c = &self.climate;
         check_noise("climate.moisture", &c.moisture)?;
         let unit = |v: f32| finite_in(f64::from(v), 0.0, 1.0);

@@ -4,7 +4,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::validate::{check, finite_in};
+use super::check::{check, finite_in};
 use super::{MAX_WORLD_TILE, MapSize, RiverConfig};
 use crate::error::ConfigError;
 use crate::vocab::{Biome, TileKind};

@@ -1,6 +1,7 @@
 //! Validation: every field of a [`MapConfig`] against its allowed range, and the limits that
 //! keep any accepted config from taking minutes or gigabytes.
 
+use super::check::{check, finite_in};
 use super::{
     HeightSourceConfig, MAX_MOUNTAIN_SHARE, MAX_MOVE_COST, MAX_SIGHT_BONUS, MapConfig, MapSize, NoiseConfig,
     Orientation, Shape,
@@ -29,19 +30,6 @@ pub const MAX_CHUNK_BYTES: u64 = 256 << 20;
 pub const MAX_MAP_BYTES: u64 = 12 << 30;
 /// Bytes a mesh vertex and its share of the index buffer take, about.
 const BYTES_PER_VERTEX: u64 = 3 * 4 + 3 * 4 + 2 * 4 + 4 + 4 + 2 * 3 * 4;
-
-pub(super) fn check(
-    ok: bool,
-    field: &str,
-    value: impl std::fmt::Display,
-    allowed: impl Into<String>,
-) -> Result<(), ConfigError> {
-    if ok { Ok(()) } else { Err(ConfigError::new(field, value.to_string(), allowed.into())) }
-}
-
-pub(super) fn finite_in(v: f64, lo: f64, hi: f64) -> bool {
-    v.is_finite() && v >= lo && v <= hi
-}
 
 impl MapConfig {
     /// Checks every field against its allowed range (a game setup's fit to the generated map is

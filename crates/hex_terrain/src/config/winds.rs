@@ -92,7 +92,7 @@ impl Default for WindPattern {
 impl super::MapConfig {
     /// Checks `climate.winds` (part of [`super::MapConfig::validate`]).
     pub(super) fn validate_winds(&self, w: &WindConfig) -> Result<(), crate::error::ConfigError> {
-        use super::validate::{check, finite_in};
+        use super::check::{check, finite_in};
         check(
             self.climate.enabled,
             "climate.winds",

@@ -14,8 +14,9 @@
 use hexx::Hex;
 
 use super::grid::{GridShape, Points};
-use super::job::Job;
 use super::lanes;
+use super::parallel::Split;
+use crate::heights::Kernel;
 use crate::lattice::Lattice;
 
 /// Tiles a task of the pass takes together.
@@ -88,46 +89,52 @@ impl Rows {
     }
 }
 
-impl Job<'_> {
-    /// Triangle indices, tile by tile, from the template's triangles and the grid.
-    pub(super) fn indices_pass(&self, points: &Points, indices: &mut [u32]) {
-        let per_tile = self.rows.row_of.len();
-        self.split.for_each_chunk(indices, per_tile * TILES, 1, |g, out| {
+impl Rows {
+    /// Triangle indices of `tiles`, tile by tile, from the template's triangles and the grid, on
+    /// the job's `split` with loops compiled for its `kernel`.
+    pub(super) fn indices_pass(
+        &self,
+        split: Split,
+        kernel: Kernel,
+        lattice: &Lattice,
+        tiles: &[Hex],
+        points: &Points,
+        indices: &mut [u32],
+    ) {
+        let per_tile = self.row_of.len();
+        split.for_each_chunk(indices, per_tile * TILES, 1, |g, out| {
             lanes::run(
-                self.kernel,
+                kernel,
                 #[inline(always)]
-                || self.indices_of(points, g * TILES, out),
+                || self.indices_of(lattice, &tiles[g * TILES..], points, out),
             );
         });
     }
 
-    /// The indices of the tiles from `first_tile` on into `out`.
+    /// The indices of `tiles` (from their first on, as many as `out` holds) into `out`.
     #[inline(always)]
-    fn indices_of(&self, points: &Points, first_tile: usize, out: &mut [u32]) {
-        let rows = &self.rows;
-        let per_tile = rows.row_of.len();
-        let row_count = rows.firsts[0].len();
-        {
-            let mut layouts = [(); 2].map(|()| Layout { key: vec![u32::MAX; row_count], offsets: Vec::new() });
-            let (mut firsts, mut key) = (vec![0; row_count], vec![0; row_count]);
-            for (t, out) in out.chunks_mut(per_tile).enumerate() {
-                let center = self.lattice.tile_center(self.tiles[first_tile + t]);
-                rows.firsts(points, center, &mut firsts);
-                let first = firsts[rows.center];
-                for (k, &f) in key.iter_mut().zip(&firsts) {
-                    *k = f.wrapping_sub(first);
-                }
-                // The most recent layout first; a new one replaces the older.
+    fn indices_of(&self, lattice: &Lattice, tiles: &[Hex], points: &Points, out: &mut [u32]) {
+        let per_tile = self.row_of.len();
+        let row_count = self.firsts[0].len();
+        let mut layouts = [(); 2].map(|()| Layout { key: vec![u32::MAX; row_count], offsets: Vec::new() });
+        let (mut firsts, mut key) = (vec![0; row_count], vec![0; row_count]);
+        for (t, out) in out.chunks_mut(per_tile).enumerate() {
+            let center = lattice.tile_center(tiles[t]);
+            self.firsts(points, center, &mut firsts);
+            let first = firsts[self.center];
+            for (k, &f) in key.iter_mut().zip(&firsts) {
+                *k = f.wrapping_sub(first);
+            }
+            // The most recent layout first; a new one replaces the older.
+            if layouts[0].key != key {
+                layouts.swap(0, 1);
                 if layouts[0].key != key {
-                    layouts.swap(0, 1);
-                    if layouts[0].key != key {
-                        layouts[0].key.copy_from_slice(&key);
-                        rows.relative(&key, &mut layouts[0].offsets);
-                    }
+                    layouts[0].key.copy_from_slice(&key);
+                    self.relative(&key, &mut layouts[0].offsets);
                 }
-                for (d, &o) in out.iter_mut().zip(&layouts[0].offsets) {
-                    *d = first.wrapping_add(o);
-                }
+            }
+            for (d, &o) in out.iter_mut().zip(&layouts[0].offsets) {
+                *d = first.wrapping_add(o);
             }
         }
     }

@@ -12,10 +12,10 @@ use std::sync::atomic::{AtomicBool, Ordering};
 
 use hexx::Hex;
 
+use super::early::Early;
 use super::grid::{GridShape, Points};
 use super::indices::Rows;
 use super::parallel::{BATCH, Outputs, Split};
-use super::vertices::Early;
 use super::{Buffers, ChunkMesh, Diagnostics, GenerateOptions, Threads};
 use crate::chunk::TileRect;
 use crate::climate::TileSample;
@@ -140,7 +140,7 @@ impl<'a> Job<'a> {
             }
             self.split.join(
                 || self.normals_pass(&points, &heights, &mut b.normals),
-                || self.indices_pass(&points, &mut b.indices),
+                || self.rows.indices_pass(self.split, self.kernel, self.lattice, &self.tiles, &points, &mut b.indices),
             );
         });
 

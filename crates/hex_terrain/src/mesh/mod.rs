@@ -13,6 +13,7 @@
 //! | `coarse.rs` | level of detail: a generated mesh as a fan a tile, its outline kept whole ([`Detail`]) |
 
 pub(crate) mod coarse;
+mod early;
 mod grid;
 mod indices;
 mod job;

@@ -248,7 +248,7 @@ mod early_noise {
                 let job = job::Job::new(t.pipeline(), rect, GenerateOptions::DIAGNOSTICS);
                 let tiles = job.tiles.len();
                 let (points, buffers, kinds, _) = job.prelude();
-                let early = if all { job.early_noise(|| false) } else { vertices::Early::default() };
+                let early = if all { job.early_noise(|| false) } else { early::Early::default() };
                 assert_eq!(early.tiles, if all { tiles } else { 0 });
                 job.passes(points, buffers, kinds, &early)
             };

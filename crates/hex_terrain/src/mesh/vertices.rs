@@ -6,6 +6,7 @@
 
 use hexx::Hex;
 
+use super::early::Early;
 use super::grid::{Owner, Points};
 use super::job::{Job, Kinds};
 use super::lanes;
@@ -13,18 +14,6 @@ use super::parallel::{BATCH, Outputs, in_batches};
 use super::vertex_color;
 use crate::vertex::{Sharing, VertexSample};
 use crate::vocab::TileKind;
-
-/// The noise at the points of the first tiles, sampled by a side thread while the points are
-/// enumerated: a tile's template points in order, the first `tiles` tiles' worth (each tile's
-/// own points; the others are left at zero and never read). A pure function of the points, so
-/// the mesh is the same bits however many tiles it holds.
-#[derive(Default)]
-pub(super) struct Early {
-    pub tiles: usize,
-    noise: Vec<f64>,
-    /// The last grid slot of the points sampled: a batch starting past it reads none.
-    last_slot: usize,
-}
 
 /// Tiles whose points the side thread samples together.
 const EARLY_TILES: usize = 8;

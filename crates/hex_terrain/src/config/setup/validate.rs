@@ -4,7 +4,7 @@ use super::{
     MAX_PER_PLAYER, MAX_PLAYERS, MAX_SETUP_DISTANCE, MAX_SETUP_RINGS, MAX_SETUP_RULES, MAX_SETUP_TILES, MAX_YIELD,
     Place, SetupConfig, Yields,
 };
-use crate::config::validate::{check, finite_in};
+use crate::config::check::{check, finite_in};
 use crate::error::ConfigError;
 
 impl SetupConfig {
