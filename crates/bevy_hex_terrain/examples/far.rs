@@ -31,7 +31,7 @@ fn main() {
             HexTerrainPlugins::from_asset("maps/continent.map.ron"),
             HexBigSpacePlugin,
         ))
-        .add_plugins(support::screenshot::ScreenshotModePlugin)
+        .add_plugins(HexScreenshotPlugin::default())
         .insert_resource(HexTerrainMaterialSettings { outlines: true, outline_width: 0.04, ..default() })
         .add_systems(Startup, setup)
         .add_systems(Update, (fly, show_position))

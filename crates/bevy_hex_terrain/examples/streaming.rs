@@ -32,7 +32,7 @@ fn main() {
         .insert_resource(streaming)
         .insert_resource(props)
         .insert_resource(Still(still))
-        .add_plugins(support::screenshot::ScreenshotModePlugin)
+        .add_plugins(HexScreenshotPlugin::default())
         .add_plugins(support::render_figures::RenderFiguresPlugin)
         .insert_resource(HexTerrainMaterialSettings { outlines: true, outline_width: 0.04, ..default() })
         .add_systems(Startup, setup)
@@ -51,7 +51,6 @@ fn setup(mut commands: Commands, mut meshes: ResMut<Assets<Mesh>>, mut materials
             Transform::from_xyz(0.0, 5.0, 0.0),
         ))
         .with_child((
-            Camera3d::default(),
             HexTerrainCamera,
             Transform::from_xyz(-30.0, 45.0, 40.0).looking_at(Vec3::ZERO, Vec3::Y),
         ));

@@ -9,7 +9,7 @@
 //!
 //! | set | plugin | what it does | its settings |
 //! | --- | --- | --- | --- |
-//! | [`Map`](HexTerrainSystems::Map) | [`HexMapPlugin`] | loads `*.map.ron` assets (hot reload, [`LoadHexMap`]) into the [`HexMap`] resource; a bad file is a [`HexMapError`] and the old map stays | [`MapSource`] |
+//! | [`Map`](HexTerrainSystems::Map) | [`HexMapPlugin`] | loads `*.map.ron` assets (hot reload, [`LoadHexMap`]) into the [`HexMap`] resource, sets up a game on it ([`SetUpGame`], then [`GameSetUp`]); a bad file is a [`HexMapError`] and the old map stays | [`MapSource`] |
 //! | [`Map`](HexTerrainSystems::Map) | [`HexEditorPlugin`] | the world builder: [`HexMapEdit`] strokes, undo, redo and save run on the async compute pool; each edit makes a [`HexMap`] generation in which only its chunks are rebuilt ([`HexMapEdited`]; one that changes nothing, [`HexMapUnchanged`]) | |
 //! | [`Stream`](HexTerrainSystems::Stream) | [`HexStreamingPlugin`] | keeps [`HexChunk`]s around every [`HexTerrainAgent`], each built on the async compute pool from a snapshot of the settings below; a dropped chunk is hidden at once and its children despawned a budget a frame | [`HexStreamingSettings`] |
 //! | [`Insert`](HexTerrainSystems::Insert) | [`HexStreamingPlugin`] | inserts finished meshes and their [`ChunkContent`] under a per-frame budget, sends [`ChunkSpawned`], [`TerrainReady`] (once per map), [`TerrainSettled`] | |
@@ -69,6 +69,8 @@ mod minimap;
 mod picking;
 mod placement;
 mod props;
+#[cfg(feature = "render")]
+mod screenshot;
 mod streaming;
 mod tiles;
 mod water;
@@ -86,7 +88,9 @@ pub use crate::editor::{
 pub use crate::far::{HexBigSpacePlugin, HexTerrainGrid};
 #[cfg(feature = "render")]
 pub use crate::light::{HexLightPlugin, HexLightSettings, HexSun, HexTerrainCamera};
-pub use crate::map::{HexMap, HexMapError, HexMapHandle, HexMapPlugin, LoadHexMap, MapSource, TileHit, TileHitF64};
+pub use crate::map::{
+    GameSetUp, HexMap, HexMapError, HexMapHandle, HexMapPlugin, LoadHexMap, MapSource, SetUpGame, TileHit, TileHitF64,
+};
 #[cfg(feature = "render")]
 pub use crate::material::{
     HexTerrainExtension, HexTerrainKey, HexTerrainMaterial, HexTerrainMaterialPlugin, HexTerrainMaterialSettings,
@@ -103,6 +107,8 @@ pub use crate::picking::{
 };
 pub use crate::placement::{HexPlacementPlugin, OnTile, TileWalk, WalkEnded};
 pub use crate::props::{HexProp, HexPropSettings, HexPropStats, HexPropsPlugin, PropAssets};
+#[cfg(feature = "render")]
+pub use crate::screenshot::HexScreenshotPlugin;
 pub use crate::streaming::{
     ChunkContent, ChunkDespawned, ChunkSpawned, ChunkStreamer, ChunkTask, ChunkThreads, DEFAULT_COARSE_DISTANCE,
     DETAIL_HYSTERESIS, HexChunk, HexStreamingPlugin, HexStreamingSettings, HexStreamingStats, HexTerrainAgent,
@@ -122,17 +128,20 @@ pub mod prelude {
     pub use crate::light::{HexLightPlugin, HexLightSettings, HexTerrainCamera};
     #[cfg(feature = "render")]
     pub use crate::material::{HexTerrainMaterialPlugin, HexTerrainMaterialSettings};
+    #[cfg(feature = "render")]
+    pub use crate::screenshot::HexScreenshotPlugin;
     #[cfg(feature = "minimap")]
     pub use crate::minimap::{HexMinimapPlugin, HexMinimapSettings, MinimapNavigate};
     #[cfg(feature = "picking")]
     pub use crate::picking::{HexPick, HexPickingPlugin, HexPickingSettings, HoveredTile};
     pub use crate::{
-        ChunkContent, ChunkDespawned, ChunkSpawned, ChunkStreamer, FogState, HexChunk, HexEditor, HexMap, HexMapEdit,
+        ChunkContent, ChunkDespawned, ChunkSpawned, ChunkStreamer, FogState, GameSetUp, HexChunk, HexEditor, HexMap,
+        HexMapEdit,
         HexMapEdited, HexMapError, HexMapPlugin, HexMapUnchanged, HexProp, HexPropSettings, HexPropsPlugin,
         HexStreamingPlugin, HexStreamingSettings, HexStreamingStats, HexTerrainAgent, HexTerrainPlugins,
         HexTerrainSystems, HexTileStatePlugin, HexTileStateSettings, HexTileStateStyle, HexWater, HexWaterPlugin,
-        HexWaterSettings, HexWorldPosition, Highlight, LoadHexMap, MapSource, OnTile, SaveError, TerrainReady,
-        TerrainSettled, TileHit, TileStateSave, TileStates, TileWalk, WalkEnded,
+        HexWaterSettings, HexWorldPosition, Highlight, LoadHexMap, MapSource, OnTile, SaveError, SetUpGame,
+        TerrainReady, TerrainSettled, TileHit, TileStateSave, TileStates, TileWalk, WalkEnded,
     };
     pub use hex_terrain::hexx::Hex;
     pub use hex_terrain::{

@@ -146,3 +146,75 @@ fn a_system_after_the_map_set_writes_the_new_maps_tiles_on_the_frame_it_applies(
     let tile = app.world().resource::<HexMap>().terrain().tile_from_offset([30, 4]);
     assert_eq!(app.world().resource::<TileStates>().owner(tile), Some(4));
 }
+
+/// A game set up on a map loaded without one (`SetUpGame`): the same map (its id, its tiles),
+/// `GameSetUp` once the starts are there, the setup the core places; kept over an edit and a hot
+/// reload of the file; a setup that does not fit is refused and the map stays as it was. A map
+/// whose config has a setup says `GameSetUp` beside `TerrainReady`.
+#[test]
+fn a_game_set_up_on_any_map() {
+    let text = "(seed: 5, size: Bounded(x: 32, z: 24), chunk_size: (8, 8), climate: (enabled: true))";
+    let dir = asset_dir("set-up", text);
+    let mut app = app_with(MapSource::Asset("game.map.ron".into()), settings(1), Some(&dir));
+    keep::<TerrainReady>(&mut app);
+    keep::<GameSetUp>(&mut app);
+    keep::<HexMapError>(&mut app);
+    keep::<HexMapEdited>(&mut app);
+    settle(&mut app, "the map file");
+    let (map_id, plain) = {
+        let map = app.world().resource::<HexMap>();
+        (map.map_id(), map.terrain().clone())
+    };
+    assert!(plain.setup().is_none());
+    assert!(seen::<GameSetUp>(&app).is_empty(), "no setup, no starts");
+
+    // Too many players for the map: refused by name, the map unchanged.
+    let crowd = SetupConfig { players: 60, min_distance: 9, ..default() };
+    app.world_mut().write_message(SetUpGame(crowd));
+    app.update();
+    let errors = seen::<HexMapError>(&app);
+    assert_eq!(errors.len(), 1, "{errors:?}");
+    assert!(errors[0].to_string().contains("setup."), "{}", errors[0]);
+    assert!(app.world().resource::<HexMap>().setup().is_none());
+
+    let setup = SetupConfig { players: 2, min_distance: 5, ..default() };
+    app.world_mut().write_message(SetUpGame(setup.clone()));
+    app.update();
+    let map = app.world().resource::<HexMap>();
+    let expected = plain.with_setup(Some(setup.clone())).unwrap();
+    assert_eq!(map.map_id(), map_id, "the same map");
+    assert_eq!(map.setup().unwrap().starts(), expected.setup().unwrap().starts());
+    assert_eq!(seen::<GameSetUp>(&app), [GameSetUp { map_id, generation: map.generation() }]);
+    for tile in plain.tiles() {
+        assert_eq!(map.tile_info(tile), plain.tile_info(tile), "the same tiles");
+    }
+    settle(&mut app, "the set up map");
+    assert_eq!(seen::<TerrainReady>(&app).len(), 1, "the same map is not ready again");
+
+    // An edit keeps the setup.
+    let tile = plain.tile_from_offset([3, 3]);
+    app.world_mut().write_message(HexMapEdit::Stroke(Stroke { tool: Tool::Raise(0.1), brush: Brush::Range(0), tile }));
+    run_until(&mut app, "the edit", |app| !seen::<HexMapEdited>(app).is_empty() && ready(app));
+    assert_eq!(app.world().resource::<HexMap>().config().setup.as_ref(), Some(&setup));
+    assert!(app.world().resource::<HexMap>().setup().is_some());
+
+    // A hot reload of the file, which has no setup, keeps the game set up.
+    reload_asset(&mut app, |config| config.seed = 6);
+    run_until(&mut app, "the reload", |app| app.world().resource::<HexMap>().config().seed == 6 && ready(app));
+    let map = app.world().resource::<HexMap>();
+    assert_eq!(map.map_id(), map_id);
+    assert_eq!(map.config().setup.as_ref(), Some(&setup));
+    assert_eq!(map.setup().unwrap().starts().len(), 2);
+    assert_eq!(seen::<GameSetUp>(&app).len(), 1, "a reload keeps the players where they are");
+
+    // Another map with a setup of its own: its starts come beside its TerrainReady.
+    let mut other = MapConfig { seed: 9, size: MapSize::Bounded { x: 32, z: 24 }, chunk_size: (8, 8), ..default() };
+    other.setup = Some(setup);
+    app.world_mut().write_message(LoadHexMap(other.into()));
+    run_until(&mut app, "the other map", |app| seen::<TerrainReady>(app).len() == 2);
+    let map = app.world().resource::<HexMap>();
+    let last = *seen::<GameSetUp>(&app).last().unwrap();
+    assert_eq!(last, GameSetUp { map_id: map.map_id(), generation: map.generation() });
+    assert_eq!(seen::<GameSetUp>(&app).len(), 2);
+    let _ = std::fs::remove_dir_all(&dir);
+}

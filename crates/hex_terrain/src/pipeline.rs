@@ -14,7 +14,7 @@ use std::sync::Arc;
 use hexx::Hex;
 
 use crate::climate::{ClimateModel, TileSample};
-use crate::config::{HeightSourceConfig, MAX_WATER_TILES, MapConfig, TileEdit};
+use crate::config::{HeightSourceConfig, MAX_WATER_TILES, MapConfig, SetupConfig, TileEdit};
 use crate::edits::Edits;
 use crate::error::ConfigError;
 use crate::geometry::Geometry;
@@ -111,6 +111,23 @@ impl Pipeline {
             setup: None,
         };
         stages.finish()
+    }
+
+    /// The same map with another game setup (`None`: none), validated like any config: every
+    /// stage of the terrain is reused, so this costs the setup's placement alone (see
+    /// [`Setup::build`]).
+    ///
+    /// # Errors
+    /// The first invalid field of the setup (`setup.players`, ...), or `setup.players` or
+    /// `setup.min_distance` when its starts do not fit the map.
+    pub fn with_setup(&self, setup: Option<SetupConfig>) -> Result<Self, ConfigError> {
+        let config = MapConfig { setup, ..self.config.clone() };
+        config.validate()?;
+        let placed = match &config.setup {
+            Some(setup) => Some(Arc::new(Setup::build(self.stages(), setup, config.seed)?)),
+            None => None,
+        };
+        Ok(Self { config, setup: placed, ..self.clone() })
     }
 
     /// Applies the edits to the height field, then builds the tile table and the setup.

@@ -628,3 +628,39 @@ fn five_starts_twenty_apart_on_map0_are_found() {
     }
     check_setup(&t).unwrap();
 }
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 24, ..ProptestConfig::default() })]
+
+    /// A setup placed on a compiled map (`Terrain::with_setup`) is the setup of the map compiled
+    /// with it: the same starts, resources, wonders and report; the terrain's tiles unchanged;
+    /// and `None` takes it away.
+    #[test]
+    fn a_setup_placed_later_is_the_compiled_one(seed in any::<u32>(), players in 1u32..5, wrap in any::<bool>()) {
+        let mut config = MapConfig { seed, size: MapSize::Bounded { x: 40, z: 28 }, ..MapConfig::default() };
+        config.climate.enabled = true;
+        config.wrap = wrap;
+        let plain = Terrain::new(config.clone()).unwrap();
+        let setup = SetupConfig { players, min_distance: 4, ..SetupConfig::default() };
+        let compiled = Terrain::new(MapConfig { setup: Some(setup.clone()), ..config });
+        let later = plain.with_setup(Some(setup));
+        match (compiled, later) {
+            (Ok(compiled), Ok(later)) => {
+                let (a, b) = (compiled.setup().unwrap(), later.setup().unwrap());
+                prop_assert_eq!(a.starts(), b.starts());
+                prop_assert_eq!(a.resources(), b.resources());
+                prop_assert_eq!(a.wonders(), b.wonders());
+                prop_assert_eq!(a.report().to_string(), b.report().to_string());
+                prop_assert_eq!(compiled.config(), later.config());
+                for tile in plain.tiles() {
+                    prop_assert_eq!(plain.tile_info(tile), later.tile_info(tile));
+                }
+                let none = later.with_setup(None).unwrap();
+                prop_assert!(none.setup().is_none());
+                prop_assert_eq!(none.config(), plain.config());
+            }
+            (Err(a), Err(b)) => prop_assert_eq!(a.to_string(), b.to_string()),
+            (a, b) => prop_assert!(false, "compiled {:?}, placed later {:?}", a.is_ok(), b.is_ok()),
+        }
+    }
+}

@@ -32,6 +32,7 @@ mod gizmos;
 mod input;
 mod look;
 mod panel;
+mod pieces;
 mod rig;
 mod script;
 mod units;
@@ -164,7 +165,7 @@ fn main() -> AppExit {
     if scripted {
         app.add_plugins(script::ScriptPlugin);
     } else {
-        app.add_plugins(support::screenshot::ScreenshotModePlugin);
+        app.add_plugins(HexScreenshotPlugin::default());
         // In screenshot mode, what each frame draws is printed (the README's figures).
         if std::env::var_os("HEXTERRAIN_SCREENSHOT").is_some() {
             app.add_plugins(support::render_figures::RenderFiguresPlugin).add_systems(Last, print_figures);

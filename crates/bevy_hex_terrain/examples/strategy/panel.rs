@@ -4,7 +4,7 @@
 use bevy::prelude::*;
 use bevy_hex_terrain::prelude::*;
 
-use crate::units::{MOVES, Unit};
+use crate::pieces::{MOVES, Unit};
 use crate::{Game, vision};
 
 #[derive(Component)]

@@ -15,7 +15,7 @@ use bevy_hex_terrain::prelude::*;
 
 use crate::Game;
 use crate::rig::Rig;
-use crate::units::{LIFT, MOVES, Unit};
+use crate::pieces::{LIFT, MOVES, Unit};
 use crate::vision::{self, HUMAN, RIVAL};
 use bevy_hex_terrain::{HexMinimap, MinimapPicture};
 

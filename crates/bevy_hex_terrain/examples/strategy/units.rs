@@ -13,26 +13,12 @@ use bevy_hex_terrain::prelude::*;
 
 use crate::Game;
 use crate::panel::EndTurnButton;
+use crate::pieces::{LIFT, MOVES, Unit};
 use crate::rig::Rig;
 use crate::vision;
 
-/// Moves a unit has each turn.
-pub(crate) const MOVES: u32 = 4;
-
-/// How high a unit's origin stands over the surface (half its capsule).
-pub(crate) const LIFT: f32 = 0.6;
-
 /// World units a second a unit walks.
 const SPEED: f32 = 6.0;
-
-/// A player's unit; where it stands is its `OnTile`.
-#[derive(Component)]
-#[require(OnTile = OnTile::new(Hex::ZERO))]
-pub(crate) struct Unit {
-    /// [`vision::HUMAN`] or [`vision::RIVAL`].
-    pub(crate) player: u32,
-    pub(crate) moves_left: u32,
-}
 
 /// Distance from the human player's units to the rival's.
 const RIVAL_DISTANCE: u32 = 7;

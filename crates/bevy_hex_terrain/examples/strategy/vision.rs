@@ -11,7 +11,7 @@ use bevy_hex_terrain::hex_terrain::FogOfWar;
 use bevy_hex_terrain::prelude::*;
 
 use crate::Game;
-use crate::units::Unit;
+use crate::pieces::Unit;
 
 /// The human player (the fog shows what this player's units see): player 0, on the setup's first
 /// start, as the setup and the tile states number players.

@@ -1,10 +1,9 @@
-//! What the examples share besides the plugin: the screenshot mode (`HEXTERRAIN_SCREENSHOT`) that
-//! the README's pictures and the tests use, the figures of what a frame draws, and the check
-//! that the map file an example loads is where Bevy looks for it.
+//! What the examples share besides the plugin: the figures of what a frame draws (printed in
+//! screenshot mode, `HexScreenshotPlugin`), and the check that the map file an example loads is
+//! where Bevy looks for it.
 #![allow(dead_code, reason = "each example uses its own part")]
 
 pub mod render_figures;
-pub mod screenshot;
 
 /// The default streaming settings, with every chunk full when `HEXTERRAIN_LOD=off` (to compare
 /// levels of detail).

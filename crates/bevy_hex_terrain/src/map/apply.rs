@@ -66,8 +66,12 @@ impl Plugin for HexMapPlugin {
             .init_resource::<HexMapHandle>()
             .add_message::<HexMapError>()
             .add_message::<LoadHexMap>()
+            .add_message::<super::SetUpGame>()
+            .add_message::<super::GameSetUp>()
             .register_type::<HexMapError>()
             .register_type::<LoadHexMap>()
+            .register_type::<super::SetUpGame>()
+            .register_type::<super::GameSetUp>()
             .register_type::<HexMap>()
             .register_type::<HexMapHandle>()
             // A new config must be in place before chunks are requested against it, and a
@@ -88,7 +92,10 @@ impl Plugin for HexMapPlugin {
             // A request may name an asset that is already loaded: it is applied in the same frame.
             .add_systems(
                 Update,
-                (load_requested, apply_asset).chain().in_set(super::MapAssets).in_set(HexTerrainSystems::Map),
+                (load_requested, apply_asset, super::setup::set_up_requested)
+                    .chain()
+                    .in_set(super::MapAssets)
+                    .in_set(HexTerrainSystems::Map),
             );
         if let Some(path) = path {
             app.add_systems(PreStartup, move |server: Res<AssetServer>, mut handle: ResMut<HexMapHandle>| {
@@ -193,19 +200,25 @@ fn apply_asset(
     }
     let Some(asset) = assets.get(handle) else { return };
     *last_failure = None;
+    // A hot reload of a file without a setup keeps the game set up on the map (`SetUpGame`).
+    let mut config = asset.config.clone();
+    if !new && config.setup.is_none() {
+        config.setup.clone_from(&map.asked_setup);
+    }
     let same_image = |applied: &Option<Arc<HeightImage>>| match (applied, &asset.image) {
         (None, None) => true,
         (Some(a), Some(b)) => Arc::ptr_eq(a, b),
         _ => false,
     };
     if !new
-        && asset.config == *map.config()
+        && config == *map.config()
         && asset.appearance_fallback == map.appearance_fallback
         && map.applied.as_ref().is_some_and(|(_, image)| same_image(image))
     {
         return;
     }
-    match Terrain::with_image(asset.config.clone(), asset.image.clone()) {
+    let asked = map.asked_setup.clone().filter(|_| !new && asset.config.setup.is_none());
+    match Terrain::with_image(config, asset.image.clone()) {
         Ok(terrain) => {
             info!("hex terrain: map {:?} applied", asset.config.name);
             // A newly followed file (the plugin's first replacing the placeholder, or another) is
@@ -217,6 +230,7 @@ fn apply_asset(
             }
             map.appearance_fallback = asset.appearance_fallback;
             map.applied = Some((handle.id(), asset.image.clone()));
+            map.asked_setup = asked;
         }
         Err(e) => {
             *refused = Some(handle.id());

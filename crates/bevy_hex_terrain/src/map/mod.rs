@@ -4,6 +4,7 @@
 
 mod apply;
 mod error;
+mod setup;
 mod source;
 
 use std::sync::Arc;
@@ -17,6 +18,7 @@ use hex_terrain::{
 
 pub use apply::{HexMapHandle, HexMapPlugin, LoadHexMap};
 pub use error::HexMapError;
+pub use setup::{GameSetUp, SetUpGame};
 
 /// The map plugin's systems that apply map assets and [`LoadHexMap`] (inside
 /// [`HexTerrainSystems::Map`](crate::HexTerrainSystems::Map)): the editor runs after them.
@@ -55,6 +57,10 @@ pub struct HexMap {
     /// The map asset whose config is applied, if any, with its heightmap.
     #[reflect(ignore)]
     applied: Option<(AssetId<crate::asset::HexMapAsset>, Option<Arc<hex_terrain::HeightImage>>)>,
+    /// The game setup [`SetUpGame`] placed on this map, kept over hot reloads of a file without
+    /// one.
+    #[reflect(ignore)]
+    asked_setup: Option<hex_terrain::SetupConfig>,
 }
 
 impl HexMap {
@@ -76,6 +82,7 @@ impl HexMap {
             waiting_for_asset: false,
             appearance_fallback: false,
             applied: None,
+            asked_setup: None,
         }
     }
 
@@ -151,11 +158,13 @@ impl HexMap {
     pub(crate) fn replace(&mut self, terrain: Terrain) {
         self.reload(terrain);
         self.map_id += 1;
+        self.asked_setup = None;
     }
 
     /// The game setup (start positions, resources, natural wonders, the fairness report) when
-    /// the map's config has a `setup`; placed once when the map is compiled, the same in every
-    /// chunk.
+    /// the map's config has a `setup` or [`SetUpGame`] placed one; placed once, the same in
+    /// every chunk. `None` otherwise: send [`SetUpGame`] to set up a game on any map (the map
+    /// types' presets come without one; the plugin logs it when such a map is ready).
     #[must_use]
     pub fn setup(&self) -> Option<&Setup> {
         self.terrain.setup()
@@ -197,6 +206,17 @@ impl HexMap {
         self.waiting_for_asset = false;
         self.appearance_fallback = false;
         self.applied = None;
+    }
+
+    /// A game setup placed on the same map ([`SetUpGame`]): a new generation in which every
+    /// chunk changed (their markers of starts, resources and wonders), the same
+    /// [`map_id`](Self::map_id) and the same followed map file.
+    pub(crate) fn set_up(&mut self, terrain: Terrain, setup: hex_terrain::SetupConfig) {
+        self.terrain = Arc::new(terrain);
+        self.generation += 1;
+        self.base_generation = self.generation;
+        self.edited_chunks.clear();
+        self.asked_setup = Some(setup);
     }
 
     /// An edit of the same map: a new generation in which only `chunks` (of the map) changed,

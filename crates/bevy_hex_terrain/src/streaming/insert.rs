@@ -7,6 +7,7 @@ use bevy::tasks::futures::check_ready;
 use super::content::ChunkContent;
 use super::state::StreamState;
 use super::{ChunkSpawned, ChunkStreamer, ChunkTask, HexChunk, TerrainReady, TerrainSettled};
+use crate::map::GameSetUp;
 
 /// Inserts finished meshes, at most [`HexStreamingSettings::max_inserts_per_frame`] a frame,
 /// and reports [`TerrainSettled`] when these inserts make every wanted chunk current, with
@@ -17,7 +18,7 @@ pub(crate) fn insert_ready(
     mut meshes: ResMut<Assets<Mesh>>,
     mut tasks: Query<(Entity, &mut HexChunk, Option<&mut ChunkTask>)>,
     mut spawned: MessageWriter<ChunkSpawned>,
-    mut messages: (MessageWriter<TerrainReady>, MessageWriter<TerrainSettled>),
+    mut messages: (MessageWriter<TerrainReady>, MessageWriter<TerrainSettled>, MessageWriter<GameSetUp>),
 ) {
     let StreamState { mut streamer, mut stats, map, settings } = state;
     let generation = map.generation();
@@ -111,12 +112,21 @@ pub(crate) fn insert_ready(
 
     let now = complete(&streamer);
     if now && !(was_complete && streamer.settled) {
-        let (ready, settled) = &mut messages;
+        let (ready, settled, set_up) = &mut messages;
         settled.write(TerrainSettled { generation });
         let map_id = map.map_id();
         if streamer.ready_map != Some(map_id) {
             streamer.ready_map = Some(map_id);
             ready.write(TerrainReady { map_id, generation });
+            // A map that came with a setup: its starts are there too.
+            if map.terrain().setup().is_some() {
+                set_up.write(GameSetUp { map_id, generation });
+            } else if map.terrain().bounds().is_some() {
+                info!(
+                    "hex terrain: map {:?} has no game setup (no `setup` in its file): send SetUpGame to place starts",
+                    map.config().name
+                );
+            }
         }
     }
     if streamer.settled != now {

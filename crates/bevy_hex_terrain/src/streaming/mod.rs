@@ -3,6 +3,7 @@
 //! and inserted under a per-frame budget ([`insert`]), with figures in [`HexStreamingStats`].
 
 pub(crate) mod content;
+mod build;
 mod detail;
 mod insert;
 mod planner;
@@ -21,7 +22,7 @@ pub use detail::DETAIL_HYSTERESIS;
 pub(crate) use planner::kept_at_most;
 pub use retire::MAX_RETIRED_CHUNKS;
 pub use stats::HexStreamingStats;
-pub use tasks::ChunkTask;
+pub use build::ChunkTask;
 
 use crate::HexTerrainSystems;
 

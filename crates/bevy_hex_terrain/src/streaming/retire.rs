@@ -10,7 +10,7 @@ use std::collections::VecDeque;
 use bevy::prelude::*;
 
 use super::content::ChunkContent;
-use super::tasks::ChunkTask;
+use super::build::ChunkTask;
 use super::{ChunkStreamer, HexChunk, HexStreamingSettings};
 
 /// Chunks with at most this many children are despawned at once: retiring them saves nothing.

@@ -10,6 +10,7 @@ use bevy::prelude::*;
 use bevy::tasks::{AsyncComputeTaskPool, Task};
 use hex_terrain::{ChunkCoord, Detail, GenerateOptions, Terrain, Threads};
 
+use super::build::{ChunkBuild, ChunkTask};
 use super::content::{BuiltContent, ChunkContent, ContentRequest};
 use super::detail::Cameras;
 use super::planner::{ChunkState, plan};
@@ -17,41 +18,6 @@ use super::state::StreamState;
 use super::{ChunkDespawned, ChunkSpawned, ChunkStreamer, ChunkThreads, HexChunk, HexTerrainAgent, HexWorldPosition};
 use crate::map::HexMap;
 use crate::mesh::chunk_to_mesh;
-
-/// What a chunk task returns.
-pub struct ChunkBuild {
-    pub(super) generation: u64,
-    pub(super) mesh: Mesh,
-    pub(super) vertices: usize,
-    pub(super) mesh_bytes: usize,
-    pub(super) content: BuiltContent,
-    pub(super) detail: Detail,
-}
-
-/// A chunk mesh being built on the async compute pool.
-///
-/// Dropping it (the chunk was despawned, or a newer task replaced it) cancels the work if the
-/// pool has not started it yet. A chunk's generation has no await point, so once started it
-/// runs to its end (about a millisecond for a 16x16-tile chunk) and its result is discarded.
-///
-/// Hidden from the docs: streaming's internal; public so the tests and the screenshot harness
-/// can wait until no chunk is being built (a game waits for [`TerrainReady`](crate::TerrainReady)).
-#[doc(hidden)]
-#[derive(Component)]
-pub struct ChunkTask {
-    pub(super) task: Task<ChunkBuild>,
-    pub(super) generation: u64,
-    pub(super) requested: Instant,
-    pub(super) detail: Detail,
-}
-
-impl ChunkTask {
-    /// The level of detail of the mesh it builds.
-    #[must_use]
-    pub fn detail(&self) -> Detail {
-        self.detail
-    }
-}
 
 /// Plans the frame ([`plan`]) and applies it: despawns dropped chunks, spawns missing ones and
 /// starts their tasks. An outdated chunk keeps showing its old mesh until the new one arrives.
