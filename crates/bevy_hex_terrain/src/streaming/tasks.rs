@@ -7,7 +7,7 @@ use bevy::math::DVec3;
 use bevy::platform::collections::{HashMap, HashSet};
 use bevy::platform::time::Instant;
 use bevy::prelude::*;
-use bevy::tasks::{AsyncComputeTaskPool, Task};
+use bevy::tasks::AsyncComputeTaskPool;
 use hex_terrain::{ChunkCoord, Detail, GenerateOptions, Terrain, Threads};
 
 use super::build::{ChunkBuild, ChunkTask};
