@@ -50,10 +50,7 @@ fn setup(mut commands: Commands, mut meshes: ResMut<Assets<Mesh>>, mut materials
             MeshMaterial3d(materials.add(Color::srgb(0.85, 0.2, 0.15))),
             Transform::from_xyz(0.0, 5.0, 0.0),
         ))
-        .with_child((
-            HexTerrainCamera,
-            Transform::from_xyz(-30.0, 45.0, 40.0).looking_at(Vec3::ZERO, Vec3::Y),
-        ));
+        .with_child((HexTerrainCamera, Transform::from_xyz(-30.0, 45.0, 40.0).looking_at(Vec3::ZERO, Vec3::Y)));
     commands.spawn((
         Counter,
         Text::new(""),

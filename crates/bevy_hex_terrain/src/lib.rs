@@ -128,16 +128,15 @@ pub mod prelude {
     pub use crate::light::{HexLightPlugin, HexLightSettings, HexTerrainCamera};
     #[cfg(feature = "render")]
     pub use crate::material::{HexTerrainMaterialPlugin, HexTerrainMaterialSettings};
-    #[cfg(feature = "render")]
-    pub use crate::screenshot::HexScreenshotPlugin;
     #[cfg(feature = "minimap")]
     pub use crate::minimap::{HexMinimapPlugin, HexMinimapSettings, MinimapNavigate};
     #[cfg(feature = "picking")]
     pub use crate::picking::{HexPick, HexPickingPlugin, HexPickingSettings, HoveredTile};
+    #[cfg(feature = "render")]
+    pub use crate::screenshot::HexScreenshotPlugin;
     pub use crate::{
         ChunkContent, ChunkDespawned, ChunkSpawned, ChunkStreamer, FogState, GameSetUp, HexChunk, HexEditor, HexMap,
-        HexMapEdit,
-        HexMapEdited, HexMapError, HexMapPlugin, HexMapUnchanged, HexProp, HexPropSettings, HexPropsPlugin,
+        HexMapEdit, HexMapEdited, HexMapError, HexMapPlugin, HexMapUnchanged, HexProp, HexPropSettings, HexPropsPlugin,
         HexStreamingPlugin, HexStreamingSettings, HexStreamingStats, HexTerrainAgent, HexTerrainPlugins,
         HexTerrainSystems, HexTileStatePlugin, HexTileStateSettings, HexTileStateStyle, HexWater, HexWaterPlugin,
         HexWaterSettings, HexWorldPosition, Highlight, LoadHexMap, MapSource, OnTile, SaveError, SetUpGame,

@@ -9,7 +9,7 @@ use std::collections::HashMap;
 use hexx::Hex;
 
 use crate::terrain::Terrain;
-use crate::vocab::{Biome, TileKind};
+use crate::vocab::{Biome, TileInfo, TileKind};
 
 pub use crate::heights::targets::{CONTINENT_MIN_SHARE, CONTINENT_MIN_TILES};
 use crate::heights::targets::{components, nearest_between};
@@ -37,6 +37,11 @@ pub struct Landmass {
     pub mountains: u32,
     /// Its coast, in tile edges to the sea.
     pub coast_edges: u32,
+    /// The rows it spans, from its northernmost to its southernmost (both counted).
+    pub rows: u32,
+    /// The columns it spans: from its westernmost to its easternmost on a map that does not
+    /// wrap; on a wrapping map, the fewest columns of an arc round the map that holds it.
+    pub columns: u32,
     /// Continent or island.
     pub kind: LandmassKind,
 }
@@ -56,6 +61,16 @@ pub struct RiverStats {
     /// The longest river from a source to its mouth: in tiles through tile centers, in edges on
     /// edges.
     pub longest: u32,
+    /// Sources: river tiles no river flows into (through tile centers), river corners no river
+    /// flows into (on edges).
+    pub sources: u32,
+    /// The median length of a river from its source to its mouth (a source's length; tiles or
+    /// edges as `longest`); 0 without a river.
+    pub median: u32,
+    /// Sources within 2 steps over the map of relief (a mountain tile or a tile of the `Hills`
+    /// biome; a corner's source by the nearest of its three tiles), where Civilization's rivers
+    /// rise.
+    pub sources_near_relief: u32,
 }
 
 /// The statistics of a bounded map: [`MapStats::measure`].
@@ -101,6 +116,14 @@ pub struct MapStats {
     /// between two tiles of one range (the largest hex distance between them, plus one); 0
     /// without a range.
     pub longest_range: u32,
+    /// The longest straight run of mountains: the most mountain tiles in a row along one of the
+    /// three hex axes (a wall along the grid shows here); 0 without mountains.
+    pub straight_ridge: u32,
+    /// Mountains in blobs: mountain tiles with 5 or 6 mountain neighbors.
+    pub blob_mountains: u32,
+    /// Land tiles in the polar rows: the first and the last tenth of the map's rows (at least a
+    /// row each), which Civilization keeps ice or sea.
+    pub polar_land_tiles: u32,
     /// The landmasses, largest first (ties: the first tile's row, then column).
     pub landmasses: Vec<Landmass>,
     /// Coast length, in tile edges between land and sea.
@@ -170,6 +193,16 @@ impl MapStats {
             })
             .max()
             .unwrap_or(0);
+        let mountain_neighbors = |i: usize| around(i).filter(|&n| mountain(n)).count();
+        let blob_mountains = (0..tiles.len()).filter(|&i| mountain(i) && mountain_neighbors(i) >= 5).count() as u32;
+        let straight_ridge = straight_ridge(terrain, &tiles, &index, &mountain);
+        let (columns, rows) = (width, (bounds.max[1] - bounds.min[1]) as usize);
+        let band = rows.div_ceil(10) as i32;
+        let polar = |i: usize| {
+            let row = terrain.offset_of(tiles[i])[1];
+            row - bounds.min[1] < band || bounds.max[1] - 1 - row < band
+        };
+        let polar_land_tiles = (0..tiles.len()).filter(|&i| !water(i) && polar(i)).count() as u32;
         let mut landmasses: Vec<Landmass> = land
             .first
             .iter()
@@ -179,13 +212,25 @@ impl MapStats {
                 tiles: size,
                 mountains: 0,
                 coast_edges: 0,
+                rows: 0,
+                columns: 0,
                 kind: LandmassKind::Island,
             })
             .collect();
+        // Each landmass' rows and columns, as flags over the map's.
+        let mut spans = vec![(vec![false; rows], vec![false; columns]); landmasses.len()];
         for i in (0..tiles.len()).filter(|&i| !water(i)) {
             let mass = &mut landmasses[land.of[i] as usize];
             mass.mountains += u32::from(mountain(i));
             mass.coast_edges += coast(i);
+            let [col, row] = terrain.offset_of(tiles[i]);
+            let span = &mut spans[land.of[i] as usize];
+            span.0[(row - bounds.min[1]) as usize] = true;
+            span.1[(col - bounds.min[0]) as usize] = true;
+        }
+        for (mass, (in_rows, in_columns)) in landmasses.iter_mut().zip(&spans) {
+            mass.rows = extent(in_rows, false);
+            mass.columns = extent(in_columns, terrain.wrap().is_some());
         }
         for mass in &mut landmasses {
             let share = f64::from(mass.tiles) / f64::from(land_tiles.max(1));
@@ -230,11 +275,14 @@ impl MapStats {
             range_tiles,
             mountain_adjacencies,
             longest_range,
+            straight_ridge,
+            blob_mountains,
+            polar_land_tiles,
             coast_edges: (0..tiles.len()).filter(|&i| !water(i)).map(coast).sum(),
             landmasses,
             narrowest_strait: narrowest,
             biomes,
-            rivers: rivers(terrain),
+            rivers: rivers(terrain, &tiles, &neighbors, &infos),
             lakes: terrain.hydrology().map_or(0, |h| h.lake_count() as u32),
             start_landmass_tiles,
         })
@@ -281,6 +329,54 @@ impl MapStats {
         f64::from(self.mountain_adjacencies) / f64::from(self.mountain_tiles.max(1))
     }
 
+    /// Snow, tundra and snow peaks' share of the land (0 without land): how much of it is cold.
+    #[must_use]
+    pub fn cold_share(&self) -> f64 {
+        let cold: u32 = self
+            .biomes
+            .iter()
+            .filter(|(b, _)| matches!(b, Biome::Snow | Biome::Tundra | Biome::SnowPeak))
+            .map(|&(_, n)| n)
+            .sum();
+        f64::from(cold) / f64::from(self.land_tiles.max(1))
+    }
+
+    /// The polar rows' land, as a share of the land ([`MapStats::polar_land_tiles`]).
+    #[must_use]
+    pub fn polar_land_share(&self) -> f64 {
+        f64::from(self.polar_land_tiles) / f64::from(self.land_tiles.max(1))
+    }
+
+    /// Mountains in blobs, as a share of the mountains ([`MapStats::blob_mountains`]).
+    #[must_use]
+    pub fn blob_share(&self) -> f64 {
+        f64::from(self.blob_mountains) / f64::from(self.mountain_tiles.max(1))
+    }
+
+    /// Lake tiles' share of the land.
+    #[must_use]
+    pub fn lake_share(&self) -> f64 {
+        f64::from(self.lake_tiles) / f64::from(self.land_tiles.max(1))
+    }
+
+    /// Lakes per 1,000 land tiles.
+    #[must_use]
+    pub fn lakes_per_thousand(&self) -> f64 {
+        f64::from(self.lakes) * 1000.0 / f64::from(self.land_tiles.max(1))
+    }
+
+    /// The share of the land on a river ([`RiverStats::tiles`]).
+    #[must_use]
+    pub fn river_share(&self) -> f64 {
+        f64::from(self.rivers.tiles) / f64::from(self.land_tiles.max(1))
+    }
+
+    /// The share of the sources within 2 tiles of relief (0 without a river).
+    #[must_use]
+    pub fn sources_near_relief_share(&self) -> f64 {
+        f64::from(self.rivers.sources_near_relief) / f64::from(self.rivers.sources.max(1))
+    }
+
     /// The share of mountain tiles that lie in ranges (0 without mountains).
     #[must_use]
     pub fn range_share(&self) -> f64 {
@@ -288,14 +384,98 @@ impl MapStats {
     }
 }
 
-/// The river systems, river tiles and the longest river.
-fn rivers(terrain: &Terrain) -> RiverStats {
+/// The most flags in a row that are set, the row read round when it `wraps`: 0 with none set.
+fn extent(set: &[bool], wraps: bool) -> u32 {
+    let (first, last) = match (set.iter().position(|&s| s), set.iter().rposition(|&s| s)) {
+        (Some(first), Some(last)) => (first, last),
+        _ => return 0,
+    };
+    if !wraps {
+        return (last - first + 1) as u32;
+    }
+    // Round the map: all the columns less the longest run of empty ones (the run past the east
+    // edge goes on at the west edge).
+    let mut longest_gap = first + (set.len() - 1 - last);
+    let mut gap = 0;
+    for &s in &set[first..=last] {
+        gap = if s { 0 } else { gap + 1 };
+        longest_gap = longest_gap.max(gap);
+    }
+    (set.len() - longest_gap) as u32
+}
+
+/// The most mountain tiles in a row along one of the three hex axes (on a wrapping map a row of
+/// them may go all round: then it is as long as the round).
+fn straight_ridge(
+    terrain: &Terrain,
+    tiles: &[Hex],
+    index: &dyn Fn(Hex) -> usize,
+    mountain: &dyn Fn(usize) -> bool,
+) -> u32 {
+    let step = |tile: Hex, axis: Hex| terrain.wrap_tile(tile + axis).filter(|&t| terrain.contains(t)).map(index);
+    let mut longest = 0;
+    for axis in [Hex::new(1, 0), Hex::new(0, 1), Hex::new(1, -1)] {
+        let mut seen = vec![false; tiles.len()];
+        // Runs from their first tile, then what is left: rounds, which have no first tile.
+        let firsts = (0..tiles.len()).filter(|&i| mountain(i) && !step(tiles[i], -axis).is_some_and(mountain));
+        let rest: Vec<usize> = (0..tiles.len()).filter(|&i| mountain(i)).collect();
+        for start in firsts.chain(rest) {
+            if seen[start] {
+                continue;
+            }
+            let mut run = 0;
+            let mut at = Some(start);
+            while let Some(i) = at.filter(|&i| mountain(i) && !seen[i]) {
+                seen[i] = true;
+                run += 1;
+                at = step(tiles[i], axis);
+            }
+            longest = longest.max(run);
+        }
+    }
+    longest
+}
+
+/// The river systems, river tiles, the longest river and its sources.
+fn rivers(terrain: &Terrain, tiles: &[Hex], neighbors: &[[Option<u32>; 6]], infos: &[TileInfo]) -> RiverStats {
+    // Tiles within 2 steps of relief (a mountain or a hill).
+    let relief =
+        |i: usize| (infos[i].kind == TileKind::Mountain && infos[i].lake.is_none()) || infos[i].biome == Biome::Hills;
+    let mut near = vec![u8::MAX; tiles.len()];
+    let mut queue: std::collections::VecDeque<usize> = (0..tiles.len()).filter(|&i| relief(i)).collect();
+    for &i in &queue {
+        near[i] = 0;
+    }
+    while let Some(i) = queue.pop_front() {
+        if near[i] >= 2 {
+            continue;
+        }
+        for n in neighbors[i].iter().flatten().map(|&n| n as usize) {
+            if near[n] == u8::MAX {
+                near[n] = near[i] + 1;
+                queue.push_back(n);
+            }
+        }
+    }
+    let median = |mut lengths: Vec<u32>| {
+        lengths.sort_unstable();
+        lengths.get(lengths.len().saturating_sub(1) / 2).copied().unwrap_or(0)
+    };
     if let Some(network) = terrain.pipeline().table().and_then(|t| t.edge_rivers()) {
-        let [systems, tiles, edges, longest] = network.figures();
-        return RiverStats { systems, tiles, edges, longest };
+        let f = network.figures();
+        return RiverStats {
+            systems: f.systems,
+            tiles: f.tiles,
+            edges: f.edges,
+            longest: f.longest,
+            sources: f.sources.len() as u32,
+            median: median(f.sources.iter().map(|s| s.0).collect()),
+            sources_near_relief: f.sources.iter().filter(|s| s.1.iter().any(|&t| near[t] <= 2)).count() as u32,
+        };
     }
     let rivers = terrain.rivers();
     let by_tile: HashMap<Hex, usize> = rivers.iter().enumerate().map(|(i, r)| (r.hex, i)).collect();
+    let tile_index: HashMap<Hex, usize> = tiles.iter().enumerate().map(|(i, &h)| (h, i)).collect();
     let next = |i: usize| rivers[i].downstream.and_then(|d| by_tile.get(&d).copied());
     // Tiles from each river tile to its mouth, computed from the mouths up (rivers never rise,
     // so following downstream ends).
@@ -316,11 +496,18 @@ fn rivers(terrain: &Terrain) -> RiverStats {
             to_mouth[p] = length;
         }
     }
+    let sources: Vec<usize> = (0..rivers.len()).filter(|&i| rivers[i].upstream.is_empty()).collect();
     RiverStats {
         systems: (0..rivers.len()).filter(|&i| next(i).is_none()).count() as u32,
         tiles: rivers.len() as u32,
         edges: 0,
         longest: to_mouth.iter().copied().max().unwrap_or(0),
+        sources: sources.len() as u32,
+        median: median(sources.iter().map(|&i| to_mouth[i]).collect()),
+        sources_near_relief: sources
+            .iter()
+            .filter(|&&i| tile_index.get(&rivers[i].hex).is_some_and(|&t| near[t] <= 2))
+            .count() as u32,
     }
 }
 
@@ -348,6 +535,15 @@ impl std::fmt::Display for MapStats {
             self.longest_range,
             self.mountain_neighbors()
         )?;
+        writeln!(
+            f,
+            "shape: the straightest ridge {} mountains in a row, {:.1} % of mountains in blobs; the polar rows hold \
+             {:.1} % of the land; snow, tundra and snow peaks {:.1} % of it",
+            self.straight_ridge,
+            percent(self.blob_share()),
+            percent(self.polar_land_share()),
+            percent(self.cold_share())
+        )?;
         let list = |masses: Vec<&Landmass>| match masses.len() {
             0 => "none".to_owned(),
             n => {
@@ -370,6 +566,14 @@ impl std::fmt::Display for MapStats {
             None => writeln!(f, "coast: {} tile edges; one continent or none: no strait", self.coast_edges)?,
         }
         let r = &self.rivers;
+        writeln!(
+            f,
+            "rivers reach {:.1} % of the land; {} sources ({:.0} % near hills or mountains), a river {} long on median",
+            percent(self.river_share()),
+            r.sources,
+            percent(self.sources_near_relief_share()),
+            r.median
+        )?;
         if r.edges > 0 {
             write!(
                 f,

@@ -174,15 +174,73 @@ fn check(t: &Terrain) -> Result<(), TestCaseError> {
         prop_assert_eq!(stats.biomes.iter().find(|b| b.0 == biome).map_or(0, |b| b.1), n);
     }
 
+    // Shapes: straight runs of mountains walked along all six directions from every mountain;
+    // mountains in blobs; land in the polar rows; each landmass' rows and columns.
+    let mut ridge = 0;
+    for &h in tiles.iter().filter(|&&h| mountain(h)) {
+        for d in Hex::ZERO.all_neighbors() {
+            let mut walked = std::collections::HashSet::from([h]);
+            let mut at = h;
+            while let Some(next) = t.wrap_tile(at + d).filter(|&n| t.contains(n) && mountain(n) && !walked.contains(&n))
+            {
+                walked.insert(next);
+                at = next;
+            }
+            ridge = ridge.max(walked.len() as u32);
+        }
+    }
+    prop_assert_eq!(stats.straight_ridge, ridge);
+    let mountain_around =
+        |h: Hex| h.all_neighbors().iter().filter_map(|&n| t.wrap_tile(n)).filter(|&n| mountain(n)).count();
+    prop_assert_eq!(stats.blob_mountains, count(&|h| mountain(h) && mountain_around(h) >= 5));
+    let rect = t.bounds().unwrap();
+    let (width, height) = (rect.max[0] - rect.min[0], rect.max[1] - rect.min[1]);
+    let band = (height + 9) / 10;
+    let row = |h: Hex| t.offset_of(h)[1] - rect.min[1];
+    prop_assert_eq!(stats.polar_land_tiles, count(&|h| land(h) && (row(h) < band || row(h) >= height - band)));
+    for mass in &stats.landmasses {
+        let root = sets.find(tiles.iter().position(|&h| h == mass.first).unwrap());
+        let members: Vec<Hex> =
+            (0..tiles.len()).filter(|&i| land(tiles[i]) && sets.find(i) == root).map(|i| tiles[i]).collect();
+        let rows: std::collections::BTreeSet<i32> = members.iter().map(|&h| row(h)).collect();
+        prop_assert_eq!(mass.rows, (rows.last().unwrap() - rows.first().unwrap() + 1) as u32);
+        let columns: std::collections::BTreeSet<i32> =
+            members.iter().map(|&h| t.offset_of(h)[0] - rect.min[0]).collect();
+        // The fewest columns of an arc that holds them all: every start and length tried.
+        let span = if t.wrap().is_some() {
+            (1..=width)
+                .find(|&len| (0..width).any(|start| columns.iter().all(|&c| (c - start).rem_euclid(width) < len)))
+                .unwrap()
+        } else {
+            columns.last().unwrap() - columns.first().unwrap() + 1
+        };
+        prop_assert_eq!(mass.columns, span as u32);
+    }
+
+    // Relief: a mountain or a hill; within 2 steps: the tile, its neighbors and theirs.
+    let relief = |h: Hex| mountain(h) || info(h).biome == Biome::Hills;
+    let near_relief = |h: Hex| {
+        relief(h)
+            || t.neighbors(h)
+                .unwrap()
+                .into_iter()
+                .flatten()
+                .any(|n| relief(n) || t.neighbors(n).unwrap().into_iter().flatten().any(relief))
+    };
+    let median = |mut v: Vec<u32>| {
+        v.sort_unstable();
+        if v.is_empty() { 0 } else { v[(v.len() - 1) / 2] }
+    };
     // Rivers on edges: walked down from every edge.
     if t.config().rivers.model == RiverModel::Edges {
-        prop_assert_eq!(stats.rivers, edge_rivers(t));
+        prop_assert_eq!(stats.rivers, edge_rivers(t, &near_relief));
         prop_assert!(t.rivers().is_empty());
     }
     // Rivers through tile centers: walked down from every source.
     let rivers = t.rivers();
     let is_river = |h: Hex| rivers.iter().any(|r| r.hex == h);
     let mut longest = 0;
+    let mut lengths = Vec::new();
     for source in rivers.iter().filter(|r| r.upstream.is_empty()) {
         let mut length = 1;
         let mut at = source.clone();
@@ -191,6 +249,7 @@ fn check(t: &Terrain) -> Result<(), TestCaseError> {
             at = t.river(next).unwrap();
         }
         longest = longest.max(length);
+        lengths.push(length);
     }
     if t.config().rivers.model == RiverModel::Edges {
         prop_assert_eq!(stats.lakes, t.hydrology().map_or(0, |h| h.lake_count() as u32));
@@ -199,6 +258,10 @@ fn check(t: &Terrain) -> Result<(), TestCaseError> {
     prop_assert_eq!(stats.rivers.edges, 0);
     prop_assert_eq!(stats.rivers.tiles, rivers.len() as u32);
     prop_assert_eq!(stats.rivers.longest, longest);
+    prop_assert_eq!(stats.rivers.sources, lengths.len() as u32);
+    prop_assert_eq!(stats.rivers.median, median(lengths));
+    let near = rivers.iter().filter(|r| r.upstream.is_empty() && near_relief(r.hex)).count() as u32;
+    prop_assert_eq!(stats.rivers.sources_near_relief, near);
     prop_assert_eq!(
         stats.rivers.systems,
         rivers.iter().filter(|r| r.downstream.is_none_or(|d| !is_river(d))).count() as u32
@@ -217,7 +280,7 @@ fn check(t: &Terrain) -> Result<(), TestCaseError> {
 /// Rivers on edges, counted from `river_edges` alone: each edge once (named by the two tiles it
 /// lies between), its corners by the tiles they join; a system ends at an edge whose downstream
 /// corner no river edge leaves; a river's length is the edges walked down from it to there.
-fn edge_rivers(t: &Terrain) -> hex_terrain::RiverStats {
+fn edge_rivers(t: &Terrain, near_relief: &dyn Fn(Hex) -> bool) -> hex_terrain::RiverStats {
     let on_map = |h: Hex| t.wrap_tile(h).unwrap_or(h);
     let corner = |v: hex_terrain::hexx::GridVertex| {
         let mut tiles = v.coordinates().map(on_map);
@@ -226,6 +289,8 @@ fn edge_rivers(t: &Terrain) -> hex_terrain::RiverStats {
     };
     let mut seen = std::collections::HashSet::new();
     let mut down: HashMap<[Hex; 3], [Hex; 3]> = HashMap::new();
+    // Each corner's tiles on the map, by its name.
+    let mut corner_tiles: HashMap<[Hex; 3], Vec<Hex>> = HashMap::new();
     let mut tiles = 0;
     for tile in t.tiles() {
         let edges = t.river_edges(tile);
@@ -238,10 +303,15 @@ fn edge_rivers(t: &Terrain) -> hex_terrain::RiverStats {
             }
             let [p, q] = r.edge.vertices();
             let upstream = if corner(r.downstream) == corner(q) { p } else { q };
+            let on = upstream.coordinates().into_iter().filter_map(|c| t.wrap_tile(c).filter(|&c| t.contains(c)));
+            corner_tiles.insert(corner(upstream), on.collect());
             assert!(down.insert(corner(upstream), corner(r.downstream)).is_none(), "one edge leaves a corner");
         }
     }
     let mut longest = 0;
+    let mut lengths = Vec::new();
+    let mut near = 0;
+    let fed: std::collections::HashSet<&[Hex; 3]> = down.values().collect();
     for &start in down.keys() {
         let (mut at, mut length) = (start, 0);
         while let Some(&next) = down.get(&at) {
@@ -250,12 +320,20 @@ fn edge_rivers(t: &Terrain) -> hex_terrain::RiverStats {
             assert!(length <= down.len(), "a river loops");
         }
         longest = longest.max(length as u32);
+        if !fed.contains(&start) {
+            lengths.push(length as u32);
+            near += u32::from(corner_tiles[&start].iter().any(|&h| near_relief(h)));
+        }
     }
+    lengths.sort_unstable();
     hex_terrain::RiverStats {
         systems: down.values().filter(|to| !down.contains_key(*to)).count() as u32,
         tiles,
         edges: down.len() as u32,
         longest,
+        sources: lengths.len() as u32,
+        median: if lengths.is_empty() { 0 } else { lengths[(lengths.len() - 1) / 2] },
+        sources_near_relief: near,
     }
 }
 
@@ -306,7 +384,19 @@ fn edge_river_maps_count_their_rivers() {
         let r = stats.rivers;
         println!("{name}: {r:?}");
         assert!(r.systems > 0 && r.edges >= r.systems && r.tiles > r.edges / 2 && r.longest > 1, "{name}: {r:?}");
-        assert_eq!(r, edge_rivers(&t), "{name}");
+        let relief = |h: Hex| {
+            let i = t.tile_info(h).unwrap();
+            (i.kind == TileKind::Mountain && i.lake.is_none()) || i.biome == Biome::Hills
+        };
+        let near = |h: Hex| {
+            relief(h)
+                || t.neighbors(h)
+                    .unwrap()
+                    .into_iter()
+                    .flatten()
+                    .any(|n| relief(n) || t.neighbors(n).unwrap().into_iter().flatten().any(relief))
+        };
+        assert_eq!(r, edge_rivers(&t, &near), "{name}");
         assert!(stats.to_string().contains(&format!("{} systems on {} edges", r.systems, r.edges)), "{stats}");
     }
 }

@@ -99,7 +99,7 @@ pub fn run(path: &Path, mut config: MapConfig, options: &Options) -> CliResult<(
     println!("{:<40} {:>10} {:>10} {:>10}", "statistic", "min", "median", "max");
     let percent = |f: fn(&MapStats) -> f64| move |r: &Row| 100.0 * f(&r.stats);
     let count = |f: fn(&MapStats) -> u32| move |r: &Row| f64::from(f(&r.stats));
-    let lines: [(&str, Statistic); 18] = [
+    let lines: [(&str, Statistic); 27] = [
         ("water share (%)", Box::new(percent(MapStats::water_share))),
         ("land tiles", Box::new(count(|s| s.land_tiles))),
         ("continents", Box::new(count(|s| s.continents().count() as u32))),
@@ -115,6 +115,15 @@ pub fn run(path: &Path, mut config: MapConfig, options: &Options) -> CliResult<(
         ("river edges (rivers on edges)", Box::new(count(|s| s.rivers.edges))),
         ("longest river (tiles; on edges, edges)", Box::new(count(|s| s.rivers.longest))),
         ("lakes", Box::new(count(|s| s.lakes))),
+        ("straightest ridge (mountains in a row)", Box::new(count(|s| s.straight_ridge))),
+        ("mountains in blobs (%)", Box::new(percent(MapStats::blob_share))),
+        ("polar rows' land (% of land)", Box::new(percent(MapStats::polar_land_share))),
+        ("snow, tundra, snow peaks (% of land)", Box::new(percent(MapStats::cold_share))),
+        ("lake tiles (% of land)", Box::new(percent(MapStats::lake_share))),
+        ("lakes per 1,000 land tiles", Box::new(|r: &Row| r.stats.lakes_per_thousand())),
+        ("land on a river (%)", Box::new(percent(MapStats::river_share))),
+        ("river length, median of the map", Box::new(count(|s| s.rivers.median))),
+        ("sources near hills or mountains (%)", Box::new(percent(MapStats::sources_near_relief_share))),
         ("narrowest strait (tiles)", Box::new(|r: &Row| r.stats.narrowest_strait.map_or(f64::NAN, f64::from))),
         ("compile the map (ms)", Box::new(|r: &Row| r.compile_ms)),
         ("measure its statistics (ms)", Box::new(|r: &Row| r.measure_ms)),

@@ -18,4 +18,3 @@ pub(crate) struct Unit {
     pub(crate) player: u32,
     pub(crate) moves_left: u32,
 }
-

@@ -14,8 +14,8 @@ use bevy::ui::UiGlobalTransform;
 use bevy_hex_terrain::prelude::*;
 
 use crate::Game;
-use crate::rig::Rig;
 use crate::pieces::{LIFT, MOVES, Unit};
+use crate::rig::Rig;
 use crate::vision::{self, HUMAN, RIVAL};
 use bevy_hex_terrain::{HexMinimap, MinimapPicture};
 

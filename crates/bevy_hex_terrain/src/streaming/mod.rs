@@ -2,8 +2,8 @@
 //! ([`planner`], a pure function), their meshes built on Bevy's async compute pool ([`tasks`])
 //! and inserted under a per-frame budget ([`insert`]), with figures in [`HexStreamingStats`].
 
-pub(crate) mod content;
 mod build;
+pub(crate) mod content;
 mod detail;
 mod insert;
 mod planner;
@@ -16,13 +16,13 @@ use bevy::platform::collections::{HashMap, HashSet};
 use bevy::prelude::*;
 use hex_terrain::{ChunkCoord, Detail};
 
+pub use build::ChunkTask;
 pub use content::ChunkContent;
 pub(crate) use content::ContentRequest;
 pub use detail::DETAIL_HYSTERESIS;
 pub(crate) use planner::kept_at_most;
 pub use retire::MAX_RETIRED_CHUNKS;
 pub use stats::HexStreamingStats;
-pub use build::ChunkTask;
 
 use crate::HexTerrainSystems;
 

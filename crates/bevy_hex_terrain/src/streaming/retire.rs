@@ -9,8 +9,8 @@ use std::collections::VecDeque;
 
 use bevy::prelude::*;
 
-use super::content::ChunkContent;
 use super::build::ChunkTask;
+use super::content::ChunkContent;
 use super::{ChunkStreamer, HexChunk, HexStreamingSettings};
 
 /// Chunks with at most this many children are despawned at once: retiring them saves nothing.

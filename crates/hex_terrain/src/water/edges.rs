@@ -71,6 +71,16 @@ pub struct EdgeRivers {
     widths: Vec<[f32; 6]>,
 }
 
+/// The figures of an edge river network ([`EdgeRivers::figures`]).
+pub(crate) struct EdgeFigures {
+    pub systems: u32,
+    pub tiles: u32,
+    pub edges: u32,
+    pub longest: u32,
+    /// Each source's length in edges and its tiles (map tile indices).
+    pub sources: Vec<(u32, Vec<usize>)>,
+}
+
 /// The channel half-widths of a tile without a river edge.
 const NO_WIDTHS: [f32; 6] = [0.0; 6];
 
@@ -234,17 +244,22 @@ impl EdgeRivers {
     }
 
     /// The network's figures: river systems (one a last edge, whose downstream corner no
-    /// river leaves), map tiles with a river edge, river edges, and the most edges from a source
-    /// to its mouth.
-    pub(crate) fn figures(&self) -> [u32; 4] {
+    /// river leaves), map tiles with a river edge, river edges, the most edges from a source to
+    /// its mouth, and each source (a river corner no river flows into) with its length in edges
+    /// and its tiles (map tile indices, row by row).
+    pub(crate) fn figures(&self) -> EdgeFigures {
         let n = self.down.len();
         let river = |c: usize| self.river[c];
         let next = |c: usize| Some(self.down[c] as usize).filter(|&d| self.down[c] != NONE && river(d));
         // Edges from each river corner to its mouth, found walking down from each corner until a
         // corner already measured (courses never loop).
         let mut to_mouth = vec![0u32; n];
+        let mut fed = vec![false; n];
         let mut walk = Vec::new();
         for start in (0..n).filter(|&c| river(c)) {
+            if let Some(d) = next(start) {
+                fed[d] = true;
+            }
             let mut at = Some(start);
             while let Some(c) = at.filter(|&c| to_mouth[c] == 0) {
                 walk.push(c);
@@ -256,10 +271,23 @@ impl EdgeRivers {
                 to_mouth[c] = length;
             }
         }
-        let systems = (0..n).filter(|&c| river(c) && next(c).is_none()).count() as u32;
-        let tiles = self.edges.iter().filter(|&&e| e != 0).count() as u32;
-        let edges = (0..n).filter(|&c| river(c)).count() as u32;
-        [systems, tiles, edges, to_mouth.into_iter().max().unwrap_or(0)]
+        let sources = (0..n)
+            .filter(|&c| river(c) && !fed[c])
+            .map(|c| {
+                let (owner, k) = self.grid.owner(c);
+                let tiles = self.stencils.of(owner, k).tiles;
+                let tiles =
+                    tiles.iter().filter_map(|&[dc, dr]| self.grid.tile([owner[0] + dc, owner[1] + dr])).collect();
+                (to_mouth[c], tiles)
+            })
+            .collect();
+        EdgeFigures {
+            systems: (0..n).filter(|&c| river(c) && next(c).is_none()).count() as u32,
+            tiles: self.edges.iter().filter(|&&e| e != 0).count() as u32,
+            edges: (0..n).filter(|&c| river(c)).count() as u32,
+            longest: to_mouth.into_iter().max().unwrap_or(0),
+            sources,
+        }
     }
 
     /// The river edges of map tile `i`, a bit for each neighbor direction.
