@@ -7,9 +7,12 @@ use std::path::PathBuf;
 use bevy::prelude::*;
 use bevy::render::view::screenshot::{Screenshot, ScreenshotCaptured, save_to_disk};
 
-/// Saves a screenshot of the primary window to `path` after `frames` frames, logs the mean frame
-/// time of the frames after the first ten (which compile pipelines), and exits the app with
-/// status 0. Without a `path` it does nothing, so a game may keep it in every build.
+/// Saves a screenshot of the primary window to `path` after `frames` frames, once the terrain
+/// has been on screen for ten frames (every wanted chunk showing the map: in an
+/// unoptimised build the first chunks take a while), logs the mean frame time of the frames
+/// after the first ten (which compile pipelines), and exits the app with status 0. A terrain
+/// that has not settled by four times `frames` is taken as it is. Without a `path` it does
+/// nothing, so a game may keep it in every build.
 ///
 /// Its default reads the environment: `HEXTERRAIN_SCREENSHOT` (the picture's path; PNG needs
 /// Bevy's `png` feature, one of its defaults) and `HEXTERRAIN_FRAMES` (default 60). Not part of
@@ -44,16 +47,28 @@ impl Default for HexScreenshotPlugin {
 impl Plugin for HexScreenshotPlugin {
     fn build(&self, app: &mut App) {
         let Some(path) = self.path.clone() else { return };
-        let mode = ScreenshotMode { path, frames: self.frames.max(1), seen: 0, requested: false, timing_from: None };
+        let mode = ScreenshotMode {
+            path,
+            frames: self.frames.max(1),
+            seen: 0,
+            settled_at: None,
+            requested: false,
+            timing_from: None,
+        };
         app.insert_resource(mode).add_systems(Last, screenshot_after_frames);
     }
 }
+
+/// Frames a screenshot waits after the terrain first settled (new meshes' pipelines compile).
+const SETTLE_FRAMES: u32 = 10;
 
 #[derive(Resource)]
 struct ScreenshotMode {
     path: PathBuf,
     frames: u32,
     seen: u32,
+    /// The frame the terrain first settled on.
+    settled_at: Option<u32>,
     requested: bool,
     /// Start of the eleventh frame, once reached.
     timing_from: Option<std::time::Instant>,
@@ -66,6 +81,7 @@ struct Saved;
 fn screenshot_after_frames(
     mut commands: Commands,
     mut mode: ResMut<ScreenshotMode>,
+    streamer: Option<Res<crate::ChunkStreamer>>,
     saved: Option<Res<Saved>>,
     mut exit: MessageWriter<AppExit>,
 ) {
@@ -77,7 +93,11 @@ fn screenshot_after_frames(
     if mode.seen == 10 {
         mode.timing_from = Some(std::time::Instant::now());
     }
-    if mode.seen < mode.frames || mode.requested {
+    if mode.settled_at.is_none() && streamer.is_some_and(|s| s.is_settled()) {
+        mode.settled_at = Some(mode.seen);
+    }
+    let settled = mode.settled_at.is_some_and(|at| mode.seen >= at + SETTLE_FRAMES);
+    if mode.requested || mode.seen < mode.frames || !(settled || mode.seen >= mode.frames.saturating_mul(4)) {
         return;
     }
     mode.requested = true;

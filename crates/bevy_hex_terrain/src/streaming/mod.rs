@@ -208,6 +208,11 @@ pub struct ChunkStreamer {
 }
 
 impl ChunkStreamer {
+    /// Whether every wanted chunk showed the current map at the end of the last frame.
+    pub(crate) fn is_settled(&self) -> bool {
+        self.settled
+    }
+
     /// Chunk entities alive.
     #[must_use]
     pub fn live_chunks(&self) -> usize {
