@@ -208,7 +208,9 @@ pub struct ChunkStreamer {
 }
 
 impl ChunkStreamer {
-    /// Whether every wanted chunk showed the current map at the end of the last frame.
+    /// Whether every wanted chunk showed the current map at the end of the last frame (the
+    /// screenshot plugin waits for it).
+    #[cfg(feature = "render")]
     pub(crate) fn is_settled(&self) -> bool {
         self.settled
     }
