@@ -217,23 +217,9 @@ fn check(t: &Terrain) -> Result<(), TestCaseError> {
         prop_assert_eq!(mass.columns, span as u32);
     }
 
-    // Relief: a mountain or a hill; within 2 steps: the tile, its neighbors and theirs.
-    let relief = |h: Hex| mountain(h) || info(h).biome == Biome::Hills;
-    let near_relief = |h: Hex| {
-        relief(h)
-            || t.neighbors(h)
-                .unwrap()
-                .into_iter()
-                .flatten()
-                .any(|n| relief(n) || t.neighbors(n).unwrap().into_iter().flatten().any(relief))
-    };
-    let median = |mut v: Vec<u32>| {
-        v.sort_unstable();
-        if v.is_empty() { 0 } else { v[(v.len() - 1) / 2] }
-    };
     // Rivers on edges: walked down from every edge.
     if t.config().rivers.model == RiverModel::Edges {
-        prop_assert_eq!(stats.rivers, edge_rivers(t, &near_relief));
+        prop_assert_eq!(stats.rivers, edge_rivers(t));
         prop_assert!(t.rivers().is_empty());
     }
     // Rivers through tile centers: walked down from every source.
@@ -260,7 +246,7 @@ fn check(t: &Terrain) -> Result<(), TestCaseError> {
     prop_assert_eq!(stats.rivers.longest, longest);
     prop_assert_eq!(stats.rivers.sources, lengths.len() as u32);
     prop_assert_eq!(stats.rivers.median, median(lengths));
-    let near = rivers.iter().filter(|r| r.upstream.is_empty() && near_relief(r.hex)).count() as u32;
+    let near = rivers.iter().filter(|r| r.upstream.is_empty() && near_relief(t, r.hex)).count() as u32;
     prop_assert_eq!(stats.rivers.sources_near_relief, near);
     prop_assert_eq!(
         stats.rivers.systems,
@@ -277,10 +263,27 @@ fn check(t: &Terrain) -> Result<(), TestCaseError> {
     Ok(())
 }
 
+/// Whether a tile lies within 2 steps of relief (a mountain or a hill): the tile, its neighbors
+/// and theirs.
+fn near_relief(t: &Terrain, h: Hex) -> bool {
+    let relief = |h: Hex| {
+        let i = t.tile_info(h).unwrap();
+        (i.kind == TileKind::Mountain && i.lake.is_none()) || i.biome == Biome::Hills
+    };
+    let around = |h: Hex| t.neighbors(h).unwrap().into_iter().flatten();
+    relief(h) || around(h).any(|n| relief(n) || around(n).any(relief))
+}
+
+/// The lower median of some lengths; 0 without any.
+fn median(mut v: Vec<u32>) -> u32 {
+    v.sort_unstable();
+    if v.is_empty() { 0 } else { v[(v.len() - 1) / 2] }
+}
+
 /// Rivers on edges, counted from `river_edges` alone: each edge once (named by the two tiles it
 /// lies between), its corners by the tiles they join; a system ends at an edge whose downstream
 /// corner no river edge leaves; a river's length is the edges walked down from it to there.
-fn edge_rivers(t: &Terrain, near_relief: &dyn Fn(Hex) -> bool) -> hex_terrain::RiverStats {
+fn edge_rivers(t: &Terrain) -> hex_terrain::RiverStats {
     let on_map = |h: Hex| t.wrap_tile(h).unwrap_or(h);
     let corner = |v: hex_terrain::hexx::GridVertex| {
         let mut tiles = v.coordinates().map(on_map);
@@ -322,17 +325,16 @@ fn edge_rivers(t: &Terrain, near_relief: &dyn Fn(Hex) -> bool) -> hex_terrain::R
         longest = longest.max(length as u32);
         if !fed.contains(&start) {
             lengths.push(length as u32);
-            near += u32::from(corner_tiles[&start].iter().any(|&h| near_relief(h)));
+            near += u32::from(corner_tiles[&start].iter().any(|&h| near_relief(t, h)));
         }
     }
-    lengths.sort_unstable();
     hex_terrain::RiverStats {
         systems: down.values().filter(|to| !down.contains_key(*to)).count() as u32,
         tiles,
         edges: down.len() as u32,
         longest,
         sources: lengths.len() as u32,
-        median: if lengths.is_empty() { 0 } else { lengths[(lengths.len() - 1) / 2] },
+        median: median(lengths),
         sources_near_relief: near,
     }
 }
@@ -384,19 +386,7 @@ fn edge_river_maps_count_their_rivers() {
         let r = stats.rivers;
         println!("{name}: {r:?}");
         assert!(r.systems > 0 && r.edges >= r.systems && r.tiles > r.edges / 2 && r.longest > 1, "{name}: {r:?}");
-        let relief = |h: Hex| {
-            let i = t.tile_info(h).unwrap();
-            (i.kind == TileKind::Mountain && i.lake.is_none()) || i.biome == Biome::Hills
-        };
-        let near = |h: Hex| {
-            relief(h)
-                || t.neighbors(h)
-                    .unwrap()
-                    .into_iter()
-                    .flatten()
-                    .any(|n| relief(n) || t.neighbors(n).unwrap().into_iter().flatten().any(relief))
-        };
-        assert_eq!(r, edge_rivers(&t, &near), "{name}");
+        assert_eq!(r, edge_rivers(&t), "{name}");
         assert!(stats.to_string().contains(&format!("{} systems on {} edges", r.systems, r.edges)), "{stats}");
     }
 }
