@@ -479,23 +479,7 @@ fn rivers(terrain: &Terrain, tiles: &[Hex], neighbors: &[[Option<u32>; 6]], info
     let next = |i: usize| rivers[i].downstream.and_then(|d| by_tile.get(&d).copied());
     // Tiles from each river tile to its mouth, computed from the mouths up (rivers never rise,
     // so following downstream ends).
-    let mut to_mouth = vec![0u32; rivers.len()];
-    let mut pending: Vec<usize> = Vec::new();
-    for start in 0..rivers.len() {
-        let mut i = start;
-        while to_mouth[i] == 0 {
-            pending.push(i);
-            match next(i) {
-                Some(n) if !pending.contains(&n) => i = n,
-                _ => break,
-            }
-        }
-        let mut length = if to_mouth[i] == 0 { 0 } else { to_mouth[i] };
-        while let Some(p) = pending.pop() {
-            length += 1;
-            to_mouth[p] = length;
-        }
-    }
+    let to_mouth = crate::water::steps_to_mouth(rivers.len(), 0..rivers.len(), next);
     let sources: Vec<usize> = (0..rivers.len()).filter(|&i| rivers[i].upstream.is_empty()).collect();
     RiverStats {
         systems: (0..rivers.len()).filter(|&i| next(i).is_none()).count() as u32,

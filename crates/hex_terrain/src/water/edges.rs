@@ -251,25 +251,10 @@ impl EdgeRivers {
         let n = self.down.len();
         let river = |c: usize| self.river[c];
         let next = |c: usize| Some(self.down[c] as usize).filter(|&d| self.down[c] != NONE && river(d));
-        // Edges from each river corner to its mouth, found walking down from each corner until a
-        // corner already measured (courses never loop).
-        let mut to_mouth = vec![0u32; n];
+        let to_mouth = super::steps_to_mouth(n, (0..n).filter(|&c| river(c)), next);
         let mut fed = vec![false; n];
-        let mut walk = Vec::new();
-        for start in (0..n).filter(|&c| river(c)) {
-            if let Some(d) = next(start) {
-                fed[d] = true;
-            }
-            let mut at = Some(start);
-            while let Some(c) = at.filter(|&c| to_mouth[c] == 0) {
-                walk.push(c);
-                at = next(c);
-            }
-            let mut length = at.map_or(0, |c| to_mouth[c]);
-            while let Some(c) = walk.pop() {
-                length += 1;
-                to_mouth[c] = length;
-            }
+        for d in (0..n).filter(|&c| river(c)).filter_map(next) {
+            fed[d] = true;
         }
         let sources = (0..n)
             .filter(|&c| river(c) && !fed[c])
