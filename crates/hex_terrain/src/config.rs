@@ -17,7 +17,8 @@ mod validate;
 mod winds;
 
 pub use climate::{
-    BiomeRule, ClimateConfig, MAX_BIOME_RULES, MAX_SEA_DISTANCE, MAX_WATER_TILES, RiverConfig, RiverModel,
+    BiomeRule, ClimateConfig, MAX_BIOME_RULES, MAX_SEA_DISTANCE, MAX_WATER_TILES, RIVER_MIN_LANDMASS, RIVER_SPACING,
+    RiverConfig, RiverModel, RiverSources,
 };
 pub use winds::{MAX_WIND_BANDS, WindConfig, WindPattern};
 

@@ -91,15 +91,16 @@ pub use climate::{Climate, ClimateModel, TileSample};
 pub use config::{
     AppearanceConfig, BiomeRule, ClimateConfig, HeightSourceConfig, LayoutConfig, MAX_EDITS, ManipulationConfig,
     MapConfig, MapFile, MapSize, MapType, MapTypeConfig, MovementConfig, NoiseConfig, Orientation, Place, PropDensity,
-    PullMode, ReliefConfig, ResourceClass, ResourceRule, RiverConfig, RiverEdit, RiverModel, SetupConfig, Shape,
-    SightConfig, StartOn, TerrainConfig, TileEdit, ValueWeights, WaterLevel, WindConfig, WindPattern, WonderConfig,
-    WonderRule, YieldTable, Yields,
+    PullMode, ReliefConfig, ResourceClass, ResourceRule, RiverConfig, RiverEdit, RiverModel, RiverSources, SetupConfig,
+    Shape, SightConfig, StartOn, TerrainConfig, TileEdit, ValueWeights, WaterLevel, WindConfig, WindPattern,
+    WonderConfig, WonderRule, YieldTable, Yields,
 };
 pub use config::{
     MAX_BIOME_RULES, MAX_CHUNK_BYTES, MAX_CHUNK_SIDE, MAX_INNER_RINGS, MAX_MAP_BYTES, MAX_MOUNTAIN_SHARE,
     MAX_MOVE_COST, MAX_OCTAVES, MAX_OFFSET, MAX_PER_PLAYER, MAX_PLAYERS, MAX_SEA_DISTANCE, MAX_SETUP_DISTANCE,
     MAX_SETUP_RINGS, MAX_SETUP_RULES, MAX_SETUP_TILES, MAX_SIGHT_BONUS, MAX_WATER_TILES, MAX_WIND_BANDS,
-    MAX_WORLD_TILE, MAX_YIELD, MIN_MAP_TYPE_SIDE, MIN_WRAP_COLUMNS, SEA_SHARE_TOLERANCE,
+    MAX_WORLD_TILE, MAX_YIELD, MIN_MAP_TYPE_SIDE, MIN_WRAP_COLUMNS, RIVER_MIN_LANDMASS, RIVER_SPACING,
+    SEA_SHARE_TOLERANCE,
 };
 pub use editor::{Brush, Change, EditError, EditTimings, Editor, MAX_BRUSH_RADIUS, MAX_FLOOD_TILES, Stroke, Tool};
 pub use edits::Edits;
@@ -111,8 +112,8 @@ pub use geometry::Geometry;
 #[doc(hidden)]
 pub use hash::{hash, unit};
 pub use heights::{
-    FastPerlin, Fbm, HeightField, HeightImage, ImageError, Kernel, MAX_IMAGE_PIXELS, MAX_LAYOUTS, MAX_PNG_BYTES,
-    MAX_TRIES, MapTypeReport, MapTypeTarget, SEA_STEPS, TargetCheck,
+    FastPerlin, Fbm, HeightField, HeightImage, ImageError, Kernel, MAX_BLOB_SHARE, MAX_IMAGE_PIXELS, MAX_LAYOUTS,
+    MAX_PNG_BYTES, MAX_STRAIGHT_RIDGE, MAX_TRIES, MapTypeReport, MapTypeTarget, SEA_STEPS, TargetCheck,
 };
 pub use hexx;
 pub use kind::Thresholds;

@@ -8,7 +8,7 @@ use hexx::Hex;
 use crate::chunk::TileRect;
 use crate::climate::winds::{self, RainInput};
 use crate::climate::{Climate, ClimateModel, TileSample};
-use crate::config::{RiverConfig, RiverEdit, RiverModel};
+use crate::config::{RiverConfig, RiverEdit, RiverModel, RiverSources};
 use crate::geometry::Geometry;
 use crate::heights::HeightField;
 use crate::kind::Thresholds;
@@ -101,7 +101,14 @@ impl TileTable {
         let neighbor = |i: usize, d: usize| Some(links[i][d] as usize).filter(|&j| j != i);
         // Each tile's climate, once: rain and biome both read it.
         let winds = climate.winds().map(|winds| {
-            let input = RainInput { rect, tiles: &tiles, raw: &table.raw, kinds: &table.kinds, sea: thresholds.sea };
+            let input = RainInput {
+                rect,
+                tiles: &tiles,
+                raw: &table.raw,
+                kinds: &table.kinds,
+                sea: thresholds.sea,
+                latitudes: climate.latitudes(),
+            };
             winds::rainfall(winds, geometry, &input, neighbor)
         });
         table.climates = tiles
@@ -148,6 +155,18 @@ impl TileTable {
                 // edges instead.
                 let hydrology = Hydrology::lakes_only(rivers, &links, (&table.raw, &table.kinds, &rain));
                 let lakes: Vec<bool> = (0..tiles.len()).map(|i| hydrology.lake_of(i).is_some()).collect();
+                // Hills and mountains, as the tiles' biomes will say, for rivers rising in them.
+                let relief: Vec<bool> = match rivers.sources {
+                    RiverSources::Flow => Vec::new(),
+                    RiverSources::Relief { .. } => (0..tiles.len())
+                        .map(|i| {
+                            let by_hand = heights.edits().and_then(|e| e.biome(geometry, tiles[i]));
+                            let biome =
+                                by_hand.unwrap_or_else(|| climate.biome_from(&samples[i], lakes[i], climates[i]));
+                            biome == Biome::Hills || (samples[i].kind == TileKind::Mountain && !lakes[i])
+                        })
+                        .collect(),
+                };
                 let input = EdgeInput {
                     rect,
                     links: &links,
@@ -156,6 +175,7 @@ impl TileTable {
                     lakes: &lakes,
                     rain: &rain,
                     by_hand: &by_hand,
+                    relief: &relief,
                 };
                 table.edge_rivers = Some(EdgeRivers::build(rivers, geometry, &input));
                 table.hydrology = Some(hydrology);

@@ -63,6 +63,7 @@ pub fn run(path: &Path, mut config: MapConfig, options: &Options) -> CliResult<(
     if config.size.bounds().is_none() {
         return Err(format!("{}: an unbounded world has no whole to survey; give --size COLUMNSxROWS", path.display()));
     }
+    let (x, z) = config.size.bounds().expect("bounded");
     let first = config.seed;
     let mut rows: Vec<Row> = Vec::with_capacity(seeds as usize);
     let mut refused = Vec::new();
@@ -87,7 +88,6 @@ pub fn run(path: &Path, mut config: MapConfig, options: &Options) -> CliResult<(
             measure_ms: measured.as_secs_f64() * 1e3,
         });
     }
-    let (x, z) = config.size.bounds().expect("bounded");
     println!(
         "{} ({}), {x}x{z}{}: {} seeds from {first}, {:.1} s",
         config.name,
@@ -99,7 +99,11 @@ pub fn run(path: &Path, mut config: MapConfig, options: &Options) -> CliResult<(
     println!("{:<40} {:>10} {:>10} {:>10}", "statistic", "min", "median", "max");
     let percent = |f: fn(&MapStats) -> f64| move |r: &Row| 100.0 * f(&r.stats);
     let count = |f: fn(&MapStats) -> u32| move |r: &Row| f64::from(f(&r.stats));
-    let lines: [(&str, Statistic); 27] = [
+    let (map_columns, map_rows) = (f64::from(x), f64::from(z));
+    let extent = move |r: &Row, f: fn(&hex_terrain::Landmass) -> u32, whole: f64| {
+        r.stats.continents().map(|c| 100.0 * f64::from(f(c)) / whole).fold(f64::NAN, f64::min)
+    };
+    let lines: [(&str, Statistic); 32] = [
         ("water share (%)", Box::new(percent(MapStats::water_share))),
         ("land tiles", Box::new(count(|s| s.land_tiles))),
         ("continents", Box::new(count(|s| s.continents().count() as u32))),
@@ -124,6 +128,33 @@ pub fn run(path: &Path, mut config: MapConfig, options: &Options) -> CliResult<(
         ("land on a river (%)", Box::new(percent(MapStats::river_share))),
         ("river length, median of the map", Box::new(count(|s| s.rivers.median))),
         ("sources near hills or mountains (%)", Box::new(percent(MapStats::sources_near_relief_share))),
+        ("continents' least height (% of rows)", Box::new(move |r: &Row| extent(r, |c| c.rows, map_rows))),
+        ("continents' least width (% of columns)", Box::new(move |r: &Row| extent(r, |c| c.columns, map_columns))),
+        (
+            "largest landmass' width (% of columns)",
+            Box::new(move |r: &Row| {
+                r.stats
+                    .landmasses
+                    .iter()
+                    .max_by_key(|l| l.tiles)
+                    .map_or(f64::NAN, |l| 100.0 * f64::from(l.columns) / map_columns)
+            }),
+        ),
+        (
+            "third largest landmass (tiles)",
+            Box::new(|r: &Row| {
+                let mut sizes: Vec<u32> = r.stats.landmasses.iter().map(|l| l.tiles).collect();
+                sizes.sort_unstable_by(|a, b| b.cmp(a));
+                sizes.get(2).map_or(0.0, |&s| f64::from(s))
+            }),
+        ),
+        (
+            "landmasses of 1-3 tiles (%)",
+            Box::new(|r: &Row| {
+                let small = r.stats.landmasses.iter().filter(|l| l.tiles <= 3).count();
+                100.0 * small as f64 / r.stats.landmasses.len().max(1) as f64
+            }),
+        ),
         ("narrowest strait (tiles)", Box::new(|r: &Row| r.stats.narrowest_strait.map_or(f64::NAN, f64::from))),
         ("compile the map (ms)", Box::new(|r: &Row| r.compile_ms)),
         ("measure its statistics (ms)", Box::new(|r: &Row| r.measure_ms)),

@@ -146,6 +146,12 @@ impl ClimateModel {
         self.fields.as_ref().and(self.config.winds.as_ref())
     }
 
+    /// The latitudes of the map's first and last rows ([`ClimateConfig::latitudes`]).
+    #[must_use]
+    pub(crate) fn latitudes(&self) -> (f32, f32) {
+        self.config.latitudes
+    }
+
     /// Whether the map has a climate.
     #[must_use]
     pub fn is_enabled(&self) -> bool {
@@ -203,7 +209,7 @@ impl ClimateModel {
         let c = &self.config;
         let base = match geometry.bounds() {
             Some(bounds) => {
-                let (latitude, _) = winds::latitude(bounds, geometry.offset_of(tile)[1]);
+                let (latitude, _) = winds::latitude(bounds, geometry.offset_of(tile)[1], c.latitudes);
                 // With winds, halfway to the sun's height (the cosine of the latitude): the
                 // tropics stay hot out to the horse latitudes, where the deserts lie, and the
                 // middle latitudes cool faster.

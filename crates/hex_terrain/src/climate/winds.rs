@@ -53,16 +53,29 @@ pub(crate) struct RainInput<'a> {
     pub kinds: &'a [TileKind],
     /// The sea threshold: land at it is at sea level, 1 is the top of the relief.
     pub sea: f32,
+    /// The latitudes of the map's first and last rows.
+    pub latitudes: (f32, f32),
 }
 
-/// A tile's latitude on a map of `rect`: 0 on the middle row (the equator), 1 at the first and
-/// last rows' outer edges (the poles), and whether it lies in the northern half.
+/// A tile's latitude on a map of `rect` whose first and last rows' outer edges lie at
+/// `latitudes` ([`ClimateConfig::latitudes`](crate::ClimateConfig::latitudes): 1 the north
+/// pole, 0 the equator, -1 the south pole): how far from the equator (0) toward a pole (1), and
+/// whether it lies in the northern half.
 #[must_use]
-pub(crate) fn latitude(rect: TileRect, row: i32) -> (f32, bool) {
+pub(crate) fn latitude(rect: TileRect, row: i32, latitudes: (f32, f32)) -> (f32, bool) {
     let rows = (rect.max[1] - rect.min[1]).max(1) as f32;
-    let v = ((row - rect.min[1]) as f32 + 0.5) / rows - 0.5;
-    (v.abs() * 2.0, v < 0.0)
+    let t = ((row - rect.min[1]) as f32 + 0.5) / rows;
+    if latitudes == POLE_TO_POLE {
+        let v = t - 0.5;
+        return (v.abs() * 2.0, v < 0.0);
+    }
+    let l = latitudes.0 + (latitudes.1 - latitudes.0) * t;
+    (l.abs(), l > 0.0)
 }
+
+/// The default [`ClimateConfig::latitudes`](crate::ClimateConfig::latitudes): the first row at
+/// the north pole, the last at the south pole.
+pub(crate) const POLE_TO_POLE: (f32, f32) = (1.0, -1.0);
 
 /// The unit vector (world `x`, `z`) the air moves along under a wind blowing from `bearing`
 /// degrees clockwise from north (`-z`).
@@ -154,7 +167,7 @@ pub(crate) fn rainfall(
     // Each row's latitude, wind and uplift.
     let rows: Vec<(f32, [f32; 2], f32)> = (rect.min[1]..rect.max[1])
         .map(|r| {
-            let (lat, north) = latitude(rect, r);
+            let (lat, north) = latitude(rect, r, input.latitudes);
             (lat, bands.wind(lat, north), bands.uplift(config.uplift, lat))
         })
         .collect();

@@ -35,6 +35,12 @@ pub struct ClimateConfig {
     /// Bounded maps: how far (in temperature) a low-frequency field bends the latitude bands,
     /// in `[0, 1]`.
     pub temperature_jitter: f32,
+    /// Bounded maps: the latitudes of the first and the last row's outer edges, each in
+    /// `[-1, 1]` (1 the north pole, 0 the equator, -1 the south pole), different: `(1, -1)`,
+    /// the default, is a world from pole to pole; `(0.6, -0.6)` a temperate and tropical
+    /// region, as a regional map (Civilization V's Inland Sea) is. Temperature and the winds'
+    /// bands follow them.
+    pub latitudes: (f32, f32),
     /// Cooling from the sea threshold to the top of the relief, in temperature, in `[0, 2]`.
     pub lapse_rate: f32,
     /// Land tiles whose center lies this far up the land range (in `[0, 1]`) are hills;
@@ -60,6 +66,7 @@ impl Default for ClimateConfig {
             coast_moisture: 0.15,
             temperature_scale: 2000.0,
             temperature_jitter: 0.12,
+            latitudes: (1.0, -1.0),
             lapse_rate: 0.3,
             hills: 0.7,
             biomes: BiomeRule::defaults(),
@@ -160,6 +167,8 @@ pub struct RiverConfig {
     /// `0..=MAX_SEA_DISTANCE` (Civilization VI starts its rivers 2 tiles from the sea); streams
     /// rising nearer are dropped.
     pub sea_distance: u32,
+    /// Edge rivers: where rivers rise (the water they collect still sets their width).
+    pub sources: RiverSources,
 }
 
 impl Default for RiverConfig {
@@ -173,9 +182,50 @@ impl Default for RiverConfig {
             width: 1.0,
             model: RiverModel::Centers,
             sea_distance: 2,
+            sources: RiverSources::Flow,
         }
     }
 }
+
+/// Where the rivers of an edge river network rise ([`RiverConfig::sources`]).
+///
+/// ```
+/// use hex_terrain::{MapConfig, RiverSources};
+///
+/// let config = MapConfig::from_ron(
+///     "(size: Bounded(x: 40, z: 30), rivers: (enabled: true, model: Edges, sources: Relief(tiles_per_edge: 12.0)))",
+/// )
+/// .unwrap();
+/// assert_eq!(config.rivers.sources, RiverSources::Relief { tiles_per_edge: 12.0 });
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
+#[cfg_attr(feature = "bevy_reflect", derive(bevy_reflect::Reflect))]
+pub enum RiverSources {
+    /// Wherever the water a corner collects from the rain upstream reaches
+    /// [`RiverConfig::threshold`] (the default): rivers rise where rain gathers.
+    #[default]
+    Flow,
+    /// Civilization V's rule (its `MapGenerator.lua`, `AddRivers`): rivers rise among hills and
+    /// mountains, away from the sea and from other rivers and lakes, and run down the drainage
+    /// to the sea or a lake; then, on each landmass of at least [`RIVER_MIN_LANDMASS`] tiles with
+    /// fewer than one river edge for every `tiles_per_edge` of its land tiles (and one more),
+    /// among its hills and mountains nearer the sea and other rivers, then anywhere on it,
+    /// until it has them. `tiles_per_edge` in
+    /// `[1, 1000]` (Civilization V: 12). No river ends at the map's edge.
+    Relief {
+        /// Land tiles of a landmass for each river edge it is given at least.
+        tiles_per_edge: f32,
+    },
+}
+
+/// How far (in tiles) a river Civilization V's way ([`RiverSources::Relief`]) rises from
+/// another river or a lake: in its first pass, and in the passes that fill a landmass' share.
+pub const RIVER_SPACING: [u32; 2] = [4, 2];
+
+/// The fewest land tiles of a landmass given its share of rivers Civilization V's way
+/// ([`RiverSources::Relief`]): smaller islands have a river only where one rises among their
+/// hills in the first pass.
+pub const RIVER_MIN_LANDMASS: u32 = 20;
 
 /// Largest `rivers.sea_distance`.
 pub const MAX_SEA_DISTANCE: u32 = 16;
@@ -209,6 +259,13 @@ impl super::MapConfig {
             "(0, 1e9]",
         )?;
         check(unit(c.temperature_jitter), "climate.temperature_jitter", c.temperature_jitter, "[0, 1]")?;
+        let (north, south) = c.latitudes;
+        check(
+            finite_in(f64::from(north), -1.0, 1.0) && finite_in(f64::from(south), -1.0, 1.0) && north != south,
+            "climate.latitudes",
+            format!("({north}, {south})"),
+            "(north, south), each in [-1, 1], different",
+        )?;
         check(finite_in(f64::from(c.lapse_rate), 0.0, 2.0), "climate.lapse_rate", c.lapse_rate, "[0, 2]")?;
         check(unit(c.hills), "climate.hills", c.hills, "[0, 1]")?;
         check(
@@ -259,6 +316,20 @@ impl super::MapConfig {
             r.sea_distance,
             format!("0..={MAX_SEA_DISTANCE} tiles"),
         )?;
+        if let RiverSources::Relief { tiles_per_edge } = r.sources {
+            check(
+                finite_in(f64::from(tiles_per_edge), 1.0, 1000.0),
+                "rivers.sources.tiles_per_edge",
+                tiles_per_edge,
+                "[1, 1000]",
+            )?;
+            check(
+                r.model == RiverModel::Edges,
+                "rivers.sources",
+                format!("{:?} with model: {:?}", r.sources, r.model),
+                "Flow with model: Centers (Relief places rivers on tile edges: model: Edges)",
+            )?;
+        }
         if let (true, Some((x, z))) = (r.enabled, self.size.bounds()) {
             let tiles = u64::from(x) * u64::from(z);
             check(

@@ -70,9 +70,14 @@ pub(crate) struct Blob {
     radius: f64,
 }
 
-/// How far from the north and south edges (in `v`) the land of a layout fades out, so
-/// continents keep off the poles.
-const POLAR_FADE: f64 = 0.1;
+/// How far from the north and south edges (in `v`) the land of a layout fades out into sea,
+/// so continents keep off the poles and the polar rows are sea (as Civilization V's map scripts
+/// keep them).
+const POLAR_FADE: f64 = 0.12;
+
+/// How far from the north and south edges (in `v`) the sea of the poles deepens, from nothing
+/// to the layout's polar depth at the edge.
+const POLAR_SINK: f64 = 0.16;
 
 /// The layout's blobs summed on a grid, read bilinearly.
 #[derive(Debug, Clone)]
@@ -85,9 +90,10 @@ pub(crate) struct Mask {
 
 impl Mask {
     /// Sums each cluster's `blobs` on a grid of `nu` by `nv` nodes, clamped to 1, takes the
-    /// highest cluster at each node, fades the land out toward the poles, and inverts it for a
-    /// sea layout. `blobs` come cluster by cluster.
-    pub(crate) fn new(blobs: &[Blob], invert: bool, frame: &Frame, nu: usize, nv: usize) -> Self {
+    /// highest cluster at each node, fades the land out toward the poles down to `-polar_sea`
+    /// at the first and last rows (deep enough that no noise raises land there), and inverts it
+    /// for a sea layout (whose land reaches the poles). `blobs` come cluster by cluster.
+    pub(crate) fn new(blobs: &[Blob], invert: bool, polar_sea: f64, frame: &Frame, nu: usize, nv: usize) -> Self {
         let mut mask = Self { nu, nv, wraps: frame.wraps, values: vec![0.0; nu * nv] };
         // One cluster's sum at a time, on the nodes it touched, then into the mask where higher.
         let mut cluster = vec![0.0; nu * nv];
@@ -106,8 +112,9 @@ impl Mask {
             let (_, v) = mask.node(0, j);
             let t = (v.min(1.0 - v) / POLAR_FADE).min(1.0);
             let fade = t * t * (3.0 - 2.0 * t);
+            let sink = (1.0 - v.min(1.0 - v) / POLAR_SINK).max(0.0);
             for value in &mut mask.values[j * nu..(j + 1) * nu] {
-                *value = if invert { 1.0 - *value } else { *value * fade };
+                *value = if invert { 1.0 - *value } else { *value * fade - polar_sea * sink };
             }
         }
         mask
@@ -166,13 +173,22 @@ impl Mask {
         }
     }
 
-    /// The mask at `(u, v)`, bilinear between the grid's nodes.
+    /// Lowers the mask by `by` at the four nodes around `(u, v)`, so its value there falls by
+    /// `by` (the bilinear weights sum to 1).
+    pub(crate) fn lower_at(&mut self, u: f64, v: f64, by: f64) {
+        let ((i0, i1, j0, j1), _) = self.cell(u, v);
+        for (i, j) in [(i0, j0), (i1, j0), (i0, j1), (i1, j1)] {
+            self.values[j * self.nu + i] -= by;
+        }
+    }
+
+    /// The grid cell holding `(u, v)`: its columns `i0, i1` and rows `j0, j1`, and where in it
+    /// `(u, v)` lies (0 at `i0` or `j0`, 1 at `i1` or `j1`).
     #[inline]
-    pub(crate) fn at(&self, u: f64, v: f64) -> f64 {
+    fn cell(&self, u: f64, v: f64) -> ((usize, usize, usize, usize), (f64, f64)) {
         let gu = u * self.columns();
         let gv = v * (self.nv - 1) as f64;
         let (fu, fv) = (gu.floor(), gv.floor());
-        let (tu, tv) = (gu - fu, gv - fv);
         let j0 = (fv as usize).min(self.nv - 1);
         let j1 = (j0 + 1).min(self.nv - 1);
         let (i0, i1) = if self.wraps {
@@ -182,6 +198,13 @@ impl Mask {
             let i0 = (fu as usize).min(self.nu - 1);
             (i0, (i0 + 1).min(self.nu - 1))
         };
+        ((i0, i1, j0, j1), (gu - fu, gv - fv))
+    }
+
+    /// The mask at `(u, v)`, bilinear between the grid's nodes.
+    #[inline]
+    pub(crate) fn at(&self, u: f64, v: f64) -> f64 {
+        let ((i0, i1, j0, j1), (tu, tv)) = self.cell(u, v);
         let row = |j: usize| self.values[j * self.nu + i0] * (1.0 - tu) + self.values[j * self.nu + i1] * tu;
         row(j0) * (1.0 - tv) + row(j1) * tv
     }
@@ -222,6 +245,22 @@ fn cluster(
     stretch: f64,
 ) {
     let id = blobs.last().map_or(0, |b| b.cluster + 1);
+    cores(draw, frame, blobs, id, (u, v), area, satellites, stretch);
+}
+
+/// A core blob of cluster `id` and its satellites, as [`cluster`] draws them: a continent of
+/// several cores calls it once a core.
+#[allow(clippy::too_many_arguments)]
+fn cores(
+    draw: &mut Draw,
+    frame: &Frame,
+    blobs: &mut Vec<Blob>,
+    id: u32,
+    (u, v): (f64, f64),
+    area: f64,
+    satellites: u32,
+    stretch: f64,
+) {
     let core = (area / PI).sqrt() * CLUSTER_REACH;
     blobs.push(Blob { cluster: id, u, v, radius: core });
     for _ in 0..satellites {
@@ -234,6 +273,10 @@ fn cluster(
         blobs.push(Blob { cluster: id, u, v: (v + dv).clamp(0.0, 1.0), radius });
     }
 }
+
+/// The largest islands of an Archipelago, spread over the map before the others gather beside
+/// them.
+const ARCHIPELAGO_SPREAD: usize = 10;
 
 /// The blobs of layout `layout` of a type (land, or the sea of an Inland Sea).
 pub(crate) fn draw(kind: MapType, seed: u32, layout: u32, frame: &Frame, land_share: f64, tiles: usize) -> Vec<Blob> {
@@ -253,51 +296,73 @@ pub(crate) fn draw(kind: MapType, seed: u32, layout: u32, frame: &Frame, land_sh
     match kind {
         MapType::Fractal => {}
         MapType::Pangaea => {
-            let center = (across(&mut draw, 0.5, 0.05), draw.range(0.45, 0.55));
-            cluster(&mut draw, frame, &mut blobs, center, land, 7, 0.8);
+            // A chain of cores along a wavy line east to west, so the supercontinent spans most
+            // of the map's width (its coast is still one).
+            let count = 4;
+            let (west, east) = (across(&mut draw, 0.17, 0.03), across(&mut draw, 0.83, 0.03));
+            let (mid, tilt) = (draw.range(0.45, 0.55), draw.range(-0.08, 0.08));
+            for k in 0..count {
+                let t = (f64::from(k) + 0.5) / f64::from(count);
+                let v = mid + tilt * (t - 0.5) * 2.0 + draw.range(-0.06, 0.06);
+                let u = west + (east - west) * t;
+                // One continent: the cores are one cluster, summed.
+                cores(&mut draw, frame, &mut blobs, 0, (u, v), land / f64::from(count) * 1.15, 3, 0.8);
+            }
         }
         MapType::Continents => {
-            // As far from each other as from the map's edge (or the seam).
+            // As far from each other as from the map's edge (or the seam), each a chain of cores
+            // north to south, so it spans most of the map's height.
             for u in if frame.wraps { [0.25, 0.75] } else { [0.26, 0.74] } {
-                let center = (across(&mut draw, u, 0.03), draw.range(0.44, 0.56));
-                cluster(&mut draw, frame, &mut blobs, center, land / 2.0, 5, 1.4);
+                let at = across(&mut draw, u, 0.03);
+                let slant = draw.range(-0.04, 0.04);
+                let id = blobs.last().map_or(0, |b: &Blob| b.cluster + 1);
+                for (k, v) in [0.3, 0.5, 0.7].into_iter().enumerate() {
+                    let v = v + draw.range(-0.04, 0.04);
+                    let u = at + slant * (k as f64 - 1.0) + draw.range(-0.02, 0.02);
+                    let u = if frame.wraps { u.rem_euclid(1.0) } else { u.clamp(0.05, 0.95) };
+                    cores(&mut draw, frame, &mut blobs, id, (u, v), land / 2.0 / 3.0 * 1.15, 2, 1.4);
+                }
             }
         }
         MapType::SmallContinents => {
+            // Spread by best candidate (of a few draws, the one farthest from those placed), of
+            // sizes that differ, so they lie on no grid.
             let count = if draw.next() < 0.5 { 5 } else { 6 };
-            let skip = if count == 5 { (draw.next() * 6.0) as usize } else { 6 };
-            for cell in (0..6).filter(|&c| c != skip) {
-                let (col, row) = ((cell % 3) as f64, (cell / 3) as f64);
-                let at = if frame.wraps { (col + 0.5) / 3.0 } else { 0.1 + 0.8 * (col + 0.5) / 3.0 };
-                let center = (across(&mut draw, at, 0.04), 0.3 + 0.4 * row + draw.range(-0.04, 0.04));
-                cluster(&mut draw, frame, &mut blobs, center, land / f64::from(count), 4, 1.0);
+            let mut centers: Vec<(f64, f64)> = Vec::new();
+            let sizes: Vec<f64> = (0..count).map(|_| draw.range(0.75, 1.25)).collect();
+            let total: f64 = sizes.iter().sum();
+            for size in sizes {
+                let at = best_candidate(&mut draw, frame, &centers, (0.1, 0.9), (0.22, 0.78));
+                centers.push(at);
+                let stretch = draw.range(0.7, 1.5);
+                cluster(&mut draw, frame, &mut blobs, at, land * size / total, 4, stretch);
             }
         }
         MapType::Archipelago => {
-            let count = (tiles / 60).clamp(20, 64);
-            let island = land / count as f64;
-            let mut centers: Vec<(f64, f64)> = Vec::new();
-            for _ in 0..count {
-                // Mitchell's best candidate: of a few draws, the one farthest from every island
-                // placed, so the islands spread evenly without a grid.
-                let mut at = (0.5, 0.5);
-                let mut farthest = -1.0;
-                for _ in 0..16 {
-                    let candidate =
-                        (if frame.wraps { draw.next() } else { draw.range(0.05, 0.95) }, draw.range(0.12, 0.88));
-                    let nearest = centers
-                        .iter()
-                        .map(|&(u, v)| {
-                            let du = frame.du(candidate.0, u) * frame.aspect;
-                            du * du + (candidate.1 - v) * (candidate.1 - v)
-                        })
-                        .fold(f64::INFINITY, f64::min);
-                    if nearest > farthest {
-                        (at, farthest) = (candidate, nearest);
-                    }
-                }
-                centers.push(at);
-                cluster(&mut draw, frame, &mut blobs, at, island, 2, 1.0);
+            // Islands of many sizes, a few large and many small (the k-th about (k + 2.5)^-0.6
+            // of the land), the large ones spread first.
+            let count = (tiles / 110).clamp(12, 48);
+            let weights: Vec<f64> = (0..count).map(|k| (k as f64 + 2.5).powf(-0.6)).collect();
+            let total: f64 = weights.iter().sum();
+            // The large ones spread; each smaller one beside an island placed, so they form
+            // chains and groups rather than dots evenly strewn.
+            let mut placed: Vec<((f64, f64), f64)> = Vec::new();
+            for (k, weight) in weights.into_iter().enumerate() {
+                let area = land * weight / total;
+                let radius = (area / PI).sqrt() * CLUSTER_REACH;
+                let at = if k < ARCHIPELAGO_SPREAD {
+                    let centers: Vec<(f64, f64)> = placed.iter().map(|p| p.0).collect();
+                    best_candidate(&mut draw, frame, &centers, (0.05, 0.95), (0.15, 0.85))
+                } else {
+                    let (near, r) = placed[(draw.next() * placed.len() as f64) as usize];
+                    let angle = draw.range(0.0, 2.0 * PI);
+                    let reach = (r + radius) * draw.range(1.6, 2.4);
+                    let u = near.0 + reach * libm::cos(angle) / frame.aspect;
+                    let u = if frame.wraps { u.rem_euclid(1.0) } else { u.clamp(0.05, 0.95) };
+                    (u, (near.1 + reach * libm::sin(angle)).clamp(0.15, 0.85))
+                };
+                placed.push((at, radius));
+                cluster(&mut draw, frame, &mut blobs, at, area, 2, 1.0);
             }
         }
         MapType::InlandSea => {
@@ -306,6 +371,34 @@ pub(crate) fn draw(kind: MapType, seed: u32, layout: u32, frame: &Frame, land_sh
         }
     }
     blobs
+}
+
+/// Mitchell's best candidate: of a few draws (`u` within `us` on a map that does not wrap,
+/// `v` within `vs`), the one farthest from every center placed, so places spread without a
+/// grid.
+fn best_candidate(
+    draw: &mut Draw,
+    frame: &Frame,
+    centers: &[(f64, f64)],
+    us: (f64, f64),
+    vs: (f64, f64),
+) -> (f64, f64) {
+    let mut at = (0.5, 0.5);
+    let mut farthest = -1.0;
+    for _ in 0..16 {
+        let candidate = (if frame.wraps { draw.next() } else { draw.range(us.0, us.1) }, draw.range(vs.0, vs.1));
+        let nearest = centers
+            .iter()
+            .map(|&(u, v)| {
+                let du = frame.du(candidate.0, u) * frame.aspect;
+                du * du + (candidate.1 - v) * (candidate.1 - v)
+            })
+            .fold(f64::INFINITY, f64::min);
+        if nearest > farthest {
+            (at, farthest) = (candidate, nearest);
+        }
+    }
+    at
 }
 
 /// The tectonic plates of layout `layout` (for mountain ranges), drawn apart from its blobs so

@@ -88,19 +88,27 @@ impl MapTypeField {
         let graph = TileGraph::of(geometry);
         let land_share = 1.0 - config.sea_share();
         let level = config.sea_share();
-        let (nu, nv) = geometry
+        let (columns, rows) = geometry
             .bounds()
             .map_or((2, 2), |b| ((b.max[0] - b.min[0]).max(2) as usize, (b.max[1] - b.min[1]).max(2) as usize));
+        // Ranges are narrow: their mask has RANGE_NODES nodes a tile each way, so its bilinear
+        // reading keeps a ridge about a tile wide.
+        let fine = if config.ranges { RANGE_NODES } else { 1 };
+        let (nu, nv) = (columns * fine, (rows - 1) * fine + 1);
 
         let mut best: Option<(Candidate, (usize, f64))> = None;
         let mut tries = 0;
         'layouts: for layout in 0..MAX_LAYOUTS {
             let blobs = layout::draw(config.kind, seed, layout, &frame, land_share, n);
-            let mut mask = Mask::new(&blobs, config.kind == MapType::InlandSea, &frame, nu, nv);
+            // The noise spans a few of its deviations: the polar rows sink as far below the sea.
+            let polar_sea = POLAR_DEVIATIONS * roughness(config.kind);
+            let mut mask = Mask::new(&blobs, config.kind == MapType::InlandSea, polar_sea, &frame, nu, nv);
             if config.ranges {
-                let plates = layout::plates(seed, layout, &frame, n, nv);
+                let plates = layout::plates(seed, layout, &frame, n, rows);
                 // Fractal has no layout: its ridges rise wherever they run (island arcs at sea).
                 mask.add_ridges(&plates, RIDGE_HEIGHT, config.kind != MapType::Fractal);
+                let land = Land { uv: &uv, noise: &noise, graph: &graph, sea_share: level, thresholds };
+                untangle(&mut mask, &land, f64::from(config.mountains));
             }
             let values: Vec<f64> = uv.iter().zip(&noise).map(|(&(u, v), z)| mask.at(u, v) + z).collect();
             let mut sorted = values.clone();
@@ -113,6 +121,7 @@ impl MapTypeField {
                 let mountain: Vec<bool> = heights.iter().map(|&h| h >= thresholds.1).collect();
                 let checks = targets::measure(config, &graph, &sea, &mountain);
                 let score = score(&checks);
+                let ranges_only = checks.iter().filter(|c| !c.met()).all(|c| c.target.is_about_ranges());
                 // The mask is copied only for a try that is the best so far.
                 if best.as_ref().is_none_or(|(_, s)| score.0 < s.0 || (score.0 == s.0 && score.1 < s.1)) {
                     let candidate = Candidate { layout, sea_share, mask: mask.clone(), remap, checks };
@@ -120,6 +129,11 @@ impl MapTypeField {
                 }
                 if score.0 == 0 {
                     break 'layouts;
+                }
+                // Another sea share moves the coasts, not the ranges: a try that misses only
+                // the ranges' targets goes on to the next layout.
+                if ranges_only {
+                    continue 'layouts;
                 }
             }
         }
@@ -151,6 +165,46 @@ impl MapTypeField {
     }
 }
 
+/// What [`untangle`] reads of the map: each tile center's `(u, v)` and noise, the tile graph,
+/// and the sea share and thresholds it classifies at.
+struct Land<'a> {
+    uv: &'a [(f64, f64)],
+    noise: &'a [f64],
+    graph: &'a TileGraph,
+    sea_share: f64,
+    thresholds: (f32, f32),
+}
+
+/// Rounds of [`untangle`] at most.
+const UNTANGLE_ROUNDS: usize = 6;
+
+/// Opens the knots of a layout's ranges, in at most [`UNTANGLE_ROUNDS`] rounds: where the
+/// mountains (the highest `mountains` share of the land) form a blob (a mountain with 5 or 6
+/// mountain neighbors) or run straight along a hex axis for more than [`MAX_STRAIGHT_RIDGE`](targets::MAX_STRAIGHT_RIDGE)
+/// tiles, the mask under those tiles' centers sinks to hill height, so they become valleys and
+/// passes; the share of mountains is kept by the remap, which raises the next highest land.
+/// The mask only changes at grid nodes around the knots' centers (which no other tile center
+/// reads, at [`RANGE_NODES`] nodes a tile), so every height stays a pure function of the point.
+fn untangle(mask: &mut Mask, land: &Land<'_>, mountains: f64) {
+    for _ in 0..UNTANGLE_ROUNDS {
+        let values: Vec<f64> = land.uv.iter().zip(land.noise).map(|(&(u, v), z)| mask.at(u, v) + z).collect();
+        let mut sorted = values.clone();
+        sorted.sort_unstable_by(f64::total_cmp);
+        let remap = Remap::new(&sorted, land.sea_share, mountains, land.thresholds);
+        let mountain: Vec<bool> = values.iter().map(|&v| v >= remap.mountain).collect();
+        let knots = targets::knots(land.graph, &|i| mountain[i]);
+        if knots.is_empty() {
+            return;
+        }
+        // Down to a quarter of the way from the sea's knot to the mountains'.
+        let hill = remap.sea + 0.75 * (remap.mountain - remap.sea);
+        for i in knots {
+            let (u, v) = land.uv[i];
+            mask.lower_at(u, v, values[i] - hill);
+        }
+    }
+}
+
 /// One try, kept while it is the best.
 struct Candidate {
     layout: u32,
@@ -178,9 +232,15 @@ fn roughness(kind: MapType) -> f64 {
     }
 }
 
+/// How deep the polar rows' sea lies, in deviations of the noise.
+const POLAR_DEVIATIONS: f64 = 4.0;
+
+/// Nodes of the mask a tile, each way, on a map with ranges.
+const RANGE_NODES: usize = 2;
+
 /// How much a ridge of [`Plates`] raises the land (in units of the mask's step from sea to
 /// land), so the highest land, the mountains, lies along the ridges.
-const RIDGE_HEIGHT: f64 = 2.0;
+const RIDGE_HEIGHT: f64 = 4.0;
 
 /// The monotone piecewise-linear curve from a value to a height: the lowest tile's value to 0,
 /// the sea knot to the sea threshold, the mountain knot to the mountain threshold, the highest

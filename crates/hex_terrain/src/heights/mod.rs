@@ -18,7 +18,7 @@ pub use fbm::{FastPerlin, Fbm, Kernel};
 pub use image::{HeightImage, ImageError, MAX_IMAGE_PIXELS, MAX_PNG_BYTES, remap_sea_level};
 pub use map_type::{MAX_LAYOUTS, MAX_TRIES, MapTypeField, SEA_STEPS};
 pub use shape::ShapeBounds;
-pub use targets::{MapTypeReport, MapTypeTarget, TargetCheck};
+pub use targets::{MAX_BLOB_SHARE, MAX_STRAIGHT_RIDGE, MapTypeReport, MapTypeTarget, TargetCheck};
 
 use std::sync::Arc;
 

@@ -42,6 +42,15 @@ pub enum MapTypeTarget {
     /// Tiles of the largest sea on the map's edge (the first or last row, and the first or
     /// last column of a map that does not wrap).
     LargestSeaEdgeTiles,
+    /// The rows the continent spanning the fewest spans, as a share of the map's rows (0
+    /// without a continent).
+    ContinentHeight,
+    /// With ranges: the most mountains in a row along one of the hex axes
+    /// ([`MapStats::straight_ridge`](crate::MapStats::straight_ridge)).
+    StraightRidge,
+    /// With ranges: the share of the mountains with 5 or 6 mountain neighbors
+    /// ([`MapStats::blob_share`](crate::MapStats::blob_share)).
+    MountainBlobShare,
 }
 
 impl MapTypeTarget {
@@ -58,7 +67,16 @@ impl MapTypeTarget {
             Self::NarrowestStrait => "narrowest strait (tiles)",
             Self::LargestSeaShare => "largest sea's share of the sea",
             Self::LargestSeaEdgeTiles => "largest sea's tiles on the map's edge",
+            Self::ContinentHeight => "least continent's height (share of the rows)",
+            Self::StraightRidge => "straightest ridge (mountains in a row)",
+            Self::MountainBlobShare => "mountains in blobs",
         }
+    }
+
+    /// Whether it measures the mountain ranges' shape (which only another layout changes).
+    #[must_use]
+    pub fn is_about_ranges(self) -> bool {
+        matches!(self, Self::StraightRidge | Self::MountainBlobShare)
     }
 
     /// Whether it is a share (of the map, the land or the sea; printed in percent) rather than a
@@ -72,6 +90,8 @@ impl MapTypeTarget {
                 | Self::SecondContinentShare
                 | Self::LargestLandmassShare
                 | Self::LargestSeaShare
+                | Self::MountainBlobShare
+                | Self::ContinentHeight
         )
     }
 }
@@ -185,19 +205,27 @@ pub(crate) struct TileGraph {
     pub neighbors: Vec<[Option<u32>; 6]>,
     /// Whether a tile lies on the map's edge.
     pub edge: Vec<bool>,
+    /// Each tile's row, from 0.
+    pub row: Vec<u32>,
+    /// The map's rows.
+    pub rows: u32,
 }
 
 impl TileGraph {
     /// The tiles of a bounded map by row (none for an unbounded world).
     pub(crate) fn of(geometry: &Geometry) -> Self {
-        let Some(rect) = geometry.bounds() else { return Self { neighbors: Vec::new(), edge: Vec::new() } };
+        let Some(rect) = geometry.bounds() else {
+            return Self { neighbors: Vec::new(), edge: Vec::new(), row: Vec::new(), rows: 0 };
+        };
         let width = rect.max[0] - rect.min[0];
         let index = |[col, row]: [i32; 2]| ((row - rect.min[1]) * width + (col - rect.min[0])) as u32;
         let wraps = geometry.wrap().is_some();
         let mut neighbors = Vec::with_capacity(rect.len());
         let mut edge = Vec::with_capacity(rect.len());
+        let mut rows = Vec::with_capacity(rect.len());
         for tile in geometry.tiles() {
             let [col, row] = geometry.offset_of(tile);
+            rows.push((row - rect.min[1]) as u32);
             let around = geometry.wrapped_neighbors(tile);
             neighbors.push(around.map(|nb| geometry.contains(nb).then(|| index(geometry.offset_of(nb)))));
             edge.push(
@@ -206,7 +234,7 @@ impl TileGraph {
                     || (!wraps && (col == rect.min[0] || col == rect.max[0] - 1)),
             );
         }
-        TileGraph { neighbors, edge }
+        TileGraph { neighbors, edge, row: rows, rows: (rect.max[1] - rect.min[1]) as u32 }
     }
 }
 
@@ -327,6 +355,17 @@ pub(crate) fn measure(config: &MapTypeConfig, graph: &TileGraph, sea: &[bool], m
             let second = share(second as usize, land_tiles);
             checks.push(check(MapTypeTarget::SecondContinentShare, second, 0.25, 1.0));
             checks.push(check(MapTypeTarget::NarrowestStrait, strait(), 2.0, f64::INFINITY));
+            // Each continent spans most of the map north to south, as the Americas do.
+            let mut span = vec![(u32::MAX, 0u32); masses.len()];
+            for (i, &m) in mass_of.iter().enumerate().filter(|&(_, &m)| m != u32::MAX) {
+                let s = &mut span[m as usize];
+                *s = (s.0.min(graph.row[i]), s.1.max(graph.row[i]));
+            }
+            let least = (0..masses.len())
+                .filter(|&m| continent(masses[m]))
+                .map(|m| f64::from(span[m].1 - span[m].0 + 1) / f64::from(graph.rows.max(1)))
+                .fold(f64::INFINITY, f64::min);
+            checks.push(check(MapTypeTarget::ContinentHeight, if least.is_finite() { least } else { 0.0 }, 0.55, 1.0));
         }
         MapType::SmallContinents => {
             checks.push(check(MapTypeTarget::Continents, continents as f64, 4.0, 8.0));
@@ -352,5 +391,87 @@ pub(crate) fn measure(config: &MapTypeConfig, graph: &TileGraph, sea: &[bool], m
             checks.push(check(MapTypeTarget::LargestLandmassShare, largest, 0.9, 1.0));
         }
     }
+    if config.ranges {
+        let mountain = |i: usize| land[i] && mountain[i];
+        let around = |i: usize| graph.neighbors[i].iter().flatten().filter(|&&j| mountain(j as usize)).count();
+        let blobs = (0..n).filter(|&i| mountain(i) && around(i) >= 5).count();
+        checks.push(check(
+            MapTypeTarget::StraightRidge,
+            straight_ridge(graph, &mountain) as f64,
+            0.0,
+            MAX_STRAIGHT_RIDGE,
+        ));
+        checks.push(check(MapTypeTarget::MountainBlobShare, share(blobs, mountains), 0.0, MAX_BLOB_SHARE));
+    }
     checks
+}
+
+/// With ranges, the most mountains in a row along a hex axis a map type keeps.
+pub const MAX_STRAIGHT_RIDGE: f64 = 6.0;
+
+/// With ranges, the largest share of the mountains with 5 or 6 mountain neighbors a map type
+/// keeps.
+pub const MAX_BLOB_SHARE: f64 = 0.05;
+
+/// The knots of a map's ranges: the `mountain` tiles with 5 or 6 mountain neighbors, and the
+/// middle tile of each run of mountains along a hex axis longer than [`MAX_STRAIGHT_RIDGE`]
+/// (in index order, each once).
+pub(crate) fn knots(graph: &TileGraph, mountain: &dyn Fn(usize) -> bool) -> Vec<usize> {
+    let n = graph.neighbors.len();
+    let around = |i: usize| graph.neighbors[i].iter().flatten().filter(|&&j| mountain(j as usize)).count();
+    let mut knot: Vec<bool> = (0..n).map(|i| mountain(i) && around(i) >= 5).collect();
+    let step = |i: usize, d: usize| graph.neighbors[i][d].map(|j| j as usize).filter(|&j| mountain(j));
+    for d in 0..3 {
+        let mut seen = vec![false; n];
+        for start in (0..n).filter(|&i| mountain(i)) {
+            if seen[start] {
+                continue;
+            }
+            let mut first = start;
+            while let Some(j) = step(first, d + 3).filter(|&j| j != start) {
+                first = j;
+            }
+            let mut run = Vec::new();
+            let mut at = Some(first);
+            while let Some(i) = at.filter(|&i| !seen[i]) {
+                seen[i] = true;
+                run.push(i);
+                at = step(i, d);
+            }
+            if run.len() as f64 > MAX_STRAIGHT_RIDGE {
+                knot[run[run.len() / 2]] = true;
+            }
+        }
+    }
+    (0..n).filter(|&i| knot[i]).collect()
+}
+
+/// The most `mountain` tiles in a row along one of the three hex axes (neighbor directions `d`
+/// and `d + 3`); a row going all round a wrapping map counts its tiles once.
+fn straight_ridge(graph: &TileGraph, mountain: &dyn Fn(usize) -> bool) -> usize {
+    let n = graph.neighbors.len();
+    let step = |i: usize, d: usize| graph.neighbors[i][d].map(|j| j as usize).filter(|&j| mountain(j));
+    let mut longest = 0;
+    for d in 0..3 {
+        let mut seen = vec![false; n];
+        for start in (0..n).filter(|&i| mountain(i)) {
+            if seen[start] {
+                continue;
+            }
+            // Back to the run's first tile (or once round), then forward along it.
+            let mut first = start;
+            while let Some(j) = step(first, d + 3).filter(|&j| j != start) {
+                first = j;
+            }
+            let mut run = 0;
+            let mut at = Some(first);
+            while let Some(i) = at.filter(|&i| !seen[i]) {
+                seen[i] = true;
+                run += 1;
+                at = step(i, d);
+            }
+            longest = longest.max(run);
+        }
+    }
+    longest
 }

@@ -23,8 +23,9 @@ use serde::{Deserialize, Serialize};
 
 use super::corners::{CornerGrid, Owners, Shape, Stencils};
 use super::descent::{Drainage, NONE, Role, drain};
+use super::sources::{SourceInput, relief_sources};
 use crate::chunk::TileRect;
-use crate::config::{RiverConfig, RiverEdit};
+use crate::config::{RiverConfig, RiverEdit, RiverSources};
 use crate::geometry::{Geometry, OFFSET_MODE};
 use crate::vocab::TileKind;
 
@@ -100,6 +101,9 @@ pub(crate) struct EdgeInput<'a> {
     pub rain: &'a [f32],
     /// Each tile's river set by hand (empty when no tile has one).
     pub by_hand: &'a [Option<RiverEdit>],
+    /// Whether each tile is hills or a mountain (read by [`RiverSources::Relief`]; empty
+    /// otherwise).
+    pub relief: &'a [bool],
 }
 
 /// What the corner pass gives each corner.
@@ -130,8 +134,8 @@ impl EdgeRivers {
         // Rivers set by hand: a dry tile's corners, and every corner draining through them,
         // carry nothing; a source rises at the tile's lowest corner that drains.
         let mut source = vec![false; n];
+        let mut dry = vec![false; n];
         if !input.by_hand.is_empty() {
-            let mut dry = vec![false; n];
             for (i, edit) in input.by_hand.iter().enumerate() {
                 let Some(edit) = edit else { continue };
                 let ring = grid.tile_corners(&shape, &owners, grid.tile_offset(i));
@@ -180,7 +184,26 @@ impl EdgeRivers {
             river_tile: vec![NONE; count],
             widths: Vec::new(),
         };
-        network.river = network.rivers(config, &order, &inland, &source);
+        network.river = match config.sources {
+            RiverSources::Flow => network.rivers(config, &order, &inland, &source),
+            RiverSources::Relief { tiles_per_edge } => {
+                let corner_tiles: Vec<[u32; 3]> = (0..n).map(|c| network.corner_tiles(c)).collect();
+                let lake = input.lakes;
+                let sea: Vec<bool> = input.kinds.iter().map(|&k| k == TileKind::Sea).collect();
+                let choice = SourceInput {
+                    down: &network.down,
+                    order: &order,
+                    corner_tiles: &corner_tiles,
+                    links: input.links,
+                    sea: &sea,
+                    lake,
+                    relief: input.relief,
+                    dry: &dry,
+                    by_hand: &source,
+                };
+                relief_sources(&choice, tiles_per_edge, config.sea_distance)
+            }
+        };
         let width = |flow: f32| config.width * (flow / config.threshold).sqrt().clamp(1.0, 2.0);
         for (c, links) in links.iter().enumerate() {
             if network.river[c] {
@@ -259,10 +282,7 @@ impl EdgeRivers {
         let sources = (0..n)
             .filter(|&c| river(c) && !fed[c])
             .map(|c| {
-                let (owner, k) = self.grid.owner(c);
-                let tiles = self.stencils.of(owner, k).tiles;
-                let tiles =
-                    tiles.iter().filter_map(|&[dc, dr]| self.grid.tile([owner[0] + dc, owner[1] + dr])).collect();
+                let tiles = self.corner_tiles(c).into_iter().filter(|&i| i != NONE).map(|i| i as usize).collect();
                 (to_mouth[c], tiles)
             })
             .collect();
@@ -273,6 +293,15 @@ impl EdgeRivers {
             longest: to_mouth.into_iter().max().unwrap_or(0),
             sources,
         }
+    }
+
+    /// Corner `c`'s map tiles ([`NONE`] past the map).
+    fn corner_tiles(&self, c: usize) -> [u32; 3] {
+        let (owner, k) = self.grid.owner(c);
+        self.stencils
+            .of(owner, k)
+            .tiles
+            .map(|[dc, dr]| self.grid.tile([owner[0] + dc, owner[1] + dr]).map_or(NONE, |i| i as u32))
     }
 
     /// The river edges of map tile `i`, a bit for each neighbor direction.

@@ -8,6 +8,7 @@ mod corners;
 mod descent;
 pub mod edges;
 pub mod hydrology;
+mod sources;
 pub mod surface;
 
 pub use edges::{EdgeRivers, RiverEdge};
