@@ -131,7 +131,10 @@ pub use setup::{
     Stages, StartReport, TileSetup,
 };
 pub use sight::{MAX_UNBOUNDED_SIGHT, SightError};
-pub use stats::{CONTINENT_MIN_SHARE, CONTINENT_MIN_TILES, Landmass, LandmassKind, MapStats, RiverStats};
+pub use stats::{
+    CONTINENT_MIN_SHARE, CONTINENT_MIN_TILES, Landmass, LandmassKind, MapStats, RainShadow, RiverStats, SHADOW_REACH,
+    SurveyFigure, SurveyTarget, SurveyVerdict, survey_targets,
+};
 pub use table::TileTable;
 pub use terrain::Terrain;
 pub use vertex::{Sharing, VertexRules, VertexSample};

@@ -9,8 +9,8 @@ use std::collections::{HashSet, VecDeque};
 
 use hex_terrain::hexx::{GridEdge, GridVertex, Hex};
 use hex_terrain::{
-    MapConfig, MapSize, MapType, MapTypeConfig, NoiseConfig, Orientation, RiverEdge, RiverEdit, RiverModel, Terrain,
-    TileEdit, TileKind, WaterLevel,
+    Biome, MapConfig, MapSize, MapType, MapTypeConfig, NoiseConfig, Orientation, RIVER_MIN_LANDMASS, RiverEdge,
+    RiverEdit, RiverModel, RiverSources, Terrain, TileEdit, TileKind, WaterLevel,
 };
 use proptest::prelude::*;
 
@@ -28,6 +28,8 @@ prop_compose! {
         threshold in 1.0f32..10.0,
         sea_distance in 0u32..4,
         lakes in any::<bool>(),
+        relief in prop::option::of(2.0f32..30.0),
+        map_type in prop::option::weighted(0.3, 0usize..6),
     ) -> MapConfig {
         let mut c = MapConfig {
             seed,
@@ -44,6 +46,13 @@ prop_compose! {
         c.rivers.threshold = threshold;
         c.rivers.sea_distance = sea_distance;
         c.rivers.lakes = lakes;
+        if let Some(tiles_per_edge) = relief {
+            c.rivers.sources = RiverSources::Relief { tiles_per_edge };
+        }
+        if let Some(kind) = map_type {
+            c.size = MapSize::Bounded { x: x.max(8), z: z.max(8) };
+            c.map_type = Some(MapTypeConfig { kind: MapType::ALL[kind], ranges: true, ..MapTypeConfig::default() });
+        }
         common::wrapping(c, wrap)
     }
 }
@@ -108,6 +117,7 @@ proptest! {
     fn edge_rivers_run_downstream_between_land_tiles_to_the_sea_a_lake_or_the_edge(config in config()) {
         let threshold = config.rivers.threshold;
         let min_sea = config.rivers.sea_distance;
+        let relief = matches!(config.rivers.sources, RiverSources::Relief { .. });
         let t = Terrain::new(config.clone()).unwrap();
         // No river runs through a tile center on such a map.
         prop_assert!(t.rivers().is_empty());
@@ -126,7 +136,8 @@ proptest! {
                 let Some(r) = river else { continue };
                 prop_assert_eq!(r.edge.origin, tile);
                 prop_assert!(!wet(&t, tile) && !wet(&t, nb), "a river edge beside water at {:?} -> {:?}", tile, nb);
-                prop_assert!(r.flow >= threshold, "flow {} below the threshold", r.flow);
+                // Rivers rising where the flow reaches the threshold carry it at least.
+                prop_assert!(relief || r.flow >= threshold, "flow {} below the threshold", r.flow);
                 let [p, q] = r.edge.vertices();
                 prop_assert!(r.downstream == p || r.downstream == q);
                 // The same river seen from the other side.
@@ -175,6 +186,9 @@ proptest! {
             let mouth: GridVertex = last.unwrap().downstream;
             let ends = mouth.coordinates().into_iter().any(|c| on_map(&t, c).is_none_or(|c| wet(&t, c)));
             prop_assert!(ends, "a river ends at {:?}, away from water and the map's edge", mouth);
+            // Rivers rising in the hills run to the sea or a lake, never off the map.
+            let in_water = mouth.coordinates().into_iter().any(|c| on_map(&t, c).is_some_and(|c| wet(&t, c)));
+            prop_assert!(!relief || in_water, "a river from the hills ends at the map's edge at {:?}", mouth);
         }
         // Sources: an edge no river flows into rises at least `sea_distance` from the sea.
         for r in &all {
@@ -182,8 +196,24 @@ proptest! {
             let source = if r.downstream == q { p } else { q };
             let fed = all.iter().any(|o| corner(&t, o.downstream) == corner(&t, source) && side(&t, o.edge) != side(&t, r.edge));
             if !fed {
-                let nearest = source.coordinates().into_iter().filter_map(|c| on_map(&t, c)).map(|c| far.get(&c).copied().unwrap_or(u32::MAX)).min();
-                prop_assert!(nearest.is_some_and(|d| d >= min_sea), "a source {} from the sea", nearest.unwrap_or(0));
+                let tiles: Vec<Hex> = source.coordinates().into_iter().filter_map(|c| on_map(&t, c)).collect();
+                let nearest = tiles.iter().map(|c| far.get(c).copied().unwrap_or(u32::MAX)).min();
+                if !relief {
+                    prop_assert!(nearest.is_some_and(|d| d >= min_sea), "a source {} from the sea", nearest.unwrap_or(0));
+                    continue;
+                }
+                // Civilization V's passes: the first at `sea_distance` from the sea, the ones
+                // filling a landmass' share at half of it, and only on landmasses that big.
+                prop_assert!(nearest.is_some_and(|d| d >= min_sea.div_ceil(2)), "a source {} from the sea", nearest.unwrap_or(0));
+                let size = landmass_of(&t, tiles[0]);
+                prop_assert!(
+                    nearest.is_some_and(|d| d >= min_sea) || size >= RIVER_MIN_LANDMASS as usize,
+                    "a source {} from the sea on a landmass of {} tiles", nearest.unwrap_or(0), size
+                );
+                // The first pass rises among hills and mountains; the others only on landmasses
+                // given a share.
+                let near_relief = tiles.iter().any(|&h| relief_tile(&t, h));
+                prop_assert!(near_relief || size >= RIVER_MIN_LANDMASS as usize, "a source off the hills on {} tiles", size);
             }
         }
         // The same network on another thread.
@@ -192,6 +222,27 @@ proptest! {
             prop_assert_eq!(t.river_edges(tile), there.river_edges(tile));
         }
     }
+}
+
+/// The land tiles (neither sea nor lake) joined to `tile` through their neighbors, counted by a
+/// flood fill.
+fn landmass_of(t: &Terrain, tile: Hex) -> usize {
+    let mut seen = HashSet::from([tile]);
+    let mut queue = VecDeque::from([tile]);
+    while let Some(at) = queue.pop_front() {
+        for nb in at.all_neighbors().into_iter().filter_map(|n| on_map(t, n)) {
+            if !wet(t, nb) && seen.insert(nb) {
+                queue.push_back(nb);
+            }
+        }
+    }
+    seen.len()
+}
+
+/// Whether a tile is hills or a mountain (not under a lake).
+fn relief_tile(t: &Terrain, tile: Hex) -> bool {
+    let info = t.tile_info(tile).unwrap();
+    info.biome == Biome::Hills || (info.kind == TileKind::Mountain && info.lake.is_none())
 }
 
 /// Every river edge of the map, each once (named from the first of its two tiles visited).

@@ -30,6 +30,9 @@ prop_compose! {
         setup in any::<bool>(),
         wrap in any::<bool>(),
         map_type in prop::option::weighted(0.3, (0usize..6, 0usize..3, any::<bool>())),
+        // Bearings off the bisectors of the hex directions (no tie for the upwind neighbor).
+        winds in prop::option::of(prop::collection::vec((0u32..12, 3u32..28), 1..4)),
+        relief_sources in prop::option::of(2.0f32..20.0),
     ) -> MapConfig {
         let mut c = MapConfig {
             seed,
@@ -45,6 +48,13 @@ prop_compose! {
         c.rivers.enabled = rivers;
         if on_edges {
             c.rivers.model = RiverModel::Edges;
+            if let Some(tiles_per_edge) = relief_sources {
+                c.rivers.sources = hex_terrain::RiverSources::Relief { tiles_per_edge };
+            }
+        }
+        if let Some(bands) = winds {
+            let bearings = bands.iter().map(|&(k, off)| (k * 30 + off) as f32).collect();
+            c.climate.winds = Some(hex_terrain::WindConfig { pattern: hex_terrain::WindPattern::Bands(bearings), ..Default::default() });
         }
         if setup {
             c.setup = Some(SetupConfig { players: 2, min_distance: 2, ..SetupConfig::default() });
@@ -215,7 +225,15 @@ fn check(t: &Terrain) -> Result<(), TestCaseError> {
             columns.last().unwrap() - columns.first().unwrap() + 1
         };
         prop_assert_eq!(mass.columns, span as u32);
+        // Its tiles on a river: carrying one, or with a river on an edge.
+        let on_river = |h: Hex| t.river(h).is_some() || !t.river_edges(h).is_empty();
+        prop_assert_eq!(mass.river_tiles, members.iter().filter(|&&h| on_river(h)).count() as u32);
     }
+    prop_assert_eq!(
+        stats.landmasses_without_river(20),
+        stats.landmasses.iter().filter(|m| m.tiles >= 20 && m.river_tiles == 0).count()
+    );
+    prop_assert_eq!(stats.rain_shadow, rain_shadow(t));
 
     // Rivers on edges: walked down from every edge.
     if t.config().rivers.model == RiverModel::Edges {
@@ -248,6 +266,7 @@ fn check(t: &Terrain) -> Result<(), TestCaseError> {
     prop_assert_eq!(stats.rivers.median, median(lengths));
     let near = rivers.iter().filter(|r| r.upstream.is_empty() && near_relief(t, r.hex)).count() as u32;
     prop_assert_eq!(stats.rivers.sources_near_relief, near);
+    prop_assert_eq!(stats.rivers.mouths_at_edge, rivers.iter().filter(|r| r.downstream.is_none()).count() as u32);
     prop_assert_eq!(
         stats.rivers.systems,
         rivers.iter().filter(|r| r.downstream.is_none_or(|d| !is_river(d))).count() as u32
@@ -328,7 +347,15 @@ fn edge_rivers(t: &Terrain) -> hex_terrain::RiverStats {
             near += u32::from(corner_tiles[&start].iter().any(|&h| near_relief(t, h)));
         }
     }
+    // A mouth at the map's edge: a corner past the map touching no sea or lake.
+    let wet = |h: Hex| t.tile_kind(h) == Some(TileKind::Sea) || t.lake(h).is_some();
+    let at_edge = |c: &[Hex; 3]| {
+        let on: Vec<Hex> = c.iter().filter_map(|&h| t.wrap_tile(h).filter(|&h| t.contains(h))).collect();
+        on.len() < 3 && !on.iter().any(|&h| wet(h))
+    };
+    let mouths: std::collections::HashSet<&[Hex; 3]> = down.values().filter(|to| !down.contains_key(*to)).collect();
     hex_terrain::RiverStats {
+        mouths_at_edge: mouths.iter().filter(|c| at_edge(c)).count() as u32,
         systems: down.values().filter(|to| !down.contains_key(*to)).count() as u32,
         tiles,
         edges: down.len() as u32,
@@ -337,6 +364,72 @@ fn edge_rivers(t: &Terrain) -> hex_terrain::RiverStats {
         median: median(lengths),
         sources_near_relief: near,
     }
+}
+
+/// The rain shadow counted here: each row's wind from the config's bands (equal bands of
+/// latitude from the equator to each pole, a band's bearing the direction the wind blows from,
+/// clockwise from north, the southern half mirrored north to south; the rows' latitudes from
+/// `climate.latitudes`), then from each land tile (not a mountain, not a lake) six steps, each to
+/// the neighbor whose center lies most directly upwind, looking for a mountain.
+fn rain_shadow(t: &Terrain) -> Option<hex_terrain::RainShadow> {
+    let winds = t.config().climate.winds.as_ref().filter(|_| t.config().climate.enabled)?;
+    let hex_terrain::WindPattern::Bands(bearings) = &winds.pattern else { return None };
+    let rect = t.bounds()?;
+    assert_eq!(t.config().climate.latitudes, (1.0, -1.0), "the rows' latitudes below are pole to pole");
+    let rows = (rect.max[1] - rect.min[1]) as f32;
+    let wind = |h: Hex| {
+        // A row's latitude: its middle's distance from the map's middle, 1 at the outer edges
+        // (in f32, as the climate computes it, so a row on a band's edge falls the same way).
+        let v = ((t.offset_of(h)[1] - rect.min[1]) as f32 + 0.5) / rows - 0.5;
+        let lat = f64::from(-2.0 * v);
+        let band = ((f64::from(v.abs() * 2.0 * bearings.len() as f32)) as usize).min(bearings.len() - 1);
+        let b = f64::from(bearings[band]).to_radians();
+        // Blowing from the bearing: moving the other way (north is -z).
+        let (x, z) = (-b.sin(), b.cos());
+        if lat > 0.0 { (x, z) } else { (x, -z) }
+    };
+    let mountain = |h: Hex| t.tile_kind(h) == Some(TileKind::Mountain) && t.lake(h).is_none();
+    let upwind = |h: Hex| {
+        let lattice = t.lattice();
+        let c = lattice.world(lattice.tile_center(h));
+        let (wx, wz) = wind(h);
+        let mut best: Option<(f64, Hex)> = None;
+        for nb in h.all_neighbors() {
+            let d = lattice.world(lattice.tile_center(nb));
+            let (dx, dz) = (d[0] - c[0], d[1] - c[1]);
+            let against = -(dx * wx + dz * wz) / dx.hypot(dz);
+            if best.is_none_or(|(b, _)| against > b) {
+                best = Some((against, nb));
+            }
+        }
+        t.wrap_tile(best.unwrap().1).filter(|&h| t.contains(h))
+    };
+    let mut out = hex_terrain::RainShadow::default();
+    for h in t.tiles() {
+        let info = t.tile_info(h).unwrap();
+        if info.kind != TileKind::Land || info.lake.is_some() {
+            continue;
+        }
+        let mut at = h;
+        let mut shadow = false;
+        for _ in 0..hex_terrain::SHADOW_REACH {
+            match upwind(at) {
+                Some(n) if mountain(n) => {
+                    shadow = true;
+                    break;
+                }
+                Some(n) => at = n,
+                None => break,
+            }
+        }
+        out.land += 1;
+        out.land_in_shadow += u32::from(shadow);
+        if info.biome == Biome::Desert {
+            out.deserts += 1;
+            out.deserts_in_shadow += u32::from(shadow);
+        }
+    }
+    Some(out)
 }
 
 proptest! {

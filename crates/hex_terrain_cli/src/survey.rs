@@ -5,7 +5,10 @@
 use std::path::Path;
 use std::time::Instant;
 
-use hex_terrain::{MapConfig, MapSize, MapStats, MapTypeReport, MapTypeTarget, Terrain, WaterLevel};
+use hex_terrain::{
+    Biome, MapConfig, MapSize, MapStats, MapTypeReport, MapTypeTarget, RiverModel, SurveyTarget, Terrain, WaterLevel,
+    survey_targets,
+};
 
 use crate::CliResult;
 
@@ -82,6 +85,7 @@ pub fn run(path: &Path, mut config: MapConfig, options: &Options) -> CliResult<(
         let stats = MapStats::measure(&terrain).expect("a bounded map");
         let measured = began.elapsed() - compiled;
         rows.push(Row {
+            seed,
             stats,
             map_type: terrain.map_type().cloned(),
             compile_ms: compiled.as_secs_f64() * 1e3,
@@ -103,7 +107,7 @@ pub fn run(path: &Path, mut config: MapConfig, options: &Options) -> CliResult<(
     let extent = move |r: &Row, f: fn(&hex_terrain::Landmass) -> u32, whole: f64| {
         r.stats.continents().map(|c| 100.0 * f64::from(f(c)) / whole).fold(f64::NAN, f64::min)
     };
-    let lines: [(&str, Statistic); 32] = [
+    let lines: [(&str, Statistic); 33] = [
         ("water share (%)", Box::new(percent(MapStats::water_share))),
         ("land tiles", Box::new(count(|s| s.land_tiles))),
         ("continents", Box::new(count(|s| s.continents().count() as u32))),
@@ -123,6 +127,13 @@ pub fn run(path: &Path, mut config: MapConfig, options: &Options) -> CliResult<(
         ("mountains in blobs (%)", Box::new(percent(MapStats::blob_share))),
         ("polar rows' land (% of land)", Box::new(percent(MapStats::polar_land_share))),
         ("snow, tundra, snow peaks (% of land)", Box::new(percent(MapStats::cold_share))),
+        (
+            "deserts (% of land)",
+            Box::new(|r: &Row| {
+                let deserts = r.stats.biomes.iter().find(|b| b.0 == Biome::Desert).map_or(0, |b| b.1);
+                100.0 * f64::from(deserts) / f64::from(r.stats.land_tiles.max(1))
+            }),
+        ),
         ("lake tiles (% of land)", Box::new(percent(MapStats::lake_share))),
         ("lakes per 1,000 land tiles", Box::new(|r: &Row| r.stats.lakes_per_thousand())),
         ("land on a river (%)", Box::new(percent(MapStats::river_share))),
@@ -178,6 +189,9 @@ pub fn run(path: &Path, mut config: MapConfig, options: &Options) -> CliResult<(
     let reports: Vec<&MapTypeReport> = rows.iter().filter_map(|r| r.map_type.as_ref()).collect();
     if let Some(first) = reports.first() {
         print_map_type(first.kind.name(), &reports);
+        let on_edges = config.rivers.model == RiverModel::Edges;
+        let targets = survey_targets(first.kind, on_edges, config.climate.winds.is_some());
+        print_targets(&targets, &rows, (x, z));
     }
     for line in &refused {
         println!("refused: {line}");
@@ -224,11 +238,52 @@ fn print_map_type(name: &str, reports: &[&MapTypeReport]) {
     }
 }
 
+/// The survey's targets ([`survey_targets`]): each figure's median and 95th percentile on the
+/// bad side beside their bounds, the worst seed, and the seeds that miss.
+fn print_targets(targets: &[SurveyTarget], rows: &[Row], size: (u32, u32)) {
+    let met = targets.iter().filter(|t| t.judge(&values(t, rows, size)).met).count();
+    println!("survey targets: {met} of {} met", targets.len());
+    println!(
+        "{:<42} {:>9} {:>9} {:>12} {:>22}  verdict",
+        "figure", "median", "95th", "worst (seed)", "bound (median; 95th)"
+    );
+    for target in targets {
+        let verdict = target.judge(&values(target, rows, size));
+        let scale = if target.figure.is_share() { 100.0 } else { 1.0 };
+        let unit = if scale == 100.0 { " (%)" } else { "" };
+        let shown = |v: f64| if v.is_infinite() { "-".to_owned() } else { format!("{:.1}", v * scale) };
+        let side = if target.at_most { "<=" } else { ">=" };
+        let every = target.every.map_or(String::new(), |e| format!("; all {side} {}", shown(e)));
+        let bound = format!("{side} {}; {side} {}{every}", shown(target.median), shown(target.tail));
+        let missed = match verdict.missed.len() {
+            0 => String::new(),
+            n => {
+                let first: Vec<String> = verdict.missed.iter().take(8).map(u32::to_string).collect();
+                format!(" ({n} seeds past the bound: {}{})", first.join(", "), if n > 8 { ", ..." } else { "" })
+            }
+        };
+        println!(
+            "{:<42} {:>9} {:>9} {:>12} {bound:>22}  {}{missed}",
+            format!("{}{unit}", target.figure.name()),
+            shown(verdict.median),
+            shown(verdict.tail),
+            format!("{} ({})", shown(verdict.worst.1), verdict.worst.0),
+            if verdict.met { "met" } else { "MISSED" },
+        );
+    }
+}
+
+/// Each seed's figure of a target.
+fn values(target: &SurveyTarget, rows: &[Row], size: (u32, u32)) -> Vec<(u32, f64)> {
+    rows.iter().map(|r| (r.seed, target.figure.of(&r.stats, size))).collect()
+}
+
 /// How a statistic is read from a seed's map.
 type Statistic = Box<dyn Fn(&Row) -> f64>;
 
 /// One seed's map.
 struct Row {
+    seed: u32,
     stats: MapStats,
     /// What came of the map's type, if it has one.
     map_type: Option<MapTypeReport>,

@@ -139,6 +139,34 @@ impl Bands {
     }
 }
 
+/// The unit step (world `x`, `z`) toward each neighbor, in `Hex::all_neighbors` order: the same
+/// from every tile.
+#[must_use]
+pub(crate) fn neighbor_steps(geometry: &Geometry) -> [[f32; 2]; 6] {
+    let lattice = geometry.lattice();
+    let position = |t: Hex| lattice.world(lattice.tile_center(t)).map(|v| v as f32);
+    let origin = position(Hex::ZERO);
+    Hex::ZERO.all_neighbors().map(|nb| {
+        let [x, z] = position(nb);
+        let (dx, dz) = (x - origin[0], z - origin[1]);
+        let len = dx.hypot(dz);
+        [dx / len, dz / len]
+    })
+}
+
+/// The unit vector (world `x`, `z`) the air moves along in each row of a map of `rect`, first
+/// row first, under `config`'s winds with the rows at `latitudes`.
+#[must_use]
+pub(crate) fn row_winds(config: &WindConfig, rect: TileRect, latitudes: (f32, f32)) -> Vec<[f32; 2]> {
+    let bands = Bands::new(&config.pattern);
+    (rect.min[1]..rect.max[1])
+        .map(|r| {
+            let (lat, north) = latitude(rect, r, latitudes);
+            bands.wind(lat, north)
+        })
+        .collect()
+}
+
 /// Each tile's rain (row by row over `input.rect`, `0` and above, about 1 on a windward coast),
 /// with `neighbor(i, d)` giving the row-major index of tile `i`'s neighbor in direction `d`
 /// (`Hex::all_neighbors` order; any copy of it on a wrapping map), `None` past the map's edge.
@@ -153,14 +181,7 @@ pub(crate) fn rainfall(
     let bands = Bands::new(&config.pattern);
     let lattice = geometry.lattice();
     let position = |t: Hex| lattice.world(lattice.tile_center(t)).map(|v| v as f32);
-    // The unit step toward each neighbor, the same from every tile.
-    let origin = position(Hex::ZERO);
-    let steps: [[f32; 2]; 6] = Hex::ZERO.all_neighbors().map(|nb| {
-        let [x, z] = position(nb);
-        let (dx, dz) = (x - origin[0], z - origin[1]);
-        let len = dx.hypot(dz);
-        [dx / len, dz / len]
-    });
+    let steps = neighbor_steps(geometry);
     let dot = |a: [f32; 2], b: [f32; 2]| a[0] * b[0] + a[1] * b[1];
     let tiles = input.tiles;
     let cols = (rect.max[0] - rect.min[0]).max(0) as usize;

@@ -209,9 +209,9 @@ pub enum RiverSources {
     /// mountains, away from the sea and from other rivers and lakes, and run down the drainage
     /// to the sea or a lake; then, on each landmass of at least [`RIVER_MIN_LANDMASS`] tiles with
     /// fewer than one river edge for every `tiles_per_edge` of its land tiles (and one more),
-    /// among its hills and mountains nearer the sea and other rivers, then anywhere on it,
-    /// until it has them. `tiles_per_edge` in
-    /// `[1, 1000]` (Civilization V: 12). No river ends at the map's edge.
+    /// among its hills and mountains nearer the sea and other rivers, then within two tiles of
+    /// them, then anywhere on it, until it has them. `tiles_per_edge` in `[1, 1000]`
+    /// (Civilization V: 12). No river ends at the map's edge.
     Relief {
         /// Land tiles of a landmass for each river edge it is given at least.
         tiles_per_edge: f32,

@@ -278,6 +278,9 @@ fn cores(
 /// them.
 const ARCHIPELAGO_SPREAD: usize = 10;
 
+/// Draws of a place beside an island for each smaller island of an Archipelago.
+const ARCHIPELAGO_DRAWS: usize = 8;
+
 /// The blobs of layout `layout` of a type (land, or the sea of an Inland Sea).
 pub(crate) fn draw(kind: MapType, seed: u32, layout: u32, frame: &Frame, land_share: f64, tiles: usize) -> Vec<Blob> {
     let mut draw = Draw { seed, layout, count: 0 };
@@ -339,10 +342,10 @@ pub(crate) fn draw(kind: MapType, seed: u32, layout: u32, frame: &Frame, land_sh
             }
         }
         MapType::Archipelago => {
-            // Islands of many sizes, a few large and many small (the k-th about (k + 2.5)^-0.6
+            // Islands of many sizes, a few large and many small (the k-th about (k + 3)^-0.6
             // of the land), the large ones spread first.
-            let count = (tiles / 110).clamp(12, 48);
-            let weights: Vec<f64> = (0..count).map(|k| (k as f64 + 2.5).powf(-0.6)).collect();
+            let count = (tiles / 180).clamp(14, 40);
+            let weights: Vec<f64> = (0..count).map(|k| (k as f64 + 3.0).powf(-0.6)).collect();
             let total: f64 = weights.iter().sum();
             // The large ones spread; each smaller one beside an island placed, so they form
             // chains and groups rather than dots evenly strewn.
@@ -352,14 +355,33 @@ pub(crate) fn draw(kind: MapType, seed: u32, layout: u32, frame: &Frame, land_sh
                 let radius = (area / PI).sqrt() * CLUSTER_REACH;
                 let at = if k < ARCHIPELAGO_SPREAD {
                     let centers: Vec<(f64, f64)> = placed.iter().map(|p| p.0).collect();
-                    best_candidate(&mut draw, frame, &centers, (0.05, 0.95), (0.15, 0.85))
+                    best_candidate(&mut draw, frame, &centers, (0.05, 0.95), (0.2, 0.8))
                 } else {
-                    let (near, r) = placed[(draw.next() * placed.len() as f64) as usize];
-                    let angle = draw.range(0.0, 2.0 * PI);
-                    let reach = (r + radius) * draw.range(1.6, 2.4);
-                    let u = near.0 + reach * libm::cos(angle) / frame.aspect;
-                    let u = if frame.wraps { u.rem_euclid(1.0) } else { u.clamp(0.05, 0.95) };
-                    (u, (near.1 + reach * libm::sin(angle)).clamp(0.15, 0.85))
+                    // Beside an island placed, clear of every other: of a few draws, the one
+                    // with the most room.
+                    let mut best = ((0.5, 0.5), f64::NEG_INFINITY);
+                    for _ in 0..ARCHIPELAGO_DRAWS {
+                        let (near, r) = placed[(draw.next() * placed.len() as f64) as usize];
+                        let angle = draw.range(0.0, 2.0 * PI);
+                        let reach = (r + radius) * draw.range(1.5, 2.2);
+                        let u = near.0 + reach * libm::cos(angle) / frame.aspect;
+                        let u = if frame.wraps { u.rem_euclid(1.0) } else { u.clamp(0.05, 0.95) };
+                        let at = (u, (near.1 + reach * libm::sin(angle)).clamp(0.18, 0.82));
+                        let room = placed
+                            .iter()
+                            .map(|&((pu, pv), pr)| {
+                                let (du, dv) = (frame.du(at.0, pu) * frame.aspect, at.1 - pv);
+                                (du * du + dv * dv).sqrt() - (pr + radius) * 1.4
+                            })
+                            .fold(f64::INFINITY, f64::min);
+                        if room > best.1 {
+                            best = (at, room);
+                        }
+                        if room >= 0.0 {
+                            break;
+                        }
+                    }
+                    best.0
                 };
                 placed.push((at, radius));
                 cluster(&mut draw, frame, &mut blobs, at, area, 2, 1.0);

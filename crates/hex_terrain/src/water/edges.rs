@@ -80,6 +80,9 @@ pub(crate) struct EdgeFigures {
     pub longest: u32,
     /// Each source's length in edges and its tiles (map tile indices).
     pub sources: Vec<(u32, Vec<usize>)>,
+    /// Each system's mouth: the last edge's downstream corner, as its tiles (map tile indices;
+    /// `None` past the map).
+    pub mouths: Vec<[Option<usize>; 3]>,
 }
 
 /// The channel half-widths of a tile without a river edge.
@@ -286,7 +289,12 @@ impl EdgeRivers {
                 (to_mouth[c], tiles)
             })
             .collect();
+        let tile = |i: u32| (i != NONE).then_some(i as usize);
         EdgeFigures {
+            mouths: (0..n)
+                .filter(|&c| river(c) && next(c).is_none())
+                .map(|c| self.corner_tiles(self.down[c] as usize).map(tile))
+                .collect(),
             systems: (0..n).filter(|&c| river(c) && next(c).is_none()).count() as u32,
             tiles: self.edges.iter().filter(|&&e| e != 0).count() as u32,
             edges: (0..n).filter(|&c| river(c)).count() as u32,

@@ -10,7 +10,9 @@
 //! [`RIVER_MIN_LANDMASS`] tiles with fewer river edges than its share (one for every
 //! `tiles_per_edge` land tiles, and one more), among its
 //! hills and mountains half as far from the sea and [`RIVER_SPACING`]`[1]` from rivers and
-//! lakes; then anywhere on such a landmass at those distances. Sources set by hand rise first,
+//! lakes; then within two tiles of hills or mountains; then anywhere on such a landmass at those
+//! distances. Once a landmass has a river, the passes add rivers of at least [`MIN_RIVER_EDGES`]
+//! edges to it, so its rivers are not a fringe of short streams. Sources set by hand rise first,
 //! wherever they lie. Every step is a pure function of the network, so the choice is the same
 //! on every thread.
 
@@ -40,6 +42,12 @@ pub(super) struct SourceInput<'a> {
     /// Whether each corner is a source set by hand.
     pub by_hand: &'a [bool],
 }
+
+/// The fewest edges of a landmass' rivers after its first.
+const MIN_RIVER_EDGES: u32 = 6;
+
+/// How near (in tiles) hills or mountains the third pass looks for sources.
+const NEAR_RELIEF: u32 = 2;
 
 /// Which corners' downstream edges carry a river.
 pub(super) fn relief_sources(input: &SourceInput<'_>, tiles_per_edge: f32, sea_distance: u32) -> Vec<bool> {
@@ -85,22 +93,29 @@ pub(super) fn relief_sources(input: &SourceInput<'_>, tiles_per_edge: f32, sea_d
         (0..n).filter(|&c| input.down[c] != NONE && to_water[c] && !input.dry[c]).collect();
     candidates.sort_by_key(|&c| (std::cmp::Reverse(steps[c]), c));
     let short = sea_distance.div_ceil(2);
-    // (relief only, the landmass' share, tiles from the sea, tiles from rivers and lakes)
+    // Each tile's steps from hills or mountains, up to NEAR_RELIEF + 1.
+    let from_relief = distances(input.links, (0..tiles).filter(|&i| input.relief[i]), NEAR_RELIEF + 1);
+    // (steps from relief at most, the landmass' share, tiles from the sea, tiles from rivers
+    // and lakes)
     let passes = [
-        (true, false, sea_distance, RIVER_SPACING[0]),
-        (true, true, short, RIVER_SPACING[1]),
-        (false, true, short, RIVER_SPACING[1]),
+        (0, false, sea_distance, RIVER_SPACING[0]),
+        (0, true, short, RIVER_SPACING[1]),
+        (NEAR_RELIEF, true, short, RIVER_SPACING[1]),
+        (u32::MAX, true, short, RIVER_SPACING[1]),
     ];
-    for (relief_only, share, sea, spacing) in passes {
+    for (relief, share, sea, spacing) in passes {
         for &c in &candidates {
             let ts = input.corner_tiles[c];
             let land = landmass[ts[0] as usize] as usize;
-            let wanted = !share
-                || (sizes[land] >= RIVER_MIN_LANDMASS
-                    && (edges[land] as f32) < sizes[land] as f32 / tiles_per_edge + 1.0);
+            // A landmass' rivers after its first (which may be shorter) are at least
+            // MIN_RIVER_EDGES long.
+            let wanted = (edges[land] == 0 || steps[c] >= MIN_RIVER_EDGES)
+                && (!share
+                    || (sizes[land] >= RIVER_MIN_LANDMASS
+                        && (edges[land] as f32) < sizes[land] as f32 / tiles_per_edge + 1.0));
             let fits = !river[c]
                 && wanted
-                && (!relief_only || ts.iter().any(|&i| input.relief[i as usize]))
+                && (relief == u32::MAX || ts.iter().any(|&i| from_relief[i as usize] <= relief))
                 && ts.iter().all(|&i| from_sea[i as usize] >= sea && near_river[i as usize] >= spacing);
             if fits {
                 run(c, &mut river, &mut near_river, &mut edges);

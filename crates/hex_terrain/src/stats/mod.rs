@@ -4,15 +4,20 @@
 //!
 //! The rules are on [`MapStats`].
 
-use std::collections::HashMap;
-
 use hexx::Hex;
 
 use crate::terrain::Terrain;
-use crate::vocab::{Biome, TileInfo, TileKind};
+use crate::vocab::{Biome, TileKind};
 
 pub use crate::heights::targets::{CONTINENT_MIN_SHARE, CONTINENT_MIN_TILES};
+
+mod rivers;
+mod shadow;
+mod survey;
+
 use crate::heights::targets::{components, nearest_between};
+pub use shadow::{RainShadow, SHADOW_REACH};
+pub use survey::{SurveyFigure, SurveyTarget, SurveyVerdict, survey_targets};
 
 /// Whether a landmass is a continent or an island (the rule is on [`MapStats`]).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -42,6 +47,8 @@ pub struct Landmass {
     /// The columns it spans: from its westernmost to its easternmost on a map that does not
     /// wrap; on a wrapping map, the fewest columns of an arc round the map that holds it.
     pub columns: u32,
+    /// Its tiles on a river ([`RiverStats::tiles`]' rule).
+    pub river_tiles: u32,
     /// Continent or island.
     pub kind: LandmassKind,
 }
@@ -71,6 +78,10 @@ pub struct RiverStats {
     /// biome; a corner's source by the nearest of its three tiles), where Civilization's rivers
     /// rise.
     pub sources_near_relief: u32,
+    /// River systems whose mouth is the map's edge rather than the sea or a lake (through tile
+    /// centers: a river tile whose water leaves the map; on edges: a last edge ending at a
+    /// corner past the map that touches no water).
+    pub mouths_at_edge: u32,
 }
 
 /// The statistics of a bounded map: [`MapStats::measure`].
@@ -136,6 +147,8 @@ pub struct MapStats {
     pub rivers: RiverStats,
     /// Lakes.
     pub lakes: u32,
+    /// With winds: deserts and land in the lee of mountains (`None` without winds).
+    pub rain_shadow: Option<RainShadow>,
     /// With a game setup: the tiles of the landmass each start stands on, in player order.
     pub start_landmass_tiles: Vec<u32>,
 }
@@ -214,14 +227,17 @@ impl MapStats {
                 coast_edges: 0,
                 rows: 0,
                 columns: 0,
+                river_tiles: 0,
                 kind: LandmassKind::Island,
             })
             .collect();
+        let (river_stats, on_river) = rivers::rivers(terrain, &tiles, &neighbors, &infos);
         // Each landmass' rows and columns, as flags over the map's.
         let mut spans = vec![(vec![false; rows], vec![false; columns]); landmasses.len()];
         for i in (0..tiles.len()).filter(|&i| !water(i)) {
             let mass = &mut landmasses[land.of[i] as usize];
             mass.mountains += u32::from(mountain(i));
+            mass.river_tiles += u32::from(on_river[i]);
             mass.coast_edges += coast(i);
             let [col, row] = terrain.offset_of(tiles[i]);
             let span = &mut spans[land.of[i] as usize];
@@ -282,7 +298,8 @@ impl MapStats {
             landmasses,
             narrowest_strait: narrowest,
             biomes,
-            rivers: rivers(terrain, &tiles, &neighbors, &infos),
+            rivers: river_stats,
+            rain_shadow: shadow::rain_shadow(terrain, &tiles, &neighbors, &infos),
             lakes: terrain.hydrology().map_or(0, |h| h.lake_count() as u32),
             start_landmass_tiles,
         })
@@ -377,6 +394,12 @@ impl MapStats {
         f64::from(self.rivers.sources_near_relief) / f64::from(self.rivers.sources.max(1))
     }
 
+    /// Landmasses of at least `min_tiles` tiles with no tile on a river.
+    #[must_use]
+    pub fn landmasses_without_river(&self, min_tiles: u32) -> usize {
+        self.landmasses.iter().filter(|m| m.tiles >= min_tiles && m.river_tiles == 0).count()
+    }
+
     /// The share of mountain tiles that lie in ranges (0 without mountains).
     #[must_use]
     pub fn range_share(&self) -> f64 {
@@ -434,65 +457,6 @@ fn straight_ridge(
         }
     }
     longest
-}
-
-/// The river systems, river tiles, the longest river and its sources.
-fn rivers(terrain: &Terrain, tiles: &[Hex], neighbors: &[[Option<u32>; 6]], infos: &[TileInfo]) -> RiverStats {
-    // Tiles within 2 steps of relief (a mountain or a hill).
-    let relief =
-        |i: usize| (infos[i].kind == TileKind::Mountain && infos[i].lake.is_none()) || infos[i].biome == Biome::Hills;
-    let mut near = vec![u8::MAX; tiles.len()];
-    let mut queue: std::collections::VecDeque<usize> = (0..tiles.len()).filter(|&i| relief(i)).collect();
-    for &i in &queue {
-        near[i] = 0;
-    }
-    while let Some(i) = queue.pop_front() {
-        if near[i] >= 2 {
-            continue;
-        }
-        for n in neighbors[i].iter().flatten().map(|&n| n as usize) {
-            if near[n] == u8::MAX {
-                near[n] = near[i] + 1;
-                queue.push_back(n);
-            }
-        }
-    }
-    let median = |mut lengths: Vec<u32>| {
-        lengths.sort_unstable();
-        lengths.get(lengths.len().saturating_sub(1) / 2).copied().unwrap_or(0)
-    };
-    if let Some(network) = terrain.pipeline().table().and_then(|t| t.edge_rivers()) {
-        let f = network.figures();
-        return RiverStats {
-            systems: f.systems,
-            tiles: f.tiles,
-            edges: f.edges,
-            longest: f.longest,
-            sources: f.sources.len() as u32,
-            median: median(f.sources.iter().map(|s| s.0).collect()),
-            sources_near_relief: f.sources.iter().filter(|s| s.1.iter().any(|&t| near[t] <= 2)).count() as u32,
-        };
-    }
-    let rivers = terrain.rivers();
-    let by_tile: HashMap<Hex, usize> = rivers.iter().enumerate().map(|(i, r)| (r.hex, i)).collect();
-    let tile_index: HashMap<Hex, usize> = tiles.iter().enumerate().map(|(i, &h)| (h, i)).collect();
-    let next = |i: usize| rivers[i].downstream.and_then(|d| by_tile.get(&d).copied());
-    // Tiles from each river tile to its mouth, computed from the mouths up (rivers never rise,
-    // so following downstream ends).
-    let to_mouth = crate::water::steps_to_mouth(rivers.len(), 0..rivers.len(), next);
-    let sources: Vec<usize> = (0..rivers.len()).filter(|&i| rivers[i].upstream.is_empty()).collect();
-    RiverStats {
-        systems: (0..rivers.len()).filter(|&i| next(i).is_none()).count() as u32,
-        tiles: rivers.len() as u32,
-        edges: 0,
-        longest: to_mouth.iter().copied().max().unwrap_or(0),
-        sources: sources.len() as u32,
-        median: median(sources.iter().map(|&i| to_mouth[i]).collect()),
-        sources_near_relief: sources
-            .iter()
-            .filter(|&&i| tile_index.get(&rivers[i].hex).is_some_and(|&t| near[t] <= 2))
-            .count() as u32,
-    }
 }
 
 /// The statistics as `hexterrain stats` prints them (and the demo shows them): a line each for
@@ -558,6 +522,25 @@ impl std::fmt::Display for MapStats {
             percent(self.sources_near_relief_share()),
             r.median
         )?;
+        writeln!(
+            f,
+            "rivers ending at the map's edge: {}; landmasses of {} tiles or more without a river: {}",
+            r.mouths_at_edge,
+            crate::RIVER_MIN_LANDMASS,
+            self.landmasses_without_river(crate::RIVER_MIN_LANDMASS)
+        )?;
+        if let Some(shadow) = &self.rain_shadow {
+            writeln!(
+                f,
+                "rain shadow: {} of {} deserts and {} of {} land tiles have a mountain within {SHADOW_REACH} tiles \
+                 upwind: deserts {:.2} times as often",
+                shadow.deserts_in_shadow,
+                shadow.deserts,
+                shadow.land_in_shadow,
+                shadow.land,
+                shadow.ratio()
+            )?;
+        }
         if r.edges > 0 {
             write!(
                 f,
