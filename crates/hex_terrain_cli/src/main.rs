@@ -4,6 +4,7 @@
 mod edit;
 mod experiments;
 mod export;
+mod gallery;
 mod render;
 mod survey;
 mod textures;
@@ -139,6 +140,33 @@ enum Command {
         #[arg(long, value_parser = parse_water)]
         water: Option<WaterLevel>,
     },
+    /// Render a map config over many seeds into one contact sheet (PNG): each map top-down,
+    /// labelled with its seed and the figures a map type is judged by, to judge a type by eye.
+    Gallery {
+        /// Map config (RON), or a map type's name for its preset (as `survey`).
+        map: PathBuf,
+        /// How many seeds (the first, then the next ones).
+        #[arg(long, default_value_t = 12)]
+        seeds: u32,
+        /// The first seed (default: the config's).
+        #[arg(long)]
+        first: Option<u32>,
+        /// Maps in a row.
+        #[arg(long, default_value_t = 4)]
+        columns: u32,
+        /// Each map's width in pixels.
+        #[arg(long, default_value_t = 480)]
+        width: u32,
+        /// The map's size instead of the config's, as `COLUMNSxROWS` (e.g. `84x54`).
+        #[arg(long, value_parser = parse_size)]
+        size: Option<(u32, u32)>,
+        /// The water level of a map type instead of the config's: low, normal or high.
+        #[arg(long, value_parser = parse_water)]
+        water: Option<WaterLevel>,
+        /// Output PNG (default: `gallery_NAME.png`, after the map's name).
+        #[arg(short, long)]
+        output: Option<PathBuf>,
+    },
     /// Write the tileable sea, grass and mountain textures of the material's texture mode.
     Textures {
         /// Output folder.
@@ -209,7 +237,7 @@ fn terrain(config: MapConfig, raw: bool) -> CliResult<Terrain> {
     Terrain::new(config).map_err(|e| e.to_string())
 }
 
-fn whole_map(terrain: &Terrain) -> CliResult<ChunkMesh> {
+pub(crate) fn whole_map(terrain: &Terrain) -> CliResult<ChunkMesh> {
     let (x, z) = terrain.config().size.bounds().ok_or_else(|| {
         "this command needs a bounded map; the config is Unbounded (set size: Bounded(x: .., z: ..))".to_string()
     })?;
@@ -323,6 +351,14 @@ fn run(cli: Cli) -> CliResult<()> {
         Command::Survey { map, seeds, size, water } => {
             let config = survey::map_or_type(&map)?;
             survey::run(&map, config, &survey::Options { seeds, size, water })
+        }
+        Command::Gallery { map, seeds, first, columns, width, size, water, output } => {
+            let mut config = survey::map_or_type(&map)?;
+            config.seed = first.unwrap_or(config.seed);
+            let output = output.unwrap_or_else(|| {
+                PathBuf::from(format!("gallery_{}.png", config.name.to_ascii_lowercase().replace(' ', "_")))
+            });
+            gallery::run(config, &gallery::Options { seeds, columns, width, size, water }, &output)
         }
         Command::Textures { out, size } => textures::write(&out, size),
         Command::Experiments { out, maps, rings, runs, max_hexes, width } => {

@@ -582,3 +582,79 @@ fn the_strait_scenario_is_the_world_map_edited_by_its_strokes() {
     let shipped = hex_terrain::MapConfig::load(repo().join("assets/maps/strait.map.ron")).unwrap();
     assert_eq!(hex_terrain::MapConfig { name: shipped.name.clone(), ..made }, shipped);
 }
+
+/// `survey` on a map type prints its survey targets, each with the median and the tail it
+/// measured and its verdict, which agree with the targets judged here over the same maps.
+#[test]
+fn survey_prints_the_survey_targets() {
+    let out = ok(&["survey", "pangaea", "--seeds", "6"]);
+    let preset = MapConfig::load(repo().join("assets/maps/types/pangaea.map.ron")).unwrap();
+    let size = preset.size.bounds().unwrap();
+    let stats: Vec<(u32, hex_terrain::MapStats)> = (0..6)
+        .map(|i| {
+            let t = Terrain::new(MapConfig { seed: preset.seed + i, ..preset.clone() }).unwrap();
+            (preset.seed + i, hex_terrain::MapStats::measure(&t).unwrap())
+        })
+        .collect();
+    let targets = hex_terrain::survey_targets(hex_terrain::MapType::Pangaea, true, true);
+    let met = targets
+        .iter()
+        .filter(|t| t.judge(&stats.iter().map(|(s, m)| (*s, t.figure.of(m, size))).collect::<Vec<_>>()).met)
+        .count();
+    assert!(out.contains(&format!("survey targets: {met} of {} met", targets.len())), "{out}");
+    for target in &targets {
+        let line = out
+            .lines()
+            .skip_while(|l| !l.starts_with("survey targets"))
+            .find(|l| l.starts_with(target.figure.name()))
+            .unwrap_or_else(|| panic!("{out}"));
+        let verdict = target.judge(&stats.iter().map(|(s, m)| (*s, target.figure.of(m, size))).collect::<Vec<_>>());
+        assert_eq!(line.contains(" met"), verdict.met, "{line}");
+    }
+}
+
+/// `gallery` draws one sheet: the maps in a grid of the columns asked, labelled; bad arguments
+/// are refused by name.
+#[test]
+fn gallery_draws_a_contact_sheet() {
+    let map = small_map("gallery.map.ron", "seed: 5, map_type: Some((kind: Continents))");
+    let sheet = tmp("gallery.png");
+    let out = ok(&[
+        "gallery",
+        map.to_str().unwrap(),
+        "--seeds",
+        "5",
+        "--columns",
+        "2",
+        "--width",
+        "120",
+        "--size",
+        "24x16",
+        "-o",
+        sheet.to_str().unwrap(),
+    ]);
+    assert!(out.contains("5 maps of small"), "{out}");
+    let img = image::open(&sheet).unwrap().to_rgb8();
+    // Two columns of 120 pixels and their gaps; three rows, each a map and its labels.
+    assert_eq!(img.width(), 2 * (120 + 6) + 6);
+    let one = hex_terrain::Terrain::new(MapConfig {
+        size: MapSize::Bounded { x: 24, z: 16 },
+        ..MapConfig::load(&map).unwrap()
+    })
+    .unwrap();
+    assert!(one.map_type().is_some());
+    assert!(img.height() > 3 * 80, "{}", img.height());
+    // The labels are drawn: the strip above the bottom gap (the last row's labels) is not all
+    // background.
+    let background = *img.get_pixel(0, img.height() - 1);
+    let written = (0..img.width())
+        .flat_map(|x| (img.height() - 36..img.height() - 6).map(move |y| (x, y)))
+        .filter(|&(x, y)| *img.get_pixel(x, y) != background)
+        .count();
+    assert!(written > 50, "{written} pixels written in the labels");
+    fails(&["gallery", map.to_str().unwrap(), "--seeds", "0"], &["--seeds 0", "1..=64"]);
+    fails(&["gallery", map.to_str().unwrap(), "--seeds", "4", "--columns", "5"], &["--columns 5"]);
+    fails(&["gallery", map.to_str().unwrap(), "--width", "10"], &["--width 10", "64..=2048"]);
+    let continent = repo().join("assets/maps/continent.map.ron");
+    fails(&["gallery", continent.to_str().unwrap(), "--seeds", "2", "--columns", "2"], &["bounded", "--size"]);
+}

@@ -163,12 +163,16 @@ impl Mask {
     /// Raises the land along the plates' ridges, by `height` at most; `on_land`: in proportion
     /// to the layout's land (a ridge under its sea stays there).
     pub(crate) fn add_ridges(&mut self, plates: &Plates, height: f64, on_land: bool) {
-        for j in 0..self.nv {
-            for i in 0..self.nu {
-                let (u, v) = self.node(i, j);
-                let value = &mut self.values[j * self.nu + i];
+        let us: Vec<f64> = (0..self.nu).map(|i| self.node(i, 0).0).collect();
+        let vs: Vec<f64> = (0..self.nv).map(|j| self.node(0, j).1).collect();
+        let waves = plates.wave_grid(&us, &vs);
+        for (j, (row, &v)) in self.values.chunks_mut(self.nu).zip(&vs).enumerate() {
+            for (i, (value, &u)) in row.iter_mut().zip(&us).enumerate() {
                 let land = if on_land { value.clamp(0.0, 1.0) } else { 1.0 };
-                *value += height * land * plates.ridge(u, v);
+                // Under the layout's sea a ridge adds nothing: no need to find its plates.
+                if land > 0.0 {
+                    *value += height * land * plates.ridge_on(&waves, (i, j), (u, v));
+                }
             }
         }
     }
@@ -274,6 +278,9 @@ fn cores(
     }
 }
 
+/// The share of Continents layouts with three continents rather than two.
+const THREE_CONTINENTS: f64 = 0.3;
+
 /// The largest islands of an Archipelago, spread over the map before the others gather beside
 /// them.
 const ARCHIPELAGO_SPREAD: usize = 10;
@@ -313,17 +320,24 @@ pub(crate) fn draw(kind: MapType, seed: u32, layout: u32, frame: &Frame, land_sh
             }
         }
         MapType::Continents => {
-            // As far from each other as from the map's edge (or the seam), each a chain of cores
-            // north to south, so it spans most of the map's height.
-            for u in if frame.wraps { [0.25, 0.75] } else { [0.26, 0.74] } {
-                let at = across(&mut draw, u, 0.03);
-                let slant = draw.range(-0.04, 0.04);
+            // Two continents, or three on some seeds, as far from each other as from the map's
+            // edge (or the seam), of sizes that differ a little; each a chain of cores north to
+            // south, so it spans most of the map's height.
+            let count = if draw.next() < THREE_CONTINENTS { 3 } else { 2 };
+            let shares: Vec<f64> = (0..count).map(|_| draw.range(0.85, 1.15)).collect();
+            let total: f64 = shares.iter().sum();
+            for (k, share) in shares.into_iter().enumerate() {
+                let at = (k as f64 + 0.5) / f64::from(count);
+                let at = if frame.wraps { at } else { 0.04 + 0.92 * at };
+                let at = across(&mut draw, at, 0.04);
+                let slant = draw.range(-0.05, 0.05);
                 let id = blobs.last().map_or(0, |b: &Blob| b.cluster + 1);
-                for (k, v) in [0.3, 0.5, 0.7].into_iter().enumerate() {
-                    let v = v + draw.range(-0.04, 0.04);
-                    let u = at + slant * (k as f64 - 1.0) + draw.range(-0.02, 0.02);
+                let area = land * share / total;
+                for (j, v) in [0.3, 0.5, 0.7].into_iter().enumerate() {
+                    let v = v + draw.range(-0.05, 0.05);
+                    let u = at + slant * (j as f64 - 1.0) + draw.range(-0.02, 0.02);
                     let u = if frame.wraps { u.rem_euclid(1.0) } else { u.clamp(0.05, 0.95) };
-                    cores(&mut draw, frame, &mut blobs, id, (u, v), land / 2.0 / 3.0 * 1.15, 2, 1.4);
+                    cores(&mut draw, frame, &mut blobs, id, (u, v), area / 3.0 * 1.15, 2, 1.4);
                 }
             }
         }
