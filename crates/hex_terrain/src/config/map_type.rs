@@ -32,7 +32,10 @@ pub struct MapTypeConfig {
     /// Mountains in ranges along the lines where tectonic plates meet (as Civilization V's
     /// map scripts raise them), rather than on the highest land wherever it lies: the
     /// mountains' share is the same, their shape is chains (see
-    /// [`MapStats::mountain_neighbors`](crate::MapStats::mountain_neighbors)). Off by default.
+    /// [`MapStats::mountain_neighbors`](crate::MapStats::mountain_neighbors)), bent, broken by
+    /// passes, with at most [`MAX_STRAIGHT_RIDGE`](crate::MAX_STRAIGHT_RIDGE) mountains in a row
+    /// and [`MAX_BLOB_SHARE`](crate::MAX_BLOB_SHARE) of them in blobs (two more targets). Off by
+    /// default; on in the type presets.
     pub ranges: bool,
 }
 
@@ -86,14 +89,17 @@ impl WaterLevel {
 /// | type | sea % (low / normal / high) | landmass targets |
 /// |---|---|---|
 /// | Pangaea | 63 / 68 / 73 | the largest landmass holds at least 80 % of the land |
-/// | Continents | 63 / 67 / 71 | 2 or 3 continents, the two largest each at least 25 % of the land, at least 2 tiles of sea between continents |
+/// | Continents | 63 / 67 / 71 | 2 or 3 continents, the two largest each at least 25 % of the land, at least 2 tiles of sea between continents, each spanning at least 55 % of the rows |
 /// | Small Continents | 69 / 75 / 80 | 4 to 8 continents, the largest at most 40 % of the land, at least 2 tiles of sea between continents |
 /// | Archipelago | 72 / 78 / 83 | at least 10 landmasses, the largest at most 15 % of the land |
 /// | Fractal | 65 / 72 / 78 | the sea share only: the thesis' fBm as it falls |
 /// | Inland Sea | 15 / 20 / 25 | the largest sea holds at least 80 % of the sea and touches no edge of the map; the largest landmass (the ring around it) holds at least 90 % of the land |
 ///
 /// Every type also keeps its sea share within [`SEA_SHARE_TOLERANCE`] of the level's and the
-/// mountains within one tile of the config's share of the land.
+/// mountains within one tile of the config's share of the land. Every type but Inland Sea keeps
+/// its first and last rows sea, as Civilization V does. Beyond these, what a player judges a map
+/// by over many seeds (ranges, poles, lakes, rivers, shapes, deserts) is
+/// [`survey_targets`](crate::survey_targets), which the type presets meet.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, Serialize, Deserialize)]
 #[cfg_attr(feature = "bevy_reflect", derive(bevy_reflect::Reflect))]
 pub enum MapType {

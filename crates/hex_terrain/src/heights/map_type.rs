@@ -3,9 +3,12 @@
 //! for bounded maps (wrapping or not).
 //!
 //! A type draws a **layout** from the seed: blobs of land (a continent is a core blob and a few
-//! smaller ones around it, so its outline is not round), or of sea for the Inland Sea. The
-//! blobs are summed on a grid of one node a tile, periodic east-west on a wrapping map, and read
-//! back bilinearly: the **mask**, 1 on the layout's land and 0 on its sea. A point's value is
+//! smaller ones around it, or a chain of such cores, so its outline is not round), or of sea for
+//! the Inland Sea. The blobs are summed on a grid of one node a tile (two with ranges), periodic
+//! east-west on a wrapping map, and read back bilinearly: the **mask**, 1 on the layout's land
+//! and 0 on its sea, sinking below the sea toward the first and last rows. With ranges, the
+//! plates' ridges raise it, and the ranges' knots are sunk to hills ([`untangle`]). A point's
+//! value is
 //!
 //! ```text
 //! value = mask(x, z) + roughness * (fbm(x, z) - mean) / deviation
