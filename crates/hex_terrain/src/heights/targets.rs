@@ -420,13 +420,30 @@ pub(crate) fn knots(graph: &TileGraph, mountain: &dyn Fn(usize) -> bool) -> Vec<
     let n = graph.neighbors.len();
     let around = |i: usize| graph.neighbors[i].iter().flatten().filter(|&&j| mountain(j as usize)).count();
     let mut knot: Vec<bool> = (0..n).map(|i| mountain(i) && around(i) >= 5).collect();
-    let step = |i: usize, d: usize| graph.neighbors[i][d].map(|j| j as usize).filter(|&j| mountain(j));
-    for d in 0..3 {
+    for run in axis_runs(graph, mountain).filter(|run| run.len() as f64 > MAX_STRAIGHT_RIDGE) {
+        knot[run[run.len() / 2]] = true;
+    }
+    (0..n).filter(|&i| knot[i]).collect()
+}
+
+/// The most `mountain` tiles in a row along one of the three hex axes.
+fn straight_ridge(graph: &TileGraph, mountain: &dyn Fn(usize) -> bool) -> usize {
+    axis_runs(graph, mountain).map(|run| run.len()).max().unwrap_or(0)
+}
+
+/// Every run of `mountain` tiles along each of the three hex axes (neighbor directions `d` and
+/// `d + 3`), from its first tile; a run going all round a wrapping map holds its tiles once.
+fn axis_runs<'a>(graph: &'a TileGraph, mountain: &'a dyn Fn(usize) -> bool) -> impl Iterator<Item = Vec<usize>> + 'a {
+    let n = graph.neighbors.len();
+    let step = move |i: usize, d: usize| graph.neighbors[i][d].map(|j| j as usize).filter(|&j| mountain(j));
+    (0..3).flat_map(move |d| {
         let mut seen = vec![false; n];
+        let mut runs = Vec::new();
         for start in (0..n).filter(|&i| mountain(i)) {
             if seen[start] {
                 continue;
             }
+            // Back to the run's first tile (or once round), then forward along it.
             let mut first = start;
             while let Some(j) = step(first, d + 3).filter(|&j| j != start) {
                 first = j;
@@ -438,40 +455,8 @@ pub(crate) fn knots(graph: &TileGraph, mountain: &dyn Fn(usize) -> bool) -> Vec<
                 run.push(i);
                 at = step(i, d);
             }
-            if run.len() as f64 > MAX_STRAIGHT_RIDGE {
-                knot[run[run.len() / 2]] = true;
-            }
+            runs.push(run);
         }
-    }
-    (0..n).filter(|&i| knot[i]).collect()
-}
-
-/// The most `mountain` tiles in a row along one of the three hex axes (neighbor directions `d`
-/// and `d + 3`); a row going all round a wrapping map counts its tiles once.
-fn straight_ridge(graph: &TileGraph, mountain: &dyn Fn(usize) -> bool) -> usize {
-    let n = graph.neighbors.len();
-    let step = |i: usize, d: usize| graph.neighbors[i][d].map(|j| j as usize).filter(|&j| mountain(j));
-    let mut longest = 0;
-    for d in 0..3 {
-        let mut seen = vec![false; n];
-        for start in (0..n).filter(|&i| mountain(i)) {
-            if seen[start] {
-                continue;
-            }
-            // Back to the run's first tile (or once round), then forward along it.
-            let mut first = start;
-            while let Some(j) = step(first, d + 3).filter(|&j| j != start) {
-                first = j;
-            }
-            let mut run = 0;
-            let mut at = Some(first);
-            while let Some(i) = at.filter(|&i| !seen[i]) {
-                seen[i] = true;
-                run += 1;
-                at = step(i, d);
-            }
-            longest = longest.max(run);
-        }
-    }
-    longest
+        runs
+    })
 }
