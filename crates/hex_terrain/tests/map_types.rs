@@ -411,7 +411,7 @@ fn one_map_of_each_type_is_pinned() {
 }
 
 /// The type presets as a player gets them (winds, rivers on edges rising in the hills): over the
-/// presets' own seed and the next 39, every survey target (`survey_targets`: ranges, poles,
+/// presets' own seed and the next 59, every survey target (`survey_targets`: ranges, poles,
 /// lakes, rivers, shapes, deserts) is met, each figure read from `MapStats` (whose numbers
 /// `tests/stats.rs` recomputes). `hexterrain survey TYPE --seeds 200` measures the same over
 /// more seeds.
@@ -429,7 +429,7 @@ fn the_type_presets_meet_their_survey_targets() {
             preset.rivers.model == hex_terrain::RiverModel::Edges,
             preset.climate.winds.is_some(),
         );
-        let stats: Vec<(u32, hex_terrain::MapStats)> = (0..40)
+        let stats: Vec<(u32, hex_terrain::MapStats)> = (0..60)
             .map(|k| {
                 let seed = preset.seed + k;
                 let t = Terrain::new(MapConfig { seed, ..preset.clone() }).unwrap();
