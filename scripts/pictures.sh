@@ -1,9 +1,11 @@
 #!/usr/bin/env bash
 # Remakes the pictures in docs/ that the `hexterrain` command draws from a map config: the map
 # types' presets and their contact sheets (12 seeds from 1000, seeds the presets do not use),
-# the World preset's biomes with and without winds, and its game setup. The Bevy screenshots
-# (docs/strategy*.png and the others) come from the examples' screenshot mode instead: the guide
-# gives each one's command. Release build of the CLI only (no Bevy): a minute from cold.
+# the World preset's biomes with and without winds, and its game setup. With `--screens` also the
+# demo's opening view (docs/strategy.png, the README's first picture) through the examples'
+# screenshot mode, under Xvfb without a display (the Bevy build scripts/run.sh makes). The other
+# Bevy screenshots in docs/ are not remade here yet. Without `--screens`: the release build of
+# the CLI only (no Bevy), a minute from cold.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 source scripts/env.sh
@@ -21,3 +23,11 @@ sed -e 's/, winds: Some((pattern: Bands(\[45, 225, 45\])))//' assets/maps/world.
 grep -q "winds: Some" "$no_winds" && { echo "pictures.sh: the World preset's winds line changed; update the sed above" >&2; exit 1; }
 "$cli" render "$no_winds" -o docs/world_biomes_no_winds.png --width 800
 "$cli" setup assets/maps/world.map.ron -o docs/setup.png --width 900
+if [ "${1:-}" = "--screens" ]; then
+  run=(cargo run -q -p bevy_hex_terrain --features "$HEXTERRAIN_FEATURES" --example strategy)
+  if [ -z "${DISPLAY:-}" ] && [ -z "${WAYLAND_DISPLAY:-}" ]; then
+    run=(xvfb-run -a -s "-screen 0 1280x720x24" "${run[@]}")
+  fi
+  # Every prop at once (HEXTERRAIN_SETTLE), so the picture does not catch them spawning.
+  HEXTERRAIN_SETTLE=1 HEXTERRAIN_SCREENSHOT="$PWD/docs/strategy.png" "${run[@]}" > /dev/null
+fi
