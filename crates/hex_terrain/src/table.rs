@@ -127,6 +127,14 @@ impl TileTable {
         let climates: Vec<Option<Climate>> = (0..tiles.len())
             .map(|i| table.climates.get(i).copied().filter(|_| samples[i].kind != TileKind::Sea))
             .collect();
+        // Each tile's biome, given which tiles are lakes: a biome set by hand stays, the others
+        // follow the edited heights.
+        let biomes_of = |lake: &dyn Fn(usize) -> bool| -> Vec<Biome> {
+            let by_hand = |t: Hex| heights.edits().and_then(|e| e.biome(geometry, t));
+            (0..tiles.len())
+                .map(|i| by_hand(tiles[i]).unwrap_or_else(|| climate.biome_from(&samples[i], lake(i), climates[i])))
+                .collect()
+        };
         if rivers.enabled {
             let sea = thresholds.sea;
             let rain: Vec<f32> = samples
@@ -155,17 +163,17 @@ impl TileTable {
                 // edges instead.
                 let hydrology = Hydrology::lakes_only(rivers, &links, (&table.raw, &table.kinds, &rain));
                 let lakes: Vec<bool> = (0..tiles.len()).map(|i| hydrology.lake_of(i).is_some()).collect();
-                // Hills and mountains, as the tiles' biomes will say, for rivers rising in them.
+                // Hills and mountains, for rivers rising in them: the biomes are known here.
                 let relief: Vec<bool> = match rivers.sources {
                     RiverSources::Flow => Vec::new(),
-                    RiverSources::Relief { .. } => (0..tiles.len())
-                        .map(|i| {
-                            let by_hand = heights.edits().and_then(|e| e.biome(geometry, tiles[i]));
-                            let biome =
-                                by_hand.unwrap_or_else(|| climate.biome_from(&samples[i], lakes[i], climates[i]));
-                            biome == Biome::Hills || (samples[i].kind == TileKind::Mountain && !lakes[i])
-                        })
-                        .collect(),
+                    RiverSources::Relief { .. } => {
+                        table.biomes = biomes_of(&|i| lakes[i]);
+                        (0..tiles.len())
+                            .map(|i| {
+                                table.biomes[i] == Biome::Hills || (samples[i].kind == TileKind::Mountain && !lakes[i])
+                            })
+                            .collect()
+                    }
                 };
                 let input = EdgeInput {
                     rect,
@@ -181,22 +189,9 @@ impl TileTable {
                 table.hydrology = Some(hydrology);
             }
         }
-        table.biomes = samples
-            .iter()
-            .zip(climates)
-            .enumerate()
-            .map(|(i, (s, climate_of))| {
-                let lake = table.hydrology.as_ref().is_some_and(|h| h.lake_of(i).is_some());
-                climate.biome_from(s, lake, climate_of)
-            })
-            .collect();
-        // Biomes set by hand stay (the others follow the edited heights).
-        if let Some(edits) = heights.edits() {
-            for (i, &tile) in tiles.iter().enumerate() {
-                if let Some(biome) = edits.biome(geometry, tile) {
-                    table.biomes[i] = biome;
-                }
-            }
+        if table.biomes.is_empty() {
+            let hydrology = table.hydrology.as_ref();
+            table.biomes = biomes_of(&|i| hydrology.is_some_and(|h| h.lake_of(i).is_some()));
         }
         table
     }

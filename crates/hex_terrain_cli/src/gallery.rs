@@ -113,7 +113,6 @@ pub fn run(mut config: MapConfig, options: &Options, output: &Path) -> CliResult
 /// mountains and poles, its water.
 fn labels(stats: &MapStats, met: Option<bool>, (columns, rows): (u32, u32)) -> [String; 3] {
     let percent = |v: f64| format!("{:.0}%", v * 100.0);
-    let deserts = stats.biomes.iter().find(|b| b.0 == Biome::Desert).map_or(0, |b| b.1);
     let largest = stats.landmasses.first();
     let verdict = match met {
         Some(true) => "  targets met",
@@ -129,7 +128,7 @@ fn labels(stats: &MapStats, met: Option<bool>, (columns, rows): (u32, u32)) -> [
             largest.map_or(0, |l| l.rows),
             stats.straight_ridge,
             percent(stats.cold_share()),
-            percent(f64::from(deserts) / f64::from(stats.land_tiles.max(1))),
+            percent(stats.biome_share(Biome::Desert)),
         ),
         format!(
             "rivers on {} of the land, {} long on median; {} lakes",

@@ -6,8 +6,8 @@ use std::path::Path;
 use std::time::Instant;
 
 use hex_terrain::{
-    Biome, MapConfig, MapSize, MapStats, MapTypeReport, MapTypeTarget, RiverModel, SurveyTarget, Terrain, WaterLevel,
-    survey_targets,
+    Biome, MapConfig, MapSize, MapStats, MapTypeReport, MapTypeTarget, RiverModel, SurveyFigure, SurveyTarget,
+    SurveyVerdict, Terrain, WaterLevel, survey_targets,
 };
 
 use crate::CliResult;
@@ -104,9 +104,11 @@ pub fn run(path: &Path, mut config: MapConfig, options: &Options) -> CliResult<(
     let percent = |f: fn(&MapStats) -> f64| move |r: &Row| 100.0 * f(&r.stats);
     let count = |f: fn(&MapStats) -> u32| move |r: &Row| f64::from(f(&r.stats));
     let (map_columns, map_rows) = (f64::from(x), f64::from(z));
+    let figure = move |r: &Row, f: SurveyFigure| f.of(&r.stats, (x, z));
     let extent = move |r: &Row, f: fn(&hex_terrain::Landmass) -> u32, whole: f64| {
         r.stats.continents().map(|c| 100.0 * f64::from(f(c)) / whole).fold(f64::NAN, f64::min)
     };
+    use SurveyFigure::{LargestLandmassWidth, ThirdLandmassTiles, TinyLandmassShare};
     let lines: [(&str, Statistic); 33] = [
         ("water share (%)", Box::new(percent(MapStats::water_share))),
         ("land tiles", Box::new(count(|s| s.land_tiles))),
@@ -127,13 +129,7 @@ pub fn run(path: &Path, mut config: MapConfig, options: &Options) -> CliResult<(
         ("mountains in blobs (%)", Box::new(percent(MapStats::blob_share))),
         ("polar rows' land (% of land)", Box::new(percent(MapStats::polar_land_share))),
         ("snow, tundra, snow peaks (% of land)", Box::new(percent(MapStats::cold_share))),
-        (
-            "deserts (% of land)",
-            Box::new(|r: &Row| {
-                let deserts = r.stats.biomes.iter().find(|b| b.0 == Biome::Desert).map_or(0, |b| b.1);
-                100.0 * f64::from(deserts) / f64::from(r.stats.land_tiles.max(1))
-            }),
-        ),
+        ("deserts (% of land)", Box::new(|r: &Row| 100.0 * r.stats.biome_share(Biome::Desert))),
         ("lake tiles (% of land)", Box::new(percent(MapStats::lake_share))),
         ("lakes per 1,000 land tiles", Box::new(|r: &Row| r.stats.lakes_per_thousand())),
         ("land on a river (%)", Box::new(percent(MapStats::river_share))),
@@ -141,31 +137,9 @@ pub fn run(path: &Path, mut config: MapConfig, options: &Options) -> CliResult<(
         ("sources near hills or mountains (%)", Box::new(percent(MapStats::sources_near_relief_share))),
         ("continents' least height (% of rows)", Box::new(move |r: &Row| extent(r, |c| c.rows, map_rows))),
         ("continents' least width (% of columns)", Box::new(move |r: &Row| extent(r, |c| c.columns, map_columns))),
-        (
-            "largest landmass' width (% of columns)",
-            Box::new(move |r: &Row| {
-                r.stats
-                    .landmasses
-                    .iter()
-                    .max_by_key(|l| l.tiles)
-                    .map_or(f64::NAN, |l| 100.0 * f64::from(l.columns) / map_columns)
-            }),
-        ),
-        (
-            "third largest landmass (tiles)",
-            Box::new(|r: &Row| {
-                let mut sizes: Vec<u32> = r.stats.landmasses.iter().map(|l| l.tiles).collect();
-                sizes.sort_unstable_by(|a, b| b.cmp(a));
-                sizes.get(2).map_or(0.0, |&s| f64::from(s))
-            }),
-        ),
-        (
-            "landmasses of 1-3 tiles (%)",
-            Box::new(|r: &Row| {
-                let small = r.stats.landmasses.iter().filter(|l| l.tiles <= 3).count();
-                100.0 * small as f64 / r.stats.landmasses.len().max(1) as f64
-            }),
-        ),
+        ("largest landmass' width (% of columns)", Box::new(move |r: &Row| 100.0 * figure(r, LargestLandmassWidth))),
+        ("third largest landmass (tiles)", Box::new(move |r: &Row| figure(r, ThirdLandmassTiles))),
+        ("landmasses of 1-3 tiles (%)", Box::new(move |r: &Row| 100.0 * figure(r, TinyLandmassShare))),
         ("narrowest strait (tiles)", Box::new(|r: &Row| r.stats.narrowest_strait.map_or(f64::NAN, f64::from))),
         ("compile the map (ms)", Box::new(|r: &Row| r.compile_ms)),
         ("measure its statistics (ms)", Box::new(|r: &Row| r.measure_ms)),
@@ -241,14 +215,14 @@ fn print_map_type(name: &str, reports: &[&MapTypeReport]) {
 /// The survey's targets ([`survey_targets`]): each figure's median and 95th percentile on the
 /// bad side beside their bounds, the worst seed, and the seeds that miss.
 fn print_targets(targets: &[SurveyTarget], rows: &[Row], size: (u32, u32)) {
-    let met = targets.iter().filter(|t| t.judge(&values(t, rows, size)).met).count();
+    let verdicts: Vec<SurveyVerdict> = targets.iter().map(|t| t.judge(&values(t, rows, size))).collect();
+    let met = verdicts.iter().filter(|v| v.met).count();
     println!("survey targets: {met} of {} met", targets.len());
     println!(
         "{:<42} {:>9} {:>9} {:>12} {:>22}  verdict",
         "figure", "median", "95th", "worst (seed)", "bound (median; 95th)"
     );
-    for target in targets {
-        let verdict = target.judge(&values(target, rows, size));
+    for (target, verdict) in targets.iter().zip(verdicts) {
         let scale = if target.figure.is_share() { 100.0 } else { 1.0 };
         let unit = if scale == 100.0 { " (%)" } else { "" };
         let shown = |v: f64| if v.is_infinite() { "-".to_owned() } else { format!("{:.1}", v * scale) };

@@ -31,6 +31,7 @@
 use crate::config::{MapType, MapTypeConfig, SEA_SHARE_TOLERANCE};
 use crate::geometry::Geometry;
 
+use super::knots;
 use super::layout::{self, Frame, Mask};
 use super::targets::{self, MapTypeReport, TargetCheck, TileGraph};
 use super::{HeightField, ShapeBounds};
@@ -183,7 +184,7 @@ const UNTANGLE_ROUNDS: usize = 6;
 
 /// Opens the knots of a layout's ranges, in at most [`UNTANGLE_ROUNDS`] rounds: where the
 /// mountains (the highest `mountains` share of the land) form a blob (a mountain with 5 or 6
-/// mountain neighbors) or run straight along a hex axis for more than [`MAX_STRAIGHT_RIDGE`](targets::MAX_STRAIGHT_RIDGE)
+/// mountain neighbors) or run straight along a hex axis for more than [`MAX_STRAIGHT_RIDGE`](knots::MAX_STRAIGHT_RIDGE)
 /// tiles, the mask under those tiles' centers sinks to hill height, so they become valleys and
 /// passes; the share of mountains is kept by the remap, which raises the next highest land.
 /// The mask only changes at grid nodes around the knots' centers (which no other tile center
@@ -195,7 +196,7 @@ fn untangle(mask: &mut Mask, land: &Land<'_>, mountains: f64) {
         sorted.sort_unstable_by(f64::total_cmp);
         let remap = Remap::new(&sorted, land.sea_share, mountains, land.thresholds);
         let mountain: Vec<bool> = values.iter().map(|&v| v >= remap.mountain).collect();
-        let knots = targets::knots(land.graph, &|i| mountain[i]);
+        let knots = knots::knots(land.graph, &|i| mountain[i]);
         if knots.is_empty() {
             return;
         }

@@ -7,7 +7,9 @@
 //! of the lattice point, so any chunk samples the same heights as the whole map.
 
 pub mod fbm;
+mod graph;
 pub mod image;
+mod knots;
 mod layout;
 pub mod map_type;
 pub mod ranges;
@@ -16,9 +18,10 @@ pub mod targets;
 
 pub use fbm::{FastPerlin, Fbm, Kernel};
 pub use image::{HeightImage, ImageError, MAX_IMAGE_PIXELS, MAX_PNG_BYTES, remap_sea_level};
+pub use knots::{MAX_BLOB_SHARE, MAX_STRAIGHT_RIDGE};
 pub use map_type::{MAX_LAYOUTS, MAX_TRIES, MapTypeField, SEA_STEPS};
 pub use shape::ShapeBounds;
-pub use targets::{MAX_BLOB_SHARE, MAX_STRAIGHT_RIDGE, MapTypeReport, MapTypeTarget, TargetCheck};
+pub use targets::{MapTypeReport, MapTypeTarget, TargetCheck};
 
 use std::sync::Arc;
 

@@ -9,7 +9,9 @@
 use std::collections::VecDeque;
 
 use crate::config::{MapType, MapTypeConfig, SEA_SHARE_TOLERANCE};
-use crate::geometry::Geometry;
+
+pub(crate) use super::graph::TileGraph;
+use super::knots::{MAX_BLOB_SHARE, MAX_STRAIGHT_RIDGE, straight_ridge};
 
 /// A landmass is a continent when it holds at least this share of the map's land tiles (and
 /// [`CONTINENT_MIN_TILES`]).
@@ -198,46 +200,6 @@ impl std::fmt::Display for MapTypeReport {
     }
 }
 
-/// The tiles of a bounded map as a grid for measuring: each tile's neighbors (wrapped) and
-/// whether it lies on the map's edge.
-pub(crate) struct TileGraph {
-    /// Each tile's neighbors in the map, by index.
-    pub neighbors: Vec<[Option<u32>; 6]>,
-    /// Whether a tile lies on the map's edge.
-    pub edge: Vec<bool>,
-    /// Each tile's row, from 0.
-    pub row: Vec<u32>,
-    /// The map's rows.
-    pub rows: u32,
-}
-
-impl TileGraph {
-    /// The tiles of a bounded map by row (none for an unbounded world).
-    pub(crate) fn of(geometry: &Geometry) -> Self {
-        let Some(rect) = geometry.bounds() else {
-            return Self { neighbors: Vec::new(), edge: Vec::new(), row: Vec::new(), rows: 0 };
-        };
-        let width = rect.max[0] - rect.min[0];
-        let index = |[col, row]: [i32; 2]| ((row - rect.min[1]) * width + (col - rect.min[0])) as u32;
-        let wraps = geometry.wrap().is_some();
-        let mut neighbors = Vec::with_capacity(rect.len());
-        let mut edge = Vec::with_capacity(rect.len());
-        let mut rows = Vec::with_capacity(rect.len());
-        for tile in geometry.tiles() {
-            let [col, row] = geometry.offset_of(tile);
-            rows.push((row - rect.min[1]) as u32);
-            let around = geometry.wrapped_neighbors(tile);
-            neighbors.push(around.map(|nb| geometry.contains(nb).then(|| index(geometry.offset_of(nb)))));
-            edge.push(
-                row == rect.min[1]
-                    || row == rect.max[1] - 1
-                    || (!wraps && (col == rect.min[0] || col == rect.max[0] - 1)),
-            );
-        }
-        TileGraph { neighbors, edge, row: rows, rows: (rect.max[1] - rect.min[1]) as u32 }
-    }
-}
-
 /// Connected components of the tiles a [`components`] search kept.
 pub(crate) struct Components {
     /// Each tile's component (`u32::MAX` for a tile not kept).
@@ -404,59 +366,4 @@ pub(crate) fn measure(config: &MapTypeConfig, graph: &TileGraph, sea: &[bool], m
         checks.push(check(MapTypeTarget::MountainBlobShare, share(blobs, mountains), 0.0, MAX_BLOB_SHARE));
     }
     checks
-}
-
-/// With ranges, the most mountains in a row along a hex axis a map type keeps.
-pub const MAX_STRAIGHT_RIDGE: f64 = 6.0;
-
-/// With ranges, the largest share of the mountains with 5 or 6 mountain neighbors a map type
-/// keeps.
-pub const MAX_BLOB_SHARE: f64 = 0.05;
-
-/// The knots of a map's ranges: the `mountain` tiles with 5 or 6 mountain neighbors, and the
-/// middle tile of each run of mountains along a hex axis longer than [`MAX_STRAIGHT_RIDGE`]
-/// (in index order, each once).
-pub(crate) fn knots(graph: &TileGraph, mountain: &dyn Fn(usize) -> bool) -> Vec<usize> {
-    let n = graph.neighbors.len();
-    let around = |i: usize| graph.neighbors[i].iter().flatten().filter(|&&j| mountain(j as usize)).count();
-    let mut knot: Vec<bool> = (0..n).map(|i| mountain(i) && around(i) >= 5).collect();
-    for run in axis_runs(graph, mountain).filter(|run| run.len() as f64 > MAX_STRAIGHT_RIDGE) {
-        knot[run[run.len() / 2]] = true;
-    }
-    (0..n).filter(|&i| knot[i]).collect()
-}
-
-/// The most `mountain` tiles in a row along one of the three hex axes.
-fn straight_ridge(graph: &TileGraph, mountain: &dyn Fn(usize) -> bool) -> usize {
-    axis_runs(graph, mountain).map(|run| run.len()).max().unwrap_or(0)
-}
-
-/// Every run of `mountain` tiles along each of the three hex axes (neighbor directions `d` and
-/// `d + 3`), from its first tile; a run going all round a wrapping map holds its tiles once.
-fn axis_runs<'a>(graph: &'a TileGraph, mountain: &'a dyn Fn(usize) -> bool) -> impl Iterator<Item = Vec<usize>> + 'a {
-    let n = graph.neighbors.len();
-    let step = move |i: usize, d: usize| graph.neighbors[i][d].map(|j| j as usize).filter(|&j| mountain(j));
-    (0..3).flat_map(move |d| {
-        let mut seen = vec![false; n];
-        let mut runs = Vec::new();
-        for start in (0..n).filter(|&i| mountain(i)) {
-            if seen[start] {
-                continue;
-            }
-            // Back to the run's first tile (or once round), then forward along it.
-            let mut first = start;
-            while let Some(j) = step(first, d + 3).filter(|&j| j != start) {
-                first = j;
-            }
-            let mut run = Vec::new();
-            let mut at = Some(first);
-            while let Some(i) = at.filter(|&i| !seen[i]) {
-                seen[i] = true;
-                run.push(i);
-                at = step(i, d);
-            }
-            runs.push(run);
-        }
-        runs
-    })
 }

@@ -23,7 +23,7 @@ use serde::{Deserialize, Serialize};
 
 use super::corners::{CornerGrid, Owners, Shape, Stencils};
 use super::descent::{Drainage, NONE, Role, drain};
-use super::sources::{SourceInput, relief_sources};
+use super::sources::{SourceInput, distances, relief_sources};
 use crate::chunk::TileRect;
 use crate::config::{RiverConfig, RiverEdit, RiverSources};
 use crate::geometry::{Geometry, OFFSET_MODE};
@@ -474,26 +474,9 @@ fn corners(grid: &CornerGrid, stencils: &Stencils, input: &EdgeInput<'_>, near: 
     out
 }
 
-/// Whether each map tile lies nearer the sea than `distance` tiles (a breadth-first search from
-/// every sea tile at once, `distance` steps deep).
+/// Whether each map tile lies nearer the sea than `distance` tiles (steps over the map from the
+/// nearest sea tile).
 fn near_sea(input: &EdgeInput<'_>, distance: u32) -> Vec<bool> {
-    let mut near = vec![false; input.kinds.len()];
-    if distance == 0 {
-        return near;
-    }
-    let mut front: Vec<usize> = (0..input.kinds.len()).filter(|&i| input.kinds[i] == TileKind::Sea).collect();
-    front.iter().for_each(|&i| near[i] = true);
-    for _ in 1..distance {
-        let mut next = Vec::new();
-        for &i in &front {
-            for &j in &input.links[i] {
-                if !near[j as usize] {
-                    near[j as usize] = true;
-                    next.push(j as usize);
-                }
-            }
-        }
-        front = next;
-    }
-    near
+    let sea = (0..input.kinds.len()).filter(|&i| input.kinds[i] == TileKind::Sea);
+    distances(input.links, sea, distance).into_iter().map(|d| d < distance).collect()
 }

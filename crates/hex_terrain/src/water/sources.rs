@@ -156,7 +156,7 @@ fn landmasses(links: &[[u32; 6]], on_land: impl Fn(usize) -> bool) -> (Vec<u32>,
 
 /// Each tile's steps from the nearest of `from`, counted up to `reach` (`reach` for the tiles
 /// farther).
-fn distances(links: &[[u32; 6]], from: impl Iterator<Item = usize>, reach: u32) -> Vec<u32> {
+pub(super) fn distances(links: &[[u32; 6]], from: impl Iterator<Item = usize>, reach: u32) -> Vec<u32> {
     let mut d = vec![reach; links.len()];
     spread(&mut d, links, from.collect(), reach);
     d
