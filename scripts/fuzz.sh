@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Coverage-guided fuzzing with cargo-fuzz (libFuzzer), one target at a time:
-#   scripts/fuzz.sh <map_text|heightmap|map_asset|tile_save|fog_save|edits> [seconds=1800] [runs=1000000]
+#   scripts/fuzz.sh <map_text|heightmap|map_asset|tile_save|fog_save|edits|ruleset> [seconds=1800] [runs=1000000]
 # Stops after `runs` executions or `seconds`, whichever comes first; an input that takes more
 # than 10 s counts as a hang. Then minimises the corpus into fuzz/corpus/<target> (commit it:
 # tests replay it). A crash input lands in fuzz/artifacts/<target>: fix the bug and move the
@@ -9,7 +9,7 @@
 # when rustup has one, otherwise the stable one with RUSTC_BOOTSTRAP=1.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-target="${1:?usage: scripts/fuzz.sh <map_text|heightmap|map_asset|tile_save|fog_save|edits> [seconds] [runs]}"
+target="${1:?usage: scripts/fuzz.sh <map_text|heightmap|map_asset|tile_save|fog_save|edits|ruleset> [seconds] [runs]}"
 seconds="${2:-1800}"
 runs="${3:-1000000}"
 if ! cargo fuzz --version >/dev/null 2>&1; then

@@ -6,7 +6,7 @@ use std::sync::Arc;
 use bevy::asset::io::Reader;
 use bevy::asset::{AssetLoader, LoadContext};
 use bevy::prelude::*;
-use hex_terrain::{HeightImage, HeightSourceConfig, ImageError, LoadError, MapConfig, MapFile};
+use hex_terrain::{HeightImage, HeightSourceConfig, ImageError, LoadError, MapConfig, MapFile, TerrainRuleset};
 use thiserror::Error;
 
 /// A loaded map config, with the heightmap of an `Image` source already decoded.
@@ -16,6 +16,9 @@ pub struct HexMapAsset {
     pub config: MapConfig,
     /// The decoded heightmap when the config's source is `Image`.
     pub image: Option<Arc<HeightImage>>,
+    /// The terrain ruleset the config names ([`MapConfig::ruleset`], relative to the map
+    /// file), loaded and validated with it: editing the ruleset file reloads the map.
+    pub ruleset: Option<Arc<TerrainRuleset>>,
     /// The file's blend value was outside `[0, 1]`: it was clamped and the material falls back
     /// to flat colors (with a logged warning) instead of refusing the map.
     pub appearance_fallback: bool,
@@ -49,6 +52,15 @@ pub enum HexMapLoaderError {
     #[error("heightmap {path}: {message}")]
     ImageRead {
         /// Asset path of the heightmap.
+        path: String,
+        /// What went wrong.
+        message: String,
+    },
+    /// The terrain ruleset the config names could not be read, or is malformed (with its line
+    /// and column) or invalid (naming the entry and the field).
+    #[error("terrain ruleset {path}: {message}")]
+    Ruleset {
+        /// Asset path of the ruleset.
         path: String,
         /// What went wrong.
         message: String,
@@ -97,7 +109,17 @@ impl AssetLoader for HexMapLoader {
                 ))
             }
         };
-        Ok(HexMapAsset { config, image, appearance_fallback: clamped_blend.is_some() })
+        let ruleset = match &config.ruleset {
+            None => None,
+            Some(path) => {
+                let failed = |message: String| HexMapLoaderError::Ruleset { path: path.clone(), message };
+                let asset_path = load_context.path().resolve_embed_str(path).map_err(|e| failed(e.to_string()))?;
+                let bytes = load_context.read_asset_bytes(asset_path).await.map_err(|e| failed(e.to_string()))?;
+                let text = std::str::from_utf8(&bytes).map_err(|e| failed(e.to_string()))?;
+                Some(Arc::new(TerrainRuleset::from_ron(text).map_err(|e| failed(e.to_string()))?))
+            }
+        };
+        Ok(HexMapAsset { config, image, ruleset, appearance_fallback: clamped_blend.is_some() })
     }
 
     fn extensions(&self) -> &[&str] {

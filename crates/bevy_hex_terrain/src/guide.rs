@@ -22,6 +22,7 @@
 //! - [How it works, and where it departs from the thesis](crate::guide::how_it_works)
 //! - [Recipes](crate::guide::recipes)
 //! - [Rules: movement, paths and sight](crate::guide::rules)
+//! - [Your own terrain: rulesets](crate::guide::own_terrain)
 
 #![allow(clippy::doc_markdown, reason = "the chapters are prose for people, read on GitHub too")]
 
@@ -91,6 +92,10 @@ pub mod recipes {
 
 pub mod rules {
     #![doc = include_str!("../guide/17-rules.md")]
+}
+
+pub mod own_terrain {
+    #![doc = include_str!("../guide/18-own-terrain.md")]
 }
 
 /// The repository's README, whose snippets are doc tests too.

@@ -144,9 +144,9 @@ pub mod prelude {
     };
     pub use hex_terrain::hexx::Hex;
     pub use hex_terrain::{
-        Biome, Brush, Change, ChunkCoord, Detail, EditError, MapConfig, MapSize, MapStats, MapType, MapTypeConfig,
-        MapTypeReport, MovementConfig, PlacedResource, PlacedWonder, ResourceClass, RiverTile, Setup, SetupConfig,
-        Stroke, TileEdit, TileInfo, TileKind, Tool, WaterLevel,
+        Biome, Brush, Change, ChunkCoord, Detail, EditError, Landform, MapConfig, MapSize, MapStats, MapType,
+        MapTypeConfig, MapTypeReport, MovementConfig, PlacedResource, PlacedWonder, ResourceClass, RiverTile, Setup,
+        SetupConfig, Stroke, TerrainRuleset, TileEdit, TileInfo, TileKind, TileTerrain, Tool, WaterLevel,
     };
 }
 

@@ -404,13 +404,13 @@ fn reload_teleport_and_switch_in_one_frame_leave_only_the_new_state() {
     let handle = app.world().resource::<HexMapHandle>().handle().unwrap().clone();
     let mut config = app.world().resource::<Assets<HexMapAsset>>().get(&handle).unwrap().config.clone();
     config.seed = 33;
-    let reloaded = HexMapAsset { config: config.clone(), image: None, appearance_fallback: false };
+    let reloaded = HexMapAsset { config: config.clone(), image: None, ruleset: None, appearance_fallback: false };
     app.world_mut().resource_mut::<Assets<HexMapAsset>>().insert(handle.id(), reloaded.clone()).unwrap();
     run_until(&mut app, "reload tasks", |app| app.world().resource::<HexStreamingStats>().tasks_started() > start);
     assert!(app.world_mut().query::<&bevy_hex_terrain::ChunkTask>().iter(app.world()).next().is_some());
     // ...then, in one frame: another reload, a far teleport and a switch to map b.
     config.seed = 34;
-    let again = HexMapAsset { config, image: None, appearance_fallback: false };
+    let again = HexMapAsset { config, image: None, ruleset: None, appearance_fallback: false };
     app.world_mut().resource_mut::<Assets<HexMapAsset>>().insert(handle.id(), again).unwrap();
     let far = Vec3::new(9_000.0, 0.0, -7_000.0);
     app.world_mut().entity_mut(agent).insert(Transform::from_translation(far));

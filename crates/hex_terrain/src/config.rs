@@ -22,7 +22,7 @@ pub use climate::{
 };
 pub use winds::{MAX_WIND_BANDS, WindConfig, WindPattern};
 
-pub use edits::{MAX_EDITS, PropDensity, RiverEdit, TileEdit};
+pub use edits::{FeatureEdit, MAX_EDITS, PropDensity, RiverEdit, TileEdit};
 pub use file::MapFile;
 pub use map_type::{MAX_MOUNTAIN_SHARE, MapType, MapTypeConfig, SEA_SHARE_TOLERANCE, WaterLevel};
 pub use movement::{MAX_MOVE_COST, MovementConfig};
@@ -86,6 +86,14 @@ pub struct MapConfig {
     pub appearance: AppearanceConfig,
     /// Temperature, moisture and biomes (off by default).
     pub climate: ClimateConfig,
+    /// The game's own terrain: the path of a terrain ruleset (`*.terrain.ron`, see
+    /// [`TerrainRuleset`](crate::TerrainRuleset)), relative to the map file. `None` (the
+    /// default): the 13 biomes of `climate.biomes`
+    /// ([`TerrainRuleset::from_biome_table`](crate::TerrainRuleset::from_biome_table)). With one,
+    /// [`Terrain::tile_terrain`](crate::Terrain::tile_terrain) answers by it and the meshes take
+    /// its terrains' and features' colors.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub ruleset: Option<String>,
     /// Rivers and lakes (off by default; bounded maps only).
     pub rivers: RiverConfig,
     /// Peaks on mountains and swells on hills, inside their ranges (off by default: Map0).
@@ -130,6 +138,7 @@ impl Default for MapConfig {
             movement: MovementConfig::default(),
             sight: SightConfig::default(),
             setup: None,
+            ruleset: None,
             edits: Vec::new(),
         }
     }
@@ -413,6 +422,11 @@ impl MapConfig {
             && std::path::Path::new(image.as_str()).is_relative()
         {
             *image = dir.join(&*image).display().to_string();
+        }
+        if let (Some(ruleset), Some(dir)) = (&mut config.ruleset, path.parent())
+            && std::path::Path::new(ruleset.as_str()).is_relative()
+        {
+            *ruleset = dir.join(&*ruleset).display().to_string();
         }
         Ok(config)
     }

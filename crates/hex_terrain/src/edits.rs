@@ -19,9 +19,9 @@ use std::collections::HashMap;
 
 use hexx::Hex;
 
-use crate::config::{PropDensity, RiverEdit, TileEdit};
+use crate::config::{FeatureEdit, PropDensity, RiverEdit, TileEdit};
 use crate::geometry::Geometry;
-use crate::vocab::{Biome, TileKind};
+use crate::vocab::{Biome, RuleId, TileKind};
 
 /// How one edited tile moves its points.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -43,6 +43,9 @@ pub struct Edits {
     rivers: HashMap<Hex, RiverEdit>,
     /// The prop densities set by hand, by the map's own tile.
     props: HashMap<Hex, PropDensity>,
+    /// The terrains and features set by hand (a map with its own ruleset), by the map's own
+    /// tile.
+    terrains: HashMap<Hex, (Option<RuleId>, Option<FeatureEdit>)>,
 }
 
 impl Edits {
@@ -59,6 +62,7 @@ impl Edits {
         let mut biomes = HashMap::new();
         let mut rivers = HashMap::new();
         let mut props = HashMap::new();
+        let mut terrains = HashMap::new();
         for edit in edits {
             let tile = geometry.wrap_tile(geometry.tile_from_offset([edit.at.0, edit.at.1]));
             if let Some(biome) = edit.biome {
@@ -70,7 +74,10 @@ impl Edits {
             if let Some(density) = edit.props {
                 props.insert(tile, density);
             }
-            // A biome, a river or props alone move no height.
+            if edit.terrain.is_some() || edit.feature.is_some() {
+                terrains.insert(tile, (edit.terrain, edit.feature));
+            }
+            // A biome, a terrain, a feature, a river or props alone move no height.
             if edit.height.is_none() && edit.kind.is_none() {
                 continue;
             }
@@ -87,13 +94,17 @@ impl Edits {
             let target = wanted.clamp(range.0, range.1);
             tiles.insert(tile, TileShift { delta: target - base, range });
         }
-        Self { tiles, biomes, rivers, props }
+        Self { tiles, biomes, rivers, props, terrains }
     }
 
     /// Whether no tile is edited.
     #[must_use]
     pub fn is_empty(&self) -> bool {
-        self.tiles.is_empty() && self.biomes.is_empty() && self.rivers.is_empty() && self.props.is_empty()
+        self.tiles.is_empty()
+            && self.biomes.is_empty()
+            && self.rivers.is_empty()
+            && self.props.is_empty()
+            && self.terrains.is_empty()
     }
 
     /// Whether a tile's height or type (any copy of it on a wrapping map) is edited.
@@ -107,6 +118,13 @@ impl Edits {
     #[inline]
     pub fn biome(&self, geometry: &Geometry, tile: Hex) -> Option<Biome> {
         by_hand(&self.biomes, geometry, tile)
+    }
+
+    /// The terrain and the feature set by hand on a tile (any copy of it on a wrapping map):
+    /// `(terrain, feature)`, each `None` when not set.
+    #[must_use]
+    pub fn terrain(&self, geometry: &Geometry, tile: Hex) -> (Option<RuleId>, Option<FeatureEdit>) {
+        by_hand(&self.terrains, geometry, tile).unwrap_or((None, None))
     }
 
     /// The river set by hand on a tile (any copy of it on a wrapping map), if any.

@@ -56,6 +56,7 @@ mod heights;
 mod kind;
 
 mod climate;
+mod ruleset;
 mod table;
 mod water;
 
@@ -89,11 +90,11 @@ pub mod save;
 pub use chunk::{ChunkCoord, TileRect};
 pub use climate::{Climate, ClimateModel, TileSample};
 pub use config::{
-    AppearanceConfig, BiomeRule, ClimateConfig, HeightSourceConfig, LayoutConfig, MAX_EDITS, ManipulationConfig,
-    MapConfig, MapFile, MapSize, MapType, MapTypeConfig, MovementConfig, NoiseConfig, Orientation, Place, PropDensity,
-    PullMode, ReliefConfig, ResourceClass, ResourceRule, RiverConfig, RiverEdit, RiverModel, RiverSources, SetupConfig,
-    Shape, SightConfig, StartOn, TerrainConfig, TileEdit, ValueWeights, WaterLevel, WindConfig, WindPattern,
-    WonderConfig, WonderRule, YieldTable, Yields,
+    AppearanceConfig, BiomeRule, ClimateConfig, FeatureEdit, HeightSourceConfig, LayoutConfig, MAX_EDITS,
+    ManipulationConfig, MapConfig, MapFile, MapSize, MapType, MapTypeConfig, MovementConfig, NoiseConfig, Orientation,
+    Place, PropDensity, PullMode, ReliefConfig, ResourceClass, ResourceRule, RiverConfig, RiverEdit, RiverModel,
+    RiverSources, SetupConfig, Shape, SightConfig, StartOn, TerrainConfig, TileEdit, ValueWeights, WaterLevel,
+    WindConfig, WindPattern, WonderConfig, WonderRule, YieldTable, Yields,
 };
 pub use config::{
     MAX_BIOME_RULES, MAX_CHUNK_BYTES, MAX_CHUNK_SIDE, MAX_INNER_RINGS, MAX_MAP_BYTES, MAX_MOUNTAIN_SHARE,
@@ -125,6 +126,11 @@ pub use pipeline::Pipeline;
 pub use props::{Marker, MarkerKind, Prop};
 pub use query::{MAX_RAY_STEPS, RayHit};
 pub use relief::Relief;
+pub use ruleset::{
+    FeatureDef, FeatureId, FeaturePatches, Landform, Look, MAX_FEATURES, MAX_PATCH, MAX_PROPS_ON_TILE, MAX_RULES,
+    MAX_TERRAINS, Occurs, PATCH_SPREAD, PropGrowth, TerrainDef, TerrainId, TerrainRuleset, TileFacts, TileTerrain,
+    Traits,
+};
 pub use save::{FogState, Highlight, MAX_OWNERS, MAX_SAVED_TILES, SAVE_VERSION, SaveError, TileStateSave};
 pub use setup::{
     MAX_START_SEARCH_CHECKS, PlacedResource, PlacedWonder, Setup, SetupNote, SetupReport, SetupTimings, Shortfall,
@@ -132,12 +138,12 @@ pub use setup::{
 };
 pub use sight::{MAX_UNBOUNDED_SIGHT, SightError};
 pub use stats::{
-    CONTINENT_MIN_SHARE, CONTINENT_MIN_TILES, Landmass, LandmassKind, MapStats, RainShadow, RiverStats, SHADOW_REACH,
-    SurveyFigure, SurveyTarget, SurveyVerdict, survey_targets,
+    CONTINENT_MIN_SHARE, CONTINENT_MIN_TILES, IN_LINE, Landmass, LandmassKind, MapStats, RainShadow, RiverStats,
+    SHADOW_REACH, SurveyFigure, SurveyTarget, SurveyVerdict, survey_targets,
 };
 pub use table::TileTable;
 pub use terrain::Terrain;
 pub use vertex::{Sharing, VertexRules, VertexSample};
-pub use vocab::{Biome, PROP_VARIANTS, PropKind, TileInfo, TileKind};
+pub use vocab::{Biome, MAX_ID_LEN, PROP_VARIANTS, PropKind, RuleId, TileInfo, TileKind};
 pub use water::{EdgeRivers, Hydrology, RiverEdge, RiverTile, WaterBuffers};
 pub use wrap::Wrap;

@@ -10,6 +10,10 @@
 //! - **Reeds** on about half the open land tiles (no trees) next to the sea, near the tile's
 //!   edge.
 //!
+//! - On a map with its own terrain ruleset ([`MapConfig::ruleset`](crate::MapConfig::ruleset)):
+//!   what the look of the tile's feature (else its terrain) grows (`Look::props`: the kind, a
+//!   count, a size, the share of its tiles that have them), nothing at sea or on a lake.
+//!
 //! A density set by hand on a tile ([`TileEdit::props`](crate::TileEdit::props)) replaces its
 //! biome's rule: none, a few or a wood of trees on land, rocks on a mountain, nothing at sea.
 //!
@@ -68,6 +72,17 @@ fn rule(pipeline: &Pipeline, info: &TileInfo, h: u64) -> Option<(PropKind, u32, 
             (PropDensity::Sparse, TileKind::Land) => Some((tree, 2 + extra % 2, 0.28)),
             (PropDensity::Dense, TileKind::Land) => Some((tree, 7 + extra, 0.3)),
         };
+    }
+    // Under the map's own terrain ruleset: what its feature (else its terrain) grows, on the
+    // share of tiles its `chance` says, a variety of one to three more.
+    if pipeline.has_own_ruleset() {
+        if info.kind == TileKind::Sea || info.lake.is_some() {
+            return None;
+        }
+        let t = pipeline.tile_terrain(info.hex);
+        let ruleset = pipeline.ruleset();
+        let look = t.feature.map_or(&ruleset.terrain(t.terrain).look, |f| &ruleset.feature(f).look);
+        return look.props.filter(|p| pick < p.chance).map(|p| (p.kind, u32::from(p.count) + extra % 2, p.size));
     }
     let grows = match (info.kind, info.biome) {
         (TileKind::Sea, _) | (_, Biome::Ocean | Biome::Lake | Biome::Desert | Biome::Snow) => None,

@@ -148,7 +148,7 @@ impl Biome {
 }
 
 /// What a prop is: which family of meshes draws it.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
 #[cfg_attr(feature = "bevy_reflect", derive(bevy_reflect::Reflect))]
 pub enum PropKind {
     /// A round-crowned tree.
@@ -192,4 +192,61 @@ pub struct TileInfo {
     pub river_flow: f32,
     /// The lake the tile belongs to, if it is a lake tile.
     pub lake: Option<u32>,
+}
+
+/// Most bytes in the id of a terrain or a feature of a ruleset.
+pub const MAX_ID_LEN: usize = 31;
+
+/// The id of a terrain or a feature of a terrain ruleset, as an edit names it (`"grassland"`):
+/// at most [`MAX_ID_LEN`] bytes held inline, so edits stay `Copy`; written as a string.
+#[derive(Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+#[cfg_attr(feature = "bevy_reflect", derive(bevy_reflect::Reflect))]
+pub struct RuleId {
+    len: u8,
+    bytes: [u8; MAX_ID_LEN],
+}
+
+impl RuleId {
+    /// The id `id`, or `None` when it is longer than [`MAX_ID_LEN`] bytes.
+    #[must_use]
+    pub fn new(id: &str) -> Option<Self> {
+        let len = id.len();
+        (len <= MAX_ID_LEN).then(|| {
+            let mut bytes = [0; MAX_ID_LEN];
+            bytes[..len].copy_from_slice(id.as_bytes());
+            Self { len: len as u8, bytes }
+        })
+    }
+
+    /// The id as a string.
+    #[must_use]
+    pub fn as_str(&self) -> &str {
+        std::str::from_utf8(&self.bytes[..usize::from(self.len)]).expect("made from a str")
+    }
+}
+
+impl std::fmt::Debug for RuleId {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "{:?}", self.as_str())
+    }
+}
+
+impl std::fmt::Display for RuleId {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.as_str())
+    }
+}
+
+impl Serialize for RuleId {
+    fn serialize<S: serde::Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        serializer.serialize_str(self.as_str())
+    }
+}
+
+impl<'de> Deserialize<'de> for RuleId {
+    fn deserialize<D: serde::Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+        let id = String::deserialize(deserializer)?;
+        Self::new(&id)
+            .ok_or_else(|| serde::de::Error::custom(format!("the id {id:?} is longer than {MAX_ID_LEN} bytes")))
+    }
 }

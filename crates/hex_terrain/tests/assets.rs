@@ -90,14 +90,21 @@ fn the_world_preset_has_every_biome_rivers_and_lakes() {
         assert!(present.contains(&b), "no {b:?} in the world preset");
     }
     assert!(t.hydrology().unwrap().lake_count() >= 5);
-    // Rivers rise on wet ground: their sources are wetter than land, on average; and, with the
-    // moisture fBm's climate (where the rain is the same high and low), on high ground too.
-    // With the preset's winds the highlands inland lie in a rain shadow, so sources are where
-    // the rain falls, not where the land is highest.
-    // The preset as it was before it had winds: no winds, rivers from 8 units of rain.
-    let mut without_winds = MapConfig { climate: ClimateConfig { winds: None, ..config.climate.clone() }, ..config };
+    // Its rivers run on tile edges, Civilization's way, and reach a sixth of the land or so.
+    let land: Vec<_> = t.tiles().filter(|&h| t.tile_kind(h).unwrap() != TileKind::Sea && t.lake(h).is_none()).collect();
+    let on_river = land.iter().filter(|&&h| !t.river_edges(h).is_empty()).count();
+    assert!(on_river * 100 >= land.len() * 12, "{on_river} of {} land tiles on a river", land.len());
+    // With rivers through tile centers, they rise on wet ground: their sources are wetter than
+    // land, on average; and, with the moisture fBm's climate (where the rain is the same high
+    // and low), on high ground too. With winds the highlands inland lie in a rain shadow, so
+    // sources are where the rain falls, not where the land is highest.
+    let mut centers = config.clone();
+    centers.rivers = hex_terrain::RiverConfig { enabled: true, threshold: 5.0, ..Default::default() };
+    // As it was before it had winds: no winds, rivers from 8 units of rain.
+    let mut without_winds =
+        MapConfig { climate: ClimateConfig { winds: None, ..centers.climate.clone() }, ..centers.clone() };
     without_winds.rivers.threshold = 8.0;
-    for (t, higher) in [(t, false), (Terrain::new(without_winds).unwrap(), true)] {
+    for (t, higher) in [(Terrain::new(centers).unwrap(), false), (Terrain::new(without_winds).unwrap(), true)] {
         let rivers = t.rivers();
         let sources: Vec<_> = rivers.iter().filter(|r| r.upstream.is_empty()).collect();
         assert!(sources.len() >= 20);

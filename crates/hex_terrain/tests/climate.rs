@@ -194,7 +194,7 @@ fn a_heightmap_puts_rivers_in_its_valleys_and_lakes_in_its_basins() {
             .unwrap();
     c.rivers.enabled = true;
     c.rivers.threshold = 30.0;
-    let t = Terrain::with_image(c, Some(image)).unwrap();
+    let t = Terrain::with_sources(c, Some(image), None).unwrap();
     let rivers = t.rivers();
     assert!(rivers.len() >= 20, "{} river tiles", rivers.len());
     // The biggest river reaches the sea down the valley (around row 0.3 * 31).

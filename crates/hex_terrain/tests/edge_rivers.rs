@@ -339,7 +339,7 @@ fn the_world_preset_has_edge_rivers() {
     let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../bevy_hex_terrain/assets/maps/world.map.ron");
     let mut config = MapConfig::load(path).unwrap();
     config.setup = None;
-    config.rivers.model = RiverModel::Edges;
+    assert_eq!(config.rivers.model, RiverModel::Edges, "the World preset's rivers run on edges");
     let t = Terrain::new(config).unwrap();
     let land = t.tiles().filter(|&h| !wet(&t, h)).count();
     let edges: usize = t.tiles().map(|h| t.river_edges(h).len()).sum::<usize>() / 2;

@@ -25,7 +25,7 @@ fn pixels_below_sea_level_become_sea_tiles() {
         size: MapSize::Bounded { x: 24, z: 20 },
         ..MapConfig::default()
     };
-    let t = Terrain::with_image(config, Some(image.clone())).unwrap();
+    let t = Terrain::with_sources(config, Some(image.clone()), None).unwrap();
     let b = t.bounds().unwrap();
     // The image spans the tile centers' extent.
     let centers: Vec<[f64; 3]> = t.tiles().map(|h| t.tile_center(h).unwrap()).collect();

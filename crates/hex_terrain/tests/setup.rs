@@ -79,9 +79,13 @@ fn keeps_start_on(t: &Terrain, start_on: StartOn, tile: Hex) -> bool {
 
 fn allowed(t: &Terrain, tile: Hex, on: &[Place]) -> bool {
     let info = t.tile_info(tile).unwrap();
-    on.iter().any(|&p| match p {
-        Place::Biome(b) => info.biome == b,
-        Place::Kind(k) => info.kind == k,
+    let terrain = t.tile_terrain(tile).unwrap();
+    let ruleset = t.ruleset();
+    on.iter().any(|p| match p {
+        Place::Biome(b) => info.biome == *b,
+        Place::Kind(k) => info.kind == *k,
+        Place::Terrain(id) => ruleset.terrain(terrain.terrain).id == *id,
+        Place::Feature(id) => terrain.feature.is_some_and(|f| ruleset.feature(f).id == *id),
     })
 }
 

@@ -208,6 +208,7 @@ fn check(t: &Terrain) -> Result<(), TestCaseError> {
     let band = (height + 9) / 10;
     let row = |h: Hex| t.offset_of(h)[1] - rect.min[1];
     prop_assert_eq!(stats.polar_land_tiles, count(&|h| land(h) && (row(h) < band || row(h) >= height - band)));
+    let mut centers = Vec::new();
     for mass in &stats.landmasses {
         let root = sets.find(tiles.iter().position(|&h| h == mass.first).unwrap());
         let members: Vec<Hex> =
@@ -225,10 +226,43 @@ fn check(t: &Terrain) -> Result<(), TestCaseError> {
             columns.last().unwrap() - columns.first().unwrap() + 1
         };
         prop_assert_eq!(mass.columns, span as u32);
+        // Its center: the mean row, and the mean column (round a wrapping map: the direction of
+        // the sum of its columns' bearings).
+        let n = members.len() as f64;
+        let mean_row = members.iter().map(|&h| f64::from(row(h))).sum::<f64>() / n;
+        let cols = members.iter().map(|&h| f64::from(t.offset_of(h)[0] - rect.min[0]));
+        let mean_col = if t.wrap().is_some() {
+            let turn = std::f64::consts::TAU / f64::from(width);
+            let (c, s) = cols.fold((0.0, 0.0), |(c, s), col| (c + (col * turn).cos(), s + (col * turn).sin()));
+            if c.hypot(s) < 1e-6 * n { 0.0 } else { (s.atan2(c) / turn).rem_euclid(f64::from(width)) }
+        } else {
+            cols.sum::<f64>() / n
+        };
+        prop_assert!((mass.center[1] - mean_row).abs() < 1e-6, "{:?} row {mean_row}", mass.center);
+        let apart = (mass.center[0] - mean_col).abs();
+        let apart = if t.wrap().is_some() { apart.min(f64::from(width) - apart) } else { apart };
+        prop_assert!(apart < 1e-6, "{:?} column {mean_col}", mass.center);
+        prop_assert!((0.0..f64::from(width)).contains(&mass.center[0]), "{:?}", mass.center);
+        centers.push((mass.kind, [mean_col, mean_row]));
         // Its tiles on a river: carrying one, or with a river on an edge.
         let on_river = |h: Hex| t.river(h).is_some() || !t.river_edges(h).is_empty();
         prop_assert_eq!(mass.river_tiles, members.iter().filter(|&&h| on_river(h)).count() as u32);
     }
+    // Continents in line: every pair's centers within 1.5 tiles of the same row or column
+    // (round a wrapping map the nearer way).
+    let continents: Vec<[f64; 2]> =
+        centers.iter().filter(|(k, _)| *k == LandmassKind::Continent).map(|&(_, c)| c).collect();
+    let (mut pairs, mut in_line) = (0, 0);
+    for (k, a) in continents.iter().enumerate() {
+        for b in &continents[k + 1..] {
+            let dx = (a[0] - b[0]).abs();
+            let dx = if t.wrap().is_some() { dx.min(f64::from(width) - dx) } else { dx };
+            pairs += 1;
+            in_line += usize::from(dx < 1.5 || (a[1] - b[1]).abs() < 1.5);
+        }
+    }
+    let expected = if pairs == 0 { 0.0 } else { in_line as f64 / f64::from(pairs) };
+    prop_assert!((stats.continents_in_line() - expected).abs() < 1e-9, "{} {expected}", stats.continents_in_line());
     prop_assert_eq!(
         stats.landmasses_without_river(20),
         stats.landmasses.iter().filter(|m| m.tiles >= 20 && m.river_tiles == 0).count()
@@ -470,8 +504,8 @@ fn edge_river_maps_count_their_rivers() {
     let maps = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../bevy_hex_terrain/assets/maps");
     let jacksboro = MapConfig::load(maps.join("jacksboro.map.ron")).unwrap();
     assert_eq!(jacksboro.rivers.model, RiverModel::Edges);
-    let mut world = MapConfig::load(maps.join("world.map.ron")).unwrap();
-    world.rivers.model = RiverModel::Edges;
+    let world = MapConfig::load(maps.join("world.map.ron")).unwrap();
+    assert_eq!(world.rivers.model, RiverModel::Edges);
     for (name, mut config) in [("jacksboro", jacksboro), ("world", world)] {
         config.setup = None;
         let t = Terrain::new(config).unwrap();

@@ -49,7 +49,7 @@ fn ridge_map(cols: u32, rows: u32, pointy: bool, wrap: bool, at: f32, peak: f32)
         ..MapConfig::default()
     };
     config.layout.orientation = if pointy { Orientation::Pointy } else { Orientation::Flat };
-    Terrain::with_image(config, Some(Arc::new(ridge(at, peak)))).unwrap()
+    Terrain::with_sources(config, Some(Arc::new(ridge(at, peak))), None).unwrap()
 }
 
 /// The mean moisture of the land tiles whose centers lie, in image `u`, within `band`.

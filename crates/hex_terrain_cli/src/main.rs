@@ -7,6 +7,7 @@ mod export;
 mod gallery;
 mod render;
 mod survey;
+mod terrains;
 mod textures;
 
 use std::path::{Path, PathBuf};
@@ -48,6 +49,10 @@ enum Command {
         /// Override the config's blend value of Algorithm 5, in [0, 1].
         #[arg(long)]
         blend: Option<f32>,
+        /// Draw the map under a terrain ruleset (`*.terrain.ron`): its terrains' and features'
+        /// colors, in place of the config's own ruleset.
+        #[arg(long)]
+        ruleset: Option<PathBuf>,
     },
     /// Tile an existing greyscale heightmap (8 or 16 bit PNG) onto the hex lattice, with the same
     /// classification and manipulation as noise maps (the thesis' filter use).
@@ -93,6 +98,10 @@ enum Command {
     Stats {
         /// Map config (RON).
         map: PathBuf,
+        /// Count the tiles by this terrain ruleset's terrains and features (`*.terrain.ron`,
+        /// e.g. assets/rulesets/civ5.terrain.ron).
+        #[arg(long)]
+        ruleset: Option<PathBuf>,
     },
     /// Apply the world builder's strokes to a map and write the edited map file (the seed's
     /// config plus its `edits`); prints each stroke's changed tiles and chunks.
@@ -267,9 +276,12 @@ fn check_width(width: u32) -> CliResult<()> {
 
 fn run(cli: Cli) -> CliResult<()> {
     match cli.command {
-        Command::Render { map, output, raw, outlines, width, blend } => {
+        Command::Render { map, output, raw, outlines, width, blend, ruleset } => {
             check_width(width)?;
             let mut config = load(&map)?;
+            if let Some(path) = ruleset {
+                config.ruleset = Some(path.display().to_string());
+            }
             if let Some(b) = blend {
                 config.appearance.blend = b;
             }
@@ -313,7 +325,8 @@ fn run(cli: Cli) -> CliResult<()> {
             if let Some(e) = max_elevation {
                 config.terrain.max_elevation = e;
             }
-            let t = Terrain::with_image(config.clone(), Some(std::sync::Arc::new(image))).map_err(|e| e.to_string())?;
+            let t = Terrain::with_sources(config.clone(), Some(std::sync::Arc::new(image)), None)
+                .map_err(|e| e.to_string())?;
             match output.extension().and_then(|e| e.to_str()) {
                 Some("ron") => {
                     std::fs::write(&output, format!("// Tiled from {}\n{}\n", heightmap.display(), config.to_ron()))
@@ -342,7 +355,7 @@ fn run(cli: Cli) -> CliResult<()> {
             }
             result
         }
-        Command::Stats { map } => stats(&map),
+        Command::Stats { map, ruleset } => stats(&map, ruleset.as_deref()),
         Command::Edit { map, strokes, output } => edit::run(&load(&map)?, &strokes, &output),
         Command::Setup { map, players, output, width } => {
             check_width(width)?;
@@ -368,8 +381,11 @@ fn run(cli: Cli) -> CliResult<()> {
     }
 }
 
-fn stats(path: &Path) -> CliResult<()> {
-    let config = load(path)?;
+fn stats(path: &Path, ruleset: Option<&Path>) -> CliResult<()> {
+    let mut config = load(path)?;
+    if let Some(ruleset) = ruleset {
+        config.ruleset = Some(ruleset.display().to_string());
+    }
     let t = terrain(config.clone(), false)?;
     let start = Instant::now();
     let mesh = whole_map(&t)?;
@@ -392,8 +408,12 @@ fn stats(path: &Path) -> CliResult<()> {
             }
         }
     }
-    let edge_rivers = MapStats::measure(&t).filter(|_| t.config().rivers.model == RiverModel::Edges);
-    if let (Some(h), Some(stats)) = (t.hydrology(), &edge_rivers) {
+    let measured = MapStats::measure(&t);
+    if let Some(stats) = measured.as_ref().filter(|_| t.has_own_ruleset()) {
+        terrains::print(&t, stats);
+    }
+    let edge_rivers = measured.as_ref().filter(|_| t.config().rivers.model == RiverModel::Edges);
+    if let (Some(h), Some(stats)) = (t.hydrology(), edge_rivers) {
         let r = stats.rivers;
         println!(
             "water: rivers on {} tile edges ({} systems, {} tiles on a river, the longest {} edges); {} lakes ({} tiles)",
@@ -430,7 +450,7 @@ fn stats(path: &Path) -> CliResult<()> {
         None => println!("setup: none (`hexterrain setup {}` places a game with the default setup)", path.display()),
     }
     // `stats` takes bounded maps only (`whole_map` above), which always have statistics.
-    if let Some(stats) = MapStats::measure(&t) {
+    if let Some(stats) = &measured {
         println!("{stats}");
     }
     if let Some(report) = t.map_type() {

@@ -70,6 +70,8 @@ pub fn run(path: &Path, mut config: MapConfig, options: &Options) -> CliResult<(
     let first = config.seed;
     let mut rows: Vec<Row> = Vec::with_capacity(seeds as usize);
     let mut refused = Vec::new();
+    // The map's own terrain ruleset, if it has one: its terrains and features are surveyed too.
+    let mut ruleset: Option<hex_terrain::TerrainRuleset> = None;
     let start = Instant::now();
     for i in 0..seeds {
         let seed = first.wrapping_add(i);
@@ -82,6 +84,9 @@ pub fn run(path: &Path, mut config: MapConfig, options: &Options) -> CliResult<(
             }
         };
         let compiled = began.elapsed();
+        if terrain.has_own_ruleset() && ruleset.is_none() {
+            ruleset = Some(terrain.ruleset().clone());
+        }
         let stats = MapStats::measure(&terrain).expect("a bounded map");
         let measured = began.elapsed() - compiled;
         rows.push(Row {
@@ -108,8 +113,8 @@ pub fn run(path: &Path, mut config: MapConfig, options: &Options) -> CliResult<(
     let extent = move |r: &Row, f: fn(&hex_terrain::Landmass) -> u32, whole: f64| {
         r.stats.continents().map(|c| 100.0 * f64::from(f(c)) / whole).fold(f64::NAN, f64::min)
     };
-    use SurveyFigure::{LargestLandmassWidth, ThirdLandmassTiles, TinyLandmassShare};
-    let lines: [(&str, Statistic); 33] = [
+    use SurveyFigure::{ContinentsInLine, LargestLandmassWidth, ThirdLandmassTiles, TinyLandmassShare};
+    let lines: [(&str, Statistic); 34] = [
         ("water share (%)", Box::new(percent(MapStats::water_share))),
         ("land tiles", Box::new(count(|s| s.land_tiles))),
         ("continents", Box::new(count(|s| s.continents().count() as u32))),
@@ -138,6 +143,7 @@ pub fn run(path: &Path, mut config: MapConfig, options: &Options) -> CliResult<(
         ("continents' least height (% of rows)", Box::new(move |r: &Row| extent(r, |c| c.rows, map_rows))),
         ("continents' least width (% of columns)", Box::new(move |r: &Row| extent(r, |c| c.columns, map_columns))),
         ("largest landmass' width (% of columns)", Box::new(move |r: &Row| 100.0 * figure(r, LargestLandmassWidth))),
+        ("continents in line (% of pairs)", Box::new(move |r: &Row| 100.0 * figure(r, ContinentsInLine))),
         ("third largest landmass (tiles)", Box::new(move |r: &Row| figure(r, ThirdLandmassTiles))),
         ("landmasses of 1-3 tiles (%)", Box::new(move |r: &Row| 100.0 * figure(r, TinyLandmassShare))),
         ("narrowest strait (tiles)", Box::new(|r: &Row| r.stats.narrowest_strait.map_or(f64::NAN, f64::from))),
@@ -159,6 +165,9 @@ pub fn run(path: &Path, mut config: MapConfig, options: &Options) -> CliResult<(
             }
             _ => println!("{name:<40} {:>10}", "none"),
         }
+    }
+    if let Some(ruleset) = &ruleset {
+        print_terrains(ruleset, &rows);
     }
     let reports: Vec<&MapTypeReport> = rows.iter().filter_map(|r| r.map_type.as_ref()).collect();
     if let Some(first) = reports.first() {
@@ -256,6 +265,29 @@ fn values(target: &SurveyTarget, rows: &[Row], size: (u32, u32)) -> Vec<(u32, f6
 type Statistic = Box<dyn Fn(&Row) -> f64>;
 
 /// One seed's map.
+/// Each terrain's and feature's share of the map's tiles under its own ruleset: minimum, median
+/// and maximum over the seeds.
+fn print_terrains(ruleset: &hex_terrain::TerrainRuleset, rows: &[Row]) {
+    let spread = |name: String, share: &dyn Fn(&Row) -> f64| {
+        let mut values: Vec<f64> = rows.iter().map(|r| 100.0 * share(r)).collect();
+        values.sort_by(f64::total_cmp);
+        if let (Some(min), Some(max)) = (values.first(), values.last()) {
+            println!("{name:<40} {min:>10.1} {:>10.1} {max:>10.1}", values[values.len() / 2]);
+        }
+    };
+    for (i, def) in ruleset.terrains.iter().enumerate() {
+        spread(format!("terrain {} (% of tiles)", def.id), &|r: &Row| {
+            let n = r.stats.terrains.iter().find(|e| usize::from(e.0.0) == i).map_or(0, |e| e.1);
+            f64::from(n) / f64::from(r.stats.tiles.max(1))
+        });
+    }
+    for (i, def) in ruleset.features.iter().enumerate() {
+        spread(format!("feature {} (% of tiles)", def.id), &|r: &Row| {
+            f64::from(r.stats.features.get(i).map_or(0, |e| e.1)) / f64::from(r.stats.tiles.max(1))
+        });
+    }
+}
+
 struct Row {
     seed: u32,
     stats: MapStats,

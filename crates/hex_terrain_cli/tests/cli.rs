@@ -462,9 +462,19 @@ fn textures_are_tileable_and_distinct() {
 fn stats_and_render_show_biomes_rivers_and_lakes() {
     let world = repo().join("assets/maps/world.map.ron");
     let out = ok(&["stats", world.to_str().unwrap()]);
-    for needle in
-        ["biomes:", "ocean", "coast", "lake", "desert", "forest", "tundra", "snow peak", "river tiles", "lakes ("]
-    {
+    for needle in [
+        "biomes:",
+        "ocean",
+        "coast",
+        "lake",
+        "desert",
+        "forest",
+        "tundra",
+        "snow peak",
+        "rivers on",
+        "tile edges",
+        "lakes (",
+    ] {
         assert!(out.contains(needle), "{needle:?} missing from {out}");
     }
     // Per-biome counts add up to the tiles.
@@ -478,7 +488,7 @@ fn stats_and_render_show_biomes_rivers_and_lakes() {
     assert_eq!(biomes, 80 * 52);
 
     // Each tile center of the render shows its biome's color (hill shading scales it), and a
-    // river tile's center shows water.
+    // lake tile's center shows water (the preset's rivers run on tile edges, between centers).
     let png = tmp("world.png");
     ok(&["render", world.to_str().unwrap(), "-o", png.to_str().unwrap(), "--width", "640"]);
     let img = image::open(&png).unwrap().to_rgb8();
@@ -657,4 +667,45 @@ fn gallery_draws_a_contact_sheet() {
     fails(&["gallery", map.to_str().unwrap(), "--width", "10"], &["--width 10", "64..=2048"]);
     let continent = repo().join("assets/maps/continent.map.ron");
     fails(&["gallery", continent.to_str().unwrap(), "--seeds", "2", "--columns", "2"], &["bounded", "--size"]);
+}
+
+/// `stats --ruleset` counts the tiles by the ruleset's terrains (every tile once) and features,
+/// as `Terrain::tile_terrain` reads them; a broken ruleset names its file and line.
+#[test]
+fn stats_counts_a_rulesets_terrains_and_features() {
+    let map = repo().join("assets/maps/types/continents.map.ron");
+    let civ = repo().join("assets/rulesets/civ5.terrain.ron");
+    let out = ok(&["stats", map.to_str().unwrap(), "--ruleset", civ.to_str().unwrap()]);
+    let mut config = MapConfig::load(&map).unwrap();
+    config.ruleset = Some(civ.display().to_string());
+    let t = Terrain::new(config).unwrap();
+    let ruleset = hex_terrain::TerrainRuleset::load(&civ).unwrap();
+    assert_eq!(t.ruleset(), &ruleset);
+    let section: Vec<&str> = out.lines().skip_while(|l| !l.starts_with("terrains (Civilization V):")).skip(1).collect();
+    let count = |id: &str| {
+        section
+            .iter()
+            .find(|l| l.split_whitespace().next() == Some(id))
+            .map(|l| l.split_whitespace().nth(1).unwrap().parse::<usize>().unwrap())
+    };
+    let mut total = 0;
+    for (i, def) in ruleset.terrains.iter().enumerate() {
+        let n = t.tiles().filter(|&h| t.tile_terrain(h).unwrap().terrain.0 as usize == i).count();
+        assert_eq!(count(&def.id).unwrap_or(0), n, "{}: {out}", def.id);
+        total += n;
+    }
+    assert_eq!(total, t.tiles().count());
+    for (i, def) in ruleset.features.iter().enumerate() {
+        let n = t.tiles().filter(|&h| t.tile_terrain(h).unwrap().feature.is_some_and(|f| f.0 as usize == i)).count();
+        assert_eq!(count(&def.id), Some(n), "{}: {out}", def.id);
+    }
+    // `survey` of a map with its own ruleset spreads each terrain's and feature's share.
+    let world = repo().join("assets/maps/world_civ5.map.ron");
+    let out = ok(&["survey", world.to_str().unwrap(), "--seeds", "2"]);
+    for line in ["terrain grassland (% of tiles)", "terrain snow (% of tiles)", "feature forest (% of tiles)"] {
+        assert!(out.contains(line), "{line}: {out}");
+    }
+    let bad = tmp("bad.terrain.ron");
+    std::fs::write(&bad, "(\n  fallback: {},\n  terrains: [(id: 3)],\n)").unwrap();
+    fails(&["stats", map.to_str().unwrap(), "--ruleset", bad.to_str().unwrap()], &["ruleset", "bad.terrain.ron", "3:"]);
 }

@@ -14,8 +14,8 @@ use std::sync::Arc;
 
 use hex_terrain::save::{SaveError, TileStateSave};
 use hex_terrain::{
-    Biome, Brush, Editor, GenerateOptions, HeightImage, HeightSourceConfig, MapConfig, MapFile, MapSize, PropDensity,
-    Stroke, Terrain, TileKind, TileRect, Tool,
+    Biome, Brush, Editor, GenerateOptions, HeightImage, HeightSourceConfig, Landform, MapConfig, MapFile, MapSize,
+    PropDensity, Stroke, Terrain, TerrainRuleset, TileFacts, TileKind, TileRect, Tool,
 };
 use hex_terrain::{FogOfWar, FogState};
 
@@ -40,6 +40,51 @@ pub fn map_text(data: &[u8]) {
     match MapConfig::from_ron(text) {
         Ok(config) => build(config, Some(ramp())),
         Err(error) => check_load_error(&error),
+    }
+}
+
+/// Terrain ruleset: RON → [`TerrainRuleset::from_ron`](hex_terrain::TerrainRuleset::from_ron)
+/// (refused by name, or the line and column), then every landform at corners of the climate
+/// and in between gives a terrain of the ruleset (a feature only on a terrain it lists, traits
+/// within their ranges), and a 4x4 map with a climate under the ruleset answers every tile.
+pub fn ruleset(data: &[u8]) {
+    let Ok(text) = std::str::from_utf8(data) else { return };
+    let ruleset = match TerrainRuleset::from_ron(text) {
+        Ok(ruleset) => Arc::new(ruleset),
+        Err(error) => return check_load_error(&error),
+    };
+    let patches = hex_terrain::FeaturePatches::new(&ruleset, 7, None);
+    for landform in Landform::ALL {
+        for (i, v) in [0.0_f32, 0.25, 0.5, 0.999, 1.0].into_iter().enumerate() {
+            let facts = TileFacts {
+                temperature: v,
+                moisture: 1.0 - v,
+                elevation: v,
+                latitude: v,
+                near_water: i % 2 == 0,
+                near_river: i % 3 == 0,
+                ..TileFacts::new(landform)
+            };
+            let terrain = ruleset.terrain_for(&facts);
+            assert!(usize::from(terrain.0) < ruleset.terrains.len());
+            let feature = patches.feature_for(&ruleset, terrain, &facts, (f64::from(v) * 9.0, 3.0));
+            if let Some(f) = feature {
+                assert!(ruleset.feature(f).on.contains(&ruleset.terrain(terrain).id));
+            }
+            let traits = ruleset.traits(terrain, landform, feature);
+            assert!(traits.movement <= hex_terrain::MAX_MOVE_COST);
+            let y = traits.yields;
+            assert!([y.food, y.production, y.gold].iter().all(|v| v.is_finite() && *v >= 0.0));
+        }
+    }
+    let config = MapConfig::from_ron(
+        "(size: Bounded(x: 4, z: 4), chunk_size: (4, 4), climate: (enabled: true), ruleset: Some(\"fuzz.terrain.ron\"))",
+    )
+    .expect("a valid config");
+    let terrain = Terrain::with_sources(config, None, Some(ruleset.clone())).expect("a valid ruleset is taken");
+    for tile in terrain.tiles() {
+        let t = terrain.tile_terrain(tile).expect("a tile of the map");
+        assert!(usize::from(t.terrain.0) < ruleset.terrains.len());
     }
 }
 
@@ -129,7 +174,7 @@ pub fn heightmap(data: &[u8]) {
                 size: MapSize::Bounded { x: 12, z: 8 },
                 ..MapConfig::default()
             };
-            let terrain = Terrain::with_image(config, Some(Arc::new(image))).expect("a valid config");
+            let terrain = Terrain::with_sources(config, Some(Arc::new(image)), None).expect("a valid config");
             let map = terrain.generate_map().expect("a bounded map");
             check_terrain(&terrain, &map);
         }
@@ -283,7 +328,7 @@ pub fn check_save_error(error: &SaveError) {
 /// Builds the terrain of a valid config and generates at most [`MAX_TILES`] tiles of it: the
 /// first tiles of a bounded map, or tiles around the first chunk of an unbounded one.
 fn build(config: MapConfig, image: Option<Arc<HeightImage>>) {
-    let terrain = match Terrain::with_image(config, image) {
+    let terrain = match Terrain::with_sources(config, image, None) {
         Ok(terrain) => terrain,
         Err(error) => return check_config_error(&error),
     };

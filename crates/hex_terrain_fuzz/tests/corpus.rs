@@ -51,3 +51,8 @@ fn edits_corpus() {
 fn fog_save_corpus() {
     replay("fog_save", hex_terrain_fuzz::fog_save);
 }
+
+#[test]
+fn ruleset_corpus() {
+    replay("ruleset", hex_terrain_fuzz::ruleset);
+}

@@ -8,13 +8,14 @@ use std::path::PathBuf;
 
 use bevy::asset::io::file::FileAssetReader;
 use bevy::prelude::*;
-use bevy_hex_terrain::hex_terrain::{Brush, PropDensity, Stroke, Tool};
+use bevy_hex_terrain::hex_terrain::{Brush, FeatureEdit, PropDensity, RuleId, Stroke, Tool};
 use bevy_hex_terrain::prelude::*;
 use bevy_hex_terrain::{HexMapHandle, HexMapSaved};
 
 use crate::{DIGITS, Game};
 
 /// The tools of the panel, in key order (1-9).
+/// The fifth paints terrains (Shift: features) on a map with its own terrain ruleset.
 const TOOLS: [&str; 9] = ["Raise", "Lower", "Smooth", "Type", "Biome", "River", "Lake", "Props", "Erase"];
 /// The types the Type tool cycles through.
 const KINDS: [TileKind; 3] = [TileKind::Sea, TileKind::Land, TileKind::Mountain];
@@ -48,14 +49,29 @@ pub(crate) struct EditorMode {
 }
 
 impl EditorMode {
-    /// The tool as the core takes it; Shift takes the other way (remove a river, drain a lake).
-    fn tool(&self, shift: bool) -> Tool {
+    /// The tool as the core takes it; Shift takes the other way (remove a river, drain a lake;
+    /// a feature rather than a terrain). On a map with its own terrain ruleset (`ruleset`) the
+    /// fifth tool paints its terrains, or with Shift its features (and none), in turn.
+    fn tool(&self, shift: bool, ruleset: Option<&TerrainRuleset>) -> Tool {
         match self.tool {
             0 => Tool::Raise(0.05),
             1 => Tool::Lower(0.05),
             2 => Tool::Smooth,
             3 => Tool::SetKind(KINDS[self.value % KINDS.len()]),
-            4 => Tool::SetBiome(BIOMES[self.value % BIOMES.len()]),
+            4 => match ruleset {
+                Some(ruleset) => {
+                    let id = |s: &str| RuleId::new(s).expect("a validated ruleset's ids fit");
+                    if shift {
+                        match ruleset.features.get(self.value % (ruleset.features.len() + 1)) {
+                            Some(f) => Tool::SetFeature(FeatureEdit::Grow(id(&f.id))),
+                            None => Tool::SetFeature(FeatureEdit::Clear),
+                        }
+                    } else {
+                        Tool::SetTerrain(id(&ruleset.terrains[self.value % ruleset.terrains.len()].id))
+                    }
+                }
+                None => Tool::SetBiome(BIOMES[self.value % BIOMES.len()]),
+            },
             5 if shift => Tool::RemoveRiver,
             5 => Tool::AddRiver,
             6 if shift => Tool::DrainLake,
@@ -83,10 +99,17 @@ impl EditorMode {
         }
     }
 
-    fn describe(&self) -> String {
-        let tool = match self.tool(false) {
+    fn describe(&self, ruleset: Option<&TerrainRuleset>) -> String {
+        let tool = match self.tool(false, ruleset) {
             Tool::SetKind(k) => format!("Type: {}", k.name()),
             Tool::SetBiome(b) => format!("Biome: {}", b.name()),
+            Tool::SetTerrain(t) => {
+                let feature = match self.tool(true, ruleset) {
+                    Tool::SetFeature(FeatureEdit::Grow(f)) => f.to_string(),
+                    _ => "none".into(),
+                };
+                format!("Terrain: {t} (Shift: feature {feature})")
+            }
             Tool::SetProps(d) => format!("Props: {d:?}"),
             Tool::AddRiver => "River (Shift: remove)".into(),
             Tool::FillLake => "Lake (Shift: drain)".into(),
@@ -246,6 +269,7 @@ pub(crate) fn paint(
     mouse: Res<ButtonInput<MouseButton>>,
     keys: Res<ButtonInput<KeyCode>>,
     game: Res<Game>,
+    map: Res<HexMap>,
     mut mode: ResMut<EditorMode>,
     mut edits: MessageWriter<HexMapEdit>,
 ) {
@@ -259,7 +283,8 @@ pub(crate) fn paint(
     }
     mode.last = Some(tile);
     let shift = keys.any_pressed([KeyCode::ShiftLeft, KeyCode::ShiftRight]);
-    edits.write(HexMapEdit::Stroke(Stroke { tool: mode.tool(shift), brush: mode.brush(), tile }));
+    let ruleset = map.terrain().has_own_ruleset().then(|| map.terrain().ruleset());
+    edits.write(HexMapEdit::Stroke(Stroke { tool: mode.tool(shift, ruleset), brush: mode.brush(), tile }));
 }
 
 /// The brush's outline under the cursor: the outline of every tile it covers (the hovered tile
@@ -285,7 +310,7 @@ pub(crate) fn brush_outline(mode: Res<EditorMode>, game: Res<Game>, map: Res<Hex
 
 /// The panel: which tool is picked, the brush, undo and redo depths, the last save or refusal.
 pub(crate) fn editor_panel(
-    game: Res<Game>,
+    (game, map): (Res<Game>, Res<HexMap>),
     mut mode: ResMut<EditorMode>,
     editor: Res<HexEditor>,
     mut saved: MessageReader<HexMapSaved>,
@@ -304,7 +329,7 @@ pub(crate) fn editor_panel(
     }
     let text = format!(
         "{}\n{} edited tiles, {} to undo, {} to redo{}\n{}",
-        mode.describe(),
+        mode.describe(map.terrain().has_own_ruleset().then(|| map.terrain().ruleset())),
         editor.edited_tiles(),
         editor.undo_len(),
         editor.redo_len(),

@@ -7,7 +7,7 @@ use bevy::prelude::*;
 use bevy_hex_terrain::prelude::*;
 
 use crate::panel::ReportPanel;
-use crate::{DIGITS, Game, MAP_TYPES, PRESETS};
+use crate::{DIGITS, Game, MAP_TYPES, PRESETS, RULESETS};
 
 /// A pointer event that carries the terrain hit it is about.
 pub(crate) trait TerrainHit {
@@ -91,6 +91,11 @@ pub(crate) fn keys(
     }
     // The map types in turn: Pangaea, Continents, Small Continents, Archipelago, Fractal, Inland
     // Sea (the report panel, F, says what each met).
+    // The World preset's terrain rulesets in turn: biomes, Civilization V, The Shattered Realms.
+    if keys.just_pressed(KeyCode::KeyU) {
+        game.rulesets += 1;
+        load.write(LoadHexMap(RULESETS[game.rulesets % RULESETS.len()].into()));
+    }
     if keys.just_pressed(KeyCode::KeyM) {
         load.write(LoadHexMap(MAP_TYPES[game.map_types % MAP_TYPES.len()].into()));
         game.map_types += 1;

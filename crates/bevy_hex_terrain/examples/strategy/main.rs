@@ -6,7 +6,9 @@
 //! restores movement. G toggles tile outlines, L the movement-cost lens, T the territory tint,
 //! V the fog of war, R regenerates with a new seed, 1-6 switch presets (6: Civ6 Standard,
 //! wrapping; 7: a scenario made with the world builder; P pans east across its seam), F3 shows
-//! chunk boundaries; J, K, B, N, O switch shadows, distance fog, props, water and ambient
+//! chunk boundaries; M cycles the map types, U the World preset's terrain rulesets (its biomes,
+//! Civilization V's terrain, The Shattered Realms); J, K, B, N, O switch shadows, distance fog,
+//! props, water and ambient
 //! occlusion (`look.rs`). Tab opens the world builder (`editor.rs`): paint with a tool and a
 //! brush, Ctrl+Z / Ctrl+Y undo and redo, Ctrl+S saves the edits next to the map.
 //!
@@ -72,6 +74,10 @@ pub(crate) const MAP_TYPES: [&str; 6] = [
     "maps/types/inland_sea.map.ron",
 ];
 
+/// The World preset under each shipped terrain ruleset, in the order U cycles them: its biomes,
+/// Civilization V's terrain, The Shattered Realms.
+pub(crate) const RULESETS: [&str; 3] = ["maps/world.map.ron", "maps/world_civ5.map.ron", "maps/world_fantasy.map.ron"];
+
 /// The digit keys 1-9, in order: presets in the game, tools in the world builder.
 pub(crate) const DIGITS: [KeyCode; 9] = [
     KeyCode::Digit1,
@@ -101,6 +107,8 @@ pub(crate) struct Game {
     pub(crate) editing: bool,
     /// How many times M was pressed: the next map type is `MAP_TYPES[map_types % 6]`.
     pub(crate) map_types: usize,
+    /// How many times U was pressed: the next ruleset is `RULESETS[(rulesets + 1) % 3]`.
+    pub(crate) rulesets: usize,
 }
 
 fn main() -> AppExit {
@@ -229,7 +237,7 @@ fn setup(mut commands: Commands) {
     commands.spawn((
         Text::new(
             "WASD/arrows/edge pan, wheel zoom, Q/E rotate, click unit then tile, Enter end turn, G outlines, \
-             L lens, T tint, V fog, F map report, R new seed, 1-7 presets (6 wraps, 7 edited), M map types, P pan east, \
+             L lens, T tint, V fog, F map report, R new seed, 1-7 presets (6 wraps, 7 edited), M map types, U rulesets, P pan east, \
              F3 chunks, \
              Tab world builder",
         ),

@@ -212,7 +212,7 @@ pub fn script(
 ) {
     let Observed { material, style, game, map, states, units, chunks } = observed;
     s.frame += 1;
-    for key in [KeyCode::Enter, KeyCode::KeyG, KeyCode::KeyR, KeyCode::KeyL, KeyCode::KeyM] {
+    for key in [KeyCode::Enter, KeyCode::KeyG, KeyCode::KeyR, KeyCode::KeyL, KeyCode::KeyM, KeyCode::KeyU] {
         keys.release(key);
     }
     let fail = |msg: String, exit: &mut MessageWriter<AppExit>| {
@@ -427,12 +427,37 @@ pub fn script(
                 return;
             }
             println!("SCRIPT: M loaded the Pangaea map type, every target met, the units on its land");
+            // U: the World preset under the first other terrain ruleset, Civilization V's.
+            s.generation = map.generation();
+            keys.press(KeyCode::KeyU);
             s.step = 8;
         }
-        8 if s.frame.is_multiple_of(5) => {
+        // Civilization V's terrain: every tile a terrain of the ruleset, the units on its land.
+        8 if map.generation() > s.generation && s.frame.is_multiple_of(10) => {
+            let ruleset = map.terrain().ruleset();
+            if ruleset.name != "Civilization V" || !map.terrain().has_own_ruleset() {
+                fail(format!("U loaded the ruleset {:?}", ruleset.name), &mut exit);
+                return;
+            }
+            let forests = map.terrain().tiles().filter(|&t| {
+                map.terrain().tile_terrain(t).and_then(|t| t.feature).is_some_and(|f| ruleset.feature(f).id == "forest")
+            });
+            if forests.count() == 0 {
+                fail("no forest under Civilization V's terrain".into(), &mut exit);
+                return;
+            }
+            if !units.iter().all(|(_, _, on, ..)| map.move_cost(on.tile).is_some()) {
+                return;
+            }
+            println!(
+                "SCRIPT: U loaded the World preset under Civilization V's terrain, forests on it, the units on its land"
+            );
+            s.step = 9;
+        }
+        9 if s.frame.is_multiple_of(5) => {
             println!(
                 "SCRIPT OK: unit moved {:?} -> {:?} for {} moves{}; turn {}; fog and territory checked; outlines \
-                 off; lens on; regenerated, units on land; the minimap moved the camera; M loaded a map type",
+                 off; lens on; regenerated, units on land; the minimap moved the camera; M loaded a map type; U a ruleset",
                 s.start,
                 s.target,
                 s.expected_cost,

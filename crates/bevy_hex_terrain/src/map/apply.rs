@@ -140,13 +140,23 @@ fn load_requested(
     let Some(LoadHexMap(source)) = requests.read().last() else { return };
     match source {
         MapSource::Asset(path) => handle.0 = Some(server.load(path.clone())),
-        MapSource::Config(config) => match Terrain::new((**config).clone()) {
-            Ok(terrain) => {
-                handle.0 = None;
-                map.replace(terrain);
+        // A config naming the ruleset of the map shown (R's new seed of a map with its own
+        // terrain) keeps that ruleset; another path is read from the file system.
+        MapSource::Config(config) => {
+            let made = if config.ruleset.is_some() && map.config().ruleset == config.ruleset {
+                let ruleset = Arc::new(map.terrain().ruleset().clone());
+                Terrain::with_sources((**config).clone(), None, Some(ruleset))
+            } else {
+                Terrain::new((**config).clone())
+            };
+            match made {
+                Ok(terrain) => {
+                    handle.0 = None;
+                    map.replace(terrain);
+                }
+                Err(e) => refuse(&mut errors, HexMapError::invalid("map config", &e)),
             }
-            Err(e) => refuse(&mut errors, HexMapError::invalid("map config", &e)),
-        },
+        }
     }
 }
 
@@ -214,11 +224,12 @@ fn apply_asset(
         && config == *map.config()
         && asset.appearance_fallback == map.appearance_fallback
         && map.applied.as_ref().is_some_and(|(_, image)| same_image(image))
+        && asset.ruleset.as_deref().is_none_or(|r| r == map.terrain().ruleset())
     {
         return;
     }
     let asked = map.asked_setup.clone().filter(|_| !new && asset.config.setup.is_none());
-    match Terrain::with_image(config, asset.image.clone()) {
+    match Terrain::with_sources(config, asset.image.clone(), asset.ruleset.clone()) {
         Ok(terrain) => {
             info!("hex terrain: map {:?} applied", asset.config.name);
             // A newly followed file (the plugin's first replacing the placeholder, or another) is

@@ -122,6 +122,6 @@ pub fn reload_asset(app: &mut App, change: impl FnOnce(&mut MapConfig)) {
     change(&mut config);
     app.world_mut()
         .resource_mut::<Assets<HexMapAsset>>()
-        .insert(handle.id(), HexMapAsset { config, image: None, appearance_fallback: false })
+        .insert(handle.id(), HexMapAsset { config, image: None, ruleset: None, appearance_fallback: false })
         .unwrap();
 }

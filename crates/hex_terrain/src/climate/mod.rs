@@ -14,6 +14,7 @@ use crate::config::{ClimateConfig, MapConfig, NoiseConfig};
 use crate::geometry::Geometry;
 use crate::heights::{Fbm, HeightField};
 use crate::kind::Thresholds;
+use crate::ruleset::{Landform, TileFacts};
 pub use crate::vocab::{Biome, TileKind};
 
 /// A tile's climate, both in `[0, 1]`.
@@ -272,6 +273,66 @@ impl ClimateModel {
             }
         }
         found
+    }
+}
+
+impl ClimateModel {
+    /// Where a tile lies ([`Landform`]): a lake tile; sea next to land (the shore) or away from
+    /// it; a mountain; land above the hills line (on a map with a climate, when
+    /// [`ClimateConfig::hills`](crate::ClimateConfig::hills) is under 1) or below it.
+    #[must_use]
+    pub fn landform(&self, s: &TileSample, lake: bool) -> Landform {
+        match s.kind {
+            _ if lake => Landform::Lake,
+            TileKind::Sea if s.next_to_land => Landform::Shore,
+            TileKind::Sea => Landform::OpenSea,
+            TileKind::Mountain => Landform::Mountain,
+            TileKind::Land => {
+                let (sea, mountain, hills) = (self.thresholds.sea, self.thresholds.mountain, self.config.hills);
+                if self.is_enabled() && hills < 1.0 && (s.raw - sea) >= hills * (mountain - sea) {
+                    Landform::Hills
+                } else {
+                    Landform::Flat
+                }
+            }
+        }
+    }
+
+    /// What a ruleset decides a tile's terrain and feature from: its landform, its climate
+    /// (`None`: mid temperature and moisture), its center's height within its kind's band, its
+    /// latitude (0.5 on a map without bounds), and `(near_water, near_river)`: whether a
+    /// neighbor is sea or lake, whether a river runs through it or on one of its edges.
+    #[must_use]
+    pub fn facts(
+        &self,
+        geometry: &Geometry,
+        tile: Hex,
+        s: &TileSample,
+        lake: bool,
+        climate: Option<Climate>,
+        (near_water, near_river): (bool, bool),
+    ) -> TileFacts {
+        let (sea, mountain) = (self.thresholds.sea, self.thresholds.mountain);
+        let band = |lo: f32, hi: f32| ((s.raw - lo) / (hi - lo).max(f32::EPSILON)).clamp(0.0, 1.0);
+        let elevation = match s.kind {
+            TileKind::Sea => band(0.0, sea),
+            TileKind::Land => band(sea, mountain),
+            TileKind::Mountain => band(mountain, 1.0),
+        };
+        let latitude = geometry
+            .bounds()
+            .map_or(0.5, |rect| winds::latitude(rect, geometry.offset_of(tile)[1], self.config.latitudes).0);
+        let climate = climate.unwrap_or(Climate { temperature: 0.5, moisture: 0.5 });
+        TileFacts {
+            landform: self.landform(s, lake),
+            temperature: climate.temperature,
+            moisture: climate.moisture,
+            elevation,
+            latitude: latitude.clamp(0.0, 1.0),
+            near_water,
+            near_river,
+            climate: self.is_enabled(),
+        }
     }
 }
 

@@ -7,7 +7,7 @@ use serde::{Deserialize, Serialize};
 use super::check::{check, finite_in};
 use super::{MAX_WORLD_TILE, MapSize, RiverConfig};
 use crate::error::ConfigError;
-use crate::vocab::{Biome, TileKind};
+use crate::vocab::{Biome, RuleId, TileKind};
 
 /// Most edited tiles a map holds (a Civilization VI Huge map has 10,640 tiles; a designer's
 /// scenario edits a fraction of them).
@@ -55,6 +55,23 @@ pub struct TileEdit {
     /// How many props (trees, rocks, reeds) the tile grows, instead of what its biome grows.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub props: Option<PropDensity>,
+    /// On a map with its own terrain ruleset: the tile's terrain, set by hand (its id), whatever
+    /// its climate; its landform stays its elevation's.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub terrain: Option<RuleId>,
+    /// On a map with its own terrain ruleset: the tile's feature, set by hand, or none.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub feature: Option<FeatureEdit>,
+}
+
+/// A feature set by hand on a tile ([`TileEdit::feature`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[cfg_attr(feature = "bevy_reflect", derive(bevy_reflect::Reflect))]
+pub enum FeatureEdit {
+    /// This feature of the map's ruleset (its id), whatever the tile's terrain.
+    Grow(RuleId),
+    /// No feature.
+    Clear,
 }
 
 /// A river set by hand on a tile ([`TileEdit::river`]).
@@ -89,7 +106,7 @@ impl TileEdit {
     /// An edit of the tile at offset coordinates `at` that sets nothing yet.
     #[must_use]
     pub fn at(at: (i32, i32)) -> Self {
-        Self { at, height: None, kind: None, biome: None, river: None, props: None }
+        Self { at, height: None, kind: None, biome: None, river: None, props: None, terrain: None, feature: None }
     }
 
     /// Whether it sets nothing (an edit that erasing left empty).
@@ -100,17 +117,21 @@ impl TileEdit {
             && self.biome.is_none()
             && self.river.is_none()
             && self.props.is_none()
+            && self.terrain.is_none()
+            && self.feature.is_none()
     }
 }
 
 /// Checks the edits of a map of `size`: every tile on the map (within the world's edge on an
 /// unbounded one), once; every height finite in `[0, 1]`; a type the map can have; at most
-/// [`MAX_EDITS`]; a river only on a map with rivers.
+/// [`MAX_EDITS`]; a river only on a map with rivers; a biome only on a map of biomes, a terrain
+/// and a feature only on a map with its own terrain ruleset.
 pub(super) fn validate(
     edits: &[TileEdit],
     size: MapSize,
     sea_threshold: f32,
     rivers: &RiverConfig,
+    own_ruleset: bool,
 ) -> Result<(), ConfigError> {
     check(edits.len() <= MAX_EDITS, "edits", format!("{} edited tiles", edits.len()), format!("at most {MAX_EDITS}"))?;
     let mut seen = std::collections::HashSet::with_capacity(edits.len());
@@ -141,6 +162,32 @@ pub(super) fn validate(
             "Sea",
             "Land or Mountain: terrain.sea_threshold is 0, so no tile is sea",
         )?;
+        // One way to paint what a tile is: its biome on a map of biomes, its terrain and
+        // feature on a map with its own ruleset (whose ids the pipeline checks).
+        if let Some(biome) = edit.biome {
+            check(
+                !own_ruleset,
+                &format!("edits[{i}].biome"),
+                format!("{biome:?}"),
+                "none on a map with its own terrain ruleset: paint `terrain` and `feature`",
+            )?;
+        }
+        if let Some(terrain) = edit.terrain {
+            check(
+                own_ruleset,
+                &format!("edits[{i}].terrain"),
+                format!("{terrain:?}"),
+                "none on a map without its own terrain ruleset (`ruleset`): paint `biome`",
+            )?;
+        }
+        if let Some(feature) = edit.feature {
+            check(
+                own_ruleset,
+                &format!("edits[{i}].feature"),
+                format!("{feature:?}"),
+                "none on a map without its own terrain ruleset (`ruleset`)",
+            )?;
+        }
         if let Some(river) = edit.river {
             check(
                 rivers.enabled && size.bounds().is_some(),

@@ -59,10 +59,17 @@ impl MovementConfig {
     /// be entered. The sea (ocean and coast) costs `embark` when units may embark.
     #[must_use]
     pub fn enter(&self, biome: Biome, river: bool) -> Option<u32> {
-        let sea = matches!(biome, Biome::Ocean | Biome::Coast);
+        self.enter_with(self.biome_cost(biome), matches!(biome, Biome::Ocean | Biome::Coast), river)
+    }
+
+    /// The cost of entering a tile whose own cost is `cost` (0: impassable; a terrain ruleset's
+    /// traits), on the sea or not, with a river on it or not: the sea costs `embark` when units
+    /// may embark, a river `river` more; `None` when it cannot be entered.
+    #[must_use]
+    pub fn enter_with(&self, cost: u32, sea: bool, river: bool) -> Option<u32> {
         let base = match self.embark {
-            Some(cost) if sea => cost,
-            _ => self.biome_cost(biome),
+            Some(embark) if sea => embark,
+            _ => cost,
         };
         (base > 0).then(|| base + if river { self.river } else { 0 })
     }

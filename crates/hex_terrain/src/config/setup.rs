@@ -241,13 +241,18 @@ impl ValueWeights {
 }
 
 /// A kind of tile something may lie on.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
 #[cfg_attr(feature = "bevy_reflect", derive(bevy_reflect::Reflect))]
 pub enum Place {
     /// Tiles of this biome.
     Biome(Biome),
     /// Tiles of this type.
     Kind(TileKind),
+    /// Tiles of this terrain of the map's ruleset (its id: `"grassland"`; under the default
+    /// ruleset the biomes' names, `"snow_peak"`), whatever their feature.
+    Terrain(String),
+    /// Tiles with this feature of the map's ruleset (its id: `"forest"`).
+    Feature(String),
 }
 
 /// Bonus, strategic or luxury, as in Civilization.

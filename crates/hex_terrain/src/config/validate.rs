@@ -4,7 +4,7 @@
 use super::check::{check, finite_in};
 use super::{
     HeightSourceConfig, MAX_MOUNTAIN_SHARE, MAX_MOVE_COST, MAX_SIGHT_BONUS, MapConfig, MapSize, NoiseConfig,
-    Orientation, Shape,
+    Orientation, Shape, SightConfig,
 };
 use crate::error::ConfigError;
 
@@ -39,6 +39,26 @@ impl MapConfig {
     /// The first invalid field, with its value and the allowed range.
     pub fn validate(&self) -> Result<(), ConfigError> {
         check_noise("noise", &self.noise)?;
+        if let Some(path) = &self.ruleset {
+            check(path.ends_with(".terrain.ron"), "ruleset", format!("{path:?}"), "the path of a *.terrain.ron file")?;
+            // One way to say what a tile costs, hides and yields: the ruleset's traits.
+            let ruled = "none: a map with its own terrain ruleset takes it from the ruleset's traits";
+            check(self.movement.costs.is_empty(), "movement.costs", format!("{:?}", self.movement.costs), ruled)?;
+            check(
+                self.sight.tall == SightConfig::default().tall,
+                "sight.tall",
+                format!("{:?}", self.sight.tall),
+                "the default: a map with its own terrain ruleset takes it from the ruleset's traits",
+            )?;
+            if let Some(setup) = &self.setup {
+                check(
+                    setup.yields.biomes.is_empty(),
+                    "setup.yields.biomes",
+                    format!("{:?}", setup.yields.biomes),
+                    ruled,
+                )?;
+            }
+        }
 
         let t = &self.terrain;
         check(finite_in(f64::from(t.max_elevation), 0.0, 1e6), "terrain.max_elevation", t.max_elevation, "[0, 1e6]")?;
@@ -249,7 +269,7 @@ impl MapConfig {
         if let Some(setup) = &self.setup {
             setup.validate(self.size.bounds())?;
         }
-        super::edits::validate(&self.edits, self.size, self.terrain.sea_threshold, &self.rivers)
+        super::edits::validate(&self.edits, self.size, self.terrain.sea_threshold, &self.rivers, self.ruleset.is_some())
     }
 }
 

@@ -21,10 +21,10 @@ pub use brush::{Brush, MAX_BRUSH_RADIUS, MAX_FLOOD_TILES};
 pub use change::Change;
 pub use error::EditError;
 
-use crate::config::{MapConfig, PropDensity, RiverEdit, TileEdit};
+use crate::config::{FeatureEdit, MapConfig, PropDensity, RiverEdit, TileEdit};
 use crate::error::ConfigError;
 use crate::terrain::Terrain;
-use crate::vocab::{Biome, TileKind};
+use crate::vocab::{Biome, RuleId, TileKind};
 
 /// What a stroke does to each tile its brush covers.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
@@ -58,6 +58,10 @@ pub enum Tool {
     DrainLake,
     /// Sets how many props (trees, rocks, reeds) the tile grows.
     SetProps(PropDensity),
+    /// Sets the tile's terrain (an id of the map's own terrain ruleset), whatever its climate.
+    SetTerrain(RuleId),
+    /// Sets the tile's feature (an id of the map's own ruleset), or takes it off.
+    SetFeature(FeatureEdit),
     /// Takes the tile's edits away: it is the generated tile again.
     Erase,
 }
@@ -320,6 +324,8 @@ impl Editor {
             // Planned for the whole stroke in `apply`.
             Tool::FillLake => return before,
             Tool::SetProps(density) => edit.props = Some(density),
+            Tool::SetTerrain(id) => edit.terrain = Some(id),
+            Tool::SetFeature(feature) => edit.feature = Some(feature),
             Tool::Erase => return None,
         }
         (!edit.is_empty()).then_some(edit)

@@ -278,6 +278,10 @@ fn cores(
     }
 }
 
+/// How far north or south of the Pangaea chain's line each core lies, in turn (a share of the
+/// map's height): the supercontinent reaches the cold rows at its ends, as Civilization's does.
+const PANGAEA_ZIGZAG: (f64, f64) = (0.08, 0.16);
+
 /// The share of Continents layouts with three continents rather than two.
 const THREE_CONTINENTS: f64 = 0.3;
 
@@ -306,14 +310,17 @@ pub(crate) fn draw(kind: MapType, seed: u32, layout: u32, frame: &Frame, land_sh
     match kind {
         MapType::Fractal => {}
         MapType::Pangaea => {
-            // A chain of cores along a wavy line east to west, so the supercontinent spans most
-            // of the map's width (its coast is still one).
+            // A chain of cores east to west, each in turn north and south of the chain's line,
+            // so the supercontinent spans most of the map's width and bends toward the poles
+            // (its coast is still one).
             let count = 4;
             let (west, east) = (across(&mut draw, 0.17, 0.03), across(&mut draw, 0.83, 0.03));
             let (mid, tilt) = (draw.range(0.45, 0.55), draw.range(-0.08, 0.08));
+            let north = draw.next() < 0.5;
             for k in 0..count {
                 let t = (f64::from(k) + 0.5) / f64::from(count);
-                let v = mid + tilt * (t - 0.5) * 2.0 + draw.range(-0.06, 0.06);
+                let side = if (k % 2 == 0) == north { -1.0 } else { 1.0 };
+                let v = mid + tilt * (t - 0.5) * 2.0 + side * draw.range(PANGAEA_ZIGZAG.0, PANGAEA_ZIGZAG.1);
                 let u = west + (east - west) * t;
                 // One continent: the cores are one cluster, summed.
                 cores(&mut draw, frame, &mut blobs, 0, (u, v), land / f64::from(count) * 1.15, 3, 0.8);

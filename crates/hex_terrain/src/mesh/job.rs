@@ -47,6 +47,9 @@ pub(super) struct Job<'a> {
     pub rows: Rows,
 }
 
+/// A tile's color and its six neighbors' (`None` off the map).
+pub(super) type TileColors = ([u8; 3], [Option<[u8; 3]>; 6]);
+
 /// Kinds of the tiles of a job and of the ring around them, and their center samples.
 pub(super) struct Kinds {
     /// The job's rectangle grown by one tile (two when biomes are computed here, which need
@@ -58,6 +61,9 @@ pub(super) struct Kinds {
     pub around: Vec<(TileKind, [Option<TileKind>; 6])>,
     /// Per tile of the job, when meshes have vertex colors: its biome and its neighbors'.
     pub biomes: Vec<(Biome, [Option<Biome>; 6])>,
+    /// Per tile of the job, on a map with its own terrain ruleset: its color and its
+    /// neighbors' ([`Pipeline::tile_color`]); empty otherwise (the biomes' colors).
+    pub colors: Vec<TileColors>,
     /// Per tile of the job, on a map with rivers: whether water lies on it and on each neighbor
     /// (only points of wet tiles are carved).
     pub wet: Vec<(bool, [bool; 6])>,
@@ -257,7 +263,8 @@ impl<'a> Job<'a> {
         let kinds = self
             .split
             .map(tiles.len(), |k| geometry.contains(tiles[k]).then(|| pipeline.thresholds().classify(raws[k])));
-        let mut out = Kinds { halo, kinds, around: Vec::new(), biomes: Vec::new(), wet: Vec::new() };
+        let mut out =
+            Kinds { halo, kinds, around: Vec::new(), biomes: Vec::new(), colors: Vec::new(), wet: Vec::new() };
         out.around = self
             .tiles
             .iter()
@@ -290,6 +297,14 @@ impl<'a> Job<'a> {
             };
             out.biomes =
                 self.tiles.iter().map(|&t| (biome(t).unwrap_or(Biome::Ocean), t.all_neighbors().map(biome))).collect();
+            if pipeline.has_own_ruleset() {
+                let color = |t: Hex| geometry.contains(t).then(|| pipeline.tile_color(t));
+                out.colors = self
+                    .tiles
+                    .iter()
+                    .map(|&t| (color(t).unwrap_or(Biome::Ocean.color()), t.all_neighbors().map(color)))
+                    .collect();
+            }
         }
         out
     }

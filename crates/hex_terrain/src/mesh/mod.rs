@@ -51,13 +51,22 @@ pub fn mesh_points(pipeline: &Pipeline, rect: TileRect) -> Vec<Hex> {
 #[must_use]
 #[inline]
 pub fn vertex_color(biomes: &[Biome], water: f32) -> [u8; 4] {
+    let colors: Vec<[u8; 3]> = biomes.iter().map(|b| b.color()).collect();
+    mixed_color(&colors, water)
+}
+
+/// The color of a vertex shared by tiles of `colors`: their colors averaged (integer
+/// arithmetic, so the order of the tiles does not matter), the water cover in alpha.
+#[must_use]
+#[inline]
+pub fn mixed_color(colors: &[[u8; 3]], water: f32) -> [u8; 4] {
     let mut sum = [0_u32; 3];
-    for b in biomes {
-        for (s, c) in sum.iter_mut().zip(b.color()) {
+    for color in colors {
+        for (s, &c) in sum.iter_mut().zip(color) {
             *s += u32::from(c);
         }
     }
-    let n = biomes.len().max(1) as u32;
+    let n = colors.len().max(1) as u32;
     let avg = sum.map(|s| ((s + n / 2) / n) as u8);
     [avg[0], avg[1], avg[2], (water.clamp(0.0, 1.0) * 255.0).round() as u8]
 }

@@ -11,7 +11,7 @@ use super::grid::{Owner, Points};
 use super::job::{Job, Kinds};
 use super::lanes;
 use super::parallel::{BATCH, Outputs, in_batches};
-use super::vertex_color;
+use super::{mixed_color, vertex_color};
 use crate::vertex::{Sharing, VertexSample};
 use crate::vocab::TileKind;
 
@@ -200,12 +200,23 @@ impl Job<'_> {
             let s = VertexSample { raw, height, moved, ring, kind, water: 0.0 };
             let s = rules.finish_manipulated(self.geometry, water.filter(|_| wet), pts[j], tiles, s);
             if !colors.is_empty() {
-                let (own_biome, around_biomes) = &kinds.biomes[tile];
-                let mut biomes = [*own_biome; 3];
-                for (b, &d) in biomes.iter_mut().zip(&dirs).skip(1).take(count - 1) {
-                    *b = around_biomes[d].unwrap_or(*own_biome);
-                }
-                colors[j] = vertex_color(&biomes[..count], s.water);
+                colors[j] = match kinds.colors.get(tile) {
+                    Some((own, around)) => {
+                        let mut tones = [*own; 3];
+                        for (c, &d) in tones.iter_mut().zip(&dirs).skip(1).take(count - 1) {
+                            *c = around[d].unwrap_or(*own);
+                        }
+                        mixed_color(&tones[..count], s.water)
+                    }
+                    None => {
+                        let (own_biome, around_biomes) = &kinds.biomes[tile];
+                        let mut biomes = [*own_biome; 3];
+                        for (b, &d) in biomes.iter_mut().zip(&dirs).skip(1).take(count - 1) {
+                            *b = around_biomes[d].unwrap_or(*own_biome);
+                        }
+                        vertex_color(&biomes[..count], s.water)
+                    }
+                };
             }
             (stage.heights[j], stage.moved[j]) = (s.height, s.moved);
         }

@@ -170,11 +170,19 @@ fn segment_distance(d: [f64; 2], n: [f64; 2], length: f64) -> f64 {
     (d[0] - n[0] * along).hypot(d[1] - n[1] * along)
 }
 
-/// The tile's color before any state: lakes in water, a biome's color on maps with climate or
-/// rivers, the tile type's color otherwise.
+/// The tile's color before any state: lakes in water; on a map with its own terrain ruleset its
+/// feature's (else its terrain's) minimap color; a biome's color on maps with climate or
+/// rivers; the tile type's color otherwise.
 fn tile_color(terrain: &Terrain, style: &MinimapStyle, tile: Hex) -> [u8; 3] {
     if terrain.lake(tile).is_some() {
         return style.water_color;
+    }
+    if terrain.has_own_ruleset()
+        && let Some(t) = terrain.tile_terrain(tile)
+    {
+        let ruleset = terrain.ruleset();
+        let look = t.feature.map_or(&ruleset.terrain(t.terrain).look, |f| &ruleset.feature(f).look);
+        return look.minimap.unwrap_or(look.color);
     }
     if terrain.has_vertex_colors()
         && let Some(biome) = terrain.tile_biome(tile)

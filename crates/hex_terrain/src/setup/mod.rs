@@ -22,7 +22,7 @@ use std::time::{Duration, Instant};
 use hexx::Hex;
 
 use crate::chunk::TileRect;
-use crate::config::{ResourceClass, SetupConfig};
+use crate::config::{Place, ResourceClass, SetupConfig};
 use crate::error::ConfigError;
 use crate::geometry::Geometry;
 
@@ -161,6 +161,7 @@ impl Setup {
         let rect = config.area.or(geometry.bounds()).ok_or_else(|| {
             ConfigError::new("setup.area", "None".into(), "a rectangle of tiles on an unbounded map".into())
         })?;
+        check_places(stages.ruleset, config)?;
         let survey = Survey::new(stages, config, rect);
         lap(&mut timings.survey);
 
@@ -446,4 +447,37 @@ fn unmet(ring: &[u32], fits: &[u64], rules: &[&crate::config::ResourceRule]) -> 
         unmet += rules[k].per_player - take as u32;
     }
     unmet
+}
+
+/// Every terrain and feature a resource or a wonder names is one of the map's ruleset.
+fn check_places(ruleset: &crate::ruleset::TerrainRuleset, config: &SetupConfig) -> Result<(), ConfigError> {
+    let resources = config.resources.iter().enumerate().map(|(i, r)| (format!("setup.resources[{i}]"), &r.on));
+    let wonders = config.wonders.list.iter().enumerate().map(|(i, w)| (format!("setup.wonders.list[{i}]"), &w.on));
+    for (field, on) in resources.chain(wonders) {
+        for (j, place) in on.iter().enumerate() {
+            let (known, id, what, ids): (bool, &String, &str, Vec<&str>) = match place {
+                Place::Terrain(id) => (
+                    ruleset.terrain_id(id).is_some(),
+                    id,
+                    "terrain",
+                    ruleset.terrains.iter().map(|t| t.id.as_str()).collect(),
+                ),
+                Place::Feature(id) => (
+                    ruleset.feature_id(id).is_some(),
+                    id,
+                    "feature",
+                    ruleset.features.iter().map(|f| f.id.as_str()).collect(),
+                ),
+                Place::Biome(_) | Place::Kind(_) => continue,
+            };
+            if !known {
+                return Err(ConfigError::new(
+                    &format!("{field}.on[{j}]"),
+                    format!("{id:?}"),
+                    format!("a {what} of the map's ruleset {:?}: {}", ruleset.name, ids.join(", ")),
+                ));
+            }
+        }
+    }
+    Ok(())
 }

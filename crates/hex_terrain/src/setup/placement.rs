@@ -58,9 +58,11 @@ pub(crate) struct Placement {
 
 /// Whether tile `i` is of any of the places.
 pub(crate) fn allowed(survey: &Survey, i: usize, on: &[Place]) -> bool {
-    on.iter().any(|&p| match p {
-        Place::Biome(b) => survey.biomes[i] == b,
-        Place::Kind(k) => survey.kinds[i] == k,
+    on.iter().any(|p| match p {
+        Place::Biome(b) => survey.biomes[i] == *b,
+        Place::Kind(k) => survey.kinds[i] == *k,
+        Place::Terrain(id) => survey.terrain_is(i, id),
+        Place::Feature(id) => survey.feature_is(i, id),
     })
 }
 

@@ -10,6 +10,7 @@ use crate::config::{MovementConfig, SetupConfig, StartOn, Yields};
 use crate::geometry::Geometry;
 use crate::heights::HeightField;
 use crate::kind::Thresholds;
+use crate::ruleset::{TerrainRuleset, TileTerrain, TileTerrains, Traits};
 use crate::table::TileTable;
 use crate::vocab::{Biome, TileKind};
 
@@ -31,6 +32,13 @@ pub struct Stages<'a> {
     pub table: Option<&'a TileTable>,
     /// The movement model (the map config's), for reach and path costs.
     pub movement: &'a MovementConfig,
+    /// On a map with its own terrain ruleset, each tile's terrain and traits: its yields and
+    /// its cost of entering come from them (`None`: from the biome).
+    pub(crate) terrains: Option<&'a dyn TileTerrains>,
+    /// The map's terrain ruleset (its own, or its biome table's), whose ids
+    /// [`Place::Terrain`](crate::Place::Terrain) and [`Place::Feature`](crate::Place::Feature)
+    /// name.
+    pub ruleset: &'a TerrainRuleset,
 }
 
 impl Stages<'_> {
@@ -79,7 +87,18 @@ pub(crate) struct Survey {
     pub eligible: Vec<bool>,
     /// The six neighbors' indices ([`NONE`] past the edge).
     pub neighbors: Vec<[u32; 6]>,
+    /// Each tile's terrain (an index into `terrain_ids`).
+    pub terrain: Vec<u8>,
+    /// Each tile's feature (an index into `feature_ids`, [`NO_FEATURE`] for none).
+    pub feature: Vec<u8>,
+    /// The ruleset's terrain ids.
+    pub terrain_ids: Vec<String>,
+    /// The ruleset's feature ids.
+    pub feature_ids: Vec<String>,
 }
+
+/// [`Survey::feature`] of a tile without a feature.
+pub(crate) const NO_FEATURE: u8 = u8::MAX;
 
 impl Survey {
     /// Surveys `rect` (in the map) with the setup's tables.
@@ -115,6 +134,10 @@ impl Survey {
             cost: Vec::new(),
             eligible: Vec::new(),
             neighbors: Vec::new(),
+            terrain: Vec::new(),
+            feature: Vec::new(),
+            terrain_ids: Vec::new(),
+            feature_ids: Vec::new(),
         };
         survey.neighbors = survey
             .tiles
@@ -139,9 +162,20 @@ impl Survey {
             })
             .collect();
         let table = &config.yields;
+        let ruled: Option<Vec<TileTerrain>> =
+            stages.terrains.map(|terrains| survey.tiles.par_iter().map(|&t| terrains.tile_terrain(t)).collect());
+        // Without its own ruleset a map's terrains are its biomes (the biome table's ruleset
+        // lists them in their order).
+        (survey.terrain, survey.feature) = match &ruled {
+            Some(ruled) => ruled.iter().map(|t| (t.terrain.0, t.feature.map_or(NO_FEATURE, |f| f.0))).unzip(),
+            None => survey.biomes.iter().map(|&b| (b as u8, NO_FEATURE)).unzip(),
+        };
+        survey.terrain_ids = stages.ruleset.terrains.iter().map(|t| t.id.clone()).collect();
+        survey.feature_ids = stages.ruleset.features.iter().map(|f| f.id.clone()).collect();
+        let traits: Option<Vec<Traits>> = ruled.map(|ruled| ruled.into_iter().map(|t| t.traits).collect());
         survey.yields = (0..survey.len())
             .map(|i| {
-                let mut y = table.biome(survey.biomes[i]);
+                let mut y = traits.as_ref().map_or_else(|| table.biome(survey.biomes[i]), |traits| traits[i].yields);
                 if let Some(k) = table.kinds.get(&survey.kinds[i]) {
                     y += *k;
                 }
@@ -154,8 +188,18 @@ impl Survey {
                 y
             })
             .collect();
-        survey.cost =
-            (0..survey.len()).map(|i| stages.movement.enter(survey.biomes[i], center_river[i]).unwrap_or(0)).collect();
+        survey.cost = (0..survey.len())
+            .map(|i| {
+                let cost = match &traits {
+                    Some(traits) => {
+                        let sea = survey.kinds[i] == TileKind::Sea && survey.biomes[i] != Biome::Lake;
+                        stages.movement.enter_with(traits[i].movement, sea, center_river[i])
+                    }
+                    None => stages.movement.enter(survey.biomes[i], center_river[i]),
+                };
+                cost.unwrap_or(0)
+            })
+            .collect();
         survey.eligible = (0..survey.len())
             .map(|i| {
                 let land = survey.kinds[i] == TileKind::Land && !survey.biomes[i].is_water() && survey.cost[i] > 0;
@@ -168,6 +212,16 @@ impl Survey {
             })
             .collect();
         survey
+    }
+
+    /// Whether tile `i`'s terrain has this id.
+    pub fn terrain_is(&self, i: usize, id: &str) -> bool {
+        self.terrain_ids.get(usize::from(self.terrain[i])).is_some_and(|t| t == id)
+    }
+
+    /// Whether tile `i` has the feature of this id.
+    pub fn feature_is(&self, i: usize, id: &str) -> bool {
+        self.feature_ids.get(usize::from(self.feature[i])).is_some_and(|f| f == id)
     }
 
     /// Number of tiles.

@@ -6,6 +6,7 @@
 
 use hexx::Hex;
 
+use crate::ruleset::{FeatureId, Landform, TerrainId};
 use crate::terrain::Terrain;
 use crate::vocab::{Biome, TileKind};
 
@@ -30,8 +31,16 @@ pub enum LandmassKind {
     Island,
 }
 
+/// Under this mean resultant length a landmass' columns' bearings cancel (it goes all round a
+/// wrapping map evenly): its center column is then 0.
+const ROUND_THE_MAP: f64 = 1e-6;
+
+/// How near two continents' centers' columns or rows lie for them to count as in line
+/// ([`MapStats::continents_in_line`]), in tiles.
+pub const IN_LINE: f64 = 1.5;
+
 /// Land tiles connected through their neighbors.
-#[derive(Debug, Clone, PartialEq, Eq)]
+#[derive(Debug, Clone, PartialEq)]
 #[cfg_attr(feature = "bevy_reflect", derive(bevy_reflect::Reflect))]
 pub struct Landmass {
     /// Its first tile, row by row (the smallest offset `(row, column)`): a name that does not
@@ -50,6 +59,10 @@ pub struct Landmass {
     pub columns: u32,
     /// Its tiles on a river ([`RiverStats::tiles`]' rule).
     pub river_tiles: u32,
+    /// Its center: the mean column and row of its tiles, counted from the map's first (on a
+    /// wrapping map the column is the mean round the map, the circular mean, in `[0, columns)`;
+    /// 0 for a landmass that goes all round the map evenly).
+    pub center: [f64; 2],
     /// Continent or island.
     pub kind: LandmassKind,
 }
@@ -144,6 +157,13 @@ pub struct MapStats {
     pub narrowest_strait: Option<u32>,
     /// Tiles of each biome present, in [`Biome::ALL`]'s order.
     pub biomes: Vec<(Biome, u32)>,
+    /// Under the map's own terrain ruleset ([`MapConfig::ruleset`](crate::MapConfig::ruleset)):
+    /// tiles of each of its terrains present, in the ruleset's order, and how many of them lie
+    /// on hills (empty on a map without its own ruleset: its terrains are its biomes).
+    pub terrains: Vec<(TerrainId, u32, u32)>,
+    /// Under the map's own terrain ruleset: tiles with each of its features, in its order
+    /// (absent ones too).
+    pub features: Vec<(FeatureId, u32)>,
     /// Rivers (all zero on a map without rivers).
     pub rivers: RiverStats,
     /// Lakes.
@@ -152,6 +172,9 @@ pub struct MapStats {
     pub rain_shadow: Option<RainShadow>,
     /// With a game setup: the tiles of the landmass each start stands on, in player order.
     pub start_landmass_tiles: Vec<u32>,
+    /// The columns round a wrapping map (`None` on a map that does not wrap): how far apart
+    /// two columns are ([`MapStats::continents_in_line`]).
+    pub wrap_columns: Option<u32>,
 }
 
 impl MapStats {
@@ -229,12 +252,17 @@ impl MapStats {
                 rows: 0,
                 columns: 0,
                 river_tiles: 0,
+                center: [0.0; 2],
                 kind: LandmassKind::Island,
             })
             .collect();
         let (river_stats, on_river) = rivers::rivers(terrain, &tiles, &neighbors, &infos);
         // Each landmass' rows and columns, as flags over the map's.
         let mut spans = vec![(vec![false; rows], vec![false; columns]); landmasses.len()];
+        // Each landmass' sums for its center: rows, and columns (or their bearings round a
+        // wrapping map, as a cosine and a sine).
+        let mut sums = vec![[0.0_f64; 3]; landmasses.len()];
+        let bearing = |col: i32| f64::from(col) / columns as f64 * std::f64::consts::TAU;
         for i in (0..tiles.len()).filter(|&i| !water(i)) {
             let mass = &mut landmasses[land.of[i] as usize];
             mass.mountains += u32::from(mountain(i));
@@ -244,10 +272,34 @@ impl MapStats {
             let span = &mut spans[land.of[i] as usize];
             span.0[(row - bounds.min[1]) as usize] = true;
             span.1[(col - bounds.min[0]) as usize] = true;
+            let (col, row) = (col - bounds.min[0], row - bounds.min[1]);
+            let sum = &mut sums[land.of[i] as usize];
+            sum[0] += f64::from(row);
+            if terrain.wrap().is_some() {
+                sum[1] += libm::cos(bearing(col));
+                sum[2] += libm::sin(bearing(col));
+            } else {
+                sum[1] += f64::from(col);
+            }
         }
-        for (mass, (in_rows, in_columns)) in landmasses.iter_mut().zip(&spans) {
+        for ((mass, (in_rows, in_columns)), sum) in landmasses.iter_mut().zip(&spans).zip(&sums) {
             mass.rows = extent(in_rows, false);
             mass.columns = extent(in_columns, terrain.wrap().is_some());
+            let n = f64::from(mass.tiles.max(1));
+            let column = if terrain.wrap().is_some() {
+                // All round the map, the bearings cancel: column 0.
+                if libm::hypot(sum[1], sum[2]) < ROUND_THE_MAP * n {
+                    0.0
+                } else {
+                    let w = columns as f64;
+                    // A bearing a hair under 0 turns to `w` itself: that is column 0.
+                    let column = (libm::atan2(sum[2], sum[1]) / std::f64::consts::TAU * w).rem_euclid(w);
+                    if column >= w { 0.0 } else { column }
+                }
+            } else {
+                sum[1] / n
+            };
+            mass.center = [column, sum[0] / n];
         }
         for mass in &mut landmasses {
             let share = f64::from(mass.tiles) / f64::from(land_tiles.max(1));
@@ -282,6 +334,28 @@ impl MapStats {
             .map(|b| (b, infos.iter().filter(|t| t.biome == b).count() as u32))
             .filter(|&(_, n)| n > 0)
             .collect();
+        let (terrains, features) = if terrain.has_own_ruleset() {
+            let ruleset = terrain.ruleset();
+            let mut counts = vec![(0_u32, 0_u32); ruleset.terrains.len()];
+            let mut featured = vec![0_u32; ruleset.features.len()];
+            for t in tiles.iter().map(|&t| terrain.tile_terrain(t).expect("a tile of the map")) {
+                let c = &mut counts[usize::from(t.terrain.0)];
+                c.0 += 1;
+                c.1 += u32::from(t.landform == Landform::Hills);
+                if let Some(f) = t.feature {
+                    featured[usize::from(f.0)] += 1;
+                }
+            }
+            let terrains = counts
+                .into_iter()
+                .enumerate()
+                .filter(|&(_, (n, _))| n > 0)
+                .map(|(i, (n, hills))| (TerrainId(i as u8), n, hills))
+                .collect();
+            (terrains, featured.into_iter().enumerate().map(|(i, n)| (FeatureId(i as u8), n)).collect())
+        } else {
+            (Vec::new(), Vec::new())
+        };
 
         Some(Self {
             tiles: tiles.len() as u32,
@@ -299,10 +373,13 @@ impl MapStats {
             landmasses,
             narrowest_strait: narrowest,
             biomes,
+            terrains,
+            features,
             rivers: river_stats,
             rain_shadow: shadow::rain_shadow(terrain, &tiles, &neighbors, &infos),
             lakes: terrain.hydrology().map_or(0, |h| h.lake_count() as u32),
             start_landmass_tiles,
+            wrap_columns: terrain.wrap().is_some().then_some(columns as u32),
         })
     }
 
@@ -316,6 +393,25 @@ impl MapStats {
     #[must_use]
     pub fn land_share(&self) -> f64 {
         f64::from(self.land_tiles) / f64::from(self.tiles.max(1))
+    }
+
+    /// Of the pairs of continents, the share whose centers lie in line: within
+    /// [`IN_LINE`] tiles of each other's row or column (round the map on a wrapping map,
+    /// [`MapStats::wrap_columns`]). Continents set out on a grid are mostly in line (a 3 by 2 grid: 9 pairs of 15);
+    /// placed at random, one pair in ten or so. 0 with fewer than two continents.
+    #[must_use]
+    pub fn continents_in_line(&self) -> f64 {
+        let centers: Vec<[f64; 2]> = self.continents().map(|c| c.center).collect();
+        let (mut pairs, mut in_line) = (0_u32, 0_u32);
+        for (k, a) in centers.iter().enumerate() {
+            for b in &centers[k + 1..] {
+                let dx = (a[0] - b[0]).abs();
+                let dx = self.wrap_columns.map_or(dx, |columns| dx.min(f64::from(columns) - dx));
+                pairs += 1;
+                in_line += u32::from(dx < IN_LINE || (a[1] - b[1]).abs() < IN_LINE);
+            }
+        }
+        if pairs == 0 { 0.0 } else { f64::from(in_line) / f64::from(pairs) }
     }
 
     /// The continents, largest first.

@@ -47,6 +47,9 @@ pub enum SurveyFigure {
     ContinentHeight,
     /// The columns the largest landmass spans, of the map's columns.
     LargestLandmassWidth,
+    /// Pairs of continents whose centers lie in line, of the pairs
+    /// ([`MapStats::continents_in_line`]): continents on a grid are mostly in line.
+    ContinentsInLine,
     /// The third largest landmass' tiles (0 with fewer than three).
     ThirdLandmassTiles,
     /// Landmasses of 1 to 3 tiles, of the landmasses.
@@ -75,6 +78,7 @@ impl SurveyFigure {
             Self::MouthsAtEdge => "rivers ending at the map's edge",
             Self::ContinentHeight => "least continent's height of the rows",
             Self::LargestLandmassWidth => "largest landmass' width of the columns",
+            Self::ContinentsInLine => "continents in line, of their pairs",
             Self::ThirdLandmassTiles => "third largest landmass (tiles)",
             Self::TinyLandmassShare => "landmasses of 1-3 tiles",
             Self::RainShadow => "deserts in rain shadow (x land's rate)",
@@ -95,6 +99,7 @@ impl SurveyFigure {
                 | Self::ContinentHeight
                 | Self::LargestLandmassWidth
                 | Self::TinyLandmassShare
+                | Self::ContinentsInLine
         )
     }
 
@@ -121,6 +126,7 @@ impl SurveyFigure {
             Self::LargestLandmassWidth => {
                 stats.landmasses.first().map_or(0.0, |l| f64::from(l.columns) / f64::from(columns.max(1)))
             }
+            Self::ContinentsInLine => stats.continents_in_line(),
             Self::ThirdLandmassTiles => stats.landmasses.get(2).map_or(0.0, |l| f64::from(l.tiles)),
             Self::TinyLandmassShare => {
                 let tiny = stats.landmasses.iter().filter(|l| l.tiles <= 3).count();
@@ -215,6 +221,7 @@ impl SurveyTarget {
 /// | rivers ending at the map's edge | | | 0 | all |
 /// | least continent's height | at least 55 % of the rows | at least 55 % | | Continents |
 /// | largest landmass' width | at least 70 % of the columns | at least 70 % | | Pangaea |
+/// | continents in line (pairs of continents whose centers share a row or a column) | at most 25 % | at most 40 % | | Small Continents |
 /// | third largest landmass | at least 30 tiles | at least 30 | | Archipelago |
 /// | landmasses of 1-3 tiles | at most 50 % | at most 50 % | | Archipelago |
 /// | deserts in rain shadow | at least 1.5 times land's rate | | | all but Inland Sea, with winds |
@@ -259,6 +266,7 @@ pub fn survey_targets(kind: MapType, on_edges: bool, winds: bool) -> Vec<SurveyT
     match kind {
         MapType::Continents => targets.push(SurveyTarget::new(ContinentHeight, false, 0.55, 0.55, None)),
         MapType::Pangaea => targets.push(SurveyTarget::new(LargestLandmassWidth, false, 0.7, 0.7, None)),
+        MapType::SmallContinents => targets.push(SurveyTarget::new(ContinentsInLine, true, 0.25, 0.4, None)),
         MapType::Archipelago => targets.extend([
             SurveyTarget::new(ThirdLandmassTiles, false, 30.0, 30.0, None),
             SurveyTarget::new(TinyLandmassShare, true, 0.5, 0.5, None),

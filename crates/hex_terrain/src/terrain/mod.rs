@@ -100,14 +100,19 @@ impl Terrain {
         Ok(Self::of(Pipeline::new(config)?))
     }
 
-    /// Like [`Terrain::new`], with the heightmap of an `Image` source already decoded (from an
-    /// asset, say); `image` is ignored for a `Noise` source.
+    /// Like [`Terrain::new`], with the heightmap of an `Image` source already decoded and the
+    /// terrain ruleset already loaded (from assets, say); `image` is ignored for a `Noise`
+    /// source, `ruleset` for a config without one.
     ///
     /// # Errors
-    /// The first invalid field of the config, or `source.path` when an `Image` source has no
-    /// image.
-    pub fn with_image(config: MapConfig, image: Option<Arc<HeightImage>>) -> Result<Self, ConfigError> {
-        Ok(Self::of(Pipeline::with_image(config, image)?))
+    /// The first invalid field of the config, `source.path` when an `Image` source has no
+    /// image, `ruleset` when the config names one and none is given (or it is invalid).
+    pub fn with_sources(
+        config: MapConfig,
+        image: Option<Arc<HeightImage>>,
+        ruleset: Option<Arc<crate::ruleset::TerrainRuleset>>,
+    ) -> Result<Self, ConfigError> {
+        Ok(Self::of(Pipeline::with_sources(config, image, ruleset)?))
     }
 
     /// The same map with other edits, compiled again from the stages no edit changes (the
@@ -436,6 +441,31 @@ impl Terrain {
             return Some(found);
         }
         Some(climate.climate_of(self.geometry(), self.heights(), tile, &self.pipeline.tile_sample(tile)))
+    }
+
+    /// The map's terrain ruleset: the one its config names
+    /// ([`MapConfig::ruleset`](crate::MapConfig::ruleset)), else the 13 biomes of its biome
+    /// table.
+    #[must_use]
+    pub fn ruleset(&self) -> &crate::ruleset::TerrainRuleset {
+        self.pipeline.ruleset()
+    }
+
+    /// Whether the config names its own terrain ruleset ([`MapConfig::ruleset`]): then meshes
+    /// and the minimap take its colors.
+    #[must_use]
+    pub fn has_own_ruleset(&self) -> bool {
+        self.pipeline.has_own_ruleset()
+    }
+
+    /// What a tile is under the map's ruleset ([`Terrain::ruleset`]): its terrain, landform,
+    /// feature and traits, from its climate (as [`Terrain::tile_climate`] reads it), its water
+    /// and rivers; `None` past the world. A pure function of the config, the ruleset and the
+    /// tile: the same for every copy of a tile on a wrapping map, in any order, on any thread.
+    #[must_use]
+    pub fn tile_terrain(&self, tile: Hex) -> Option<crate::ruleset::TileTerrain> {
+        let tile = self.wrap_tile(tile).filter(|&h| self.in_world(h))?;
+        Some(self.pipeline.tile_terrain(tile))
     }
 
     /// A tile's biome; `None` past the world. The one rule, which [`TileInfo::biome`], chunk

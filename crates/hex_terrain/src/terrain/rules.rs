@@ -9,6 +9,7 @@ use hexx::Hex;
 
 use super::Terrain;
 use crate::chunk::TileRect;
+use crate::ruleset::Landform;
 use crate::vocab::TileKind;
 
 /// Each tile's rules, row by row over a bounded map.
@@ -76,16 +77,29 @@ impl RuleTable {
 }
 
 /// The movement model's cost of entering a tile of the map, from the surface.
+/// On a map with its own terrain ruleset, the tile's traits (its terrain's and feature's), on
+/// the sea or not.
 pub(crate) fn evaluate_cost(terrain: &Terrain, tile: Hex) -> Option<u32> {
-    let info = terrain.tile_info(terrain.wrap_tile(tile)?)?;
-    terrain.config().movement.enter(info.biome, info.river_flow > 0.0)
+    let tile = terrain.wrap_tile(tile)?;
+    let info = terrain.tile_info(tile)?;
+    let movement = &terrain.config().movement;
+    if terrain.has_own_ruleset() {
+        let t = terrain.tile_terrain(tile)?;
+        let sea = matches!(t.landform, Landform::OpenSea | Landform::Shore);
+        return movement.enter_with(t.traits.movement, sea, info.river_flow > 0.0);
+    }
+    movement.enter(info.biome, info.river_flow > 0.0)
 }
 
-/// The sight rule's height of a tile of the map, from the surface.
+/// The sight rule's height of a tile of the map, from the surface: 2 on a mountain, 1 on a tall
+/// biome (on a map with its own terrain ruleset, where the tile's traits stand tall).
 pub(crate) fn evaluate_sight(terrain: &Terrain, tile: Hex) -> Option<u8> {
-    let info = terrain.tile_info(terrain.wrap_tile(tile)?)?;
+    let tile = terrain.wrap_tile(tile)?;
+    let info = terrain.tile_info(tile)?;
     Some(if info.kind == TileKind::Mountain && info.lake.is_none() {
         2
+    } else if terrain.has_own_ruleset() {
+        u8::from(terrain.tile_terrain(tile)?.traits.tall)
     } else {
         u8::from(terrain.config().sight.tall.contains(&info.biome))
     })

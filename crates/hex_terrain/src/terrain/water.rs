@@ -127,17 +127,18 @@ impl Terrain {
         mesh::vertex_color(biomes, water)
     }
 
-    /// Color of the lattice point `p` evaluated on its own: [`Terrain::vertex_color`] of the
-    /// in-map tiles holding it and its water cover; `None` past the world.
+    /// Color of the lattice point `p` evaluated on its own: the in-map tiles holding it, their
+    /// colors averaged ([`Terrain::vertex_color`]'s rule; under the map's own ruleset, its
+    /// terrains' and features' colors), and its water cover; `None` past the world.
     #[must_use]
     pub fn point_color(&self, p: Hex) -> Option<[u8; 4]> {
         if !self.geometry().point_in_world(p) {
             return None;
         }
         let set = self.lattice().tiles_at(p);
-        let biomes: Vec<Biome> =
-            set.tiles().iter().filter(|&&t| self.contains(t)).map(|&t| self.pipeline.tile_biome(t)).collect();
-        Some(mesh::vertex_color(&biomes, self.pipeline.vertex(p).water))
+        let colors: Vec<[u8; 3]> =
+            set.tiles().iter().filter(|&&t| self.contains(t)).map(|&t| self.pipeline.tile_color(t)).collect();
+        Some(mesh::mixed_color(&colors, self.pipeline.vertex(p).water))
     }
 
     /// World height of the sea surface: the sea threshold times the maximum elevation (the
