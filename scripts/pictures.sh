@@ -24,7 +24,7 @@ done
 scratch="$(mktemp -d)"
 trap 'rm -rf "$scratch"' EXIT
 # The World preset with the moisture fBm's climate instead of winds.
-sed -e 's/, winds: Some((pattern: Bands(\[45, 225, 45\])))//' assets/maps/world.map.ron > "$scratch/no_winds.map.ron"
+sed -e 's/, winds: Some((pattern: Bands(\[45, 225, 45\]), rain_shadow: 0.6, drying: 0.005))//' assets/maps/world.map.ron > "$scratch/no_winds.map.ron"
 grep -q "winds: Some" "$scratch/no_winds.map.ron" && { echo "pictures.sh: the World preset's winds line changed; update the sed above" >&2; exit 1; }
 "$cli" render "$scratch/no_winds.map.ron" -o docs/world_biomes_no_winds.png --width 800
 "$cli" setup assets/maps/world.map.ron -o docs/setup.png --width 900

@@ -89,16 +89,21 @@ fn the_world_preset_has_every_biome_rivers_and_lakes() {
     for b in hex_terrain::Biome::ALL {
         assert!(present.contains(&b), "no {b:?} in the world preset");
     }
-    assert!(t.hydrology().unwrap().lake_count() >= 5);
-    // Its rivers run on tile edges, Civilization's way, and reach a sixth of the land or so.
+    // Lakes only in deep basins, as few as a Civilization map has (at most 6 per 1,000 land tiles).
+    let lakes = t.hydrology().unwrap().lake_count();
+    let land_tiles = t.tiles().filter(|&h| t.tile_kind(h).unwrap() != TileKind::Sea).count();
+    assert!((1..=land_tiles * 6 / 1000).contains(&lakes), "{lakes} lakes on {land_tiles} land tiles");
+    // Its rivers run on tile edges, Civilization's way, and reach at least 15 % of the land.
     let land: Vec<_> = t.tiles().filter(|&h| t.tile_kind(h).unwrap() != TileKind::Sea && t.lake(h).is_none()).collect();
     let on_river = land.iter().filter(|&&h| !t.river_edges(h).is_empty()).count();
-    assert!(on_river * 100 >= land.len() * 12, "{on_river} of {} land tiles on a river", land.len());
+    assert!(on_river * 100 >= land.len() * 15, "{on_river} of {} land tiles on a river", land.len());
     // With rivers through tile centers, they rise on wet ground: their sources are wetter than
     // land, on average; and, with the moisture fBm's climate (where the rain is the same high
     // and low), on high ground too. With winds the highlands inland lie in a rain shadow, so
     // sources are where the rain falls, not where the land is highest.
-    let mut centers = config.clone();
+    // The Island preset (a noise island, no map type) under the World's winds shows it.
+    let mut centers = MapConfig::load(maps_dir().join("island.map.ron")).unwrap();
+    centers.climate = ClimateConfig { winds: config.climate.winds.clone(), lapse_rate: 0.55, ..centers.climate };
     centers.rivers = hex_terrain::RiverConfig { enabled: true, threshold: 5.0, ..Default::default() };
     // As it was before it had winds: no winds, rivers from 8 units of rain.
     let mut without_winds =
@@ -107,7 +112,7 @@ fn the_world_preset_has_every_biome_rivers_and_lakes() {
     for (t, higher) in [(Terrain::new(centers).unwrap(), false), (Terrain::new(without_winds).unwrap(), true)] {
         let rivers = t.rivers();
         let sources: Vec<_> = rivers.iter().filter(|r| r.upstream.is_empty()).collect();
-        assert!(sources.len() >= 20);
+        assert!(sources.len() >= 10, "{} sources", sources.len());
         let mean = |tiles: &mut dyn Iterator<Item = hex_terrain::hexx::Hex>| {
             let (mut h, mut m, mut n) = (0.0, 0.0, 0.0);
             for tile in tiles {
@@ -120,7 +125,7 @@ fn the_world_preset_has_every_biome_rivers_and_lakes() {
         let land = mean(&mut t.tiles().filter(|&h| t.tile_kind(h).unwrap() != TileKind::Sea && t.lake(h).is_none()));
         let at_sources = mean(&mut sources.iter().map(|r| r.hex));
         let along = mean(&mut rivers.iter().map(|r| r.hex));
-        assert!(!higher || at_sources.0 > along.0 + 0.02, "sources {at_sources:?}, river tiles {along:?}");
+        assert!(!higher || at_sources.0 > along.0 + 0.01, "sources {at_sources:?}, river tiles {along:?}");
         assert!(at_sources.1 > land.1 + 0.05, "sources {at_sources:?}, land {land:?}");
     }
 }
