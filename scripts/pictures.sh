@@ -72,7 +72,7 @@ if [ "${1:-}" = "--screens" ]; then
   shot strategy.png strategy
   shot strategy_setup.png strategy HEXTERRAIN_REPORT=1
   shot minimap.png strategy HEXTERRAIN_FOG=off
-  shot editor.png strategy HEXTERRAIN_PRESET=7 HEXTERRAIN_EDITOR=1 HEXTERRAIN_EDIT=26,25 HEXTERRAIN_FOG=off
+  shot editor.png strategy HEXTERRAIN_PRESET=7 HEXTERRAIN_EDITOR=1 HEXTERRAIN_EDIT=33,27 HEXTERRAIN_FOG=off
   shot wrap_seam.png strategy HEXTERRAIN_PRESET=6 HEXTERRAIN_FOCUS=126,40 HEXTERRAIN_FOG=off
   shot lod_huge.png strategy HEXTERRAIN_MAP=maps/civ6/huge.map.ron HEXTERRAIN_FOCUS=80,57 HEXTERRAIN_ZOOM=120 \
     HEXTERRAIN_FOG=off
