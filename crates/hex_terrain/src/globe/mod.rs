@@ -203,7 +203,10 @@ impl GlobeGrid {
         }
         let (d, u, v) = self.projection.locate(project::normalize(direction));
         let n = f64::from(self.frequency);
-        let (i, j) = round_lattice(u * n, v * n);
+        // The lattice point nearest: the diamond's steps are `(1, 0)`, `(0, 1)` and `(1, 1)`,
+        // axial hex coordinates with `q = i`, `r = -j`.
+        let nearest = crate::lattice::cube_round(u * n, -v * n);
+        let (i, j) = (i64::from(nearest.x), -i64::from(nearest.y));
         let f = i64::from(self.frequency);
         // The face's point lies in the diamond's closure: its nearest lattice point too, or on
         // the diamond's far edges, which `locate` hands to their owners.
@@ -262,19 +265,4 @@ impl GlobeGrid {
             Spot::Diamond { d, i, j } => 1 + u32::from(d) * f * f + i * f + j,
         })
     }
-}
-
-/// The lattice point nearest `(a, b)` in a diamond's frame, whose steps are `(1, 0)`, `(0, 1)`
-/// and `(1, 1)`: cube rounding with `q = a`, `r = -b`.
-fn round_lattice(a: f64, b: f64) -> (i64, i64) {
-    let (q, r) = (a, -b);
-    let s = -q - r;
-    let (mut rq, mut rr, rs) = (q.round(), r.round(), s.round());
-    let (dq, dr, ds) = ((rq - q).abs(), (rr - r).abs(), (rs - s).abs());
-    if dq > dr && dq > ds {
-        rq = -rr - rs;
-    } else if dr > ds {
-        rr = -rq - rs;
-    }
-    (rq as i64, -(rr as i64))
 }
