@@ -205,15 +205,32 @@ pub enum MapSize {
     },
     /// An infinite world, generated chunk by chunk around whatever needs it.
     Unbounded,
+    /// A round world: the hex globe of [`GlobeGrid`](crate::GlobeGrid) at `frequency` (1 to
+    /// [`MAX_GLOBE_FREQUENCY`](crate::MAX_GLOBE_FREQUENCY)), `10 f^2 + 2` tiles of which 12 are
+    /// pentagons; [`GlobeTerrain::new`](crate::GlobeTerrain::new) generates it
+    /// ([`GlobeSize`](crate::GlobeSize) names the frequencies of Civilization's map sizes).
+    Globe {
+        /// Tiles along an edge of the icosahedron.
+        frequency: u32,
+    },
 }
 
 impl MapSize {
-    /// The `(x, z)` size in hexes, or `None` for an unbounded world.
+    /// The `(x, z)` size in hexes, or `None` for an unbounded world or a globe.
     #[must_use]
     pub fn bounds(self) -> Option<(u32, u32)> {
         match self {
             Self::Bounded { x, z } => Some((x, z)),
-            Self::Unbounded => None,
+            Self::Unbounded | Self::Globe { .. } => None,
+        }
+    }
+
+    /// The globe's frequency, or `None` for a flat map.
+    #[must_use]
+    pub fn globe(self) -> Option<u32> {
+        match self {
+            Self::Globe { frequency } => Some(frequency),
+            Self::Bounded { .. } | Self::Unbounded => None,
         }
     }
 }

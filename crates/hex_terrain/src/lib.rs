@@ -109,7 +109,10 @@ pub use edits::Edits;
 pub use error::{ConfigError, LoadError};
 pub use fog::{FOG_MAGIC, FOG_VERSION, FogError, FogOfWar};
 pub use geometry::Geometry;
-pub use globe::{GlobeGrid, GlobeNeighbors, GlobeSize, GlobeTile, MAX_GLOBE_FREQUENCY};
+pub use globe::{
+    GlobeChunk, GlobeGrid, GlobeMesh, GlobeNeighbors, GlobePoint, GlobeSize, GlobeTerrain, GlobeTile,
+    MAX_GLOBE_FREQUENCY,
+};
 /// The stable hash the core places props with, for the plugin's prop meshes. Hidden from the
 /// docs: an internal the two crates share, not an API.
 #[doc(hidden)]

@@ -166,6 +166,7 @@ impl MapConfig {
                     ),
                 )?;
             }
+            MapSize::Globe { frequency } => self.validate_globe(frequency, per_hex)?,
             MapSize::Unbounded => {
                 check(
                     !self.wrap,
@@ -270,6 +271,45 @@ impl MapConfig {
             setup.validate(self.size.bounds())?;
         }
         super::edits::validate(&self.edits, self.size, self.terrain.sea_threshold, &self.rivers, self.ruleset.is_some())
+    }
+}
+
+impl MapConfig {
+    /// A globe's own checks: its frequency and mesh size, and the parts of a flat map a globe
+    /// does not have (an edge to wrap, a shape or map type drawn on the map's rectangle, a
+    /// heightmap) or has not yet (climate, rivers, a ruleset, a game setup, edits).
+    fn validate_globe(&self, frequency: u32, per_hex: u64) -> Result<(), ConfigError> {
+        let max = crate::MAX_GLOBE_FREQUENCY;
+        check((1..=max).contains(&frequency), "size.Globe.frequency", frequency, format!("1..={max}"))?;
+        let tiles = 10 * u64::from(frequency).pow(2);
+        let bytes = tiles * per_hex * BYTES_PER_VERTEX;
+        check(
+            bytes <= MAX_MAP_BYTES,
+            "size.Globe.frequency",
+            format!("{frequency} ({} GiB of mesh with {} inner rings)", bytes >> 30, self.terrain.inner_rings),
+            format!("a globe mesh of at most {} GiB: a lower frequency or fewer inner rings", MAX_MAP_BYTES >> 30),
+        )?;
+        check(!self.wrap, "wrap", "true on a globe", "false on a globe (a globe has no edge to wrap)")?;
+        check(self.offset == (0, 0), "offset", format!("{:?} on a globe", self.offset), "(0, 0) on a globe")?;
+        check(
+            self.source == HeightSourceConfig::Noise,
+            "source",
+            "Image on a globe",
+            "Noise on a globe (its heights are 3D noise at each point's direction)",
+        )?;
+        check(
+            self.shape == Shape::None,
+            "shape",
+            format!("{:?} on a globe", self.shape),
+            "None on a globe (shapes are drawn on a flat map's rectangle)",
+        )?;
+        let not_yet = |part: &str| format!("none on a globe: {part} are not on globes yet");
+        check(self.map_type.is_none(), "map_type", "a map type on a globe", not_yet("map types"))?;
+        check(!self.climate.enabled, "climate.enabled", true, "false on a globe: climate is not on globes yet")?;
+        check(!self.rivers.enabled, "rivers.enabled", true, "false on a globe: rivers are not on globes yet")?;
+        check(self.ruleset.is_none(), "ruleset", format!("{:?}", self.ruleset), not_yet("terrain rulesets"))?;
+        check(self.setup.is_none(), "setup", "a game setup on a globe", not_yet("game setups"))?;
+        check(self.edits.is_empty(), "edits", format!("{} edits on a globe", self.edits.len()), not_yet("edits"))
     }
 }
 

@@ -51,47 +51,68 @@ fn west(d: u8) -> u8 {
 pub(crate) fn locate(f: u32, d: u8, i: i64, j: i64) -> Option<Spot> {
     let n = i64::from(f);
     debug_assert!((-1..=n).contains(&i) && (-1..=n).contains(&j), "({i}, {j}) beyond one step of diamond {d}");
-    if (0..n).contains(&i) && (0..n).contains(&j) {
-        return Some(Spot::Diamond { d, i: i as u32, j: j as u32 });
-    }
-    if i < 0 && j < 0 {
-        return None;
-    }
-    let north = d < 5;
-    let (k, i, j) = if north {
-        if i == n && j == 0 {
+    canonical(f, d, i, j)
+}
+
+/// The point `(i, j)` of diamond `d`'s frame of frequency `f`, anywhere in the unfolding of the
+/// diamond and the four diamonds across its edges, as the point its owner holds. Each edge's map
+/// is the rigid motion that lays the neighbor beside the diamond; a point beyond two edges at
+/// once lies near a corner, where five faces meet and the unfolding is no longer one plane:
+/// `None` there, but for the origin's sectors that one map reaches (its missing sixth, between
+/// the steps `(-1, 0)` and `(-1, -1)`, is no point).
+pub(crate) fn canonical(f: u32, d: u8, i: i64, j: i64) -> Option<Spot> {
+    let n = i64::from(f);
+    let (mut d, mut i, mut j) = (d, i, j);
+    // Each map lands nearer the owner; two suffice for any point of the unfolding, a few more
+    // are a bound.
+    for _ in 0..6 {
+        if (0..n).contains(&i) && (0..n).contains(&j) {
+            return Some(Spot::Diamond { d, i: i as u32, j: j as u32 });
+        }
+        let north = d < 5;
+        if north && i == n && j == 0 {
             return Some(Spot::North);
         }
-        if i == n {
-            // The edge N U(d+1) and beyond: the next northern diamond, turned about the pole.
-            (east(d), n - j, 0)
-        } else if j == n {
-            // The edge L(d) U(d+1): the southern diamond below, same frame.
-            (d + 5, i, 0)
-        } else if i < 0 {
-            // Across U(d) L(d): the southern diamond to the west, same frame.
-            (west(d) + 5, n + i, j)
-        } else {
-            // Across U(d) N: the northern diamond to the west, turned about the pole.
-            (west(d), n + j, n - i + j)
-        }
-    } else {
-        if i == 0 && j == n {
+        if !north && i == 0 && j == n {
             return Some(Spot::South);
         }
-        if i == n {
-            // The edge U(d+1) L(d+1): the next northern diamond, same frame.
-            (east(d) - 5, 0, j)
-        } else if j == n {
-            // The edge S L(d+1) and beyond: the next southern diamond, turned about the pole.
-            (east(d), 0, n - i)
+        // A map is chosen by the coordinate strictly outside the diamond's closure; a point on
+        // the closure's far edges by the edge it lies on.
+        let (out_i, out_j) = (!(0..=n).contains(&i), !(0..=n).contains(&j));
+        (d, i, j) = if out_i && out_j {
+            // Beyond a corner: only the origin's sectors, by the map that reaches them.
+            match (north, i < 0 && j < 0) {
+                (true, true) if j <= i => (west(d), j + n, j - i + n),
+                (false, true) if i <= j => (west(d), i - j + n, i + n),
+                _ => return None,
+            }
+        } else if north {
+            if i > n || (!out_j && i == n) {
+                // Across N U(d+1): the next northern diamond, turned about the pole.
+                (east(d), i - j, i - n)
+            } else if j >= n {
+                // Across L(d) U(d+1): the southern diamond below, same frame.
+                (d + 5, i, j - n)
+            } else if i < 0 {
+                // Across U(d) L(d): the southern diamond to the west, same frame.
+                (west(d) + 5, i + n, j)
+            } else {
+                // Across U(d) N: the northern diamond to the west, turned about the pole.
+                (west(d), j + n, j - i + n)
+            }
+        } else if i > n || (!out_j && i == n) {
+            // Across U(d+1) L(d+1): the next northern diamond, same frame.
+            (east(d) - 5, i - n, j)
+        } else if j >= n {
+            // Across S L(d+1): the next southern diamond, turned about the pole.
+            (east(d), j - n, j - i)
         } else if i < 0 {
             // Across L(d) S: the southern diamond to the west, turned about the pole.
-            (west(d), n + i - j, n + i)
+            (west(d), i - j + n, i + n)
         } else {
             // Across L(d) U(d+1): the northern diamond above, same frame.
-            (d - 5, i, n + j)
-        }
-    };
-    locate(f, k, i, j)
+            (d - 5, i, j + n)
+        };
+    }
+    None
 }

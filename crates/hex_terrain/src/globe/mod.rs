@@ -7,10 +7,13 @@
 //! `tile_at` and `neighbors` take constant time.
 
 mod atlas;
+mod fine;
 mod project;
+mod terrain;
 
 use atlas::{MISSING_AT_ORIGIN, STEPS, Spot, locate};
 use project::Projection;
+pub use terrain::{GlobeChunk, GlobeMesh, GlobePoint, GlobeTerrain};
 
 use crate::ConfigError;
 

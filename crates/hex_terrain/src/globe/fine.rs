@@ -1,0 +1,203 @@
+//! The globe's fine lattice: every tile's hex-in-hex lattice at once, as one lattice over the
+//! icosahedron.
+//!
+//! A tile of `n` steps from center to corner holds the fine points within `n` steps of its
+//! center; on the plane the tile centers are the fine lattice's points `n (2, 1)` and `n (-1, 1)`
+//! apart, so the fine lattice is the tile lattice subdivided the Goldberg way `(n, n)`. In a
+//! diamond's frame at frequency `F = 3 n f` (the tile frame's coordinates times `3 n`), the fine
+//! points are the points `(i, j)` with `i + j` a multiple of 3, a tile's center at
+//! `(3 n i, 3 n j)`, and the fine steps `(1, -1)`, `(2, 1)`, `(1, 2)` and their opposites. A
+//! point is held by the atlas of frequency `F` (`atlas::canonical`): one owner, one direction,
+//! so every chunk that needs it computes the same bits.
+//!
+//! A hexagon's fine triangles lie in its own diamond's frame, beyond one edge of it at most; a
+//! pentagon's are gathered from the frames of the three to five diamonds meeting at its corner,
+//! each giving the triangles whose centroid lies in it (a triangle never strays two steps from
+//! the diamond whose closure holds its centroid, where each edge's map is the true unfolding).
+//! Which tiles hold a point, and its ring, come from the tile centers nearest it in its owner's
+//! frame.
+
+use super::atlas::{Spot, canonical, locate};
+
+/// A fine lattice point: its place in the atlas of frequency `F`.
+pub(crate) type Point = Spot;
+
+/// The fine steps as `(x, y)` of the fine lattice's own axes (at 120 degrees, like a
+/// diamond's), to the frame of frequency `F`: `(x + y, 2 y - x)`.
+fn to_frame(x: i64, y: i64) -> (i64, i64) {
+    (x + y, 2 * y - x)
+}
+
+/// Fine steps between two points of the frame of frequency `F` (whose difference keeps `i + j`
+/// a multiple of 3).
+fn steps(di: i64, dj: i64) -> u32 {
+    let (y, x) = ((di + dj) / 3, (2 * di - dj) / 3);
+    ((x.abs() + y.abs() + (x - y).abs()) / 2) as u32
+}
+
+/// The fine lattice of a globe of frequency `f` whose tiles have `n` steps from center to corner.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Fine {
+    f: u32,
+    n: u32,
+}
+
+/// The tiles holding a fine point (one inside a tile, two on an edge, three on a corner) and its
+/// ring: its steps from the nearest center, `n` on a border.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) struct Holders {
+    pub(crate) ring: u32,
+    tiles: [Spot; 3],
+    len: u8,
+}
+
+impl Holders {
+    pub(crate) fn tiles(&self) -> &[Spot] {
+        &self.tiles[..usize::from(self.len)]
+    }
+}
+
+impl Fine {
+    pub(crate) fn new(f: u32, n: u32) -> Self {
+        Self { f, n }
+    }
+
+    /// `F = 3 n f`: the frequency of the atlas that holds the fine points.
+    pub(crate) fn big(&self) -> u32 {
+        3 * self.n * self.f
+    }
+
+    /// A dense id of a point, `0..10 F^2 + 2` (only a third of them are points).
+    pub(crate) fn id(&self, p: Point) -> u64 {
+        let big = u64::from(self.big());
+        match p {
+            Spot::North => 0,
+            Spot::South => 10 * big * big + 1,
+            Spot::Diamond { d, i, j } => 1 + u64::from(d) * big * big + u64::from(i) * big + u64::from(j),
+        }
+    }
+
+    /// The center of the tile at `spot` (of the tile atlas) as a point.
+    pub(crate) fn center(&self, spot: Spot) -> Point {
+        let m = 3 * self.n;
+        match spot {
+            Spot::Diamond { d, i, j } => Spot::Diamond { d, i: i * m, j: j * m },
+            pole => pole,
+        }
+    }
+
+    /// The tiles holding point `p`, and its ring.
+    pub(crate) fn holders(&self, p: Point) -> Holders {
+        let Spot::Diamond { d, i, j } = p else {
+            return Holders { ring: 0, tiles: [p; 3], len: 1 };
+        };
+        let m = i64::from(3 * self.n);
+        let (i, j) = (i64::from(i), i64::from(j));
+        let (a, b) = (i / m, j / m);
+        let mut out = Holders { ring: self.n, tiles: [p; 3], len: 0 };
+        // The tile lattice's rhombus around the point holds every center within a tile's
+        // circumradius of it.
+        for (da, db) in [(0, 0), (1, 0), (0, 1), (1, 1)] {
+            let (ta, tb) = (a + da, b + db);
+            let s = steps(i - ta * m, j - tb * m);
+            if s <= self.n {
+                let tile = locate(self.f, d, ta, tb).expect("a corner of the diamond's closure");
+                if !out.tiles().contains(&tile) {
+                    out.tiles[usize::from(out.len)] = tile;
+                    out.len += 1;
+                }
+                out.ring = out.ring.min(s);
+            }
+        }
+        debug_assert!(out.len >= 1, "a point no tile holds: {p:?}");
+        out
+    }
+
+    /// The fine triangles of the tile at `spot` (of the tile atlas), each counterclockwise seen
+    /// from outside the globe: `6 n^2` for a hexagon, `5 n^2` for a pentagon.
+    pub(crate) fn triangles(&self, spot: Spot) -> Vec<[Point; 3]> {
+        let big = i64::from(self.big());
+        let m = i64::from(3 * self.n);
+        match spot {
+            Spot::Diamond { d, i, j } if i != 0 || j != 0 => {
+                let (ci, cj) = (i64::from(i) * m, i64::from(j) * m);
+                self.ball_triangles(d, (ci, cj), |_| true)
+            }
+            _ => {
+                let mut out: Vec<[Point; 3]> = Vec::with_capacity(5 * (self.n * self.n) as usize);
+                for (d, corner) in charts(spot, big) {
+                    // The triangles whose centroid lies in this diamond's closure: this frame
+                    // unfolds them truly.
+                    let inside = |sum: (i64, i64)| (0..=3 * big).contains(&sum.0) && (0..=3 * big).contains(&sum.1);
+                    for t in self.ball_triangles(d, corner, inside) {
+                        let key = self.key(&t);
+                        if !out.iter().any(|o| self.key(o) == key) {
+                            out.push(t);
+                        }
+                    }
+                }
+                out
+            }
+        }
+    }
+
+    /// A triangle's ids rotated so that the smallest comes first (the winding kept): the same
+    /// triangle from any tile or chart has the same key.
+    pub(crate) fn key(&self, t: &[Point; 3]) -> [u64; 3] {
+        let ids = t.map(|p| self.id(p));
+        let k = (0..3).min_by_key(|&k| ids[k]).unwrap_or(0);
+        [ids[k], ids[(k + 1) % 3], ids[(k + 2) % 3]]
+    }
+
+    /// The fine triangles within `n` steps of `center` in diamond `d`'s frame whose three corners'
+    /// sum (three times the centroid) passes `keep`, their corners at their owners.
+    fn ball_triangles(&self, d: u8, center: (i64, i64), keep: impl Fn((i64, i64)) -> bool) -> Vec<[Point; 3]> {
+        let n = i64::from(self.n);
+        let big = self.big();
+        let inside = |x: i64, y: i64| (x.abs() + y.abs() + (x - y).abs()) / 2 <= n;
+        let mut out = Vec::with_capacity(6 * (n * n) as usize);
+        for x in -n..=n {
+            for y in -n..=n {
+                // Up and down triangles from (x, y), wound counterclockwise seen from outside
+                // (the lattice's steps (1, 0), (1, 1), (0, 1) go round clockwise).
+                for [a, b, c] in [[(x, y), (x + 1, y + 1), (x + 1, y)], [(x, y), (x, y + 1), (x + 1, y + 1)]] {
+                    if !(inside(a.0, a.1) && inside(b.0, b.1) && inside(c.0, c.1)) {
+                        continue;
+                    }
+                    let frame = [a, b, c].map(|(x, y)| {
+                        let (u, v) = to_frame(x, y);
+                        (center.0 + u, center.1 + v)
+                    });
+                    let sum = (frame[0].0 + frame[1].0 + frame[2].0, frame[0].1 + frame[1].1 + frame[2].1);
+                    if !keep(sum) {
+                        continue;
+                    }
+                    let points = frame.map(|(i, j)| canonical(big, d, i, j));
+                    if let [Some(a), Some(b), Some(c)] = points {
+                        out.push([a, b, c]);
+                    } else {
+                        debug_assert!(false, "a kept triangle beyond the unfolding: {frame:?} in diamond {d}");
+                    }
+                }
+            }
+        }
+        out
+    }
+}
+
+/// The diamonds meeting at a pentagon's corner and where the corner lies in each one's frame of
+/// frequency `big` (the icosahedron vertex `U(k)` is the origin of northern diamond `k`, the far
+/// corner of northern `k - 1` and the corner `B` of southern `k - 1`; `L(k)` the origin of
+/// southern `k`, the corner `C` of northern `k` and the far corner of southern `k - 1`; the poles
+/// the corner `B` of every northern diamond and `C` of every southern one).
+fn charts(spot: Spot, big: i64) -> Vec<(u8, (i64, i64))> {
+    match spot {
+        Spot::North => (0..5).map(|d| (d, (big, 0))).collect(),
+        Spot::South => (5..10).map(|d| (d, (0, big))).collect(),
+        Spot::Diamond { d, .. } if d < 5 => vec![(d, (0, 0)), ((d + 4) % 5, (big, big)), (5 + (d + 4) % 5, (big, 0))],
+        Spot::Diamond { d, .. } => {
+            let k = d - 5;
+            vec![(d, (0, 0)), (k, (0, big)), (5 + (k + 4) % 5, (big, big))]
+        }
+    }
+}

@@ -1,0 +1,395 @@
+//! A globe's terrain: the thesis' tiles on the sphere. Every fine point's height is 3D fBm at
+//! its direction (the flat map's octaves, persistence, lacunarity and scale, so no seam and no
+//! pinch anywhere), a tile's kind is its center's height against the thresholds, and each point
+//! is manipulated as on the flat map (interpolation, hex unity, edge and corner correction) from
+//! its raw height, its ring and the kinds of the tiles holding it: a pure function of the
+//! config and the point, so chunks meet bit for bit and a globe made chunk by chunk is the globe
+//! made whole.
+
+use std::collections::HashMap;
+
+use noise::{NoiseFn, Perlin};
+use rayon::prelude::*;
+
+use super::atlas::Spot;
+use super::fine::{Fine, Point};
+use super::project::{self, Dir};
+use super::{GlobeGrid, GlobeTile};
+use crate::config::{MapConfig, MapSize};
+use crate::error::ConfigError;
+use crate::heights::Fbm;
+use crate::kind::{Thresholds, TileKind};
+use crate::manipulate::{manipulate, span};
+use crate::mesh::MeshBuffers;
+
+/// A piece of a globe generated at once: a pole's tile, or a parallelogram of at most
+/// `chunk_size.0` by `chunk_size.0` tiles of a diamond.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+#[cfg_attr(feature = "bevy_reflect", derive(bevy_reflect::Reflect))]
+pub enum GlobeChunk {
+    /// The north pole's pentagon.
+    North,
+    /// The south pole's pentagon.
+    South,
+    /// Rows `row * side..` and columns `column * side..` of a diamond (0-4 northern, 5-9
+    /// southern), `side` being the config's `chunk_size.0`.
+    Diamond {
+        /// The diamond.
+        diamond: u8,
+        /// The chunk's row in the diamond.
+        row: u32,
+        /// The chunk's column in the diamond.
+        column: u32,
+    },
+}
+
+/// A point of a globe's fine lattice (a vertex of its meshes): a dense id, the same in every
+/// chunk that holds the point.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub struct GlobePoint(pub u64);
+
+/// The mesh of a chunk of a globe, or of the whole globe.
+#[derive(Debug, Clone, PartialEq)]
+pub struct GlobeMesh {
+    /// Where its positions are measured from: the first tile's center on the sphere of
+    /// [`GlobeTerrain::radius`] (the globe's center for the whole globe), in world units.
+    pub origin: [f64; 3],
+    /// Positions (relative to `origin`), unit normals (outward, each the normalised sum of the
+    /// fine triangles around its point, the same whichever chunk holds it), the tile kinds (on
+    /// a border the highest of the tiles holding it), rings over `n` in `center_distances`, and
+    /// the triangles, counterclockwise seen from outside. No texture coordinates and no colors
+    /// yet (a globe has no climate yet).
+    pub buffers: MeshBuffers,
+    /// Each vertex's point.
+    pub points: Vec<GlobePoint>,
+    /// Each vertex's normalised height after manipulation.
+    pub heights: Vec<f32>,
+    /// Its tiles.
+    pub tiles: Vec<GlobeTile>,
+}
+
+/// A hex globe's terrain, compiled from a [`MapConfig`] of size [`MapSize::Globe`].
+#[derive(Debug, Clone)]
+pub struct GlobeTerrain {
+    config: MapConfig,
+    grid: GlobeGrid,
+    fine: Fine,
+    perlin: Perlin,
+    /// `(frequency in noise units per hex radius, amplitude)` per octave.
+    octaves: Vec<(f64, f64)>,
+    thresholds: Thresholds,
+    /// The globe's radius in hex radii.
+    radius: f64,
+    /// Each tile's center height (raw) and kind, by id.
+    centers: Vec<f32>,
+    kinds: Vec<TileKind>,
+}
+
+impl GlobeTerrain {
+    /// Validates `config` and compiles the globe: every tile's center height and kind.
+    ///
+    /// # Errors
+    /// The first invalid field, or `size` when the config is not a globe's.
+    pub fn new(config: MapConfig) -> Result<Self, ConfigError> {
+        config.validate()?;
+        let MapSize::Globe { frequency } = config.size else {
+            return Err(ConfigError::new(
+                "size",
+                format!("{:?}", config.size),
+                "Globe { frequency } for a globe (a flat map is compiled by Terrain::new)".to_owned(),
+            ));
+        };
+        let grid = GlobeGrid::new(frequency)?;
+        let fbm = Fbm::new(config.seed, &config.noise);
+        // The thesis' vertex step is a quarter of a hex radius, and its noise scale counts them.
+        let per_hex = 4.0 / config.noise.scale;
+        let octaves = fbm.octaves().iter().map(|&(freq, amp)| (freq * per_hex, amp)).collect();
+        // The sphere whose area is the tiles' at the flat map's hexagon area (3 sqrt 3 / 2 for a
+        // hex radius of 1): every tile about the size of a flat map's tile.
+        let tiles = f64::from(grid.tile_count());
+        let radius = (tiles * 3.0 * 3f64.sqrt() / (8.0 * std::f64::consts::PI)).sqrt();
+        let mut globe = Self {
+            fine: Fine::new(frequency, config.subdivisions()),
+            perlin: Perlin::new(config.seed),
+            octaves,
+            thresholds: Thresholds::new(&config.terrain, &config.manipulation),
+            radius,
+            centers: Vec::new(),
+            kinds: Vec::new(),
+            grid,
+            config,
+        };
+        globe.centers = (0..globe.grid.tile_count())
+            .into_par_iter()
+            .map(|t| globe.raw(globe.fine.center(globe.spot(GlobeTile(t)))))
+            .collect();
+        globe.kinds = globe.centers.iter().map(|&h| globe.thresholds.classify(h)).collect();
+        Ok(globe)
+    }
+
+    /// The config it was compiled from.
+    #[must_use]
+    pub fn config(&self) -> &MapConfig {
+        &self.config
+    }
+
+    /// Its tiles' grid.
+    #[must_use]
+    pub fn grid(&self) -> &GlobeGrid {
+        &self.grid
+    }
+
+    /// The thresholds tile kinds are classified by.
+    #[must_use]
+    pub fn thresholds(&self) -> &Thresholds {
+        &self.thresholds
+    }
+
+    /// The radius of height 0, in world units: the sphere whose area is the tiles' at the flat
+    /// map's tile area (`layout.hex_size` the hex radius). A point of normalised height `h` lies
+    /// at `radius() + h * terrain.max_elevation` from the center; the sea's surface at
+    /// `radius() + terrain.sea_threshold * terrain.max_elevation`.
+    #[must_use]
+    pub fn radius(&self) -> f64 {
+        self.radius * f64::from(self.config.layout.hex_size)
+    }
+
+    /// A tile's kind, by its center's height; `None` for a tile not of this globe.
+    #[must_use]
+    pub fn tile_kind(&self, tile: GlobeTile) -> Option<TileKind> {
+        self.kinds.get(tile.0 as usize).copied()
+    }
+
+    /// A tile's center height (normalised, before manipulation); `None` for a tile not of this
+    /// globe.
+    #[must_use]
+    pub fn tile_height(&self, tile: GlobeTile) -> Option<f32> {
+        self.centers.get(tile.0 as usize).copied()
+    }
+
+    /// The share of the tiles that are sea.
+    #[must_use]
+    pub fn sea_share(&self) -> f64 {
+        self.kinds.iter().filter(|&&k| k == TileKind::Sea).count() as f64 / self.kinds.len() as f64
+    }
+
+    /// Vertices of the whole globe's mesh: `30 f^2 n^2 + 2` (`n = inner_rings + 1`), every fine
+    /// point once.
+    #[must_use]
+    pub fn vertex_count(&self) -> u64 {
+        let (f, n) = (u64::from(self.grid.frequency()), u64::from(self.config.subdivisions()));
+        30 * f * f * n * n + 2
+    }
+
+    /// Triangles of the whole globe's mesh: `60 f^2 n^2` (`6 n^2` a hexagon, `5 n^2` a pentagon).
+    #[must_use]
+    pub fn triangle_count(&self) -> u64 {
+        let (f, n) = (u64::from(self.grid.frequency()), u64::from(self.config.subdivisions()));
+        60 * f * f * n * n
+    }
+
+    /// The side of a diamond's chunks, in tiles.
+    fn side(&self) -> u32 {
+        self.config.chunk_size.0.min(self.grid.frequency())
+    }
+
+    /// Every chunk: the two poles and each diamond's parallelograms, row by row.
+    #[must_use]
+    pub fn chunks(&self) -> Vec<GlobeChunk> {
+        let per = self.grid.frequency().div_ceil(self.side());
+        let mut out = vec![GlobeChunk::North];
+        for diamond in 0..10 {
+            for row in 0..per {
+                out.extend((0..per).map(|column| GlobeChunk::Diamond { diamond, row, column }));
+            }
+        }
+        out.push(GlobeChunk::South);
+        out
+    }
+
+    /// The chunk holding a tile; `None` for a tile not of this globe.
+    #[must_use]
+    pub fn chunk_of(&self, tile: GlobeTile) -> Option<GlobeChunk> {
+        let s = self.side();
+        Some(match self.grid.spot(tile)? {
+            Spot::North => GlobeChunk::North,
+            Spot::South => GlobeChunk::South,
+            Spot::Diamond { d, i, j } => GlobeChunk::Diamond { diamond: d, row: i / s, column: j / s },
+        })
+    }
+
+    /// A chunk's tiles, by id; empty for a chunk not of this globe.
+    #[must_use]
+    pub fn chunk_tiles(&self, chunk: GlobeChunk) -> Vec<GlobeTile> {
+        let (f, s) = (self.grid.frequency(), self.side());
+        match chunk {
+            GlobeChunk::North => vec![self.grid.id(Spot::North)],
+            GlobeChunk::South => vec![self.grid.id(Spot::South)],
+            GlobeChunk::Diamond { diamond, row, column } if diamond < 10 && row * s < f && column * s < f => {
+                let rows = row * s..((row + 1) * s).min(f);
+                rows.flat_map(|i| {
+                    ((column * s)..((column + 1) * s).min(f))
+                        .map(move |j| self.grid.id(Spot::Diamond { d: diamond, i, j }))
+                })
+                .collect()
+            }
+            GlobeChunk::Diamond { .. } => Vec::new(),
+        }
+    }
+
+    /// The mesh of a chunk (empty for a chunk not of this globe).
+    #[must_use]
+    pub fn generate(&self, chunk: GlobeChunk) -> GlobeMesh {
+        let tiles = self.chunk_tiles(chunk);
+        let origin = tiles.first().map_or([0.0; 3], |&t| {
+            let c = self.direction(self.fine.center(self.spot(t)));
+            [c[0] * self.radius(), c[1] * self.radius(), c[2] * self.radius()]
+        });
+        self.mesh(tiles, origin)
+    }
+
+    /// The whole globe's mesh, measured from the globe's center.
+    #[must_use]
+    pub fn generate_whole(&self) -> GlobeMesh {
+        self.mesh(self.grid.tiles().collect(), [0.0; 3])
+    }
+
+    fn spot(&self, tile: GlobeTile) -> Spot {
+        self.grid.spot(tile).expect("a tile of the grid")
+    }
+
+    fn direction(&self, p: Point) -> Dir {
+        let (d, u, v) = project::spot_uv(self.fine.big(), p);
+        self.grid.projection.direction(d, u, v)
+    }
+
+    /// A point's raw height: 3D fBm at its direction on the sphere of the globe's radius in
+    /// hex radii, normalised like the flat map's.
+    fn raw(&self, p: Point) -> f32 {
+        let dir = self.direction(p);
+        let at = dir.map(|c| c * self.radius);
+        let sum: f64 = self
+            .octaves
+            .iter()
+            .map(|&(freq, amp)| amp * self.perlin.get([at[0] * freq, at[1] * freq, at[2] * freq]))
+            .sum();
+        ((sum + 1.0) * 0.5).clamp(0.0, 1.0) as f32
+    }
+
+    /// A point finished: its height after manipulation, its ring and the highest kind of the
+    /// tiles holding it.
+    fn finish(&self, p: Point) -> (f32, u32, TileKind) {
+        let raw = self.raw(p);
+        let holders = self.fine.holders(p);
+        let mut kinds = [TileKind::Sea; 3];
+        for (k, &t) in kinds.iter_mut().zip(holders.tiles()) {
+            *k = self.kinds[self.grid.id(t).0 as usize];
+        }
+        let kinds = &kinds[..holders.tiles().len()];
+        let span = span(kinds);
+        let height = if self.config.manipulation.any() {
+            let n = self.config.subdivisions();
+            manipulate(&self.thresholds, &self.config.manipulation, raw, holders.ring, n, span).height
+        } else {
+            raw
+        };
+        let highest = span.map_or(TileKind::Sea, |(_, hi)| hi);
+        (height, holders.ring, highest)
+    }
+
+    /// The world position of a point of height `h`.
+    fn position(&self, p: Point, h: f32) -> Dir {
+        let r = self.radius() + f64::from(h) * f64::from(self.config.terrain.max_elevation);
+        self.direction(p).map(|c| c * r)
+    }
+
+    /// The mesh of `tiles`: their fine triangles, their points once each, each normal from
+    /// every triangle around its point (those of the tiles holding it, some beyond `tiles`),
+    /// summed in the order of the triangles' keys.
+    fn mesh(&self, tiles: Vec<GlobeTile>, origin: [f64; 3]) -> GlobeMesh {
+        let triangles: Vec<[Point; 3]> = tiles.iter().flat_map(|&t| self.fine.triangles(self.spot(t))).collect();
+        let mut index: HashMap<u64, u32> = HashMap::with_capacity(triangles.len() / 2 + 2);
+        let mut points: Vec<Point> = Vec::with_capacity(triangles.len() / 2 + 2);
+        let mut indices = Vec::with_capacity(triangles.len() * 3);
+        for t in &triangles {
+            for &p in t {
+                let next = points.len() as u32;
+                let i = *index.entry(self.fine.id(p)).or_insert_with(|| {
+                    points.push(p);
+                    next
+                });
+                indices.push(i);
+            }
+        }
+        // Every triangle around a point belongs to a tile holding it.
+        let own: std::collections::HashSet<GlobeTile> = tiles.iter().copied().collect();
+        let mut halo: Vec<GlobeTile> = points
+            .iter()
+            .flat_map(|&p| self.fine.holders(p).tiles().iter().map(|&s| self.grid.id(s)).collect::<Vec<_>>())
+            .filter(|t| !own.contains(t))
+            .collect();
+        halo.sort_unstable();
+        halo.dedup();
+        let around: Vec<[Point; 3]> =
+            triangles.iter().copied().chain(halo.iter().flat_map(|&t| self.fine.triangles(self.spot(t)))).collect();
+        let mut fans: Vec<Vec<usize>> = vec![Vec::new(); points.len()];
+        for (k, t) in around.iter().enumerate() {
+            for p in t {
+                if let Some(&i) = index.get(&self.fine.id(*p)) {
+                    fans[i as usize].push(k);
+                }
+            }
+        }
+        let mut finished: HashMap<u64, (f32, u32, TileKind, Dir)> = HashMap::with_capacity(points.len() * 2);
+        let mut at = |p: Point| {
+            *finished.entry(self.fine.id(p)).or_insert_with(|| {
+                let (h, ring, kind) = self.finish(p);
+                (h, ring, kind, self.position(p, h))
+            })
+        };
+        let n = self.config.subdivisions() as f32;
+        let mut buffers = MeshBuffers::default();
+        let mut heights = Vec::with_capacity(points.len());
+        for (i, &p) in points.iter().enumerate() {
+            let (h, ring, kind, pos) = at(p);
+            heights.push(h);
+            let mut fan: Vec<([u64; 3], [Point; 3])> = fans[i]
+                .iter()
+                .map(|&k| {
+                    let t = around[k];
+                    let key = self.fine.key(&t);
+                    let first = t.iter().position(|&q| self.fine.id(q) == key[0]).unwrap_or(0);
+                    (key, [t[first], t[(first + 1) % 3], t[(first + 2) % 3]])
+                })
+                .collect();
+            fan.sort_unstable_by_key(|(key, _)| *key);
+            fan.dedup_by_key(|(key, _)| *key);
+            let mut normal = [0.0f64; 3];
+            for (_, t) in &fan {
+                let [a, b, c] = t.map(|q| at(q).3);
+                let face = cross(sub(b, a), sub(c, a));
+                normal = [normal[0] + face[0], normal[1] + face[1], normal[2] + face[2]];
+            }
+            let normal = project::normalize(normal);
+            buffers.positions.push([
+                (pos[0] - origin[0]) as f32,
+                (pos[1] - origin[1]) as f32,
+                (pos[2] - origin[2]) as f32,
+            ]);
+            buffers.normals.push(normal.map(|c| c as f32));
+            buffers.tile_kinds.push(kind as u32);
+            buffers.center_distances.push(ring as f32 / n);
+        }
+        buffers.indices = indices;
+        let points = points.iter().map(|&p| GlobePoint(self.fine.id(p))).collect();
+        GlobeMesh { origin, buffers, points, heights, tiles }
+    }
+}
+
+fn sub(a: Dir, b: Dir) -> Dir {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+
+fn cross(a: Dir, b: Dir) -> Dir {
+    [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
+}

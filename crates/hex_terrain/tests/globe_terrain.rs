@@ -1,0 +1,220 @@
+//! A globe's terrain, checked by computations written here: the whole mesh is a closed surface
+//! (every edge in two triangles, once each way, Euler's formula, five triangles around each of
+//! the 12 pentagon centers and six around every other point) with the counts of the formula;
+//! faces and normals point outward; every chunk's vertices are the whole globe's, bit for bit;
+//! every inner vertex lies in its tile kind's range; bad globe configs are refused by field.
+
+use std::collections::HashMap;
+
+use hex_terrain::{GlobeChunk, GlobeMesh, GlobeTerrain, MapConfig, MapSize, Terrain, TileKind};
+
+type V = [f64; 3];
+
+fn sub(a: V, b: V) -> V {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+
+fn dot(a: V, b: V) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+fn cross(a: V, b: V) -> V {
+    [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
+}
+
+fn globe(frequency: u32, inner_rings: u32, seed: u32, chunk: u32) -> GlobeTerrain {
+    let mut config =
+        MapConfig { seed, size: MapSize::Globe { frequency }, chunk_size: (chunk, chunk), ..Default::default() };
+    config.terrain.inner_rings = inner_rings;
+    config.terrain.max_elevation = 1.0;
+    config.terrain.sea_threshold = 0.45;
+    config.terrain.mountain_threshold = 0.58;
+    GlobeTerrain::new(config).unwrap()
+}
+
+/// A vertex's place, in f64, from the mesh's origin.
+fn position(mesh: &GlobeMesh, v: usize) -> V {
+    let p = mesh.buffers.positions[v];
+    [mesh.origin[0] + f64::from(p[0]), mesh.origin[1] + f64::from(p[1]), mesh.origin[2] + f64::from(p[2])]
+}
+
+const CASES: [(u32, u32); 7] = [(1, 1), (2, 1), (3, 2), (4, 1), (5, 3), (7, 1), (11, 2)];
+
+#[test]
+fn the_whole_globe_is_a_closed_surface_with_the_formula_s_counts() {
+    for (f, rings) in CASES {
+        let g = globe(f, rings, 7, 4);
+        let mesh = g.generate_whole();
+        let b = &mesh.buffers;
+        assert_eq!(b.positions.len() as u64, g.vertex_count(), "f = {f}, {rings} rings");
+        assert_eq!((b.indices.len() / 3) as u64, g.triangle_count(), "f = {f}, {rings} rings");
+        let mut points = mesh.points.clone();
+        points.sort();
+        points.dedup();
+        assert_eq!(points.len(), mesh.points.len(), "a point twice");
+        // Each directed edge once, and its reverse once: a closed, consistently wound surface.
+        let mut directed: HashMap<(u32, u32), u32> = HashMap::new();
+        let mut around = vec![0u32; b.positions.len()];
+        for t in b.indices.chunks(3) {
+            assert!(t[0] != t[1] && t[1] != t[2] && t[0] != t[2], "a degenerate triangle");
+            for k in 0..3 {
+                *directed.entry((t[k], t[(k + 1) % 3])).or_default() += 1;
+                around[t[k] as usize] += 1;
+            }
+            let [a, bb, c] = [0, 1, 2].map(|k| position(&mesh, t[k] as usize));
+            let face = cross(sub(bb, a), sub(c, a));
+            let middle = [(a[0] + bb[0] + c[0]) / 3.0, (a[1] + bb[1] + c[1]) / 3.0, (a[2] + bb[2] + c[2]) / 3.0];
+            assert!(dot(face, middle) > 0.0, "f = {f}: a triangle faces inward");
+        }
+        for (&(a, b2), &count) in &directed {
+            assert_eq!(count, 1, "f = {f}: edge {a}-{b2} twice the same way");
+            assert_eq!(directed.get(&(b2, a)), Some(&1), "f = {f}: edge {a}-{b2} on one triangle");
+        }
+        let (v, e, t) = (b.positions.len(), directed.len() / 2, b.indices.len() / 3);
+        assert_eq!(v + t, e + 2, "f = {f}: Euler's formula");
+        let fives = around.iter().filter(|&&k| k == 5).count();
+        assert_eq!(fives, 12, "f = {f}: the pentagons' centers");
+        assert!(around.iter().all(|&k| k == 5 || k == 6), "f = {f}: a point with {:?} triangles", around.iter().max());
+        for (i, n) in b.normals.iter().enumerate() {
+            let p = position(&mesh, i);
+            let n = n.map(f64::from);
+            assert!((dot(n, n) - 1.0).abs() < 1e-5 && dot(n, p) > 0.0, "f = {f}: normal {i} {n:?}");
+        }
+    }
+}
+
+#[test]
+fn tiles_hold_six_or_five_times_n_squared_triangles_and_chunks_partition_them() {
+    for (f, rings) in CASES {
+        let g = globe(f, rings, 3, 3);
+        let n = rings + 1;
+        let mut seen = vec![0u32; g.grid().tile_count() as usize];
+        for chunk in g.chunks() {
+            let tiles = g.chunk_tiles(chunk);
+            assert_eq!(tiles.iter().map(|&t| g.chunk_of(t)).collect::<Vec<_>>(), vec![Some(chunk); tiles.len()]);
+            for &t in &tiles {
+                seen[t.0 as usize] += 1;
+            }
+            let mesh = g.generate(chunk);
+            let pentagons = tiles.iter().filter(|&&t| g.grid().is_pentagon(t)).count();
+            let expected = 6 * n * n * (tiles.len() - pentagons) as u32 + 5 * n * n * pentagons as u32;
+            assert_eq!(mesh.buffers.indices.len() as u32 / 3, expected, "f = {f}: {chunk:?}");
+        }
+        assert!(seen.iter().all(|&s| s == 1), "f = {f}: a tile in no chunk or in two");
+        assert_eq!(g.chunks().first(), Some(&GlobeChunk::North));
+    }
+}
+
+#[test]
+fn chunks_are_the_whole_globe_bit_for_bit() {
+    for (f, rings) in [(3, 1), (5, 2), (8, 1)] {
+        let g = globe(f, rings, 11, 2);
+        let whole = g.generate_whole();
+        let at: HashMap<_, _> = whole.points.iter().enumerate().map(|(i, &p)| (p, i)).collect();
+        let mut copies = 0;
+        for chunk in g.chunks() {
+            let mesh = g.generate(chunk);
+            for (v, p) in mesh.points.iter().enumerate() {
+                let w = at[p];
+                assert_eq!(mesh.heights[v].to_bits(), whole.heights[w].to_bits(), "f = {f}: height of {p:?}");
+                assert_eq!(
+                    mesh.buffers.normals[v].map(f32::to_bits),
+                    whole.buffers.normals[w].map(f32::to_bits),
+                    "f = {f}: normal of {p:?} in {chunk:?}"
+                );
+                assert_eq!(mesh.buffers.tile_kinds[v], whole.buffers.tile_kinds[w]);
+                assert_eq!(mesh.buffers.center_distances[v].to_bits(), whole.buffers.center_distances[w].to_bits());
+                let (a, b) = (position(&mesh, v), position(&whole, w));
+                // Both are the same f64 point rounded to f32 from their own origins.
+                let tolerance = 4.0 * f64::from(f32::EPSILON) * (g.radius() + 2.0);
+                assert!(sub(a, b).iter().all(|d| d.abs() <= tolerance), "f = {f}: {p:?} at {a:?} and {b:?}");
+                copies += 1;
+            }
+            // The chunk's triangles are the whole's (same points, same winding).
+            let mut mine: Vec<[u64; 3]> = mesh
+                .buffers
+                .indices
+                .chunks(3)
+                .map(|t| {
+                    let ids = [0, 1, 2].map(|k| mesh.points[t[k] as usize].0);
+                    let k = (0..3).min_by_key(|&k| ids[k]).unwrap();
+                    [ids[k], ids[(k + 1) % 3], ids[(k + 2) % 3]]
+                })
+                .collect();
+            mine.sort();
+            let all: std::collections::HashSet<[u64; 3]> = whole
+                .buffers
+                .indices
+                .chunks(3)
+                .map(|t| {
+                    let ids = [0, 1, 2].map(|k| whole.points[t[k] as usize].0);
+                    let k = (0..3).min_by_key(|&k| ids[k]).unwrap();
+                    [ids[k], ids[(k + 1) % 3], ids[(k + 2) % 3]]
+                })
+                .collect();
+            assert!(mine.iter().all(|t| all.contains(t)), "f = {f}: {chunk:?} has a triangle the whole has not");
+        }
+        assert!(copies > whole.points.len(), "chunks share their border points");
+    }
+}
+
+#[test]
+fn every_inner_vertex_lies_in_its_tile_kind_s_range() {
+    for seed in 0..6 {
+        for (f, rings) in [(5, 1), (6, 2), (9, 3)] {
+            let g = globe(f, rings, seed, 4);
+            let mesh = g.generate_whole();
+            let mut kinds = [0; 3];
+            for (v, &h) in mesh.heights.iter().enumerate() {
+                if mesh.buffers.center_distances[v] >= 1.0 {
+                    continue;
+                }
+                let kind = [TileKind::Sea, TileKind::Land, TileKind::Mountain][mesh.buffers.tile_kinds[v] as usize];
+                kinds[kind as usize] += 1;
+                let (lo, hi) = g.thresholds().range(kind);
+                assert!((lo..=hi).contains(&h), "seed {seed}, f = {f}: {kind:?} vertex at {h} outside [{lo}, {hi}]");
+            }
+            assert!(kinds.iter().filter(|&&k| k > 0).count() >= 2, "seed {seed}, f = {f}: one kind only, {kinds:?}");
+        }
+    }
+}
+
+#[test]
+fn tile_kinds_follow_their_center_height() {
+    let g = globe(9, 1, 5, 4);
+    let t = g.thresholds();
+    for tile in g.grid().tiles() {
+        assert_eq!(g.tile_kind(tile), g.tile_height(tile).map(|h| t.classify(h)));
+    }
+    let share = g.sea_share();
+    assert!(share > 0.0 && share < 1.0, "{share}");
+    assert_eq!(g.tile_kind(hex_terrain::GlobeTile(g.grid().tile_count())), None);
+}
+
+#[test]
+fn bad_globe_configs_are_refused_by_field() {
+    let globe = |frequency| MapConfig { size: MapSize::Globe { frequency }, ..Default::default() };
+    let refused = |config: MapConfig, field: &str| {
+        let e = GlobeTerrain::new(config).unwrap_err();
+        assert_eq!(e.field, field, "{e}");
+    };
+    refused(globe(0), "size.Globe.frequency");
+    refused(globe(257), "size.Globe.frequency");
+    let mut big = globe(256);
+    big.terrain.inner_rings = 16;
+    refused(big, "size.Globe.frequency");
+    refused(MapConfig { wrap: true, ..globe(8) }, "wrap");
+    let mut rivers = globe(8);
+    rivers.rivers.enabled = true;
+    refused(rivers, "rivers.enabled");
+    let mut climate = globe(8);
+    climate.climate.enabled = true;
+    refused(climate, "climate.enabled");
+    refused(MapConfig { size: MapSize::Unbounded, ..Default::default() }, "size");
+    // A flat map's compiler refuses a globe by name too.
+    assert_eq!(Terrain::new(globe(8)).unwrap_err().field, "size");
+    // And a globe config goes through RON.
+    let text = ron::to_string(&globe(21)).unwrap();
+    assert!(text.contains("Globe(frequency:21)"), "{text}");
+    assert_eq!(ron::from_str::<MapConfig>(&text).unwrap().size, MapSize::Globe { frequency: 21 });
+}
