@@ -53,6 +53,10 @@ RON
 "$cli" render assets/maps/thesis/map01.map.ron -o docs/island.png --outlines
 # The scenario made with the world builder (the World map cut by a strait, with a pass).
 "$cli" render assets/maps/strait.map.ron -o docs/strait.png --outlines --width 640
+# The Standard globe: its equirectangular map, and seen from above the pentagon U0 (longitude 0,
+# latitude atan(1/2)) with the tiles' outlines.
+"$cli" render assets/maps/globe/standard.map.ron -o docs/globe_equirectangular.png --width 1000
+"$cli" render assets/maps/globe/standard.map.ron -o docs/globe_orthographic.png --width 640 --outlines --from 0,26.565
 if [ "${1:-}" = "--screens" ]; then
   xvfb=()
   if [ -z "${DISPLAY:-}" ] && [ -z "${WAYLAND_DISPLAY:-}" ]; then

@@ -30,6 +30,15 @@ fn every_asset_loads_round_trips_and_generates() {
         assert!(path.to_string_lossy().ends_with(".map.ron"), "{} is not a .map.ron", path.display());
         let config = MapConfig::load(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
         assert_eq!(MapConfig::from_ron(&config.to_ron()).unwrap(), config, "{}", path.display());
+        if config.size.globe().is_some() {
+            let globe = hex_terrain::GlobeTerrain::new(config).unwrap();
+            let chunk = globe.generate(globe.chunks()[1]);
+            assert!(!chunk.tiles.is_empty(), "{}", path.display());
+            assert!(chunk.buffers.positions.iter().flatten().all(|v| v.is_finite()));
+            let sea = globe.sea_share();
+            assert!((0.4..=0.8).contains(&sea), "{}: {sea} of the tiles are sea", path.display());
+            continue;
+        }
         let terrain = Terrain::new(config.clone()).unwrap();
         let chunk = terrain.generate_rect(hex_terrain::TileRect::new([0, 0], [8, 8]));
         assert_eq!(chunk.tiles.len(), 64, "{}", path.display());

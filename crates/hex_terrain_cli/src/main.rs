@@ -5,6 +5,7 @@ mod edit;
 mod experiments;
 mod export;
 mod gallery;
+mod globe;
 mod render;
 mod survey;
 mod terrains;
@@ -53,6 +54,10 @@ enum Command {
         /// colors, in place of the config's own ruleset.
         #[arg(long)]
         ruleset: Option<PathBuf>,
+        /// A globe seen from above `LON,LAT` (degrees) in an orthographic view, instead of its
+        /// equirectangular map (globe configs only).
+        #[arg(long, value_name = "LON,LAT", allow_hyphen_values = true)]
+        from: Option<String>,
     },
     /// Tile an existing greyscale heightmap (8 or 16 bit PNG) onto the hex lattice, with the same
     /// classification and manipulation as noise maps (the thesis' filter use).
@@ -270,15 +275,43 @@ pub(crate) fn busy(message: String) -> indicatif::ProgressBar {
     s
 }
 
+/// `LON,LAT` in degrees: longitude in [-180, 180], latitude in [-90, 90].
+fn parse_lon_lat(text: &str) -> CliResult<globe::View> {
+    let bad = || format!("--from {text}: allowed LON,LAT in degrees, LON in [-180, 180], LAT in [-90, 90]");
+    let (lon, lat) = text.split_once(',').ok_or_else(bad)?;
+    let (lon, lat): (f64, f64) = (lon.trim().parse().map_err(|_| bad())?, lat.trim().parse().map_err(|_| bad())?);
+    if !((-180.0..=180.0).contains(&lon) && (-90.0..=90.0).contains(&lat)) {
+        return Err(bad());
+    }
+    Ok(globe::View::Orthographic { lon, lat })
+}
+
 fn check_width(width: u32) -> CliResult<()> {
     if (1..=16384).contains(&width) { Ok(()) } else { Err(format!("--width {width}: allowed 1..=16384")) }
 }
 
 fn run(cli: Cli) -> CliResult<()> {
     match cli.command {
-        Command::Render { map, output, raw, outlines, width, blend, ruleset } => {
+        Command::Render { map, output, raw, outlines, width, blend, ruleset, from } => {
             check_width(width)?;
             let mut config = load(&map)?;
+            if config.size.globe().is_some() {
+                if ruleset.is_some() {
+                    return Err("--ruleset: terrain rulesets are not on globes yet".into());
+                }
+                let view = match from {
+                    None => globe::View::Equirectangular,
+                    Some(text) => parse_lon_lat(&text)?,
+                };
+                if raw {
+                    config.manipulation = ManipulationConfig::raw();
+                }
+                let globe = hex_terrain::GlobeTerrain::new(config).map_err(|e| format!("{}: {e}", map.display()))?;
+                return render::save(&globe::render(&globe, view, width, outlines), &output);
+            }
+            if from.is_some() {
+                return Err("--from: only for a globe config (size: Globe(frequency: ...))".into());
+            }
             if let Some(path) = ruleset {
                 config.ruleset = Some(path.display().to_string());
             }

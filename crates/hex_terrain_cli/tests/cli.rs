@@ -709,3 +709,54 @@ fn stats_counts_a_rulesets_terrains_and_features() {
     std::fs::write(&bad, "(\n  fallback: {},\n  terrains: [(id: 3)],\n)").unwrap();
     fails(&["stats", map.to_str().unwrap(), "--ruleset", bad.to_str().unwrap()], &["ruleset", "bad.terrain.ron", "3:"]);
 }
+
+/// The layer a pixel of the render's colors shows: blue sea, green land, grey rock.
+fn layer_of(p: [u8; 3]) -> TileKind {
+    let [r, g, b] = p;
+    if b > r && b > g {
+        TileKind::Sea
+    } else if g > r && g > b.saturating_add(20) {
+        TileKind::Land
+    } else {
+        TileKind::Mountain
+    }
+}
+
+#[test]
+fn render_draws_a_globe_equirectangular_and_from_above_a_tile() {
+    let map = repo().join("assets/maps/globe/standard.map.ron");
+    let map = map.to_str().unwrap();
+    let globe = hex_terrain::GlobeTerrain::new(MapConfig::load(map).unwrap()).unwrap();
+    let flat = tmp("globe_flat.png");
+    ok(&["render", map, "-o", flat.to_str().unwrap(), "--width", "400"]);
+    let img = image::open(&flat).unwrap().to_rgb8();
+    assert_eq!(img.dimensions(), (400, 200));
+    // The sea's share of the sphere's area, from the picture's rows weighted by their circles,
+    // is the globe's share of sea tiles (the tiles' areas are within 5 % of each other).
+    let (mut sea, mut all) = (0.0, 0.0);
+    for (_, y, p) in img.enumerate_pixels() {
+        let w = ((f64::from(y) + 0.5) / 200.0 * std::f64::consts::PI - std::f64::consts::FRAC_PI_2).cos();
+        all += w;
+        if layer_of(p.0) == TileKind::Sea {
+            sea += w;
+        }
+    }
+    let share = sea / all;
+    assert!((share - globe.sea_share()).abs() < 0.04, "picture {share}, tiles {}", globe.sea_share());
+    // Seen from above a tile's center, the picture's middle is that tile's kind.
+    let grid = globe.grid();
+    for kind in [TileKind::Sea, TileKind::Land, TileKind::Mountain] {
+        let tile = grid.tiles().find(|&t| globe.tile_kind(t) == Some(kind) && !grid.is_pentagon(t)).unwrap();
+        let [x, y, z] = grid.center(tile).unwrap();
+        let (lat, lon) = (y.asin().to_degrees(), (-z).atan2(x).to_degrees());
+        let out = tmp("globe_view.png");
+        ok(&["render", map, "-o", out.to_str().unwrap(), "--width", "301", "--from", &format!("{lon},{lat}")]);
+        let img = image::open(&out).unwrap().to_rgb8();
+        assert_eq!(img.dimensions(), (301, 301));
+        assert_eq!(layer_of(img.get_pixel(150, 150).0), kind, "{tile:?} seen from {lon}, {lat}");
+        assert_eq!(img.get_pixel(0, 0).0, [5, 5, 13], "the corner is space");
+    }
+    fails(&["render", map, "-o", "x.png", "--from", "200,0"], &["--from 200,0", "[-180, 180]"]);
+    let thesis = repo().join("assets/maps/thesis/map00.map.ron");
+    fails(&["render", thesis.to_str().unwrap(), "-o", "x.png", "--from", "0,0"], &["--from", "globe"]);
+}
