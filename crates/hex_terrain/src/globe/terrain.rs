@@ -340,37 +340,54 @@ impl GlobeTerrain {
                 }
             }
         }
-        let mut finished: HashMap<u64, (f32, u32, TileKind, Dir)> = HashMap::with_capacity(points.len() * 2);
-        let mut at = |p: Point| {
-            *finished.entry(self.fine.id(p)).or_insert_with(|| {
+        // Every point the fans reach, finished once, in parallel (each is a pure function of
+        // the config and the point, so the threads change no bit).
+        let mut slot: HashMap<u64, usize> = HashMap::with_capacity(points.len() * 2);
+        let mut reached: Vec<Point> = Vec::with_capacity(points.len() * 2);
+        for &p in around.iter().flatten() {
+            slot.entry(self.fine.id(p)).or_insert_with(|| {
+                reached.push(p);
+                reached.len() - 1
+            });
+        }
+        let finished: Vec<(f32, u32, TileKind, Dir)> = reached
+            .par_iter()
+            .map(|&p| {
                 let (h, ring, kind) = self.finish(p);
                 (h, ring, kind, self.position(p, h))
             })
-        };
+            .collect();
+        let at = |p: Point| finished[slot[&self.fine.id(p)]];
         let n = self.config.subdivisions() as f32;
+        let vertices: Vec<(f32, u32, TileKind, Dir, Dir)> = points
+            .par_iter()
+            .zip(&fans)
+            .map(|(&p, fan)| {
+                let (h, ring, kind, pos) = at(p);
+                let mut fan: Vec<([u64; 3], [Point; 3])> = fan
+                    .iter()
+                    .map(|&k| {
+                        let t = around[k];
+                        let key = self.fine.key(&t);
+                        let first = t.iter().position(|&q| self.fine.id(q) == key[0]).unwrap_or(0);
+                        (key, [t[first], t[(first + 1) % 3], t[(first + 2) % 3]])
+                    })
+                    .collect();
+                fan.sort_unstable_by_key(|(key, _)| *key);
+                fan.dedup_by_key(|(key, _)| *key);
+                let mut normal = [0.0f64; 3];
+                for (_, t) in &fan {
+                    let [a, b, c] = t.map(|q| at(q).3);
+                    let face = cross(sub(b, a), sub(c, a));
+                    normal = [normal[0] + face[0], normal[1] + face[1], normal[2] + face[2]];
+                }
+                (h, ring, kind, pos, project::normalize(normal))
+            })
+            .collect();
         let mut buffers = MeshBuffers::default();
         let mut heights = Vec::with_capacity(points.len());
-        for (i, &p) in points.iter().enumerate() {
-            let (h, ring, kind, pos) = at(p);
+        for (h, ring, kind, pos, normal) in vertices {
             heights.push(h);
-            let mut fan: Vec<([u64; 3], [Point; 3])> = fans[i]
-                .iter()
-                .map(|&k| {
-                    let t = around[k];
-                    let key = self.fine.key(&t);
-                    let first = t.iter().position(|&q| self.fine.id(q) == key[0]).unwrap_or(0);
-                    (key, [t[first], t[(first + 1) % 3], t[(first + 2) % 3]])
-                })
-                .collect();
-            fan.sort_unstable_by_key(|(key, _)| *key);
-            fan.dedup_by_key(|(key, _)| *key);
-            let mut normal = [0.0f64; 3];
-            for (_, t) in &fan {
-                let [a, b, c] = t.map(|q| at(q).3);
-                let face = cross(sub(b, a), sub(c, a));
-                normal = [normal[0] + face[0], normal[1] + face[1], normal[2] + face[2]];
-            }
-            let normal = project::normalize(normal);
             buffers.positions.push([
                 (pos[0] - origin[0]) as f32,
                 (pos[1] - origin[1]) as f32,
