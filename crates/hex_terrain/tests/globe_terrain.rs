@@ -218,3 +218,56 @@ fn bad_globe_configs_are_refused_by_field() {
     assert!(text.contains("Globe(frequency:21)"), "{text}");
     assert_eq!(ron::from_str::<MapConfig>(&text).unwrap().size, MapSize::Globe { frequency: 21 });
 }
+
+#[test]
+fn chunks_within_an_angle_hold_every_point_that_close_and_no_far_chunk() {
+    let g = globe(9, 1, 2, 3);
+    let whole = g.generate_whole();
+    // Each chunk's points, as directions, recomputed from the meshes.
+    let chunks: Vec<(GlobeChunk, Vec<V>)> = g
+        .chunks()
+        .into_iter()
+        .map(|c| {
+            let m = g.generate(c);
+            let dirs = (0..m.points.len())
+                .map(|v| {
+                    let p = position(&m, v);
+                    let l = dot(p, p).sqrt();
+                    p.map(|x| x / l)
+                })
+                .collect();
+            (c, dirs)
+        })
+        .collect();
+    assert!(!whole.points.is_empty());
+    let mut state = 12345u64;
+    let mut next = || {
+        state = state.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+        (state >> 11) as f64 / (1u64 << 53) as f64
+    };
+    for _ in 0..60 {
+        let dir = [next() - 0.5, next() - 0.5, next() - 0.5];
+        let l = dot(dir, dir).sqrt();
+        let dir = dir.map(|x| x / l);
+        let angle = next() * 0.8;
+        let found = g.chunks_within(dir, angle);
+        let arc = |p: V| dot(p, dir).clamp(-1.0, 1.0).acos();
+        for (chunk, points) in &chunks {
+            let nearest = points.iter().map(|&p| arc(p)).fold(f64::INFINITY, f64::min);
+            // Points within the angle (up to rounding of the f32 positions): their chunk is found.
+            if nearest < angle - 1e-5 {
+                assert!(found.contains(chunk), "{chunk:?} has a point {nearest} away, within {angle}");
+            }
+            // A found chunk reaches within the angle and its own diameter.
+            let farthest = points.iter().map(|&p| arc(p)).fold(0.0, f64::max);
+            if found.contains(chunk) {
+                assert!(nearest <= angle + (farthest - nearest) + 1e-5, "{chunk:?} found from {nearest} away");
+            }
+        }
+        assert_eq!(g.chunk_at(dir), g.tile_at(dir).and_then(|t| g.chunk_of(t)));
+        assert!(g.chunk_at(dir).is_some_and(|c| found.contains(&c) || angle < 1e-9));
+    }
+    assert!(g.chunks_within([0.0; 3], 1.0).is_empty());
+    assert!(g.chunks_within([0.0, 1.0, 0.0], -1.0).is_empty());
+    assert_eq!(g.chunks_within([0.0, 1.0, 0.0], 4.0), g.chunks());
+}

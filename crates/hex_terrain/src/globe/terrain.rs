@@ -83,6 +83,9 @@ pub struct GlobeTerrain {
     /// Each tile's center height (raw) and kind, by id.
     centers: Vec<f32>,
     kinds: Vec<TileKind>,
+    /// Each chunk's cap: the direction of its middle and the angle from it that holds all of
+    /// its ground.
+    caps: Vec<(GlobeChunk, Dir, f64)>,
 }
 
 impl GlobeTerrain {
@@ -116,6 +119,7 @@ impl GlobeTerrain {
             radius,
             centers: Vec::new(),
             kinds: Vec::new(),
+            caps: Vec::new(),
             grid,
             config,
         };
@@ -124,6 +128,7 @@ impl GlobeTerrain {
             .map(|t| globe.raw(globe.fine.center(globe.spot(GlobeTile(t)))))
             .collect();
         globe.kinds = globe.centers.iter().map(|&h| globe.thresholds.classify(h)).collect();
+        globe.caps = globe.caps();
         Ok(globe)
     }
 
@@ -186,6 +191,60 @@ impl GlobeTerrain {
     pub fn triangle_count(&self) -> u64 {
         let (f, n) = (u64::from(self.grid.frequency()), u64::from(self.config.subdivisions()));
         60 * f * f * n * n
+    }
+
+    /// The tile a direction from the globe's center falls in (any length but zero); `None` for
+    /// a zero or non-finite vector.
+    #[must_use]
+    pub fn tile_at(&self, direction: [f64; 3]) -> Option<GlobeTile> {
+        self.grid.tile_at(direction)
+    }
+
+    /// The chunk holding the tile a direction falls in: the chunk nearest it.
+    #[must_use]
+    pub fn chunk_at(&self, direction: [f64; 3]) -> Option<GlobeChunk> {
+        self.chunk_of(self.tile_at(direction)?)
+    }
+
+    /// The chunks with ground within `angle` radians of a direction (what streaming around a
+    /// point of view asks), in [`GlobeTerrain::chunks`]' order: every chunk holding a point that
+    /// close, and only chunks whose cap (the circle round their middle that holds their ground)
+    /// reaches that close. Empty for a zero or non-finite direction or a negative or NaN angle.
+    #[must_use]
+    pub fn chunks_within(&self, direction: [f64; 3], angle: f64) -> Vec<GlobeChunk> {
+        let len = project::dot(direction, direction).sqrt();
+        if !len.is_finite() || len == 0.0 || angle.is_nan() || angle < 0.0 {
+            return Vec::new();
+        }
+        let dir = project::normalize(direction);
+        self.caps
+            .iter()
+            .filter(|(_, middle, radius)| arc(dir, *middle) <= angle + radius)
+            .map(|&(chunk, _, _)| chunk)
+            .collect()
+    }
+
+    /// Every chunk's cap: its tiles' centers' mean direction, and the largest angle from it to
+    /// a corner of a triangle of its tiles.
+    fn caps(&self) -> Vec<(GlobeChunk, Dir, f64)> {
+        self.chunks()
+            .into_iter()
+            .map(|chunk| {
+                let tiles = self.chunk_tiles(chunk);
+                let sum = tiles.iter().fold([0.0; 3], |s, &t| {
+                    let c = self.direction(self.fine.center(self.spot(t)));
+                    [s[0] + c[0], s[1] + c[1], s[2] + c[2]]
+                });
+                let middle = project::normalize(sum);
+                let radius = tiles
+                    .iter()
+                    .flat_map(|&t| self.fine.triangles(self.spot(t)))
+                    .flatten()
+                    .map(|p| arc(middle, self.direction(p)))
+                    .fold(0.0, f64::max);
+                (chunk, middle, radius)
+            })
+            .collect()
     }
 
     /// The side of a diamond's chunks, in tiles.
@@ -401,6 +460,11 @@ impl GlobeTerrain {
         let points = points.iter().map(|&p| GlobePoint(self.fine.id(p))).collect();
         GlobeMesh { origin, buffers, points, heights, tiles }
     }
+}
+
+/// The angle between two unit vectors, in radians.
+fn arc(a: Dir, b: Dir) -> f64 {
+    project::dot(a, b).clamp(-1.0, 1.0).acos()
 }
 
 fn sub(a: Dir, b: Dir) -> Dir {
