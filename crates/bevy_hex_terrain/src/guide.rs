@@ -23,6 +23,7 @@
 //! - [Recipes](crate::guide::recipes)
 //! - [Rules: movement, paths and sight](crate::guide::rules)
 //! - [Your own terrain: rulesets](crate::guide::own_terrain)
+//! - [A hex globe (the core, for now)](crate::guide::globe)
 
 #![allow(clippy::doc_markdown, reason = "the chapters are prose for people, read on GitHub too")]
 
@@ -96,6 +97,10 @@ pub mod rules {
 
 pub mod own_terrain {
     #![doc = include_str!("../guide/18-own-terrain.md")]
+}
+
+pub mod globe {
+    #![doc = include_str!("../guide/19-globe.md")]
 }
 
 /// The repository's README, whose snippets are doc tests too.
