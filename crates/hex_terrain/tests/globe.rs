@@ -5,29 +5,9 @@
 
 use hex_terrain::{GlobeGrid, GlobeSize, GlobeTile, MAX_GLOBE_FREQUENCY};
 use hexasphere::shapes::IcoSphere;
-
-type V = [f64; 3];
-
-fn sub(a: V, b: V) -> V {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-
-fn dot(a: V, b: V) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-
-fn cross(a: V, b: V) -> V {
-    [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
-}
-
-fn scale(a: V, s: f64) -> V {
-    [a[0] * s, a[1] * s, a[2] * s]
-}
-
-fn normalize(a: V) -> V {
-    let l = dot(a, a).sqrt();
-    [a[0] / l, a[1] / l, a[2] / l]
-}
+#[path = "common/vec3.rs"]
+mod vec3;
+use vec3::{V, cross, dot, normalize, scale, sub};
 
 const FREQUENCIES: [u32; 9] = [1, 2, 3, 4, 5, 8, 11, 21, 26];
 

@@ -7,20 +7,9 @@
 use std::collections::HashMap;
 
 use hex_terrain::{GlobeChunk, GlobeMesh, GlobeTerrain, MapConfig, MapSize, Terrain, TileKind};
-
-type V = [f64; 3];
-
-fn sub(a: V, b: V) -> V {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-
-fn dot(a: V, b: V) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-
-fn cross(a: V, b: V) -> V {
-    [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
-}
+#[path = "common/vec3.rs"]
+mod vec3;
+use vec3::{V, cross, dot, sub};
 
 fn globe(frequency: u32, inner_rings: u32, seed: u32, chunk: u32) -> GlobeTerrain {
     let mut config =
@@ -36,6 +25,19 @@ fn globe(frequency: u32, inner_rings: u32, seed: u32, chunk: u32) -> GlobeTerrai
 fn position(mesh: &GlobeMesh, v: usize) -> V {
     let p = mesh.buffers.positions[v];
     [mesh.origin[0] + f64::from(p[0]), mesh.origin[1] + f64::from(p[1]), mesh.origin[2] + f64::from(p[2])]
+}
+
+/// A mesh's triangles as their points' ids, the smallest first (the winding kept).
+fn triangles(mesh: &GlobeMesh) -> Vec<[u64; 3]> {
+    mesh.buffers
+        .indices
+        .chunks(3)
+        .map(|t| {
+            let ids = [0, 1, 2].map(|k| mesh.points[t[k] as usize].0);
+            let k = (0..3).min_by_key(|&k| ids[k]).unwrap();
+            [ids[k], ids[(k + 1) % 3], ids[(k + 2) % 3]]
+        })
+        .collect()
 }
 
 const CASES: [(u32, u32); 7] = [(1, 1), (2, 1), (3, 2), (4, 1), (5, 3), (7, 1), (11, 2)];
@@ -131,27 +133,9 @@ fn chunks_are_the_whole_globe_bit_for_bit() {
                 copies += 1;
             }
             // The chunk's triangles are the whole's (same points, same winding).
-            let mut mine: Vec<[u64; 3]> = mesh
-                .buffers
-                .indices
-                .chunks(3)
-                .map(|t| {
-                    let ids = [0, 1, 2].map(|k| mesh.points[t[k] as usize].0);
-                    let k = (0..3).min_by_key(|&k| ids[k]).unwrap();
-                    [ids[k], ids[(k + 1) % 3], ids[(k + 2) % 3]]
-                })
-                .collect();
+            let mut mine = triangles(&mesh);
             mine.sort();
-            let all: std::collections::HashSet<[u64; 3]> = whole
-                .buffers
-                .indices
-                .chunks(3)
-                .map(|t| {
-                    let ids = [0, 1, 2].map(|k| whole.points[t[k] as usize].0);
-                    let k = (0..3).min_by_key(|&k| ids[k]).unwrap();
-                    [ids[k], ids[(k + 1) % 3], ids[(k + 2) % 3]]
-                })
-                .collect();
+            let all: std::collections::HashSet<[u64; 3]> = triangles(&whole).into_iter().collect();
             assert!(mine.iter().all(|t| all.contains(t)), "f = {f}: {chunk:?} has a triangle the whole has not");
         }
         assert!(copies > whole.points.len(), "chunks share their border points");

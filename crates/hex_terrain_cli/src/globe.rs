@@ -25,6 +25,19 @@ pub enum View {
     },
 }
 
+impl View {
+    /// `LON,LAT` in degrees: longitude in [-180, 180], latitude in [-90, 90].
+    pub fn from_lon_lat(text: &str) -> Result<Self, String> {
+        let bad = || format!("--from {text}: allowed LON,LAT in degrees, LON in [-180, 180], LAT in [-90, 90]");
+        let (lon, lat) = text.split_once(',').ok_or_else(bad)?;
+        let (lon, lat): (f64, f64) = (lon.trim().parse().map_err(|_| bad())?, lat.trim().parse().map_err(|_| bad())?);
+        if !((-180.0..=180.0).contains(&lon) && (-90.0..=90.0).contains(&lat)) {
+            return Err(bad());
+        }
+        Ok(Self::Orthographic { lon, lat })
+    }
+}
+
 fn dot(a: V, b: V) -> f64 {
     a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }

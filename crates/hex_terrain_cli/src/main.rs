@@ -275,17 +275,6 @@ pub(crate) fn busy(message: String) -> indicatif::ProgressBar {
     s
 }
 
-/// `LON,LAT` in degrees: longitude in [-180, 180], latitude in [-90, 90].
-fn parse_lon_lat(text: &str) -> CliResult<globe::View> {
-    let bad = || format!("--from {text}: allowed LON,LAT in degrees, LON in [-180, 180], LAT in [-90, 90]");
-    let (lon, lat) = text.split_once(',').ok_or_else(bad)?;
-    let (lon, lat): (f64, f64) = (lon.trim().parse().map_err(|_| bad())?, lat.trim().parse().map_err(|_| bad())?);
-    if !((-180.0..=180.0).contains(&lon) && (-90.0..=90.0).contains(&lat)) {
-        return Err(bad());
-    }
-    Ok(globe::View::Orthographic { lon, lat })
-}
-
 fn check_width(width: u32) -> CliResult<()> {
     if (1..=16384).contains(&width) { Ok(()) } else { Err(format!("--width {width}: allowed 1..=16384")) }
 }
@@ -301,7 +290,7 @@ fn run(cli: Cli) -> CliResult<()> {
                 }
                 let view = match from {
                     None => globe::View::Equirectangular,
-                    Some(text) => parse_lon_lat(&text)?,
+                    Some(text) => globe::View::from_lon_lat(&text)?,
                 };
                 if raw {
                     config.manipulation = ManipulationConfig::raw();

@@ -18,8 +18,12 @@ fn add(a: Dir, b: Dir) -> Dir {
     [a[0] + b[0], a[1] + b[1], a[2] + b[2]]
 }
 
-fn sub(a: Dir, b: Dir) -> Dir {
+pub(crate) fn sub(a: Dir, b: Dir) -> Dir {
     [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+
+pub(crate) fn cross(a: Dir, b: Dir) -> Dir {
+    [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
 }
 
 fn scale(a: Dir, s: f64) -> Dir {
