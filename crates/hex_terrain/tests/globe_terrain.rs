@@ -9,7 +9,7 @@ use std::collections::HashMap;
 use hex_terrain::{GlobeChunk, GlobeMesh, GlobeTerrain, MapConfig, MapSize, Terrain, TileKind};
 #[path = "common/vec3.rs"]
 mod vec3;
-use vec3::{V, cross, dot, sub};
+use vec3::{V, cross, dot, normalize, sub};
 
 fn globe(frequency: u32, inner_rings: u32, seed: u32, chunk: u32) -> GlobeTerrain {
     let mut config =
@@ -57,6 +57,7 @@ fn the_whole_globe_is_a_closed_surface_with_the_formula_s_counts() {
         // Each directed edge once, and its reverse once: a closed, consistently wound surface.
         let mut directed: HashMap<(u32, u32), u32> = HashMap::new();
         let mut around = vec![0u32; b.positions.len()];
+        let mut faces = vec![[0.0; 3]; b.positions.len()];
         for t in b.indices.chunks(3) {
             assert!(t[0] != t[1] && t[1] != t[2] && t[0] != t[2], "a degenerate triangle");
             for k in 0..3 {
@@ -67,6 +68,10 @@ fn the_whole_globe_is_a_closed_surface_with_the_formula_s_counts() {
             let face = cross(sub(bb, a), sub(c, a));
             let middle = [(a[0] + bb[0] + c[0]) / 3.0, (a[1] + bb[1] + c[1]) / 3.0, (a[2] + bb[2] + c[2]) / 3.0];
             assert!(dot(face, middle) > 0.0, "f = {f}: a triangle faces inward");
+            for &k in t {
+                let s = &mut faces[k as usize];
+                *s = [s[0] + face[0], s[1] + face[1], s[2] + face[2]];
+            }
         }
         for (&(a, b2), &count) in &directed {
             assert_eq!(count, 1, "f = {f}: edge {a}-{b2} twice the same way");
@@ -81,6 +86,9 @@ fn the_whole_globe_is_a_closed_surface_with_the_formula_s_counts() {
             let p = position(&mesh, i);
             let n = n.map(f64::from);
             assert!((dot(n, n) - 1.0).abs() < 1e-5 && dot(n, p) > 0.0, "f = {f}: normal {i} {n:?}");
+            // The normal is the mean of the faces round its vertex, measured here from the
+            // mesh's own triangles.
+            assert!(dot(n, normalize(faces[i])) > 1.0 - 1e-6, "f = {f}: normal {i} {n:?}, faces {:?}", faces[i]);
         }
     }
 }

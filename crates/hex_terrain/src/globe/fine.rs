@@ -17,7 +17,7 @@
 //! Which tiles hold a point, and its ring, come from the tile centers nearest it in its owner's
 //! frame.
 
-use super::atlas::{Spot, canonical, locate};
+use super::atlas::{STEPS, Spot, canonical, locate};
 
 /// A fine lattice point: its place in the atlas of frequency `F`.
 pub(crate) type Point = Spot;
@@ -35,11 +35,43 @@ fn steps(di: i64, dj: i64) -> u32 {
     ((x.abs() + y.abs() + (x - y).abs()) / 2) as u32
 }
 
+/// The fine steps in a diamond's frame of frequency `F`, going round a point clockwise seen from
+/// outside like the atlas' `STEPS` (they are `STEPS` through `to_frame`).
+const FINE_STEPS: [(i64, i64); 6] = [(1, -1), (2, 1), (1, 2), (-1, 1), (-2, -1), (-1, -2)];
+
 /// The fine lattice of a globe of frequency `f` whose tiles have `n` steps from center to corner.
-#[derive(Debug, Clone, Copy)]
+#[derive(Debug, Clone)]
 pub(crate) struct Fine {
     f: u32,
     n: u32,
+    /// A hexagon's points as frame offsets from its center, and its `6 n^2` triangles as
+    /// indices into them, counterclockwise seen from outside.
+    cells: Vec<Cell>,
+    cell_triangles: Vec<[u16; 3]>,
+}
+
+/// A point of a hexagon's template: its frame offset from the center, its ring, and for a point
+/// inside the tile (ring below `n`) its neighbors as the template's indices, in [`Fine::fan`]'s
+/// order.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Cell {
+    pub(crate) offset: (i64, i64),
+    pub(crate) ring: u32,
+    pub(crate) fan: Option<[u16; 6]>,
+}
+
+/// A fine point's neighbors going round it clockwise seen from outside: six, or five at the
+/// icosahedron's twelve vertices.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Fan {
+    points: [Point; 6],
+    len: u8,
+}
+
+impl Fan {
+    pub(crate) fn points(&self) -> &[Point] {
+        &self.points[..usize::from(self.len)]
+    }
 }
 
 /// The tiles holding a fine point (one inside a tile, two on an edge, three on a corner) and its
@@ -59,7 +91,88 @@ impl Holders {
 
 impl Fine {
     pub(crate) fn new(f: u32, n: u32) -> Self {
-        Self { f, n }
+        let r = i64::from(n);
+        let inside = |x: i64, y: i64| (x.abs() + y.abs() + (x - y).abs()) / 2 <= r;
+        let at = |x: i64, y: i64| (x + r) * (2 * r + 1) + y + r;
+        let mut slot = vec![u16::MAX; ((2 * r + 1) * (2 * r + 1)) as usize];
+        let mut cells = Vec::new();
+        for x in -r..=r {
+            for y in (-r..=r).filter(|&y| inside(x, y)) {
+                slot[at(x, y) as usize] = cells.len() as u16;
+                let ring = ((x.abs() + y.abs() + (x - y).abs()) / 2) as u32;
+                cells.push(Cell { offset: to_frame(x, y), ring, fan: None });
+            }
+        }
+        for x in -r..=r {
+            for y in (-r..=r).filter(|&y| inside(x, y)) {
+                let cell = &mut cells[slot[at(x, y) as usize] as usize];
+                if cell.ring < n {
+                    // The fine axes' steps, which `to_frame` turns into `FINE_STEPS`.
+                    cell.fan = Some(STEPS.map(|(dx, dy)| slot[at(x + dx, y + dy) as usize]));
+                }
+            }
+        }
+        let cell_triangles = lattice_triangles(r)
+            .filter(|t| t.iter().all(|&(x, y)| inside(x, y)))
+            .map(|t| t.map(|(x, y)| slot[at(x, y) as usize]))
+            .collect();
+        Self { f, n, cells, cell_triangles }
+    }
+
+    /// The points of the tile at `spot` (of the tile atlas), each once.
+    pub(crate) fn tile_points(&self, spot: Spot) -> Vec<Point> {
+        match self.hexagon(spot) {
+            Some((d, ci, cj)) => {
+                self.cells.iter().map(|c| self.hexagon_point(d, ci + c.offset.0, cj + c.offset.1)).collect()
+            }
+            None => {
+                let mut out: Vec<Point> = self.triangles(spot).into_iter().flatten().collect();
+                out.sort_unstable_by_key(|&p| self.id(p));
+                out.dedup();
+                out
+            }
+        }
+    }
+
+    /// A hexagon's diamond and center in its frame of frequency `F`; `None` for a pentagon.
+    pub(crate) fn hexagon(&self, spot: Spot) -> Option<(u8, i64, i64)> {
+        let m = i64::from(3 * self.n);
+        match spot {
+            Spot::Diamond { d, i, j } if i != 0 || j != 0 => Some((d, i64::from(i) * m, i64::from(j) * m)),
+            _ => None,
+        }
+    }
+
+    /// A hexagon's points as frame offsets from its center ([`Fine::hexagon`]), and its
+    /// triangles as indices into them.
+    pub(crate) fn template(&self) -> (&[Cell], &[[u16; 3]]) {
+        (&self.cells, &self.cell_triangles)
+    }
+
+    /// The point at `(i, j)` of diamond `d`'s frame, within a hexagon of the diamond (so within
+    /// one edge of it).
+    pub(crate) fn hexagon_point(&self, d: u8, i: i64, j: i64) -> Point {
+        canonical(self.big(), d, i, j).expect("a hexagon's point lies within one edge of its diamond")
+    }
+
+    /// The point's neighbors going round it, each step taken in its owner's frame (the poles
+    /// seen from the first northern or southern diamond): a point's ring never reaches beyond
+    /// one edge of its owner, and at the twelve vertices the step that leads nowhere is left out.
+    pub(crate) fn fan(&self, p: Point) -> Fan {
+        let big = i64::from(self.big());
+        let (d, i, j) = match p {
+            Spot::North => (0, big, 0),
+            Spot::South => (5, 0, big),
+            Spot::Diamond { d, i, j } => (d, i64::from(i), i64::from(j)),
+        };
+        let mut out = Fan { points: [p; 6], len: 0 };
+        for (di, dj) in FINE_STEPS {
+            if let Some(q) = canonical(self.big(), d, i + di, j + dj) {
+                out.points[usize::from(out.len)] = q;
+                out.len += 1;
+            }
+        }
+        out
     }
 
     /// `F = 3 n f`: the frequency of the atlas that holds the fine points.
@@ -75,6 +188,12 @@ impl Fine {
             Spot::South => 10 * big * big + 1,
             Spot::Diamond { d, i, j } => 1 + u64::from(d) * big * big + u64::from(i) * big + u64::from(j),
         }
+    }
+
+    /// How many ids there are: `10 F^2 + 2`.
+    pub(crate) fn id_count(&self) -> u64 {
+        let big = u64::from(self.big());
+        10 * big * big + 2
     }
 
     /// The center of the tile at `spot` (of the tile atlas) as a point.
@@ -156,33 +275,33 @@ impl Fine {
         let big = self.big();
         let inside = |x: i64, y: i64| (x.abs() + y.abs() + (x - y).abs()) / 2 <= n;
         let mut out = Vec::with_capacity(6 * (n * n) as usize);
-        for x in -n..=n {
-            for y in -n..=n {
-                // Up and down triangles from (x, y), wound counterclockwise seen from outside
-                // (the lattice's steps (1, 0), (1, 1), (0, 1) go round clockwise).
-                for [a, b, c] in [[(x, y), (x + 1, y + 1), (x + 1, y)], [(x, y), (x, y + 1), (x + 1, y + 1)]] {
-                    if !(inside(a.0, a.1) && inside(b.0, b.1) && inside(c.0, c.1)) {
-                        continue;
-                    }
-                    let frame = [a, b, c].map(|(x, y)| {
-                        let (u, v) = to_frame(x, y);
-                        (center.0 + u, center.1 + v)
-                    });
-                    let sum = (frame[0].0 + frame[1].0 + frame[2].0, frame[0].1 + frame[1].1 + frame[2].1);
-                    if !keep(sum) {
-                        continue;
-                    }
-                    let points = frame.map(|(i, j)| canonical(big, d, i, j));
-                    if let [Some(a), Some(b), Some(c)] = points {
-                        out.push([a, b, c]);
-                    } else {
-                        debug_assert!(false, "a kept triangle beyond the unfolding: {frame:?} in diamond {d}");
-                    }
-                }
+        for t in lattice_triangles(n).filter(|t| t.iter().all(|&(x, y)| inside(x, y))) {
+            let frame = t.map(|(x, y)| {
+                let (u, v) = to_frame(x, y);
+                (center.0 + u, center.1 + v)
+            });
+            let sum = (frame[0].0 + frame[1].0 + frame[2].0, frame[0].1 + frame[1].1 + frame[2].1);
+            if !keep(sum) {
+                continue;
+            }
+            let points = frame.map(|(i, j)| canonical(big, d, i, j));
+            if let [Some(a), Some(b), Some(c)] = points {
+                out.push([a, b, c]);
+            } else {
+                debug_assert!(false, "a kept triangle beyond the unfolding: {frame:?} in diamond {d}");
             }
         }
         out
     }
+}
+
+/// The up and down triangles from every `(x, y)` of `-n..=n` squared, in the fine lattice's own
+/// axes, wound counterclockwise seen from outside (the lattice's steps `(1, 0)`, `(1, 1)`,
+/// `(0, 1)` go round clockwise).
+fn lattice_triangles(n: i64) -> impl Iterator<Item = [(i64, i64); 3]> {
+    (-n..=n).flat_map(move |x| {
+        (-n..=n).flat_map(move |y| [[(x, y), (x + 1, y + 1), (x + 1, y)], [(x, y), (x, y + 1), (x + 1, y + 1)]])
+    })
 }
 
 /// The diamonds meeting at a pentagon's corner and where the corner lies in each one's frame of

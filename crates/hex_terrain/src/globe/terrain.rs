@@ -217,8 +217,7 @@ impl GlobeTerrain {
                     neighbors.as_slice().iter().any(|&m| self.chunk_of(m) != Some(chunk))
                 });
                 let radius = outline
-                    .flat_map(|&t| self.fine.triangles(self.spot(t)))
-                    .flatten()
+                    .flat_map(|&t| self.fine.tile_points(self.spot(t)))
                     .map(|p| arc(middle, self.direction(p)))
                     .fold(0.0, f64::max);
                 (chunk, middle, radius)
@@ -304,7 +303,11 @@ impl GlobeTerrain {
     /// A point's raw height: 3D fBm at its direction on the sphere of the globe's radius in
     /// hex radii, normalised like the flat map's.
     fn raw(&self, p: Point) -> f32 {
-        let dir = self.direction(p);
+        self.raw_at(self.direction(p))
+    }
+
+    /// The raw height at a unit direction.
+    fn raw_at(&self, dir: Dir) -> f32 {
         let at = dir.map(|c| c * self.radius);
         let sum: f64 = self
             .octaves
@@ -314,31 +317,36 @@ impl GlobeTerrain {
         ((sum + 1.0) * 0.5).clamp(0.0, 1.0) as f32
     }
 
-    /// A point finished: its height after manipulation, its ring and the highest kind of the
-    /// tiles holding it.
-    fn finish(&self, p: Point) -> (f32, u32, TileKind) {
-        let raw = self.raw(p);
-        let holders = self.fine.holders(p);
+    /// A point finished: its height after manipulation, its ring, the highest kind of the
+    /// tiles holding it and its world position. `known` is its ring and kind when one tile alone
+    /// holds it, if the caller knows them.
+    fn finish(&self, p: Point, known: Option<(u32, TileKind)>) -> (f32, u32, TileKind, Dir) {
+        let dir = self.direction(p);
+        let raw = self.raw_at(dir);
         let mut kinds = [TileKind::Sea; 3];
-        for (k, &t) in kinds.iter_mut().zip(holders.tiles()) {
-            *k = self.kinds[self.grid.id(t).0 as usize];
-        }
-        let kinds = &kinds[..holders.tiles().len()];
-        let span = span(kinds);
+        let (ring, len) = match known {
+            Some((ring, kind)) => {
+                kinds[0] = kind;
+                (ring, 1)
+            }
+            None => {
+                let holders = self.fine.holders(p);
+                for (k, &t) in kinds.iter_mut().zip(holders.tiles()) {
+                    *k = self.kinds[self.grid.id(t).0 as usize];
+                }
+                (holders.ring, holders.tiles().len())
+            }
+        };
+        let span = span(&kinds[..len]);
         let height = if self.config.manipulation.any() {
             let n = self.config.subdivisions();
-            manipulate(&self.thresholds, &self.config.manipulation, raw, holders.ring, n, span).height
+            manipulate(&self.thresholds, &self.config.manipulation, raw, ring, n, span).height
         } else {
             raw
         };
         let highest = span.map_or(TileKind::Sea, |(_, hi)| hi);
-        (height, holders.ring, highest)
-    }
-
-    /// The world position of a point of height `h`.
-    fn position(&self, p: Point, h: f32) -> Dir {
-        let r = self.radius() + f64::from(h) * f64::from(self.config.terrain.max_elevation);
-        self.direction(p).map(|c| c * r)
+        let r = self.radius() + f64::from(height) * f64::from(self.config.terrain.max_elevation);
+        (height, ring, highest, dir.map(|c| c * r))
     }
 }
 
