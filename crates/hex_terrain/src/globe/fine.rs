@@ -190,10 +190,22 @@ impl Fine {
         }
     }
 
-    /// How many ids there are: `10 F^2 + 2`.
-    pub(crate) fn id_count(&self) -> u64 {
+    /// How many points there are: `10 F^2 / 3 + 2`.
+    pub(crate) fn point_count(&self) -> u64 {
         let big = u64::from(self.big());
-        10 * big * big + 2
+        10 * big * big / 3 + 2
+    }
+
+    /// A point's place among all points, `0..point_count()`: its id with the two thirds of
+    /// the frame that are not points left out (`F` is a multiple of 3, and in a row of the frame
+    /// the points are every third `j`).
+    pub(crate) fn dense(&self, p: Point) -> usize {
+        let big = self.big() as usize;
+        match p {
+            Spot::North => 0,
+            Spot::South => 10 * big * big / 3 + 1,
+            Spot::Diamond { d, i, j } => 1 + usize::from(d) * big * big / 3 + (i as usize * big) / 3 + j as usize / 3,
+        }
     }
 
     /// The center of the tile at `spot` (of the tile atlas) as a point.

@@ -6,7 +6,6 @@
 //! config and the point, so chunks meet bit for bit and a globe made chunk by chunk is the globe
 //! made whole.
 
-use noise::{NoiseFn, Perlin};
 use rayon::prelude::*;
 
 use super::atlas::Spot;
@@ -18,7 +17,7 @@ pub use mesh::{GlobeMesh, GlobePoint};
 mod mesh;
 use crate::config::{MapConfig, MapSize};
 use crate::error::ConfigError;
-use crate::heights::Fbm;
+use crate::heights::fbm::{LANES, SolidFbm};
 use crate::kind::{Thresholds, TileKind};
 use crate::manipulate::{manipulate, span};
 
@@ -49,9 +48,8 @@ pub struct GlobeTerrain {
     config: MapConfig,
     grid: GlobeGrid,
     fine: Fine,
-    perlin: Perlin,
-    /// `(frequency in noise units per hex radius, amplitude)` per octave.
-    octaves: Vec<(f64, f64)>,
+    /// The fBm, its points in hex radii.
+    fbm: SolidFbm,
     thresholds: Thresholds,
     /// The globe's radius in hex radii.
     radius: f64,
@@ -59,8 +57,8 @@ pub struct GlobeTerrain {
     centers: Vec<f32>,
     kinds: Vec<TileKind>,
     /// Each chunk's cap: the direction of its middle and the angle from it that holds all of
-    /// its ground.
-    caps: Vec<(GlobeChunk, Dir, f64)>,
+    /// its ground; found at the first [`GlobeTerrain::chunks_within`].
+    caps: std::sync::OnceLock<Vec<(GlobeChunk, Dir, f64)>>,
 }
 
 impl GlobeTerrain {
@@ -78,32 +76,26 @@ impl GlobeTerrain {
             ));
         };
         let grid = GlobeGrid::new(frequency)?;
-        let fbm = Fbm::new(config.seed, &config.noise);
         // The thesis' vertex step is a quarter of a hex radius, and its noise scale counts them.
-        let per_hex = 4.0 / config.noise.scale;
-        let octaves = fbm.octaves().iter().map(|&(freq, amp)| (freq * per_hex, amp)).collect();
+        let fbm = SolidFbm::new(config.seed, &config.noise, 4.0 / config.noise.scale);
         // The sphere whose area is the tiles' at the flat map's hexagon area (3 sqrt 3 / 2 for a
         // hex radius of 1): every tile about the size of a flat map's tile.
         let tiles = f64::from(grid.tile_count());
         let radius = (tiles * 3.0 * 3f64.sqrt() / (8.0 * std::f64::consts::PI)).sqrt();
         let mut globe = Self {
             fine: Fine::new(frequency, config.subdivisions()),
-            perlin: Perlin::new(config.seed),
-            octaves,
+            fbm,
             thresholds: Thresholds::new(&config.terrain, &config.manipulation),
             radius,
             centers: Vec::new(),
             kinds: Vec::new(),
-            caps: Vec::new(),
+            caps: std::sync::OnceLock::new(),
             grid,
             config,
         };
-        globe.centers = (0..globe.grid.tile_count())
-            .into_par_iter()
-            .map(|t| globe.raw(globe.fine.center(globe.spot(GlobeTile(t)))))
-            .collect();
+        let centers: Vec<Point> = globe.grid.tiles().map(|t| globe.fine.center(globe.spot(t))).collect();
+        globe.centers = centers.par_chunks(LANES).flat_map_iter(|batch| globe.raw_batch(batch)).collect();
         globe.kinds = globe.centers.iter().map(|&h| globe.thresholds.classify(h)).collect();
-        globe.caps = globe.caps();
         Ok(globe)
     }
 
@@ -193,6 +185,7 @@ impl GlobeTerrain {
         }
         let dir = project::normalize(direction);
         self.caps
+            .get_or_init(|| self.caps())
             .iter()
             .filter(|(_, middle, radius)| arc(dir, *middle) <= angle + radius)
             .map(|&(chunk, _, _)| chunk)
@@ -300,29 +293,36 @@ impl GlobeTerrain {
         self.grid.projection.direction(d, u, v)
     }
 
-    /// A point's raw height: 3D fBm at its direction on the sphere of the globe's radius in
-    /// hex radii, normalised like the flat map's.
-    fn raw(&self, p: Point) -> f32 {
-        self.raw_at(self.direction(p))
+    /// Up to `LANES` points' raw heights: 3D fBm at their directions on the sphere of the
+    /// globe's radius in hex radii, normalised like the flat map's; with their directions.
+    fn raw_batch(&self, points: &[Point]) -> Vec<f32> {
+        self.directions_and_raw(points).into_iter().map(|(_, raw)| raw).collect()
     }
 
-    /// The raw height at a unit direction.
-    fn raw_at(&self, dir: Dir) -> f32 {
-        let at = dir.map(|c| c * self.radius);
-        let sum: f64 = self
-            .octaves
-            .iter()
-            .map(|&(freq, amp)| amp * self.perlin.get([at[0] * freq, at[1] * freq, at[2] * freq]))
-            .sum();
-        ((sum + 1.0) * 0.5).clamp(0.0, 1.0) as f32
+    fn directions_and_raw(&self, points: &[Point]) -> Vec<(Dir, f32)> {
+        let dirs: Vec<Dir> = points.iter().map(|&p| self.direction(p)).collect();
+        let mut at = [[0.0; 3]; LANES];
+        for (a, d) in at.iter_mut().zip(dirs.iter().cycle()) {
+            *a = d.map(|c| c * self.radius);
+        }
+        let mut raw = [0.0; LANES];
+        self.fbm.sample_batch(&at, &mut raw);
+        dirs.into_iter().zip(raw).map(|(d, r)| (d, r as f32)).collect()
     }
 
-    /// A point finished: its height after manipulation, its ring, the highest kind of the
-    /// tiles holding it and its world position. `known` is its ring and kind when one tile alone
-    /// holds it, if the caller knows them.
-    fn finish(&self, p: Point, known: Option<(u32, TileKind)>) -> (f32, u32, TileKind, Dir) {
-        let dir = self.direction(p);
-        let raw = self.raw_at(dir);
+    /// Up to `LANES` points finished: each one's height after manipulation, its ring, the
+    /// highest kind of the tiles holding it and its world position. `known` is a point's ring
+    /// and kind when one tile alone holds it, if the caller knows them.
+    pub(super) fn finish_batch(
+        &self,
+        points: &[Point],
+        known: &[Option<(u32, TileKind)>],
+    ) -> Vec<(f32, u32, TileKind, Dir)> {
+        let raw = self.directions_and_raw(points);
+        points.iter().zip(known).zip(raw).map(|((&p, &known), (dir, raw))| self.finish(p, known, dir, raw)).collect()
+    }
+
+    fn finish(&self, p: Point, known: Option<(u32, TileKind)>, dir: Dir, raw: f32) -> (f32, u32, TileKind, Dir) {
         let mut kinds = [TileKind::Sea; 3];
         let (ring, len) = match known {
             Some((ring, kind)) => {

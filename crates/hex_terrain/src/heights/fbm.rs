@@ -20,8 +20,10 @@ mod avx2;
 #[cfg(target_arch = "x86_64")]
 mod avx512;
 mod periodic;
+mod solid;
 
 use periodic::{PeriodicCells, reduce};
+pub(crate) use solid::SolidFbm;
 
 const TABLE: usize = 256;
 const SCALE_2D: f64 = 2.0 / std::f64::consts::SQRT_2;

@@ -9,6 +9,7 @@ use super::super::fine::{Fan, Fine, Point};
 use super::super::project::{self, Dir, cross, sub};
 use super::GlobeTerrain;
 use crate::globe::GlobeTile;
+use crate::heights::fbm::LANES;
 use crate::kind::TileKind;
 use crate::mesh::MeshBuffers;
 
@@ -47,92 +48,122 @@ impl GlobeTerrain {
         let fine = &self.fine;
         let (cells, cell_triangles) = fine.template();
         let n = self.config.subdivisions();
-        let estimate = tiles.len() * cells.len();
-        let mut slots = Slots::new(fine, estimate + estimate / 4);
+        let per = cells.len();
+        // Every hexagon's points, found in parallel (a pentagon's are gathered below).
+        let hexagon_points: Vec<Option<Point>> = tiles
+            .par_iter()
+            .flat_map_iter(|&t| {
+                let hexagon = fine.hexagon(self.spot(t));
+                cells
+                    .iter()
+                    .map(move |c| hexagon.map(|(d, ci, cj)| fine.hexagon_point(d, ci + c.offset.0, cj + c.offset.1)))
+            })
+            .collect();
+        let mut slots = Slots::new(fine, tiles.len() * per + tiles.len() * per / 4);
         let mut indices = Vec::with_capacity(tiles.len() * cell_triangles.len() * 3);
-        let mut local = Vec::with_capacity(cells.len());
-        // Each mesh point's ring of neighbors (by slot), as far as known.
-        let mut rings: Vec<Option<[u32; 6]>> = Vec::with_capacity(estimate);
-        for &t in &tiles {
-            let spot = self.spot(t);
-            if let Some((d, ci, cj)) = fine.hexagon(spot) {
+        // Each tile's points' slots, cell by cell, and where each mesh point's ring is found: in
+        // its hexagon's template (the index of its cell in `locals`), or `NOT_INSIDE`.
+        let mut locals: Vec<u32> = Vec::with_capacity(tiles.len() * per);
+        let mut home: Vec<u32> = Vec::with_capacity(tiles.len() * per);
+        for (k, &t) in tiles.iter().enumerate() {
+            let points = &hexagon_points[k * per..(k + 1) * per];
+            if points[0].is_some() {
                 let kind = self.kinds[t.0 as usize];
-                local.clear();
-                for c in cells {
-                    let p = fine.hexagon_point(d, ci + c.offset.0, cj + c.offset.1);
+                let base = locals.len();
+                for (c, p) in cells.iter().zip(points.iter().flatten()) {
                     // A point inside the hexagon is its alone: its ring and kind are known.
                     let known = (c.ring < n).then_some((c.ring, kind));
-                    local.push(slots.intern(p, known));
-                }
-                rings.resize(slots.points.len(), None);
-                for (c, &slot) in cells.iter().zip(&local) {
-                    if let Some(fan) = c.fan {
-                        rings[slot as usize] = Some(fan.map(|k| local[usize::from(k)]));
+                    let slot = slots.intern(*p, known);
+                    if slot as usize == home.len() {
+                        home.push(if c.fan.is_some() { (base + locals.len() - base) as u32 } else { NOT_INSIDE });
                     }
+                    locals.push(slot);
                 }
+                let local = &locals[base..];
                 indices.extend(cell_triangles.iter().flat_map(|t| t.map(|k| local[usize::from(k)])));
             } else {
-                for triangle in fine.triangles(spot) {
+                locals.extend(std::iter::repeat_n(NOT_INSIDE, per));
+                for triangle in fine.triangles(self.spot(t)) {
                     indices.extend(triangle.map(|p| slots.intern(p, None)));
                 }
+                home.resize(slots.points.len(), NOT_INSIDE);
             }
         }
         let count = slots.points.len();
-        rings.resize(count, None);
         // The other points' fans in their owners' frames, reaching the ring of points just
         // beyond the mesh.
-        let pending: Vec<usize> = (0..count).filter(|&i| rings[i].is_none()).collect();
+        let pending: Vec<usize> = (0..count).filter(|&i| home[i] == NOT_INSIDE).collect();
         let fans: Vec<Fan> = pending.par_iter().map(|&i| fine.fan(slots.points[i])).collect();
-        let mut pentagons: Vec<(usize, [u32; 5])> = Vec::new();
+        let mut rings: Vec<([u32; 6], u8)> = Vec::with_capacity(fans.len());
         for (&i, fan) in pending.iter().zip(&fans) {
             let mut ring = [0; 6];
             for (r, &q) in ring.iter_mut().zip(fan.points()) {
                 *r = slots.intern(q, None);
             }
-            match fan.points().len() {
-                6 => rings[i] = Some(ring),
-                _ => pentagons.push((i, [ring[0], ring[1], ring[2], ring[3], ring[4]])),
-            }
+            home[i] = NOT_INSIDE - 1 - rings.len() as u32;
+            rings.push((ring, fan.points().len() as u8));
         }
         // Each point is a pure function of the config and the point: the threads change no bit.
-        let finished: Vec<(f32, u32, TileKind, Dir)> =
-            slots.points.par_iter().zip(&slots.known).map(|(&p, &known)| self.finish(p, known)).collect();
-        let normal = |i: usize, ring: &[u32]| {
-            let a = finished[i].3;
-            let mut normal = [0.0f64; 3];
-            for (k, &this) in ring.iter().enumerate() {
-                // The ring goes round clockwise seen from outside: (a, next, this) is
-                // counterclockwise.
-                let next = ring[(k + 1) % ring.len()];
-                let face = cross(sub(finished[next as usize].3, a), sub(finished[this as usize].3, a));
-                normal = [normal[0] + face[0], normal[1] + face[1], normal[2] + face[2]];
-            }
-            project::normalize(normal).map(|c| c as f32)
-        };
-        let mut normals: Vec<[f32; 3]> =
-            rings.par_iter().enumerate().map(|(i, ring)| ring.map_or([0.0; 3], |ring| normal(i, &ring))).collect();
-        for (i, ring) in pentagons {
-            normals[i] = normal(i, &ring);
-        }
+        let finished: Vec<(f32, u32, TileKind, Dir)> = slots
+            .points
+            .par_chunks(LANES)
+            .zip(slots.known.par_chunks(LANES))
+            .flat_map_iter(|(points, known)| self.finish_batch(points, known))
+            .collect();
         let rings_per = n as f32;
-        let mut buffers = MeshBuffers::default();
-        let mut heights = Vec::with_capacity(count);
-        for (&(h, ring, kind, pos), normal) in finished[..count].iter().zip(normals) {
-            heights.push(h);
-            buffers.positions.push([
-                (pos[0] - origin[0]) as f32,
-                (pos[1] - origin[1]) as f32,
-                (pos[2] - origin[2]) as f32,
-            ]);
-            buffers.normals.push(normal);
-            buffers.tile_kinds.push(kind as u32);
-            buffers.center_distances.push(ring as f32 / rings_per);
+        let vertices: Vec<([f32; 3], [f32; 3])> = (0..count)
+            .into_par_iter()
+            .map(|i| {
+                let mut ring = [0; 6];
+                let len = match home[i] {
+                    at if at < NOT_INSIDE - rings.len() as u32 => {
+                        let (tile, cell) = (at as usize / per, at as usize % per);
+                        let fan = cells[cell].fan.expect("a point inside its hexagon");
+                        for (r, k) in ring.iter_mut().zip(fan) {
+                            *r = locals[tile * per + usize::from(k)];
+                        }
+                        6
+                    }
+                    at => {
+                        let (r, len) = rings[(NOT_INSIDE - 1 - at) as usize];
+                        ring = r;
+                        usize::from(len)
+                    }
+                };
+                let a = finished[i].3;
+                let mut normal = [0.0f64; 3];
+                for k in 0..len {
+                    // The ring goes round clockwise seen from outside: (a, next, this) is
+                    // counterclockwise.
+                    let (this, next) = (ring[k], ring[(k + 1) % len]);
+                    let face = cross(sub(finished[next as usize].3, a), sub(finished[this as usize].3, a));
+                    normal = [normal[0] + face[0], normal[1] + face[1], normal[2] + face[2]];
+                }
+                let position = [(a[0] - origin[0]) as f32, (a[1] - origin[1]) as f32, (a[2] - origin[2]) as f32];
+                (position, project::normalize(normal).map(|c| c as f32))
+            })
+            .collect();
+        let finished = &finished[..count];
+        let buffers = MeshBuffers {
+            positions: vertices.iter().map(|v| v.0).collect(),
+            normals: vertices.iter().map(|v| v.1).collect(),
+            tile_kinds: finished.iter().map(|f| f.2 as u32).collect(),
+            center_distances: finished.iter().map(|f| f.1 as f32 / rings_per).collect(),
+            indices,
+            ..MeshBuffers::default()
+        };
+        GlobeMesh {
+            origin,
+            buffers,
+            points: slots.points[..count].iter().map(|&p| GlobePoint(fine.id(p))).collect(),
+            heights: finished.iter().map(|f| f.0).collect(),
+            tiles,
         }
-        buffers.indices = indices;
-        let points = slots.points[..count].iter().map(|&p| GlobePoint(fine.id(p))).collect();
-        GlobeMesh { origin, buffers, points, heights, tiles }
     }
 }
+
+/// A mesh point whose ring is not in its hexagon's template (on a border, or a pentagon's).
+const NOT_INSIDE: u32 = u32::MAX;
 
 /// Points by id, each once, in the order first met, with what is known of them beforehand.
 struct Slots<'a> {
@@ -142,7 +173,7 @@ struct Slots<'a> {
     known: Vec<Option<(u32, TileKind)>>,
 }
 
-/// Slots by point id: a table over every id when the mesh holds a good part of the globe (one
+/// Slots by point: a table over every point when the mesh holds a good part of the globe (one
 /// read a point), else a hash map of the few the mesh holds.
 enum Index {
     Dense(Vec<u32>),
@@ -151,9 +182,9 @@ enum Index {
 
 impl<'a> Slots<'a> {
     fn new(fine: &'a Fine, capacity: usize) -> Self {
-        let ids = fine.id_count();
-        let index = if capacity as u64 * 8 >= ids {
-            Index::Dense(vec![u32::MAX; ids as usize])
+        let points = fine.point_count();
+        let index = if capacity as u64 * 4 >= points {
+            Index::Dense(vec![u32::MAX; points as usize])
         } else {
             Index::Sparse(HashMap::with_capacity_and_hasher(capacity, Default::default()))
         };
@@ -163,16 +194,15 @@ impl<'a> Slots<'a> {
     /// The point's slot, given it now if it has none.
     fn intern(&mut self, p: Point, known: Option<(u32, TileKind)>) -> u32 {
         let next = self.points.len() as u32;
-        let id = self.fine.id(p);
         let slot = match &mut self.index {
             Index::Dense(table) => {
-                let slot = &mut table[id as usize];
+                let slot = &mut table[self.fine.dense(p)];
                 if *slot == u32::MAX {
                     *slot = next;
                 }
                 *slot
             }
-            Index::Sparse(map) => *map.entry(id).or_insert(next),
+            Index::Sparse(map) => *map.entry(self.fine.id(p)).or_insert(next),
         };
         if slot == next {
             self.points.push(p);
