@@ -201,7 +201,13 @@ fn bad_globe_configs_are_refused_by_field() {
     refused(rivers, "rivers.enabled");
     let mut climate = globe(8);
     climate.climate.enabled = true;
-    refused(climate, "climate.enabled");
+    climate.climate.latitudes = (0.6, -0.6);
+    refused(climate.clone(), "climate.latitudes");
+    climate.climate.latitudes = (1.0, -1.0);
+    climate.climate.winds = Some(Default::default());
+    refused(climate.clone(), "climate.winds");
+    climate.climate.winds = None;
+    assert!(GlobeTerrain::new(climate).is_ok(), "a globe with a climate");
     refused(MapConfig { size: MapSize::Unbounded, ..Default::default() }, "size");
     // A flat map's compiler refuses a globe by name too.
     assert_eq!(Terrain::new(globe(8)).unwrap_err().field, "size");

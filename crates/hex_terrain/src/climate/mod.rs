@@ -43,7 +43,7 @@ pub(crate) struct ClimateFields {
 const RAIN_TO_MOISTURE: f32 = 0.9;
 
 /// Where the temperature field is read in the moisture fBm's space, away from moisture.
-const TEMPERATURE_SHIFT: f64 = 7.0e4;
+pub(crate) const TEMPERATURE_SHIFT: f64 = 7.0e4;
 
 impl ClimateFields {
     /// The fields of a map; `wrap_width` is a wrapping map's width in hex radii.
@@ -74,9 +74,27 @@ impl ClimateFields {
     }
 }
 
+/// The biome of a land or mountain tile from its sample and climate, by the config's biome
+/// table: the rule covering its climate for its kind, or hills where a land tile (not snow or
+/// tundra) lies high enough up the land range. Flat maps and globes alike.
+pub(crate) fn biome_by_table(c: &ClimateConfig, thresholds: &Thresholds, s: &TileSample, climate: Climate) -> Biome {
+    let found = c
+        .biomes
+        .iter()
+        .find(|rule| rule.relief == s.kind && rule.covers(climate.temperature, climate.moisture))
+        .map_or(Biome::of_kind(s.kind), |rule| rule.biome);
+    if s.kind == TileKind::Land && !matches!(found, Biome::Snow | Biome::Tundra) {
+        let (sea, mountain) = (thresholds.sea, thresholds.mountain);
+        if (s.raw - sea) >= c.hills * (mountain - sea) && c.hills < 1.0 {
+            return Biome::Hills;
+        }
+    }
+    found
+}
+
 /// Spreads an fBm value (which gathers around 0.5) over `[0, 1]`.
 #[inline]
-fn stretch(v: f64, by: f64) -> f32 {
+pub(crate) fn stretch(v: f64, by: f64) -> f32 {
     (((v - 0.5) * by) + 0.5).clamp(0.0, 1.0) as f32
 }
 
@@ -260,19 +278,7 @@ impl ClimateModel {
             return if s.next_to_land { Biome::Coast } else { Biome::Ocean };
         }
         let Some(climate) = climate else { return Biome::of_kind(s.kind) };
-        let c = &self.config;
-        let found = c
-            .biomes
-            .iter()
-            .find(|rule| rule.relief == s.kind && rule.covers(climate.temperature, climate.moisture))
-            .map_or(Biome::of_kind(s.kind), |rule| rule.biome);
-        if s.kind == TileKind::Land && !matches!(found, Biome::Snow | Biome::Tundra) {
-            let (sea, mountain) = (self.thresholds.sea, self.thresholds.mountain);
-            if (s.raw - sea) >= c.hills * (mountain - sea) && c.hills < 1.0 {
-                return Biome::Hills;
-            }
-        }
-        found
+        biome_by_table(&self.config, &self.thresholds, s, climate)
     }
 }
 

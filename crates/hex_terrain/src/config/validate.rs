@@ -305,7 +305,18 @@ impl MapConfig {
         )?;
         let not_yet = |part: &str| format!("none on a globe: {part} are not on globes yet");
         check(self.map_type.is_none(), "map_type", "a map type on a globe", not_yet("map types"))?;
-        check(!self.climate.enabled, "climate.enabled", true, "false on a globe: climate is not on globes yet")?;
+        check(
+            self.climate.winds.is_none(),
+            "climate.winds",
+            "winds on a globe",
+            "None on a globe: winds are not on globes yet",
+        )?;
+        check(
+            self.climate.latitudes == (1.0, -1.0),
+            "climate.latitudes",
+            format!("{:?} on a globe", self.climate.latitudes),
+            "(1, -1) on a globe (its latitudes come from its axis)",
+        )?;
         check(!self.rivers.enabled, "rivers.enabled", true, "false on a globe: rivers are not on globes yet")?;
         check(self.ruleset.is_none(), "ruleset", format!("{:?}", self.ruleset), not_yet("terrain rulesets"))?;
         check(self.setup.is_none(), "setup", "a game setup on a globe", not_yet("game setups"))?;

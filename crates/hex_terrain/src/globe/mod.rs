@@ -7,12 +7,17 @@
 //! `tile_at` and `neighbors` take constant time.
 
 mod atlas;
+mod climate;
 mod fine;
+mod fog;
 mod project;
+mod rules;
 mod terrain;
 
 use atlas::{MISSING_AT_ORIGIN, STEPS, Spot, locate};
+pub use fog::{GLOBE_FOG_MAGIC, GLOBE_FOG_VERSION, GlobeFog};
 use project::Projection;
+pub use rules::{GLOBE_SIGHT_SAMPLES, GlobePath, GlobeTileInfo};
 pub use terrain::{GlobeChunk, GlobeMesh, GlobePoint, GlobeTerrain};
 
 use crate::ConfigError;
@@ -244,6 +249,37 @@ impl GlobeGrid {
             steps += 1;
         }
         None
+    }
+
+    /// Every tile within `steps` of `from` over the tile graph, with its steps, nearest first
+    /// then by id (`from` first, at 0); empty for a tile not of this grid. Any number of steps:
+    /// the work is bounded by the grid's tiles.
+    #[must_use]
+    pub fn within(&self, from: GlobeTile, steps: u32) -> Vec<(GlobeTile, u32)> {
+        if !self.contains(from) {
+            return Vec::new();
+        }
+        let mut seen = vec![false; self.tile_count() as usize];
+        seen[from.0 as usize] = true;
+        let mut out = vec![(from, 0)];
+        let mut ring = vec![from];
+        for step in 1..=steps {
+            let mut next = Vec::new();
+            for t in ring {
+                for &n in &self.neighbors(t).expect("a tile of the grid") {
+                    if !std::mem::replace(&mut seen[n.0 as usize], true) {
+                        next.push(n);
+                    }
+                }
+            }
+            if next.is_empty() {
+                break;
+            }
+            next.sort_unstable();
+            out.extend(next.iter().map(|&t| (t, step)));
+            ring = next;
+        }
+        out
     }
 
     fn spot(&self, tile: GlobeTile) -> Option<Spot> {

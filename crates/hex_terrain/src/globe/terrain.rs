@@ -15,11 +15,14 @@ use super::{GlobeGrid, GlobeTile};
 pub use mesh::{GlobeMesh, GlobePoint};
 
 mod mesh;
+use super::climate::Ground;
+use crate::climate::Climate;
 use crate::config::{MapConfig, MapSize};
 use crate::error::ConfigError;
 use crate::heights::fbm::{LANES, SolidFbm};
 use crate::kind::{Thresholds, TileKind};
 use crate::manipulate::{manipulate, span};
+use crate::vocab::Biome;
 
 /// A piece of a globe generated at once: a pole's tile, or a parallelogram of at most
 /// `chunk_size.0` by `chunk_size.0` tiles of a diamond.
@@ -43,7 +46,7 @@ pub enum GlobeChunk {
 }
 
 /// A hex globe's terrain, compiled from a [`MapConfig`] of size [`MapSize::Globe`].
-#[derive(Debug, Clone)]
+#[derive(Clone)]
 pub struct GlobeTerrain {
     config: MapConfig,
     grid: GlobeGrid,
@@ -53,12 +56,25 @@ pub struct GlobeTerrain {
     thresholds: Thresholds,
     /// The globe's radius in hex radii.
     radius: f64,
-    /// Each tile's center height (raw) and kind, by id.
+    /// Each tile's center height (raw), kind, climate and biome, by id.
     centers: Vec<f32>,
     kinds: Vec<TileKind>,
+    climates: Vec<Option<Climate>>,
+    biomes: Vec<Biome>,
     /// Each chunk's cap: the direction of its middle and the angle from it that holds all of
     /// its ground; found at the first [`GlobeTerrain::chunks_within`].
     caps: std::sync::OnceLock<Vec<(GlobeChunk, Dir, f64)>>,
+}
+
+impl std::fmt::Debug for GlobeTerrain {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("GlobeTerrain")
+            .field("name", &self.config.name)
+            .field("seed", &self.config.seed)
+            .field("frequency", &self.grid.frequency())
+            .field("radius", &self.radius())
+            .finish_non_exhaustive()
+    }
 }
 
 impl GlobeTerrain {
@@ -89,6 +105,8 @@ impl GlobeTerrain {
             radius,
             centers: Vec::new(),
             kinds: Vec::new(),
+            climates: Vec::new(),
+            biomes: Vec::new(),
             caps: std::sync::OnceLock::new(),
             grid,
             config,
@@ -96,6 +114,15 @@ impl GlobeTerrain {
         let centers: Vec<Point> = globe.grid.tiles().map(|t| globe.fine.center(globe.spot(t))).collect();
         globe.centers = centers.par_chunks(LANES).flat_map_iter(|batch| globe.raw_batch(batch)).collect();
         globe.kinds = globe.centers.iter().map(|&h| globe.thresholds.classify(h)).collect();
+        (globe.climates, globe.biomes) = Ground {
+            config: &globe.config,
+            thresholds: &globe.thresholds,
+            grid: &globe.grid,
+            heights: &globe.centers,
+            kinds: &globe.kinds,
+            radius: globe.radius,
+        }
+        .climates();
         Ok(globe)
     }
 
@@ -137,6 +164,20 @@ impl GlobeTerrain {
     #[must_use]
     pub fn tile_height(&self, tile: GlobeTile) -> Option<f32> {
         self.centers.get(tile.0 as usize).copied()
+    }
+
+    /// A tile's biome: by its climate and the config's biome table on a globe with a climate
+    /// (coast or ocean at sea), else by its kind; `None` for a tile not of this globe.
+    #[must_use]
+    pub fn tile_biome(&self, tile: GlobeTile) -> Option<Biome> {
+        self.biomes.get(tile.0 as usize).copied()
+    }
+
+    /// A tile's temperature and moisture; `None` when the globe has no climate or for a tile not
+    /// of this globe.
+    #[must_use]
+    pub fn tile_climate(&self, tile: GlobeTile) -> Option<Climate> {
+        self.climates.get(tile.0 as usize).copied().flatten()
     }
 
     /// The share of the tiles that are sea.
@@ -282,6 +323,17 @@ impl GlobeTerrain {
     #[must_use]
     pub fn generate_whole(&self) -> GlobeMesh {
         self.mesh(self.grid.tiles().collect(), [0.0; 3])
+    }
+
+    /// A tile's center height after manipulation (normalised).
+    pub(super) fn center_height(&self, tile: GlobeTile) -> f32 {
+        let p = self.fine.center(self.spot(tile));
+        self.finish_batch(&[p], &[Some((0, self.kinds[tile.0 as usize]))])[0].0
+    }
+
+    /// The direction of a tile's center.
+    pub(super) fn center(&self, tile: GlobeTile) -> Dir {
+        self.direction(self.fine.center(self.spot(tile)))
     }
 
     fn spot(&self, tile: GlobeTile) -> Spot {
