@@ -34,7 +34,7 @@ pub use setup::{
 pub use sight::{MAX_SIGHT_BONUS, SightConfig};
 pub use validate::{
     MAX_CHUNK_BYTES, MAX_CHUNK_SIDE, MAX_INNER_RINGS, MAX_MAP_BYTES, MAX_OCTAVES, MAX_OFFSET, MAX_WORLD_TILE,
-    MIN_MAP_TYPE_SIDE, MIN_WRAP_COLUMNS,
+    MIN_MAP_TYPE_FREQUENCY, MIN_MAP_TYPE_SIDE, MIN_WRAP_COLUMNS,
 };
 
 /// The whole description of a map. Defaults reproduce the thesis' Map0 (tables 2-4) on a

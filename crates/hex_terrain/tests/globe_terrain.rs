@@ -6,7 +6,7 @@
 
 use std::collections::HashMap;
 
-use hex_terrain::{GlobeChunk, GlobeMesh, GlobeTerrain, MapConfig, MapSize, Terrain, TileKind};
+use hex_terrain::{GlobeChunk, GlobeMesh, GlobeTerrain, MapConfig, MapSize, MapType, MapTypeConfig, Terrain, TileKind};
 #[path = "common/vec3.rs"]
 mod vec3;
 use vec3::{V, cross, dot, normalize, sub};
@@ -18,6 +18,13 @@ fn globe(frequency: u32, inner_rings: u32, seed: u32, chunk: u32) -> GlobeTerrai
     config.terrain.max_elevation = 1.0;
     config.terrain.sea_threshold = 0.45;
     config.terrain.mountain_threshold = 0.58;
+    GlobeTerrain::new(config).unwrap()
+}
+
+/// The same globe with a map type shaping its land.
+fn typed(frequency: u32, inner_rings: u32, seed: u32, chunk: u32, kind: MapType) -> GlobeTerrain {
+    let mut config = globe(frequency, inner_rings, seed, chunk).config().clone();
+    config.map_type = Some(MapTypeConfig { kind, ..Default::default() });
     GlobeTerrain::new(config).unwrap()
 }
 
@@ -117,8 +124,11 @@ fn tiles_hold_six_or_five_times_n_squared_triangles_and_chunks_partition_them() 
 
 #[test]
 fn chunks_are_the_whole_globe_bit_for_bit() {
-    for (f, rings) in [(3, 1), (5, 2), (8, 1)] {
-        let g = globe(f, rings, 11, 2);
+    for (f, rings, kind) in [(3, 1, None), (5, 2, None), (8, 1, None), (6, 2, Some(MapType::Pangaea))] {
+        let g = match kind {
+            Some(kind) => typed(f, rings, 11, 2, kind),
+            None => globe(f, rings, 11, 2),
+        };
         let whole = g.generate_whole();
         let at: HashMap<_, _> = whole.points.iter().enumerate().map(|(i, &p)| (p, i)).collect();
         let mut copies = 0;
@@ -154,7 +164,9 @@ fn chunks_are_the_whole_globe_bit_for_bit() {
 fn every_inner_vertex_lies_in_its_tile_kind_s_range() {
     for seed in 0..6 {
         for (f, rings) in [(5, 1), (6, 2), (9, 3)] {
-            let g = globe(f, rings, seed, 4);
+            // Every other globe with a map type's land.
+            let kind = MapType::ALL[(seed as usize + f as usize) % MapType::ALL.len()];
+            let g = if (seed + f) % 2 == 0 { globe(f, rings, seed, 4) } else { typed(f, rings, seed, 4, kind) };
             let mesh = g.generate_whole();
             let mut kinds = [0; 3];
             for (v, &h) in mesh.heights.iter().enumerate() {

@@ -57,11 +57,16 @@ fn from_lat_lon(lat: f64, lon: f64) -> V {
     [lat.cos() * lon.cos(), lat.sin(), -lat.cos() * lon.sin()]
 }
 
-/// A vertex's color: its height's layer color, shaded by its normal against a light from the
-/// north-west of its place, darkened on tile borders when `outlines`.
+/// A vertex's color: its tile's biome color on a globe with a climate, else its height's layer
+/// color; shaded by its normal against a light from the north-west of its place.
 fn shade(globe: &GlobeTerrain, mesh: &GlobeMesh, v: usize, p: V) -> [f32; 3] {
     let t = &globe.config().terrain;
-    let color = albedo(mesh.heights[v], t.sea_threshold, t.mountain_threshold, globe.config().appearance.blend);
+    let biome =
+        globe.config().climate.enabled.then(|| globe.tile_at(p).and_then(|tile| globe.tile_biome(tile))).flatten();
+    let color = match biome {
+        Some(biome) => biome.color().map(|c| f32::from(c) / 255.0),
+        None => albedo(mesh.heights[v], t.sea_threshold, t.mountain_threshold, globe.config().appearance.blend),
+    };
     let up = normalize(p);
     // At a pole every way is south: take the prime meridian's north there.
     let north = normalize([-up[1] * up[0], 1.0 - up[1] * up[1], -up[1] * up[2]]);

@@ -21,6 +21,9 @@ pub const MIN_WRAP_COLUMNS: u32 = 4;
 pub const MAX_WORLD_TILE: i32 = 1 << 24;
 /// Fewest columns and rows of a map with a map type.
 pub const MIN_MAP_TYPE_SIDE: u32 = 8;
+
+/// Smallest globe frequency a map type arranges (162 tiles).
+pub const MIN_MAP_TYPE_FREQUENCY: u32 = 4;
 /// Largest chunk side, in tiles.
 pub const MAX_CHUNK_SIDE: u32 = 512;
 /// Largest estimated size of one chunk's mesh, in bytes: a chunk is generated on one thread
@@ -207,21 +210,29 @@ impl MapConfig {
         }
 
         if let Some(map_type) = &self.map_type {
-            let Some((x, z)) = self.size.bounds() else {
-                return Err(ConfigError::new(
-                    "map_type",
-                    format!("{:?} on an Unbounded map", map_type.kind),
-                    "None for an Unbounded map (a map type arranges a bounded map's land and sea; an unbounded \
-                     world keeps the thesis' shapes)"
-                        .into(),
-                ));
-            };
-            check(
-                x >= MIN_MAP_TYPE_SIDE && z >= MIN_MAP_TYPE_SIDE,
-                "size",
-                format!("{x}x{z}"),
-                format!("at least {MIN_MAP_TYPE_SIDE}x{MIN_MAP_TYPE_SIDE} hexes with a map type"),
-            )?;
+            match (self.size, self.size.bounds()) {
+                (MapSize::Globe { frequency }, _) => check(
+                    frequency >= MIN_MAP_TYPE_FREQUENCY,
+                    "size.Globe.frequency",
+                    frequency,
+                    format!("at least {MIN_MAP_TYPE_FREQUENCY} with a map type"),
+                )?,
+                (_, Some((x, z))) => check(
+                    x >= MIN_MAP_TYPE_SIDE && z >= MIN_MAP_TYPE_SIDE,
+                    "size",
+                    format!("{x}x{z}"),
+                    format!("at least {MIN_MAP_TYPE_SIDE}x{MIN_MAP_TYPE_SIDE} hexes with a map type"),
+                )?,
+                (_, None) => {
+                    return Err(ConfigError::new(
+                        "map_type",
+                        format!("{:?} on an Unbounded map", map_type.kind),
+                        "None for an Unbounded map (a map type arranges a bounded map's land and sea; an \
+                         unbounded world keeps the thesis' shapes)"
+                            .into(),
+                    ));
+                }
+            }
             check(
                 self.shape == Shape::None,
                 "shape",
@@ -304,7 +315,12 @@ impl MapConfig {
             "None on a globe (shapes are drawn on a flat map's rectangle)",
         )?;
         let not_yet = |part: &str| format!("none on a globe: {part} are not on globes yet");
-        check(self.map_type.is_none(), "map_type", "a map type on a globe", not_yet("map types"))?;
+        check(
+            self.map_type.as_ref().is_none_or(|t| !t.ranges),
+            "map_type.ranges",
+            true,
+            "false on a globe: mountain ranges are not on globes yet",
+        )?;
         check(
             self.climate.winds.is_none(),
             "climate.winds",

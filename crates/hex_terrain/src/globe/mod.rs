@@ -10,6 +10,7 @@ mod atlas;
 mod climate;
 mod fine;
 mod fog;
+mod map_type;
 mod project;
 mod rules;
 mod terrain;

@@ -120,6 +120,21 @@ impl Projection {
         normalize(add(add(scale(corners[0], w0), scale(corners[1], w1)), scale(corners[2], w2)))
     }
 
+    /// Each diamond's cap: the direction of its middle and the angle from it that holds the
+    /// whole diamond (its edges are great circles, so the cap through its farthest corner).
+    pub(crate) fn diamond_caps(&self) -> Vec<(Dir, f64)> {
+        (0..10u8)
+            .map(|d| {
+                let middle = self.direction(d, 0.5, 0.5);
+                let angle = self.diamonds[usize::from(d)]
+                    .iter()
+                    .map(|&c| dot(middle, c).clamp(-1.0, 1.0).acos())
+                    .fold(0.0, f64::max);
+                (middle, angle + 1e-9)
+            })
+            .collect()
+    }
+
     /// The diamond and the point `(u, v)` a unit direction passes through.
     pub(crate) fn locate(&self, dir: Dir) -> (u8, f64, f64) {
         let face = self

@@ -16,9 +16,11 @@ pub use mesh::{GlobeMesh, GlobePoint};
 
 mod mesh;
 use super::climate::Ground;
+use super::map_type::{GlobeMapType, TypeGround};
 use crate::climate::Climate;
 use crate::config::{MapConfig, MapSize};
 use crate::error::ConfigError;
+use crate::heights::MapTypeReport;
 use crate::heights::fbm::{LANES, SolidFbm};
 use crate::kind::{Thresholds, TileKind};
 use crate::manipulate::{manipulate, span};
@@ -53,6 +55,8 @@ pub struct GlobeTerrain {
     fine: Fine,
     /// The fBm, its points in hex radii.
     fbm: SolidFbm,
+    /// The config's map type, compiled for this globe.
+    map_type: Option<GlobeMapType>,
     thresholds: Thresholds,
     /// The globe's radius in hex radii.
     radius: f64,
@@ -101,6 +105,7 @@ impl GlobeTerrain {
         let mut globe = Self {
             fine: Fine::new(frequency, config.subdivisions()),
             fbm,
+            map_type: None,
             thresholds: Thresholds::new(&config.terrain, &config.manipulation),
             radius,
             centers: Vec::new(),
@@ -112,7 +117,20 @@ impl GlobeTerrain {
             config,
         };
         let centers: Vec<Point> = globe.grid.tiles().map(|t| globe.fine.center(globe.spot(t))).collect();
-        globe.centers = centers.par_chunks(LANES).flat_map_iter(|batch| globe.raw_batch(batch)).collect();
+        let fbm: Vec<(Dir, f64)> =
+            centers.par_chunks(LANES).flat_map_iter(|batch| globe.directions_and_fbm(batch)).collect();
+        if let Some(config) = &globe.config.map_type {
+            let t = &globe.thresholds;
+            globe.map_type = Some(GlobeMapType::build(&TypeGround {
+                config,
+                seed: globe.config.seed,
+                grid: &globe.grid,
+                centers: &fbm,
+                diamonds: &globe.grid.projection.diamond_caps(),
+                thresholds: (t.sea, t.mountain),
+            }));
+        }
+        globe.centers = centers.iter().zip(&fbm).map(|(&p, &(dir, fbm))| globe.shape(p, dir, fbm)).collect();
         globe.kinds = globe.centers.iter().map(|&h| globe.thresholds.classify(h)).collect();
         (globe.climates, globe.biomes) = Ground {
             config: &globe.config,
@@ -178,6 +196,13 @@ impl GlobeTerrain {
     #[must_use]
     pub fn tile_climate(&self, tile: GlobeTile) -> Option<Climate> {
         self.climates.get(tile.0 as usize).copied().flatten()
+    }
+
+    /// What came of the config's map type: its targets measured on the globe's tiles, and the
+    /// tries it took; `None` without a map type.
+    #[must_use]
+    pub fn map_type_report(&self) -> Option<&MapTypeReport> {
+        self.map_type.as_ref().map(GlobeMapType::report)
     }
 
     /// The share of the tiles that are sea.
@@ -347,19 +372,38 @@ impl GlobeTerrain {
 
     /// Up to `LANES` points' raw heights: 3D fBm at their directions on the sphere of the
     /// globe's radius in hex radii, normalised like the flat map's; with their directions.
-    fn raw_batch(&self, points: &[Point]) -> Vec<f32> {
-        self.directions_and_raw(points).into_iter().map(|(_, raw)| raw).collect()
+    fn directions_and_raw(&self, points: &[Point]) -> Vec<(Dir, f32)> {
+        self.directions_and_fbm(points)
+            .into_iter()
+            .zip(points)
+            .map(|((dir, fbm), &p)| (dir, self.shape(p, dir, fbm)))
+            .collect()
     }
 
-    fn directions_and_raw(&self, points: &[Point]) -> Vec<(Dir, f32)> {
+    /// Up to `LANES` points' directions and fBm, before a map type shapes it.
+    fn directions_and_fbm(&self, points: &[Point]) -> Vec<(Dir, f64)> {
         let dirs: Vec<Dir> = points.iter().map(|&p| self.direction(p)).collect();
         let mut at = [[0.0; 3]; LANES];
         for (a, d) in at.iter_mut().zip(dirs.iter().cycle()) {
             *a = d.map(|c| c * self.radius);
         }
-        let mut raw = [0.0; LANES];
-        self.fbm.sample_batch(&at, &mut raw);
-        dirs.into_iter().zip(raw).map(|(d, r)| (d, r as f32)).collect()
+        let mut fbm = [0.0; LANES];
+        self.fbm.sample_batch(&at, &mut fbm);
+        dirs.into_iter().zip(fbm).collect()
+    }
+
+    /// A point's raw height from its fBm: the map type's, if the globe has one.
+    fn shape(&self, p: Point, dir: Dir, fbm: f64) -> f32 {
+        match &self.map_type {
+            Some(map_type) => {
+                let diamond = match p {
+                    Spot::Diamond { d, .. } => Some(d),
+                    _ => None,
+                };
+                map_type.apply(diamond, dir, fbm) as f32
+            }
+            None => fbm as f32,
+        }
     }
 
     /// Up to `LANES` points finished: each one's height after manipulation, its ring, the

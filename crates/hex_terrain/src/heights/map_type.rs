@@ -219,7 +219,7 @@ struct Candidate {
 }
 
 /// Targets missed, then how far (shares and counts alike: the tie-break only).
-fn score(checks: &[TargetCheck]) -> (usize, f64) {
+pub(crate) fn score(checks: &[TargetCheck]) -> (usize, f64) {
     let missed = checks.iter().filter(|c| !c.met()).count();
     let by = checks.iter().map(TargetCheck::miss).filter(|m| m.is_finite()).sum();
     (missed, by)
@@ -227,7 +227,7 @@ fn score(checks: &[TargetCheck]) -> (usize, f64) {
 
 /// How much the fBm shapes a type's coasts, in units of the mask's step from sea to land per
 /// standard deviation of the noise. Fractal is the noise alone (its mask is empty).
-fn roughness(kind: MapType) -> f64 {
+pub(crate) fn roughness(kind: MapType) -> f64 {
     match kind {
         MapType::Pangaea | MapType::InlandSea => 0.25,
         MapType::Continents | MapType::SmallContinents => 0.2,
@@ -250,7 +250,7 @@ const RIDGE_HEIGHT: f64 = 4.0;
 /// the sea knot to the sea threshold, the mountain knot to the mountain threshold, the highest
 /// tile's value to 1.
 #[derive(Debug, Clone, Copy)]
-struct Remap {
+pub(crate) struct Remap {
     lo: f64,
     sea: f64,
     mountain: f64,
@@ -262,7 +262,7 @@ struct Remap {
 impl Remap {
     /// The knots that leave `sea_share` of the tiles (values `sorted`) below the sea threshold
     /// and `mountains` of the rest above the mountain threshold.
-    fn new(sorted: &[f64], sea_share: f64, mountains: f64, (sea, mountain): (f32, f32)) -> Self {
+    pub(crate) fn new(sorted: &[f64], sea_share: f64, mountains: f64, (sea, mountain): (f32, f32)) -> Self {
         let n = sorted.len();
         let between = |k: usize| (sorted[k - 1] + sorted[k]) / 2.0;
         let (lo, hi) = (sorted[0], sorted[n - 1]);
@@ -283,7 +283,7 @@ impl Remap {
     }
 
     #[inline]
-    fn height(&self, value: f64) -> f64 {
+    pub(crate) fn height(&self, value: f64) -> f64 {
         let slope = |dh: f64, dv: f64| dh / dv.max(1e-12);
         if value < self.sea {
             self.sea_height + (value - self.sea) * slope(self.sea_height, self.sea - self.lo)

@@ -7,7 +7,7 @@
 //! of the lattice point, so any chunk samples the same heights as the whole map.
 
 pub mod fbm;
-mod graph;
+pub(crate) mod graph;
 pub mod image;
 mod knots;
 mod layout;
