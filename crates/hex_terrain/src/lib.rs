@@ -111,7 +111,8 @@ pub use fog::{FOG_MAGIC, FOG_VERSION, FogError, FogOfWar};
 pub use geometry::Geometry;
 pub use globe::{
     GLOBE_FOG_MAGIC, GLOBE_FOG_VERSION, GLOBE_SIGHT_SAMPLES, GlobeChunk, GlobeFog, GlobeGrid, GlobeMesh,
-    GlobeNeighbors, GlobePath, GlobePoint, GlobeSize, GlobeTerrain, GlobeTile, GlobeTileInfo, MAX_GLOBE_FREQUENCY,
+    GlobeNeighbors, GlobePath, GlobePoint, GlobeRayHit, GlobeSize, GlobeTerrain, GlobeTile, GlobeTileInfo,
+    MAX_GLOBE_FREQUENCY,
 };
 /// The stable hash the core places props with, for the plugin's prop meshes. Hidden from the
 /// docs: an internal the two crates share, not an API.

@@ -319,3 +319,67 @@ fn tile_info_places_each_tile_and_refuses_strangers() {
     assert!(g.reachable(stranger, 5).is_empty());
     assert!(g.field_of_view(stranger, 5).is_empty());
 }
+
+/// Möller-Trumbore, written here: where a ray from `o` along unit `d` meets triangle `a b c`.
+fn meets(o: V, d: V, [a, b, c]: [V; 3]) -> Option<f64> {
+    let (e1, e2) = (vec3::sub(b, a), vec3::sub(c, a));
+    let p = vec3::cross(d, e2);
+    let det = dot(e1, p);
+    if det.abs() < 1e-15 {
+        return None;
+    }
+    let s = vec3::sub(o, a);
+    let u = dot(s, p) / det;
+    let q = vec3::cross(s, e1);
+    let v = dot(d, q) / det;
+    (u >= 0.0 && v >= 0.0 && u + v <= 1.0).then(|| dot(e2, q) / det).filter(|&t| t >= 0.0)
+}
+
+#[test]
+fn rays_hit_the_first_triangle_of_the_whole_mesh() {
+    for (k, g) in [globe(3, 6, true, None), globe(5, 7, false, None)].iter().enumerate() {
+        let mesh = g.generate_whole();
+        let corner = |i: u32| mesh.buffers.positions[i as usize].map(f64::from);
+        let triangles: Vec<[V; 3]> =
+            mesh.buffers.indices.chunks(3).map(|t| [corner(t[0]), corner(t[1]), corner(t[2])]).collect();
+        let r = g.radius();
+        let top = r + f64::from(g.config().terrain.max_elevation);
+        let dirs = picks(k as u64 + 300, 240, 10_000);
+        let mut hits = 0;
+        for w in dirs.chunks(4) {
+            let unit = |a: u32, b: u32| {
+                let (lat, lon) = ((f64::from(a) / 10_000.0 - 0.5) * 3.1, f64::from(b) / 10_000.0 * 6.283);
+                [lat.cos() * lon.cos(), lat.sin(), -lat.cos() * lon.sin()]
+            };
+            // From far out toward a point of the shell, and from just above the surface along it.
+            let (from, to) = (unit(w[0], w[1]), unit(w[2], w[3]));
+            for (origin, target) in [
+                (scale(from, 3.0 * r), scale(to, r + 0.5 * (top - r))),
+                (scale(from, top + 0.01), scale(normalize([to[0] + from[0], to[1] + from[1], to[2] + from[2]]), r)),
+            ] {
+                let d = normalize(vec3::sub(target, origin));
+                let expected = triangles.iter().filter_map(|&t| meets(origin, d, t)).fold(f64::INFINITY, f64::min);
+                let hit = g.raycast(origin, d, f64::MAX);
+                match hit {
+                    Some(h) => {
+                        hits += 1;
+                        assert!((h.distance - expected).abs() < 1e-3 * r, "globe {k}: {} vs {expected}", h.distance);
+                        let at = g.tile_at(h.point).unwrap();
+                        assert!(
+                            at == h.tile || g.grid().neighbors(at).unwrap().as_slice().contains(&h.tile),
+                            "globe {k}: hit {:?} under {at:?}",
+                            h.tile
+                        );
+                        // Short of the hit, nothing.
+                        assert_eq!(g.raycast(origin, d, h.distance * 0.999), None);
+                    }
+                    None => assert!(expected.is_infinite(), "globe {k}: missed a hit at {expected}"),
+                }
+            }
+        }
+        assert!(hits > 100, "globe {k}: {hits} hits");
+        // Away from the globe: no hit; a zero ray: none.
+        assert_eq!(g.raycast([3.0 * r, 0.0, 0.0], [1.0, 0.0, 0.0], f64::MAX), None);
+        assert_eq!(g.raycast([3.0 * r, 0.0, 0.0], [0.0, 0.0, 0.0], f64::MAX), None);
+    }
+}

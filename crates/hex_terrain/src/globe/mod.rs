@@ -12,12 +12,14 @@ mod fine;
 mod fog;
 mod map_type;
 mod project;
+mod raycast;
 mod rules;
 mod terrain;
 
 use atlas::{MISSING_AT_ORIGIN, STEPS, Spot, locate};
 pub use fog::{GLOBE_FOG_MAGIC, GLOBE_FOG_VERSION, GlobeFog};
 use project::Projection;
+pub use raycast::GlobeRayHit;
 pub use rules::{GLOBE_SIGHT_SAMPLES, GlobePath, GlobeTileInfo};
 pub use terrain::{GlobeChunk, GlobeMesh, GlobePoint, GlobeTerrain};
 

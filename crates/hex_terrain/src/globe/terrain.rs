@@ -356,6 +356,21 @@ impl GlobeTerrain {
         self.finish_batch(&[p], &[Some((0, self.kinds[tile.0 as usize]))])[0].0
     }
 
+    /// A tile's fine triangles as meshed, in world units from the globe's center.
+    pub(super) fn tile_triangles(&self, tile: GlobeTile) -> Vec<[Dir; 3]> {
+        let spot = self.spot(tile);
+        let points = self.fine.tile_points(spot);
+        let known = vec![None; points.len()];
+        let at: std::collections::HashMap<u64, Dir> = points
+            .chunks(LANES)
+            .zip(known.chunks(LANES))
+            .flat_map(|(p, k)| {
+                p.iter().zip(self.finish_batch(p, k)).map(|(&q, f)| (self.fine.id(q), f.3)).collect::<Vec<_>>()
+            })
+            .collect();
+        self.fine.triangles(spot).into_iter().map(|t| t.map(|p| at[&self.fine.id(p)])).collect()
+    }
+
     /// The direction of a tile's center.
     pub(super) fn center(&self, tile: GlobeTile) -> Dir {
         self.direction(self.fine.center(self.spot(tile)))
