@@ -64,11 +64,11 @@ impl GlobeTerrain {
                         continue;
                     }
                     for [a, b, c] in self.tile_triangles(candidate) {
-                        if let Some(s) = hit(origin, d, a, b, c).filter(|&s| s >= 0.0 && s <= end) {
-                            if best.is_none_or(|h| s < h.distance) {
-                                let point = [origin[0] + d[0] * s, origin[1] + d[1] * s, origin[2] + d[2] * s];
-                                best = Some(GlobeRayHit { point, distance: s, tile: candidate });
-                            }
+                        if let Some(s) = hit(origin, d, a, b, c).filter(|&s| s >= 0.0 && s <= end)
+                            && best.is_none_or(|h| s < h.distance)
+                        {
+                            let point = [origin[0] + d[0] * s, origin[1] + d[1] * s, origin[2] + d[2] * s];
+                            best = Some(GlobeRayHit { point, distance: s, tile: candidate });
                         }
                     }
                 }
