@@ -87,3 +87,66 @@ fn a_globe_map_type_is_refused_by_field_where_it_cannot_be() {
     ranges.map_type = Some(MapTypeConfig { ranges: true, ..Default::default() });
     assert_eq!(GlobeTerrain::new(ranges).unwrap_err().field, "map_type.ranges");
 }
+
+#[test]
+fn globe_stats_count_what_a_flood_fill_finds() {
+    use hex_terrain::{GlobeStats, POLAR_LATITUDE};
+    for (kind, seed) in [(MapType::Continents, 1), (MapType::Archipelago, 2), (MapType::Pangaea, 3)] {
+        let g = globe(11, seed, kind);
+        let stats = GlobeStats::measure(&g);
+        let n = g.grid().tile_count() as usize;
+        let sea = |t: GlobeTile| g.tile_kind(t) == Some(TileKind::Sea);
+        let land = groups(&g, |t| !sea(t));
+        assert_eq!(stats.landmasses.iter().map(|m| m.tiles as usize).collect::<Vec<_>>(), land, "{kind:?}");
+        let land_tiles: usize = land.iter().sum();
+        assert_eq!((stats.land_tiles as usize, stats.sea_tiles as usize), (land_tiles, n - land_tiles));
+        let (mut coast, mut pairs, mut polar) = (0, 0, 0);
+        for t in g.grid().tiles().filter(|&t| !sea(t)) {
+            let around = g.grid().neighbors(t).unwrap();
+            coast += around.as_slice().iter().filter(|&&m| sea(m)).count();
+            if g.tile_kind(t) == Some(TileKind::Mountain) {
+                pairs += around.as_slice().iter().filter(|&&m| g.tile_kind(m) == Some(TileKind::Mountain)).count();
+            }
+            polar += usize::from(g.grid().center(t).unwrap()[1].asin().to_degrees().abs() >= POLAR_LATITUDE);
+        }
+        assert_eq!(stats.coast_edges as usize, coast);
+        assert_eq!(stats.mountain_adjacencies as usize, pairs);
+        assert_eq!(stats.polar_land_tiles as usize, polar);
+        // The strait: from every continent's tiles, the fewest steps to another continent's.
+        let continent_of = |t: GlobeTile| {
+            stats.continents().position(|c| {
+                let mut seen = vec![false; n];
+                let mut stack = vec![c.first];
+                seen[c.first.0 as usize] = true;
+                while let Some(u) = stack.pop() {
+                    if u == t {
+                        return true;
+                    }
+                    for &m in &g.grid().neighbors(u).unwrap() {
+                        if !sea(m) && !std::mem::replace(&mut seen[m.0 as usize], true) {
+                            stack.push(m);
+                        }
+                    }
+                }
+                false
+            })
+        };
+        let labels: Vec<Option<usize>> =
+            g.grid().tiles().map(|t| if sea(t) { None } else { continent_of(t) }).collect();
+        let mut strait: Option<u32> = None;
+        for t in g.grid().tiles().filter(|t| labels[t.0 as usize].is_some()) {
+            let mine = labels[t.0 as usize];
+            for (u, steps) in g.grid().within(t, u32::MAX) {
+                if labels[u.0 as usize].is_some() && labels[u.0 as usize] != mine {
+                    strait = Some(strait.map_or(steps - 1, |s| s.min(steps - 1)));
+                }
+            }
+        }
+        if stats.continents().count() >= 2 {
+            assert_eq!(stats.narrowest_strait, strait, "{kind:?}");
+        } else {
+            assert_eq!(stats.narrowest_strait, None);
+        }
+        assert!(!stats.to_string().is_empty());
+    }
+}

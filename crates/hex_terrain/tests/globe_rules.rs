@@ -348,7 +348,8 @@ fn rays_hit_the_first_triangle_of_the_whole_mesh() {
         let mut hits = 0;
         for w in dirs.chunks(4) {
             let unit = |a: u32, b: u32| {
-                let (lat, lon) = ((f64::from(a) / 10_000.0 - 0.5) * 3.1, f64::from(b) / 10_000.0 * std::f64::consts::TAU);
+                let (lat, lon) =
+                    ((f64::from(a) / 10_000.0 - 0.5) * 3.1, f64::from(b) / 10_000.0 * std::f64::consts::TAU);
                 [lat.cos() * lon.cos(), lat.sin(), -lat.cos() * lon.sin()]
             };
             // From far out toward a point of the shell, and from just above the surface along it.

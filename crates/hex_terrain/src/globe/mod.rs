@@ -14,6 +14,7 @@ mod map_type;
 mod project;
 mod raycast;
 mod rules;
+mod stats;
 mod terrain;
 
 use atlas::{MISSING_AT_ORIGIN, STEPS, Spot, locate};
@@ -21,6 +22,7 @@ pub use fog::{GLOBE_FOG_MAGIC, GLOBE_FOG_VERSION, GlobeFog};
 use project::Projection;
 pub use raycast::GlobeRayHit;
 pub use rules::{GLOBE_SIGHT_SAMPLES, GlobePath, GlobeTileInfo};
+pub use stats::{GlobeLandmass, GlobeStats, POLAR_LATITUDE};
 pub use terrain::{GlobeChunk, GlobeMesh, GlobePoint, GlobeTerrain};
 
 use crate::ConfigError;
