@@ -37,6 +37,9 @@ fn every_asset_loads_round_trips_and_generates() {
             assert!(chunk.buffers.positions.iter().flatten().all(|v| v.is_finite()));
             let sea = globe.sea_share();
             assert!((0.4..=0.8).contains(&sea), "{}: {sea} of the tiles are sea", path.display());
+            if let Some(report) = globe.map_type_report() {
+                assert!(report.met(), "{}: {report}", path.display());
+            }
             continue;
         }
         let terrain = Terrain::new(config.clone()).unwrap();

@@ -6,6 +6,7 @@ mod experiments;
 mod export;
 mod gallery;
 mod globe;
+mod globe_stats;
 mod render;
 mod survey;
 mod terrains;
@@ -384,7 +385,16 @@ fn run(cli: Cli) -> CliResult<()> {
             setup(&map, players, output.as_deref(), width)
         }
         Command::Survey { map, seeds, size, water } => {
-            let config = survey::map_or_type(&map)?;
+            let mut config = survey::map_or_type(&map)?;
+            if config.size.globe().is_some() {
+                if size.is_some() {
+                    return Err("--size: a globe's size is its frequency (size: Globe(frequency: ...))".into());
+                }
+                if let (Some(water), Some(map_type)) = (water, config.map_type.as_mut()) {
+                    map_type.water = water;
+                }
+                return globe_stats::survey(&map, config, seeds);
+            }
             survey::run(&map, config, &survey::Options { seeds, size, water })
         }
         Command::Gallery { map, seeds, first, columns, width, size, water, output } => {
@@ -405,6 +415,12 @@ fn run(cli: Cli) -> CliResult<()> {
 
 fn stats(path: &Path, ruleset: Option<&Path>) -> CliResult<()> {
     let mut config = load(path)?;
+    if config.size.globe().is_some() {
+        if ruleset.is_some() {
+            return Err("--ruleset: terrain rulesets are not on globes yet".into());
+        }
+        return globe_stats::stats(path, config);
+    }
     if let Some(ruleset) = ruleset {
         config.ruleset = Some(ruleset.display().to_string());
     }

@@ -723,6 +723,26 @@ fn layer_of(p: [u8; 3]) -> TileKind {
 }
 
 #[test]
+fn stats_and_survey_measure_a_globe() {
+    let map = repo().join("assets/maps/globe/continents.map.ron");
+    let map = map.to_str().unwrap();
+    let globe = hex_terrain::GlobeTerrain::new(MapConfig::load(map).unwrap()).unwrap();
+    let stats = hex_terrain::GlobeStats::measure(&globe);
+    let out = ok(&["stats", map]);
+    for kind in [TileKind::Sea, TileKind::Land, TileKind::Mountain] {
+        let count = globe.grid().tiles().filter(|&t| globe.tile_kind(t) == Some(kind)).count();
+        assert!(out.contains(&format!("  {:<9} {count}", kind.name())), "{kind:?} in {out}");
+    }
+    assert!(out.contains(&format!("{} continents", stats.continents().count())), "{out}");
+    assert!(out.contains("map type Continents: every target met"), "{out}");
+    let out = ok(&["survey", map, "--seeds", "3"]);
+    assert!(out.contains("its targets met on 3 of 3 seeds"), "{out}");
+    assert!(out.lines().any(|l| l.starts_with("water share (%)")), "{out}");
+    fails(&["survey", map, "--seeds", "3", "--size", "20x10"], &["--size", "frequency"]);
+    fails(&["stats", map, "--ruleset", "x.terrain.ron"], &["--ruleset", "globes"]);
+}
+
+#[test]
 fn render_draws_a_globe_equirectangular_and_from_above_a_tile() {
     let map = repo().join("assets/maps/globe/standard.map.ron");
     let map = map.to_str().unwrap();
