@@ -17,7 +17,7 @@ use hex_terrain::{
     Biome, Brush, Editor, GenerateOptions, HeightImage, HeightSourceConfig, Landform, MapConfig, MapFile, MapSize,
     PropDensity, Stroke, Terrain, TerrainRuleset, TileFacts, TileKind, TileRect, Tool,
 };
-use hex_terrain::{FogOfWar, FogState};
+use hex_terrain::{FogOfWar, FogState, GlobeChunk, GlobeFog, GlobeTerrain, GlobeTile};
 
 mod check;
 
@@ -288,6 +288,35 @@ pub fn fog_save(data: &[u8]) {
     if let Ok(text) = std::str::from_utf8(data) {
         read_fog(FogOfWar::from_ron(text, terrain), terrain);
     }
+    // A globe's fog, from the same bytes, and sealed as a globe fog save.
+    static GLOBE: std::sync::OnceLock<GlobeTerrain> = std::sync::OnceLock::new();
+    let globe = GLOBE.get_or_init(|| {
+        let config = MapConfig { size: MapSize::Globe { frequency: 3 }, ..MapConfig::default() };
+        GlobeTerrain::new(config).expect("a globe of frequency 3 is valid")
+    });
+    read_globe_fog(GlobeFog::from_bytes(data, globe), globe);
+    if data.len() >= 20 {
+        let mut sealed = data.to_vec();
+        let payload = (data.len() - 20) as u64;
+        sealed[..4].copy_from_slice(&hex_terrain::GLOBE_FOG_MAGIC);
+        sealed[4..8].copy_from_slice(&hex_terrain::GLOBE_FOG_VERSION.to_le_bytes());
+        sealed[8..16].copy_from_slice(&payload.to_le_bytes());
+        let n = sealed.len();
+        let crc = hex_terrain::save::crc32(&sealed[..n - 4]);
+        sealed[n - 4..].copy_from_slice(&crc.to_le_bytes());
+        read_globe_fog(GlobeFog::from_bytes(&sealed, globe), globe);
+    }
+}
+
+fn read_globe_fog(read: Result<GlobeFog, SaveError>, globe: &GlobeTerrain) {
+    let fog = match read {
+        Ok(fog) => fog,
+        Err(error) => return check_save_error(&error),
+    };
+    assert_eq!(GlobeFog::from_bytes(&fog.to_bytes(), globe).as_ref(), Ok(&fog), "binary round trip");
+    for player in 0..fog.players() {
+        assert!(fog.visible(player).all(|tile| fog.state(player, tile) == Some(FogState::Visible)));
+    }
 }
 
 fn read_fog(read: Result<FogOfWar, SaveError>, terrain: &Terrain) {
@@ -311,6 +340,52 @@ fn read_fog(read: Result<FogOfWar, SaveError>, terrain: &Terrain) {
     }
 }
 
+/// Most globe frequency a target compiles (642 tiles); a larger globe is only validated.
+pub const MAX_GLOBE_FREQUENCY: u32 = 8;
+
+/// Most fine points of the one chunk a target meshes from a globe.
+pub const MAX_GLOBE_POINTS: u32 = 20_000;
+
+/// A globe config: validated, compiled when small ([`MAX_GLOBE_FREQUENCY`]), its north pole's
+/// chunk meshed when small ([`MAX_GLOBE_POINTS`]); every buffer finite and in range, and the
+/// rules (tile info, a path, a view, a ray) answer without panicking.
+fn build_globe(config: MapConfig, frequency: u32) {
+    if let Err(error) = config.validate() {
+        return check_config_error(&error);
+    }
+    if frequency > MAX_GLOBE_FREQUENCY {
+        return;
+    }
+    let globe = match GlobeTerrain::new(config) {
+        Ok(globe) => globe,
+        Err(error) => return check_config_error(&error),
+    };
+    let n = globe.config().subdivisions();
+    if 5 * n * n <= MAX_GLOBE_POINTS {
+        let mesh = globe.generate(GlobeChunk::North);
+        let b = &mesh.buffers;
+        let count = b.positions.len();
+        assert_eq!((b.normals.len(), b.tile_kinds.len(), mesh.heights.len()), (count, count, count));
+        assert!(b.indices.len() == 15 * (n * n) as usize && b.indices.iter().all(|&i| (i as usize) < count));
+        assert!(b.positions.iter().flatten().all(|v| v.is_finite()), "a position is not finite");
+        assert!(b.normals.iter().all(|v| (v.iter().map(|c| c * c).sum::<f32>() - 1.0).abs() < 1e-3));
+        assert!(mesh.heights.iter().all(|h| (0.0..=1.0).contains(h)), "a height outside [0, 1]");
+    }
+    let last = GlobeTile(globe.grid().tile_count() - 1);
+    for tile in [GlobeTile(0), last] {
+        let info = globe.tile_info(tile).expect("a tile of the globe");
+        assert!(info.elevation.is_finite() && info.latitude.is_finite() && info.longitude.is_finite());
+    }
+    if let Some(path) = globe.path(GlobeTile(0), last) {
+        assert_eq!(path.tiles.first(), Some(&GlobeTile(0)));
+    }
+    assert!(globe.field_of_view(GlobeTile(0), 3).contains(&GlobeTile(0)));
+    let r = globe.radius() * 3.0;
+    if let Some(hit) = globe.raycast([r, r, 0.0], [-1.0, -1.0, 0.0], f64::MAX) {
+        assert!(hit.point.iter().all(|v| v.is_finite()) && hit.distance.is_finite(), "{hit:?}");
+    }
+}
+
 /// Panics unless a refused save says why: malformed RON with its line and column, the tile and
 /// the allowed range, the field of another map.
 pub fn check_save_error(error: &SaveError) {
@@ -328,6 +403,9 @@ pub fn check_save_error(error: &SaveError) {
 /// Builds the terrain of a valid config and generates at most [`MAX_TILES`] tiles of it: the
 /// first tiles of a bounded map, or tiles around the first chunk of an unbounded one.
 fn build(config: MapConfig, image: Option<Arc<HeightImage>>) {
+    if let Some(frequency) = config.size.globe() {
+        return build_globe(config, frequency);
+    }
     let terrain = match Terrain::with_sources(config, image, None) {
         Ok(terrain) => terrain,
         Err(error) => return check_config_error(&error),
