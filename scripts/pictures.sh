@@ -57,6 +57,10 @@ RON
 # latitude atan(1/2)) with the tiles' outlines.
 "$cli" render assets/maps/globe/standard.map.ron -o docs/globe_equirectangular.png --width 1000
 "$cli" render assets/maps/globe/standard.map.ron -o docs/globe_orthographic.png --width 640 --outlines --from 0,26.565
+# The Continents globe with its climate, in its biomes' colors, and seen from above its first
+# continent.
+"$cli" render assets/maps/globe/continents.map.ron -o docs/globe_continents.png --width 1000
+"$cli" render assets/maps/globe/continents.map.ron -o docs/globe_continents_view.png --width 640 --from -150,15
 if [ "${1:-}" = "--screens" ]; then
   xvfb=()
   if [ -z "${DISPLAY:-}" ] && [ -z "${WAYLAND_DISPLAY:-}" ]; then
