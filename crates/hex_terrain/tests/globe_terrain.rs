@@ -126,7 +126,12 @@ fn tiles_hold_six_or_five_times_n_squared_triangles_and_chunks_partition_them() 
 fn chunks_are_the_whole_globe_bit_for_bit() {
     for (f, rings, kind) in [(3, 1, None), (5, 2, None), (8, 1, None), (6, 2, Some(MapType::Pangaea))] {
         let g = match kind {
-            Some(kind) => typed(f, rings, 11, 2, kind),
+            Some(kind) => {
+                // With a climate too: the vertex colors.
+                let mut config = typed(f, rings, 11, 2, kind).config().clone();
+                config.climate.enabled = true;
+                GlobeTerrain::new(config).unwrap()
+            }
             None => globe(f, rings, 11, 2),
         };
         let whole = g.generate_whole();
@@ -143,6 +148,7 @@ fn chunks_are_the_whole_globe_bit_for_bit() {
                     "f = {f}: normal of {p:?} in {chunk:?}"
                 );
                 assert_eq!(mesh.buffers.tile_kinds[v], whole.buffers.tile_kinds[w]);
+                assert_eq!(mesh.buffers.colors.get(v), whole.buffers.colors.get(w), "f = {f}: color of {p:?}");
                 assert_eq!(mesh.buffers.center_distances[v].to_bits(), whole.buffers.center_distances[w].to_bits());
                 let (a, b) = (position(&mesh, v), position(&whole, w));
                 // Both are the same f64 point rounded to f32 from their own origins.
@@ -157,6 +163,20 @@ fn chunks_are_the_whole_globe_bit_for_bit() {
             assert!(mine.iter().all(|t| all.contains(t)), "f = {f}: {chunk:?} has a triangle the whole has not");
         }
         assert!(copies > whole.points.len(), "chunks share their border points");
+        // With a climate, an inner vertex has its tile's biome color; without, no colors.
+        if g.config().climate.enabled {
+            assert_eq!(whole.buffers.colors.len(), whole.points.len());
+            for (v, &c) in whole.buffers.colors.iter().enumerate() {
+                if whole.buffers.center_distances[v] < 1.0 {
+                    let p = position(&whole, v);
+                    let tile = g.tile_at(p).unwrap();
+                    let [r, gg, b] = g.tile_biome(tile).unwrap().color();
+                    assert_eq!(c, [r, gg, b, 0], "f = {f}: inner vertex {v} of {tile:?}");
+                }
+            }
+        } else {
+            assert!(whole.buffers.colors.is_empty());
+        }
     }
 }
 

@@ -26,7 +26,20 @@ use crate::heights::MapTypeReport;
 use crate::heights::fbm::{LANES, SolidFbm};
 use crate::kind::{Thresholds, TileKind};
 use crate::manipulate::{manipulate, span};
+use crate::mesh::vertex_color;
 use crate::vocab::Biome;
+
+/// A point of a globe finished: its height after manipulation, its ring, the highest kind of
+/// the tiles holding it, its world position, and on a globe with a climate its color (the
+/// holders' biome colors averaged).
+#[derive(Debug, Clone, Copy)]
+pub(super) struct Finished {
+    pub(super) height: f32,
+    pub(super) ring: u32,
+    pub(super) kind: TileKind,
+    pub(super) position: Dir,
+    pub(super) color: Option<[u8; 4]>,
+}
 
 /// A hex globe's terrain, compiled from a [`MapConfig`] of size [`MapSize::Globe`].
 #[derive(Clone)]
@@ -234,7 +247,7 @@ impl GlobeTerrain {
     /// A tile's center height after manipulation (normalised).
     pub(super) fn center_height(&self, tile: GlobeTile) -> f32 {
         let p = self.fine.center(self.spot(tile));
-        self.finish_batch(&[p], &[Some((0, self.kinds[tile.0 as usize]))])[0].0
+        self.finish_batch(&[p], &[Some((0, tile))])[0].height
     }
 
     /// A tile's fine triangles as meshed, in world units from the globe's center.
@@ -246,7 +259,7 @@ impl GlobeTerrain {
             .chunks(LANES)
             .zip(known.chunks(LANES))
             .flat_map(|(p, k)| {
-                p.iter().zip(self.finish_batch(p, k)).map(|(&q, f)| (self.fine.id(q), f.3)).collect::<Vec<_>>()
+                p.iter().zip(self.finish_batch(p, k)).map(|(&q, f)| (self.fine.id(q), f.position)).collect::<Vec<_>>()
             })
             .collect();
         self.fine.triangles(spot).into_iter().map(|t| t.map(|p| at[&self.fine.id(p)])).collect()
@@ -302,33 +315,33 @@ impl GlobeTerrain {
         }
     }
 
-    /// Up to `LANES` points finished: each one's height after manipulation, its ring, the
-    /// highest kind of the tiles holding it and its world position. `known` is a point's ring
-    /// and kind when one tile alone holds it, if the caller knows them.
-    pub(super) fn finish_batch(
-        &self,
-        points: &[Point],
-        known: &[Option<(u32, TileKind)>],
-    ) -> Vec<(f32, u32, TileKind, Dir)> {
+    /// Up to `LANES` points finished ([`Finished`]). `known` is a point's ring and tile when
+    /// that tile alone holds it, if the caller knows them.
+    pub(super) fn finish_batch(&self, points: &[Point], known: &[Option<(u32, GlobeTile)>]) -> Vec<Finished> {
         let raw = self.directions_and_raw(points);
         points.iter().zip(known).zip(raw).map(|((&p, &known), (dir, raw))| self.finish(p, known, dir, raw)).collect()
     }
 
-    fn finish(&self, p: Point, known: Option<(u32, TileKind)>, dir: Dir, raw: f32) -> (f32, u32, TileKind, Dir) {
-        let mut kinds = [TileKind::Sea; 3];
+    fn finish(&self, p: Point, known: Option<(u32, GlobeTile)>, dir: Dir, raw: f32) -> Finished {
+        let mut tiles = [GlobeTile(0); 3];
         let (ring, len) = match known {
-            Some((ring, kind)) => {
-                kinds[0] = kind;
+            Some((ring, tile)) => {
+                tiles[0] = tile;
                 (ring, 1)
             }
             None => {
                 let holders = self.fine.holders(p);
-                for (k, &t) in kinds.iter_mut().zip(holders.tiles()) {
-                    *k = self.kinds[self.grid.id(t).0 as usize];
+                for (k, &t) in tiles.iter_mut().zip(holders.tiles()) {
+                    *k = self.grid.id(t);
                 }
                 (holders.ring, holders.tiles().len())
             }
         };
+        let tiles = &tiles[..len];
+        let mut kinds = [TileKind::Sea; 3];
+        for (k, t) in kinds.iter_mut().zip(tiles) {
+            *k = self.kinds[t.0 as usize];
+        }
         let span = span(&kinds[..len]);
         let height = if self.config.manipulation.any() {
             let n = self.config.subdivisions();
@@ -336,8 +349,14 @@ impl GlobeTerrain {
         } else {
             raw
         };
-        let highest = span.map_or(TileKind::Sea, |(_, hi)| hi);
         let r = self.radius() + f64::from(height) * f64::from(self.config.terrain.max_elevation);
-        (height, ring, highest, dir.map(|c| c * r))
+        let color = self.config.climate.enabled.then(|| {
+            let mut biomes = [Biome::Ocean; 3];
+            for (b, t) in biomes.iter_mut().zip(tiles) {
+                *b = self.biomes[t.0 as usize];
+            }
+            vertex_color(&biomes[..len], 0.0)
+        });
+        Finished { height, ring, kind: span.map_or(TileKind::Sea, |(_, hi)| hi), position: dir.map(|c| c * r), color }
     }
 }

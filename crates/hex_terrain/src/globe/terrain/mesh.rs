@@ -6,11 +6,10 @@ use std::collections::HashMap;
 use rayon::prelude::*;
 
 use super::super::fine::{Fan, Fine, Point};
-use super::super::project::{self, Dir, cross, sub};
-use super::GlobeTerrain;
+use super::super::project::{self, cross, sub};
+use super::{Finished, GlobeTerrain};
 use crate::globe::GlobeTile;
 use crate::heights::fbm::LANES;
-use crate::kind::TileKind;
 use crate::mesh::MeshBuffers;
 
 /// A point of a globe's fine lattice (a vertex of its meshes): a dense id, the same in every
@@ -26,9 +25,10 @@ pub struct GlobeMesh {
     pub origin: [f64; 3],
     /// Positions (relative to `origin`), unit normals (outward, each the normalised sum of the
     /// fine triangles around its point, the same whichever chunk holds it), the tile kinds (on
-    /// a border the highest of the tiles holding it), rings over `n` in `center_distances`, and
-    /// the triangles, counterclockwise seen from outside. No texture coordinates and no colors
-    /// yet (a globe has no climate yet).
+    /// a border the highest of the tiles holding it), rings over `n` in `center_distances`, on
+    /// a globe with a climate the colors (the biome colors of the tiles holding the point
+    /// averaged, alpha 0: no water), and the triangles, counterclockwise seen from outside. No
+    /// texture coordinates yet.
     pub buffers: MeshBuffers,
     /// Each vertex's point.
     pub points: Vec<GlobePoint>,
@@ -68,11 +68,10 @@ impl GlobeTerrain {
         for (k, &t) in tiles.iter().enumerate() {
             let points = &hexagon_points[k * per..(k + 1) * per];
             if points[0].is_some() {
-                let kind = self.kinds[t.0 as usize];
                 let base = locals.len();
                 for (c, p) in cells.iter().zip(points.iter().flatten()) {
-                    // A point inside the hexagon is its alone: its ring and kind are known.
-                    let known = (c.ring < n).then_some((c.ring, kind));
+                    // A point inside the hexagon is its alone: its ring and tile are known.
+                    let known = (c.ring < n).then_some((c.ring, t));
                     let slot = slots.intern(*p, known);
                     if slot as usize == home.len() {
                         home.push(if c.fan.is_some() { (base + locals.len() - base) as u32 } else { NOT_INSIDE });
@@ -104,7 +103,7 @@ impl GlobeTerrain {
             rings.push((ring, fan.points().len() as u8));
         }
         // Each point is a pure function of the config and the point: the threads change no bit.
-        let finished: Vec<(f32, u32, TileKind, Dir)> = slots
+        let finished: Vec<Finished> = slots
             .points
             .par_chunks(LANES)
             .zip(slots.known.par_chunks(LANES))
@@ -130,13 +129,14 @@ impl GlobeTerrain {
                         usize::from(len)
                     }
                 };
-                let a = finished[i].3;
+                let a = finished[i].position;
                 let mut normal = [0.0f64; 3];
                 for k in 0..len {
                     // The ring goes round clockwise seen from outside: (a, next, this) is
                     // counterclockwise.
                     let (this, next) = (ring[k], ring[(k + 1) % len]);
-                    let face = cross(sub(finished[next as usize].3, a), sub(finished[this as usize].3, a));
+                    let face =
+                        cross(sub(finished[next as usize].position, a), sub(finished[this as usize].position, a));
                     normal = [normal[0] + face[0], normal[1] + face[1], normal[2] + face[2]];
                 }
                 let position = [(a[0] - origin[0]) as f32, (a[1] - origin[1]) as f32, (a[2] - origin[2]) as f32];
@@ -147,8 +147,9 @@ impl GlobeTerrain {
         let buffers = MeshBuffers {
             positions: vertices.iter().map(|v| v.0).collect(),
             normals: vertices.iter().map(|v| v.1).collect(),
-            tile_kinds: finished.iter().map(|f| f.2 as u32).collect(),
-            center_distances: finished.iter().map(|f| f.1 as f32 / rings_per).collect(),
+            tile_kinds: finished.iter().map(|f| f.kind as u32).collect(),
+            center_distances: finished.iter().map(|f| f.ring as f32 / rings_per).collect(),
+            colors: finished.iter().filter_map(|f| f.color).collect(),
             indices,
             ..MeshBuffers::default()
         };
@@ -156,7 +157,7 @@ impl GlobeTerrain {
             origin,
             buffers,
             points: slots.points[..count].iter().map(|&p| GlobePoint(fine.id(p))).collect(),
-            heights: finished.iter().map(|f| f.0).collect(),
+            heights: finished.iter().map(|f| f.height).collect(),
             tiles,
         }
     }
@@ -170,7 +171,7 @@ struct Slots<'a> {
     fine: &'a Fine,
     index: Index,
     points: Vec<Point>,
-    known: Vec<Option<(u32, TileKind)>>,
+    known: Vec<Option<(u32, GlobeTile)>>,
 }
 
 /// Slots by point: a table over every point when the mesh holds a good part of the globe (one
@@ -192,7 +193,7 @@ impl<'a> Slots<'a> {
     }
 
     /// The point's slot, given it now if it has none.
-    fn intern(&mut self, p: Point, known: Option<(u32, TileKind)>) -> u32 {
+    fn intern(&mut self, p: Point, known: Option<(u32, GlobeTile)>) -> u32 {
         let next = self.points.len() as u32;
         let slot = match &mut self.index {
             Index::Dense(table) => {
