@@ -273,9 +273,7 @@ impl FogOfWar {
     /// of all of it, so a damaged file is refused rather than read as another fog.
     #[must_use]
     pub fn to_bytes(&self) -> Vec<u8> {
-        let mut payload = Vec::new();
-        ciborium::into_writer(&self.file(), &mut payload).expect("writing to a Vec cannot fail");
-        save::seal(FOG_MAGIC, FOG_VERSION, &payload)
+        save::seal_cbor(FOG_MAGIC, FOG_VERSION, &self.file())
     }
 
     /// Reads a binary fog save into the terrain's map.
@@ -284,9 +282,7 @@ impl FogOfWar {
     /// [`SaveError::Corrupt`] (magic, length, checksum or payload), [`SaveError::Version`] for
     /// a newer format, and what [`FogOfWar::from_ron`] refuses.
     pub fn from_bytes(bytes: &[u8], terrain: &Terrain) -> Result<Self, SaveError> {
-        let (version, payload) = save::open(bytes, FOG_MAGIC, FOG_VERSION)?;
-        let file: FogFile = ciborium::from_reader(payload)
-            .map_err(|e| SaveError::Corrupt(format!("the payload does not decode: {e}")))?;
+        let (version, file): (u32, FogFile) = save::open_cbor(bytes, FOG_MAGIC, FOG_VERSION)?;
         if file.version != version {
             return Err(SaveError::Corrupt(format!("the header says version {version}, the payload {}", file.version)));
         }

@@ -282,6 +282,29 @@ pub(crate) fn open(bytes: &[u8], magic: [u8; 4], newest: u32) -> Result<(u32, &[
     Ok((version, &body[HEADER..]))
 }
 
+/// `value` as CBOR, sealed ([`seal`]).
+pub(crate) fn seal_cbor(magic: [u8; 4], version: u32, value: &impl Serialize) -> Vec<u8> {
+    let mut payload = Vec::new();
+    ciborium::into_writer(value, &mut payload).expect("writing to a Vec cannot fail");
+    seal(magic, version, &payload)
+}
+
+/// The version and the CBOR value of a file [`seal_cbor`] made with `magic`, of a version up to
+/// `newest`.
+///
+/// # Errors
+/// What [`open`] refuses, and [`SaveError::Corrupt`] for a payload that does not decode.
+pub(crate) fn open_cbor<T: serde::de::DeserializeOwned>(
+    bytes: &[u8],
+    magic: [u8; 4],
+    newest: u32,
+) -> Result<(u32, T), SaveError> {
+    let (version, payload) = open(bytes, magic, newest)?;
+    let value =
+        ciborium::from_reader(payload).map_err(|e| SaveError::Corrupt(format!("the payload does not decode: {e}")))?;
+    Ok((version, value))
+}
+
 impl TileStateSave {
     /// The save as RON text.
     #[must_use]
@@ -341,9 +364,7 @@ impl TileStateSave {
                 })
                 .collect(),
         };
-        let mut payload = Vec::new();
-        ciborium::into_writer(&packed, &mut payload).expect("writing to a Vec cannot fail");
-        seal(SAVE_MAGIC, self.version, &payload)
+        seal_cbor(SAVE_MAGIC, self.version, &packed)
     }
 
     /// Reads a binary save (not checked against a map: see [`TileStateSave::check`]).
@@ -352,9 +373,7 @@ impl TileStateSave {
     /// [`SaveError::Corrupt`] (magic, length, checksum or payload), [`SaveError::Version`] for
     /// a newer format, [`SaveError::TooManyTiles`].
     pub fn from_bytes(bytes: &[u8]) -> Result<Self, SaveError> {
-        let (_, payload) = open(bytes, SAVE_MAGIC, SAVE_VERSION)?;
-        let packed: Packed = ciborium::from_reader(payload)
-            .map_err(|e| SaveError::Corrupt(format!("the payload does not decode: {e}")))?;
+        let (_, packed): (u32, Packed) = open_cbor(bytes, SAVE_MAGIC, SAVE_VERSION)?;
         if packed.tiles.len() > MAX_SAVED_TILES {
             return Err(SaveError::TooManyTiles { count: packed.tiles.len() });
         }

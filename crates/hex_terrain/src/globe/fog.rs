@@ -111,9 +111,7 @@ impl GlobeFog {
     /// payload (CBOR: the map, then each player's runs of tile ids in one state) and a CRC-32.
     #[must_use]
     pub fn to_bytes(&self) -> Vec<u8> {
-        let mut payload = Vec::new();
-        ciborium::into_writer(&self.file(), &mut payload).expect("writing to a Vec cannot fail");
-        save::seal(GLOBE_FOG_MAGIC, GLOBE_FOG_VERSION, &payload)
+        save::seal_cbor(GLOBE_FOG_MAGIC, GLOBE_FOG_VERSION, &self.file())
     }
 
     /// Reads a binary globe fog save into the globe's map.
@@ -124,9 +122,7 @@ impl GlobeFog {
     /// and [`SaveError::Tile`] naming a run past the globe's tiles, overlapping another or
     /// holding a state other than explored or visible. Nothing is read then.
     pub fn from_bytes(bytes: &[u8], globe: &GlobeTerrain) -> Result<Self, SaveError> {
-        let (version, payload) = save::open(bytes, GLOBE_FOG_MAGIC, GLOBE_FOG_VERSION)?;
-        let file: FogFile = ciborium::from_reader(payload)
-            .map_err(|e| SaveError::Corrupt(format!("the payload does not decode: {e}")))?;
+        let (version, file): (u32, FogFile) = save::open_cbor(bytes, GLOBE_FOG_MAGIC, GLOBE_FOG_VERSION)?;
         if file.version != version {
             return Err(SaveError::Corrupt(format!("the header says version {version}, the payload {}", file.version)));
         }

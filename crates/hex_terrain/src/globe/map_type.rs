@@ -28,8 +28,8 @@ use std::f64::consts::PI;
 use super::GlobeGrid;
 use super::project::{self, Dir, from_lat_lon};
 use crate::config::{MapType, MapTypeConfig, SEA_SHARE_TOLERANCE};
-use crate::hash::{hash, unit};
 use crate::heights::graph::TileGraph;
+use crate::heights::layout::Draw;
 use crate::heights::map_type::{Remap, roughness, score};
 use crate::heights::targets::{self, MapTypeReport};
 use crate::heights::{MAX_LAYOUTS, SEA_STEPS};
@@ -64,24 +64,6 @@ pub(super) struct GlobeMapType {
     weight: f64,
     remap: Remap,
     report: MapTypeReport,
-}
-
-/// The draws of one layout: numbers in `[0, 1)` from the seed, the layout and a counter.
-struct Draw {
-    seed: u32,
-    layout: u32,
-    count: i64,
-}
-
-impl Draw {
-    fn next(&mut self) -> f64 {
-        self.count += 1;
-        f64::from(unit(hash(self.seed, &[SALT, i64::from(self.layout), self.count])))
-    }
-
-    fn range(&mut self, lo: f64, hi: f64) -> f64 {
-        lo + (hi - lo) * self.next()
-    }
 }
 
 /// The chord of a cap of `area` steradians (at most the sphere's), times `reach`.
@@ -137,7 +119,7 @@ fn best_candidate(draw: &mut Draw, centers: &[Dir], lat: f64) -> Dir {
 /// The caps of layout `layout` of a type (land, or the sea of an Inland Sea), cluster by
 /// cluster.
 fn draw_layout(kind: MapType, seed: u32, layout: u32, land_share: f64, tiles: u32) -> Vec<Cap> {
-    let mut draw = Draw { seed, layout, count: 0 };
+    let mut draw = Draw::new(seed, SALT, layout, 0);
     let land = land_share * 4.0 * PI;
     let mut caps = Vec::new();
     let lon0 = draw.range(0.0, 2.0 * PI);

@@ -214,20 +214,29 @@ impl Mask {
     }
 }
 
-/// The draws of one layout: numbers in `[0, 1)` from the seed, the layout and a counter.
-struct Draw {
+/// The draws of one layout: numbers in `[0, 1)` from the seed, a salt, the layout and a
+/// counter (a flat map's layouts and a globe's use salts of their own).
+pub(crate) struct Draw {
     seed: u32,
+    salt: i64,
     layout: u32,
     count: i64,
 }
 
 impl Draw {
-    fn next(&mut self) -> f64 {
-        self.count += 1;
-        f64::from(unit(hash(self.seed, &[SALT, i64::from(self.layout), self.count])))
+    /// The draws of layout `layout` of `seed` under `salt`, from the counter `count`.
+    pub(crate) fn new(seed: u32, salt: i64, layout: u32, count: i64) -> Self {
+        Self { seed, salt, layout, count }
     }
 
-    fn range(&mut self, lo: f64, hi: f64) -> f64 {
+    /// The next number in `[0, 1)`.
+    pub(crate) fn next(&mut self) -> f64 {
+        self.count += 1;
+        f64::from(unit(hash(self.seed, &[self.salt, i64::from(self.layout), self.count])))
+    }
+
+    /// The next number in `[lo, hi)`.
+    pub(crate) fn range(&mut self, lo: f64, hi: f64) -> f64 {
         lo + (hi - lo) * self.next()
     }
 }
@@ -294,7 +303,7 @@ const ARCHIPELAGO_DRAWS: usize = 8;
 
 /// The blobs of layout `layout` of a type (land, or the sea of an Inland Sea).
 pub(crate) fn draw(kind: MapType, seed: u32, layout: u32, frame: &Frame, land_share: f64, tiles: usize) -> Vec<Blob> {
-    let mut draw = Draw { seed, layout, count: 0 };
+    let mut draw = Draw::new(seed, SALT, layout, 0);
     let area = frame.aspect; // the map's area in v units squared
     let land = land_share * area;
     // East-west: around the map's middle (a wrapping map's too, so the picture a player first
@@ -447,6 +456,6 @@ fn best_candidate(
 /// The tectonic plates of layout `layout` (for mountain ranges), drawn apart from its blobs so
 /// a layout's land is the same with ranges or without.
 pub(crate) fn plates(seed: u32, layout: u32, frame: &Frame, tiles: usize, rows: usize) -> Plates {
-    let mut draw = Draw { seed, layout, count: 1 << 40 };
+    let mut draw = Draw::new(seed, SALT, layout, 1 << 40);
     Plates::draw(Plates::count(tiles), frame.wraps, frame.aspect, rows, || draw.next())
 }

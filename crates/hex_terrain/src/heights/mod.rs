@@ -10,7 +10,7 @@ pub mod fbm;
 pub(crate) mod graph;
 pub mod image;
 mod knots;
-mod layout;
+pub(crate) mod layout;
 pub mod map_type;
 pub mod ranges;
 pub mod shape;
