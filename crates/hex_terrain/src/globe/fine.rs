@@ -190,6 +190,12 @@ impl Fine {
         }
     }
 
+    /// How many ids there are, points or not: `10 F^2 + 2`.
+    pub(crate) fn id_space(&self) -> u64 {
+        let big = u64::from(self.big());
+        10 * big * big + 2
+    }
+
     /// How many points there are: `10 F^2 / 3 + 2`.
     pub(crate) fn point_count(&self) -> u64 {
         let big = u64::from(self.big());

@@ -26,7 +26,7 @@ use crate::heights::MapTypeReport;
 use crate::heights::fbm::{LANES, SolidFbm};
 use crate::kind::{Thresholds, TileKind};
 use crate::manipulate::{manipulate, span};
-use crate::mesh::vertex_color;
+use crate::mesh::{MeshBuffers, vertex_color};
 use crate::vocab::Biome;
 
 /// A point of a globe finished: its height after manipulation, its ring, the highest kind of
@@ -241,7 +241,46 @@ impl GlobeTerrain {
     /// The whole globe's mesh, measured from the globe's center.
     #[must_use]
     pub fn generate_whole(&self) -> GlobeMesh {
-        self.mesh(self.grid.tiles().collect(), [0.0; 3])
+        // Chunk by chunk in parallel, measured from the globe's center, then each point kept
+        // once: every point is the same bits in every chunk that holds it.
+        let parts: Vec<GlobeMesh> =
+            self.chunks().into_par_iter().map(|chunk| self.mesh(self.chunk_tiles(chunk), [0.0; 3])).collect();
+        let mut whole = GlobeMesh {
+            origin: [0.0; 3],
+            buffers: MeshBuffers::default(),
+            points: Vec::with_capacity(self.vertex_count() as usize),
+            heights: Vec::with_capacity(self.vertex_count() as usize),
+            tiles: Vec::with_capacity(self.grid.tile_count() as usize),
+        };
+        let mut slot = vec![u32::MAX; self.fine.id_space() as usize];
+        for part in parts {
+            let b = &part.buffers;
+            let map: Vec<u32> = part
+                .points
+                .iter()
+                .enumerate()
+                .map(|(v, p)| {
+                    let s = &mut slot[p.0 as usize];
+                    if *s == u32::MAX {
+                        *s = whole.points.len() as u32;
+                        whole.points.push(*p);
+                        whole.heights.push(part.heights[v]);
+                        let w = &mut whole.buffers;
+                        w.positions.push(b.positions[v]);
+                        w.normals.push(b.normals[v]);
+                        w.tile_kinds.push(b.tile_kinds[v]);
+                        w.center_distances.push(b.center_distances[v]);
+                        if let Some(&c) = b.colors.get(v) {
+                            w.colors.push(c);
+                        }
+                    }
+                    *s
+                })
+                .collect();
+            whole.buffers.indices.extend(b.indices.iter().map(|&i| map[i as usize]));
+            whole.tiles.extend(part.tiles);
+        }
+        whole
     }
 
     /// A tile's center height after manipulation (normalised).
