@@ -86,7 +86,11 @@ impl GlobeStats {
         let sea = |i: usize| kinds[i] == TileKind::Sea;
         let land_tiles = (0..n).filter(|&i| !sea(i)).count() as u32;
         let mountain = |i: usize| kinds[i] == TileKind::Mountain;
-        let latitude = |i: usize| globe.tile_info(GlobeTile(i as u32)).expect("a tile of the globe").latitude;
+        // From the tile's center alone (a tile's info would finish its center point too).
+        let latitude = |i: usize| {
+            let center = grid.center(GlobeTile(i as u32)).expect("a tile of the globe");
+            center[1].clamp(-1.0, 1.0).asin().to_degrees()
+        };
         let masses = components(&neighbors, |i| !sea(i));
         let mut landmasses: Vec<GlobeLandmass> = masses
             .first
