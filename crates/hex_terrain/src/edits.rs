@@ -23,13 +23,55 @@ use crate::config::{FeatureEdit, PropDensity, RiverEdit, TileEdit};
 use crate::geometry::Geometry;
 use crate::vocab::{Biome, RuleId, TileKind};
 
-/// How one edited tile moves its points.
+/// How one edited tile moves its points (a flat map's and a globe's edits alike).
 #[derive(Debug, Clone, Copy, PartialEq)]
-struct TileShift {
+pub(crate) struct TileShift {
     /// Added to the raw height of its points (its border points share it).
-    delta: f32,
+    pub(crate) delta: f32,
     /// The raw heights its inner points are kept in: its type's classification range.
     range: (f32, f32),
+}
+
+impl TileShift {
+    /// How `edit` moves its tile, on a map whose raw sea and mountain thresholds are
+    /// `(sea, mountain)` and whose generated raw center height there is `base`; `None` when the
+    /// edit sets neither a height nor a type.
+    pub(crate) fn of(edit: &TileEdit, (sea, mountain): (f32, f32), base: f32) -> Option<Self> {
+        if edit.height.is_none() && edit.kind.is_none() {
+            return None;
+        }
+        let wanted = edit.height.unwrap_or(base);
+        let classified = if wanted < sea {
+            TileKind::Sea
+        } else if wanted < mountain {
+            TileKind::Land
+        } else {
+            TileKind::Mountain
+        };
+        let range = raw_range((sea, mountain), edit.kind.unwrap_or(classified));
+        let target = wanted.clamp(range.0, range.1);
+        Some(Self { delta: target - base, range })
+    }
+
+    /// The edited raw height of a point of the tile that no other tile holds.
+    #[inline]
+    pub(crate) fn inner(&self, raw: f32) -> f32 {
+        (raw + self.delta).clamp(self.range.0, self.range.1)
+    }
+}
+
+/// The edited raw height of a point `holders` tiles share, whose edited holders move by
+/// `deltas` (reordered here): the mean of the deltas (an unedited holder counts zero), summed in
+/// ascending order so every copy of the point gets the same bits whatever order its holders
+/// were listed in.
+#[inline]
+pub(crate) fn shared(raw: f32, deltas: &mut [f32], holders: usize) -> f32 {
+    if deltas.is_empty() {
+        return raw;
+    }
+    deltas.sort_unstable_by(f32::total_cmp);
+    let sum = deltas.iter().fold(0.0f32, |sum, &d| sum + d);
+    (raw + sum / holders as f32).clamp(0.0, 1.0)
 }
 
 /// The edits of a map, compiled against its generated heights (see the module docs).
@@ -55,7 +97,7 @@ impl Edits {
     pub fn new(
         edits: &[TileEdit],
         geometry: &Geometry,
-        (sea, mountain): (f32, f32),
+        thresholds: (f32, f32),
         generated: impl Fn(Hex) -> f32,
     ) -> Self {
         let mut tiles = HashMap::with_capacity(edits.len());
@@ -78,21 +120,10 @@ impl Edits {
                 terrains.insert(tile, (edit.terrain, edit.feature));
             }
             // A biome, a terrain, a feature, a river or props alone move no height.
-            if edit.height.is_none() && edit.kind.is_none() {
-                continue;
+            if edit.height.is_some() || edit.kind.is_some() {
+                let shift = TileShift::of(edit, thresholds, generated(tile)).expect("a height or a type");
+                tiles.insert(tile, shift);
             }
-            let base = generated(tile);
-            let wanted = edit.height.unwrap_or(base);
-            let classified = if wanted < sea {
-                TileKind::Sea
-            } else if wanted < mountain {
-                TileKind::Land
-            } else {
-                TileKind::Mountain
-            };
-            let range = raw_range((sea, mountain), edit.kind.unwrap_or(classified));
-            let target = wanted.clamp(range.0, range.1);
-            tiles.insert(tile, TileShift { delta: target - base, range });
         }
         Self { tiles, biomes, rivers, props, terrains }
     }
@@ -151,7 +182,7 @@ impl Edits {
         let tiles = set.tiles();
         if let [tile] = tiles {
             return match self.tiles.get(&geometry.wrap_tile(*tile)) {
-                Some(shift) => (raw + shift.delta).clamp(shift.range.0, shift.range.1),
+                Some(shift) => shift.inner(raw),
                 None => raw,
             };
         }
@@ -167,13 +198,7 @@ impl Edits {
                 edited += 1;
             }
         }
-        if edited == 0 {
-            return raw;
-        }
-        let deltas = &mut deltas[..edited];
-        deltas.sort_unstable_by(f32::total_cmp);
-        let sum = deltas.iter().fold(0.0f32, |sum, &d| sum + d);
-        (raw + sum / tiles.len() as f32).clamp(0.0, 1.0)
+        shared(raw, &mut deltas[..edited], tiles.len())
     }
 }
 

@@ -130,7 +130,8 @@ impl SavedMap {
 /// nobody's, no overlay, no highlight).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct SavedTile {
-    /// Offset coordinate `(column, row)` of the tile (the map's own tile on a wrapping map).
+    /// Offset coordinate `(column, row)` of the tile (the map's own tile on a wrapping map); on
+    /// a globe `(id, 0)` ([`GlobeTile::at`](crate::GlobeTile::at)).
     pub at: (i32, i32),
     /// What the player knows of it.
     #[serde(default)]
@@ -397,8 +398,8 @@ impl TileStateSave {
         Ok(Self { version: SAVE_VERSION, map: packed.map, tiles })
     }
 
-    /// Checks the save against the map it is to be loaded into: its version, that it is of
-    /// this map ([`SavedMap`]), and that every tile is on the map, listed once, with an owner in
+    /// Checks the save against the map it is to be loaded into (a flat map or a globe): its
+    /// version, that it is of this map ([`SavedMap`]), and that every tile is on the map, listed once, with an owner in
     /// `0..MAX_OWNERS` and each highlight at most once.
     ///
     /// # Errors
@@ -413,9 +414,11 @@ impl TileStateSave {
         if self.tiles.len() > MAX_SAVED_TILES {
             return Err(SaveError::TooManyTiles { count: self.tiles.len() });
         }
-        let (columns, rows) = match config.size.bounds() {
-            Some((x, z)) => (0..x as i32, 0..z as i32),
-            None => (-MAX_WORLD_TILE..MAX_WORLD_TILE, -MAX_WORLD_TILE..MAX_WORLD_TILE),
+        let (columns, rows) = match (config.size, config.size.bounds()) {
+            // A globe's tiles are one row of ids (`GlobeTile::at`).
+            (MapSize::Globe { frequency }, _) => (0..(10 * frequency * frequency + 2) as i32, 0..1),
+            (_, Some((x, z))) => (0..x as i32, 0..z as i32),
+            (_, None) => (-MAX_WORLD_TILE..MAX_WORLD_TILE, -MAX_WORLD_TILE..MAX_WORLD_TILE),
         };
         let mut seen = std::collections::HashSet::with_capacity(self.tiles.len());
         for (index, tile) in self.tiles.iter().enumerate() {

@@ -114,7 +114,8 @@ enum Command {
     Edit {
         /// Map config (RON).
         map: PathBuf,
-        /// The strokes: a RON list of `(tool: .., brush: .., at: (column, row))`, e.g.
+        /// The strokes: a RON list of `(tool: .., brush: .., at: (column, row))` (on a globe
+        /// `at: (id, 0)`), e.g.
         /// `[(tool: SetKind(Mountain), brush: Range(1), at: (20, 12)), (tool: AddRiver, brush: Range(0), at: (21, 12))]`.
         #[arg(long)]
         strokes: PathBuf,

@@ -581,6 +581,33 @@ fn edit_applies_strokes_from_a_file_and_refuses_bad_ones_by_line_or_stroke() {
     );
 }
 
+#[test]
+fn edit_applies_strokes_to_a_globe_by_tile_id() {
+    let map = tmp("globe_to_edit.map.ron");
+    std::fs::write(&map, "(size: Globe(frequency: 5), terrain: (inner_rings: 1))").unwrap();
+    let strokes = tmp("globe_strokes.ron");
+    // A mountain over the north pole's pentagon and its five neighbors, then a sea tile.
+    std::fs::write(
+        &strokes,
+        "[(tool: SetKind(Mountain), brush: Range(1), at: (0, 0)), (tool: SetKind(Sea), brush: Range(0), at: (100, 0))]",
+    )
+    .unwrap();
+    let out_file = tmp("globe_edited_by_cli.map.ron");
+    let args =
+        ["edit", map.to_str().unwrap(), "--strokes", strokes.to_str().unwrap(), "-o", out_file.to_str().unwrap()];
+    let out = ok(&args);
+    assert!(out.contains("stroke 1"), "{out}");
+    let edited = hex_terrain::GlobeTerrain::new(hex_terrain::MapConfig::load(&out_file).unwrap()).unwrap();
+    let pole = hex_terrain::GlobeTile(0);
+    for &t in std::iter::once(&pole).chain(edited.grid().neighbors(pole).unwrap().as_slice()) {
+        assert_eq!(edited.tile_kind(t), Some(hex_terrain::TileKind::Mountain), "{t:?}");
+    }
+    assert_eq!(edited.tile_kind(hex_terrain::GlobeTile(100)), Some(hex_terrain::TileKind::Sea));
+    // A tile off the globe: which stroke, and the globe's ids.
+    std::fs::write(&strokes, "[(tool: Raise(0.1), brush: Range(0), at: (252, 0))]").unwrap();
+    fails(&args, &["stroke 0", "0..252"]);
+}
+
 /// The shipped scenario is what the editor makes of the World map with the shipped strokes.
 #[test]
 fn the_strait_scenario_is_the_world_map_edited_by_its_strokes() {

@@ -17,7 +17,7 @@ use hex_terrain::{
     Biome, Brush, Editor, GenerateOptions, HeightImage, HeightSourceConfig, Landform, MapConfig, MapFile, MapSize,
     PropDensity, Stroke, Terrain, TerrainRuleset, TileFacts, TileKind, TileRect, Tool,
 };
-use hex_terrain::{FogOfWar, FogState, GlobeChunk, GlobeFog, GlobeTerrain, GlobeTile};
+use hex_terrain::{FogOfWar, FogState, GlobeChunk, GlobeEditor, GlobeFog, GlobeStroke, GlobeTerrain, GlobeTile};
 
 mod check;
 
@@ -103,6 +103,9 @@ pub fn edits(data: &[u8]) {
     if matches!(config.source, HeightSourceConfig::Image { .. }) {
         config.source = HeightSourceConfig::Noise;
     }
+    if let Some(frequency) = config.size.globe() {
+        return globe_edits(config, frequency, script);
+    }
     // Each stroke compiles the map again and compares every tile: keep maps small.
     if config.size.bounds().is_some_and(|(x, z)| u64::from(x) * u64::from(z) > 64 * 64) {
         return;
@@ -115,22 +118,6 @@ pub fn edits(data: &[u8]) {
     let mut applied = 0;
     for step in script.chunks(4).take(8) {
         let [a, b, c, d] = [0, 1, 2, 3].map(|i| step.get(i).copied().unwrap_or(0));
-        let amount = f32::from(b) / 255.0;
-        let tool = match a % 13 {
-            0 => Tool::Raise(amount),
-            1 => Tool::Lower(amount),
-            2 => Tool::SetHeight(amount),
-            3 => Tool::Smooth,
-            4 => Tool::SetKind([TileKind::Sea, TileKind::Land, TileKind::Mountain][usize::from(b % 3)]),
-            5 => Tool::Erase,
-            6 => Tool::SetBiome([Biome::Desert, Biome::Grassland, Biome::Snow][usize::from(b % 3)]),
-            7 => Tool::AddRiver,
-            8 => Tool::RemoveRiver,
-            9 => Tool::FillLake,
-            10 => Tool::DrainLake,
-            11 => Tool::SetProps([PropDensity::None, PropDensity::Sparse, PropDensity::Dense][usize::from(b % 3)]),
-            _ => Tool::Raise(f32::from_bits(u32::from_le_bytes([a, b, c, d]))),
-        };
         // A flood on an unbounded map fills thousands of tiles: too slow an input to fuzz.
         let bounded = editor.terrain().bounds().is_some();
         let brush = match c % 6 {
@@ -139,6 +126,7 @@ pub fn edits(data: &[u8]) {
             _ => Brush::Range(u32::from(c % 4)),
         };
         let tile = editor.terrain().tile_from_offset([i32::from(d % 8), i32::from(d / 8 % 8)]);
+        let tool = fuzzed_tool(a, b, c, d);
         match editor.apply(Stroke { tool, brush, tile }) {
             Ok(change) => applied += usize::from(!change.is_empty()),
             Err(error) => assert!(!error.to_string().is_empty()),
@@ -156,6 +144,66 @@ pub fn edits(data: &[u8]) {
     let mut loaded = config.edits;
     loaded.sort_by_key(|e| (e.at.1, e.at.0));
     assert_eq!(editor.edits(), loaded, "undoing every stroke gives back the edits as loaded");
+}
+
+/// A stroke's tool from four bytes of a script.
+fn fuzzed_tool(a: u8, b: u8, c: u8, d: u8) -> Tool {
+    let amount = f32::from(b) / 255.0;
+    match a % 13 {
+        0 => Tool::Raise(amount),
+        1 => Tool::Lower(amount),
+        2 => Tool::SetHeight(amount),
+        3 => Tool::Smooth,
+        4 => Tool::SetKind([TileKind::Sea, TileKind::Land, TileKind::Mountain][usize::from(b % 3)]),
+        5 => Tool::Erase,
+        6 => Tool::SetBiome([Biome::Desert, Biome::Grassland, Biome::Snow][usize::from(b % 3)]),
+        7 => Tool::AddRiver,
+        8 => Tool::RemoveRiver,
+        9 => Tool::FillLake,
+        10 => Tool::DrainLake,
+        11 => Tool::SetProps([PropDensity::None, PropDensity::Sparse, PropDensity::Dense][usize::from(b % 3)]),
+        _ => Tool::Raise(f32::from_bits(u32::from_le_bytes([a, b, c, d]))),
+    }
+}
+
+/// The edits target on a globe (at most [`MAX_GLOBE_FREQUENCY`]): up to eight strokes by a
+/// [`GlobeEditor`] on tiles the script names, refusals said in words; the edited globe's map
+/// file loads as the same edits, its north pole's chunk meshes finite, and undoing every stroke
+/// gives back the globe as loaded, bit for bit.
+fn globe_edits(config: MapConfig, frequency: u32, script: &[u8]) {
+    if frequency > MAX_GLOBE_FREQUENCY || 5 * config.subdivisions().pow(2) > MAX_GLOBE_POINTS {
+        return;
+    }
+    let mut editor = match GlobeEditor::new(config) {
+        Ok(editor) => editor,
+        Err(error) => return check_config_error(&error),
+    };
+    let start = editor.globe().generate(GlobeChunk::North);
+    let tiles = editor.globe().grid().tile_count();
+    let mut applied = 0;
+    for step in script.chunks(4).take(8) {
+        let [a, b, c, d] = [0, 1, 2, 3].map(|i| step.get(i).copied().unwrap_or(0));
+        let brush = match c % 6 {
+            4 => Brush::Flood,
+            5 => Brush::FloodBiome,
+            _ => Brush::Range(u32::from(c % 4)),
+        };
+        // A tile past the globe one stroke in 64.
+        let tile = GlobeTile((u32::from(d) * 7 + u32::from(b)) % (tiles + tiles / 64 + 1));
+        match editor.apply(GlobeStroke { tool: fuzzed_tool(a, b, c, d), brush, tile }) {
+            Ok(change) => applied += usize::from(!change.is_empty()),
+            Err(error) => assert!(!error.to_string().is_empty()),
+        }
+    }
+    assert_eq!(editor.undo_len(), applied);
+    let saved = editor.config();
+    let reloaded = MapConfig::from_ron(&saved.to_ron()).expect("a saved edited globe loads");
+    assert_eq!(reloaded.edits, saved.edits, "the saved edits load back the same");
+    let edited = editor.globe().generate(GlobeChunk::North);
+    assert!(edited.buffers.positions.iter().flatten().all(|v| v.is_finite()), "a position is not finite");
+    assert!(edited.heights.iter().all(|h| (0.0..=1.0).contains(h)), "a height outside [0, 1]");
+    while editor.undo().is_some() {}
+    assert!(editor.globe().generate(GlobeChunk::North) == start, "undoing every stroke gives back the globe");
 }
 
 /// Heightmap: PNG bytes → [`HeightImage`] → a 12x8 map tiled from it.

@@ -30,7 +30,8 @@ pub const MAX_EDITS: usize = 1 << 18;
 #[serde(deny_unknown_fields)]
 pub struct TileEdit {
     /// The tile, in offset coordinates `(column, row)` like the map's size (on a wrapping map,
-    /// the map's own column, `0..width`).
+    /// the map's own column, `0..width`); on a globe `(id, 0)`, the tile's
+    /// [`GlobeTile`](crate::GlobeTile) id ([`GlobeTile::at`](crate::GlobeTile::at)).
     pub at: (i32, i32),
     /// The height of the tile's center before the type rules, a fraction of the maximum
     /// elevation in `[0, 1]` (the generator's raw height: below `terrain.sea_threshold` is sea,
@@ -123,7 +124,7 @@ impl TileEdit {
 }
 
 /// Checks the edits of a map of `size`: every tile on the map (within the world's edge on an
-/// unbounded one), once; every height finite in `[0, 1]`; a type the map can have; at most
+/// unbounded one, `(id, 0)` of one of its tiles on a globe), once; every height finite in `[0, 1]`; a type the map can have; at most
 /// [`MAX_EDITS`]; a river only on a map with rivers; a biome only on a map of biomes, a terrain
 /// and a feature only on a map with its own terrain ruleset.
 pub(super) fn validate(
@@ -138,14 +139,31 @@ pub(super) fn validate(
     for (i, edit) in edits.iter().enumerate() {
         let (col, row) = edit.at;
         let field = format!("edits[{i}].at");
-        match size.bounds() {
-            Some((x, z)) => check(
+        match (size, size.bounds()) {
+            (MapSize::Globe { frequency }, _) => {
+                let tiles = 10 * i64::from(frequency).pow(2) + 2;
+                check(
+                    row == 0 && (0..tiles).contains(&i64::from(col)),
+                    &field,
+                    format!("({col}, {row})"),
+                    format!("a tile of the globe: (id, 0) with an id in 0..{tiles}"),
+                )?;
+                if let Some(density) = edit.props {
+                    check(
+                        false,
+                        &format!("edits[{i}].props"),
+                        format!("{density:?} on a globe"),
+                        "none on a globe: props are not on globes yet",
+                    )?;
+                }
+            }
+            (_, Some((x, z))) => check(
                 (0..x as i64).contains(&i64::from(col)) && (0..z as i64).contains(&i64::from(row)),
                 &field,
                 format!("({col}, {row})"),
                 format!("a tile of the map: columns 0..{x}, rows 0..{z}"),
             )?,
-            None => check(
+            (_, None) => check(
                 (-MAX_WORLD_TILE..MAX_WORLD_TILE).contains(&col) && (-MAX_WORLD_TILE..MAX_WORLD_TILE).contains(&row),
                 &field,
                 format!("({col}, {row})"),

@@ -288,7 +288,7 @@ impl MapConfig {
 impl MapConfig {
     /// A globe's own checks: its frequency and mesh size, and the parts of a flat map a globe
     /// does not have (an edge to wrap, a shape or map type drawn on the map's rectangle, a
-    /// heightmap) or has not yet (climate, rivers, a ruleset, a game setup, edits).
+    /// heightmap) or has not yet (winds, rivers, ranges, a ruleset, a game setup).
     fn validate_globe(&self, frequency: u32, per_hex: u64) -> Result<(), ConfigError> {
         let max = crate::MAX_GLOBE_FREQUENCY;
         check((1..=max).contains(&frequency), "size.Globe.frequency", frequency, format!("1..={max}"))?;
@@ -335,8 +335,7 @@ impl MapConfig {
         )?;
         check(!self.rivers.enabled, "rivers.enabled", true, "false on a globe: rivers are not on globes yet")?;
         check(self.ruleset.is_none(), "ruleset", format!("{:?}", self.ruleset), not_yet("terrain rulesets"))?;
-        check(self.setup.is_none(), "setup", "a game setup on a globe", not_yet("game setups"))?;
-        check(self.edits.is_empty(), "edits", format!("{} edits on a globe", self.edits.len()), not_yet("edits"))
+        check(self.setup.is_none(), "setup", "a game setup on a globe", not_yet("game setups"))
     }
 }
 

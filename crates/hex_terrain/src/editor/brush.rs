@@ -54,26 +54,37 @@ impl Brush {
                 let class = |t: Hex| {
                     terrain.tile_info(t).map(|i| if self == Self::Flood { i.kind as u8 } else { i.biome as u8 })
                 };
-                let kind = class(start);
-                let mut queue = VecDeque::from([start]);
-                seen.insert(start);
-                while let Some(t) = queue.pop_front() {
-                    out.push(t);
-                    if out.len() >= MAX_FLOOD_TILES {
-                        break;
-                    }
-                    for n in t.all_neighbors() {
-                        if let Some(n) = own(n)
-                            && !seen.contains(&n)
-                            && class(n) == kind
-                        {
-                            seen.insert(n);
-                            queue.push_back(n);
-                        }
-                    }
-                }
+                return flood(start, class, |t| t.all_neighbors().into_iter().filter_map(own));
             }
         }
         out
     }
+}
+
+/// The tiles connected to `start` through tiles of its `class`, breadth first from it (each
+/// tile's `neighbors` in their order), up to [`MAX_FLOOD_TILES`]: a flood brush's tiles on a
+/// flat map or a globe.
+pub(crate) fn flood<T, C, I>(start: T, class: impl Fn(T) -> C, neighbors: impl Fn(T) -> I) -> Vec<T>
+where
+    T: Copy + Eq + std::hash::Hash,
+    C: PartialEq,
+    I: IntoIterator<Item = T>,
+{
+    let kind = class(start);
+    let mut seen = HashSet::from([start]);
+    let mut queue = VecDeque::from([start]);
+    let mut out = Vec::new();
+    while let Some(t) = queue.pop_front() {
+        out.push(t);
+        if out.len() >= MAX_FLOOD_TILES {
+            break;
+        }
+        for n in neighbors(t) {
+            if !seen.contains(&n) && class(n) == kind {
+                seen.insert(n);
+                queue.push_back(n);
+            }
+        }
+    }
+    out
 }

@@ -14,6 +14,14 @@ pub enum EditError {
     /// The stroke's tile is not on the map.
     #[error("tile ({}, {}) is not on the map", .0.x, .0.y)]
     OffMap(Hex),
+    /// The stroke's tile is not one of the globe's: its id and the globe's tile count.
+    #[error("tile {tile} is not on the globe: its tiles are 0..{tiles}")]
+    OffGlobe {
+        /// The tile's id.
+        tile: u32,
+        /// How many tiles the globe has.
+        tiles: u32,
+    },
     /// The tool's amount is not finite or outside its range.
     #[error("the tool's amount {value} is outside {allowed}")]
     Amount {
@@ -54,6 +62,9 @@ impl std::fmt::Debug for EditError {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {
             Self::OffMap(tile) => f.debug_tuple("OffMap").field(&[tile.x, tile.y]).finish(),
+            Self::OffGlobe { tile, tiles } => {
+                f.debug_struct("OffGlobe").field("tile", tile).field("tiles", tiles).finish()
+            }
             Self::Amount { value, allowed } => {
                 f.debug_struct("Amount").field("value", value).field("allowed", allowed).finish()
             }

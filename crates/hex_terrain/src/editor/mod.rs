@@ -17,6 +17,7 @@ use std::time::{Duration, Instant};
 
 use hexx::Hex;
 
+pub(crate) use brush::flood;
 pub use brush::{Brush, MAX_BRUSH_RADIUS, MAX_FLOOD_TILES};
 pub use change::Change;
 pub use error::EditError;
@@ -276,59 +277,41 @@ impl Editor {
 
     /// A tile's edit after `tool` (`None`: no edit left).
     fn edited(&self, tool: Tool, tile: Hex, before: Option<TileEdit>) -> Option<TileEdit> {
-        let [col, row] = self.terrain.offset_of(tile);
-        let mut edit = before.unwrap_or_else(|| TileEdit::at((col, row)));
-        let height = |t: Hex| self.center_height(t);
         match tool {
-            Tool::Raise(by) => {
-                edit.height = Some((height(tile) + by).clamp(0.0, 1.0));
-                edit.kind = None;
-            }
-            Tool::Lower(by) => {
-                edit.height = Some((height(tile) - by).clamp(0.0, 1.0));
-                edit.kind = None;
-            }
-            Tool::SetHeight(h) => {
-                edit.height = Some(h);
-                edit.kind = None;
-            }
-            Tool::Smooth => {
-                let mut sum = height(tile);
-                let mut count = 1.0;
-                for n in self.terrain.neighbors(tile).into_iter().flatten().flatten() {
-                    sum += height(n);
-                    count += 1.0;
-                }
-                edit.height = Some((sum / count).clamp(0.0, 1.0));
-                edit.kind = None;
-            }
-            Tool::SetKind(kind) => {
-                // A tile of that type already: nothing to set (its height stays its own).
-                if self.terrain.tile_kind(tile) == Some(kind) {
-                    return before;
-                }
-                edit.height = Some(height(tile));
-                edit.kind = Some(kind);
-            }
-            Tool::SetBiome(biome) => edit.biome = Some(biome),
-            Tool::AddRiver => edit.river = Some(RiverEdit::Source),
-            Tool::RemoveRiver => edit.river = Some(RiverEdit::Dry),
             Tool::DrainLake => {
                 // A lake tile rises to just above its lake's surface: no water stands on it.
                 let (Some(_), Some(level)) = (self.terrain.lake(tile), self.terrain.water_level(tile)) else {
                     return before;
                 };
+                let [col, row] = self.terrain.offset_of(tile);
+                let mut edit = before.unwrap_or_else(|| TileEdit::at((col, row)));
                 edit.height = Some((level + DRAIN_MARGIN).min(1.0));
                 edit.kind = None;
+                Some(edit)
             }
             // Planned for the whole stroke in `apply`.
-            Tool::FillLake => return before,
-            Tool::SetProps(density) => edit.props = Some(density),
-            Tool::SetTerrain(id) => edit.terrain = Some(id),
-            Tool::SetFeature(feature) => edit.feature = Some(feature),
-            Tool::Erase => return None,
+            Tool::FillLake => before,
+            _ => {
+                let [col, row] = self.terrain.offset_of(tile);
+                let now = TileNow {
+                    at: (col, row),
+                    height: self.center_height(tile),
+                    kind: self.terrain.tile_kind(tile),
+                    neighbors: match tool {
+                        Tool::Smooth => self
+                            .terrain
+                            .neighbors(tile)
+                            .into_iter()
+                            .flatten()
+                            .flatten()
+                            .map(|n| self.center_height(n))
+                            .collect(),
+                        _ => Vec::new(),
+                    },
+                };
+                now.edited(tool, before)
+            }
         }
-        (!edit.is_empty()).then_some(edit)
     }
 
     /// Refuses a water tool on a map without rivers (or lakes).
@@ -402,11 +385,60 @@ fn row_major((col, row): (i32, i32)) -> (i32, i32) {
 }
 
 /// Refuses a tool amount that is not finite or out of range.
-fn check_amount(tool: Tool) -> Result<(), EditError> {
+pub(crate) fn check_amount(tool: Tool) -> Result<(), EditError> {
     let (value, ok, allowed) = match tool {
         Tool::Raise(v) | Tool::Lower(v) => (v, v.is_finite() && (0.0..=1.0).contains(&v), "[0, 1]"),
         Tool::SetHeight(v) => (v, v.is_finite() && (0.0..=1.0).contains(&v), "[0, 1]"),
         _ => return Ok(()),
     };
     if ok { Ok(()) } else { Err(EditError::Amount { value, allowed }) }
+}
+
+/// What a stroke reads of one tile for the tools every map has (heights, types, biomes, props,
+/// terrains and features, rivers set by hand, erasing): its `at`, its center height (raw,
+/// edited) and type, and its neighbors' center heights (read for [`Tool::Smooth`] only). A flat map's and a
+/// globe's editors alike.
+pub(crate) struct TileNow {
+    pub(crate) at: (i32, i32),
+    pub(crate) height: f32,
+    pub(crate) kind: Option<TileKind>,
+    pub(crate) neighbors: Vec<f32>,
+}
+
+impl TileNow {
+    /// The tile's edit after `tool` (`None`: no edit left); a lake tool (planned by the map's
+    /// editor) leaves it as it was.
+    pub(crate) fn edited(&self, tool: Tool, before: Option<TileEdit>) -> Option<TileEdit> {
+        let mut edit = before.unwrap_or_else(|| TileEdit::at(self.at));
+        let mut height = |h: f32| {
+            edit.height = Some(h.clamp(0.0, 1.0));
+            edit.kind = None;
+        };
+        match tool {
+            Tool::Raise(by) => height(self.height + by),
+            Tool::Lower(by) => height(self.height - by),
+            Tool::SetHeight(h) => height(h),
+            Tool::Smooth => {
+                let sum = self.neighbors.iter().fold(self.height, |sum, &h| sum + h);
+                height(sum / (1 + self.neighbors.len()) as f32);
+            }
+            Tool::SetKind(kind) => {
+                // A tile of that type already: nothing to set (its height stays its own).
+                if self.kind == Some(kind) {
+                    return before;
+                }
+                edit.height = Some(self.height);
+                edit.kind = Some(kind);
+            }
+            Tool::SetBiome(biome) => edit.biome = Some(biome),
+            Tool::AddRiver => edit.river = Some(RiverEdit::Source),
+            Tool::RemoveRiver => edit.river = Some(RiverEdit::Dry),
+            Tool::FillLake | Tool::DrainLake => return before,
+            Tool::SetProps(density) => edit.props = Some(density),
+            Tool::SetTerrain(id) => edit.terrain = Some(id),
+            Tool::SetFeature(feature) => edit.feature = Some(feature),
+            Tool::Erase => return None,
+        }
+        (!edit.is_empty()).then_some(edit)
+    }
 }

@@ -8,6 +8,8 @@
 
 mod atlas;
 mod climate;
+mod editor;
+mod edits;
 mod fine;
 mod fog;
 mod map_type;
@@ -18,6 +20,7 @@ mod stats;
 mod terrain;
 
 use atlas::{MISSING_AT_ORIGIN, STEPS, Spot, locate};
+pub use editor::{GlobeChange, GlobeEditor, GlobeStroke};
 pub use fog::{GLOBE_FOG_MAGIC, GLOBE_FOG_VERSION, GlobeFog};
 use project::Projection;
 pub use raycast::GlobeRayHit;
@@ -31,9 +34,28 @@ use crate::ConfigError;
 pub const MAX_GLOBE_FREQUENCY: u32 = 256;
 
 /// A tile of a globe: its dense id, `0..GlobeGrid::tile_count()`.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, serde::Serialize, serde::Deserialize)]
 #[cfg_attr(feature = "bevy_reflect", derive(bevy_reflect::Reflect))]
+#[serde(transparent)]
 pub struct GlobeTile(pub u32);
+
+impl GlobeTile {
+    /// The tile as a map file's edits ([`TileEdit::at`](crate::TileEdit::at)) and a tile state
+    /// save ([`SavedTile::at`](crate::save::SavedTile::at)) name it on a globe: `(id, 0)`, the
+    /// globe's tiles in one row of ids.
+    #[must_use]
+    pub fn at(self) -> (i32, i32) {
+        (i32::try_from(self.0).expect("at most 655,362 tiles"), 0)
+    }
+
+    /// The tile an `at` of a globe names (`(id, 0)`, see [`GlobeTile::at`]); `None` for a
+    /// negative id or another row. Whether the globe has that tile is
+    /// [`GlobeGrid::contains`]'s to say.
+    #[must_use]
+    pub fn from_at((id, row): (i32, i32)) -> Option<Self> {
+        (row == 0).then(|| u32::try_from(id).ok().map(Self)).flatten()
+    }
+}
 
 /// The globe sizes named after Civilization VI's map sizes, by tile count (a Civ6 map of that
 /// size has about as many hexes).

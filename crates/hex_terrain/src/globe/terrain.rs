@@ -18,9 +18,10 @@ pub use mesh::{GlobeMesh, GlobePoint};
 mod chunks;
 mod mesh;
 use super::climate::Ground;
+use super::edits::GlobeEdits;
 use super::map_type::{GlobeMapType, TypeGround};
 use crate::climate::Climate;
-use crate::config::{MapConfig, MapSize};
+use crate::config::{MapConfig, MapSize, TileEdit};
 use crate::error::ConfigError;
 use crate::heights::MapTypeReport;
 use crate::heights::fbm::{LANES, SolidFbm};
@@ -54,7 +55,11 @@ pub struct GlobeTerrain {
     thresholds: Thresholds,
     /// The globe's radius in hex radii.
     radius: f64,
-    /// Each tile's center height (raw), kind, climate and biome, by id.
+    /// Each tile's generated center height (raw, before the edits), by id.
+    generated: Vec<f32>,
+    /// The config's edits, compiled.
+    edits: GlobeEdits,
+    /// Each tile's center height (raw, edited), kind, climate and biome, by id.
     centers: Vec<f32>,
     kinds: Vec<TileKind>,
     climates: Vec<Option<Climate>>,
@@ -102,6 +107,8 @@ impl GlobeTerrain {
             map_type: None,
             thresholds: Thresholds::new(&config.terrain, &config.manipulation),
             radius,
+            generated: Vec::new(),
+            edits: GlobeEdits::default(),
             centers: Vec::new(),
             kinds: Vec::new(),
             climates: Vec::new(),
@@ -124,18 +131,47 @@ impl GlobeTerrain {
                 thresholds: (t.sea, t.mountain),
             }));
         }
-        globe.centers = centers.iter().zip(&fbm).map(|(&p, &(dir, fbm))| globe.shape(p, dir, fbm)).collect();
-        globe.kinds = globe.centers.iter().map(|&h| globe.thresholds.classify(h)).collect();
-        (globe.climates, globe.biomes) = Ground {
-            config: &globe.config,
-            thresholds: &globe.thresholds,
-            grid: &globe.grid,
-            heights: &globe.centers,
-            kinds: &globe.kinds,
-            radius: globe.radius,
+        globe.generated = centers.iter().zip(&fbm).map(|(&p, &(dir, fbm))| globe.shape(p, dir, fbm)).collect();
+        globe.compile_tiles();
+        Ok(globe)
+    }
+
+    /// The globe with other edits ([`MapConfig::edits`]): the same config but for them,
+    /// compiled again without generating the map type or the centers' noise again (what the
+    /// [`GlobeEditor`](crate::GlobeEditor) does after each stroke). Equal, bit for bit, to
+    /// [`GlobeTerrain::new`] of the config with those edits.
+    ///
+    /// # Errors
+    /// The first invalid field of the edited config (`edits[i]...`).
+    pub fn with_edits(&self, edits: Vec<TileEdit>) -> Result<Self, ConfigError> {
+        let config = MapConfig { edits, ..self.config.clone() };
+        config.validate()?;
+        let mut globe = Self { config, caps: std::sync::OnceLock::new(), ..self.clone() };
+        globe.compile_tiles();
+        Ok(globe)
+    }
+
+    /// Each tile's edited center height, kind, climate and biome from the generated centers and
+    /// the config's edits.
+    fn compile_tiles(&mut self) {
+        let t = &self.thresholds;
+        self.edits = GlobeEdits::new(&self.config.edits, (t.sea, t.mountain), &self.generated);
+        self.centers = self.grid.tiles().zip(&self.generated).map(|(t, &h)| self.edits.apply(&[t], h)).collect();
+        self.kinds = self.centers.iter().map(|&h| self.thresholds.classify(h)).collect();
+        (self.climates, self.biomes) = Ground {
+            config: &self.config,
+            thresholds: &self.thresholds,
+            grid: &self.grid,
+            heights: &self.centers,
+            kinds: &self.kinds,
+            radius: self.radius,
         }
         .climates();
-        Ok(globe)
+        for (t, biome) in self.grid.tiles().zip(&mut self.biomes) {
+            if let Some(by_hand) = self.edits.biome(t) {
+                *biome = by_hand;
+            }
+        }
     }
 
     /// The config it was compiled from.
@@ -171,15 +207,16 @@ impl GlobeTerrain {
         self.kinds.get(tile.0 as usize).copied()
     }
 
-    /// A tile's center height (normalised, before manipulation); `None` for a tile not of this
-    /// globe.
+    /// A tile's center height (normalised, edited, before manipulation); `None` for a tile not
+    /// of this globe.
     #[must_use]
     pub fn tile_height(&self, tile: GlobeTile) -> Option<f32> {
         self.centers.get(tile.0 as usize).copied()
     }
 
-    /// A tile's biome: by its climate and the config's biome table on a globe with a climate
-    /// (coast or ocean at sea), else by its kind; `None` for a tile not of this globe.
+    /// A tile's biome: the one set by hand ([`TileEdit::biome`]) first; else by its climate and
+    /// the config's biome table on a globe with a climate (coast or ocean at sea), else by its
+    /// kind; `None` for a tile not of this globe.
     #[must_use]
     pub fn tile_biome(&self, tile: GlobeTile) -> Option<Biome> {
         self.biomes.get(tile.0 as usize).copied()
@@ -377,6 +414,7 @@ impl GlobeTerrain {
             }
         };
         let tiles = &tiles[..len];
+        let raw = self.edits.apply(tiles, raw);
         let mut kinds = [TileKind::Sea; 3];
         for (k, t) in kinds.iter_mut().zip(tiles) {
             *k = self.kinds[t.0 as usize];
