@@ -61,6 +61,8 @@ RON
 # continent.
 "$cli" render assets/maps/globe/continents.map.ron -o docs/globe_continents.png --width 1000
 "$cli" render assets/maps/globe/continents.map.ron -o docs/globe_continents_view.png --width 640 --from -150,15
+# Twelve Continents globes from seed 1000, to judge the type by eye.
+"$cli" gallery assets/maps/globe/continents.map.ron --seeds 12 --first 1000 --columns 3 --width 320 -o docs/gallery_globe_continents.png
 if [ "${1:-}" = "--screens" ]; then
   xvfb=()
   if [ -z "${DISPLAY:-}" ] && [ -z "${WAYLAND_DISPLAY:-}" ]; then

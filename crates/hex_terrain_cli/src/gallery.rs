@@ -1,11 +1,11 @@
 //! `hexterrain gallery`: one contact sheet of a map config over many seeds, each map rendered
-//! top-down as `render` draws it and labelled with its seed and the figures a player judges a
+//! top-down as `render` draws it (a globe equirectangular) and labelled with its seed and the figures a player judges a
 //! map type by, to judge a type by eye.
 
 use std::path::Path;
 
 use ab_glyph::{Font, FontRef, PxScale, ScaleFont};
-use hex_terrain::{Biome, MapConfig, MapSize, MapStats, Terrain, WaterLevel};
+use hex_terrain::{Biome, GlobeStats, GlobeTerrain, MapConfig, MapSize, MapStats, Terrain, WaterLevel};
 use image::{Rgb, RgbImage};
 
 use crate::CliResult;
@@ -56,8 +56,11 @@ pub fn run(mut config: MapConfig, options: &Options, output: &Path) -> CliResult
         };
         map_type.water = water;
     }
-    let Some((x, z)) = config.size.bounds() else {
-        return Err("a gallery needs a bounded map; give --size COLUMNSxROWS".into());
+    let frequency = config.size.globe();
+    let shape = match (frequency, config.size.bounds()) {
+        (Some(f), _) => format!("globe f = {f}"),
+        (None, Some((x, z))) => format!("{x}x{z}"),
+        (None, None) => return Err("a gallery needs a bounded map or a globe; give --size COLUMNSxROWS".into()),
     };
     let font = FontRef::try_from_slice(FONT).map_err(|e| format!("the labels' font: {e}"))?;
     let scale = PxScale::from((options.width as f32 / 30.0).clamp(10.0, 20.0));
@@ -65,7 +68,17 @@ pub fn run(mut config: MapConfig, options: &Options, output: &Path) -> CliResult
     let mut tiles = Vec::with_capacity(options.seeds as usize);
     for k in 0..options.seeds {
         let seed = config.seed.wrapping_add(k);
-        let terrain = Terrain::new(MapConfig { seed, ..config.clone() }).map_err(|e| format!("seed {seed}: {e}"))?;
+        let config = MapConfig { seed, ..config.clone() };
+        let failed = |e: hex_terrain::ConfigError| format!("seed {seed}: {e}");
+        if frequency.is_some() {
+            // A globe: its equirectangular map, labelled with its landmasses on the sphere.
+            let globe = GlobeTerrain::new(config).map_err(failed)?;
+            let picture = crate::globe::render(&globe, crate::globe::View::Equirectangular, options.width, false);
+            let met = globe.map_type_report().map(hex_terrain::MapTypeReport::met);
+            tiles.push((seed, picture, globe_labels(&GlobeStats::measure(&globe), met)));
+            continue;
+        }
+        let terrain = Terrain::new(config).map_err(failed)?;
         let mesh = crate::whole_map(&terrain)?;
         let picture = render::render(
             &terrain,
@@ -74,6 +87,7 @@ pub fn run(mut config: MapConfig, options: &Options, output: &Path) -> CliResult
         )?;
         let stats = MapStats::measure(&terrain).ok_or("a bounded map")?;
         let met = terrain.map_type().map(hex_terrain::MapTypeReport::met);
+        let (x, z) = terrain.config().size.bounds().ok_or("a bounded map")?;
         tiles.push((seed, picture, labels(&stats, met, (x, z))));
     }
     let (cell_w, map_h) = (options.width, tiles[0].1.height());
@@ -86,7 +100,7 @@ pub fn run(mut config: MapConfig, options: &Options, output: &Path) -> CliResult
         BACKGROUND,
     );
     let title = format!(
-        "{} ({x}x{z}{}): {} seeds from {}",
+        "{} ({shape}{}): {} seeds from {}",
         config.name,
         if config.wrap { ", wrapping" } else { "" },
         options.seeds,
@@ -135,6 +149,33 @@ fn labels(stats: &MapStats, met: Option<bool>, (columns, rows): (u32, u32)) -> [
             percent(stats.river_share()),
             stats.rivers.median,
             stats.lakes
+        ),
+    ]
+}
+
+/// A globe's three label lines: its landmasses (and whether its type met its targets), its
+/// mountains and poles, its water.
+fn globe_labels(stats: &GlobeStats, met: Option<bool>) -> [String; 3] {
+    let percent = |v: f64| format!("{:.0}%", v * 100.0);
+    let verdict = match met {
+        Some(true) => "  targets met",
+        Some(false) => "  TARGETS MISSED",
+        None => "",
+    };
+    [
+        format!("{} cont. {} isl.{verdict}", stats.continents().count(), stats.islands().count()),
+        format!(
+            "largest {} mountains {} ({:.1} mountain nb.) cold {}",
+            percent(stats.largest_landmass_share()),
+            percent(stats.mountain_share()),
+            stats.mountain_neighbors(),
+            percent(stats.cold_share()),
+        ),
+        format!(
+            "sea {} polar land {} strait {}",
+            percent(stats.water_share()),
+            percent(stats.polar_land_share()),
+            stats.narrowest_strait.map_or("-".to_owned(), |s| s.to_string())
         ),
     ]
 }

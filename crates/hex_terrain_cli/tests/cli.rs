@@ -696,6 +696,43 @@ fn gallery_draws_a_contact_sheet() {
     fails(&["gallery", continent.to_str().unwrap(), "--seeds", "2", "--columns", "2"], &["bounded", "--size"]);
 }
 
+/// `gallery` of a globe: equirectangular maps (twice as wide as high), labelled with their
+/// landmasses on the sphere.
+#[test]
+fn gallery_draws_globes_equirectangular() {
+    let map = tmp("gallery_globe.map.ron");
+    std::fs::write(&map, "(name: \"tiny globe\", size: Globe(frequency: 6), map_type: Some((kind: Pangaea)))").unwrap();
+    let sheet = tmp("gallery_globe.png");
+    let out = ok(&[
+        "gallery",
+        map.to_str().unwrap(),
+        "--seeds",
+        "2",
+        "--columns",
+        "2",
+        "--width",
+        "160",
+        "-o",
+        sheet.to_str().unwrap(),
+    ]);
+    assert!(out.contains("2 maps of tiny globe"), "{out}");
+    let img = image::open(&sheet).unwrap().to_rgb8();
+    assert_eq!(img.width(), 2 * (160 + 6) + 6);
+    // Each picture is 160 x 80 under the title line: the sea's blue and some land in it.
+    let (mut sea, mut land) = (0, 0);
+    for y in 40..100 {
+        for x in 6..166 {
+            let [r, g, b] = img.get_pixel(x, y).0;
+            if b > r + 40 && b > g {
+                sea += 1
+            } else if g >= b {
+                land += 1
+            }
+        }
+    }
+    assert!(sea > 1000 && land > 300, "sea {sea}, land {land} pixels");
+}
+
 /// `stats --ruleset` counts the tiles by the ruleset's terrains (every tile once) and features,
 /// as `Terrain::tile_terrain` reads them; a broken ruleset names its file and line.
 #[test]
