@@ -92,6 +92,10 @@ if [ "${1:-}" = "--screens" ]; then
   shot minimal.png minimal
   shot streaming.png streaming HEXTERRAIN_STILL=1
   shot far_example.png far
+  # The globe example at three zooms: the planet, a region, the ground tilted to the horizon.
+  shot globe_planet.png globe HEXTERRAIN_GLOBE_ALTITUDE=60
+  shot globe_region.png globe HEXTERRAIN_GLOBE_ALTITUDE=14
+  shot globe_ground.png globe HEXTERRAIN_GLOBE_ALTITUDE=3
   # The rendering tests' pictures: each test writes its frame where the tests keep files.
   "${xvfb[@]}" cargo test -q -p bevy_hex_terrain --features "$HEXTERRAIN_FEATURES" \
     --test render --test render_tile_state --test render_far > /dev/null

@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Sets up a fresh machine and runs the main job: the turn-based strategy demo.
+# Sets up a fresh machine and runs the main job: the turn-based strategy demo (or, given its
+# name, another example: `scripts/run.sh globe`).
 # The dev profile (dependencies and the generator at opt-level 3) is the build scripts/test.sh
 # uses too, so the two commands share one build of Bevy. The first build compiles Bevy: about
 # 22 minutes on two cores; later runs start in seconds.
@@ -10,7 +11,16 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/setup.sh
 source scripts/env.sh
-run=(cargo run -p bevy_hex_terrain --features "$HEXTERRAIN_FEATURES" --example strategy)
+# `scripts/run.sh globe` (or minimal, streaming, far) runs another example the same way.
+example="${1:-strategy}"
+case "$example" in
+  strategy | globe | minimal | streaming | far) ;;
+  *)
+    echo "scripts/run.sh [strategy|globe|minimal|streaming|far]: no example \"$example\"" >&2
+    exit 2
+    ;;
+esac
+run=(cargo run -p bevy_hex_terrain --features "$HEXTERRAIN_FEATURES" --example "$example")
 if [ -n "${DISPLAY:-}" ] || [ -n "${WAYLAND_DISPLAY:-}" ]; then
   exec "${run[@]}"
 fi

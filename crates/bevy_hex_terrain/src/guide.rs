@@ -23,7 +23,7 @@
 //! - [Recipes](crate::guide::recipes)
 //! - [Rules: movement, paths and sight](crate::guide::rules)
 //! - [Your own terrain: rulesets](crate::guide::own_terrain)
-//! - [A hex globe (the core, for now)](crate::guide::globe)
+//! - [A hex globe](crate::guide::globe)
 
 #![allow(clippy::doc_markdown, reason = "the chapters are prose for people, read on GitHub too")]
 

@@ -18,7 +18,10 @@
 //! | [`Place`](HexTerrainSystems::Place) | [`HexPlacementPlugin`] | keeps [`OnTile`] entities (units, cities) on the surface of their tiles, walks [`TileWalk`]s, hides entities under the fog the [`TileStates`] show | |
 //! | [`Render`](HexTerrainSystems::Render) | `HexTerrainMaterialPlugin`, `HexLightPlugin` (`render`) | the terrain and water material and its tile state texture; the sun, fog and ambient light of `HexTerrainCamera`s | `HexTerrainMaterialSettings`, `HexLightSettings` |
 //!
-//! Besides them: with the `picking` feature `HexPickingPlugin`, a `bevy_picking` backend whose
+//! Besides them: [`HexGlobePlugin`], a hex globe (a map file of size `Globe`) streamed to each
+//! agent's horizon with its [`GlobeCamera`], in place of the flat map's plugins (a first step:
+//! the flat map's material, tile states and picking do not reach it yet);
+//! with the `picking` feature `HexPickingPlugin`, a `bevy_picking` backend whose
 //! hits carry the tile (`HexPick`);
 //! with `minimap` `HexMinimapPlugin`; with `big_space` `HexBigSpacePlugin` (floating origin).
 //!
@@ -54,6 +57,7 @@ mod asset;
 mod editor;
 #[cfg(feature = "big_space")]
 mod far;
+mod globe;
 // The guide is built with the `minimap` and `big_space` features, as on docs.rs.
 #[cfg(all(feature = "minimap", feature = "big_space"))]
 pub mod guide;
@@ -86,6 +90,9 @@ pub use crate::editor::{
 };
 #[cfg(feature = "big_space")]
 pub use crate::far::{HexBigSpacePlugin, HexTerrainGrid};
+pub use crate::globe::{
+    GlobeCamera, GlobeStreamer, HexGlobe, HexGlobeChunk, HexGlobePlugin, NEAR_ANGLE, globe_horizon,
+};
 #[cfg(feature = "render")]
 pub use crate::light::{HexLightPlugin, HexLightSettings, HexSun, HexTerrainCamera};
 pub use crate::map::{
@@ -135,12 +142,13 @@ pub mod prelude {
     #[cfg(feature = "render")]
     pub use crate::screenshot::HexScreenshotPlugin;
     pub use crate::{
-        ChunkContent, ChunkDespawned, ChunkSpawned, ChunkStreamer, FogState, GameSetUp, HexChunk, HexEditor, HexMap,
-        HexMapEdit, HexMapEdited, HexMapError, HexMapPlugin, HexMapUnchanged, HexProp, HexPropSettings, HexPropsPlugin,
-        HexStreamingPlugin, HexStreamingSettings, HexStreamingStats, HexTerrainAgent, HexTerrainPlugins,
-        HexTerrainSystems, HexTileStatePlugin, HexTileStateSettings, HexTileStateStyle, HexWater, HexWaterPlugin,
-        HexWaterSettings, HexWorldPosition, Highlight, LoadHexMap, MapSource, OnTile, SaveError, SetUpGame,
-        TerrainReady, TerrainSettled, TileHit, TileStateSave, TileStates, TileWalk, WalkEnded,
+        ChunkContent, ChunkDespawned, ChunkSpawned, ChunkStreamer, FogState, GameSetUp, GlobeCamera, HexChunk,
+        HexEditor, HexGlobe, HexGlobeChunk, HexGlobePlugin, HexMap, HexMapEdit, HexMapEdited, HexMapError,
+        HexMapPlugin, HexMapUnchanged, HexProp, HexPropSettings, HexPropsPlugin, HexStreamingPlugin,
+        HexStreamingSettings, HexStreamingStats, HexTerrainAgent, HexTerrainPlugins, HexTerrainSystems,
+        HexTileStatePlugin, HexTileStateSettings, HexTileStateStyle, HexWater, HexWaterPlugin, HexWaterSettings,
+        HexWorldPosition, Highlight, LoadHexMap, MapSource, OnTile, SaveError, SetUpGame, TerrainReady, TerrainSettled,
+        TileHit, TileStateSave, TileStates, TileWalk, WalkEnded,
     };
     pub use hex_terrain::hexx::Hex;
     pub use hex_terrain::{

@@ -82,6 +82,7 @@ fn screenshot_after_frames(
     mut commands: Commands,
     mut mode: ResMut<ScreenshotMode>,
     streamer: Option<Res<crate::ChunkStreamer>>,
+    globe: Option<Res<crate::GlobeStreamer>>,
     saved: Option<Res<Saved>>,
     mut exit: MessageWriter<AppExit>,
 ) {
@@ -93,7 +94,8 @@ fn screenshot_after_frames(
     if mode.seen == 10 {
         mode.timing_from = Some(std::time::Instant::now());
     }
-    if mode.settled_at.is_none() && streamer.is_some_and(|s| s.is_settled()) {
+    let settled = streamer.is_some_and(|s| s.is_settled()) || globe.is_some_and(|g| g.is_settled());
+    if mode.settled_at.is_none() && settled {
         mode.settled_at = Some(mode.seen);
     }
     let settled = mode.settled_at.is_some_and(|at| mode.seen >= at + SETTLE_FRAMES);

@@ -724,9 +724,9 @@ fn gallery_draws_globes_equirectangular() {
         for x in 6..166 {
             let [r, g, b] = img.get_pixel(x, y).0;
             if b > r + 40 && b > g {
-                sea += 1
+                sea += 1;
             } else if g >= b {
-                land += 1
+                land += 1;
             }
         }
     }

@@ -1,0 +1,200 @@
+//! A hex globe in Bevy, first step: [`HexGlobePlugin`] loads a globe map file (a `*.map.ron` of
+//! size `Globe`, hot-reloaded; a broken reload keeps the old globe and says why in a
+//! [`HexMapError`]) into the [`HexGlobe`] resource, streams its chunks around every
+//! [`HexTerrainAgent`] by angle, to the agent's horizon (the far side is neither built nor
+//! drawn), meshes on Bevy's async compute pool; and [`GlobeCamera`] orbits it. The globe's center
+//! is the world's origin, its axis the world's `y`.
+//!
+//! The flat map's material, tile states, props, picking, minimap and editor do not reach a globe
+//! yet: its chunks are drawn with a `StandardMaterial` in their vertex colors (the biome colors
+//! with a climate, else the kinds').
+
+mod camera;
+mod stream;
+
+use std::sync::Arc;
+
+use bevy::prelude::*;
+use hex_terrain::{GlobeChunk, GlobeTerrain, MapConfig};
+
+pub use camera::GlobeCamera;
+pub use stream::{GlobeStreamer, HexGlobeChunk, NEAR_ANGLE, globe_horizon};
+
+use crate::asset::{HexMapAsset, HexMapLoader};
+use crate::map::HexMapError;
+use crate::{HexTerrainSystems, MapSource};
+
+/// The globe shown: its compiled terrain and a generation that grows with each config applied.
+/// While its file loads, no globe (nothing is streamed).
+#[derive(Resource, Debug, Clone, Default, Reflect)]
+#[reflect(Resource, Default)]
+pub struct HexGlobe {
+    /// The compiled globe (not reflected: the core's stages hold no reflected state).
+    #[reflect(ignore)]
+    globe: Option<Arc<GlobeTerrain>>,
+    generation: u64,
+    /// The file the globe comes from, if any.
+    #[reflect(ignore)]
+    handle: Option<Handle<HexMapAsset>>,
+}
+
+impl HexGlobe {
+    /// The compiled globe; `None` while its file loads.
+    #[must_use]
+    pub fn globe(&self) -> Option<&Arc<GlobeTerrain>> {
+        self.globe.as_ref()
+    }
+
+    /// Grows by one each time a config is applied (the first, a hot reload): a chunk built for
+    /// an older generation is built again.
+    #[must_use]
+    pub fn generation(&self) -> u64 {
+        self.generation
+    }
+
+    /// Applies a config: compiles it and makes it the globe, or keeps the globe as it was.
+    ///
+    /// # Errors
+    /// The config's first invalid field (`size` for a flat map's config).
+    pub fn apply(&mut self, config: MapConfig) -> Result<(), hex_terrain::ConfigError> {
+        self.globe = Some(Arc::new(GlobeTerrain::new(config)?));
+        self.generation += 1;
+        Ok(())
+    }
+}
+
+/// Shows a hex globe: the [`HexGlobe`] resource from a map file or a config, its chunks streamed
+/// around every [`HexTerrainAgent`](crate::HexTerrainAgent) to the agent's horizon
+/// ([`GlobeStreamer`], [`HexGlobeChunk`]), and the [`GlobeCamera`] orbit controls. Its systems
+/// run in [`HexTerrainSystems`]: applying the file in `Map` (the camera moves there too, before
+/// streaming), streaming in `Stream`, inserting meshes in `Insert`. Not a part of
+/// [`HexTerrainPlugins`](crate::HexTerrainPlugins): a globe game adds it instead.
+///
+/// ```no_run
+/// use bevy::prelude::*;
+/// use bevy_hex_terrain::prelude::*;
+///
+/// App::new()
+///     .add_plugins((DefaultPlugins, HexGlobePlugin::from_asset("maps/globe/continents.map.ron")))
+///     .add_systems(Startup, |mut commands: Commands| {
+///         // An orbit camera that keeps the globe streamed to its horizon.
+///         commands.spawn((GlobeCamera::default(), HexTerrainAgent::default()));
+///         commands.spawn((DirectionalLight::default(), Transform::from_xyz(1.0, 0.5, 1.0).looking_at(Vec3::ZERO, Vec3::Y)));
+///     })
+///     .run();
+/// ```
+#[derive(Debug, Clone)]
+pub struct HexGlobePlugin {
+    /// The globe to show: a map file's asset path or a config of size `Globe`.
+    pub globe: MapSource,
+}
+
+impl HexGlobePlugin {
+    /// The plugin showing the globe of the map file at an asset path (hot-reloaded when the
+    /// asset server watches files).
+    #[must_use]
+    pub fn from_asset(path: impl Into<String>) -> Self {
+        Self { globe: MapSource::Asset(path.into()) }
+    }
+
+    /// The plugin showing a globe config given in code.
+    #[must_use]
+    pub fn from_config(config: MapConfig) -> Self {
+        Self { globe: MapSource::Config(Box::new(config)) }
+    }
+}
+
+impl Plugin for HexGlobePlugin {
+    fn build(&self, app: &mut App) {
+        if !app.world().contains_resource::<Assets<HexMapAsset>>() {
+            app.init_asset::<HexMapAsset>().init_asset_loader::<HexMapLoader>();
+        }
+        if !app.world().contains_resource::<Assets<Mesh>>() {
+            app.init_asset::<Mesh>();
+        }
+        app.init_resource::<HexGlobe>()
+            .init_resource::<GlobeStreamer>()
+            .add_message::<HexMapError>()
+            .register_type::<HexGlobe>()
+            .register_type::<GlobeCamera>()
+            .register_type::<HexGlobeChunk>()
+            .configure_sets(
+                Update,
+                (HexTerrainSystems::Map, HexTerrainSystems::Stream, HexTerrainSystems::Insert).chain(),
+            )
+            .add_systems(
+                Update,
+                (
+                    (apply_asset, camera::orbit, camera::place).chain().in_set(HexTerrainSystems::Map),
+                    stream::stream.in_set(HexTerrainSystems::Stream),
+                    stream::insert.in_set(HexTerrainSystems::Insert),
+                ),
+            );
+        match &self.globe {
+            MapSource::Config(config) => {
+                let config = (**config).clone();
+                app.add_systems(
+                    PreStartup,
+                    move |mut globe: ResMut<HexGlobe>, mut errors: MessageWriter<HexMapError>| {
+                        if let Err(e) = globe.apply(config.clone()) {
+                            refuse(&mut errors, HexMapError::invalid("globe config", &e));
+                        }
+                    },
+                );
+            }
+            MapSource::Asset(path) => {
+                let path = path.clone();
+                app.add_systems(PreStartup, move |server: Res<AssetServer>, mut globe: ResMut<HexGlobe>| {
+                    globe.handle = Some(server.load(path.clone()));
+                });
+            }
+        }
+    }
+}
+
+/// Reports a globe that could not be applied; the globe stays as it was.
+fn refuse(errors: &mut MessageWriter<HexMapError>, error: HexMapError) {
+    error!("{error}");
+    errors.write(error);
+}
+
+/// Applies the globe's map file when it loads or changes; a file that does not load or is not a
+/// valid globe is reported and the globe kept.
+fn apply_asset(
+    mut globe: ResMut<HexGlobe>,
+    assets: Res<Assets<HexMapAsset>>,
+    mut events: MessageReader<AssetEvent<HexMapAsset>>,
+    mut failures: MessageReader<bevy::asset::AssetLoadFailedEvent<HexMapAsset>>,
+    mut errors: MessageWriter<HexMapError>,
+) {
+    let Some(handle) = globe.handle.clone() else {
+        events.clear();
+        failures.clear();
+        return;
+    };
+    let name = handle.path().map_or_else(|| "globe".into(), |p| format!("globe {p}"));
+    for failure in failures.read().filter(|f| f.id == handle.id()) {
+        let message = failure.error.to_string().lines().next().unwrap_or_default().to_owned();
+        refuse(&mut errors, HexMapError::Unreadable { map: name.clone(), message });
+    }
+    let changed = events.read().any(|e| match e {
+        AssetEvent::LoadedWithDependencies { id } | AssetEvent::Modified { id } => *id == handle.id(),
+        _ => false,
+    });
+    if !changed {
+        return;
+    }
+    let Some(asset) = assets.get(&handle) else { return };
+    if globe.globe.as_ref().is_some_and(|g| *g.config() == asset.config) {
+        return;
+    }
+    match globe.apply(asset.config.clone()) {
+        Ok(()) => info!("hex terrain: globe {:?} applied", asset.config.name),
+        Err(e) => refuse(&mut errors, HexMapError::invalid(&name, &e)),
+    }
+}
+
+/// The chunks of a globe within `angle` radians of `direction` (a unit vector from its center).
+fn chunks_within(globe: &GlobeTerrain, direction: Vec3, angle: f32) -> Vec<GlobeChunk> {
+    globe.chunks_within(direction.as_dvec3().to_array(), f64::from(angle))
+}

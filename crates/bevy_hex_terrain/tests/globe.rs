@@ -1,0 +1,215 @@
+//! Headless `App` tests of the globe plugin: chunks stream to an agent's horizon as it flies over
+//! a pole, with no gap (every chunk with a vertex in sight, measured from the chunk's own mesh)
+//! and no duplicate, the far side left out; the orbit camera crosses a pole without a jump,
+//! zooms with the wheel, turns with a drag and tilts toward the horizon near the ground; a flat
+//! map's config is refused by name.
+
+use std::collections::{BTreeSet, HashMap};
+use std::time::Duration;
+
+use bevy::asset::AssetPlugin;
+use bevy::input::InputPlugin;
+use bevy::input::mouse::{MouseMotion, MouseScrollUnit, MouseWheel};
+use bevy::input::touch::TouchPhase;
+use bevy::prelude::*;
+use bevy::time::TimeUpdateStrategy;
+use bevy_hex_terrain::hex_terrain::{GlobeChunk, GlobeTerrain};
+use bevy_hex_terrain::prelude::*;
+use bevy_hex_terrain::{GlobeStreamer, globe_horizon};
+
+fn globe_config(frequency: u32) -> MapConfig {
+    let mut config =
+        MapConfig { size: MapSize::Globe { frequency }, chunk_size: (2, 2), seed: 4, ..MapConfig::default() };
+    config.terrain.inner_rings = 1;
+    config
+}
+
+fn app(config: MapConfig) -> App {
+    let mut app = App::new();
+    let assets = AssetPlugin { watch_for_changes_override: Some(false), ..default() };
+    app.add_plugins((MinimalPlugins, assets, TransformPlugin, InputPlugin, HexGlobePlugin::from_config(config)));
+    app
+}
+
+/// Updates until `done` holds, letting the task pool work between frames (the cap only
+/// catches a hang).
+fn run_until(app: &mut App, what: &str, mut done: impl FnMut(&mut App) -> bool) {
+    for _ in 0..20_000 {
+        app.update();
+        if done(app) {
+            return;
+        }
+        std::thread::sleep(Duration::from_millis(1));
+    }
+    panic!("gave up waiting for {what}");
+}
+
+/// The chunks on screen: each entity's chunk, counted.
+fn shown(app: &mut App) -> HashMap<GlobeChunk, usize> {
+    let mut out = HashMap::new();
+    let mut q = app.world_mut().query::<(&HexGlobeChunk, Option<&Mesh3d>)>();
+    for (chunk, mesh) in q.iter(app.world()) {
+        assert!(mesh.is_some(), "{:?} has no mesh", chunk.chunk);
+        *out.entry(chunk.chunk).or_default() += 1;
+    }
+    out
+}
+
+/// The smallest angle between `direction` and a vertex of each chunk, from the chunk's mesh.
+fn nearest_angles(globe: &GlobeTerrain, direction: Vec3) -> Vec<(GlobeChunk, f32)> {
+    globe
+        .chunks()
+        .into_iter()
+        .map(|chunk| {
+            let mesh = globe.generate(chunk);
+            let origin = Vec3::from_array(mesh.origin.map(|c| c as f32));
+            let angle = mesh
+                .buffers
+                .positions
+                .iter()
+                .map(|&p| (origin + Vec3::from_array(p)).normalize().dot(direction).clamp(-1.0, 1.0).acos())
+                .fold(f32::INFINITY, f32::min);
+            (chunk, angle)
+        })
+        .collect()
+}
+
+fn direction(longitude: f32, latitude: f32) -> Vec3 {
+    let (lon, lat) = (longitude.to_radians(), latitude.to_radians());
+    Vec3::new(lat.cos() * lon.cos(), lat.sin(), -lat.cos() * lon.sin())
+}
+
+#[test]
+fn chunks_stream_to_the_horizon_over_a_pole_with_no_gap_and_no_duplicate() {
+    let mut app = app(globe_config(8));
+    let agent = app.world_mut().spawn((HexTerrainAgent::default(), Transform::default())).id();
+    app.update();
+    let globe = app.world().resource::<HexGlobe>().globe().expect("the config applied").clone();
+    let radius = globe.radius() as f32;
+    let max_elevation = globe.config().terrain.max_elevation;
+    let all = globe.chunks().len();
+    // Over the pole from 40 degrees north at longitude 0 to 40 north at 180, 1.6 radii out.
+    for latitude in [40.0, 70.0, 90.0, 110.0, 140.0] {
+        let (lon, lat) = if latitude > 90.0 { (180.0, 180.0 - latitude) } else { (0.0, latitude) };
+        let at = direction(lon, lat) * radius * 1.6;
+        app.world_mut().entity_mut(agent).insert(Transform::from_translation(at));
+        // Streaming reads the agent's global transform, propagated at the end of the frame.
+        app.update();
+        run_until(&mut app, "the globe settled", |app| app.world().resource::<GlobeStreamer>().is_settled());
+        let chunks = shown(&mut app);
+        assert!(chunks.values().all(|&n| n == 1), "a chunk shown twice at latitude {latitude}");
+        let limit = globe_horizon(radius, max_elevation, at.length());
+        let mut far = 0;
+        for (chunk, angle) in nearest_angles(&globe, at.normalize()) {
+            if angle < limit - 1e-3 {
+                assert!(
+                    chunks.contains_key(&chunk),
+                    "lat {latitude}: {chunk:?} in sight ({angle} < {limit}) is not shown"
+                );
+            }
+            far += usize::from(angle > limit + 0.3);
+            assert!(angle <= limit + 0.3 || !chunks.contains_key(&chunk), "{chunk:?} far beyond the horizon shown");
+        }
+        assert!(
+            far > 0 && chunks.len() < all,
+            "latitude {latitude}: the far side is culled ({} of {all})",
+            chunks.len()
+        );
+        let kept: BTreeSet<GlobeChunk> = app.world().resource::<GlobeStreamer>().chunks().collect();
+        assert_eq!(kept, chunks.keys().copied().collect(), "the streamer's chunks are the entities'");
+    }
+}
+
+fn camera_app() -> (App, Entity) {
+    let mut app = app(globe_config(4));
+    app.insert_resource(TimeUpdateStrategy::ManualDuration(Duration::from_millis(50)));
+    let camera = app.world_mut().spawn(GlobeCamera::above(0.0, 60f32.to_radians())).id();
+    app.update();
+    (app, camera)
+}
+
+fn place(app: &App, camera: Entity) -> (Transform, GlobeCamera) {
+    (*app.world().get::<Transform>(camera).unwrap(), *app.world().get::<GlobeCamera>(camera).unwrap())
+}
+
+#[test]
+fn the_orbit_camera_crosses_a_pole_without_a_jump() {
+    let (mut app, camera) = camera_app();
+    let radius = app.world().resource::<HexGlobe>().globe().unwrap().radius() as f32;
+    let (start, _) = place(&app, camera);
+    assert!(start.translation.normalize().abs_diff_eq(direction(0.0, 60.0), 1e-4), "{:?}", start.translation);
+    app.world_mut().resource_mut::<ButtonInput<KeyCode>>().press(KeyCode::ArrowUp);
+    let (mut last, mut highest, mut frames) = (start, f32::MIN, 0);
+    // North until the camera has passed the pole and come down to 60 degrees on the far side.
+    loop {
+        app.update();
+        frames += 1;
+        let (now, c) = place(&app, camera);
+        let p = now.translation;
+        assert!(p.is_finite() && (p.length() - (radius + c.altitude)).abs() < 1e-3, "{p:?}");
+        // No jump: the view's up and forward turn a little a frame.
+        assert!(now.up().dot(*last.up()) > 0.99 && now.forward().dot(*last.forward()) > 0.99, "a jump at {p:?}");
+        highest = highest.max(p.normalize().y);
+        last = now;
+        if highest > 0.999 && p.normalize().y < 60f32.to_radians().sin() {
+            break;
+        }
+        assert!(frames < 2_000, "the camera did not cross the pole");
+    }
+    // On the far side: longitude 180.
+    let p = last.translation.normalize();
+    assert!(p.x < -0.4 && p.z.abs() < 0.05, "{p:?}");
+}
+
+#[test]
+fn the_orbit_camera_zooms_turns_with_a_drag_and_tilts_near_the_ground() {
+    let (mut app, camera) = camera_app();
+    let (_, before) = place(&app, camera);
+    app.world_mut().write_message(MouseWheel {
+        unit: MouseScrollUnit::Line,
+        x: 0.0,
+        y: 3.0,
+        window: Entity::PLACEHOLDER,
+        phase: TouchPhase::Moved,
+    });
+    app.update();
+    let (_, zoomed) = place(&app, camera);
+    let expected = before.altitude * (1.0 - before.zoom_speed).powi(3);
+    assert!((zoomed.altitude - expected).abs() < 1e-3, "{} for {expected}", zoomed.altitude);
+    // Far out the view looks straight at the center.
+    let (t, _) = place(&app, camera);
+    assert!(t.forward().dot(-t.translation.normalize()) > 0.9999);
+    // A drag to the right moves the globe with the pointer: the view goes west.
+    let lon = |t: Transform| (-t.translation.z).atan2(t.translation.x);
+    let west = lon(t);
+    app.world_mut().resource_mut::<ButtonInput<MouseButton>>().press(MouseButton::Left);
+    app.world_mut().write_message(MouseMotion { delta: Vec2::new(80.0, 0.0) });
+    app.update();
+    let (dragged, _) = place(&app, camera);
+    assert!(lon(dragged) < west - 0.05, "{} then {}", west, lon(dragged));
+    app.world_mut().resource_mut::<ButtonInput<MouseButton>>().release(MouseButton::Left);
+    // Down to the lowest altitude: the view tilts by max_tilt toward the horizon.
+    for _ in 0..100 {
+        app.world_mut().write_message(MouseWheel {
+            unit: MouseScrollUnit::Line,
+            x: 0.0,
+            y: 5.0,
+            window: Entity::PLACEHOLDER,
+            phase: TouchPhase::Moved,
+        });
+        app.update();
+    }
+    let (low, c) = place(&app, camera);
+    assert_eq!(c.altitude, c.min_altitude);
+    let tilt = low.forward().dot(-low.translation.normalize()).clamp(-1.0, 1.0).acos();
+    assert!((tilt - c.max_tilt).abs() < 1e-3, "tilt {tilt} for {}", c.max_tilt);
+}
+
+#[test]
+fn a_flat_map_config_is_refused_by_name() {
+    let mut app = app(MapConfig { size: MapSize::Bounded { x: 8, z: 8 }, ..MapConfig::default() });
+    app.update();
+    assert!(app.world().resource::<HexGlobe>().globe().is_none());
+    let errors: Vec<HexMapError> = app.world_mut().resource_mut::<Messages<HexMapError>>().drain().collect();
+    assert!(errors.iter().any(|e| matches!(e, HexMapError::Invalid { field, .. } if field == "size")), "{errors:?}");
+}
