@@ -5,17 +5,25 @@
 //! map's config is refused by name.
 
 use std::collections::{BTreeSet, HashMap};
+#[cfg(feature = "picking")]
 use std::time::Duration;
 
 use bevy::asset::AssetPlugin;
 use bevy::input::InputPlugin;
+#[cfg(feature = "picking")]
 use bevy::input::mouse::{MouseMotion, MouseScrollUnit, MouseWheel};
+#[cfg(feature = "picking")]
 use bevy::input::touch::TouchPhase;
 use bevy::prelude::*;
+#[cfg(feature = "picking")]
 use bevy::time::TimeUpdateStrategy;
 use bevy_hex_terrain::hex_terrain::{GlobeChunk, GlobeTerrain};
 use bevy_hex_terrain::prelude::*;
 use bevy_hex_terrain::{GlobeStreamer, globe_horizon};
+
+mod common;
+
+use common::run_until;
 
 fn globe_config(frequency: u32) -> MapConfig {
     let mut config =
@@ -29,19 +37,6 @@ fn app(config: MapConfig) -> App {
     let assets = AssetPlugin { watch_for_changes_override: Some(false), ..default() };
     app.add_plugins((MinimalPlugins, assets, TransformPlugin, InputPlugin, HexGlobePlugin::from_config(config)));
     app
-}
-
-/// Updates until `done` holds, letting the task pool work between frames (the cap only
-/// catches a hang).
-fn run_until(app: &mut App, what: &str, mut done: impl FnMut(&mut App) -> bool) {
-    for _ in 0..20_000 {
-        app.update();
-        if done(app) {
-            return;
-        }
-        std::thread::sleep(Duration::from_millis(1));
-    }
-    panic!("gave up waiting for {what}");
 }
 
 /// The chunks on screen: each entity's chunk, counted.
@@ -120,6 +115,7 @@ fn chunks_stream_to_the_horizon_over_a_pole_with_no_gap_and_no_duplicate() {
     }
 }
 
+#[cfg(feature = "picking")]
 fn camera_app() -> (App, Entity) {
     let mut app = app(globe_config(4));
     app.insert_resource(TimeUpdateStrategy::ManualDuration(Duration::from_millis(50)));
@@ -128,10 +124,13 @@ fn camera_app() -> (App, Entity) {
     (app, camera)
 }
 
+#[cfg(feature = "picking")]
 fn place(app: &App, camera: Entity) -> (Transform, GlobeCamera) {
     (*app.world().get::<Transform>(camera).unwrap(), *app.world().get::<GlobeCamera>(camera).unwrap())
 }
 
+// The camera reads Bevy's keyboard and mouse input, which come with the `picking` feature.
+#[cfg(feature = "picking")]
 #[test]
 fn the_orbit_camera_crosses_a_pole_without_a_jump() {
     let (mut app, camera) = camera_app();
@@ -161,6 +160,7 @@ fn the_orbit_camera_crosses_a_pole_without_a_jump() {
     assert!(p.x < -0.4 && p.z.abs() < 0.05, "{p:?}");
 }
 
+#[cfg(feature = "picking")]
 #[test]
 fn the_orbit_camera_zooms_turns_with_a_drag_and_tilts_near_the_ground() {
     let (mut app, camera) = camera_app();

@@ -126,13 +126,8 @@ pub fn run(mut config: MapConfig, options: &Options, output: &Path) -> CliResult
 /// A map's three label lines: its landmasses (and whether its type met its targets), its
 /// mountains and poles, its water.
 fn labels(stats: &MapStats, met: Option<bool>, (columns, rows): (u32, u32)) -> [String; 3] {
-    let percent = |v: f64| format!("{:.0}%", v * 100.0);
     let largest = stats.landmasses.first();
-    let verdict = match met {
-        Some(true) => "  targets met",
-        Some(false) => "  TARGETS MISSED",
-        None => "",
-    };
+    let verdict = verdict(met);
     [
         format!("{} cont. {} isl.{verdict}", stats.continents().count(), stats.islands().count()),
         format!(
@@ -153,15 +148,24 @@ fn labels(stats: &MapStats, met: Option<bool>, (columns, rows): (u32, u32)) -> [
     ]
 }
 
-/// A globe's three label lines: its landmasses (and whether its type met its targets), its
-/// mountains and poles, its water.
-fn globe_labels(stats: &GlobeStats, met: Option<bool>) -> [String; 3] {
-    let percent = |v: f64| format!("{:.0}%", v * 100.0);
-    let verdict = match met {
+/// A share as a whole percentage.
+fn percent(share: f64) -> String {
+    format!("{:.0}%", share * 100.0)
+}
+
+/// What a label says of the map type's targets: met, missed, or nothing without a map type.
+fn verdict(met: Option<bool>) -> &'static str {
+    match met {
         Some(true) => "  targets met",
         Some(false) => "  TARGETS MISSED",
         None => "",
-    };
+    }
+}
+
+/// A globe's three label lines: its landmasses (and whether its type met its targets), its
+/// mountains and poles, its water.
+fn globe_labels(stats: &GlobeStats, met: Option<bool>) -> [String; 3] {
+    let verdict = verdict(met);
     [
         format!("{} cont. {} isl.{verdict}", stats.continents().count(), stats.islands().count()),
         format!(

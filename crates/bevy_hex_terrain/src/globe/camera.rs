@@ -2,6 +2,7 @@
 //! lock at the poles) and an altitude; keys, a drag and the wheel turn the globe under it and
 //! zoom, and near the ground the view tilts toward the horizon as a strategy game's camera does.
 
+#[cfg(feature = "picking")]
 use bevy::input::mouse::{AccumulatedMouseMotion, AccumulatedMouseScroll, MouseScrollUnit};
 use bevy::prelude::*;
 
@@ -10,7 +11,8 @@ use super::HexGlobe;
 /// An orbit camera around the [`HexGlobe`] (put it on the entity with the `Camera3d`, and a
 /// [`HexTerrainAgent`](crate::HexTerrainAgent) to stream the globe to its horizon). The arrow
 /// keys or WASD turn the globe under it (slower the lower it flies), a drag with the left button
-/// turns it by the pointer's motion, the wheel zooms between `min_altitude` and `max_altitude`;
+/// turns it by the pointer's motion, the wheel zooms between `min_altitude` and `max_altitude`
+/// (with the `picking` feature, on by default, which brings Bevy's keyboard and mouse input);
 /// [`GlobeCamera::place`] gives its transform (the plugin writes it every frame). A game may
 /// set `orientation` and `altitude` itself (to fly to a tile).
 #[derive(Component, Debug, Clone, Copy, PartialEq, Reflect)]
@@ -81,11 +83,6 @@ impl GlobeCamera {
         transform
     }
 
-    /// How fast turning goes at the current altitude, a share of the speed at `max_altitude`.
-    fn pace(&self) -> f32 {
-        (self.altitude / self.max_altitude.max(f32::EPSILON)).clamp(0.02, 1.0)
-    }
-
     /// Turns the globe under the camera: `east` radians toward the right of the view, `north`
     /// toward its top.
     pub fn turn(&mut self, east: f32, north: f32) {
@@ -93,7 +90,9 @@ impl GlobeCamera {
     }
 }
 
-/// Reads the keys, the drag and the wheel into every [`GlobeCamera`].
+/// Reads the keys, the drag and the wheel into every [`GlobeCamera`] (Bevy's keyboard and mouse
+/// input come with the `picking` feature).
+#[cfg(feature = "picking")]
 pub(super) fn orbit(
     keys: Option<Res<ButtonInput<KeyCode>>>,
     buttons: Option<Res<ButtonInput<MouseButton>>>,
@@ -116,7 +115,8 @@ pub(super) fn orbit(
         MouseScrollUnit::Pixel => s.delta.y / 40.0,
     });
     for mut camera in &mut cameras {
-        let pace = camera.pace();
+        // Turning slows down with the altitude: a share of the speed at `max_altitude`.
+        let pace = (camera.altitude / camera.max_altitude.max(f32::EPSILON)).clamp(0.02, 1.0);
         let (key, mouse) = (camera.key_speed * pace * dt, camera.drag_speed * pace);
         // Dragging moves the globe with the pointer: the view goes the other way.
         let (e, n) = (east * key - drag.x * mouse, north * key + drag.y * mouse);

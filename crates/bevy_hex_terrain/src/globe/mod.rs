@@ -125,11 +125,13 @@ impl Plugin for HexGlobePlugin {
             .add_systems(
                 Update,
                 (
-                    (apply_asset, camera::orbit, camera::place).chain().in_set(HexTerrainSystems::Map),
+                    (apply_asset, camera::place).chain().in_set(HexTerrainSystems::Map),
                     stream::stream.in_set(HexTerrainSystems::Stream),
                     stream::insert.in_set(HexTerrainSystems::Insert),
                 ),
             );
+        #[cfg(feature = "picking")]
+        app.add_systems(Update, camera::orbit.before(camera::place).in_set(HexTerrainSystems::Map));
         match &self.globe {
             MapSource::Config(config) => {
                 let config = (**config).clone();
