@@ -19,11 +19,11 @@ use bevy::prelude::*;
 use bevy::time::TimeUpdateStrategy;
 use bevy_hex_terrain::hex_terrain::{GlobeChunk, GlobeTerrain};
 use bevy_hex_terrain::prelude::*;
-use bevy_hex_terrain::{GlobeStreamer, globe_horizon};
+use bevy_hex_terrain::{GlobeStreamer, HexMapAsset, globe_horizon};
 
 mod common;
 
-use common::run_until;
+use common::{keep, run_until, seen};
 
 fn globe_config(frequency: u32) -> MapConfig {
     let mut config =
@@ -212,4 +212,63 @@ fn a_flat_map_config_is_refused_by_name() {
     assert!(app.world().resource::<HexGlobe>().globe().is_none());
     let errors: Vec<HexMapError> = app.world_mut().resource_mut::<Messages<HexMapError>>().drain().collect();
     assert!(errors.iter().any(|e| matches!(e, HexMapError::Invalid { field, .. } if field == "size")), "{errors:?}");
+}
+
+/// Updates until every chunk of the globe (no agent: the whole globe) shows generation
+/// `generation`.
+fn settled_at(app: &mut App, generation: u64) {
+    run_until(app, "the globe settled", |app| {
+        app.world().resource::<HexGlobe>().generation() == generation
+            && app.world().resource::<GlobeStreamer>().is_settled()
+    });
+    let mut q = app.world_mut().query::<&HexGlobeChunk>();
+    assert!(q.iter(app.world()).all(|c| c.generation == Some(generation)));
+}
+
+#[test]
+fn a_globe_file_loads_hot_reloads_and_a_broken_reload_keeps_the_globe() {
+    let dir = std::env::temp_dir().join(format!("hexterrain-globe-file-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join("globe.map.ron");
+    std::fs::write(&file, "(seed: 2, size: Globe(frequency: 4), chunk_size: (2, 2), terrain: (inner_rings: 1))")
+        .unwrap();
+    let mut app = App::new();
+    let assets =
+        AssetPlugin { file_path: dir.display().to_string(), watch_for_changes_override: Some(false), ..default() };
+    app.add_plugins((MinimalPlugins, assets, TransformPlugin, HexGlobePlugin::from_asset("globe.map.ron")));
+    keep::<HexMapError>(&mut app);
+    settled_at(&mut app, 1);
+    let globe = app.world().resource::<HexGlobe>().globe().unwrap().clone();
+    assert_eq!(shown(&mut app).len(), globe.chunks().len(), "no agent: the whole globe");
+    // A hot reload with another seed: every chunk is built again.
+    let id = app.world().resource::<Assets<HexMapAsset>>().ids().next().unwrap();
+    let mut config = globe.config().clone();
+    config.seed = 3;
+    let asset = |config: MapConfig| HexMapAsset { config, image: None, ruleset: None, appearance_fallback: false };
+    app.world_mut().resource_mut::<Assets<HexMapAsset>>().insert(id, asset(config.clone())).unwrap();
+    settled_at(&mut app, 2);
+    assert_eq!(app.world().resource::<HexGlobe>().globe().unwrap().config().seed, 3);
+    // A flat map's config in the file: refused by name, the globe kept.
+    let flat = MapConfig { size: MapSize::Bounded { x: 8, z: 8 }, ..config.clone() };
+    app.world_mut().resource_mut::<Assets<HexMapAsset>>().insert(id, asset(flat)).unwrap();
+    for _ in 0..5 {
+        app.update();
+    }
+    assert!(
+        seen::<HexMapError>(&app).iter().any(|e| matches!(e, HexMapError::Invalid { field, .. } if field == "size"))
+    );
+    assert_eq!(app.world().resource::<HexGlobe>().generation(), 2);
+    // Malformed RON on disk: refused (once) with its line and column, the globe kept.
+    std::fs::write(&file, "(seed: 2,\n size: Globe(frequency: ))").unwrap();
+    app.world().resource::<AssetServer>().reload("globe.map.ron");
+    let malformed = |app: &App| {
+        seen::<HexMapError>(app).iter().filter(|e| e.to_string().contains("malformed map config at 2:24")).count()
+    };
+    run_until(&mut app, "the malformed file refused", |app| malformed(app) > 0);
+    for _ in 0..20 {
+        app.update();
+    }
+    assert_eq!(malformed(&app), 1, "said once: {:?}", seen::<HexMapError>(&app));
+    assert_eq!(app.world().resource::<HexGlobe>().generation(), 2);
+    assert!(app.world().resource::<GlobeStreamer>().is_settled());
 }

@@ -21,7 +21,7 @@ pub use camera::GlobeCamera;
 pub use stream::{GlobeStreamer, HexGlobeChunk, NEAR_ANGLE, globe_horizon};
 
 use crate::asset::{HexMapAsset, HexMapLoader};
-use crate::map::HexMapError;
+use crate::map::{HexMapError, load_failure};
 use crate::{HexTerrainSystems, MapSource};
 
 /// The globe shown: its compiled terrain and a generation that grows with each config applied.
@@ -168,6 +168,7 @@ fn apply_asset(
     mut events: MessageReader<AssetEvent<HexMapAsset>>,
     mut failures: MessageReader<bevy::asset::AssetLoadFailedEvent<HexMapAsset>>,
     mut errors: MessageWriter<HexMapError>,
+    mut last_failure: Local<Option<HexMapError>>,
 ) {
     let Some(handle) = globe.handle.clone() else {
         events.clear();
@@ -176,8 +177,13 @@ fn apply_asset(
     };
     let name = handle.path().map_or_else(|| "globe".into(), |p| format!("globe {p}"));
     for failure in failures.read().filter(|f| f.id == handle.id()) {
-        let message = failure.error.to_string().lines().next().unwrap_or_default().to_owned();
-        refuse(&mut errors, HexMapError::Unreadable { map: name.clone(), message });
+        // Malformed RON with its line and column, a bad field by name: as a flat map's file,
+        // and the same failure said once.
+        let error = load_failure(failure);
+        if last_failure.as_ref() != Some(&error) {
+            refuse(&mut errors, error.clone());
+            *last_failure = Some(error);
+        }
     }
     let changed = events.read().any(|e| match e {
         AssetEvent::LoadedWithDependencies { id } | AssetEvent::Modified { id } => *id == handle.id(),
@@ -187,6 +193,7 @@ fn apply_asset(
         return;
     }
     let Some(asset) = assets.get(&handle) else { return };
+    *last_failure = None;
     if globe.globe.as_ref().is_some_and(|g| *g.config() == asset.config) {
         return;
     }

@@ -112,7 +112,7 @@ fn refuse(errors: &mut MessageWriter<HexMapError>, error: HexMapError) {
 }
 
 /// The error of a failed map file load: the loader's own error when it is one, typed.
-fn load_failure(failure: &AssetLoadFailedEvent<HexMapAsset>) -> HexMapError {
+pub(crate) fn load_failure(failure: &AssetLoadFailedEvent<HexMapAsset>) -> HexMapError {
     let map = format!("map {}", failure.path);
     if let bevy::asset::AssetLoadError::AssetLoaderError(e) = &failure.error
         && let Some(e) = e.error().downcast_ref::<HexMapLoaderError>()

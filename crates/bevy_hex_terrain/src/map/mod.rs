@@ -16,6 +16,7 @@ use hex_terrain::{
     Biome, ChunkCoord, MapConfig, PlacedResource, PlacedWonder, RiverTile, Setup, Terrain, TileInfo, TileKind,
 };
 
+pub(crate) use apply::load_failure;
 pub use apply::{HexMapHandle, HexMapPlugin, LoadHexMap};
 pub use error::HexMapError;
 pub use setup::{GameSetUp, SetUpGame};
