@@ -298,7 +298,18 @@ impl<'a> Job<'a> {
             out.biomes =
                 self.tiles.iter().map(|&t| (biome(t).unwrap_or(Biome::Ocean), t.all_neighbors().map(biome))).collect();
             if pipeline.has_own_ruleset() {
-                let color = |t: Hex| geometry.contains(t).then(|| pipeline.tile_color(t));
+                // Each tile of the job and of the ring around it asked once (a tile's terrain
+                // samples its center and its neighbors), then read for the tile and for each
+                // of its neighbors.
+                let ring = self.rect.grow(1);
+                let around: Vec<Hex> = ring.iter().map(|oc| geometry.tile_from_offset(oc)).collect();
+                let table = self
+                    .split
+                    .map(around.len(), |k| geometry.contains(around[k]).then(|| pipeline.tile_color(around[k])));
+                let color = |t: Hex| match ring.index(geometry.offset_of(t)) {
+                    Some(i) if around[i] == t => table[i],
+                    _ => geometry.contains(t).then(|| pipeline.tile_color(t)),
+                };
                 out.colors = self
                     .tiles
                     .iter()
