@@ -293,23 +293,21 @@ impl Editor {
             Tool::FillLake => before,
             _ => {
                 let [col, row] = self.terrain.offset_of(tile);
-                let now = TileNow {
-                    at: (col, row),
+                edited((col, row), tool, before, |neighbors| TileNow {
                     height: self.center_height(tile),
                     kind: self.terrain.tile_kind(tile),
-                    neighbors: match tool {
-                        Tool::Smooth => self
-                            .terrain
+                    neighbors: if neighbors {
+                        self.terrain
                             .neighbors(tile)
                             .into_iter()
                             .flatten()
                             .flatten()
                             .map(|n| self.center_height(n))
-                            .collect(),
-                        _ => Vec::new(),
+                            .collect()
+                    } else {
+                        Vec::new()
                     },
-                };
-                now.edited(tool, before)
+                })
             }
         }
     }
@@ -394,51 +392,57 @@ pub(crate) fn check_amount(tool: Tool) -> Result<(), EditError> {
     if ok { Ok(()) } else { Err(EditError::Amount { value, allowed }) }
 }
 
-/// What a stroke reads of one tile for the tools every map has (heights, types, biomes, props,
-/// terrains and features, rivers set by hand, erasing): its `at`, its center height (raw,
-/// edited) and type, and its neighbors' center heights (read for [`Tool::Smooth`] only). A flat map's and a
-/// globe's editors alike.
+/// What the height and type tools read of one tile: its center height (raw, edited) and type,
+/// and its neighbors' center heights (for [`Tool::Smooth`] only). A flat map's and a globe's
+/// editors alike.
 pub(crate) struct TileNow {
-    pub(crate) at: (i32, i32),
     pub(crate) height: f32,
     pub(crate) kind: Option<TileKind>,
     pub(crate) neighbors: Vec<f32>,
 }
 
-impl TileNow {
-    /// The tile's edit after `tool` (`None`: no edit left); a lake tool (planned by the map's
-    /// editor) leaves it as it was.
-    pub(crate) fn edited(&self, tool: Tool, before: Option<TileEdit>) -> Option<TileEdit> {
-        let mut edit = before.unwrap_or_else(|| TileEdit::at(self.at));
-        let mut height = |h: f32| {
-            edit.height = Some(h.clamp(0.0, 1.0));
-            edit.kind = None;
-        };
-        match tool {
-            Tool::Raise(by) => height(self.height + by),
-            Tool::Lower(by) => height(self.height - by),
-            Tool::SetHeight(h) => height(h),
-            Tool::Smooth => {
-                let sum = self.neighbors.iter().fold(self.height, |sum, &h| sum + h);
-                height(sum / (1 + self.neighbors.len()) as f32);
-            }
-            Tool::SetKind(kind) => {
-                // A tile of that type already: nothing to set (its height stays its own).
-                if self.kind == Some(kind) {
-                    return before;
-                }
-                edit.height = Some(self.height);
-                edit.kind = Some(kind);
-            }
-            Tool::SetBiome(biome) => edit.biome = Some(biome),
-            Tool::AddRiver => edit.river = Some(RiverEdit::Source),
-            Tool::RemoveRiver => edit.river = Some(RiverEdit::Dry),
-            Tool::FillLake | Tool::DrainLake => return before,
-            Tool::SetProps(density) => edit.props = Some(density),
-            Tool::SetTerrain(id) => edit.terrain = Some(id),
-            Tool::SetFeature(feature) => edit.feature = Some(feature),
-            Tool::Erase => return None,
+/// A tile's edit after `tool` for the tools every map has (heights, types, biomes, props,
+/// terrains and features, rivers set by hand, erasing); `None`: no edit left. `read` gives what
+/// the tile is now, asked only by the tools that read it (raise, lower, smooth, set a type),
+/// and told whether to read the neighbors too. A lake tool (planned by the map's editor) leaves
+/// the tile as it was.
+pub(crate) fn edited(
+    at: (i32, i32),
+    tool: Tool,
+    before: Option<TileEdit>,
+    read: impl FnOnce(bool) -> TileNow,
+) -> Option<TileEdit> {
+    let mut edit = before.unwrap_or_else(|| TileEdit::at(at));
+    let mut height = |h: f32| {
+        edit.height = Some(h.clamp(0.0, 1.0));
+        edit.kind = None;
+    };
+    match tool {
+        Tool::Raise(by) => height(read(false).height + by),
+        Tool::Lower(by) => height(read(false).height - by),
+        Tool::SetHeight(h) => height(h),
+        Tool::Smooth => {
+            let now = read(true);
+            let sum = now.neighbors.iter().fold(now.height, |sum, &h| sum + h);
+            height(sum / (1 + now.neighbors.len()) as f32);
         }
-        (!edit.is_empty()).then_some(edit)
+        Tool::SetKind(kind) => {
+            let now = read(false);
+            // A tile of that type already: nothing to set (its height stays its own).
+            if now.kind == Some(kind) {
+                return before;
+            }
+            edit.height = Some(now.height);
+            edit.kind = Some(kind);
+        }
+        Tool::SetBiome(biome) => edit.biome = Some(biome),
+        Tool::AddRiver => edit.river = Some(RiverEdit::Source),
+        Tool::RemoveRiver => edit.river = Some(RiverEdit::Dry),
+        Tool::FillLake | Tool::DrainLake => return before,
+        Tool::SetProps(density) => edit.props = Some(density),
+        Tool::SetTerrain(id) => edit.terrain = Some(id),
+        Tool::SetFeature(feature) => edit.feature = Some(feature),
+        Tool::Erase => return None,
     }
+    (!edit.is_empty()).then_some(edit)
 }

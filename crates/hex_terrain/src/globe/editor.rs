@@ -10,7 +10,7 @@ use std::collections::{BTreeMap, BTreeSet};
 
 use super::{GlobeChunk, GlobeTerrain, GlobeTile};
 use crate::config::{MapConfig, TileEdit};
-use crate::editor::{Brush, EditError, MAX_BRUSH_RADIUS, TileNow, Tool, check_amount, flood};
+use crate::editor::{Brush, EditError, MAX_BRUSH_RADIUS, TileNow, Tool, check_amount, edited, flood};
 use crate::error::ConfigError;
 
 /// One stroke on a globe: a tool applied with a brush around a tile; one operation for undo.
@@ -203,7 +203,7 @@ impl GlobeEditor {
         let mut operation = Operation::with_capacity(tiles.len());
         for tile in tiles {
             let before = self.edits.get(&tile).copied();
-            let after = self.now(stroke.tool, tile).edited(stroke.tool, before);
+            let after = edited(tile.at(), stroke.tool, before, |neighbors| self.now(tile, neighbors));
             if after != before {
                 operation.push((tile, before, after));
             }
@@ -253,21 +253,21 @@ impl GlobeEditor {
         Ok(change)
     }
 
-    /// What `tool` reads of a tile.
-    fn now(&self, tool: Tool, tile: GlobeTile) -> TileNow {
+    /// What the height and type tools read of a tile (its neighbors too when `neighbors`).
+    fn now(&self, tile: GlobeTile, neighbors: bool) -> TileNow {
         let height = |t: GlobeTile| self.globe.tile_height(t).expect("a tile of the globe");
-        let neighbors = match tool {
-            Tool::Smooth => self
-                .globe
+        let neighbors = if neighbors {
+            self.globe
                 .grid()
                 .neighbors(tile)
                 .expect("a tile of the globe")
                 .as_slice()
                 .iter()
                 .map(|&n| height(n))
-                .collect(),
-            _ => Vec::new(),
+                .collect()
+        } else {
+            Vec::new()
         };
-        TileNow { at: tile.at(), height: height(tile), kind: self.globe.tile_kind(tile), neighbors }
+        TileNow { height: height(tile), kind: self.globe.tile_kind(tile), neighbors }
     }
 }
