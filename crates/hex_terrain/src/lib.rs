@@ -125,7 +125,7 @@ pub use heights::{
 pub use hexx;
 pub use kind::Thresholds;
 pub use lattice::Lattice;
-pub use mesh::{ChunkMesh, Detail, Diagnostics, GenerateOptions, MeshBuffers, Threads};
+pub use mesh::{ChunkMesh, Detail, Diagnostics, GenerateOptions, MeshBuffers, Threads, texture_class};
 pub use metrics::Sharpness;
 pub use paths::{MAX_PATH_TILES, Path, Turns};
 pub use pipeline::Pipeline;

@@ -391,12 +391,28 @@ impl Pipeline {
     /// feature's (else its terrain's).
     #[must_use]
     pub fn tile_color(&self, tile: Hex) -> [u8; 3] {
+        self.tile_look(tile).0
+    }
+
+    /// A tile's color and texture layer in the meshes: its biome's (the default ruleset's
+    /// terrain of that biome), or, under the map's own ruleset, its feature's (else its
+    /// terrain's).
+    #[must_use]
+    pub fn tile_look(&self, tile: Hex) -> ([u8; 3], u8) {
         if !self.terrains.own {
-            return self.tile_biome(tile).color();
+            let biome = self.tile_biome(tile);
+            return (biome.color(), self.biome_texture(biome));
         }
         let t = self.tile_terrain(tile);
         let ruleset = &self.terrains.ruleset;
-        t.feature.map_or(ruleset.terrain(t.terrain).look.color, |f| ruleset.feature(f).look.color)
+        let look = t.feature.map_or(&ruleset.terrain(t.terrain).look, |f| &ruleset.feature(f).look);
+        (look.color, look.texture)
+    }
+
+    /// The texture layer of a biome: its terrain's in the default ruleset (sea, grass or rock).
+    #[must_use]
+    pub fn biome_texture(&self, biome: Biome) -> u8 {
+        crate::ruleset::biome_texture(biome)
     }
 
     /// The center sample of a tile and its neighbors' kinds.

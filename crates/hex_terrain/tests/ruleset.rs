@@ -462,6 +462,110 @@ proptest! {
     }
 }
 
+/// Every triangle of every chunk of `t` (a bounded map's, or those around the origin) lies in
+/// one tile (the one under its centroid), and each of its three vertices holds that tile's
+/// texture layer (its feature's, else its terrain's, in `ruleset`) in the entry of the tile's
+/// class.
+fn triangles_hold_their_tiles_layers(t: &hex_terrain::Terrain, ruleset: &TerrainRuleset) -> Result<(), TestCaseError> {
+    let chunks = match t.bounds() {
+        Some(_) => t.chunks(),
+        None => [(-1, -1), (0, 0), (1, 0), (0, 1)].map(|(x, z)| hex_terrain::ChunkCoord::new(x, z)).to_vec(),
+    };
+    for coord in chunks {
+        let Some(m) = t.generate_chunk(coord) else { continue };
+        let b = &m.buffers;
+        prop_assert_eq!(b.texture_layers.len(), b.positions.len());
+        for tri in b.indices.chunks(3) {
+            let world = |k: usize| {
+                let p = b.positions[tri[k] as usize];
+                [m.origin[0] + f64::from(p[0]), m.origin[2] + f64::from(p[2])]
+            };
+            let [a, c, d] = [world(0), world(1), world(2)];
+            let tile = t.tile_at((a[0] + c[0] + d[0]) / 3.0, (a[1] + c[1] + d[1]) / 3.0).unwrap();
+            prop_assert!(
+                m.tiles.iter().any(|i| i.hex == tile),
+                "a triangle of {:?} outside its chunk {:?}",
+                tile,
+                coord
+            );
+            let got = t.tile_terrain(tile).unwrap();
+            let look = got.feature.map_or(&ruleset.terrain(got.terrain).look, |f| &ruleset.feature(f).look);
+            let class = hex_terrain::texture_class(tile);
+            for &v in tri {
+                prop_assert_eq!(
+                    b.texture_layers[v as usize][class],
+                    look.texture,
+                    "tile {:?} of chunk {:?}",
+                    tile,
+                    coord
+                );
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Texture layers across a wrapping map's seam where one chunk holds both sides of it (the
+/// map no wider than a chunk) and where two chunks meet there, flat and pointy, at widths whose
+/// tiles' classes repeat across the seam and at widths whose classes do not (pointy tiles in
+/// rows of a width not a multiple of 3: there the tiles on either side of the seam may be of one
+/// class).
+#[test]
+fn texture_layers_hold_across_a_wrapping_seam() {
+    let maps = [(8, 8, "Flat"), (10, 8, "Pointy"), (7, 8, "Pointy"), (14, 4, "Pointy"), (16, 16, "Flat")];
+    for (seed, (x, chunk, orientation)) in maps.into_iter().enumerate() {
+        let text = format!(
+            "(seed: {seed}, size: Bounded(x: {x}, z: 8), wrap: true, chunk_size: ({chunk}, 8), climate: (enabled: true), \
+             layout: (orientation: {orientation}), terrain: (sea_threshold: 0.3, mountain_threshold: 0.7))"
+        );
+        let config = hex_terrain::MapConfig::from_ron(&text).unwrap();
+        let t = hex_terrain::Terrain::new(config.clone()).unwrap();
+        assert!(t.has_vertex_colors());
+        triangles_hold_their_tiles_layers(&t, t.ruleset()).unwrap();
+        let civ = civ_with_layers();
+        let with_civ = hex_terrain::MapConfig { ruleset: Some("civ5.terrain.ron".to_owned()), ..config };
+        let t = hex_terrain::Terrain::with_sources(with_civ, None, Some(civ.clone())).unwrap();
+        triangles_hold_their_tiles_layers(&t, &civ).unwrap();
+    }
+}
+
+/// The Civilization V ruleset with a texture layer of its own for each terrain and feature.
+fn civ_with_layers() -> std::sync::Arc<TerrainRuleset> {
+    let mut civ =
+        TerrainRuleset::from_ron(include_str!("../../bevy_hex_terrain/assets/rulesets/civ5.terrain.ron")).unwrap();
+    for (i, terrain) in civ.terrains.iter_mut().enumerate() {
+        terrain.look.texture = (3 * i as u8 + 1) % 32;
+    }
+    for (i, feature) in civ.features.iter_mut().enumerate() {
+        feature.look.texture = (5 * i as u8 + 17) % 32;
+    }
+    std::sync::Arc::new(civ)
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 16, ..ProptestConfig::default() })]
+
+    /// The meshes' texture layers: on random maps with vertex colors (bounded or not, wrapping
+    /// across seams of any width), under the default ruleset and under the Civilization V one
+    /// with a layer of its own for every terrain and feature, every vertex of a triangle holds
+    /// the layer of the triangle's tile in the entry of its class; a map without colors has
+    /// none.
+    #[test]
+    fn every_triangle_is_drawn_with_its_tiles_texture_layer(config in maps()) {
+        let t = hex_terrain::Terrain::new(config.clone()).unwrap();
+        if !t.has_vertex_colors() {
+            let rect = t.bounds().unwrap_or(hex_terrain::TileRect::new([0, 0], [8, 8]));
+            prop_assert!(t.generate_rect(rect).buffers.texture_layers.is_empty());
+            return Ok(());
+        }
+        triangles_hold_their_tiles_layers(&t, t.ruleset())?;
+        let civ = civ_with_layers();
+        let with_civ = hex_terrain::MapConfig { ruleset: Some("civ5.terrain.ron".to_owned()), ..config };
+        let t = hex_terrain::Terrain::with_sources(with_civ, None, Some(civ.clone())).unwrap();
+        triangles_hold_their_tiles_layers(&t, &civ)?;
+    }
+}
+
 proptest! {
     #![proptest_config(ProptestConfig { cases: 16, ..ProptestConfig::default() })]
 

@@ -102,6 +102,20 @@ pub(crate) fn coarsen(geometry: &Geometry, full: &ChunkMesh, keep_diagnostics: b
     } else {
         kept.iter().map(|&(i, own)| own.unwrap_or(buffers.colors[i])).collect()
     };
+    // A fan's vertices are its tile's alone: every entry its own layer (the middle's own).
+    let texture_layers = if buffers.texture_layers.is_empty() {
+        Vec::new()
+    } else {
+        let mut middle = [0; 3];
+        kept.iter()
+            .map(|&(i, own)| {
+                if own.is_none() {
+                    middle = buffers.texture_layers[i];
+                }
+                middle
+            })
+            .collect()
+    };
     let kept: Vec<usize> = kept.into_iter().map(|(i, _)| i).collect();
     let buffers = MeshBuffers {
         positions: kept.iter().map(|&i| buffers.positions[i]).collect(),
@@ -110,6 +124,7 @@ pub(crate) fn coarsen(geometry: &Geometry, full: &ChunkMesh, keep_diagnostics: b
         tile_kinds: kept.iter().map(|&i| buffers.tile_kinds[i]).collect(),
         center_distances: kept.iter().map(|&i| buffers.center_distances[i]).collect(),
         colors,
+        texture_layers,
         indices,
     };
     let diagnostics = keep_diagnostics.then(|| Diagnostics {

@@ -16,7 +16,7 @@ use super::early::Early;
 use super::grid::{GridShape, Points};
 use super::indices::Rows;
 use super::parallel::{BATCH, Outputs, Split};
-use super::{Buffers, ChunkMesh, Diagnostics, GenerateOptions, Threads};
+use super::{Buffers, ChunkMesh, Diagnostics, GenerateOptions, Threads, texture_class};
 use crate::chunk::TileRect;
 use crate::climate::TileSample;
 use crate::geometry::Geometry;
@@ -50,6 +50,14 @@ pub(super) struct Job<'a> {
 /// A tile's color and its six neighbors' (`None` off the map).
 pub(super) type TileColors = ([u8; 3], [Option<[u8; 3]>; 6]);
 
+/// A tile's texture class and layer and its six neighbors' (`all_neighbors` order; a neighbor
+/// off the map has the tile's own).
+#[derive(Debug, Clone, Copy)]
+pub(super) struct TileLayers {
+    pub own: (usize, u8),
+    pub around: [(usize, u8); 6],
+}
+
 /// Kinds of the tiles of a job and of the ring around them, and their center samples.
 pub(super) struct Kinds {
     /// The job's rectangle grown by one tile (two when biomes are computed here, which need
@@ -64,6 +72,9 @@ pub(super) struct Kinds {
     /// Per tile of the job, on a map with its own terrain ruleset: its color and its
     /// neighbors' ([`Pipeline::tile_color`]); empty otherwise (the biomes' colors).
     pub colors: Vec<TileColors>,
+    /// Per tile of the job, when meshes have vertex colors: its texture class and layer and
+    /// its neighbors' ([`MeshBuffers::texture_layers`](crate::MeshBuffers::texture_layers)).
+    pub layers: Vec<TileLayers>,
     /// Per tile of the job, on a map with rivers: whether water lies on it and on each neighbor
     /// (only points of wet tiles are carved).
     pub wet: Vec<(bool, [bool; 6])>,
@@ -132,6 +143,7 @@ impl<'a> Job<'a> {
                 kinds: &mut b.tile_kinds,
                 distances: &mut b.center_distances,
                 colors: &mut b.colors,
+                layers: &mut b.texture_layers,
                 raws: &mut raws,
                 moved: &mut moved,
                 rings: &mut rings,
@@ -263,8 +275,15 @@ impl<'a> Job<'a> {
         let kinds = self
             .split
             .map(tiles.len(), |k| geometry.contains(tiles[k]).then(|| pipeline.thresholds().classify(raws[k])));
-        let mut out =
-            Kinds { halo, kinds, around: Vec::new(), biomes: Vec::new(), colors: Vec::new(), wet: Vec::new() };
+        let mut out = Kinds {
+            halo,
+            kinds,
+            around: Vec::new(),
+            biomes: Vec::new(),
+            colors: Vec::new(),
+            layers: Vec::new(),
+            wet: Vec::new(),
+        };
         out.around = self
             .tiles
             .iter()
@@ -295,27 +314,52 @@ impl<'a> Job<'a> {
                 let sample = TileSample::new(raws[i], kind, t.all_neighbors().map(|nb| out.get(pipeline, nb)));
                 Some(pipeline.climate().biome_of(geometry, heights, t, &sample, false))
             };
-            out.biomes =
-                self.tiles.iter().map(|&t| (biome(t).unwrap_or(Biome::Ocean), t.all_neighbors().map(biome))).collect();
-            if pipeline.has_own_ruleset() {
-                // Each tile of the job and of the ring around it asked once (a tile's terrain
-                // samples its center and its neighbors), then read for the tile and for each
-                // of its neighbors.
-                let ring = self.rect.grow(1);
-                let around: Vec<Hex> = ring.iter().map(|oc| geometry.tile_from_offset(oc)).collect();
-                let table = self
-                    .split
-                    .map(around.len(), |k| geometry.contains(around[k]).then(|| pipeline.tile_color(around[k])));
-                let color = |t: Hex| match ring.index(geometry.offset_of(t)) {
-                    Some(i) if around[i] == t => table[i],
-                    _ => geometry.contains(t).then(|| pipeline.tile_color(t)),
-                };
-                out.colors = self
-                    .tiles
-                    .iter()
-                    .map(|&t| (color(t).unwrap_or(Biome::Ocean.color()), t.all_neighbors().map(color)))
-                    .collect();
+            // Each tile of the job and of the ring around it asked once (a tile's biome reads
+            // its neighbors' kinds; under the map's own ruleset its terrain samples its center
+            // and its neighbors), then read for the tile and for each of its neighbors.
+            let ring = self.rect.grow(1);
+            let around: Vec<Hex> = ring.iter().map(|oc| geometry.tile_from_offset(oc)).collect();
+            let ring_biomes = self.split.map(around.len(), |k| biome(around[k]));
+            let at = |t: Hex| ring.index(geometry.offset_of(t)).filter(|&i| around[i] == t);
+            let biome_at = |t: Hex| at(t).map_or_else(|| biome(t), |i| ring_biomes[i]);
+            let biomes: Vec<(Biome, [Option<Biome>; 6])> = self
+                .tiles
+                .iter()
+                .map(|&t| (biome_at(t).unwrap_or(Biome::Ocean), t.all_neighbors().map(biome_at)))
+                .collect();
+            let looks: Vec<Option<([u8; 3], u8)>> = if pipeline.has_own_ruleset() {
+                self.split.map(around.len(), |k| geometry.contains(around[k]).then(|| pipeline.tile_look(around[k])))
+            } else {
+                ring_biomes.iter().map(|b| b.map(|b| (b.color(), pipeline.biome_texture(b)))).collect()
+            };
+            let own_look = |t: Hex| {
+                if pipeline.has_own_ruleset() {
+                    pipeline.tile_look(t)
+                } else {
+                    let b = biome(t).unwrap_or(Biome::Ocean);
+                    (b.color(), pipeline.biome_texture(b))
+                }
+            };
+            let look = |t: Hex| at(t).map_or_else(|| geometry.contains(t).then(|| own_look(t)), |i| looks[i]);
+            // A tile of the job is the map's own; a neighbor across a wrapping map's seam is
+            // taken where it lies, beside the job's tile (so of another class than it).
+            let class = texture_class;
+            let fallback = (Biome::Ocean.color(), 0);
+            let mut tile_colors = Vec::new();
+            let mut tile_layers = Vec::with_capacity(self.tiles.len());
+            for &t in &self.tiles {
+                let own = look(t).unwrap_or(fallback);
+                let neighbors = t.all_neighbors().map(look);
+                if pipeline.has_own_ruleset() {
+                    tile_colors.push((own.0, neighbors.map(|n| n.map(|(color, _)| color))));
+                }
+                let neighbor_classes = t.all_neighbors().map(class);
+                tile_layers.push(TileLayers {
+                    own: (class(t), own.1),
+                    around: std::array::from_fn(|d| (neighbor_classes[d], neighbors[d].unwrap_or(own).1)),
+                });
             }
+            (out.biomes, out.colors, out.layers) = (biomes, tile_colors, tile_layers);
         }
         out
     }

@@ -55,6 +55,17 @@ pub fn vertex_color(biomes: &[Biome], water: f32) -> [u8; 4] {
     mixed_color(&colors, water)
 }
 
+/// The texture class of a tile (`0..3`, [`MeshBuffers::texture_layers`]): `(q - r) mod 3` of its
+/// axial coordinate. Each of the six neighbors of a tile is of another class. A chunk's tiles
+/// are the map's own (on a wrapping map, `Terrain::wrap_tile`'s); a neighbor across a wrapping
+/// map's seam is taken where it lies beside them, so a shader reads the entry of the class of
+/// the map's own tile under a fragment.
+#[must_use]
+#[inline]
+pub fn texture_class(tile: Hex) -> usize {
+    (tile.x - tile.y).rem_euclid(3) as usize
+}
+
 /// The color of a vertex shared by tiles of `colors`: their colors averaged (integer
 /// arithmetic, so the order of the tiles does not matter), the water cover in alpha.
 #[must_use]
@@ -96,6 +107,14 @@ pub struct MeshBuffers {
     /// biome colors of the tiles holding it averaged, and in alpha how much river or lake water
     /// covers it (0 dry, 255 open water).
     pub colors: Vec<[u8; 4]>,
+    /// With the colors, each vertex's texture layers: entry `c` is the texture layer
+    /// ([`Look::texture`](crate::Look::texture)) of the tile of class `c` ([`texture_class`])
+    /// holding the vertex, where one does (else the vertex's own tile's layer). A tile's
+    /// neighbors are of the two other classes, so the three tiles meeting at a corner have one
+    /// class each, and every vertex of a triangle holds the triangle's tile: entry
+    /// `texture_class(tile)` is that tile's layer at all three, and a shader reading it draws
+    /// each tile with its own layer. Empty without colors.
+    pub texture_layers: Vec<[u8; 3]>,
     /// Triangle list indices.
     pub indices: Vec<u32>,
 }
@@ -199,6 +218,7 @@ impl Buffers {
                 tile_kinds: vec![0; vertices],
                 center_distances: vec![0.0; vertices],
                 colors: vec![[0; 4]; if colors { vertices } else { 0 }],
+                texture_layers: vec![[0; 3]; if colors { vertices } else { 0 }],
                 indices: vec![0; indices],
             },
             raws: vec![0.0; d],
@@ -212,6 +232,7 @@ impl Buffers {
     fn fit(mut self, vertices: usize, diagnostics: bool, colors: bool) -> Self {
         if colors {
             self.b.colors.resize(vertices, [0; 4]);
+            self.b.texture_layers.resize(vertices, [0; 3]);
         }
         self.b.positions.resize(vertices, [0.0; 3]);
         self.b.normals.resize(vertices, [0.0; 3]);

@@ -65,6 +65,7 @@ pub(super) struct Outputs<'a> {
     pub kinds: &'a mut [u32],
     pub distances: &'a mut [f32],
     pub colors: &'a mut [[u8; 4]],
+    pub layers: &'a mut [[u8; 3]],
     pub raws: &'a mut [f32],
     pub moved: &'a mut [bool],
     pub rings: &'a mut [u8],
@@ -90,6 +91,7 @@ impl Outputs<'_> {
         let (k0, k1) = self.kinds.split_at_mut(mid);
         let (d0, d1) = self.distances.split_at_mut(mid);
         let (c0, c1) = split_opt(self.colors, mid);
+        let (l0, l1) = split_opt(self.layers, mid);
         let (r0, r1) = split_opt(self.raws, mid);
         let (m0, m1) = split_opt(self.moved, mid);
         let (g0, g1) = split_opt(self.rings, mid);
@@ -100,6 +102,7 @@ impl Outputs<'_> {
             kinds: k0,
             distances: d0,
             colors: c0,
+            layers: l0,
             raws: r0,
             moved: m0,
             rings: g0,
@@ -112,6 +115,7 @@ impl Outputs<'_> {
             kinds: k1,
             distances: d1,
             colors: c1,
+            layers: l1,
             raws: r1,
             moved: m1,
             rings: g1,

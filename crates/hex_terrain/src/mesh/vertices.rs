@@ -8,7 +8,7 @@ use hexx::Hex;
 
 use super::early::Early;
 use super::grid::{Owner, Points};
-use super::job::{Job, Kinds};
+use super::job::{Job, Kinds, TileLayers};
 use super::lanes;
 use super::parallel::{BATCH, Outputs, in_batches};
 use super::{mixed_color, vertex_color};
@@ -143,7 +143,7 @@ impl Job<'_> {
         );
         // Else a vertex is its manipulation, its kind the highest sharing it.
         if !rules.ends_at_manipulation(self.pipeline.water_table()) || self.pipeline.has_vertex_colors() {
-            self.finish_rest(kinds, pts, owners, &mut stage, o.colors);
+            self.finish_rest(kinds, pts, owners, &mut stage, (o.colors, o.layers));
         }
         self.write(points, pts, &stage, o);
     }
@@ -170,7 +170,14 @@ impl Job<'_> {
     }
 
     /// The chain after manipulation (relief, carving) and the vertex colors.
-    fn finish_rest(&self, kinds: &Kinds, pts: &[Hex], owners: &[Owner], stage: &mut Stage, colors: &mut [[u8; 4]]) {
+    fn finish_rest(
+        &self,
+        kinds: &Kinds,
+        pts: &[Hex],
+        owners: &[Owner],
+        stage: &mut Stage,
+        (colors, layers): (&mut [[u8; 4]], &mut [[u8; 3]]),
+    ) {
         let rules = self.pipeline.vertex_rules();
         let water = self.pipeline.water_table();
         for j in 0..stage.len {
@@ -217,6 +224,16 @@ impl Job<'_> {
                         vertex_color(&biomes[..count], s.water)
                     }
                 };
+            }
+            if !layers.is_empty() {
+                // Each tile holding the vertex writes its class's entry (their classes differ).
+                let TileLayers { own, around } = &kinds.layers[tile];
+                let mut entry = [own.1; 3];
+                for &d in &dirs[1..count] {
+                    let (class, layer) = around[d];
+                    entry[class] = layer;
+                }
+                layers[j] = entry;
             }
             (stage.heights[j], stage.moved[j]) = (s.height, s.moved);
         }

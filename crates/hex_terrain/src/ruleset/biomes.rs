@@ -51,7 +51,7 @@ impl TerrainRuleset {
                     yields: YieldTable::default_biome(b),
                 },
                 hills: None,
-                look: Look { color: b.color(), texture: texture_layer(b), minimap: None, props: None },
+                look: Look { color: b.color(), texture: biome_texture(b), minimap: None, props: None },
             })
             .collect();
         let id = |b: Biome| b.name().replace(' ', "_");
@@ -73,8 +73,8 @@ fn capitalised(name: &str) -> String {
     chars.next().map_or_else(String::new, |c| c.to_uppercase().chain(chars).collect())
 }
 
-/// The material's texture layer of a biome: sea (0), grass (1), rock (2).
-fn texture_layer(b: Biome) -> u8 {
+/// The material's texture layer of a biome in the default ruleset: sea (0), grass (1), rock (2).
+pub(crate) fn biome_texture(b: Biome) -> u8 {
     match b {
         Biome::Ocean | Biome::Coast | Biome::Lake => 0,
         Biome::Rock | Biome::SnowPeak => 2,

@@ -33,6 +33,7 @@ mod select;
 #[cfg(test)]
 mod tests;
 
+pub(crate) use biomes::biome_texture;
 pub use check::{MAX_FEATURES, MAX_PATCH, MAX_RULES, MAX_TERRAINS};
 pub(crate) use select::TileTerrains;
 pub use select::{FeatureId, FeaturePatches, PATCH_SPREAD, TerrainId, TileFacts, TileTerrain};
