@@ -101,7 +101,7 @@ pub use crate::map::{
 #[cfg(feature = "render")]
 pub use crate::material::{
     HexTerrainExtension, HexTerrainKey, HexTerrainMaterial, HexTerrainMaterialPlugin, HexTerrainMaterialSettings,
-    OwnerColors, RenderOrigin, TerrainParams,
+    MAX_TEXTURE_LAYERS, OwnerColors, RenderOrigin, TerrainParams,
 };
 #[cfg(feature = "minimap")]
 pub use crate::minimap::{

@@ -9,7 +9,7 @@ mod support;
 
 use bevy::math::DVec3;
 use bevy::prelude::*;
-use bevy_hex_terrain::hex_terrain::Terrain;
+use bevy_hex_terrain::hex_terrain::{MapConfig, Terrain};
 use bevy_hex_terrain::prelude::*;
 use support::scene::*;
 
@@ -21,6 +21,7 @@ in_own_process! {
     a_deferred_camera_draws_the_terrain_colors => scenario_deferred,
     biomes_rivers_and_lakes_show_their_colors => scenario_biomes,
     biomes_rivers_and_lakes_show_their_colors_on_coarse_chunks => scenario_biomes_coarse,
+    each_tile_is_drawn_with_its_terrains_texture_layer => scenario_terrain_textures,
     edited_tiles_show_their_new_type => scenario_edited,
     levels_of_detail_meet_without_a_crack => scenario_levels,
     levels_of_detail_meet_without_a_crack_past_a_wrapping_edge => scenario_levels_wrapping,
@@ -148,6 +149,64 @@ fn scenario_biomes() {
 #[ignore = "a scenario: run by its #[test] in a process of its own"]
 fn scenario_biomes_coarse() {
     biomes(true);
+}
+
+/// Textures on a map with a climate: each tile is drawn with its terrain's layer of the texture
+/// array. The wet map under Civilization V's ruleset (forests on layer 5, deserts 3, snow and
+/// tundra 4: not the layers the relief's heights would pick) rendered twice, the second time
+/// with the forest layer swapped for the bright snow texture: every tile of layer 5 (dark
+/// forest, far from white) brightens, every other tile stays as it was, at its center and near
+/// each of its six edges (where a triangle's corners are shared with the neighbors, so the
+/// layer must be the one of the tile's own class).
+#[test]
+#[ignore = "a scenario: run by its #[test] in a process of its own"]
+fn scenario_terrain_textures() {
+    let config = MapConfig { ruleset: Some("assets/rulesets/civ5.terrain.ron".into()), ..wet_map() };
+    let terrain = Terrain::new(config.clone()).unwrap();
+    let (center, size) = view(&terrain);
+    let material = HexTerrainMaterialSettings { textures: true, ..default() };
+    let (forest, snow) = render_pair(
+        Scene {
+            config: Some(config),
+            material,
+            then: Some(|_, _, material| material.texture_paths[5] = "textures/snow.png".into()),
+            ..default()
+        },
+        "terrain_textures",
+    );
+    let ruleset = terrain.ruleset();
+    let luma = |img: &image::RgbImage, at: DVec3| {
+        let [r, g, b] = rgb(img, pixel(center, size, at.as_vec3()));
+        0.3 * r + 0.6 * g + 0.1 * b
+    };
+    let (mut swapped, mut kept) = (0, 0);
+    for h in terrain.tiles().filter(|&h| terrain.river(h).is_none() && terrain.lake(h).is_none()) {
+        let t = terrain.tile_terrain(h).unwrap();
+        let layer = t.feature.map_or(ruleset.terrain(t.terrain).look.texture, |f| ruleset.feature(f).look.texture);
+        // The center, and 0.42 of the way to each dry neighbor's center: in the tile's outer
+        // ring of triangles, short of its edge (at 0.5; water beside a river or a lake covers
+        // the texture).
+        let middle = DVec3::from_array(terrain.tile_center(h).unwrap());
+        let near_edges = h.all_neighbors().map(|nb| {
+            let dry = terrain.river(nb).is_none() && terrain.lake(nb).is_none();
+            terrain.tile_center(nb).filter(|_| dry).map(|c| middle + (DVec3::from_array(c) - middle) * 0.42)
+        });
+        for (k, at) in std::iter::once(Some(middle)).chain(near_edges).enumerate() {
+            let Some(at) = at else { continue };
+            let (before, after) = (luma(&forest, at), luma(&snow, at));
+            if layer == 5 {
+                assert!(after > before * 1.1, "tile {h:?} of layer 5 at {k}: {before} with forest, {after} with snow");
+            } else {
+                assert!((after - before).abs() < 0.02, "tile {h:?} of layer {layer} at {k}: {before}, then {after}");
+            }
+        }
+        if layer == 5 {
+            swapped += 1;
+        } else {
+            kept += 1;
+        }
+    }
+    assert!(swapped >= 5 && kept > 20, "{swapped} tiles of layer 5, {kept} of others");
 }
 
 /// Renders the wet map, every chunk coarse if `coarse`, and checks each tile's center shows its

@@ -108,7 +108,7 @@ fn scenario_props() {
         .collect();
     assert!(props.len() > 30, "the test map grows props: {}", props.len());
     let (with, without) = render_pair(
-        Scene { config: Some(config), props: true, then: Some(|s, _| s.enabled = false), ..default() },
+        Scene { config: Some(config), props: true, then: Some(|s, _, _| s.enabled = false), ..default() },
         "props",
     );
     let changed = |p: Vec3| {
@@ -148,7 +148,7 @@ fn scenario_shadows() {
     let travel = lighting.sun_direction();
     let travel = Vec3::new(travel.x, 0.0, travel.z).normalize();
     let (lit, unlit) = render_pair(
-        Scene { config: Some(config), lighting: Some(lighting), then: Some(|_, l| l.shadows = false), ..default() },
+        Scene { config: Some(config), lighting: Some(lighting), then: Some(|_, l, _| l.shadows = false), ..default() },
         "shadows",
     );
     let mountains: Vec<Vec3> = terrain

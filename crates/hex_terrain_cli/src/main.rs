@@ -183,7 +183,7 @@ enum Command {
         #[arg(short, long)]
         output: Option<PathBuf>,
     },
-    /// Write the tileable sea, grass and mountain textures of the material's texture mode.
+    /// Write the tileable textures of the material's texture array (sea, grass, mountain, sand, snow, forest, ash).
     Textures {
         /// Output folder.
         #[arg(long, default_value = "assets/textures")]

@@ -1,7 +1,9 @@
 //! The look's switches, for weak GPUs and for comparing: J shadows, K distance fog, B props,
-//! N the water surface, O ambient occlusion. `HEXTERRAIN_LOOK=off` starts with all of them off
-//! (the look before water, light and props: the frame-cost baseline), `HEXTERRAIN_SHADOWS=off`,
-//! `HEXTERRAIN_PROPS=off` and `HEXTERRAIN_WATER=off` one each.
+//! N the water surface, O ambient occlusion, X the terrain textures (each tile its terrain's
+//! layer of the texture array). `HEXTERRAIN_LOOK=off` starts with all of them off (the look
+//! before water, light and props: the frame-cost baseline), `HEXTERRAIN_SHADOWS=off`,
+//! `HEXTERRAIN_PROPS=off` and `HEXTERRAIN_WATER=off` one each; `HEXTERRAIN_TEXTURES=on` starts
+//! with the textures.
 
 use bevy::pbr::ScreenSpaceAmbientOcclusion;
 use bevy::prelude::*;
@@ -16,7 +18,9 @@ pub(crate) fn from_env(
     mut lighting: ResMut<HexLightSettings>,
     mut props: ResMut<HexPropSettings>,
     mut water: ResMut<HexWaterSettings>,
+    mut material: ResMut<HexTerrainMaterialSettings>,
 ) {
+    material.textures = std::env::var("HEXTERRAIN_TEXTURES").is_ok_and(|v| v == "on");
     let all = off("HEXTERRAIN_LOOK");
     if all || off("HEXTERRAIN_SHADOWS") {
         lighting.shadows = false;
@@ -39,6 +43,7 @@ pub(crate) fn keys(
     mut lighting: ResMut<HexLightSettings>,
     mut props: ResMut<HexPropSettings>,
     mut water: ResMut<HexWaterSettings>,
+    mut material: ResMut<HexTerrainMaterialSettings>,
     cameras: Query<(Entity, Has<ScreenSpaceAmbientOcclusion>), With<HexTerrainCamera>>,
 ) {
     if keys.just_pressed(KeyCode::KeyJ) {
@@ -62,5 +67,8 @@ pub(crate) fn keys(
     }
     if keys.just_pressed(KeyCode::KeyN) {
         water.enabled = !water.enabled;
+    }
+    if keys.just_pressed(KeyCode::KeyX) {
+        material.textures = !material.textures;
     }
 }

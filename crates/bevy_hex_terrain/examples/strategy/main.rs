@@ -7,9 +7,8 @@
 //! V the fog of war, R regenerates with a new seed, 1-6 switch presets (6: Civ6 Standard,
 //! wrapping; 7: a scenario made with the world builder; P pans east across its seam), F3 shows
 //! chunk boundaries; M cycles the map types, U the World preset's terrain rulesets (its biomes,
-//! Civilization V's terrain, The Shattered Realms); J, K, B, N, O switch shadows, distance fog,
-//! props, water and ambient
-//! occlusion (`look.rs`). Tab opens the world builder (`editor.rs`): paint with a tool and a
+//! Civilization V's terrain, The Shattered Realms); J, K, B, N, O, X switch shadows, distance
+//! fog, props, water, ambient occlusion and the terrain textures (`look.rs`). Tab opens the world builder (`editor.rs`): paint with a tool and a
 //! brush, Ctrl+Z / Ctrl+Y undo and redo, Ctrl+S saves the edits next to the map.
 //!
 //! Two players: yours (red) and a rival (blue), at the starts the map's game setup chose (the
@@ -237,8 +236,8 @@ fn setup(mut commands: Commands) {
     commands.spawn((
         Text::new(
             "WASD/arrows/edge pan, wheel zoom, Q/E rotate, click unit then tile, Enter end turn, G outlines, \
-             L lens, T tint, V fog, F map report, R new seed, 1-7 presets (6 wraps, 7 edited), M map types, U rulesets, P pan east, \
-             F3 chunks, \
+             L lens, T tint, V fog, F map report, R new seed, 1-7 presets (6 wraps, 7 edited), M map types, U rulesets, X textures, \
+             P pan east, F3 chunks, \
              Tab world builder",
         ),
         TextFont::from_font_size(13.0),

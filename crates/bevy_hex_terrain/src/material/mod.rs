@@ -1,22 +1,25 @@
 //! The terrain material: `StandardMaterial` (so PBR lighting and shadows still work) extended
 //! with a fragment shader that blends sea, land and mountain by height as thesis Algorithm 5
-//! does, in flat colors or textures, and draws tile outlines and highlights. The same shader
+//! does, in flat colors or textures (on maps with a climate, each tile's terrain color and its
+//! own layer of the texture array), and draws tile outlines and highlights. The same shader
 //! serves forward and deferred cameras.
 
 use crate::tiles::{HexTileStateStyle, TileStates};
 use crate::water::HexWaterSettings;
 use bevy::asset::{AssetPath, embedded_asset, embedded_path};
-use bevy::image::{ImageAddressMode, ImageLoaderSettings, ImageSampler, ImageSamplerDescriptor};
 use bevy::mesh::MeshVertexBufferLayoutRef;
 use bevy::pbr::{ExtendedMaterial, MaterialExtension, MaterialExtensionKey, MaterialExtensionPipeline};
 use bevy::prelude::*;
 use bevy::render::render_resource::{AsBindGroup, RenderPipelineDescriptor, SpecializedMeshPipelineError};
 use bevy::shader::{ShaderDefVal, ShaderRef, load_shader_library};
+pub use layers::MAX_TEXTURE_LAYERS;
+use layers::TextureLayers;
 use params::{Look, SHADER_DEFS, owner_colors, params, window_param};
 pub use params::{OwnerColors, RenderOrigin, TerrainParams};
 pub use settings::HexTerrainMaterialSettings;
 use tile_texture::TileStateTexture;
 
+mod layers;
 mod params;
 mod settings;
 mod tile_texture;
@@ -31,18 +34,11 @@ pub struct HexTerrainExtension {
     /// Shader parameters.
     #[uniform(100)]
     pub params: TerrainParams,
-    /// Sea texture (used in texture mode).
-    #[texture(101)]
+    /// The texture array of the layers ([`HexTerrainMaterialSettings::texture_paths`]), in
+    /// texture mode once its images have loaded.
+    #[texture(101, dimension = "2d_array")]
     #[sampler(102)]
-    pub sea_texture: Option<Handle<Image>>,
-    /// Grass texture (used in texture mode).
-    #[texture(103)]
-    #[sampler(104)]
-    pub land_texture: Option<Handle<Image>>,
-    /// Mountain texture (used in texture mode).
-    #[texture(105)]
-    #[sampler(106)]
-    pub mountain_texture: Option<Handle<Image>>,
+    pub layer_textures: Option<Handle<Image>>,
     /// The tile states ([`TileStates`]), written in place by `tile_texture.rs`.
     #[texture(107, sample_type = "u_int")]
     pub tile_state: Handle<Image>,
@@ -137,6 +133,7 @@ impl Plugin for HexTerrainMaterialPlugin {
         load_shader_library!(app, "shaders/tile_state.wgsl");
         app.add_plugins((MaterialPlugin::<HexTerrainMaterial>::default(), tile_texture::TileTexturePlugin))
             .init_resource::<HexTerrainMaterialSettings>()
+            .init_resource::<TextureLayers>()
             .init_resource::<RenderOrigin>()
             .register_type::<HexTerrainMaterialSettings>()
             .register_type::<RenderOrigin>()
@@ -145,33 +142,11 @@ impl Plugin for HexTerrainMaterialPlugin {
             .add_systems(Startup, create_material.after(tile_texture::create_texture))
             .add_systems(
                 Update,
-                (update_material, attach_material)
+                (layers::load_layers, layers::stack_layers, update_material, attach_material)
                     .chain()
                     .in_set(crate::HexTerrainSystems::Render)
                     .run_if(resource_exists::<HexTerrainMaterialHandle>),
             );
-    }
-}
-
-fn textures(server: &AssetServer, appearance: &HexTerrainMaterialSettings) -> [Option<Handle<Image>>; 3] {
-    if appearance.textures {
-        // World-space coordinates run far past [0, 1]: the textures must repeat.
-        std::array::from_fn(|i| {
-            Some(
-                server
-                    .load_builder()
-                    .with_settings(|s: &mut ImageLoaderSettings| {
-                        s.sampler = ImageSampler::Descriptor(ImageSamplerDescriptor {
-                            address_mode_u: ImageAddressMode::Repeat,
-                            address_mode_v: ImageAddressMode::Repeat,
-                            ..ImageSamplerDescriptor::linear()
-                        });
-                    })
-                    .load(appearance.texture_paths[i].clone()),
-            )
-        })
-    } else {
-        [None, None, None]
     }
 }
 
@@ -202,10 +177,10 @@ fn effective(appearance: &HexTerrainMaterialSettings, map: &crate::HexMap) -> He
 
 /// What the materials are made from besides their own settings: the map, the tile states and
 /// their style, the water's settings (absent without the water plugin), the tile state texture,
-/// the render origin and the asset server (for the textures).
+/// the render origin and the texture array.
 #[derive(bevy::ecs::system::SystemParam)]
 struct MaterialSources<'w> {
-    server: Res<'w, AssetServer>,
+    layers: Res<'w, TextureLayers>,
     map: Res<'w, crate::HexMap>,
     style: Res<'w, HexTileStateStyle>,
     water: Option<Res<'w, HexWaterSettings>>,
@@ -222,12 +197,20 @@ impl MaterialSources<'_> {
             || self.water.as_ref().is_some_and(|w| w.is_changed())
             || self.texture.is_changed()
             || self.origin.is_changed()
+            || self.layers.is_changed()
     }
 
     /// The shader parameters and owner colors for the material settings.
     fn params(&self, material: &HexTerrainMaterialSettings) -> (TerrainParams, OwnerColors) {
         let look = Look { material, tiles: &self.style, water: self.water.as_deref() };
-        (params(self.map.terrain(), look, self.states.window(), *self.origin), owner_colors(&self.style))
+        let mut params = params(self.map.terrain(), look, self.states.window(), *self.origin);
+        params.texture_layers = self.textures(material).map_or(0, |_| self.layers.count);
+        (params, owner_colors(&self.style))
+    }
+
+    /// The texture array the material draws with: in texture mode, once it is stacked.
+    fn textures(&self, material: &HexTerrainMaterialSettings) -> Option<Handle<Image>> {
+        self.layers.array.clone().filter(|_| material.textures)
     }
 }
 
@@ -238,13 +221,10 @@ fn create_material(
     appearance: Res<HexTerrainMaterialSettings>,
 ) {
     let appearance = effective(&appearance, &sources.map);
-    let [sea_texture, land_texture, mountain_texture] = textures(&sources.server, &appearance);
     let (params, owners) = sources.params(&appearance);
     let extension = HexTerrainExtension {
         params,
-        sea_texture,
-        land_texture,
-        mountain_texture,
+        layer_textures: sources.textures(&appearance),
         tile_state: sources.texture.handle.clone(),
         owners,
         water: false,
@@ -282,20 +262,18 @@ fn update_material(
     let effective = effective(&appearance, &sources.map);
     let (params, owners) = sources.params(&effective);
     let texture = &sources.texture;
-    let retexture = effective.textures != ext.sea_texture.is_some();
-    if params == ext.params && owners == ext.owners && ext.tile_state == texture.handle && !retexture {
+    let layers = sources.textures(&effective);
+    if params == ext.params && owners == ext.owners && ext.tile_state == texture.handle && ext.layer_textures == layers
+    {
         return;
     }
-    let new = if retexture { Some(textures(&sources.server, &effective)) } else { None };
     for handle in [&handles.0.0, &handles.1.0] {
         let Some(mut material) = materials.get_mut(handle) else { continue };
         let ext = &mut material.extension;
         ext.params = params;
         ext.owners = owners;
         ext.tile_state = texture.handle.clone();
-        if let Some(new) = &new {
-            [ext.sea_texture, ext.land_texture, ext.mountain_texture] = new.clone();
-        }
+        ext.layer_textures.clone_from(&layers);
     }
 }
 

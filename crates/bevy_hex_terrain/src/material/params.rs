@@ -107,6 +107,8 @@ pub struct TerrainParams {
     /// Bits of the drawing switches (outlines, textures, pointy hexes, fog, borders, tint, lens,
     /// sea floor), as the shader defs `HEX_FLAG_*` name them.
     pub flags: u32,
+    /// Layers in the texture array (0 without textures).
+    pub texture_layers: u32,
     /// The tiles the tile state texture holds: first offset column and row, width and height.
     pub tile_window: IVec4,
     /// `x`: a wrapping map's width in columns (0 when it does not wrap); `y`, `z`: the axial
@@ -231,6 +233,7 @@ pub(crate) fn params(terrain: &Terrain, look: Look, window: (IVec2, UVec2), orig
         fog_softness: finite(style.fog_softness, 0.0, 1.0),
         tint_strength: 0.22,
         flags: bits,
+        texture_layers: 0,
         tile_window: window_param(window),
         map_wrap: IVec4::new(wrap.map_or(0, |w| w.columns), origin.tile.x, origin.tile.y, 0),
         origin_offset: origin.offset.extend(0.0).extend(0.0),

@@ -22,8 +22,12 @@ pub struct HexTerrainMaterialSettings {
     pub colors: [Color; 3],
     /// River and lake color (maps with rivers; biome colors come with the mesh).
     pub water_color: Color,
-    /// Asset paths of the sea, grass and mountain textures.
-    pub texture_paths: [String; 3],
+    /// Asset paths of the texture array's layers, in order (at most
+    /// [`MAX_TEXTURE_LAYERS`](crate::MAX_TEXTURE_LAYERS), all of one size): the thesis' maps
+    /// draw layers 0, 1 and 2 (sea, land, mountain) by height; a map with climate or rivers
+    /// draws each tile with its terrain's layer (`Look::texture` of its ruleset; the default
+    /// ruleset's biomes take 0, 1 and 2), a layer past the list with the last.
+    pub texture_paths: Vec<String>,
 }
 
 impl Default for HexTerrainMaterialSettings {
@@ -35,7 +39,9 @@ impl Default for HexTerrainMaterialSettings {
             texture_scale: 0.25,
             colors: [Color::srgb(0.11, 0.34, 0.72), Color::srgb(0.30, 0.60, 0.20), Color::srgb(0.62, 0.60, 0.58)],
             water_color: Color::srgb(0.16, 0.42, 0.72),
-            texture_paths: ["textures/sea.png".into(), "textures/grass.png".into(), "textures/mountain.png".into()],
+            texture_paths: ["sea", "grass", "mountain", "sand", "snow", "forest", "ash"]
+                .map(|name| format!("textures/{name}.png"))
+                .into(),
         }
     }
 }

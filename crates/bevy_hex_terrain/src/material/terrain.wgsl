@@ -10,8 +10,8 @@
     pbr_functions::alpha_discard,
 }
 #import hex_terrain::bindings::{params, has_flag, FLAG_TEXTURES}
-#import hex_terrain::ground::{albedo, has_sea_floor, sea_floor}
-#import hex_terrain::tile_state::{tile_look, apply_fog}
+#import hex_terrain::ground::{albedo, has_sea_floor, sea_floor, triplanar}
+#import hex_terrain::tile_state::{tile_look, apply_fog, tile_class}
 
 #ifdef PREPASS_PIPELINE
 #import bevy_pbr::{
@@ -78,11 +78,20 @@ fn ground_fragment(in: VertexOutput, is_front: bool) -> FragmentOutput {
     var color = albedo(p, n);
 #ifdef VERTEX_COLORS
     // Biomes: the vertex color is the tiles' biome colors (blended across tile borders by the
-    // interpolation between vertices); its alpha is river or lake water. With textures on, the
-    // relief texture's detail modulates the biome color.
+    // interpolation between vertices); its alpha is river or lake water. With textures on, a
+    // texture's detail modulates the biome color: the tile's own layer (its terrain's) where the
+    // mesh carries the layers (UV_0 and UV_1: the entry of each texture class, the same at the
+    // three corners of each of the tile's triangles), else the relief's layer.
     var biome = in.color.rgb;
     if has_flag(FLAG_TEXTURES) {
-        biome = biome * (0.6 + 0.8 * color.rgb);
+        var detail = color.rgb;
+#ifdef VERTEX_UVS_B
+#ifndef HEX_WATER
+        let entries = vec3<f32>(in.uv.x, in.uv.y, in.uv_b.x);
+        detail = triplanar(u32(round(entries[tile_class(p.xz)])), p, n).rgb;
+#endif
+#endif
+        biome = biome * (0.6 + 0.8 * detail);
     }
     let water = smoothstep(0.2, 0.55, in.color.a);
     color = vec4<f32>(mix(biome, params.water_color.rgb, water), 1.0);

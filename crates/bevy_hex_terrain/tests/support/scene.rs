@@ -88,7 +88,7 @@ pub struct Scene {
     pub lighting: Option<HexLightSettings>,
     /// After the first picture: change the settings, let the change show, and take a second
     /// picture ([`render_pair`]).
-    pub then: Option<fn(&mut HexPropSettings, &mut HexLightSettings)>,
+    pub then: Option<fn(&mut HexPropSettings, &mut HexLightSettings, &mut HexTerrainMaterialSettings)>,
     /// Streaming settings (when `None`, the defaults with every chunk full).
     pub streaming: Option<HexStreamingSettings>,
     /// Look at this world `(x, z)` instead of the map's middle, with a streaming agent on the
@@ -273,6 +273,7 @@ fn render_scenes(scene: Scene, name: &str) -> (image::RgbImage, Option<image::Rg
               mut exit: MessageWriter<AppExit>,
               mut settings: ResMut<HexPropSettings>,
               mut lighting: ResMut<HexLightSettings>,
+              mut material: ResMut<HexTerrainMaterialSettings>,
               tasks: Query<(), With<ChunkTask>>| {
             frames += 1;
             if *flag.lock().unwrap() {
@@ -286,7 +287,7 @@ fn render_scenes(scene: Scene, name: &str) -> (image::RgbImage, Option<image::Rg
                 }
                 match changed_for.as_mut() {
                     None => {
-                        change(&mut settings, &mut lighting);
+                        change(&mut settings, &mut lighting, &mut material);
                         changed_for = Some(0);
                     }
                     Some(n) => {

@@ -1,5 +1,5 @@
 // The terrain material's bindings and flags: the uniform parameters (material/params.rs's
-// `TerrainParams`), the three layer textures, the tile state texture and the owner colors. The
+// `TerrainParams`), the texture array of the layers, the tile state texture and the owner colors. The
 // flag bits and the owner palette's size are shader defs from Rust, so both sides share them.
 #define_import_path hex_terrain::bindings
 
@@ -35,6 +35,8 @@ struct TerrainParams {
     tint_strength: f32,
     // Bits FLAG_*, defined in Rust (material/params.rs, `flags`) and passed as shader defs.
     flags: u32,
+    // Layers in the texture array.
+    texture_layers: u32,
     // The tiles the tile state texture holds: first offset column and row, width, height.
     tile_window: vec4<i32>,
     // x: a wrapping map's width in columns (0: no wrap); yz: the axial tile nearest the render
@@ -49,12 +51,8 @@ struct OwnerColors {
 }
 
 @group(#{MATERIAL_BIND_GROUP}) @binding(100) var<uniform> params: TerrainParams;
-@group(#{MATERIAL_BIND_GROUP}) @binding(101) var sea_texture: texture_2d<f32>;
-@group(#{MATERIAL_BIND_GROUP}) @binding(102) var sea_sampler: sampler;
-@group(#{MATERIAL_BIND_GROUP}) @binding(103) var land_texture: texture_2d<f32>;
-@group(#{MATERIAL_BIND_GROUP}) @binding(104) var land_sampler: sampler;
-@group(#{MATERIAL_BIND_GROUP}) @binding(105) var mountain_texture: texture_2d<f32>;
-@group(#{MATERIAL_BIND_GROUP}) @binding(106) var mountain_sampler: sampler;
+@group(#{MATERIAL_BIND_GROUP}) @binding(101) var layer_textures: texture_2d_array<f32>;
+@group(#{MATERIAL_BIND_GROUP}) @binding(102) var layer_sampler: sampler;
 @group(#{MATERIAL_BIND_GROUP}) @binding(107) var tile_state: texture_2d<u32>;
 @group(#{MATERIAL_BIND_GROUP}) @binding(108) var<uniform> owners: OwnerColors;
 

@@ -1,18 +1,21 @@
 // The ground's color before the tile state: thesis Algorithm 5 (three layers split by the
-// thresholds, blended over the blend distance) in flat colors or world-space triplanar textures,
-// and under a water surface the sea floor instead of the sea.
+// thresholds, blended over the blend distance) in flat colors or world-space triplanar textures
+// (the texture array's layers 0, 1 and 2), and under a water surface the sea floor instead of
+// the sea.
 #define_import_path hex_terrain::ground
 
-#import hex_terrain::bindings::{
-    params, sea_texture, sea_sampler, land_texture, land_sampler, mountain_texture, mountain_sampler, has_flag,
-    FLAG_TEXTURES, FLAG_SEA_FLOOR,
-}
+#import hex_terrain::bindings::{params, layer_textures, layer_sampler, has_flag, FLAG_TEXTURES, FLAG_SEA_FLOOR}
 
-fn triplanar(t: texture_2d<f32>, s: sampler, p: vec3<f32>, n: vec3<f32>) -> vec4<f32> {
+// A layer of the texture array (the last one for a layer past it), projected on the three world
+// planes and weighted by the normal.
+fn triplanar(layer: u32, p: vec3<f32>, n: vec3<f32>) -> vec4<f32> {
     var w = abs(n);
     w = w / (w.x + w.y + w.z);
     let k = params.texture_scale;
-    return textureSample(t, s, p.zx * k) * w.y + textureSample(t, s, p.zy * k) * w.x + textureSample(t, s, p.xy * k) * w.z;
+    let l = i32(min(layer, max(params.texture_layers, 1u) - 1u));
+    return textureSample(layer_textures, layer_sampler, p.zx * k, l) * w.y
+        + textureSample(layer_textures, layer_sampler, p.zy * k, l) * w.x
+        + textureSample(layer_textures, layer_sampler, p.xy * k, l) * w.z;
 }
 
 // Under a water surface the sea layer is the sea floor: sand at the coast, darker with depth.
@@ -30,9 +33,9 @@ fn has_sea_floor() -> bool {
 // uniform control flow (every fragment samples all three) so their derivatives stay valid.
 fn albedo(p: vec3<f32>, n: vec3<f32>) -> vec4<f32> {
     var layers = array<vec4<f32>, 3>(params.sea_color, params.land_color, params.mountain_color);
-    let sea = triplanar(sea_texture, sea_sampler, p, n);
-    let land = triplanar(land_texture, land_sampler, p, n);
-    let rock = triplanar(mountain_texture, mountain_sampler, p, n);
+    let sea = triplanar(0u, p, n);
+    let land = triplanar(1u, p, n);
+    let rock = triplanar(2u, p, n);
     if has_flag(FLAG_TEXTURES) {
         layers = array<vec4<f32>, 3>(sea, land, rock);
     }

@@ -18,20 +18,39 @@ const REACHABLE: u32 = #{HEX_TEXEL_REACHABLE}u;
 const FOG_EXPLORED: u32 = #{HEX_FOG_EXPLORED}u;
 const FOG_VISIBLE: u32 = #{HEX_FOG_VISIBLE}u;
 
-// The tile state texel of a hex (zero, the default state, outside the texture's window). Offset
-// coordinates are hexx's odd mode, as the core's.
-fn tile_texel(h: vec2<i32>) -> vec4<u32> {
+// The offset coordinate of a hex on the map (hexx's odd mode, as the core's): a wrapping map's
+// tiles east or west of it are its own.
+fn map_offset(h: vec2<i32>) -> vec2<i32> {
     var oc: vec2<i32>;
     if pointy() {
         oc = vec2<i32>(h.x + (h.y - (h.y & 1)) / 2, h.y);
     } else {
         oc = vec2<i32>(h.x, h.y + (h.x - (h.x & 1)) / 2);
     }
-    // A wrapping map's tiles east or west of it are its own.
     let columns = params.map_wrap.x;
     if columns > 0 {
         oc.x = ((oc.x % columns) + columns) % columns;
     }
+    return oc;
+}
+
+// The texture class of the map's own tile under a render position (`hex_terrain::texture_class`:
+// `(q - r) mod 3` of its axial coordinate): which entry of the mesh's texture layers holds that
+// tile's layer.
+fn tile_class(render_p: vec2<f32>) -> u32 {
+    let oc = map_offset(hex_at(render_p + params.origin_offset.xy) + params.map_wrap.yz);
+    var a: vec2<i32>;
+    if pointy() {
+        a = vec2<i32>(oc.x - (oc.y - (oc.y & 1)) / 2, oc.y);
+    } else {
+        a = vec2<i32>(oc.x, oc.y - (oc.x - (oc.x & 1)) / 2);
+    }
+    return u32((((a.x - a.y) % 3) + 3) % 3);
+}
+
+// The tile state texel of a hex (zero, the default state, outside the texture's window).
+fn tile_texel(h: vec2<i32>) -> vec4<u32> {
+    let oc = map_offset(h);
     let w = params.tile_window;
     let local = oc - w.xy;
     if any(local < vec2<i32>(0)) || any(local >= w.zw) {
