@@ -8,19 +8,17 @@ mod gallery;
 mod globe;
 mod globe_stats;
 mod render;
+mod setup;
+mod stats;
 mod survey;
 mod terrains;
 mod textures;
 
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
-use std::time::Instant;
 
 use clap::{Parser, Subcommand};
-use hex_terrain::{
-    Biome, ChunkMesh, HeightSourceConfig, ManipulationConfig, MapConfig, MapSize, MapStats, RiverModel, Sharpness,
-    Terrain, TileKind, WaterLevel,
-};
+use hex_terrain::{ChunkMesh, HeightSourceConfig, ManipulationConfig, MapConfig, MapSize, Terrain, WaterLevel};
 
 /// Generate, preview, export and measure 3D hexagonal tiled terrain.
 #[derive(Parser)]
@@ -379,11 +377,11 @@ fn run(cli: Cli) -> CliResult<()> {
             }
             result
         }
-        Command::Stats { map, ruleset } => stats(&map, ruleset.as_deref()),
+        Command::Stats { map, ruleset } => stats::stats(&map, ruleset.as_deref()),
         Command::Edit { map, strokes, output } => edit::run(&load(&map)?, &strokes, &output),
         Command::Setup { map, players, output, width } => {
             check_width(width)?;
-            setup(&map, players, output.as_deref(), width)
+            setup::setup(&map, players, output.as_deref(), width)
         }
         Command::Survey { map, seeds, size, water } => {
             let mut config = survey::map_or_type(&map)?;
@@ -412,139 +410,6 @@ fn run(cli: Cli) -> CliResult<()> {
             experiments::run(&experiments::Options { out, maps, rings, runs: runs.max(1), max_hexes, width })
         }
     }
-}
-
-fn stats(path: &Path, ruleset: Option<&Path>) -> CliResult<()> {
-    let mut config = load(path)?;
-    if config.size.globe().is_some() {
-        if ruleset.is_some() {
-            return Err("--ruleset: terrain rulesets are not on globes yet".into());
-        }
-        return globe_stats::stats(path, config);
-    }
-    if let Some(ruleset) = ruleset {
-        config.ruleset = Some(ruleset.display().to_string());
-    }
-    let t = terrain(config.clone(), false)?;
-    let start = Instant::now();
-    let mesh = whole_map(&t)?;
-    let elapsed = start.elapsed();
-    let raw = whole_map(&terrain(config.clone(), true)?)?;
-    let s = Sharpness::measure(&raw, &mesh, config.terrain.max_elevation);
-    println!("{} ({})", config.name, path.display());
-    println!("tiles:");
-    for kind in TileKind::ALL {
-        let count = mesh.tiles.iter().filter(|t| t.kind == kind).count();
-        println!("  {:<9} {count}", kind.name());
-    }
-    println!("  total     {}", mesh.tiles.len());
-    if t.config().climate.enabled || t.hydrology().is_some() {
-        println!("biomes:");
-        for biome in Biome::ALL {
-            let count = mesh.tiles.iter().filter(|t| t.biome == biome).count();
-            if count > 0 {
-                println!("  {:<11} {count}", biome.name());
-            }
-        }
-    }
-    let measured = MapStats::measure(&t);
-    if let Some(stats) = measured.as_ref().filter(|_| t.has_own_ruleset()) {
-        terrains::print(&t, stats);
-    }
-    let edge_rivers = measured.as_ref().filter(|_| t.config().rivers.model == RiverModel::Edges);
-    if let (Some(h), Some(stats)) = (t.hydrology(), edge_rivers) {
-        let r = stats.rivers;
-        println!(
-            "water: rivers on {} tile edges ({} systems, {} tiles on a river, the longest {} edges); {} lakes ({} tiles)",
-            r.edges,
-            r.systems,
-            r.tiles,
-            r.longest,
-            h.lake_count(),
-            mesh.tiles.iter().filter(|t| t.lake.is_some()).count()
-        );
-    } else if let Some(h) = t.hydrology() {
-        let rivers = t.rivers();
-        let sources = rivers.iter().filter(|r| r.upstream.is_empty()).count();
-        let mouths = rivers.iter().filter(|r| r.downstream.is_none_or(|d| t.river(d).is_none())).count();
-        println!(
-            "water: {} river tiles, {sources} sources, {mouths} mouths; {} lakes ({} tiles)",
-            rivers.len(),
-            h.lake_count(),
-            mesh.tiles.iter().filter(|t| t.lake.is_some()).count()
-        );
-    }
-    match t.setup() {
-        Some(setup) => {
-            let r = setup.report();
-            println!(
-                "setup: {} players, spread {:.1} % (bound {:.1} %), {} resources, {} wonders",
-                setup.starts().len(),
-                r.spread * 100.0,
-                r.bound * 100.0,
-                r.resources,
-                r.wonders
-            );
-        }
-        None => println!("setup: none (`hexterrain setup {}` places a game with the default setup)", path.display()),
-    }
-    // `stats` takes bounded maps only (`whole_map` above), which always have statistics.
-    if let Some(stats) = &measured {
-        println!("{stats}");
-    }
-    if let Some(report) = t.map_type() {
-        println!("map type {report}");
-    }
-    match config.edits.len() {
-        0 => println!("edits: none (the generated map)"),
-        n => println!("edits: {n} tiles edited (the map file's `edits` section, applied over the seed)"),
-    }
-    println!("mesh: {} vertices, {} triangles", mesh.buffers.vertex_count(), mesh.buffers.triangle_count());
-    println!("generation: {:.2} ms", elapsed.as_secs_f64() * 1e3);
-    println!("sharpness (% of max elevation):");
-    println!("  raw map          max {:>7.3}  average {:>7.3}", s.raw_max, s.raw_average);
-    println!(
-        "  manipulated      max {:>7.3}  average {:>7.3}  ({} manipulated vertices)",
-        s.manipulated_max, s.manipulated_average, s.manipulated_vertices
-    );
-    println!("  mesh (eq. 7.3)   {:.3}   measured directly {:.3}", s.weighted_mesh, s.mesh_average);
-    Ok(())
-}
-
-fn setup(path: &Path, players: Option<u32>, output: Option<&Path>, width: u32) -> CliResult<()> {
-    let mut config = load(path)?;
-    let mut setup = config.setup.take().unwrap_or_default();
-    if let Some(n) = players {
-        setup.players = n;
-    }
-    config.setup = Some(setup);
-    let start = Instant::now();
-    let t = Terrain::new(config).map_err(|e| format!("{}: {e}", path.display()))?;
-    let elapsed = start.elapsed();
-    let setup = t.setup().ok_or("the map has no setup")?;
-    println!("{} ({}): {} players", t.config().name, path.display(), setup.starts().len());
-    print!("{}", setup.report());
-    println!("map and setup compiled in {:.1} ms", elapsed.as_secs_f64() * 1e3);
-    let Some(output) = output else { return Ok(()) };
-    let mesh = whole_map(&t)?;
-    let mut marks = Vec::new();
-    let center = |tile| t.tile_center(tile).map(|c| [c[0], c[2]]);
-    for r in setup.resources() {
-        let color = match r.class {
-            hex_terrain::ResourceClass::Bonus => [90, 220, 90],
-            hex_terrain::ResourceClass::Strategic => [230, 70, 60],
-            hex_terrain::ResourceClass::Luxury => [190, 110, 240],
-        };
-        marks.extend(center(r.tile).map(|at| render::Mark { at, radius: 0.4, color }));
-    }
-    for w in setup.wonders() {
-        marks.extend(center(w.tile).map(|at| render::Mark { at, radius: 0.7, color: [250, 200, 40] }));
-    }
-    for &s in setup.starts() {
-        marks.extend(center(s).map(|at| render::Mark { at, radius: 1.1, color: [250, 250, 250] }));
-    }
-    let img = render::render(&t, &mesh, &render::Options { width, outlines: false, marks })?;
-    render::save(&img, output)
 }
 
 fn main() -> ExitCode {
