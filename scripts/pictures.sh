@@ -86,9 +86,11 @@ if [ "${1:-}" = "--screens" ]; then
   shot wrap_seam.png strategy HEXTERRAIN_PRESET=6 HEXTERRAIN_FOCUS=126,40 HEXTERRAIN_FOG=off
   shot lod_huge.png strategy HEXTERRAIN_MAP=maps/civ6/huge.map.ron HEXTERRAIN_FOCUS=80,57 HEXTERRAIN_ZOOM=120 \
     HEXTERRAIN_FOG=off
-  # The World preset in the demo under Civilization V's terrain and as The Shattered Realms.
-  shot strategy_civ5.png strategy HEXTERRAIN_MAP=maps/world_civ5.map.ron HEXTERRAIN_FOG=off
-  shot strategy_fantasy.png strategy HEXTERRAIN_MAP=maps/world_fantasy.map.ron HEXTERRAIN_FOG=off
+  # The World preset in the demo under Civilization V's terrain and as The Shattered Realms,
+  # each tile drawn with its terrain's texture layer.
+  shot strategy_civ5.png strategy HEXTERRAIN_MAP=maps/world_civ5.map.ron HEXTERRAIN_FOG=off HEXTERRAIN_TEXTURES=on
+  shot strategy_fantasy.png strategy HEXTERRAIN_MAP=maps/world_fantasy.map.ron HEXTERRAIN_FOG=off \
+    HEXTERRAIN_TEXTURES=on
   shot minimal.png minimal
   shot streaming.png streaming HEXTERRAIN_STILL=1
   shot far_example.png far
