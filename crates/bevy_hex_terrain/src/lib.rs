@@ -93,6 +93,8 @@ pub use crate::far::{HexBigSpacePlugin, HexTerrainGrid};
 pub use crate::globe::{
     GlobeCamera, GlobeStreamer, HexGlobe, HexGlobeChunk, HexGlobePlugin, NEAR_ANGLE, globe_horizon,
 };
+#[cfg(feature = "picking")]
+pub use crate::globe::{HexGlobePick, HoveredGlobeTile};
 #[cfg(feature = "render")]
 pub use crate::light::{HexLightPlugin, HexLightSettings, HexSun, HexTerrainCamera};
 pub use crate::map::{

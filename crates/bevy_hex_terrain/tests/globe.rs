@@ -272,3 +272,94 @@ fn a_globe_file_loads_hot_reloads_and_a_broken_reload_keeps_the_globe() {
     assert_eq!(app.world().resource::<HexGlobe>().generation(), 2);
     assert!(app.world().resource::<GlobeStreamer>().is_settled());
 }
+
+/// The ray the test's pointer casts this frame.
+#[cfg(feature = "picking")]
+#[derive(Resource, Default)]
+struct PointerRay(Option<(Entity, Ray3d)>);
+
+/// The globe hits reported for the mouse this frame.
+#[cfg(feature = "picking")]
+#[derive(Resource, Default)]
+struct Hits(Vec<(Entity, bevy::picking::backend::HitData)>);
+
+/// Picking at each of the twelve pentagons (a ray straight down from three radii out) and at
+/// tiles toward the limb (55 to 66 degrees from under the camera; the horizon is at 70.5): each
+/// ray aimed at a tile's center reports that tile, the tile `tile_at` gives for the direction
+/// it was aimed at, on the entity of the chunk holding it, and the mouse's hovered tile follows.
+/// The relief is kept low so that no tile hides another's center.
+#[cfg(feature = "picking")]
+#[test]
+fn picking_returns_the_tile_at_every_pentagon_and_near_the_limb() {
+    use bevy::math::DVec3;
+    use bevy::picking::backend::PointerHits;
+    use bevy::picking::backend::ray::{RayId, RayMap};
+    use bevy::picking::pointer::PointerId;
+    use bevy::picking::{InteractionPlugin, PickingPlugin, PickingSystems};
+    use bevy_hex_terrain::hex_terrain::GlobeTile;
+    use bevy_hex_terrain::{HexGlobePick, HoveredGlobeTile};
+
+    let mut config = globe_config(6);
+    config.terrain.max_elevation = 0.01;
+    let mut app = app(config);
+    app.add_plugins((PickingPlugin, InteractionPlugin)).init_resource::<PointerRay>().init_resource::<Hits>();
+    app.add_systems(
+        PreUpdate,
+        (|ray: Res<PointerRay>, mut map: ResMut<RayMap>| {
+            if let Some((camera, ray)) = ray.0 {
+                map.map.insert(RayId::new(camera, PointerId::Mouse), ray);
+            }
+        })
+        .after(PickingSystems::ProcessInput)
+        .before(PickingSystems::Backend),
+    );
+    app.add_systems(Last, |mut reader: MessageReader<PointerHits>, mut hits: ResMut<Hits>| {
+        hits.0 = reader.read().filter(|h| h.pointer == PointerId::Mouse).flat_map(|h| h.picks.clone()).collect();
+    });
+    app.world_mut().spawn(PointerId::Mouse);
+    let camera = app.world_mut().spawn((Camera::default(), Transform::default(), HexTerrainAgent::default())).id();
+    app.update();
+    let globe = app.world().resource::<HexGlobe>().globe().expect("the config applied").clone();
+    let grid = globe.grid();
+    let pentagons: Vec<GlobeTile> = grid.tiles().filter(|&t| grid.is_pentagon(t)).collect();
+    assert_eq!(pentagons.len(), 12);
+    let radius = globe.radius();
+    let (mut limb, mut picked) = (0, 0);
+    for pentagon in pentagons {
+        let up = DVec3::from_array(grid.center(pentagon).unwrap());
+        let eye = up * radius * 3.0;
+        app.world_mut().entity_mut(camera).insert(Transform::from_translation(eye.as_vec3()));
+        app.update();
+        run_until(&mut app, "the globe settled", |app| app.world().resource::<GlobeStreamer>().is_settled());
+        let toward_limb = grid.tiles().filter(|&t| {
+            let angle = DVec3::from_array(grid.center(t).unwrap()).dot(up).clamp(-1.0, 1.0).acos().to_degrees();
+            (55.0..66.0).contains(&angle)
+        });
+        for tile in std::iter::once(pentagon).chain(toward_limb.step_by(3)) {
+            let center = DVec3::from_array(grid.center(tile).unwrap());
+            assert_eq!(globe.tile_at(center.to_array()), Some(tile));
+            let aim = (center * radius - eye).normalize();
+            let ray = Ray3d::new(eye.as_vec3(), Dir3::new(aim.as_vec3()).unwrap());
+            app.world_mut().resource_mut::<PointerRay>().0 = Some((camera, ray));
+            app.update();
+            let hits = &app.world().resource::<Hits>().0;
+            assert_eq!(hits.len(), 1, "one hit for {tile:?}");
+            let (entity, hit) = &hits[0];
+            let pick = hit.extra_as::<HexGlobePick>().expect("a globe pick");
+            assert_eq!(pick.tile, tile, "the ray aimed at {tile:?} (pentagon {pentagon:?} below)");
+            let chunk = globe.chunk_of(tile).unwrap();
+            assert_eq!(pick.chunk, chunk);
+            assert_eq!(Some(*entity), app.world().resource::<GlobeStreamer>().chunk(chunk));
+            assert!((pick.world.length() - radius).abs() < 0.02, "on the surface: {}", pick.world.length());
+            assert_eq!(app.world().resource::<HoveredGlobeTile>().tile(), Some(tile));
+            limb += usize::from(tile != pentagon);
+            picked += 1;
+        }
+    }
+    assert!(limb > 60, "{limb} tiles toward the limb of {picked} picked");
+    // The sky: no hit, no hovered tile.
+    app.world_mut().resource_mut::<PointerRay>().0 = Some((camera, Ray3d::new(Vec3::splat(1e3), Dir3::X)));
+    app.update();
+    assert!(app.world().resource::<Hits>().0.is_empty());
+    assert_eq!(app.world().resource::<HoveredGlobeTile>().tile(), None);
+}

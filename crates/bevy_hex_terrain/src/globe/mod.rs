@@ -5,11 +5,17 @@
 //! drawn), meshes on Bevy's async compute pool; and [`GlobeCamera`] orbits it. The globe's center
 //! is the world's origin, its axis the world's `y`.
 //!
-//! The flat map's material, tile states, props, picking, minimap and editor do not reach a globe
-//! yet: its chunks are drawn with a `StandardMaterial` in their vertex colors (the biome colors
-//! with a climate, else the kinds').
+//! With the `picking` feature the globe is a `bevy_picking` backend: pointer events on its
+//! chunks carry a [`HexGlobePick`] (the tile, pentagons as any other), and [`HoveredGlobeTile`]
+//! holds the tile under the mouse.
+//!
+//! The flat map's material, tile states, props, minimap and editor do not reach a globe yet: its
+//! chunks are drawn with a `StandardMaterial` in their vertex colors (the biome colors with a
+//! climate, else the kinds').
 
 mod camera;
+#[cfg(feature = "picking")]
+mod picking;
 mod stream;
 
 use std::sync::Arc;
@@ -18,6 +24,8 @@ use bevy::prelude::*;
 use hex_terrain::{GlobeChunk, GlobeTerrain, MapConfig};
 
 pub use camera::GlobeCamera;
+#[cfg(feature = "picking")]
+pub use picking::{HexGlobePick, HoveredGlobeTile};
 pub use stream::{GlobeStreamer, HexGlobeChunk, NEAR_ANGLE, globe_horizon};
 
 use crate::asset::{HexMapAsset, HexMapLoader};
@@ -131,7 +139,10 @@ impl Plugin for HexGlobePlugin {
                 ),
             );
         #[cfg(feature = "picking")]
-        app.add_systems(Update, camera::orbit.before(camera::place).in_set(HexTerrainSystems::Map));
+        {
+            app.add_systems(Update, camera::orbit.before(camera::place).in_set(HexTerrainSystems::Map));
+            picking::build(app);
+        }
         match &self.globe {
             MapSource::Config(config) => {
                 let config = (**config).clone();
