@@ -362,11 +362,16 @@ fn pick(
 
 /// Sets [`HoveredTile`] from the mouse's hovered entities: the nearest hit that carries a tile.
 fn follow_hover(hover: Option<Res<HoverMap>>, mut hovered: ResMut<HoveredTile>) {
-    let tile = hover.as_ref().and_then(|hover| hover.get(&PointerId::Mouse)).and_then(|hits| {
-        hits.values()
-            .filter_map(|hit| hit.extra_as::<HexPick>().map(|pick| (hit.depth, pick.tile)))
-            .min_by(|a, b| a.0.total_cmp(&b.0))
-            .map(|(_, tile)| tile)
-    });
+    let tile = mouse_pick(hover.as_deref(), |pick: &HexPick| pick.tile);
     hovered.set_if_neq(HoveredTile { tile });
+}
+
+/// What `read` reads of the nearest of the mouse's hovered hits whose extra data is a `P` (the
+/// flat map's and the globe's picks).
+pub(crate) fn mouse_pick<P: std::any::Any, T>(hover: Option<&HoverMap>, read: impl Fn(&P) -> T) -> Option<T> {
+    let hits = hover?.get(&PointerId::Mouse)?;
+    hits.values()
+        .filter_map(|hit| hit.extra_as::<P>().map(|pick| (hit.depth, read(pick))))
+        .min_by(|a, b| a.0.total_cmp(&b.0))
+        .map(|(_, value)| value)
 }

@@ -11,12 +11,11 @@ use bevy::picking::PickingSystems;
 use bevy::picking::backend::ray::RayMap;
 use bevy::picking::backend::{HitData, PointerHits};
 use bevy::picking::hover::HoverMap;
-use bevy::picking::pointer::PointerId;
 use bevy::prelude::*;
 use hex_terrain::{GlobeChunk, GlobeTerrain, GlobeTile};
 
 use super::{GlobeStreamer, HexGlobe, HexGlobeChunk};
-use crate::picking::{HexPickingCamera, HexPickingSettings};
+use crate::picking::{HexPickingCamera, HexPickingSettings, mouse_pick};
 
 /// The extra data of every globe hit ([`HitData::extra_as`]): the tile under the pointer.
 #[derive(Debug, Clone, Copy, PartialEq, Reflect)]
@@ -107,11 +106,6 @@ fn pick(
 
 /// Sets [`HoveredGlobeTile`] from the mouse's hovered entities: the nearest hit with a tile.
 fn follow_hover(hover: Option<Res<HoverMap>>, mut hovered: ResMut<HoveredGlobeTile>) {
-    let tile = hover.as_ref().and_then(|hover| hover.get(&PointerId::Mouse)).and_then(|hits| {
-        hits.values()
-            .filter_map(|hit| hit.extra_as::<HexGlobePick>().map(|pick| (hit.depth, pick.tile)))
-            .min_by(|a, b| a.0.total_cmp(&b.0))
-            .map(|(_, tile)| tile)
-    });
+    let tile = mouse_pick(hover.as_deref(), |pick: &HexGlobePick| pick.tile);
     hovered.set_if_neq(HoveredGlobeTile { tile });
 }
