@@ -19,8 +19,9 @@
 //! | [`Render`](HexTerrainSystems::Render) | `HexTerrainMaterialPlugin`, `HexLightPlugin` (`render`) | the terrain and water material and its tile state texture; the sun, fog and ambient light of `HexTerrainCamera`s | `HexTerrainMaterialSettings`, `HexLightSettings` |
 //!
 //! Besides them: [`HexGlobePlugin`], a hex globe (a map file of size `Globe`) streamed to each
-//! agent's horizon with its [`GlobeCamera`], in place of the flat map's plugins (a first step:
-//! the flat map's material, tile states and picking do not reach it yet);
+//! agent's horizon with its [`GlobeCamera`], in place of the flat map's plugins, picked with
+//! the `picking` feature (`HexGlobePick`, `HoveredGlobeTile`; the flat map's material and tile
+//! states do not reach it yet);
 //! with the `picking` feature `HexPickingPlugin`, a `bevy_picking` backend whose
 //! hits carry the tile (`HexPick`);
 //! with `minimap` `HexMinimapPlugin`; with `big_space` `HexBigSpacePlugin` (floating origin).
