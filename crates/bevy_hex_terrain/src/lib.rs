@@ -92,7 +92,8 @@ pub use crate::editor::{
 #[cfg(feature = "big_space")]
 pub use crate::far::{HexBigSpacePlugin, HexTerrainGrid};
 pub use crate::globe::{
-    GlobeCamera, GlobeStreamer, HexGlobe, HexGlobeChunk, HexGlobePlugin, NEAR_ANGLE, globe_horizon,
+    GlobeCamera, GlobeStreamer, GlobeTileWalk, GlobeWalkEnded, HexGlobe, HexGlobeChunk, HexGlobePlugin, NEAR_ANGLE,
+    OnGlobeTile, globe_horizon,
 };
 #[cfg(feature = "picking")]
 pub use crate::globe::{HexGlobePick, HoveredGlobeTile};

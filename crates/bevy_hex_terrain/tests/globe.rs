@@ -363,3 +363,75 @@ fn picking_returns_the_tile_at_every_pentagon_and_near_the_limb() {
     assert!(app.world().resource::<Hits>().0.is_empty());
     assert_eq!(app.world().resource::<HoveredGlobeTile>().tile(), None);
 }
+
+/// Where the surface as meshed lies along `up` (a unit vector), by the core's ray cast down.
+fn surface_along(globe: &GlobeTerrain, up: bevy::math::DVec3) -> f64 {
+    let above = up * (globe.radius() + 10.0);
+    let hit = globe.raycast(above.to_array(), (-up).to_array(), f64::MAX).expect("the ray meets the globe");
+    bevy::math::DVec3::from_array(hit.point).length()
+}
+
+/// A unit walks from a neighbor of a pentagon through the pentagon to another of its neighbors:
+/// every frame it stands on the surface as meshed (its distance from the center the surface's
+/// along its direction, found by the core's ray cast), its up the globe's up there, and it
+/// enters the tiles in order, then the walk ends on the last. A unit standing on the pentagon
+/// stays on its center through an edit that raises the tile.
+#[test]
+fn units_stand_on_their_tiles_and_walk_across_a_pentagon() {
+    use bevy::math::DVec3;
+    use bevy_hex_terrain::hex_terrain::{GlobeTile, TileEdit};
+    use bevy_hex_terrain::{GlobeTileWalk, GlobeWalkEnded, OnGlobeTile};
+
+    #[derive(Resource, Default)]
+    struct Ended(Vec<GlobeTile>);
+
+    let config = globe_config(6);
+    let mut app = app(config.clone());
+    app.insert_resource(bevy::time::TimeUpdateStrategy::ManualDuration(std::time::Duration::from_millis(50)))
+        .init_resource::<Ended>()
+        .add_observer(|ended: On<GlobeWalkEnded>, mut all: ResMut<Ended>| all.0.push(ended.tile));
+    app.update();
+    let globe = app.world().resource::<HexGlobe>().globe().expect("the config applied").clone();
+    let grid = globe.grid();
+    let pentagon = grid.tiles().find(|&t| grid.is_pentagon(t) && t != GlobeTile(0)).unwrap();
+    let around = grid.neighbors(pentagon).unwrap().as_slice().to_vec();
+    assert_eq!(around.len(), 5);
+    let (from, to) = (around[0], around[2]);
+    let walker = app.world_mut().spawn((OnGlobeTile::new(from), GlobeTileWalk::new([pentagon, to], 3.0))).id();
+    let stander = app.world_mut().spawn(OnGlobeTile::new(pentagon)).id();
+    let mut entered = vec![from];
+    for _ in 0..400 {
+        app.update();
+        let transform = *app.world().get::<Transform>(walker).unwrap();
+        let at = transform.translation.as_dvec3();
+        let surface = surface_along(&globe, at.normalize());
+        assert!((at.length() - surface).abs() < 1e-3, "off the surface: {} against {surface}", at.length());
+        assert!((transform.rotation * Vec3::Y).abs_diff_eq(at.normalize().as_vec3(), 1e-4), "its up is the globe's");
+        let tile = app.world().get::<OnGlobeTile>(walker).unwrap().tile;
+        if entered.last() != Some(&tile) {
+            entered.push(tile);
+        }
+        if !app.world().resource::<Ended>().0.is_empty() {
+            break;
+        }
+    }
+    assert_eq!(entered, [from, pentagon, to], "the tiles entered");
+    assert_eq!(app.world().resource::<Ended>().0, [to]);
+    assert!(app.world().get::<GlobeTileWalk>(walker).is_none(), "the walk is over");
+
+    let stands = |app: &App, globe: &GlobeTerrain| {
+        let at = app.world().get::<Transform>(stander).unwrap().translation.as_dvec3();
+        let center = DVec3::from_array(globe.grid().center(pentagon).unwrap());
+        let want = center * (globe.radius() + f64::from(globe.tile_info(pentagon).unwrap().elevation));
+        assert!(at.abs_diff_eq(want, 1e-3), "on its center: {at} against {want}");
+        at.length()
+    };
+    let before = stands(&app, &globe);
+    let mut edited = config;
+    edited.edits = vec![TileEdit { height: Some(0.95), ..TileEdit::at(pentagon.at()) }];
+    app.world_mut().resource_mut::<HexGlobe>().apply(edited).expect("a valid edit");
+    app.update();
+    let globe = app.world().resource::<HexGlobe>().globe().unwrap().clone();
+    let after = stands(&app, &globe);
+    assert!(after > before + 0.1, "raised with its tile: {before} to {after}");
+}

@@ -5,6 +5,9 @@
 //! drawn), meshes on Bevy's async compute pool; and [`GlobeCamera`] orbits it. The globe's center
 //! is the world's origin, its axis the world's `y`.
 //!
+//! [`OnGlobeTile`] keeps units and cities standing on their tiles (their up the globe's up there)
+//! and [`GlobeTileWalk`] walks them along a path over the sphere, pentagons included.
+//!
 //! With the `picking` feature the globe is a `bevy_picking` backend: pointer events on its
 //! chunks carry a [`HexGlobePick`] (the tile, pentagons as any other), and [`HoveredGlobeTile`]
 //! holds the tile under the mouse.
@@ -16,6 +19,7 @@
 mod camera;
 #[cfg(feature = "picking")]
 mod picking;
+mod placement;
 mod stream;
 
 use std::sync::Arc;
@@ -26,6 +30,7 @@ use hex_terrain::{GlobeChunk, GlobeTerrain, MapConfig};
 pub use camera::GlobeCamera;
 #[cfg(feature = "picking")]
 pub use picking::{HexGlobePick, HoveredGlobeTile};
+pub use placement::{GlobeTileWalk, GlobeWalkEnded, OnGlobeTile};
 pub use stream::{GlobeStreamer, HexGlobeChunk, NEAR_ANGLE, globe_horizon};
 
 use crate::asset::{HexMapAsset, HexMapLoader};
@@ -126,16 +131,20 @@ impl Plugin for HexGlobePlugin {
             .register_type::<HexGlobe>()
             .register_type::<GlobeCamera>()
             .register_type::<HexGlobeChunk>()
+            .register_type::<OnGlobeTile>()
+            .register_type::<GlobeTileWalk>()
             .configure_sets(
                 Update,
                 (HexTerrainSystems::Map, HexTerrainSystems::Stream, HexTerrainSystems::Insert).chain(),
             )
+            .configure_sets(Update, HexTerrainSystems::Place.after(HexTerrainSystems::Map))
             .add_systems(
                 Update,
                 (
                     (apply_asset, camera::place).chain().in_set(HexTerrainSystems::Map),
                     stream::stream.in_set(HexTerrainSystems::Stream),
                     stream::insert.in_set(HexTerrainSystems::Insert),
+                    (placement::walk, placement::place).chain().in_set(HexTerrainSystems::Place),
                 ),
             );
         #[cfg(feature = "picking")]
