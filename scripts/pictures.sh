@@ -98,9 +98,9 @@ if [ "${1:-}" = "--screens" ]; then
   shot globe_planet.png globe HEXTERRAIN_GLOBE_ALTITUDE=60
   shot globe_region.png globe HEXTERRAIN_GLOBE_ALTITUDE=14
   shot globe_ground.png globe HEXTERRAIN_GLOBE_ALTITUDE=3
-  # Straight down on the north pole, a pentagon, picked: under Xvfb the pointer rests at the
-  # middle of the screen, and the example names the tile under it.
-  shot globe_pentagon.png globe HEXTERRAIN_GLOBE_AT=0,90 HEXTERRAIN_GLOBE_ALTITUDE=26
+  # Straight down on a pentagon on land, picked (under Xvfb the pointer rests at the middle of
+  # the screen, and the example names the tile under it), two scouts walking across it.
+  shot globe_pentagon.png globe HEXTERRAIN_GLOBE_AT=-144,26.6 HEXTERRAIN_GLOBE_ALTITUDE=25
   # The rendering tests' pictures: each test writes its frame where the tests keep files.
   "${xvfb[@]}" cargo test -q -p bevy_hex_terrain --features "$HEXTERRAIN_FEATURES" \
     --test render --test render_tile_state --test render_far > /dev/null

@@ -5,17 +5,26 @@
 //! the ground the view tilts toward the horizon. The line at the top names the tile under the
 //! mouse (picked on the globe's surface; its biome, latitude and longitude, and whether it is a
 //! pentagon), or, with no mouse over the globe, the tile at the center of the view.
-//! `HEXTERRAIN_GLOBE_ALTITUDE` sets the camera's first altitude and `HEXTERRAIN_GLOBE_AT=LON,LAT`
-//! its first place in degrees (the screenshots use them: `0,90` looks down on the north pole, a
-//! pentagon).
+//! Two scouts walk back and forth across a pentagon on land (of the twelve, the one nearest the
+//! camera's first place whose neighbors are all land: from the default place, a desert at 144
+//! west, 26.6 north), each between two of its neighbors (`OnGlobeTile`, `GlobeTileWalk`). `HEXTERRAIN_GLOBE_ALTITUDE` sets the camera's
+//! first altitude and `HEXTERRAIN_GLOBE_AT=LON,LAT` its first place in degrees (the screenshots
+//! use them: `-144,26.6` looks down on that pentagon).
 
 use bevy::prelude::*;
+use bevy_hex_terrain::hex_terrain::GlobeTile;
 use bevy_hex_terrain::prelude::*;
-use bevy_hex_terrain::{HexGlobe, HoveredGlobeTile};
+use bevy_hex_terrain::{GlobeTileWalk, GlobeWalkEnded, HexGlobe, HoveredGlobeTile, OnGlobeTile};
 
 /// The text naming the tile under the mouse.
 #[derive(Component)]
 struct TileLabel;
+
+/// A scout walking back and forth between two neighbors of a pentagon, across it.
+#[derive(Component)]
+struct Scout {
+    path: [GlobeTile; 3],
+}
 
 fn main() {
     let altitude = std::env::var("HEXTERRAIN_GLOBE_ALTITUDE").ok().and_then(|a| a.parse().ok()).unwrap_or(60.0);
@@ -54,8 +63,59 @@ fn main() {
                 TileLabel,
             ));
         })
-        .add_systems(Update, name_the_tile)
+        .add_systems(Update, (name_the_tile, send_the_scouts))
+        .add_observer(turn_back)
         .run();
+}
+
+/// Once the globe is in: two scouts (red and blue), each on a neighbor of the pentagon on land
+/// nearest the camera, walking across it to the neighbor across.
+fn send_the_scouts(
+    mut commands: Commands,
+    globe: Res<HexGlobe>,
+    cameras: Query<&GlobalTransform, With<GlobeCamera>>,
+    mut meshes: ResMut<Assets<Mesh>>,
+    mut materials: ResMut<Assets<StandardMaterial>>,
+    mut sent: Local<bool>,
+) {
+    let (Some(globe), Ok(camera)) = (globe.globe().filter(|_| !*sent), cameras.single()) else { return };
+    *sent = true;
+    let grid = globe.grid();
+    let land = |t: GlobeTile| globe.tile_kind(t) == Some(TileKind::Land);
+    let toward = camera.translation().normalize_or_zero().as_dvec3();
+    let nearness = |t: GlobeTile| grid.center(t).map_or(-2.0, |c| toward.dot(bevy::math::DVec3::from_array(c)));
+    let Some(pentagon) = grid
+        .tiles()
+        .filter(|&t| {
+            grid.is_pentagon(t) && land(t) && grid.neighbors(t).is_some_and(|n| n.as_slice().iter().all(|&n| land(n)))
+        })
+        .max_by(|&a, &b| nearness(a).total_cmp(&nearness(b)))
+    else {
+        return;
+    };
+    let around = grid.neighbors(pentagon).expect("a tile of the globe");
+    let around = around.as_slice();
+    let mesh = meshes.add(Capsule3d::new(0.18, 0.45));
+    for (k, color) in [(0, Color::srgb(0.85, 0.15, 0.1)), (1, Color::srgb(0.15, 0.35, 0.9))] {
+        let path = [around[k], pentagon, around[k + 2]];
+        commands.spawn((
+            OnGlobeTile { lift: 0.4, ..OnGlobeTile::new(path[0]) },
+            GlobeTileWalk::new(path, 1.0),
+            Scout { path },
+            Mesh3d(mesh.clone()),
+            MeshMaterial3d(materials.add(color)),
+        ));
+    }
+}
+
+/// A scout at the end of its walk turns back.
+fn turn_back(ended: On<GlobeWalkEnded>, mut commands: Commands, scouts: Query<&Scout>) {
+    let Ok(scout) = scouts.get(ended.entity) else { return };
+    let mut path = scout.path;
+    if ended.tile == path[2] {
+        path.reverse();
+    }
+    commands.entity(ended.entity).insert(GlobeTileWalk::new(path, 1.0));
 }
 
 /// Names the tile under the mouse, else the one at the center of the view.
