@@ -124,7 +124,9 @@ fn name_the_tile(
     globe: Res<HexGlobe>,
     cameras: Query<&GlobalTransform, With<GlobeCamera>>,
     mut labels: Query<&mut Text, With<TileLabel>>,
+    mut named: Local<Option<(Option<GlobeTile>, bool, u64)>>,
 ) {
+    let generation = globe.generation();
     let (Some(globe), Ok(camera), Ok(mut label)) = (globe.globe(), cameras.single(), labels.single_mut()) else {
         return;
     };
@@ -136,6 +138,13 @@ fn name_the_tile(
         Some(tile) => (Some(tile), "under the mouse"),
         None => (center(), "at the center of the view"),
     };
+    // The label is rewritten only when its tile, its wording or the globe changes (a tile's info
+    // samples its center).
+    let now = (tile, hovered.tile().is_some(), generation);
+    if *named == Some(now) {
+        return;
+    }
+    *named = Some(now);
     let text = tile.and_then(|t| globe.tile_info(t)).map_or_else(String::new, |info| {
         format!(
             "Tile {} {where_}: {}, latitude {:.1}, longitude {:.1}{}",
@@ -146,7 +155,5 @@ fn name_the_tile(
             if info.pentagon { ", a pentagon (five neighbors)" } else { "" }
         )
     });
-    if label.0 != text {
-        label.0 = text;
-    }
+    label.0 = text;
 }

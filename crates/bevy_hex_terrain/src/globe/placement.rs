@@ -117,8 +117,15 @@ pub(super) fn walk(
     let Some(terrain) = globe.globe() else { return };
     positions.retain(|e, _| entities.contains(*e));
     for (entity, mut on, mut walk, mut transform) in &mut entities {
-        let Some(start) = stand(terrain, on.tile, on.lift) else { continue };
-        let here = *positions.entry(entity).or_insert(start);
+        // Where the walk stands: kept between frames (the tile's center, which costs a noise
+        // sample, is asked only when the walk starts).
+        let here = match positions.get(&entity) {
+            Some(&here) => here,
+            None => {
+                let Some(start) = stand(terrain, on.tile, on.lift) else { continue };
+                start
+            }
+        };
         let mut budget = f64::from(walk.speed.max(0.0)) * time.delta_secs_f64();
         let mut at = here;
         while let Some(&next) = walk.path.first() {
