@@ -149,7 +149,7 @@ fn name_the_tile(
         format!(
             "Tile {} {where_}: {}, latitude {:.1}, longitude {:.1}{}",
             info.tile.0,
-            info.biome.name(),
+            globe.ruleset().terrain(info.terrain.terrain).name,
             info.latitude,
             info.longitude,
             if info.pentagon { ", a pentagon (five neighbors)" } else { "" }

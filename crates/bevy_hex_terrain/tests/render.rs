@@ -181,7 +181,7 @@ fn scenario_terrain_textures() {
     };
     let (mut swapped, mut kept) = (0, 0);
     for h in terrain.tiles().filter(|&h| terrain.river(h).is_none() && terrain.lake(h).is_none()) {
-        let t = terrain.tile_terrain(h).unwrap();
+        let t = terrain.tile_info(h).unwrap().terrain;
         let layer = t.feature.map_or(ruleset.terrain(t.terrain).look.texture, |f| ruleset.feature(f).look.texture);
         // The center, and 0.42 of the way to each dry neighbor's center: in the tile's outer
         // ring of triangles, short of its edge (at 0.5; water beside a river or a lake covers
@@ -224,7 +224,9 @@ fn biomes(coarse: bool) {
     let mut classes = std::collections::BTreeSet::new();
     // With two inner rings the center and the first ring take the tile's own color, so a
     // center pixel shows its biome unblended.
-    for (hex, biome) in terrain.tiles().map(|t| (t, terrain.tile_biome(t).unwrap())) {
+    for (hex, biome) in
+        terrain.tiles().map(|t| (t, terrain.ruleset().biome(terrain.tile_info(t).unwrap().terrain.terrain).unwrap()))
+    {
         if terrain.river(hex).is_some() {
             continue;
         }

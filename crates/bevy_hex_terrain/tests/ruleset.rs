@@ -43,7 +43,7 @@ fn terrain_ids(app: &App) -> Vec<String> {
     let terrain = map.terrain();
     let mut ids: Vec<String> = terrain
         .tiles()
-        .filter_map(|t| terrain.tile_terrain(t))
+        .filter_map(|t| terrain.tile_info(t).map(|i| i.terrain))
         .map(|t| terrain.ruleset().terrain(t.terrain).id.clone())
         .collect();
     ids.sort();

@@ -89,9 +89,9 @@ pub struct MapConfig {
     /// The game's own terrain: the path of a terrain ruleset (`*.terrain.ron`, see
     /// [`TerrainRuleset`](crate::TerrainRuleset)), relative to the map file. `None` (the
     /// default): the 13 biomes of `climate.biomes`
-    /// ([`TerrainRuleset::from_biome_table`](crate::TerrainRuleset::from_biome_table)). With one,
-    /// [`Terrain::tile_terrain`](crate::Terrain::tile_terrain) answers by it and the meshes take
-    /// its terrains' and features' colors.
+    /// ([`TerrainRuleset::biomes`](crate::TerrainRuleset::biomes)). With one,
+    /// [`TileInfo::terrain`](crate::TileInfo::terrain) answers by it and the meshes take its
+    /// terrains' and features' colors.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub ruleset: Option<String>,
     /// Rivers and lakes (off by default; bounded maps only).

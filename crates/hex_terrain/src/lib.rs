@@ -66,6 +66,7 @@ mod manipulate;
 mod relief;
 mod vertex;
 
+mod info;
 mod pipeline;
 
 mod mesh;
@@ -123,6 +124,7 @@ pub use heights::{
     MAX_PNG_BYTES, MAX_STRAIGHT_RIDGE, MAX_TRIES, MapTypeReport, MapTypeTarget, SEA_STEPS, TargetCheck,
 };
 pub use hexx;
+pub use info::TileInfo;
 pub use kind::Thresholds;
 pub use lattice::Lattice;
 pub use mesh::{ChunkMesh, Detail, Diagnostics, GenerateOptions, MeshBuffers, Threads, texture_class};
@@ -150,6 +152,6 @@ pub use stats::{
 pub use table::TileTable;
 pub use terrain::Terrain;
 pub use vertex::{Sharing, VertexRules, VertexSample};
-pub use vocab::{Biome, MAX_ID_LEN, PROP_VARIANTS, PropKind, RuleId, TileInfo, TileKind};
+pub use vocab::{Biome, MAX_ID_LEN, PROP_VARIANTS, PropKind, RuleId, TileKind};
 pub use water::{EdgeRivers, Hydrology, RiverEdge, RiverTile, WaterBuffers};
 pub use wrap::Wrap;

@@ -19,12 +19,13 @@ use crate::edits::Edits;
 use crate::error::ConfigError;
 use crate::geometry::Geometry;
 use crate::heights::{HeightField, HeightImage};
+use crate::info::TileInfo;
 use crate::kind::Thresholds;
 use crate::ruleset::{TerrainRuleset, TileTerrains};
 use crate::setup::{Setup, Stages};
 use crate::table::{TileFields, TileTable};
 use crate::vertex::{VertexRules, VertexSample};
-use crate::vocab::{Biome, TileInfo, TileKind};
+use crate::vocab::{Biome, TileKind};
 use crate::water::channels;
 use terrains::{Terrains, check_edit_ids};
 
@@ -300,22 +301,31 @@ impl Pipeline {
         self.thresholds.map_tile_kind(&self.geometry, &self.heights, tile)
     }
 
-    /// A tile's biome: from the table when the map has one, else from its center sample.
+    /// A tile's biome: set by hand, else from the table when the map has one, else from its
+    /// center sample.
     #[must_use]
-    pub fn tile_biome(&self, tile: Hex) -> Biome {
+    pub(crate) fn tile_biome(&self, tile: Hex) -> Biome {
+        self.biome_with(tile, || self.tile_sample(tile))
+    }
+
+    /// [`Pipeline::tile_biome`], asking for the tile's sample only when it needs it.
+    pub(crate) fn biome_with(&self, tile: Hex, sample: impl FnOnce() -> TileSample) -> Biome {
         if let Some(biome) = self.heights.edits().and_then(|e| e.biome(&self.geometry, tile)) {
             return biome;
         }
         if let Some(biome) = self.table().and_then(|t| t.biome(&self.geometry, tile)) {
             return biome;
         }
-        self.climate.biome_of(&self.geometry, &self.heights, tile, &self.tile_sample(tile), false)
+        self.climate.biome_of(&self.geometry, &self.heights, tile, &sample(), false)
     }
 
-    /// The center sample of a tile and its neighbors' kinds.
+    /// The center sample of a tile and its neighbors' kinds (read from the tile table on a map
+    /// with one, the same numbers).
     #[must_use]
     pub fn tile_sample(&self, tile: Hex) -> TileSample {
-        TileSample::of(&self.geometry, &self.heights, &self.thresholds, tile)
+        self.table()
+            .and_then(|t| t.tile_sample(&self.geometry, tile))
+            .unwrap_or_else(|| TileSample::of(&self.geometry, &self.heights, &self.thresholds, tile))
     }
 
     /// Evaluates one lattice vertex, computing the kinds of the tiles around it.
@@ -330,7 +340,7 @@ impl Pipeline {
         self.vertex(p).height * self.max_elevation()
     }
 
-    /// Type, center elevation, membership, biome, river and lake of a tile.
+    /// Type, center elevation, membership, terrain, river and lake of a tile.
     #[must_use]
     pub fn tile_info(&self, tile: Hex) -> TileInfo {
         let sample = self.vertex(self.geometry.lattice().tile_center(tile));
@@ -346,7 +356,7 @@ impl Pipeline {
             kind,
             elevation,
             in_map: self.geometry.contains(tile),
-            biome: self.tile_biome(tile),
+            terrain: self.tile_terrain(tile),
             river_flow: table.map_or(0.0, |t| t.river_flow(&self.geometry, tile)),
             lake: table.and_then(|t| t.lake(&self.geometry, tile)),
         }

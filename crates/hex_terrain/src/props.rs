@@ -27,11 +27,12 @@ use hexx::Hex;
 
 use crate::config::{PropDensity, ResourceClass};
 use crate::hash;
+use crate::info::TileInfo;
 use crate::mesh::coarse::fan_border;
 use crate::mesh::{ChunkMesh, Detail};
 use crate::pipeline::Pipeline;
 use crate::query::surface_height;
-use crate::vocab::{Biome, TileInfo, TileKind};
+use crate::vocab::{Biome, TileKind};
 pub use crate::vocab::{PROP_VARIANTS, PropKind};
 
 /// One prop of a chunk.
@@ -79,12 +80,14 @@ fn rule(pipeline: &Pipeline, info: &TileInfo, h: u64) -> Option<(PropKind, u32, 
         if info.kind == TileKind::Sea || info.lake.is_some() {
             return None;
         }
-        let t = pipeline.tile_terrain(info.hex);
+        let t = info.terrain;
         let ruleset = pipeline.ruleset();
         let look = t.feature.map_or(&ruleset.terrain(t.terrain).look, |f| &ruleset.feature(f).look);
         return look.props.filter(|p| pick < p.chance).map(|p| (p.kind, u32::from(p.count) + extra % 2, p.size));
     }
-    let grows = match (info.kind, info.biome) {
+    // The default ruleset's terrain `i` is biome `i`.
+    let biome = Biome::ALL[usize::from(info.terrain.terrain.0)];
+    let grows = match (info.kind, biome) {
         (TileKind::Sea, _) | (_, Biome::Ocean | Biome::Lake | Biome::Desert | Biome::Snow) => None,
         (TileKind::Mountain, _) | (_, Biome::Rock | Biome::SnowPeak) => Some((PropKind::Rock, 1 + extra, 0.2)),
         (_, Biome::Forest) => Some((tree, 5 + extra, 0.3)),
@@ -317,7 +320,7 @@ pub fn markers(pipeline: &Pipeline, chunk: &ChunkMesh) -> Vec<Marker> {
         let [x, z] = lattice.world(center);
         let [lx, lz] = lattice.world(center - origin);
         let ground = surface_height(pipeline, x, z).unwrap_or(sea);
-        let y = if info.biome.is_water() { ground.max(sea) } else { ground };
+        let y = if info.terrain.landform.is_water() { ground.max(sea) } else { ground };
         out.push(Marker { kind, tile: geometry.wrap_tile(tile), position: [lx as f32, y as f32, lz as f32] });
     }
     out

@@ -221,6 +221,13 @@ impl TileTable {
         TileSample::new(self.raw[i], self.kinds[i], neighbors)
     }
 
+    /// The sample of an in-map tile (its center's raw height and kind, its neighbors' kinds),
+    /// read from the table: what [`TileSample::of`] computes from the height field.
+    #[must_use]
+    pub(crate) fn tile_sample(&self, geometry: &Geometry, tile: Hex) -> Option<TileSample> {
+        self.index(geometry, tile).map(|i| self.sample(geometry, i, tile))
+    }
+
     /// The biome of an in-map tile.
     #[must_use]
     pub fn biome(&self, geometry: &Geometry, tile: Hex) -> Option<Biome> {

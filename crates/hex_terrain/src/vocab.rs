@@ -1,8 +1,7 @@
-//! The vocabulary every stage speaks: what a tile is ([`TileKind`], [`Biome`]), what a game
-//! reads of one ([`TileInfo`]) and what stands on it ([`PropKind`]). A leaf: it imports nothing
+//! The vocabulary every stage speaks: what a tile is ([`TileKind`], [`Biome`]) and what stands
+//! on it ([`PropKind`]). A leaf: it imports nothing
 //! of the crate, so every stage can use it without depending on another stage.
 
-use hexx::Hex;
 use serde::{Deserialize, Serialize};
 
 /// The type of a tile, decided by the height of its center.
@@ -124,6 +123,24 @@ impl Biome {
         }
     }
 
+    /// Its terrain's id in the default terrain ruleset
+    /// ([`TerrainRuleset::biomes`](crate::TerrainRuleset::biomes)): its name, `_` for a space
+    /// (`"snow_peak"`).
+    #[must_use]
+    pub fn id(self) -> &'static str {
+        match self {
+            Self::SnowPeak => "snow_peak",
+            other => other.name(),
+        }
+    }
+
+    /// The biome whose id ([`Biome::id`]) is `id`: what a terrain of that id is named in the
+    /// default ruleset, whatever ruleset it comes from.
+    #[must_use]
+    pub fn from_id(id: &str) -> Option<Self> {
+        Self::ALL.into_iter().find(|b| b.id() == id)
+    }
+
     /// Whether it is water (ocean, coast, lake).
     #[must_use]
     pub fn is_water(self) -> bool {
@@ -173,26 +190,6 @@ impl PropKind {
 
 /// How many mesh variants each prop kind has; a prop's [`variant`](crate::props::Prop::variant) is below it.
 pub const PROP_VARIANTS: u8 = 3;
-
-/// What a game needs to know about one tile.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-#[cfg_attr(feature = "bevy_reflect", derive(bevy_reflect::Reflect))]
-pub struct TileInfo {
-    /// Axial coordinate, map-local (the map's first tile is `Hex::ZERO`).
-    pub hex: Hex,
-    /// Type by center height.
-    pub kind: TileKind,
-    /// World height of the tile's center on the manipulated surface.
-    pub elevation: f32,
-    /// Whether the tile belongs to the map (always true for an unbounded world).
-    pub in_map: bool,
-    /// Biome, by the rule of [`Terrain::tile_biome`](crate::Terrain::tile_biome).
-    pub biome: Biome,
-    /// Water a river on the tile carries, 0 without a river.
-    pub river_flow: f32,
-    /// The lake the tile belongs to, if it is a lake tile.
-    pub lake: Option<u32>,
-}
 
 /// Most bytes in the id of a terrain or a feature of a ruleset.
 pub const MAX_ID_LEN: usize = 31;

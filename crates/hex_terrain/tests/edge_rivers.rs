@@ -14,6 +14,8 @@ use hex_terrain::{
 };
 use proptest::prelude::*;
 
+#[path = "common/biome.rs"]
+mod biome;
 mod common;
 
 prop_compose! {
@@ -242,7 +244,7 @@ fn landmass_of(t: &Terrain, tile: Hex) -> usize {
 /// Whether a tile is hills or a mountain (not under a lake).
 fn relief_tile(t: &Terrain, tile: Hex) -> bool {
     let info = t.tile_info(tile).unwrap();
-    info.biome == Biome::Hills || (info.kind == TileKind::Mountain && info.lake.is_none())
+    biome::of(t, &info) == Biome::Hills || (info.kind == TileKind::Mountain && info.lake.is_none())
 }
 
 /// Every river edge of the map, each once (named from the first of its two tiles visited).

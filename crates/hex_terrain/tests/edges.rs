@@ -9,6 +9,8 @@ use hex_terrain::{
     Shape, Stroke, Terrain, Tool,
 };
 use proptest::prelude::*;
+#[path = "common/biome.rs"]
+mod biome;
 
 prop_compose! {
     /// Any layout: 1-16 inner rings, chunks up to 128x8 (or 8x128), bounded or not, wrapping
@@ -137,7 +139,7 @@ proptest! {
             prop_assert_eq!(t.tile_center(tile), None);
             prop_assert_eq!(t.tile_kind(tile), None);
             prop_assert_eq!(t.map_tile_kind(tile), None);
-            prop_assert_eq!(t.tile_biome(tile), None);
+            prop_assert_eq!(biome::at(&t, tile), None);
             prop_assert_eq!(t.tile_climate(tile), None);
             prop_assert_eq!(t.neighbors(tile), None);
             prop_assert_eq!(t.distance(tile, Hex::ZERO), None);
@@ -348,7 +350,7 @@ proptest! {
             }
             // The terrain at a place: exactly in the world.
             prop_assert_eq!(t.tile_kind(tile).is_some(), world);
-            prop_assert_eq!(t.tile_biome(tile).is_some(), world);
+            prop_assert_eq!(biome::at(&t, tile).is_some(), world);
             prop_assert_eq!(t.tile_center(tile).is_some(), world);
             prop_assert_eq!(t.tile_climate(tile).is_some(), world && t.climate().is_enabled());
             prop_assert_eq!(t.distance(tile, t.tile_from_offset([0, 0])).is_some(), world);
@@ -366,7 +368,7 @@ proptest! {
             prop_assert!(on_map || (t.tile_setup(tile).is_none() && t.start(tile).is_none() && t.resource(tile).is_none()));
             prop_assert!(on_map || !t.tile_is_wet(tile));
             // The movement rule: the model's cost of the tile's biome and river, on the map.
-            let rule = t.tile_info(tile).filter(|_| on_map).and_then(|i| t.config().movement.enter(i.biome, i.river_flow > 0.0));
+            let rule = t.tile_info(tile).filter(|_| on_map).and_then(|i| t.config().movement.enter(biome::of(&t, &i), i.river_flow > 0.0));
             prop_assert_eq!(t.move_cost(tile), rule);
             let around = t.neighbors(tile);
             prop_assert_eq!(around.is_some(), on_map);

@@ -158,7 +158,7 @@ fn random_stroke(rng: &mut Rng, tiles: u32) -> GlobeStroke {
     };
     let brush = match rng.below(6) {
         0 => Brush::Flood,
-        1 => Brush::FloodBiome,
+        1 => Brush::FloodTerrain,
         r => Brush::Range(r as u32 - 2),
     };
     // A pentagon one stroke in four.
@@ -191,7 +191,7 @@ fn random_strokes_keep_the_globe_its_map_file_and_undo_gives_back_the_generated_
             for tile in new.grid().tiles() {
                 let same = old.tile_height(tile).map(f32::to_bits) == new.tile_height(tile).map(f32::to_bits)
                     && old.tile_kind(tile) == new.tile_kind(tile)
-                    && old.tile_biome(tile) == new.tile_biome(tile)
+                    && old.tile_info(tile).map(|i| i.terrain) == new.tile_info(tile).map(|i| i.terrain)
                     && old.tile_climate(tile) == new.tile_climate(tile);
                 assert!(same || change.tiles.contains(&tile), "case {case}: {tile:?} changed, not reported");
             }
@@ -214,7 +214,7 @@ fn random_strokes_keep_the_globe_its_map_file_and_undo_gives_back_the_generated_
             let reloaded = GlobeTerrain::new(MapConfig::from_ron(&text).unwrap()).unwrap();
             assert_eq!(bits(&reloaded.generate_whole()), bits(&mesh), "case {case}: the map file differs");
             for tile in new.grid().tiles() {
-                assert_eq!(reloaded.tile_biome(tile), new.tile_biome(tile));
+                assert_eq!(reloaded.tile_info(tile), new.tile_info(tile));
             }
         }
         assert!(applied >= 5, "case {case}: {applied} strokes changed the globe");

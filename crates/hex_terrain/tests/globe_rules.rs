@@ -6,7 +6,9 @@
 
 use std::collections::BTreeSet;
 
-use hex_terrain::{Biome, FogState, GlobeFog, GlobeTerrain, GlobeTile, MapConfig, MapSize, SaveError, TileKind};
+use hex_terrain::{
+    Biome, FogState, GlobeFog, GlobeTerrain, GlobeTile, Landform, MapConfig, MapSize, SaveError, TileKind,
+};
 #[path = "common/vec3.rs"]
 mod vec3;
 use vec3::{V, dot, normalize, scale};
@@ -32,9 +34,14 @@ fn cases() -> Vec<GlobeTerrain> {
     ]
 }
 
+/// A tile's biome, read from what the globe says the tile is.
+fn biome(g: &GlobeTerrain, t: GlobeTile) -> Option<Biome> {
+    g.tile_info(t).map(|i| g.ruleset().biome(i.terrain.terrain).expect("a biome"))
+}
+
 /// What entering a tile costs, from its biome by the movement model: `None` impassable.
 fn enter(g: &GlobeTerrain, t: GlobeTile) -> Option<u32> {
-    g.config().movement.enter(g.tile_biome(t).unwrap(), false)
+    g.config().movement.enter(biome(g, t).unwrap(), false)
 }
 
 /// Every tile's cheapest cost from `from` (never re-entering `from`, never entering `blocked`),
@@ -132,7 +139,7 @@ fn height(g: &GlobeTerrain, t: GlobeTile) -> u8 {
     if g.tile_kind(t) == Some(TileKind::Mountain) {
         2
     } else {
-        u8::from(g.config().sight.tall.contains(&g.tile_biome(t).unwrap()))
+        u8::from(g.config().sight.tall.contains(&biome(g, t).unwrap()))
     }
 }
 
@@ -280,15 +287,29 @@ fn climate_follows_latitude_and_biomes_the_table() {
                     if high && !matches!(rule.biome, Biome::Snow | Biome::Tundra) { Biome::Hills } else { rule.biome }
                 }
             };
-            assert_eq!(info.biome, expected, "{t:?}");
-            cold += usize::from(info.latitude.abs() > 70.0 && matches!(info.biome, Biome::Snow | Biome::Tundra));
+            let got = g.ruleset().biome(info.terrain.terrain).unwrap();
+            assert_eq!(got, expected, "{t:?}");
+            // Its landform, by the same heights and neighbors.
+            let high = info.kind == TileKind::Land && raw - sea >= c.hills * (mountain - sea) && c.hills < 1.0;
+            let landform = match info.kind {
+                TileKind::Sea if expected == Biome::Coast => Landform::Shore,
+                TileKind::Sea => Landform::OpenSea,
+                TileKind::Mountain => Landform::Mountain,
+                TileKind::Land if high => Landform::Hills,
+                TileKind::Land => Landform::Flat,
+            };
+            assert_eq!(info.terrain.landform, landform, "{t:?}");
+            // Its traits, the config's for its biome.
+            assert_eq!(info.terrain.traits.movement, g.config().movement.biome_cost(got));
+            assert_eq!(info.terrain.traits.tall, g.config().sight.tall.contains(&got));
+            cold += usize::from(info.latitude.abs() > 70.0 && matches!(got, Biome::Snow | Biome::Tundra));
         }
         assert!(cold > 0, "seed {seed}: no snow or tundra near the poles");
     }
     // Without a climate, biomes follow the kinds and no tile has a climate.
     let g = globe(5, 1, false, None);
     for t in g.grid().tiles() {
-        assert_eq!(g.tile_biome(t), g.tile_kind(t).map(Biome::of_kind));
+        assert_eq!(biome(&g, t), g.tile_kind(t).map(Biome::of_kind));
         assert_eq!(g.tile_climate(t), None);
     }
 }

@@ -170,7 +170,7 @@ fn chunks_are_the_whole_globe_bit_for_bit() {
                 if whole.buffers.center_distances[v] < 1.0 {
                     let p = position(&whole, v);
                     let tile = g.tile_at(p).unwrap();
-                    let [r, gg, b] = g.tile_biome(tile).unwrap().color();
+                    let [r, gg, b] = g.ruleset().biome(g.tile_info(tile).unwrap().terrain.terrain).unwrap().color();
                     assert_eq!(c, [r, gg, b, 0], "f = {f}: inner vertex {v} of {tile:?}");
                 }
             }

@@ -10,6 +10,8 @@ use hex_terrain::{
 };
 use proptest::prelude::*;
 
+#[path = "common/biome.rs"]
+mod biome;
 mod common;
 
 prop_compose! {
@@ -140,7 +142,7 @@ proptest! {
                 prop_assert_eq!(t.tile_at(x, z).unwrap(), p.tile);
                 let kind = t.tile_kind(p.tile).unwrap();
                 match p.kind {
-                    PropKind::Rock => prop_assert!(kind == TileKind::Mountain || t.tile_info(p.tile).unwrap().biome.is_rocky()),
+                    PropKind::Rock => prop_assert!(kind == TileKind::Mountain || biome::at(&t, p.tile).unwrap().is_rocky()),
                     PropKind::Reed => {
                         prop_assert_eq!(kind, TileKind::Land);
                         prop_assert!(t.neighbors(p.tile).unwrap().iter().flatten().any(|&n| t.map_tile_kind(n) == Some(TileKind::Sea)));

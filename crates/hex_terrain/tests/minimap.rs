@@ -11,6 +11,8 @@ use hex_terrain::save::FogState;
 use hex_terrain::{MapConfig, MapSize, Orientation, RiverConfig, Terrain, TileKind, TileRect};
 use proptest::prelude::*;
 
+#[path = "common/biome.rs"]
+mod biome;
 mod common;
 
 prop_compose! {
@@ -108,7 +110,7 @@ proptest! {
                 let want = if terrain.lake(tile).is_some() {
                     style.water_color
                 } else if terrain.has_vertex_colors() {
-                    terrain.tile_biome(tile).unwrap().color()
+                    biome::at(&terrain, tile).unwrap().color()
                 } else {
                     style.kind_colors[terrain.tile_kind(tile).unwrap_or(TileKind::Sea) as usize]
                 };

@@ -11,6 +11,8 @@ use hex_terrain::{
 };
 use proptest::prelude::*;
 
+#[path = "common/biome.rs"]
+mod biome;
 mod common;
 
 prop_compose! {
@@ -65,7 +67,7 @@ prop_compose! {
 /// The cost of entering a tile, from its biome and river and the config's model.
 fn enter(t: &Terrain, tile: Hex) -> Option<u32> {
     let info = t.tile_info(tile)?;
-    t.config().movement.enter(info.biome, info.river_flow > 0.0)
+    t.config().movement.enter(biome::of(t, &info), info.river_flow > 0.0)
 }
 
 /// The cost of the step from `from` to its neighbor `to`: entering `to`, and the model's river

@@ -7,6 +7,8 @@ use hex_terrain::{
     FeatureDef, FeaturePatches, Landform, LoadError, Occurs, TerrainDef, TerrainRuleset, TileFacts, Traits, Yields,
 };
 use proptest::prelude::*;
+#[path = "common/biome.rs"]
+mod biome;
 
 /// A range `[lo, hi)` of `[0, 1]`, either whole or drawn.
 fn range() -> impl Strategy<Value = (f32, f32)> {
@@ -351,16 +353,23 @@ proptest! {
     #![proptest_config(ProptestConfig { cases: 24, ..ProptestConfig::default() })]
 
     /// On random maps (bounded or not, wrapping, with climate, winds and either river model),
-    /// the default ruleset gives every tile the map's biome (`Terrain::tile_biome`); under the
+    /// the default ruleset's rules (its terrain for the tile's facts, computed here) give every
+    /// tile the terrain and landform its info has (its biome); under the
     /// Civilization V ruleset every feature sits on a terrain it lists, a tile's answer is the
     /// same for its copy across a wrapping map's seam and on another thread.
     #[test]
     fn maps_read_through_a_ruleset(config in maps()) {
         let t = hex_terrain::Terrain::new(config.clone()).unwrap();
-        prop_assert_eq!(t.ruleset(), &TerrainRuleset::from_biome_table(&config.climate));
+        prop_assert_eq!(t.ruleset(), &TerrainRuleset::biomes(&config));
         for h in tiles(&t) {
-            let got = t.tile_terrain(h).unwrap();
-            prop_assert_eq!(hex_terrain::Biome::ALL[usize::from(got.terrain.0)], t.tile_biome(h).unwrap(), "{:?}", h);
+            let info = t.tile_info(h).unwrap();
+            let sample = t.pipeline().tile_sample(h);
+            let lake = t.lake(h).is_some();
+            let climate = t.tile_climate(h).filter(|_| !lake && sample.kind != hex_terrain::TileKind::Sea);
+            let facts = t.climate().facts(t.geometry(), h, &sample, lake, climate, (false, false));
+            prop_assert_eq!(t.ruleset().terrain_for(&facts), info.terrain.terrain, "{:?} {:?}", h, facts);
+            prop_assert_eq!(facts.landform, info.terrain.landform, "{:?}", h);
+            prop_assert_eq!(t.ruleset().biome(info.terrain.terrain).map(|b| b as u8), Some(info.terrain.terrain.0));
         }
         let civ = std::sync::Arc::new(
             TerrainRuleset::from_ron(include_str!("../../bevy_hex_terrain/assets/rulesets/civ5.terrain.ron")).unwrap(),
@@ -371,7 +380,7 @@ proptest! {
             let (config, civ) = (with_civ, civ.clone());
             move || {
                 let t = hex_terrain::Terrain::with_sources(config, None, Some(civ)).unwrap();
-                tiles(&t).into_iter().map(|h| t.tile_terrain(h).unwrap()).collect::<Vec<_>>()
+                tiles(&t).into_iter().map(|h| t.tile_info(h).map(|i| i.terrain).unwrap()).collect::<Vec<_>>()
             }
         })
         .join()
@@ -380,7 +389,7 @@ proptest! {
         // terrain's), and a map meshed chunk by chunk has the colors of the whole.
         if t.has_vertex_colors() {
             for h in tiles(&t).into_iter().take(60) {
-                let got = t.tile_terrain(h).unwrap();
+                let got = t.tile_info(h).map(|i| i.terrain).unwrap();
                 let look = got.feature.map_or(&civ.terrain(got.terrain).look, |f| &civ.feature(f).look);
                 let color = t.point_color(t.lattice().tile_center(h)).unwrap();
                 prop_assert_eq!([color[0], color[1], color[2]], look.color);
@@ -398,7 +407,7 @@ proptest! {
                     if map.tile_at_pixel(px, py) != Some(h) || t.river(h).is_some() {
                         continue;
                     }
-                    let got = t.tile_terrain(h).unwrap();
+                    let got = t.tile_info(h).map(|i| i.terrain).unwrap();
                     let look = got.feature.map_or(&civ.terrain(got.terrain).look, |f| &civ.feature(f).look);
                     let want = if t.lake(h).is_some() { style.water_color } else { look.minimap.unwrap_or(look.color) };
                     let i = ((py * w + px) * 4) as usize;
@@ -408,7 +417,7 @@ proptest! {
             // Props: what the tile's feature (else terrain) grows, of its kind and size.
             let whole = t.generate_rect(t.bounds().unwrap_or(hex_terrain::TileRect::new([0, 0], [16, 12])));
             for prop in t.props(&whole, 100_000, 1.0) {
-                let got = t.tile_terrain(prop.tile).unwrap();
+                let got = t.tile_info(prop.tile).map(|i| i.terrain).unwrap();
                 let look = got.feature.map_or(&civ.terrain(got.terrain).look, |f| &civ.feature(f).look);
                 let grows = look.props.unwrap();
                 prop_assert!(prop.kind == grows.kind || matches!(prop.kind, hex_terrain::PropKind::Resource | hex_terrain::PropKind::Wonder));
@@ -436,7 +445,7 @@ proptest! {
         }
         // MapStats counts the ruleset's terrains (and those on hills) and features.
         if let Some(stats) = hex_terrain::MapStats::measure(&t) {
-            let all: Vec<_> = t.tiles().map(|h| t.tile_terrain(h).unwrap()).collect();
+            let all: Vec<_> = t.tiles().map(|h| t.tile_info(h).map(|i| i.terrain).unwrap()).collect();
             for (i, _) in civ.terrains.iter().enumerate() {
                 let n = all.iter().filter(|x| usize::from(x.terrain.0) == i).count() as u32;
                 let hills = all.iter().filter(|x| usize::from(x.terrain.0) == i && x.landform == Landform::Hills).count() as u32;
@@ -449,14 +458,14 @@ proptest! {
             }
         }
         for (h, there) in tiles(&t).into_iter().zip(elsewhere) {
-            let here = t.tile_terrain(h).unwrap();
+            let here = t.tile_info(h).map(|i| i.terrain).unwrap();
             prop_assert_eq!(here, there);
             if let Some(f) = here.feature {
                 prop_assert!(civ.feature(f).on.contains(&civ.terrain(here.terrain).id));
             }
             if let Some(w) = t.wrap() {
                 let copy = h + w.tile_shift;
-                prop_assert_eq!(t.tile_terrain(copy), Some(here));
+                prop_assert_eq!(t.tile_info(copy).map(|i| i.terrain), Some(here));
             }
         }
     }
@@ -488,7 +497,7 @@ fn triangles_hold_their_tiles_layers(t: &hex_terrain::Terrain, ruleset: &Terrain
                 tile,
                 coord
             );
-            let got = t.tile_terrain(tile).unwrap();
+            let got = t.tile_info(tile).map(|i| i.terrain).unwrap();
             let look = got.feature.map_or(&ruleset.terrain(got.terrain).look, |f| &ruleset.feature(f).look);
             let class = hex_terrain::texture_class(tile);
             for &v in tri {
@@ -595,7 +604,7 @@ proptest! {
         let cost: Vec<Option<u32>> = tiles
             .iter()
             .map(|&h| {
-                let tt = t.tile_terrain(h).unwrap();
+                let tt = t.tile_info(h).map(|i| i.terrain).unwrap();
                 let sea = matches!(tt.landform, Landform::OpenSea | Landform::Shore);
                 let base = if sea { embark.unwrap_or(tt.traits.movement) } else { tt.traits.movement };
                 let river = t.river_flow(h).unwrap_or(0.0) > 0.0;
@@ -604,7 +613,7 @@ proptest! {
             .collect();
         for (i, &h) in tiles.iter().enumerate() {
             prop_assert_eq!(t.move_cost(h), cost[i], "{:?}", h);
-            let tt = t.tile_terrain(h).unwrap();
+            let tt = t.tile_info(h).map(|i| i.terrain).unwrap();
             let height = if t.tile_kind(h) == Some(hex_terrain::TileKind::Mountain) && t.lake(h).is_none() {
                 2
             } else {
@@ -643,7 +652,7 @@ proptest! {
         for row in &setup.report().starts {
             let mut sum = Yields::default();
             for &h in tiles.iter().filter(|&&h| t.distance(row.tile, h).is_some_and(|d| d <= cfg.rings)) {
-                let tt = t.tile_terrain(h).unwrap();
+                let tt = t.tile_info(h).map(|i| i.terrain).unwrap();
                 let river = t.river_flow(h).unwrap_or(0.0) > 0.0 || !t.river_edges(h).is_empty();
                 let sea = |n: hex_terrain::hexx::Hex| {
                     t.wrap_tile(n).is_some_and(|n| t.tile_kind(n) == Some(hex_terrain::TileKind::Sea) && t.lake(n).is_none())
@@ -712,7 +721,7 @@ fn resources_lie_on_the_terrains_and_features_they_name() {
     let placed = t.setup().unwrap().resources();
     assert!(placed.iter().any(|r| r.name == "deer") && placed.iter().any(|r| r.name == "gold"), "{placed:?}");
     for r in placed {
-        let tt = t.tile_terrain(r.tile).unwrap();
+        let tt = t.tile_info(r.tile).map(|i| i.terrain).unwrap();
         let terrain = &civ.terrain(tt.terrain).id;
         let feature = tt.feature.map(|f| civ.feature(f).id.as_str());
         match r.name.as_str() {
@@ -727,7 +736,7 @@ fn resources_lie_on_the_terrains_and_features_they_name() {
     let config = hex_terrain::MapConfig::from_ron(&setup("", "Terrain(\"forest\"), Terrain(\"snow_peak\")")).unwrap();
     let t = hex_terrain::Terrain::new(config).unwrap();
     for r in t.setup().unwrap().resources().iter().filter(|r| r.name == "deer") {
-        let biome = t.tile_biome(r.tile).unwrap();
+        let biome = biome::at(&t, r.tile).unwrap();
         assert!(matches!(biome, hex_terrain::Biome::Forest | hex_terrain::Biome::SnowPeak), "{biome:?}");
     }
     // An id the ruleset lacks.
@@ -754,7 +763,7 @@ fn the_world_builder_paints_terrains_and_features() {
     .unwrap();
     let terrain = hex_terrain::Terrain::with_sources(config.clone(), None, Some(civ.clone())).unwrap();
     let land = terrain.tiles().find(|&t| terrain.tile_kind(t) == Some(hex_terrain::TileKind::Land)).unwrap();
-    let before = terrain.tile_terrain(land).unwrap();
+    let before = terrain.tile_info(land).map(|i| i.terrain).unwrap();
     let mut editor = Editor::from_terrain(terrain);
     let desert = RuleId::new("desert").unwrap();
     let oasis = RuleId::new("oasis").unwrap();
@@ -762,7 +771,7 @@ fn the_world_builder_paints_terrains_and_features() {
     editor
         .apply(Stroke { tool: Tool::SetFeature(FeatureEdit::Grow(oasis)), brush: Brush::Range(0), tile: land })
         .unwrap();
-    let t = editor.terrain().tile_terrain(land).unwrap();
+    let t = editor.terrain().tile_info(land).map(|i| i.terrain).unwrap();
     assert_eq!(civ.terrain(t.terrain).id, "desert");
     assert_eq!(t.feature.map(|f| civ.feature(f).id.as_str()), Some("oasis"));
     assert_eq!(t.traits, civ.traits(t.terrain, t.landform, t.feature));
@@ -773,12 +782,12 @@ fn the_world_builder_paints_terrains_and_features() {
     let again =
         hex_terrain::Terrain::with_sources(hex_terrain::MapConfig::from_ron(&text).unwrap(), None, Some(civ.clone()))
             .unwrap();
-    assert_eq!(again.tile_terrain(land), editor.terrain().tile_terrain(land));
+    assert_eq!(again.tile_info(land).map(|i| i.terrain), editor.terrain().tile_info(land).map(|i| i.terrain));
     // Clearing the feature, then undoing everything: the generated tile.
     editor.apply(Stroke { tool: Tool::SetFeature(FeatureEdit::Clear), brush: Brush::Range(0), tile: land }).unwrap();
-    assert_eq!(editor.terrain().tile_terrain(land).unwrap().feature, None);
+    assert_eq!(editor.terrain().tile_info(land).map(|i| i.terrain).unwrap().feature, None);
     while editor.undo().is_some() {}
-    assert_eq!(editor.terrain().tile_terrain(land), Some(before));
+    assert_eq!(editor.terrain().tile_info(land).map(|i| i.terrain), Some(before));
     // A ruleset without oasis refuses the saved file by the edit's field.
     let mut no_oasis = (*civ).clone();
     no_oasis.features.retain(|f| f.id != "oasis");

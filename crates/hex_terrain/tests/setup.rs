@@ -15,6 +15,8 @@ use hex_terrain::{
 };
 use proptest::prelude::*;
 
+#[path = "common/biome.rs"]
+mod biome;
 mod common;
 
 fn maps_dir() -> std::path::PathBuf {
@@ -33,7 +35,7 @@ fn hex((x, y): (i32, i32)) -> Hex {
 /// A tile's yields, from the public tile queries and the config's table.
 fn yields(t: &Terrain, cfg: &SetupConfig, tile: Hex) -> Yields {
     let info = t.tile_info(tile).unwrap();
-    let mut y = cfg.yields.biome(info.biome);
+    let mut y = cfg.yields.biome(biome::of(t, &info));
     if let Some(k) = cfg.yields.kinds.get(&info.kind) {
         y += *k;
     }
@@ -63,7 +65,7 @@ fn next_to_sea(t: &Terrain, tile: Hex) -> bool {
         .unwrap()
         .iter()
         .flatten()
-        .any(|&n| t.tile_info(n).is_some_and(|i| i.kind == TileKind::Sea && i.biome != Biome::Lake))
+        .any(|&n| t.tile_info(n).is_some_and(|i| i.kind == TileKind::Sea && biome::of(t, &i) != Biome::Lake))
 }
 
 /// Whether a tile keeps the setup's `start_on` rule (coast: next to the sea; river: on one).
@@ -79,10 +81,10 @@ fn keeps_start_on(t: &Terrain, start_on: StartOn, tile: Hex) -> bool {
 
 fn allowed(t: &Terrain, tile: Hex, on: &[Place]) -> bool {
     let info = t.tile_info(tile).unwrap();
-    let terrain = t.tile_terrain(tile).unwrap();
+    let terrain = t.tile_info(tile).map(|i| i.terrain).unwrap();
     let ruleset = t.ruleset();
     on.iter().any(|p| match p {
-        Place::Biome(b) => info.biome == *b,
+        Place::Biome(b) => biome::of(t, &info) == *b,
         Place::Kind(k) => info.kind == *k,
         Place::Terrain(id) => ruleset.terrain(terrain.terrain).id == *id,
         Place::Feature(id) => terrain.feature.is_some_and(|f| ruleset.feature(f).id == *id),
@@ -109,7 +111,7 @@ fn dijkstra(t: &Terrain, area: TileRect, from: Hex) -> BTreeMap<(i32, i32), u32>
                 continue;
             }
             let info = t.tile_info(n).unwrap();
-            let Some(enter) = t.config().movement.enter(info.biome, info.river_flow > 0.0) else { continue };
+            let Some(enter) = t.config().movement.enter(biome::of(t, &info), info.river_flow > 0.0) else { continue };
             assert_eq!(t.move_cost(n), Some(enter), "the terrain's rule is the model's");
             // A river on the edge crossed costs the model's river more.
             let across = t.river_edges(here).iter().any(|r| t.wrap_tile(r.edge.destination()) == Some(n));
@@ -157,7 +159,7 @@ fn check_setup(t: &Terrain) -> Result<(), TestCaseError> {
         prop_assert_eq!(t.start(s), Some(p as u32));
         let info = t.tile_info(s).unwrap();
         prop_assert_eq!(info.kind, TileKind::Land, "start {} on {:?}", p, info.kind);
-        prop_assert!(!info.biome.is_water() && info.lake.is_none(), "start {p} on water");
+        prop_assert!(!biome::of(t, &info).is_water() && info.lake.is_none(), "start {p} on water");
         prop_assert!(t.move_cost(s).is_some(), "start {p} impassable");
         prop_assert!(keeps_start_on(t, cfg.start_on, s), "start {p} breaks {:?}", cfg.start_on);
         for &o in &starts[p + 1..] {
@@ -540,7 +542,7 @@ fn eligible(t: &Terrain, cfg: &SetupConfig, area: TileRect) -> Vec<Hex> {
         .filter(|&tile| {
             let info = t.tile_info(tile).unwrap();
             info.kind == TileKind::Land
-                && !info.biome.is_water()
+                && !biome::of(t, &info).is_water()
                 && info.lake.is_none()
                 && t.move_cost(tile).is_some()
                 && keeps_start_on(t, cfg.start_on, tile)

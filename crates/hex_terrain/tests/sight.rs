@@ -10,6 +10,8 @@ use hex_terrain::{
 };
 use proptest::prelude::*;
 
+#[path = "common/biome.rs"]
+mod biome;
 mod common;
 
 prop_compose! {
@@ -44,7 +46,7 @@ fn height(t: &Terrain, tile: Hex) -> Option<u8> {
     Some(if info.kind == TileKind::Mountain && info.lake.is_none() {
         2
     } else {
-        u8::from(t.config().sight.tall.contains(&info.biome))
+        u8::from(t.config().sight.tall.contains(&biome::of(t, &info)))
     })
 }
 
@@ -179,7 +181,7 @@ fn a_lake_on_a_mountain_is_no_mountain_for_sight() {
             let info = t.tile_info(tile).unwrap();
             if info.kind == TileKind::Mountain && info.lake.is_some() {
                 found += 1;
-                assert_eq!(t.sight_height(tile), Some(u8::from(t.config().sight.tall.contains(&info.biome))));
+                assert_eq!(t.sight_height(tile), Some(u8::from(t.config().sight.tall.contains(&biome::of(&t, &info)))));
                 assert_ne!(t.sight_height(tile), Some(2));
             }
         }

@@ -16,6 +16,8 @@ mod common;
 #[path = "common/sets.rs"]
 mod sets;
 use sets::Sets;
+#[path = "common/biome.rs"]
+mod biome;
 
 prop_compose! {
     fn config()(
@@ -180,7 +182,7 @@ fn check(t: &Terrain) -> Result<(), TestCaseError> {
 
     // Biomes.
     for biome in Biome::ALL {
-        let n = count(&|h| info(h).biome == biome);
+        let n = count(&|h| biome::of(t, &info(h)) == biome);
         prop_assert_eq!(stats.biomes.iter().find(|b| b.0 == biome).map_or(0, |b| b.1), n);
     }
 
@@ -321,7 +323,7 @@ fn check(t: &Terrain) -> Result<(), TestCaseError> {
 fn near_relief(t: &Terrain, h: Hex) -> bool {
     let relief = |h: Hex| {
         let i = t.tile_info(h).unwrap();
-        (i.kind == TileKind::Mountain && i.lake.is_none()) || i.biome == Biome::Hills
+        (i.kind == TileKind::Mountain && i.lake.is_none()) || biome::of(t, &i) == Biome::Hills
     };
     let around = |h: Hex| t.neighbors(h).unwrap().into_iter().flatten();
     relief(h) || around(h).any(|n| relief(n) || around(n).any(relief))
@@ -458,7 +460,7 @@ fn rain_shadow(t: &Terrain) -> Option<hex_terrain::RainShadow> {
         }
         out.land += 1;
         out.land_in_shadow += u32::from(shadow);
-        if info.biome == Biome::Desert {
+        if biome::of(t, &info) == Biome::Desert {
             out.deserts += 1;
             out.deserts_in_shadow += u32::from(shadow);
         }

@@ -10,6 +10,8 @@ use hex_terrain::{
     WindConfig, WindPattern,
 };
 use proptest::prelude::*;
+#[path = "common/biome.rs"]
+mod biome;
 
 fn maps_dir() -> std::path::PathBuf {
     std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../bevy_hex_terrain/assets/maps")
@@ -115,7 +117,7 @@ proptest! {
             let (a, b) = (here.tile_climate(tile).unwrap(), there.tile_climate(tile).unwrap());
             prop_assert_eq!(a.moisture.to_bits(), b.moisture.to_bits());
             prop_assert_eq!(a.temperature.to_bits(), b.temperature.to_bits());
-            prop_assert_eq!(here.tile_biome(tile), there.tile_biome(tile));
+            prop_assert_eq!(biome::at(&here, tile), biome::at(&there, tile));
         }
     }
 }
@@ -172,12 +174,12 @@ fn desert_shares(t: &Terrain) -> [f64; 4] {
     let rows = t.bounds().unwrap().max[1];
     let mut counts = [(0.0, 0.0); 4];
     for tile in t.tiles() {
-        if t.tile_kind(tile) != Some(TileKind::Land) || matches!(t.tile_biome(tile), Some(Biome::Hills | Biome::Lake)) {
+        if t.tile_kind(tile) != Some(TileKind::Land) || matches!(biome::at(t, tile), Some(Biome::Hills | Biome::Lake)) {
             continue;
         }
         let row = t.offset_of(tile)[1];
         let bearing = earth_bearing(row, rows);
-        let desert = f64::from(u8::from(t.tile_biome(tile) == Some(Biome::Desert)));
+        let desert = f64::from(u8::from(biome::at(t, tile) == Some(Biome::Desert)));
         let lee = mountain_within(t, tile, bearing, false);
         let windward = mountain_within(t, tile, bearing, true);
         let latitude = ((row as f32 + 0.5) / rows as f32 - 0.5).abs() * 2.0;

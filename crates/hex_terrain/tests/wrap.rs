@@ -133,7 +133,7 @@ proptest! {
             prop_assert!(t.neighbors(east).unwrap().contains(&Some(west)));
             prop_assert_eq!(t.distance(east, west), Some(1));
             prop_assert_eq!(t.tile_info(past).unwrap().kind, t.tile_info(west).unwrap().kind);
-            prop_assert_eq!(t.tile_info(past).unwrap().biome, t.tile_info(west).unwrap().biome);
+            prop_assert_eq!(t.tile_info(past).unwrap().terrain, t.tile_info(west).unwrap().terrain);
         }
         for river in t.rivers() {
             let in_map = |h: Hex| bounds.contains(t.offset_of(h));

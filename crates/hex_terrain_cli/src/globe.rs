@@ -61,8 +61,13 @@ fn from_lat_lon(lat: f64, lon: f64) -> V {
 /// color; shaded by its normal against a light from the north-west of its place.
 fn shade(globe: &GlobeTerrain, mesh: &GlobeMesh, v: usize, p: V) -> [f32; 3] {
     let t = &globe.config().terrain;
-    let biome =
-        globe.config().climate.enabled.then(|| globe.tile_at(p).and_then(|tile| globe.tile_biome(tile))).flatten();
+    let biome = globe
+        .config()
+        .climate
+        .enabled
+        .then(|| globe.tile_at(p).and_then(|tile| globe.tile_info(tile)))
+        .flatten()
+        .and_then(|info| globe.ruleset().biome(info.terrain.terrain));
     let color = match biome {
         Some(biome) => biome.color().map(|c| f32::from(c) / 255.0),
         None => albedo(mesh.heights[v], t.sea_threshold, t.mountain_threshold, globe.config().appearance.blend),

@@ -34,10 +34,11 @@ pub fn stats(path: &Path, ruleset: Option<&Path>) -> CliResult<()> {
         println!("  {:<9} {count}", kind.name());
     }
     println!("  total     {}", mesh.tiles.len());
-    if t.config().climate.enabled || t.hydrology().is_some() {
+    // A map of biomes (its own ruleset's terrains come from `MapStats` below).
+    if (t.config().climate.enabled || t.hydrology().is_some()) && !t.has_own_ruleset() {
         println!("biomes:");
         for biome in Biome::ALL {
-            let count = mesh.tiles.iter().filter(|t| t.biome == biome).count();
+            let count = mesh.tiles.iter().filter(|i| t.ruleset().biome(i.terrain.terrain) == Some(biome)).count();
             if count > 0 {
                 println!("  {:<11} {count}", biome.name());
             }

@@ -505,7 +505,7 @@ fn stats_and_render_show_biomes_rivers_and_lakes() {
             continue;
         }
         // Same hue as the biome color: the channels in the same proportions.
-        let [br, bg, bb] = info.biome.color().map(f32::from);
+        let [br, bg, bb] = terrain.ruleset().biome(info.terrain.terrain).unwrap().color().map(f32::from);
         let (s, t) = (r + g + b, br + bg + bb);
         let close = (r / s - br / t).abs() < 0.05 && (g / s - bg / t).abs() < 0.05;
         matched += usize::from(close);
@@ -754,13 +754,14 @@ fn stats_counts_a_rulesets_terrains_and_features() {
     };
     let mut total = 0;
     for (i, def) in ruleset.terrains.iter().enumerate() {
-        let n = t.tiles().filter(|&h| t.tile_terrain(h).unwrap().terrain.0 as usize == i).count();
+        let n = t.tiles().filter(|&h| t.tile_info(h).unwrap().terrain.terrain.0 as usize == i).count();
         assert_eq!(count(&def.id).unwrap_or(0), n, "{}: {out}", def.id);
         total += n;
     }
     assert_eq!(total, t.tiles().count());
     for (i, def) in ruleset.features.iter().enumerate() {
-        let n = t.tiles().filter(|&h| t.tile_terrain(h).unwrap().feature.is_some_and(|f| f.0 as usize == i)).count();
+        let n =
+            t.tiles().filter(|&h| t.tile_info(h).unwrap().terrain.feature.is_some_and(|f| f.0 as usize == i)).count();
         assert_eq!(count(&def.id), Some(n), "{}: {out}", def.id);
     }
     // `survey` of a map with its own ruleset spreads each terrain's and feature's share.

@@ -83,7 +83,7 @@ pub fn ruleset(data: &[u8]) {
     .expect("a valid config");
     let terrain = Terrain::with_sources(config, None, Some(ruleset.clone())).expect("a valid ruleset is taken");
     for tile in terrain.tiles() {
-        let t = terrain.tile_terrain(tile).expect("a tile of the map");
+        let t = terrain.tile_info(tile).expect("a tile of the map").terrain;
         assert!(usize::from(t.terrain.0) < ruleset.terrains.len());
     }
 }
@@ -122,7 +122,7 @@ pub fn edits(data: &[u8]) {
         let bounded = editor.terrain().bounds().is_some();
         let brush = match c % 6 {
             4 if bounded => Brush::Flood,
-            5 if bounded => Brush::FloodBiome,
+            5 if bounded => Brush::FloodTerrain,
             _ => Brush::Range(u32::from(c % 4)),
         };
         let tile = editor.terrain().tile_from_offset([i32::from(d % 8), i32::from(d / 8 % 8)]);
@@ -185,7 +185,7 @@ fn globe_edits(config: MapConfig, frequency: u32, script: &[u8]) {
         let [a, b, c, d] = [0, 1, 2, 3].map(|i| step.get(i).copied().unwrap_or(0));
         let brush = match c % 6 {
             4 => Brush::Flood,
-            5 => Brush::FloodBiome,
+            5 => Brush::FloodTerrain,
             _ => Brush::Range(u32::from(c % 4)),
         };
         // A tile past the globe one stroke in 64.

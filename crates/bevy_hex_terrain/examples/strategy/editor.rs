@@ -83,7 +83,7 @@ impl EditorMode {
 
     fn brush(&self) -> Brush {
         match (self.flood, self.tool) {
-            (true, 4) => Brush::FloodBiome,
+            (true, 4) => Brush::FloodTerrain,
             (true, _) => Brush::Flood,
             (false, _) => Brush::Range(self.radius),
         }

@@ -43,17 +43,12 @@ pub(crate) fn panel(
         let Some(info) = map.tile_info(tile) else { return };
         // Offset coordinates (column, row), as the fairness report gives them.
         let [col, row] = map.terrain().offset_of(tile);
-        // What the tile is: its biome, or under the map's own terrain ruleset its terrain (on
-        // hills), with its feature.
-        let what = match map.terrain().tile_terrain(tile).filter(|_| map.terrain().has_own_ruleset()) {
-            Some(t) => {
-                let ruleset = map.terrain().ruleset();
-                let hills = if t.landform == Landform::Hills { " hills" } else { "" };
-                let feature = t.feature.map_or(String::new(), |f| format!(", {}", ruleset.feature(f).name));
-                format!("{}{hills}{feature}", ruleset.terrain(t.terrain).name)
-            }
-            None => info.biome.name().to_owned(),
-        };
+        // What the tile is: its terrain (under the default ruleset its biome; under the map's
+        // own, on hills or not), with its feature.
+        let (t, ruleset) = (info.terrain, map.terrain().ruleset());
+        let hills = if map.terrain().has_own_ruleset() && t.landform == Landform::Hills { " hills" } else { "" };
+        let feature = t.feature.map_or(String::new(), |f| format!(", {}", ruleset.feature(f).name));
+        let what = format!("{}{hills}{feature}", ruleset.terrain(t.terrain).name);
         s += &format!("\nTile ({col}, {row})  {what} ({})  elevation {:.2}", info.kind.name(), info.elevation);
         if let Some(river) = map.river(tile) {
             let extra = map.terrain().config().movement.river;

@@ -440,7 +440,7 @@ pub fn script(
                 return;
             }
             let forests = map.terrain().tiles().filter(|&t| {
-                map.terrain().tile_terrain(t).and_then(|t| t.feature).is_some_and(|f| ruleset.feature(f).id == "forest")
+                map.tile_info(t).and_then(|i| i.terrain.feature).is_some_and(|f| ruleset.feature(f).id == "forest")
             });
             if forests.count() == 0 {
                 fail("no forest under Civilization V's terrain".into(), &mut exit);

@@ -12,9 +12,7 @@ use std::sync::Arc;
 use bevy::math::{DVec3, Ray3d};
 use bevy::prelude::*;
 use hex_terrain::hexx::Hex;
-use hex_terrain::{
-    Biome, ChunkCoord, MapConfig, PlacedResource, PlacedWonder, RiverTile, Setup, Terrain, TileInfo, TileKind,
-};
+use hex_terrain::{ChunkCoord, MapConfig, PlacedResource, PlacedWonder, RiverTile, Setup, Terrain, TileInfo, TileKind};
 
 pub(crate) use apply::load_failure;
 pub use apply::{HexMapHandle, HexMapPlugin, LoadHexMap};
@@ -262,21 +260,17 @@ impl HexMap {
         Some(TileHitF64 { tile: hit.tile, point: DVec3::from_array(hit.point), distance: hit.distance })
     }
 
-    /// Type, center elevation, map membership, biome, river flow and lake of a tile; `None`
-    /// for a tile past the world's edge (so is every tile query's answer).
+    /// What a tile is: its type, center elevation, map membership, terrain under the map's
+    /// ruleset (its biome on a map without its own: `terrain().ruleset().biome(..)`),
+    /// river flow and lake; `None` for a tile past the world's edge (so is every tile query's
+    /// answer).
     #[must_use]
     pub fn tile_info(&self, tile: Hex) -> Option<TileInfo> {
         self.terrain.tile_info(tile)
     }
 
-    /// A tile's biome (from its type alone when the map has no climate).
-    #[must_use]
-    pub fn biome(&self, tile: Hex) -> Option<Biome> {
-        self.terrain.tile_biome(tile)
-    }
-
     /// The cost of entering a tile by the map's movement model (its config's `movement`: the
-    /// biome's cost, plus fording a river through it); `None` when it cannot be entered or is
+    /// terrain's cost, plus fording a river through it); `None` when it cannot be entered or is
     /// off the map. The game setup's reach and path costs use the same rule.
     #[must_use]
     pub fn move_cost(&self, tile: Hex) -> Option<u32> {

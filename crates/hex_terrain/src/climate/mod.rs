@@ -288,20 +288,12 @@ impl ClimateModel {
     /// [`ClimateConfig::hills`](crate::ClimateConfig::hills) is under 1) or below it.
     #[must_use]
     pub fn landform(&self, s: &TileSample, lake: bool) -> Landform {
-        match s.kind {
-            _ if lake => Landform::Lake,
-            TileKind::Sea if s.next_to_land => Landform::Shore,
-            TileKind::Sea => Landform::OpenSea,
-            TileKind::Mountain => Landform::Mountain,
-            TileKind::Land => {
-                let (sea, mountain, hills) = (self.thresholds.sea, self.thresholds.mountain, self.config.hills);
-                if self.is_enabled() && hills < 1.0 && (s.raw - sea) >= hills * (mountain - sea) {
-                    Landform::Hills
-                } else {
-                    Landform::Flat
-                }
-            }
-        }
+        landform(
+            s,
+            lake,
+            (self.thresholds.sea, self.thresholds.mountain),
+            self.is_enabled().then_some(self.config.hills),
+        )
     }
 
     /// What a ruleset decides a tile's terrain and feature from: its landform, its climate
@@ -339,6 +331,22 @@ impl ClimateModel {
             near_river,
             climate: self.is_enabled(),
         }
+    }
+}
+
+/// Where a tile lies (see [`ClimateModel::landform`]), with the sea and mountain thresholds
+/// and, on a map with a climate, the hills line
+/// ([`ClimateConfig::hills`](crate::ClimateConfig::hills)): a flat map's and a globe's rule.
+pub(crate) fn landform(s: &TileSample, lake: bool, (sea, mountain): (f32, f32), hills: Option<f32>) -> Landform {
+    match s.kind {
+        _ if lake => Landform::Lake,
+        TileKind::Sea if s.next_to_land => Landform::Shore,
+        TileKind::Sea => Landform::OpenSea,
+        TileKind::Mountain => Landform::Mountain,
+        TileKind::Land => match hills {
+            Some(hills) if hills < 1.0 && (s.raw - sea) >= hills * (mountain - sea) => Landform::Hills,
+            _ => Landform::Flat,
+        },
     }
 }
 

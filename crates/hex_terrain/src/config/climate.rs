@@ -15,7 +15,9 @@ use crate::vocab::{Biome, TileKind};
 /// let config = MapConfig::from_ron("(size: Bounded(x: 24, z: 16), climate: (enabled: true))").unwrap();
 /// let terrain = Terrain::new(config).unwrap();
 /// let info = terrain.tile_info(terrain.tile_from_offset([5, 5])).unwrap();
-/// assert!(Biome::ALL.contains(&info.biome));
+/// // Without a ruleset of its own, a tile's terrain is one of the 13 biomes.
+/// let biome = terrain.ruleset().biome(info.terrain.terrain).unwrap();
+/// assert!(Biome::ALL.contains(&biome));
 /// ```
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[cfg_attr(feature = "bevy_reflect", derive(bevy_reflect::Reflect))]

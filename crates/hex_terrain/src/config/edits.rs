@@ -46,7 +46,7 @@ pub struct TileEdit {
     pub kind: Option<TileKind>,
     /// The tile's biome, set by hand: it stays whatever the tile's elevation, climate or water,
     /// on maps with and without climate (an unedited tile's biome follows its edited elevation;
-    /// the rule: [`Terrain::tile_biome`](crate::Terrain::tile_biome)).
+    /// the rule: [`Terrain::tile_info`](crate::Terrain::tile_info)).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub biome: Option<Biome>,
     /// A river set by hand on a map with rivers: a new source here, or no river here nor

@@ -244,7 +244,9 @@ impl ValueWeights {
 #[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
 #[cfg_attr(feature = "bevy_reflect", derive(bevy_reflect::Reflect))]
 pub enum Place {
-    /// Tiles of this biome.
+    /// Tiles of this biome: under the default ruleset the terrain named after it (as
+    /// `Terrain(biome.id())`); on a map with its own ruleset, the climate's biome beneath the
+    /// tile's terrain.
     Biome(Biome),
     /// Tiles of this type.
     Kind(TileKind),

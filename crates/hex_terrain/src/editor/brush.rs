@@ -24,9 +24,10 @@ pub enum Brush {
     /// The tiles connected to the stroke's tile through tiles of its type (sea, land or
     /// mountain), up to [`MAX_FLOOD_TILES`].
     Flood,
-    /// The tiles connected to the stroke's tile through tiles of its biome, up to
-    /// [`MAX_FLOOD_TILES`].
-    FloodBiome,
+    /// The tiles connected to the stroke's tile through tiles of its terrain
+    /// ([`TileInfo::terrain`](crate::TileInfo::terrain): its biome on a map without its own
+    /// ruleset), up to [`MAX_FLOOD_TILES`].
+    FloodTerrain,
 }
 
 impl Brush {
@@ -50,9 +51,9 @@ impl Brush {
                     }
                 }
             }
-            Self::Flood | Self::FloodBiome => {
+            Self::Flood | Self::FloodTerrain => {
                 let class = |t: Hex| {
-                    terrain.tile_info(t).map(|i| if self == Self::Flood { i.kind as u8 } else { i.biome as u8 })
+                    terrain.tile_info(t).map(|i| if self == Self::Flood { i.kind as u8 } else { i.terrain.terrain.0 })
                 };
                 return flood(start, class, |t| t.all_neighbors().into_iter().filter_map(own));
             }

@@ -84,7 +84,7 @@ impl Ground<'_> {
     }
 
     /// A tile's center height and kind and whether a neighbor is sea or land.
-    fn sample(&self, tile: GlobeTile) -> TileSample {
+    pub(super) fn sample(&self, tile: GlobeTile) -> TileSample {
         let kind = |t: GlobeTile| self.kinds[t.0 as usize];
         let neighbors = self.grid.neighbors(tile).expect("a tile of the globe");
         TileSample::new(self.heights[tile.0 as usize], kind(tile), neighbors.as_slice().iter().map(|&n| Some(kind(n))))

@@ -160,7 +160,7 @@ impl GlobeEditor {
             Brush::Range(radius) if radius > MAX_BRUSH_RADIUS => Vec::new(),
             Brush::Range(radius) => grid.within(tile, radius).into_iter().map(|(t, _)| t).collect(),
             Brush::Flood => flood(tile, |t| globe.tile_kind(t), neighbors),
-            Brush::FloodBiome => flood(tile, |t| globe.tile_biome(t), neighbors),
+            Brush::FloodTerrain => flood(tile, |t| globe.tile_biome(t), neighbors),
         }
     }
 

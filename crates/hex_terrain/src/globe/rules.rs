@@ -11,6 +11,7 @@ use super::climate::latitude;
 use super::project::{self, Dir};
 use super::terrain::GlobeTerrain;
 use crate::kind::TileKind;
+use crate::ruleset::TileTerrain;
 use crate::vocab::Biome;
 
 /// What a globe's tile is ([`GlobeTerrain::tile_info`]).
@@ -21,8 +22,11 @@ pub struct GlobeTileInfo {
     pub tile: GlobeTile,
     /// Its kind, by its center's height.
     pub kind: TileKind,
-    /// Its biome ([`GlobeTerrain::tile_biome`]).
-    pub biome: Biome,
+    /// What it is under the globe's terrain ruleset ([`GlobeTerrain::ruleset`], the 13 biomes:
+    /// read its biome with [`TerrainRuleset::biome`](crate::TerrainRuleset::biome)): its terrain
+    /// (a biome set by hand first; else by its climate and the config's biome table on a globe
+    /// with a climate, coast or ocean at sea; else by its kind), landform and traits.
+    pub terrain: TileTerrain,
     /// Its center's height above the sphere of [`GlobeTerrain::radius`], in world units, on the
     /// manipulated surface.
     pub elevation: f32,
@@ -46,8 +50,8 @@ pub struct GlobePath {
 }
 
 impl GlobeTerrain {
-    /// A tile's kind, biome, center elevation, latitude and longitude; `None` for a tile not of
-    /// this globe.
+    /// What a tile is: its kind, terrain, center elevation, latitude and longitude; `None` for a
+    /// tile not of this globe. The one answer to what a globe's tile is.
     #[must_use]
     pub fn tile_info(&self, tile: GlobeTile) -> Option<GlobeTileInfo> {
         let kind = self.tile_kind(tile)?;
@@ -56,7 +60,7 @@ impl GlobeTerrain {
         Some(GlobeTileInfo {
             tile,
             kind,
-            biome: self.tile_biome(tile)?,
+            terrain: self.tile_terrain(tile)?,
             elevation: self.center_height(tile) * self.config().terrain.max_elevation,
             latitude: latitude(dir) * 90.0,
             longitude: if longitude <= -180.0 { 180.0 } else { longitude },
@@ -65,11 +69,14 @@ impl GlobeTerrain {
     }
 
     /// The cost of entering a tile by the movement model
-    /// ([`MovementConfig::enter`](crate::MovementConfig::enter) of its biome; a globe has no
-    /// rivers yet); `None` when it cannot be entered, or is not of this globe.
+    /// ([`MovementConfig::enter_with`](crate::MovementConfig::enter_with) of its terrain's
+    /// traits, embarking on a sea biome; a globe has no rivers yet); `None` when it cannot be
+    /// entered, or is not of this globe.
     #[must_use]
     pub fn move_cost(&self, tile: GlobeTile) -> Option<u32> {
-        self.config().movement.enter(self.tile_biome(tile)?, false)
+        let t = self.tile_terrain(tile)?;
+        let sea = matches!(self.tile_biome(tile)?, Biome::Ocean | Biome::Coast);
+        self.config().movement.enter_with(t.traits.movement, sea, false)
     }
 
     /// The sight rule's height of a tile: 2 on a mountain, 1 on a tall biome
@@ -80,7 +87,7 @@ impl GlobeTerrain {
         Some(if self.tile_kind(tile)? == TileKind::Mountain {
             2
         } else {
-            u8::from(self.config().sight.tall.contains(&self.tile_biome(tile)?))
+            u8::from(self.tile_terrain(tile)?.traits.tall)
         })
     }
 

@@ -6,6 +6,8 @@
 //! config and the point, so chunks meet bit for bit and a globe made chunk by chunk is the globe
 //! made whole.
 
+use std::sync::Arc;
+
 use rayon::prelude::*;
 
 use super::atlas::Spot;
@@ -21,6 +23,7 @@ use super::climate::Ground;
 use super::edits::GlobeEdits;
 use super::map_type::{GlobeMapType, TypeGround};
 use crate::climate::Climate;
+use crate::climate::landform;
 use crate::config::{MapConfig, MapSize, TileEdit};
 use crate::error::ConfigError;
 use crate::heights::MapTypeReport;
@@ -28,6 +31,7 @@ use crate::heights::fbm::{LANES, SolidFbm};
 use crate::kind::{Thresholds, TileKind};
 use crate::manipulate::{manipulate, span};
 use crate::mesh::{MeshBuffers, vertex_color};
+use crate::ruleset::{Landform, TerrainId, TerrainRuleset, TileTerrain};
 use crate::vocab::Biome;
 
 /// A point of a globe finished: its height after manipulation, its ring, the highest kind of
@@ -64,6 +68,10 @@ pub struct GlobeTerrain {
     kinds: Vec<TileKind>,
     climates: Vec<Option<Climate>>,
     biomes: Vec<Biome>,
+    landforms: Vec<Landform>,
+    /// The config's default terrain ruleset ([`TerrainRuleset::biomes`]): what each biome's
+    /// tiles cost to enter, whether they stand tall, what they yield.
+    ruleset: Arc<TerrainRuleset>,
     /// Each chunk's cap: the direction of its middle and the angle from it that holds all of
     /// its ground; found at the first [`GlobeTerrain::chunks_within`].
     caps: std::sync::OnceLock<Vec<(GlobeChunk, Dir, f64)>>,
@@ -113,6 +121,8 @@ impl GlobeTerrain {
             kinds: Vec::new(),
             climates: Vec::new(),
             biomes: Vec::new(),
+            landforms: Vec::new(),
+            ruleset: Arc::new(TerrainRuleset::biomes(&config)),
             caps: std::sync::OnceLock::new(),
             grid,
             config,
@@ -158,15 +168,18 @@ impl GlobeTerrain {
         self.edits = GlobeEdits::new(&self.config.edits, (t.sea, t.mountain), &self.generated);
         self.centers = self.grid.tiles().zip(&self.generated).map(|(t, &h)| self.edits.apply(&[t], h)).collect();
         self.kinds = self.centers.iter().map(|&h| self.thresholds.classify(h)).collect();
-        (self.climates, self.biomes) = Ground {
+        let ground = Ground {
             config: &self.config,
             thresholds: &self.thresholds,
             grid: &self.grid,
             heights: &self.centers,
             kinds: &self.kinds,
             radius: self.radius,
-        }
-        .climates();
+        };
+        (self.climates, self.biomes) = ground.climates();
+        let (t, hills) = (&self.thresholds, self.config.climate.enabled.then_some(self.config.climate.hills));
+        self.landforms =
+            self.grid.tiles().map(|tile| landform(&ground.sample(tile), false, (t.sea, t.mountain), hills)).collect();
         for (t, biome) in self.grid.tiles().zip(&mut self.biomes) {
             if let Some(by_hand) = self.edits.biome(t) {
                 *biome = by_hand;
@@ -217,9 +230,24 @@ impl GlobeTerrain {
     /// A tile's biome: the one set by hand ([`TileEdit::biome`]) first; else by its climate and
     /// the config's biome table on a globe with a climate (coast or ocean at sea), else by its
     /// kind; `None` for a tile not of this globe.
-    #[must_use]
-    pub fn tile_biome(&self, tile: GlobeTile) -> Option<Biome> {
+    pub(crate) fn tile_biome(&self, tile: GlobeTile) -> Option<Biome> {
         self.biomes.get(tile.0 as usize).copied()
+    }
+
+    /// What a tile is under the globe's terrain ruleset (its config's default,
+    /// [`GlobeTerrain::ruleset`]): its biome's terrain on its landform, with the traits the
+    /// config gives the biome; `None` for a tile not of this globe.
+    pub(crate) fn tile_terrain(&self, tile: GlobeTile) -> Option<TileTerrain> {
+        let (biome, landform) = (self.tile_biome(tile)?, self.landforms[tile.0 as usize]);
+        let terrain = TerrainId(biome as u8);
+        Some(TileTerrain { terrain, landform, feature: None, traits: self.ruleset.traits(terrain, landform, None) })
+    }
+
+    /// The globe's terrain ruleset: its config's biome table as the 13 biomes
+    /// ([`TerrainRuleset::biomes`]; a ruleset of a game's own is for flat maps yet).
+    #[must_use]
+    pub fn ruleset(&self) -> &TerrainRuleset {
+        &self.ruleset
     }
 
     /// A tile's temperature and moisture; `None` when the globe has no climate or for a tile not

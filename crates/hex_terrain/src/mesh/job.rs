@@ -21,9 +21,11 @@ use crate::chunk::TileRect;
 use crate::climate::TileSample;
 use crate::geometry::Geometry;
 use crate::heights::Kernel;
+use crate::info::TileInfo;
 use crate::lattice::Lattice;
 use crate::pipeline::Pipeline;
-use crate::vocab::{Biome, TileInfo, TileKind};
+use crate::ruleset::TileTerrain;
+use crate::vocab::{Biome, TileKind};
 
 /// A generation of one rectangle of tiles.
 pub(super) struct Job<'a> {
@@ -78,6 +80,9 @@ pub(super) struct Kinds {
     /// Per tile of the job, on a map with rivers: whether water lies on it and on each neighbor
     /// (only points of wet tiles are carved).
     pub wet: Vec<(bool, [bool; 6])>,
+    /// Per tile of the job: what it is under the map's ruleset
+    /// ([`TileInfo::terrain`](crate::TileInfo::terrain)).
+    pub terrains: Vec<TileTerrain>,
 }
 
 impl Kinds {
@@ -163,7 +168,6 @@ impl<'a> Job<'a> {
         });
 
         let table = self.pipeline.table();
-        let edits = self.pipeline.heights().edits();
         let tiles = self
             .tiles
             .iter()
@@ -174,12 +178,7 @@ impl<'a> Job<'a> {
                 kind,
                 elevation: heights[points.grid.slot(self.lattice.tile_center(hex))],
                 in_map: true,
-                // Without vertex colors the map has no climate and no table: a biome set by
-                // hand, else the kind's (as `Pipeline::tile_biome`).
-                biome: kinds.biomes.get(t).map_or_else(
-                    || edits.and_then(|e| e.biome(self.geometry, hex)).unwrap_or(Biome::of_kind(kind)),
-                    |b| b.0,
-                ),
+                terrain: kinds.terrains[t],
                 river_flow: table.map_or(0.0, |t| t.river_flow(self.geometry, hex)),
                 lake: table.and_then(|t| t.lake(self.geometry, hex)),
             })
@@ -283,6 +282,7 @@ impl<'a> Job<'a> {
             colors: Vec::new(),
             layers: Vec::new(),
             wet: Vec::new(),
+            terrains: Vec::new(),
         };
         out.around = self
             .tiles
@@ -320,6 +320,7 @@ impl<'a> Job<'a> {
             let ring = self.rect.grow(1);
             let around: Vec<Hex> = ring.iter().map(|oc| geometry.tile_from_offset(oc)).collect();
             let ring_biomes = self.split.map(around.len(), |k| biome(around[k]));
+            let mut ring_terrains = Vec::new();
             let at = |t: Hex| ring.index(geometry.offset_of(t)).filter(|&i| around[i] == t);
             let biome_at = |t: Hex| at(t).map_or_else(|| biome(t), |i| ring_biomes[i]);
             let biomes: Vec<(Biome, [Option<Biome>; 6])> = self
@@ -328,7 +329,10 @@ impl<'a> Job<'a> {
                 .map(|&t| (biome_at(t).unwrap_or(Biome::Ocean), t.all_neighbors().map(biome_at)))
                 .collect();
             let looks: Vec<Option<([u8; 3], u8)>> = if pipeline.has_own_ruleset() {
-                self.split.map(around.len(), |k| geometry.contains(around[k]).then(|| pipeline.tile_look(around[k])))
+                ring_terrains = self
+                    .split
+                    .map(around.len(), |k| geometry.contains(around[k]).then(|| pipeline.tile_terrain(around[k])));
+                ring_terrains.iter().map(|t| t.as_ref().map(|t| pipeline.look_of(t))).collect()
             } else {
                 ring_biomes.iter().map(|b| b.map(|b| (b.color(), pipeline.biome_texture(b)))).collect()
             };
@@ -359,8 +363,44 @@ impl<'a> Job<'a> {
                     around: std::array::from_fn(|d| (neighbor_classes[d], neighbors[d].unwrap_or(own).1)),
                 });
             }
+            if pipeline.has_own_ruleset() {
+                out.terrains =
+                    self.tiles.iter().map(|&t| at(t).and_then(|i| ring_terrains[i]).expect("a map tile")).collect();
+            }
             (out.biomes, out.colors, out.layers) = (biomes, tile_colors, tile_layers);
         }
+        if out.terrains.is_empty() {
+            out.terrains = self.terrains(&out, &raws);
+        }
         out
+    }
+
+    /// What each tile of the job is, where the colors did not ask it already: under the map's
+    /// own ruleset the pipeline's answer; under the default, the tile's biome (as the colors
+    /// have it, else set by hand or its kind's, as [`Pipeline::tile_biome`] has it on a map
+    /// without climate and table) on its landform, from the sample of its center.
+    fn terrains(&self, kinds: &Kinds, raws: &[f32]) -> Vec<TileTerrain> {
+        let pipeline = self.pipeline;
+        let geometry = self.geometry;
+        if pipeline.has_own_ruleset() {
+            return self.split.map(self.tiles.len(), |k| pipeline.tile_terrain(self.tiles[k]));
+        }
+        let edits = pipeline.heights().edits();
+        let table = pipeline.table();
+        self.tiles
+            .iter()
+            .enumerate()
+            .map(|(k, &t)| {
+                let i = kinds.halo.index(geometry.offset_of(t)).expect("a tile of the job");
+                let kind = kinds.kinds[i].unwrap_or(TileKind::Sea);
+                let sample = TileSample::new(raws[i], kind, t.all_neighbors().map(|nb| kinds.get(pipeline, nb)));
+                let lake = table.is_some_and(|table| table.lake(geometry, t).is_some());
+                let biome = kinds
+                    .biomes
+                    .get(k)
+                    .map_or_else(|| edits.and_then(|e| e.biome(geometry, t)).unwrap_or(Biome::of_kind(kind)), |b| b.0);
+                pipeline.biome_terrain(biome, pipeline.climate().landform(&sample, lake))
+            })
+            .collect()
     }
 }

@@ -27,8 +27,9 @@ use hexx::Hex;
 pub use coarse::Detail;
 
 use crate::chunk::TileRect;
+use crate::info::TileInfo;
 use crate::pipeline::Pipeline;
-use crate::vocab::{Biome, TileInfo};
+use crate::vocab::Biome;
 
 /// Generates the mesh of any rectangle of tiles (clipped to the map), with the halo it needs:
 /// the result for a tile does not depend on which rectangle it was generated in, nor on the

@@ -177,17 +177,14 @@ fn tile_color(terrain: &Terrain, style: &MinimapStyle, tile: Hex) -> [u8; 3] {
     if terrain.lake(tile).is_some() {
         return style.water_color;
     }
-    if terrain.has_own_ruleset()
-        && let Some(t) = terrain.tile_terrain(tile)
-    {
+    if terrain.has_own_ruleset() {
+        let t = terrain.pipeline().tile_terrain(tile);
         let ruleset = terrain.ruleset();
         let look = t.feature.map_or(&ruleset.terrain(t.terrain).look, |f| &ruleset.feature(f).look);
         return look.minimap.unwrap_or(look.color);
     }
-    if terrain.has_vertex_colors()
-        && let Some(biome) = terrain.tile_biome(tile)
-    {
-        return biome.color();
+    if terrain.has_vertex_colors() {
+        return terrain.pipeline().tile_biome(tile).color();
     }
     style.kind_colors[terrain.tile_kind(tile).unwrap_or(TileKind::Sea) as usize]
 }

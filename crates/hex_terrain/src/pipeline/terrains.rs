@@ -10,7 +10,7 @@ use super::Pipeline;
 use crate::config::{FeatureEdit, MapConfig};
 use crate::error::ConfigError;
 use crate::geometry::Geometry;
-use crate::ruleset::{FeaturePatches, TerrainRuleset, TileTerrain, TileTerrains};
+use crate::ruleset::{FeaturePatches, Landform, TerrainId, TerrainRuleset, TileTerrain, TileTerrains};
 use crate::vocab::{Biome, TileKind};
 
 /// A map's terrain ruleset, ready to answer per tile.
@@ -26,7 +26,7 @@ pub(super) struct Terrains {
 impl Terrains {
     pub(super) fn new(config: &MapConfig, geometry: &Geometry, ruleset: Option<Arc<TerrainRuleset>>) -> Self {
         let own = ruleset.is_some();
-        let ruleset = ruleset.unwrap_or_else(|| Arc::new(TerrainRuleset::from_biome_table(&config.climate)));
+        let ruleset = ruleset.unwrap_or_else(|| Arc::new(TerrainRuleset::biomes(config)));
         let wrap_width = geometry.wrap().map(|w| w.width / geometry.hex_size());
         let patches = FeaturePatches::new(&ruleset, config.seed, wrap_width);
         Self { ruleset, patches, own }
@@ -49,13 +49,16 @@ impl Pipeline {
 
     /// What a tile of the map is under its ruleset: its terrain and feature from its landform,
     /// climate, height within its kind's band, latitude, and whether sea, a lake or a river is
-    /// beside it. On a map without its own ruleset, the terrain is the tile's generated biome
-    /// (a biome painted by hand is [`Pipeline::tile_biome`]'s).
+    /// beside it. On a map without its own ruleset, the terrain is the tile's biome
+    /// ([`Pipeline::tile_biome`]: a biome set by hand first).
     #[must_use]
-    pub fn tile_terrain(&self, tile: Hex) -> TileTerrain {
+    pub(crate) fn tile_terrain(&self, tile: Hex) -> TileTerrain {
         let geometry = &self.geometry;
         let sample = self.tile_sample(tile);
         let lake = self.table().is_some_and(|t| t.lake(geometry, tile).is_some());
+        if !self.terrains.own {
+            return self.biome_terrain(self.biome_with(tile, || sample), self.climate.landform(&sample, lake));
+        }
         // The sample already knows its sea neighbors (their kinds, sampled once); lakes are the
         // table's.
         let lake_beside = |h: Hex| {
@@ -92,6 +95,21 @@ impl Pipeline {
         }
     }
 
+    /// What a tile of `biome` on `landform` is under the default ruleset (a map without its
+    /// own): the biome's terrain and its traits.
+    pub(crate) fn biome_terrain(&self, biome: Biome, landform: Landform) -> TileTerrain {
+        let terrain = TerrainId(biome as u8);
+        TileTerrain { terrain, landform, feature: None, traits: self.terrains.ruleset.traits(terrain, landform, None) }
+    }
+
+    /// A tile's color and texture layer in the meshes under the map's own ruleset: its
+    /// feature's look, else its terrain's.
+    pub(crate) fn look_of(&self, t: &TileTerrain) -> ([u8; 3], u8) {
+        let ruleset = &self.terrains.ruleset;
+        let look = t.feature.map_or(&ruleset.terrain(t.terrain).look, |f| &ruleset.feature(f).look);
+        (look.color, look.texture)
+    }
+
     /// A tile's color in the meshes: its biome's, or, under the map's own ruleset, its
     /// feature's (else its terrain's).
     #[must_use]
@@ -108,10 +126,7 @@ impl Pipeline {
             let biome = self.tile_biome(tile);
             return (biome.color(), self.biome_texture(biome));
         }
-        let t = self.tile_terrain(tile);
-        let ruleset = &self.terrains.ruleset;
-        let look = t.feature.map_or(&ruleset.terrain(t.terrain).look, |f| &ruleset.feature(f).look);
-        (look.color, look.texture)
+        self.look_of(&self.tile_terrain(tile))
     }
 
     /// The texture layer of a biome: its terrain's in the default ruleset (sea, grass or rock).

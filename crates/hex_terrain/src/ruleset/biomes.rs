@@ -1,12 +1,13 @@
 //! The default ruleset: the 13 biomes ([`Biome`]) as terrains, in their order (terrain `i` is
-//! `Biome::ALL[i]`), placed by a climate's biome table. It gives every tile the biome the
-//! climate stage gives it ([`ClimateModel::biome_from`](crate::ClimateModel::biome_from)), and
-//! the movement costs, sight and yields of the default rules.
+//! `Biome::ALL[i]`, its id [`Biome::id`]), placed by a map's biome table. It gives every tile
+//! the biome the climate stage gives it
+//! ([`ClimateModel::biome_from`](crate::ClimateModel::biome_from)), and the movement costs,
+//! sight and yields the map's config gives each biome.
 
 use std::collections::BTreeMap;
 
 use super::{Landform, Look, Occurs, TerrainDef, TerrainRuleset, Traits};
-use crate::config::{BiomeRule, ClimateConfig, MovementConfig, SightConfig, YieldTable};
+use crate::config::{BiomeRule, MapConfig, YieldTable};
 use crate::vocab::{Biome, TileKind};
 
 /// The priority of the table's rules, and of the hills over them.
@@ -16,14 +17,18 @@ const TABLE: u8 = 1;
 const COLD: u8 = 2;
 
 impl TerrainRuleset {
-    /// The 13 biomes placed by `climate`'s biome table: each table rule a rule of its biome on
-    /// flat land (or mountains), snow and tundra on hills too and above the hills, which take
-    /// every other hills tile; ocean on open sea, coast on the shore, lake on lakes; without a
-    /// climate (and where the table covers nothing) ocean, lake, grassland and rock.
+    /// The default ruleset of a map: the 13 biomes placed by its biome table
+    /// ([`ClimateConfig::biomes`](crate::ClimateConfig::biomes)): each table rule a rule of its
+    /// biome on flat land (or mountains), snow and tundra on hills too and above the hills,
+    /// which take every other hills tile; ocean on open sea, coast on the shore, lake on lakes;
+    /// without a climate (and where the table covers nothing) ocean, lake, grassland and rock.
+    /// Each terrain's traits are its biome's by the config: the cost of entering it
+    /// ([`MovementConfig::biome_cost`](crate::MovementConfig::biome_cost)), whether it stands
+    /// tall ([`SightConfig::tall`](crate::SightConfig::tall)) and its yields
+    /// ([`YieldTable::biome`](crate::YieldTable::biome)).
     #[must_use]
-    pub fn from_biome_table(climate: &ClimateConfig) -> Self {
-        let movement = MovementConfig::default();
-        let sight = SightConfig::default();
+    pub fn biomes(config: &MapConfig) -> Self {
+        let (climate, movement, sight) = (&config.climate, &config.movement, &config.sight);
         let mut occurs: BTreeMap<Biome, Vec<Occurs>> = BTreeMap::new();
         let rule = |landform: Vec<Landform>, priority: u8| Occurs { landform, priority, ..Occurs::default() };
         occurs.entry(Biome::Ocean).or_default().push(rule(vec![Landform::OpenSea], TABLE));
@@ -42,19 +47,19 @@ impl TerrainRuleset {
         let terrains = Biome::ALL
             .into_iter()
             .map(|b| TerrainDef {
-                id: b.name().replace(' ', "_"),
+                id: b.id().to_owned(),
                 name: capitalised(b.name()),
                 occurs: occurs.remove(&b).unwrap_or_default(),
                 traits: Traits {
                     movement: movement.biome_cost(b),
                     tall: sight.tall.contains(&b),
-                    yields: YieldTable::default_biome(b),
+                    yields: config.setup.as_ref().map_or_else(|| YieldTable::default_biome(b), |s| s.yields.biome(b)),
                 },
                 hills: None,
                 look: Look { color: b.color(), texture: biome_texture(b), minimap: None, props: None },
             })
             .collect();
-        let id = |b: Biome| b.name().replace(' ', "_");
+        let id = |b: Biome| b.id().to_owned();
         let fallback = BTreeMap::from([
             (Landform::OpenSea, id(Biome::Ocean)),
             (Landform::Shore, id(Biome::Ocean)),

@@ -302,6 +302,14 @@ impl TerrainRuleset {
         &self.features[usize::from(id.0)]
     }
 
+    /// The biome a terrain is named after ([`Biome::from_id`](crate::Biome::from_id) of its
+    /// id): every terrain of the default ruleset ([`TerrainRuleset::biomes`]), `None` for a
+    /// terrain of another ruleset whose id names no biome.
+    #[must_use]
+    pub fn biome(&self, id: TerrainId) -> Option<crate::vocab::Biome> {
+        self.terrains.get(usize::from(id.0)).and_then(|t| crate::vocab::Biome::from_id(&t.id))
+    }
+
     /// The terrain with this id (what the game calls it).
     #[must_use]
     pub fn terrain_id(&self, id: &str) -> Option<TerrainId> {

@@ -2,22 +2,27 @@
 //! of the ruleset, the facts and (for a feature's patches) the tile's position, so chunks agree
 //! at their seams and a chunk agrees with the whole map.
 
+use serde::{Deserialize, Serialize};
+
 use super::{Landform, Occurs, TerrainRuleset, Traits};
 use crate::config::NoiseConfig;
 use crate::heights::Fbm;
 
 /// A terrain of a ruleset: its index in [`TerrainRuleset::terrains`].
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
+#[serde(transparent)]
 #[cfg_attr(feature = "bevy_reflect", derive(bevy_reflect::Reflect))]
 pub struct TerrainId(pub u8);
 
 /// A feature of a ruleset: its index in [`TerrainRuleset::features`].
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
+#[serde(transparent)]
 #[cfg_attr(feature = "bevy_reflect", derive(bevy_reflect::Reflect))]
 pub struct FeatureId(pub u8);
 
-/// What a tile is under a ruleset.
-#[derive(Debug, Clone, Copy, PartialEq)]
+/// What a tile is under a ruleset ([`TileInfo::terrain`](crate::TileInfo::terrain)); its
+/// names are the ruleset's ([`TerrainRuleset::terrain`], [`TerrainRuleset::feature`]).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[cfg_attr(feature = "bevy_reflect", derive(bevy_reflect::Reflect))]
 pub struct TileTerrain {
     /// Its base terrain.

@@ -45,13 +45,14 @@ proptest! {
         let lake = lake && s.kind != TileKind::Sea;
         let climate = (enabled && !lake && s.kind != TileKind::Sea).then_some(Climate { temperature, moisture });
         let biome = model.biome_from(&s, lake, climate);
-        let ruleset = TerrainRuleset::from_biome_table(&config.climate);
+        let ruleset = TerrainRuleset::biomes(&config);
         prop_assert!(ruleset.validate().is_ok(), "{:?}", ruleset.validate());
         let tile = geometry.tile_from_offset([3, 4]);
         let facts = model.facts(&geometry, tile, &s, lake, climate, (s.next_to_sea, false));
         let terrain = ruleset.terrain_for(&facts);
         prop_assert_eq!(Biome::ALL[usize::from(terrain.0)], biome, "{:?}", facts);
-        prop_assert_eq!(&ruleset.terrain(terrain).id, &biome.name().replace(' ', "_"));
+        prop_assert_eq!(ruleset.terrain(terrain).id.as_str(), biome.id());
+        prop_assert_eq!(ruleset.biome(terrain), Some(biome));
     }
 }
 
@@ -62,9 +63,9 @@ fn the_default_ruleset_file_is_the_biome_table() {
     let file = TerrainRuleset::from_ron(text).unwrap();
     assert_eq!(
         file,
-        TerrainRuleset::from_biome_table(&ClimateConfig::default()),
+        TerrainRuleset::biomes(&MapConfig::default()),
         "if intended, write:\n{}",
-        TerrainRuleset::from_biome_table(&ClimateConfig::default()).to_ron()
+        TerrainRuleset::biomes(&MapConfig::default()).to_ron()
     );
 }
 
@@ -75,5 +76,36 @@ fn the_shipped_rulesets_load() {
     for name in ["default", "civ5", "fantasy"] {
         let ruleset = TerrainRuleset::load(dir.join(format!("{name}.terrain.ron")));
         assert!(ruleset.is_ok(), "{name}: {ruleset:?}");
+    }
+}
+
+proptest! {
+    /// A map's default ruleset gives each biome's terrain the traits the map's config gives the
+    /// biome, whatever costs, tall biomes and yields the config sets.
+    #[test]
+    fn the_default_rulesets_traits_are_the_configs(
+        costs in prop::collection::btree_map(0usize..13, 0u32..5, 0..6),
+        tall in prop::collection::btree_set(0usize..13, 0..6),
+        yields in prop::collection::btree_map(0usize..13, (0.0f32..4.0, 0.0f32..4.0, 0.0f32..4.0), 0..6),
+        setup in any::<bool>(),
+    ) {
+        let mut config = MapConfig::default();
+        config.movement.costs = costs.into_iter().map(|(b, c)| (Biome::ALL[b], c)).collect();
+        config.sight.tall = tall.into_iter().map(|b| Biome::ALL[b]).collect();
+        if setup {
+            let mut s = crate::config::SetupConfig::default();
+            s.yields.biomes =
+                yields.into_iter().map(|(b, (f, p, g))| (Biome::ALL[b], crate::config::Yields::new(f, p, g))).collect();
+            config.setup = Some(s);
+        }
+        let ruleset = TerrainRuleset::biomes(&config);
+        for (i, biome) in Biome::ALL.into_iter().enumerate() {
+            let t = &ruleset.terrains[i];
+            prop_assert_eq!(ruleset.biome(TerrainId(i as u8)), Some(biome));
+            prop_assert_eq!(t.traits.movement, config.movement.biome_cost(biome));
+            prop_assert_eq!(t.traits.tall, config.sight.tall.contains(&biome));
+            let table = config.setup.as_ref().map_or_else(crate::config::YieldTable::default, |s| s.yields.clone());
+            prop_assert_eq!(t.traits.yields, table.biome(biome));
+        }
     }
 }

@@ -42,7 +42,7 @@ pub struct Stages<'a> {
 }
 
 impl Stages<'_> {
-    /// A tile's biome by the one rule ([`crate::Terrain::tile_biome`]): set by hand, the
+    /// A tile's biome by the one rule ([`crate::Terrain::tile_info`]): set by hand, the
     /// table's, the climate's, the kind's.
     fn biome(&self, tile: Hex, kind: TileKind) -> Biome {
         let set = self.heights.edits().and_then(|e| e.biome(self.geometry, tile));

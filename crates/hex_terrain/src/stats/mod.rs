@@ -190,6 +190,13 @@ impl MapStats {
         };
         let tiles: Vec<Hex> = terrain.tiles().collect();
         let infos: Vec<_> = tiles.iter().map(|&t| terrain.tile_info(t).expect("a tile of the map")).collect();
+        // Each tile's biome: its terrain under the default ruleset; under the map's own, the
+        // climate's biome beneath it (what the map type's measures are made of).
+        let tile_biomes: Vec<Biome> = if terrain.has_own_ruleset() {
+            tiles.iter().map(|&t| terrain.pipeline().tile_biome(t)).collect()
+        } else {
+            infos.iter().map(|i| Biome::ALL[usize::from(i.terrain.terrain.0)]).collect()
+        };
         let neighbors: Vec<[Option<u32>; 6]> = tiles
             .iter()
             .map(|&t| terrain.neighbors(t).expect("a tile of the map").map(|n| n.map(|n| index(n) as u32)))
@@ -257,7 +264,7 @@ impl MapStats {
                 kind: LandmassKind::Island,
             })
             .collect();
-        let (river_stats, on_river) = rivers::rivers(terrain, &tiles, &neighbors, &infos);
+        let (river_stats, on_river) = rivers::rivers(terrain, &tiles, &neighbors, &infos, &tile_biomes);
         // Each landmass' rows and columns, as flags over the map's.
         let mut spans = vec![(vec![false; rows], vec![false; columns]); landmasses.len()];
         // Each landmass' sums for its center: rows, and columns (or their bearings round a
@@ -332,14 +339,14 @@ impl MapStats {
 
         let biomes = Biome::ALL
             .into_iter()
-            .map(|b| (b, infos.iter().filter(|t| t.biome == b).count() as u32))
+            .map(|b| (b, tile_biomes.iter().filter(|&&t| t == b).count() as u32))
             .filter(|&(_, n)| n > 0)
             .collect();
         let (terrains, features) = if terrain.has_own_ruleset() {
             let ruleset = terrain.ruleset();
             let mut counts = vec![(0_u32, 0_u32); ruleset.terrains.len()];
             let mut featured = vec![0_u32; ruleset.features.len()];
-            for t in tiles.iter().map(|&t| terrain.tile_terrain(t).expect("a tile of the map")) {
+            for t in infos.iter().map(|i| i.terrain) {
                 let c = &mut counts[usize::from(t.terrain.0)];
                 c.0 += 1;
                 c.1 += u32::from(t.landform == Landform::Hills);
@@ -377,7 +384,7 @@ impl MapStats {
             terrains,
             features,
             rivers: river_stats,
-            rain_shadow: shadow::rain_shadow(terrain, &tiles, &neighbors, &infos),
+            rain_shadow: shadow::rain_shadow(terrain, &tiles, &neighbors, &infos, &tile_biomes),
             lakes: terrain.hydrology().map_or(0, |h| h.lake_count() as u32),
             start_landmass_tiles,
             wrap_columns: terrain.wrap().is_some().then_some(columns as u32),

@@ -7,8 +7,9 @@ use std::collections::HashMap;
 use hexx::Hex;
 
 use super::RiverStats;
+use crate::info::TileInfo;
 use crate::terrain::Terrain;
-use crate::vocab::{Biome, TileInfo, TileKind};
+use crate::vocab::{Biome, TileKind};
 
 /// The river systems, river tiles, the longest river, its sources and mouths; and whether each
 /// map tile (row by row) is on a river.
@@ -17,11 +18,12 @@ pub(super) fn rivers(
     tiles: &[Hex],
     neighbors: &[[Option<u32>; 6]],
     infos: &[TileInfo],
+    biomes: &[Biome],
 ) -> (RiverStats, Vec<bool>) {
     let water = |i: usize| infos[i].kind == TileKind::Sea || infos[i].lake.is_some();
     // Tiles within 2 steps of relief (a mountain or a hill).
     let relief =
-        |i: usize| (infos[i].kind == TileKind::Mountain && infos[i].lake.is_none()) || infos[i].biome == Biome::Hills;
+        |i: usize| (infos[i].kind == TileKind::Mountain && infos[i].lake.is_none()) || biomes[i] == Biome::Hills;
     let mut near = vec![u8::MAX; tiles.len()];
     let mut queue: std::collections::VecDeque<usize> = (0..tiles.len()).filter(|&i| relief(i)).collect();
     for &i in &queue {

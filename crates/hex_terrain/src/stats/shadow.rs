@@ -4,8 +4,9 @@
 use hexx::Hex;
 
 use crate::climate::winds::{neighbor_steps, row_winds};
+use crate::info::TileInfo;
 use crate::terrain::Terrain;
-use crate::vocab::{Biome, TileInfo, TileKind};
+use crate::vocab::{Biome, TileKind};
 
 /// How far upwind (in tiles) a mountain casts its rain shadow, as [`RainShadow`] counts it.
 pub const SHADOW_REACH: u32 = 6;
@@ -43,6 +44,7 @@ pub(super) fn rain_shadow(
     tiles: &[Hex],
     neighbors: &[[Option<u32>; 6]],
     infos: &[TileInfo],
+    biomes: &[Biome],
 ) -> Option<RainShadow> {
     let winds = terrain.climate().winds()?;
     let rect = terrain.bounds()?;
@@ -75,7 +77,7 @@ pub(super) fn rain_shadow(
         let shadow = shadowed(i);
         out.land += 1;
         out.land_in_shadow += u32::from(shadow);
-        if info.biome == Biome::Desert {
+        if biomes[i] == Biome::Desert {
             out.deserts += 1;
             out.deserts_in_shadow += u32::from(shadow);
         }

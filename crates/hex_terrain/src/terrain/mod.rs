@@ -10,7 +10,7 @@
 //! inside and outside the world in `tests/edges.rs`, with overflow checks on):
 //!
 //! - **The terrain at a place** ([`tile_kind`](Terrain::tile_kind),
-//!   [`tile_info`](Terrain::tile_info), [`tile_biome`](Terrain::tile_biome),
+//!   [`tile_info`](Terrain::tile_info),
 //!   [`tile_climate`](Terrain::tile_climate), [`tile_center`](Terrain::tile_center),
 //!   [`vertex`](Terrain::vertex), [`vertex_elevation`](Terrain::vertex_elevation),
 //!   [`raw_height`](Terrain::raw_height), [`source_height`](Terrain::source_height),
@@ -54,7 +54,7 @@ use std::sync::{Arc, OnceLock};
 use hexx::{Hex, HexLayout};
 
 pub use crate::geometry::{OFFSET_MODE, hex_orientation};
-pub use crate::vocab::TileInfo;
+pub use crate::info::TileInfo;
 
 use self::rules::RuleTable;
 use crate::chunk::{ChunkCoord, TileRect};
@@ -67,7 +67,6 @@ use crate::kind::{Thresholds, TileKind};
 use crate::lattice::Lattice;
 use crate::pipeline::Pipeline;
 use crate::vertex::VertexSample;
-use crate::vocab::Biome;
 use crate::wrap::Wrap;
 
 /// A map config compiled into pure functions of position. Cheap to share between threads.
@@ -408,15 +407,29 @@ impl Terrain {
         self.in_world(tile).then(|| self.pipeline.map_tile_kind(tile)).flatten()
     }
 
-    /// Type, center elevation, membership, biome, river and lake of a tile; `None` past the
-    /// world.
+    /// What a tile is: its type, center elevation, membership, terrain under the map's ruleset
+    /// (a biome on a map without its own), river and lake; `None` past the world. The one
+    /// answer every reader of a tile follows (chunk meshes' tiles, props, the minimap, the
+    /// rules, the setup, the stats): a pure function of the config, the ruleset, the edits and
+    /// the tile, the same for every copy of a tile on a wrapping map, in any order, on any
+    /// thread.
+    ///
+    /// Its terrain: a terrain set by hand ([`TileEdit::terrain`](crate::TileEdit::terrain), or
+    /// [`TileEdit::biome`](crate::TileEdit::biome) on a map without its own ruleset) first,
+    /// whatever the tile's elevation, climate or water; else, on a map with its own ruleset,
+    /// the highest-priority rule covering its climate (as
+    /// [`Terrain::tile_climate`] reads it), landform, water and rivers; else its biome: on a
+    /// map with a tile table (a bounded map with climate or rivers) the table's, where lake
+    /// tiles are [`Biome::Lake`](crate::Biome::Lake); else the climate's; else, without climate,
+    /// the kind's ([`Biome::of_kind`](crate::Biome::of_kind)).
     #[must_use]
     pub fn tile_info(&self, tile: Hex) -> Option<TileInfo> {
         self.in_world(tile).then(|| self.pipeline.tile_info(tile))
     }
 
     /// The cost of entering a tile of the map by the map's movement model
-    /// ([`MovementConfig::enter`](crate::MovementConfig::enter) of its biome, with its river);
+    /// ([`MovementConfig::enter_with`](crate::MovementConfig::enter_with) of its terrain's
+    /// traits, on the sea or not, with its river);
     /// `None` when it cannot be entered, or is off the map. The game setup's reach and path
     /// costs use the same rule.
     #[must_use]
@@ -456,27 +469,6 @@ impl Terrain {
     #[must_use]
     pub fn has_own_ruleset(&self) -> bool {
         self.pipeline.has_own_ruleset()
-    }
-
-    /// What a tile is under the map's ruleset ([`Terrain::ruleset`]): its terrain, landform,
-    /// feature and traits, from its climate (as [`Terrain::tile_climate`] reads it), its water
-    /// and rivers; `None` past the world. A pure function of the config, the ruleset and the
-    /// tile: the same for every copy of a tile on a wrapping map, in any order, on any thread.
-    #[must_use]
-    pub fn tile_terrain(&self, tile: Hex) -> Option<crate::ruleset::TileTerrain> {
-        let tile = self.wrap_tile(tile).filter(|&h| self.in_world(h))?;
-        Some(self.pipeline.tile_terrain(tile))
-    }
-
-    /// A tile's biome; `None` past the world. The one rule, which [`TileInfo::biome`], chunk
-    /// meshes' tiles, props and the game setup follow too: a biome set by hand
-    /// ([`TileEdit::biome`](crate::TileEdit::biome)) first, whatever the tile's elevation,
-    /// climate or water; else, on a map with a tile table (a bounded map with climate or
-    /// rivers), the table's, where lake tiles are [`Biome::Lake`]; else the climate's; else,
-    /// on a map without climate, the kind's ([`Biome::of_kind`]).
-    #[must_use]
-    pub fn tile_biome(&self, tile: Hex) -> Option<Biome> {
-        self.in_world(tile).then(|| self.pipeline.tile_biome(tile))
     }
 
     /// Evaluates one lattice vertex through the vertex chain, computing the kinds of the tiles

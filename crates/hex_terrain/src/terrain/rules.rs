@@ -10,7 +10,7 @@ use hexx::Hex;
 use super::Terrain;
 use crate::chunk::TileRect;
 use crate::ruleset::Landform;
-use crate::vocab::TileKind;
+use crate::vocab::{Biome, TileKind};
 
 /// Each tile's rules, row by row over a bounded map.
 #[derive(Debug)]
@@ -76,31 +76,23 @@ impl RuleTable {
     }
 }
 
-/// The movement model's cost of entering a tile of the map, from the surface.
-/// On a map with its own terrain ruleset, the tile's traits (its terrain's and feature's), on
-/// the sea or not.
+/// The movement model's cost of entering a tile of the map, from the surface: its terrain's
+/// traits ([`TileInfo::terrain`](crate::TileInfo::terrain); under the default ruleset, its
+/// biome's cost by the config), embarking on the sea, fording a river.
 pub(crate) fn evaluate_cost(terrain: &Terrain, tile: Hex) -> Option<u32> {
-    let tile = terrain.wrap_tile(tile)?;
-    let info = terrain.tile_info(tile)?;
-    let movement = &terrain.config().movement;
-    if terrain.has_own_ruleset() {
-        let t = terrain.tile_terrain(tile)?;
-        let sea = matches!(t.landform, Landform::OpenSea | Landform::Shore);
-        return movement.enter_with(t.traits.movement, sea, info.river_flow > 0.0);
-    }
-    movement.enter(info.biome, info.river_flow > 0.0)
+    let info = terrain.tile_info(terrain.wrap_tile(tile)?)?;
+    let t = info.terrain;
+    // Under the default ruleset the sea is its biomes' (a sea biome painted on land embarks).
+    let sea = match terrain.has_own_ruleset() {
+        true => matches!(t.landform, Landform::OpenSea | Landform::Shore),
+        false => matches!(terrain.ruleset().biome(t.terrain), Some(Biome::Ocean | Biome::Coast)),
+    };
+    terrain.config().movement.enter_with(t.traits.movement, sea, info.river_flow > 0.0)
 }
 
-/// The sight rule's height of a tile of the map, from the surface: 2 on a mountain, 1 on a tall
-/// biome (on a map with its own terrain ruleset, where the tile's traits stand tall).
+/// The sight rule's height of a tile of the map, from the surface: 2 on a mountain, 1 where its
+/// terrain's traits stand tall (under the default ruleset, a tall biome by the config).
 pub(crate) fn evaluate_sight(terrain: &Terrain, tile: Hex) -> Option<u8> {
-    let tile = terrain.wrap_tile(tile)?;
-    let info = terrain.tile_info(tile)?;
-    Some(if info.kind == TileKind::Mountain && info.lake.is_none() {
-        2
-    } else if terrain.has_own_ruleset() {
-        u8::from(terrain.tile_terrain(tile)?.traits.tall)
-    } else {
-        u8::from(terrain.config().sight.tall.contains(&info.biome))
-    })
+    let info = terrain.tile_info(terrain.wrap_tile(tile)?)?;
+    Some(if info.kind == TileKind::Mountain && info.lake.is_none() { 2 } else { u8::from(info.terrain.traits.tall) })
 }
