@@ -9,7 +9,7 @@ use std::collections::{HashMap, HashSet};
 
 use hex_terrain::save::SavedTile;
 use hex_terrain::{
-    Biome, Brush, EditError, GlobeEditor, GlobeMesh, GlobePoint, GlobeStroke, GlobeTerrain, GlobeTile,
+    Biome, Brush, EditError, GlobeEditor, GlobeMesh, GlobePoint, GlobeStroke, GlobeTerrain, GlobeTile, Landform,
     ManipulationConfig, MapConfig, MapSize, MapType, MapTypeConfig, SaveError, TileEdit, TileKind, TileStateSave, Tool,
 };
 
@@ -273,4 +273,34 @@ fn bad_globe_strokes_edits_and_saves_are_refused_by_name() {
     // A save of another globe (another frequency) is refused by `size`.
     let other = MapConfig { size: MapSize::Globe { frequency: 5 }, ..base.clone() };
     assert!(matches!(good.check(&other), Err(SaveError::OtherMap { field: "size", .. })));
+}
+
+/// A globe's land tiles go on hills and off as a flat map's do: the landform asked, by the
+/// center's height against the hills line (computed here), the type kept; a globe without a
+/// hills line refuses the tool by name.
+#[test]
+fn globe_tiles_go_on_hills_and_off() {
+    let mut config = config(8, 2, 4, 4);
+    config.climate.enabled = true;
+    config.climate.hills = 0.5;
+    let globe = GlobeTerrain::new(config.clone()).unwrap();
+    let t = globe.thresholds();
+    let line = t.sea + 0.5 * (t.mountain - t.sea);
+    let land: Vec<GlobeTile> = globe.grid().tiles().filter(|&g| globe.tile_kind(g) == Some(TileKind::Land)).collect();
+    assert!(land.len() > 20);
+    let mut editor = GlobeEditor::new(config.clone()).unwrap();
+    for on in [true, false] {
+        for &tile in land.iter().step_by(7) {
+            editor.apply(GlobeStroke { tool: Tool::SetHills(on), brush: Brush::Range(0), tile }).unwrap();
+            let info = editor.globe().tile_info(tile).unwrap();
+            assert_eq!(info.kind, TileKind::Land, "{tile:?}");
+            assert_eq!(editor.globe().tile_height(tile).unwrap() >= line, on, "{tile:?}");
+            assert_eq!(info.terrain.landform, if on { Landform::Hills } else { Landform::Flat }, "{tile:?}");
+        }
+    }
+    config.climate.hills = 1.0;
+    let mut editor = GlobeEditor::new(config).unwrap();
+    let e =
+        editor.apply(GlobeStroke { tool: Tool::SetHills(true), brush: Brush::Range(0), tile: land[0] }).unwrap_err();
+    assert!(matches!(e, EditError::Unsupported { tool: "SetHills", .. }), "{e}");
 }

@@ -813,3 +813,89 @@ fn the_world_builder_paints_terrains_and_features() {
         .is_err()
     );
 }
+
+/// The world builder puts land tiles on hills and takes them off: each land tile the brush
+/// covers lands on the landform asked (by the rule written here: its center's raw height
+/// against the hills line), keeps its type, and takes the ruleset's traits for that landform
+/// (Civilization V's grassland hills cost 2); sea and mountains stay; a map without a hills line
+/// refuses the tool by name; undo gives the generated tiles back. On maps of biomes, hills are
+/// the Hills biome's.
+#[test]
+fn the_world_builder_puts_tiles_on_hills_and_off() {
+    use hex_terrain::{Brush, EditError, Editor, Landform, Stroke, TileKind, Tool};
+    let civ = std::sync::Arc::new(
+        TerrainRuleset::from_ron(include_str!("../../bevy_hex_terrain/assets/rulesets/civ5.terrain.ron")).unwrap(),
+    );
+    for (seed, own) in [(8, true), (9, true), (8, false), (11, false)] {
+        let ruled = if own { "ruleset: Some(\"civ5.terrain.ron\")," } else { "" };
+        let config = hex_terrain::MapConfig::from_ron(&format!(
+            "(seed: {seed}, size: Bounded(x: 24, z: 16), climate: (enabled: true, hills: 0.55), {ruled})"
+        ))
+        .unwrap();
+        let ruleset = own.then(|| civ.clone());
+        let terrain = hex_terrain::Terrain::with_sources(config.clone(), None, ruleset).unwrap();
+        let t = terrain.thresholds();
+        let line = t.sea + config.climate.hills * (t.mountain - t.sea);
+        let generated: Vec<_> = terrain.tiles().map(|h| terrain.tile_info(h).unwrap()).collect();
+        let mut editor = Editor::from_terrain(terrain.clone());
+        for on in [true, false] {
+            for tile in terrain.tiles().step_by(5) {
+                editor.apply(Stroke { tool: Tool::SetHills(on), brush: Brush::Range(1), tile }).unwrap();
+            }
+            let now = editor.terrain();
+            for (tile, before) in terrain.tiles().zip(&generated) {
+                let info = now.tile_info(tile).unwrap();
+                let raw = now.pipeline().tile_sample(tile).raw;
+                // Every land tile the strokes covered is on the landform asked; the rest as before.
+                let covered = terrain.tiles().step_by(5).any(|s| terrain.distance(s, tile) <= Some(1));
+                if before.kind != TileKind::Land || !covered {
+                    continue;
+                }
+                assert_eq!(info.kind, TileKind::Land, "{tile:?}");
+                assert_eq!(raw >= line, on, "{tile:?}: raw {raw} against the line {line}");
+                let want = if on { Landform::Hills } else { Landform::Flat };
+                if info.lake.is_none() {
+                    assert_eq!(info.terrain.landform, want, "{tile:?}");
+                }
+                let r = now.ruleset();
+                assert_eq!(
+                    info.terrain.traits,
+                    r.traits(info.terrain.terrain, info.terrain.landform, info.terrain.feature)
+                );
+                if own && on && r.terrain(info.terrain.terrain).id == "grassland" && info.terrain.feature.is_none() {
+                    assert_eq!(info.terrain.traits.movement, 2, "grassland hills");
+                }
+                if !own && on && info.lake.is_none() {
+                    let biome = r.biome(info.terrain.terrain).unwrap();
+                    assert!(
+                        matches!(
+                            biome,
+                            hex_terrain::Biome::Hills | hex_terrain::Biome::Snow | hex_terrain::Biome::Tundra
+                        ),
+                        "{tile:?}: {biome:?} on hills"
+                    );
+                }
+            }
+            // Sea and mountains stay as they were.
+            for (tile, before) in terrain.tiles().zip(&generated) {
+                if before.kind != TileKind::Land {
+                    assert_eq!(now.tile_info(tile).unwrap().kind, before.kind, "{tile:?}");
+                }
+            }
+        }
+        while editor.undo().is_some() {}
+        let back: Vec<_> = terrain.tiles().map(|h| editor.terrain().tile_info(h).unwrap()).collect();
+        assert_eq!(back, generated);
+        // Without a hills line: refused by name.
+        let flat = hex_terrain::MapConfig {
+            climate: hex_terrain::ClimateConfig { hills: 1.0, ..config.climate.clone() },
+            ..config
+        };
+        let mut editor =
+            Editor::from_terrain(hex_terrain::Terrain::with_sources(flat, None, Some(civ.clone())).unwrap());
+        let tile = terrain.tiles().next().unwrap();
+        let e = editor.apply(Stroke { tool: Tool::SetHills(true), brush: Brush::Range(0), tile }).unwrap_err();
+        assert!(matches!(e, EditError::Unsupported { tool: "SetHills", .. }), "{e}");
+        assert!(e.to_string().contains("climate.hills"), "{e}");
+    }
+}

@@ -149,7 +149,7 @@ pub fn edits(data: &[u8]) {
 /// A stroke's tool from four bytes of a script.
 fn fuzzed_tool(a: u8, b: u8, c: u8, d: u8) -> Tool {
     let amount = f32::from(b) / 255.0;
-    match a % 13 {
+    match a % 14 {
         0 => Tool::Raise(amount),
         1 => Tool::Lower(amount),
         2 => Tool::SetHeight(amount),
@@ -162,6 +162,7 @@ fn fuzzed_tool(a: u8, b: u8, c: u8, d: u8) -> Tool {
         9 => Tool::FillLake,
         10 => Tool::DrainLake,
         11 => Tool::SetProps([PropDensity::None, PropDensity::Sparse, PropDensity::Dense][usize::from(b % 3)]),
+        12 => Tool::SetHills(b % 2 == 0),
         _ => Tool::Raise(f32::from_bits(u32::from_le_bytes([a, b, c, d]))),
     }
 }

@@ -50,13 +50,14 @@ pub(crate) struct EditorMode {
 
 impl EditorMode {
     /// The tool as the core takes it; Shift takes the other way (remove a river, drain a lake;
-    /// a feature rather than a terrain). On a map with its own terrain ruleset (`ruleset`) the
+    /// hills rather than a type, on and off in turn; a feature rather than a terrain). On a map with its own terrain ruleset (`ruleset`) the
     /// fifth tool paints its terrains, or with Shift its features (and none), in turn.
     fn tool(&self, shift: bool, ruleset: Option<&TerrainRuleset>) -> Tool {
         match self.tool {
             0 => Tool::Raise(0.05),
             1 => Tool::Lower(0.05),
             2 => Tool::Smooth,
+            3 if shift => Tool::SetHills(self.value % 2 == 0),
             3 => Tool::SetKind(KINDS[self.value % KINDS.len()]),
             4 => match ruleset {
                 Some(ruleset) => {
@@ -101,7 +102,10 @@ impl EditorMode {
 
     fn describe(&self, ruleset: Option<&TerrainRuleset>) -> String {
         let tool = match self.tool(false, ruleset) {
-            Tool::SetKind(k) => format!("Type: {}", k.name()),
+            Tool::SetKind(k) => {
+                let hills = if self.value % 2 == 0 { "on hills" } else { "off hills" };
+                format!("Type: {} (Shift: {hills})", k.name())
+            }
             Tool::SetBiome(b) => format!("Biome: {}", b.name()),
             Tool::SetTerrain(t) => {
                 let feature = match self.tool(true, ruleset) {

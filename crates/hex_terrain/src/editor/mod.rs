@@ -44,6 +44,13 @@ pub enum Tool {
     SetKind(TileKind),
     /// Sets the biome by hand: it stays whatever the elevation becomes.
     SetBiome(Biome),
+    /// Puts a land tile on hills (`true`) or on flat land (`false`): its center height is
+    /// brought a quarter of the way into that part of the land range, above or below the hills
+    /// line ([`ClimateConfig::hills`](crate::ClimateConfig::hills)), so its type stays land and
+    /// its terrain is the ruleset's for that landform ([`Landform`](crate::Landform)). A sea or
+    /// mountain tile, or a tile on that landform already, stays as it is. Needs a map with a
+    /// climate and a hills line (`climate.hills` below 1).
+    SetHills(bool),
     /// Starts a river on the tile ([`RiverEdit::Source`]): it runs down the drainage to the sea,
     /// a lake or the map's edge. Needs a map with rivers.
     AddRiver,
@@ -187,7 +194,8 @@ impl Editor {
     /// Checked in this order, the first that fails is answered and nothing changes:
     /// [`EditError::Amount`] (the tool's amount not finite or out of range),
     /// [`EditError::Range`] (a brush range above [`MAX_BRUSH_RADIUS`]),
-    /// [`EditError::Unsupported`] (a water tool on a map without rivers or lakes),
+    /// [`EditError::Unsupported`] (a water tool on a map without rivers or lakes, hills on a
+    /// map without a hills line),
     /// [`EditError::OffMap`] (the stroke's tile not on the map), [`EditError::NoLake`] (a lake
     /// dug where it would be sea), [`EditError::Invalid`] (the edited map would not be valid).
     pub fn apply(&mut self, stroke: Stroke) -> Result<Change, EditError> {
@@ -198,6 +206,9 @@ impl Editor {
             return Err(EditError::Range { radius });
         }
         self.check_water(stroke.tool)?;
+        if let Tool::SetHills(_) = stroke.tool {
+            hills_line(self.terrain.config(), self.terrain.thresholds())?;
+        }
         let tiles = stroke.brush.tiles(&self.terrain, stroke.tile);
         if tiles.is_empty() {
             return Err(EditError::OffMap(stroke.tile));
@@ -296,6 +307,7 @@ impl Editor {
                 edited((col, row), tool, before, |neighbors| TileNow {
                     height: self.center_height(tile),
                     kind: self.terrain.tile_kind(tile),
+                    hills: hills_line(self.terrain.config(), self.terrain.thresholds()).ok(),
                     neighbors: if neighbors {
                         self.terrain
                             .neighbors(tile)
@@ -393,12 +405,27 @@ pub(crate) fn check_amount(tool: Tool) -> Result<(), EditError> {
 }
 
 /// What the height and type tools read of one tile: its center height (raw, edited) and type,
-/// and its neighbors' center heights (for [`Tool::Smooth`] only). A flat map's and a globe's
-/// editors alike.
+/// the map's land range split by its hills line (`[sea, line, mountain]`, raw heights, on a map
+/// with one), and its neighbors' center heights (for [`Tool::Smooth`] only). A flat map's and
+/// a globe's editors alike.
 pub(crate) struct TileNow {
     pub(crate) height: f32,
     pub(crate) kind: Option<TileKind>,
+    pub(crate) hills: Option<[f32; 3]>,
     pub(crate) neighbors: Vec<f32>,
+}
+
+/// The land range of a map split by its hills line, `[sea, line, mountain]` in raw heights (the
+/// landform rule's); [`EditError::Unsupported`] for [`Tool::SetHills`] on a map without one.
+pub(crate) fn hills_line(config: &crate::MapConfig, t: &crate::Thresholds) -> Result<[f32; 3], EditError> {
+    let climate = &config.climate;
+    if !(climate.enabled && climate.hills < 1.0) {
+        return Err(EditError::Unsupported {
+            tool: "SetHills",
+            needs: "a climate (climate.enabled) with a hills line (climate.hills below 1)",
+        });
+    }
+    Ok([t.sea, t.sea + climate.hills * (t.mountain - t.sea), t.mountain])
 }
 
 /// A tile's edit after `tool` for the tools every map has (heights, types, biomes, props,
@@ -436,6 +463,14 @@ pub(crate) fn edited(
             edit.kind = Some(kind);
         }
         Tool::SetBiome(biome) => edit.biome = Some(biome),
+        Tool::SetHills(on) => {
+            let now = read(false);
+            let (Some(TileKind::Land), Some([sea, line, mountain])) = (now.kind, now.hills) else { return before };
+            if (now.height >= line) == on {
+                return before;
+            }
+            height(if on { line + 0.25 * (mountain - line) } else { line - 0.25 * (line - sea) });
+        }
         Tool::AddRiver => edit.river = Some(RiverEdit::Source),
         Tool::RemoveRiver => edit.river = Some(RiverEdit::Dry),
         Tool::FillLake | Tool::DrainLake => return before,

@@ -10,7 +10,7 @@ use std::collections::{BTreeMap, BTreeSet};
 
 use super::{GlobeChunk, GlobeTerrain, GlobeTile};
 use crate::config::{MapConfig, TileEdit};
-use crate::editor::{Brush, EditError, MAX_BRUSH_RADIUS, TileNow, Tool, check_amount, edited, flood};
+use crate::editor::{Brush, EditError, MAX_BRUSH_RADIUS, TileNow, Tool, check_amount, edited, flood, hills_line};
 use crate::error::ConfigError;
 
 /// One stroke on a globe: a tool applied with a brush around a tile; one operation for undo.
@@ -194,6 +194,9 @@ impl GlobeEditor {
                     "a map with its own terrain ruleset (flat maps only yet)",
                 );
             }
+            Tool::SetHills(_) => {
+                hills_line(self.globe.config(), self.globe.thresholds())?;
+            }
             _ => {}
         }
         let tiles = self.brush_tiles(stroke.brush, stroke.tile);
@@ -268,6 +271,7 @@ impl GlobeEditor {
         } else {
             Vec::new()
         };
-        TileNow { height: height(tile), kind: self.globe.tile_kind(tile), neighbors }
+        let hills = hills_line(self.globe.config(), self.globe.thresholds()).ok();
+        TileNow { height: height(tile), kind: self.globe.tile_kind(tile), hills, neighbors }
     }
 }
