@@ -162,7 +162,7 @@ fn fuzzed_tool(a: u8, b: u8, c: u8, d: u8) -> Tool {
         9 => Tool::FillLake,
         10 => Tool::DrainLake,
         11 => Tool::SetProps([PropDensity::None, PropDensity::Sparse, PropDensity::Dense][usize::from(b % 3)]),
-        12 => Tool::SetHills(b % 2 == 0),
+        12 => Tool::SetHills(b.is_multiple_of(2)),
         _ => Tool::Raise(f32::from_bits(u32::from_le_bytes([a, b, c, d]))),
     }
 }

@@ -57,7 +57,7 @@ impl EditorMode {
             0 => Tool::Raise(0.05),
             1 => Tool::Lower(0.05),
             2 => Tool::Smooth,
-            3 if shift => Tool::SetHills(self.value % 2 == 0),
+            3 if shift => Tool::SetHills(self.value.is_multiple_of(2)),
             3 => Tool::SetKind(KINDS[self.value % KINDS.len()]),
             4 => match ruleset {
                 Some(ruleset) => {
@@ -103,7 +103,7 @@ impl EditorMode {
     fn describe(&self, ruleset: Option<&TerrainRuleset>) -> String {
         let tool = match self.tool(false, ruleset) {
             Tool::SetKind(k) => {
-                let hills = if self.value % 2 == 0 { "on hills" } else { "off hills" };
+                let hills = if self.value.is_multiple_of(2) { "on hills" } else { "off hills" };
                 format!("Type: {} (Shift: {hills})", k.name())
             }
             Tool::SetBiome(b) => format!("Biome: {}", b.name()),
