@@ -17,7 +17,9 @@ pub struct HexMapAsset {
     /// The decoded heightmap when the config's source is `Image`.
     pub image: Option<Arc<HeightImage>>,
     /// The terrain ruleset the config names ([`MapConfig::ruleset`], relative to the map
-    /// file), loaded and validated with it: editing the ruleset file reloads the map.
+    /// file), else the game's ([`HexMapPlugin::ruleset`](crate::HexMapPlugin::ruleset), then
+    /// named in `config.ruleset` relative to the map file, so a saved map keeps it), loaded and
+    /// validated with it: editing the ruleset file reloads the map.
     pub ruleset: Option<Arc<TerrainRuleset>>,
     /// The file's blend value was outside `[0, 1]`: it was clamped and the material falls back
     /// to flat colors (with a logged warning) instead of refusing the map.
@@ -25,8 +27,12 @@ pub struct HexMapAsset {
 }
 
 /// Loads [`HexMapAsset`]s from RON.
-#[derive(Debug, Default, TypePath)]
-pub struct HexMapLoader;
+#[derive(Debug, Default, Clone, TypePath)]
+pub struct HexMapLoader {
+    /// The asset path of the game's terrain ruleset (`*.terrain.ron`), taken by every map file
+    /// that names none ([`HexMapPlugin::ruleset`](crate::HexMapPlugin::ruleset)).
+    pub ruleset: Option<String>,
+}
 
 /// Why a map config asset failed to load. A failed (re)load leaves the terrain as it was.
 #[non_exhaustive]
@@ -81,7 +87,11 @@ impl AssetLoader for HexMapLoader {
         let mut bytes = Vec::new();
         reader.read_to_end(&mut bytes).await?;
         // Parsing and validation are the core's, so the fuzz targets exercise this very path.
-        let MapFile { config, clamped_blend } = MapFile::from_bytes(&bytes)?;
+        let MapFile { mut config, clamped_blend } = MapFile::from_bytes(&bytes)?;
+        // A map file that names no ruleset takes the game's, named relative to the map file.
+        if let (None, Some(game)) = (&config.ruleset, &self.ruleset) {
+            config.ruleset = Some(relative_to(&load_context.path().path().to_string_lossy(), game));
+        }
         // An out-of-range blend only affects looks: it was clamped; warn, and fall back to flat
         // colors rather than refusing the whole map.
         if let Some(blend) = clamped_blend {
@@ -124,5 +134,29 @@ impl AssetLoader for HexMapLoader {
 
     fn extensions(&self) -> &[&str] {
         &["map.ron"]
+    }
+}
+
+/// The path of asset `target` relative to the folder of asset `from` (both from the asset
+/// root): `maps/world.map.ron` to `rulesets/civ5.terrain.ron` is `../rulesets/civ5.terrain.ron`.
+fn relative_to(from: &str, target: &str) -> String {
+    let folder: Vec<&str> = from.split('/').filter(|c| !c.is_empty()).collect();
+    let folder = &folder[..folder.len().saturating_sub(1)];
+    let target: Vec<&str> = target.split('/').filter(|c| !c.is_empty()).collect();
+    let common = folder.iter().zip(&target).take_while(|(a, b)| a == b).count();
+    let up = std::iter::repeat_n("..", folder.len() - common);
+    up.chain(target[common..].iter().copied()).collect::<Vec<_>>().join("/")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::relative_to;
+
+    #[test]
+    fn a_path_relative_to_a_map_file() {
+        assert_eq!(relative_to("maps/world.map.ron", "rulesets/civ5.terrain.ron"), "../rulesets/civ5.terrain.ron");
+        assert_eq!(relative_to("world.map.ron", "rulesets/civ5.terrain.ron"), "rulesets/civ5.terrain.ron");
+        assert_eq!(relative_to("maps/types/a.map.ron", "maps/own.terrain.ron"), "../own.terrain.ron");
+        assert_eq!(relative_to("maps/a.map.ron", "maps/rules/own.terrain.ron"), "rules/own.terrain.ron");
     }
 }

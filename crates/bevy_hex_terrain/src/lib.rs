@@ -201,13 +201,23 @@ pub enum HexTerrainSystems {
 pub struct HexTerrainPlugins {
     /// The map to show.
     pub map: MapSource,
+    /// The game's terrain ruleset, for every map file that names none
+    /// ([`HexMapPlugin::ruleset`]).
+    pub ruleset: Option<String>,
 }
 
 impl HexTerrainPlugins {
     /// The plugins showing a map (an asset path or a config).
     #[must_use]
     pub fn new(map: impl Into<MapSource>) -> Self {
-        Self { map: map.into() }
+        Self { map: map.into(), ruleset: None }
+    }
+
+    /// The same plugins with the game's terrain ruleset (the asset path of a `*.terrain.ron`
+    /// file), taken by every map file that names none of its own ([`HexMapPlugin::ruleset`]).
+    #[must_use]
+    pub fn with_ruleset(self, path: impl Into<String>) -> Self {
+        Self { ruleset: Some(path.into()), ..self }
     }
 
     /// The plugins showing the map config at an asset path (hot-reloaded when the asset server
@@ -227,7 +237,7 @@ impl HexTerrainPlugins {
 impl PluginGroup for HexTerrainPlugins {
     fn build(self) -> PluginGroupBuilder {
         let group = PluginGroupBuilder::start::<Self>()
-            .add(HexMapPlugin { map: self.map })
+            .add(HexMapPlugin { map: self.map, ruleset: self.ruleset })
             .add(HexStreamingPlugin)
             .add(HexTileStatePlugin)
             .add(HexWaterPlugin)

@@ -112,3 +112,34 @@ fn saving_the_ruleset_file_reloads_the_map() {
     std::fs::write(&ruleset, with_savanna()).unwrap();
     run_until(&mut app, "the savanna", |app| terrain_ids(app).contains(&"savanna".to_owned()) && ready(app));
 }
+
+/// The game's ruleset set on the plugins: a map file naming none takes it (named relative to
+/// the map file, so the map saved keeps it); a map file naming its own keeps its own.
+#[test]
+fn the_plugins_ruleset_is_taken_by_maps_that_name_none() {
+    let (dir, _) = asset_dir("game-ruleset");
+    std::fs::write(
+        dir.join("plain.map.ron"),
+        "(seed: 4, size: Bounded(x: 32, z: 20), chunk_size: (16, 10), climate: (enabled: true))",
+    )
+    .unwrap();
+    let fantasy = include_str!("../assets/rulesets/fantasy.terrain.ron");
+    std::fs::create_dir_all(dir.join("game")).unwrap();
+    std::fs::write(dir.join("game/realm.terrain.ron"), fantasy).unwrap();
+    let realm = hex_terrain::TerrainRuleset::from_ron(fantasy).unwrap();
+    let civ = hex_terrain::TerrainRuleset::from_ron(CIV5).unwrap();
+    for (map, name, path) in
+        [("plain.map.ron", &realm.name, "game/realm.terrain.ron"), ("map.map.ron", &civ.name, "rules/own.terrain.ron")]
+    {
+        let plugins = HexTerrainPlugins::from_asset(map).with_ruleset("game/realm.terrain.ron");
+        let mut app = app_with_plugins(plugins, HexStreamingSettings::default(), Some(&dir));
+        run_until(&mut app, "the map applied", |app| app.world().resource::<HexMap>().terrain().has_own_ruleset());
+        let hex = app.world().resource::<HexMap>();
+        assert_eq!(&hex.terrain().ruleset().name, name, "{map}");
+        assert_eq!(hex.config().ruleset.as_deref(), Some(path), "{map}");
+        // Every tile's terrain is one of that ruleset's.
+        let ids = terrain_ids(&app);
+        let ruleset = if map == "plain.map.ron" { &realm } else { &civ };
+        assert!(ids.iter().all(|id| ruleset.terrain_id(id).is_some()), "{map}: {ids:?}");
+    }
+}

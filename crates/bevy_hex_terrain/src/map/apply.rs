@@ -39,6 +39,12 @@ pub struct LoadHexMap(pub MapSource);
 pub struct HexMapPlugin {
     /// The map to show first.
     pub map: MapSource,
+    /// The game's terrain ruleset: the asset path of a `*.terrain.ron` file every map file
+    /// that names no ruleset of its own takes ([`MapConfig::ruleset`]; the one a map file names
+    /// wins). Read with the map file, as its dependency: editing it reloads the map. `None`
+    /// (the default): such maps keep the 13 biomes of their biome table. A config given in code
+    /// names its ruleset itself.
+    pub ruleset: Option<String>,
 }
 
 impl Plugin for HexMapPlugin {
@@ -61,7 +67,7 @@ impl Plugin for HexMapPlugin {
             }
         };
         app.init_asset::<HexMapAsset>()
-            .init_asset_loader::<HexMapLoader>()
+            .register_asset_loader(HexMapLoader { ruleset: self.ruleset.clone() })
             .insert_resource(map)
             .init_resource::<HexMapHandle>()
             .add_message::<HexMapError>()

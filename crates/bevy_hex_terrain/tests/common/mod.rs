@@ -28,7 +28,15 @@ pub fn settings(radius: u32) -> HexStreamingSettings {
 /// build, `--no-default-features`, does not have), with the streaming `settings` inserted
 /// before the plugins are added (a value inserted first is kept).
 pub fn app_with(map: MapSource, settings: HexStreamingSettings, asset_dir: Option<&std::path::Path>) -> App {
-    let plugins = HexTerrainPlugins::new(map);
+    app_with_plugins(HexTerrainPlugins::new(map), settings, asset_dir)
+}
+
+/// As [`app_with`], with the plugins set up by the caller.
+pub fn app_with_plugins(
+    plugins: HexTerrainPlugins,
+    settings: HexStreamingSettings,
+    asset_dir: Option<&std::path::Path>,
+) -> App {
     let mut app = App::new();
     // The tests reload files themselves (`AssetServer::reload`): the file watcher (on whenever
     // Bevy's `file_watcher` feature is, as in the examples' build) would add reloads of its own
