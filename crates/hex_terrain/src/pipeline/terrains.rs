@@ -35,7 +35,7 @@ impl Terrains {
 
 impl Pipeline {
     /// The map's terrain ruleset: the config's, or the biome table's
-    /// ([`TerrainRuleset::from_biome_table`]).
+    /// ([`TerrainRuleset::biomes`]).
     #[must_use]
     pub fn ruleset(&self) -> &TerrainRuleset {
         &self.terrains.ruleset
