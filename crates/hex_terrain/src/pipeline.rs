@@ -342,14 +342,14 @@ impl Pipeline {
 
     /// Type, center elevation, membership, terrain, river and lake of a tile.
     #[must_use]
-    pub fn tile_info(&self, tile: Hex) -> TileInfo {
+    pub(crate) fn tile_info(&self, tile: Hex) -> TileInfo {
         let sample = self.vertex(self.geometry.lattice().tile_center(tile));
         self.info_of(tile, self.thresholds.classify(sample.raw), sample.height * self.max_elevation())
     }
 
     /// A tile's info from its kind and center elevation.
     #[must_use]
-    pub fn info_of(&self, tile: Hex, kind: TileKind, elevation: f32) -> TileInfo {
+    pub(crate) fn info_of(&self, tile: Hex, kind: TileKind, elevation: f32) -> TileInfo {
         let table = self.table();
         TileInfo {
             hex: tile,

@@ -113,7 +113,7 @@ impl Pipeline {
     /// A tile's color in the meshes: its biome's, or, under the map's own ruleset, its
     /// feature's (else its terrain's).
     #[must_use]
-    pub fn tile_color(&self, tile: Hex) -> [u8; 3] {
+    pub(crate) fn tile_color(&self, tile: Hex) -> [u8; 3] {
         self.tile_look(tile).0
     }
 
@@ -121,7 +121,7 @@ impl Pipeline {
     /// terrain of that biome), or, under the map's own ruleset, its feature's (else its
     /// terrain's).
     #[must_use]
-    pub fn tile_look(&self, tile: Hex) -> ([u8; 3], u8) {
+    pub(crate) fn tile_look(&self, tile: Hex) -> ([u8; 3], u8) {
         if !self.terrains.own {
             let biome = self.tile_biome(tile);
             return (biome.color(), self.biome_texture(biome));
@@ -131,7 +131,7 @@ impl Pipeline {
 
     /// The texture layer of a biome: its terrain's in the default ruleset (sea, grass or rock).
     #[must_use]
-    pub fn biome_texture(&self, biome: Biome) -> u8 {
+    pub(crate) fn biome_texture(&self, biome: Biome) -> u8 {
         crate::ruleset::biome_texture(biome)
     }
 }
