@@ -79,11 +79,14 @@ pub fn make(size: u32) -> [RgbImage; 7] {
         mix(base, [0.25, 0.23, 0.22], (grain - 0.6) * 2.5)
     });
     let sand = texture(size, |x, y| {
-        // Dunes: long ridges across the tile, with fine grain.
+        // Dunes: long ridges across the tile, each a long sunlit slope up to its crest and a
+        // short shaded slip face down from it, with fine grain.
         let dunes = fbm(x, y, size, 4, 3, 41);
-        let ridge = ((y as f32 / size as f32 * 8.0 + 2.0 * dunes) * std::f32::consts::TAU).sin();
+        let phase = (y as f32 / size as f32 * 8.0 + 2.0 * dunes).rem_euclid(1.0);
+        let slope = if phase < 0.75 { phase / 0.75 } else { (1.0 - phase) / 0.25 };
+        let shade = if phase < 0.75 { 0.35 + 0.65 * slope } else { 0.15 * slope };
         let grain = fbm(x, y, size, 64, 2, 42);
-        let base = mix([0.78, 0.66, 0.44], [0.92, 0.82, 0.60], 0.5 + 0.3 * ridge);
+        let base = mix([0.62, 0.48, 0.28], [0.98, 0.88, 0.64], shade);
         mix(base, [0.66, 0.54, 0.36], (grain - 0.6) * 2.0)
     });
     let snow = texture(size, |x, y| {
