@@ -244,3 +244,99 @@ fn regions_off_the_map_and_tiny_sizes() {
     let clipped = Minimap::new(&terrain, TileRect::new([-5, -5], [8, 8]), [64, 64], MinimapStyle::default()).unwrap();
     assert_eq!(clipped.region(), TileRect { min: [0, 0], max: [3, 3] });
 }
+
+/// A globe's picture: equirectangular (a point and its direction round-trip; each tile's center
+/// falls on a pixel of it or of a neighbor, at its info's longitude and latitude); every tile
+/// has pixels and every pixel one tile; colors are the tiles' terrains' (a climate) or kinds';
+/// fog and owners paint as on a flat map, owners' borders where the owner changes; the view's
+/// outline lies on its circle.
+#[test]
+fn a_globes_picture() {
+    use hex_terrain::minimap::GlobeMinimap;
+    use hex_terrain::{GlobeTerrain, GlobeTile};
+    for (frequency, climate, width) in [(4u32, false, 256u32), (8, true, 512), (11, true, 640)] {
+        let config = MapConfig::from_ron(&format!(
+            "(seed: {frequency}, size: Globe(frequency: {frequency}), climate: (enabled: {climate}))"
+        ))
+        .unwrap();
+        let globe = GlobeTerrain::new(config).unwrap();
+        let style = MinimapStyle::default();
+        let map = GlobeMinimap::new(&globe, width, style.clone()).unwrap();
+        let [w, h] = map.size();
+        assert_eq!([w, h], [width, width / 2]);
+        // Round trips.
+        for (x, y) in [(0.5, 0.5), (10.25, 7.75), (f64::from(w) - 0.5, f64::from(h) - 0.5), (f64::from(w) / 3.0, 40.0)]
+        {
+            let [px, py] = map.point_of(map.direction_at(x, y));
+            assert!((px - x).abs() < 1e-6 && (py - y).abs() < 1e-6, "{x} {y}: {px} {py}");
+        }
+        let mut seen = 0;
+        for t in globe.grid().tiles() {
+            let info = globe.tile_info(t).unwrap();
+            let [x, y] = map.point_of(globe.grid().center(t).unwrap());
+            let longitude = x / f64::from(w) * 360.0 - 180.0;
+            let polar = info.latitude.abs() > 89.999;
+            let apart = (longitude - info.longitude + 540.0).rem_euclid(360.0) - 180.0;
+            assert!(polar || apart.abs() < 1e-6, "{t:?}: {longitude} {}", info.longitude);
+            assert!((90.0 - y / f64::from(h) * 180.0 - info.latitude).abs() < 1e-6);
+            let shown = map.tile_at_pixel((x as u32).min(w - 1), (y as u32).min(h - 1)).unwrap();
+            let near = shown == t || globe.grid().neighbors(t).unwrap().as_slice().contains(&shown);
+            assert!(near, "f {frequency}: the center of {t:?} shows {shown:?}");
+            let pixels = map.pixels_of(t);
+            assert!(!pixels.is_empty(), "f {frequency}: {t:?} has no pixel");
+            for &i in pixels {
+                assert_eq!(map.tile_at_pixel(i % w, i / w), Some(t));
+            }
+            seen += pixels.len();
+        }
+        assert_eq!(seen, (w * h) as usize);
+        // Colors: the terrain's (or the kind's); unexplored; an owner's tint and border.
+        let owned = GlobeTile(1);
+        let rgba = map.paint(|t| TileLook {
+            fog: if t.0 % 7 == 3 { FogState::Unexplored } else { FogState::Visible },
+            owner: (t == owned).then_some(0),
+        });
+        for i in (0..(w * h)).step_by(97) {
+            let t = map.tile_at_pixel(i % w, i / w).unwrap();
+            let px = &rgba[i as usize * 4..i as usize * 4 + 4];
+            let info = globe.tile_info(t).unwrap();
+            let [r, g, b] = if climate {
+                globe.ruleset().terrain(info.terrain.terrain).look.color
+            } else {
+                style.kind_colors[info.kind as usize]
+            };
+            if t.0 % 7 == 3 {
+                assert_eq!(px, style.unexplored, "{t:?}");
+            } else if t != owned {
+                assert_eq!(px, [r, g, b, 255], "{t:?}");
+            }
+        }
+        let pixels = map.pixels_of(owned);
+        let edge = pixels.iter().find(|&&i| {
+            let (x, y) = (i % w, i / w);
+            [(x + 1) % w + y * w, (x + w - 1) % w + y * w, (y + 1).min(h - 1) * w + x]
+                .iter()
+                .any(|&j| map.tile_at_pixel(j % w, j / w) != Some(owned))
+        });
+        let i = *edge.expect("a tile has an edge") as usize;
+        assert_eq!(&rgba[i * 4..i * 4 + 3], &style.owner_colors[0]);
+        // The outline: every pixel's center within a pixel's angle of the circle.
+        let d = [0.3, 0.8, -0.52];
+        let l = (0.09f64 + 0.64 + 0.2704).sqrt();
+        let d = d.map(|c| c / l);
+        for angle in [0.3, 1.0, 2.0] {
+            let outline = map.view_outline(d, angle);
+            assert!(outline.len() > 10);
+            for &i in &outline {
+                let p = map.direction_at(f64::from(i % w) + 0.5, f64::from(i / w) + 0.5);
+                let off = (p[0] * d[0] + p[1] * d[1] + p[2] * d[2]).clamp(-1.0, 1.0).acos() - angle;
+                assert!(off.abs() <= 2.0 * std::f64::consts::PI / f64::from(w), "{angle}: {off}");
+            }
+        }
+        assert!(map.view_outline(d, 0.0).is_empty() && map.view_outline(d, 4.0).is_empty());
+    }
+    let globe = GlobeTerrain::new(MapConfig::from_ron("(size: Globe(frequency: 3))").unwrap()).unwrap();
+    for bad in [0, 3, 8192] {
+        assert!(GlobeMinimap::new(&globe, bad, MinimapStyle::default()).is_none(), "{bad}");
+    }
+}

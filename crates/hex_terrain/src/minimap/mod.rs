@@ -21,6 +21,7 @@
 //! ```
 
 mod build;
+mod globe;
 mod outline;
 
 use hexx::Hex;
@@ -28,6 +29,8 @@ use hexx::Hex;
 use crate::chunk::TileRect;
 use crate::save::FogState;
 use crate::terrain::Terrain;
+
+pub use globe::{GlobeMinimap, MAX_GLOBE_MINIMAP_WIDTH};
 
 /// No tile: a pixel off the map.
 const NONE: u32 = u32::MAX;
@@ -263,33 +266,39 @@ impl Minimap {
         if style.fog_of_war && look.fog == FogState::Unexplored {
             return style.unexplored;
         }
-        let mut c = self.base[i].map(f32::from);
-        if let Some(owner) = look.owner {
-            let color = self.owner_color(owner).map(f32::from);
+        let border = look.owner.is_some_and(|owner| {
             let (slot, distance) = self.pixel_edge[i];
             let across = self.neighbors[t as usize][slot as usize];
-            let border =
-                f64::from(distance) < style.border_width && (across == NONE || look_of(across).owner != Some(owner));
-            let tint = if border { 1.0 } else { style.territory_tint.clamp(0.0, 1.0) };
-            for k in 0..3 {
-                c[k] += (color[k] - c[k]) * tint;
-            }
-        }
-        if style.fog_of_war && look.fog == FogState::Explored {
-            let luma = 0.3 * c[0] + 0.59 * c[1] + 0.11 * c[2];
-            let b = style.explored_brightness.clamp(0.0, 1.0);
-            for v in &mut c[..3] {
-                *v = (0.5 * (*v + luma)) * b;
-            }
-        }
-        [c[0].round() as u8, c[1].round() as u8, c[2].round() as u8, 255]
+            f64::from(distance) < style.border_width && (across == NONE || look_of(across).owner != Some(owner))
+        });
+        shade(style, self.base[i], look, border)
     }
+}
 
-    fn owner_color(&self, owner: u32) -> [u8; 3] {
-        let colors = &self.style.owner_colors;
-        if colors.is_empty() { [255, 255, 255] } else { colors[owner as usize % colors.len()] }
+/// A tile pixel's color (`base`, before any state) with its tile's look: its owner's tint (the
+/// full color on its border), dimmed and half desaturated when explored but not in sight. A
+/// flat map's picture and a globe's alike.
+fn shade(style: &MinimapStyle, base: [u8; 4], look: TileLook, border: bool) -> [u8; 4] {
+    let mut c = base.map(f32::from);
+    if let Some(owner) = look.owner {
+        let colors = &style.owner_colors;
+        let color = if colors.is_empty() { [255, 255, 255] } else { colors[owner as usize % colors.len()] };
+        let tint = if border { 1.0 } else { style.territory_tint.clamp(0.0, 1.0) };
+        for k in 0..3 {
+            c[k] += (f32::from(color[k]) - c[k]) * tint;
+        }
     }
+    if style.fog_of_war && look.fog == FogState::Explored {
+        let luma = 0.3 * c[0] + 0.59 * c[1] + 0.11 * c[2];
+        let b = style.explored_brightness.clamp(0.0, 1.0);
+        for v in &mut c[..3] {
+            *v = (0.5 * (*v + luma)) * b;
+        }
+    }
+    [c[0].round() as u8, c[1].round() as u8, c[2].round() as u8, 255]
+}
 
+impl Minimap {
     fn tile(&self, t: u32) -> Hex {
         let w = self.region.max[0] - self.region.min[0];
         let t = t as i32;
