@@ -9,12 +9,14 @@
 //! camera's first place whose neighbors are all land: from the default place, a desert at 144
 //! west, 26.6 north), each between two of its neighbors (`OnGlobeTile`, `GlobeTileWalk`). `HEXTERRAIN_GLOBE_ALTITUDE` sets the camera's
 //! first altitude and `HEXTERRAIN_GLOBE_AT=LON,LAT` its first place in degrees (the screenshots
-//! use them: `-144,26.6` looks down on that pentagon).
+//! use them: `-144,26.6` looks down on that pentagon). The minimap (bottom right) is the whole
+//! globe drawn equirectangular, the camera's view outlined; a click or a drag there flies the
+//! camera over that spot.
 
 use bevy::prelude::*;
 use bevy_hex_terrain::hex_terrain::GlobeTile;
 use bevy_hex_terrain::prelude::*;
-use bevy_hex_terrain::{GlobeTileWalk, GlobeWalkEnded, HexGlobe, HoveredGlobeTile, OnGlobeTile};
+use bevy_hex_terrain::{GlobeTileWalk, GlobeWalkEnded, HexGlobe, HexGlobeMinimapPlugin, HoveredGlobeTile, OnGlobeTile};
 
 /// The text naming the tile under the mouse.
 #[derive(Component)]
@@ -41,8 +43,12 @@ fn main() {
         .add_plugins((
             DefaultPlugins,
             HexGlobePlugin::from_asset("maps/globe/continents.map.ron"),
+            // The equirectangular minimap with the camera's view outlined; a click there flies
+            // the camera over that spot.
+            HexGlobeMinimapPlugin,
             HexScreenshotPlugin::default(),
         ))
+        .insert_resource(HexMinimapSettings { size: UVec2::new(320, 160), ..default() })
         .add_systems(Startup, move |mut commands: Commands| {
             // The orbit camera, which keeps the globe streamed to its horizon, with the sun over
             // its shoulder (from the top left of the view, wherever it flies).

@@ -95,6 +95,8 @@ pub use crate::globe::{
     GlobeCamera, GlobeStreamer, GlobeTileWalk, GlobeWalkEnded, HexGlobe, HexGlobeChunk, HexGlobePlugin, NEAR_ANGLE,
     OnGlobeTile, globe_horizon,
 };
+#[cfg(feature = "minimap")]
+pub use crate::globe::{GlobeMinimapNavigate, GlobeMinimapPicture, HexGlobeMinimap, HexGlobeMinimapPlugin};
 #[cfg(feature = "picking")]
 pub use crate::globe::{HexGlobePick, HoveredGlobeTile};
 #[cfg(feature = "render")]

@@ -220,3 +220,87 @@ fn minimap_settings_inserted_first_are_kept() {
     app.update();
     assert_eq!(app.world().resource::<HexMinimapSettings>(), &mine);
 }
+
+/// The globe's minimap (`HexGlobeMinimapPlugin`): the image is the core's equirectangular
+/// picture (every pixel its tile's terrain color, off the outline), the orbit camera's view is
+/// outlined on the circle of its horizon around the spot under it, and a press on a pixel turns
+/// the camera to look down on that pixel's tile, saying so with `GlobeMinimapNavigate`.
+#[test]
+fn the_globes_minimap_shows_the_globe_outlines_the_view_and_flies_the_camera() {
+    use bevy_hex_terrain::hex_terrain::minimap::GlobeMinimap;
+    use bevy_hex_terrain::{
+        GlobeCamera, GlobeMinimapNavigate, GlobeMinimapPicture, HexGlobe, HexGlobeMinimap, HexGlobeMinimapPlugin,
+        globe_horizon,
+    };
+    #[derive(Resource, Default)]
+    struct Went(Vec<GlobeMinimapNavigate>);
+    let config = MapConfig::from_ron("(seed: 3, size: Globe(frequency: 8), climate: (enabled: true))").unwrap();
+    let mut app = App::new();
+    app.add_plugins((MinimalPlugins, AssetPlugin::default(), TransformPlugin, PickingPlugin, InteractionPlugin));
+    app.init_asset::<Image>();
+    app.add_plugins((HexGlobePlugin::from_config(config), HexGlobeMinimapPlugin));
+    app.insert_resource(HexMinimapSettings { size: UVec2::new(200, 100), ..default() });
+    app.init_resource::<OnMinimap>().init_resource::<Went>();
+    app.add_systems(
+        PreUpdate,
+        (|on: Res<OnMinimap>, nodes: Query<Entity, With<HexGlobeMinimap>>, mut hits: MessageWriter<PointerHits>| {
+            let (Some(at), Ok(node)) = (on.0, nodes.single()) else { return };
+            let hit = HitData::new(node, 0.0, Some(at.extend(0.0)), None);
+            hits.write(PointerHits::new(POINTER, vec![(node, hit)], 10.0));
+        })
+        .in_set(PickingSystems::Backend),
+    );
+    app.add_systems(Last, |mut read: MessageReader<GlobeMinimapNavigate>, mut all: ResMut<Went>| {
+        all.0.extend(read.read().copied());
+    });
+    app.world_mut().spawn(POINTER);
+    let camera = app.world_mut().spawn(GlobeCamera { altitude: 30.0, ..GlobeCamera::above(0.4, 0.3) }).id();
+    run_until(&mut app, "the globe's minimap", |app| {
+        let picture = app.world().resource::<GlobeMinimapPicture>();
+        picture.minimap().is_some() && !picture.outline().is_empty()
+    });
+    let globe = app.world().resource::<HexGlobe>().globe().unwrap().clone();
+    let picture = app.world().resource::<GlobeMinimapPicture>();
+    let shown: GlobeMinimap = picture.minimap().unwrap().clone();
+    let [w, h] = shown.size();
+    assert_eq!([w, h], [200, 100]);
+    let handle = picture.image().clone();
+    let outline: Vec<u32> = picture.outline().to_vec();
+    let data = app.world().resource::<Assets<Image>>().get(&handle).unwrap().data.clone().unwrap();
+    assert_eq!(data.len(), (w * h * 4) as usize);
+    // Pixels off the outline: the terrain color of the tile under the pixel's center.
+    for i in (0..w * h).step_by(13).filter(|i| !outline.contains(i)) {
+        let direction = shown.direction_at(f64::from(i % w) + 0.5, f64::from(i / w) + 0.5);
+        let tile = globe.tile_at(direction).unwrap();
+        let [r, g, b] = globe.ruleset().terrain(globe.tile_info(tile).unwrap().terrain.terrain).look.color;
+        assert_eq!(&data[i as usize * 4..i as usize * 4 + 4], &[r, g, b, 255], "pixel {i}");
+    }
+    // The outline: white, on the circle of the camera's horizon around the direction it lies in.
+    let place = app.world().get::<GlobalTransform>(camera).unwrap().translation();
+    let angle = globe_horizon(globe.radius() as f32, globe.config().terrain.max_elevation, place.length());
+    let d = place.normalize().as_dvec3();
+    for &i in &outline {
+        assert_eq!(&data[i as usize * 4..i as usize * 4 + 4], &[255, 255, 255, 255]);
+        let p = shown.direction_at(f64::from(i % w) + 0.5, f64::from(i / w) + 0.5);
+        let off = (p[0] * d.x + p[1] * d.y + p[2] * d.z).clamp(-1.0, 1.0).acos() - f64::from(angle);
+        assert!(off.abs() <= 2.0 * std::f64::consts::PI / f64::from(w), "{off}");
+    }
+    // A press on a pixel: the camera turns over that pixel's tile.
+    for (px, py) in [(20u32, 50u32), (150, 30), (100, 80)] {
+        let at = Vec2::new((px as f32 + 0.5) / w as f32 - 0.5, (py as f32 + 0.5) / h as f32 - 0.5);
+        app.world_mut().resource_mut::<OnMinimap>().0 = Some(at);
+        app.world_mut().resource_mut::<Went>().0.clear();
+        app.update();
+        for action in [PointerAction::Press(PointerButton::Primary), PointerAction::Release(PointerButton::Primary)] {
+            app.world_mut().write_message(PointerInput::new(POINTER, location(), action));
+            app.update();
+        }
+        let went = app.world().resource::<Went>().0.clone();
+        assert_eq!(went.len(), 1, "{went:?}");
+        assert_eq!(Some(went[0].tile), shown.tile_at_pixel(px, py));
+        let looks_along = app.world().get::<GlobeCamera>(camera).unwrap().orientation * Vec3::Z;
+        let under = globe.tile_at(looks_along.as_dvec3().to_array()).unwrap();
+        let near = under == went[0].tile || globe.grid().neighbors(went[0].tile).unwrap().as_slice().contains(&under);
+        assert!(near, "the camera over {under:?}, the press on {:?}", went[0].tile);
+    }
+}

@@ -17,6 +17,8 @@
 //! climate, else the kinds').
 
 mod camera;
+#[cfg(feature = "minimap")]
+mod minimap;
 #[cfg(feature = "picking")]
 mod picking;
 mod placement;
@@ -28,6 +30,8 @@ use bevy::prelude::*;
 use hex_terrain::{GlobeChunk, GlobeTerrain, MapConfig};
 
 pub use camera::GlobeCamera;
+#[cfg(feature = "minimap")]
+pub use minimap::{GlobeMinimapNavigate, GlobeMinimapPicture, HexGlobeMinimap, HexGlobeMinimapPlugin};
 #[cfg(feature = "picking")]
 pub use picking::{HexGlobePick, HoveredGlobeTile};
 pub use placement::{GlobeTileWalk, GlobeWalkEnded, OnGlobeTile};

@@ -25,6 +25,7 @@ use hex_terrain::minimap::MinimapStyle;
 use crate::tiles::HexTileStateSystems;
 
 pub use picture::MinimapPicture;
+pub(crate) use picture::new_image;
 pub use view::HexMinimapCamera;
 
 /// Which corner of the window the minimap sits in.
@@ -227,29 +228,35 @@ fn place_node(
     }
     let size = picture.picture.as_ref().map_or(Vec2::ZERO, |p| UVec2::from(p.size()).as_vec2());
     for (mut node, mut outline, mut background) in &mut nodes {
-        let m = settings.margin;
-        let (top, bottom) = match settings.corner {
-            MinimapCorner::TopLeft | MinimapCorner::TopRight => (Val::Px(m.y), Val::Auto),
-            _ => (Val::Auto, Val::Px(m.y)),
-        };
-        let (left, right) = match settings.corner {
-            MinimapCorner::TopLeft | MinimapCorner::BottomLeft => (Val::Px(m.x), Val::Auto),
-            _ => (Val::Auto, Val::Px(m.x)),
-        };
-        *node = Node {
-            position_type: PositionType::Absolute,
-            top,
-            bottom,
-            left,
-            right,
-            width: Val::Px(size.x),
-            height: Val::Px(size.y),
-            display: if settings.visible && size.x > 0.0 { Display::Flex } else { Display::None },
-            ..default()
-        };
-        // A frame outside the node (a border would shrink the picture inside the node, whose
-        // whole rectangle the pointer positions are relative to).
-        *outline = Outline::new(Val::Px(2.0), Val::ZERO, settings.outline_color.with_alpha(0.6));
-        *background = BackgroundColor(settings.background);
+        (*node, *outline, *background) = layout(&settings, size);
     }
+}
+
+/// A minimap node's place, size, frame and background, from the settings and its picture's
+/// size (a flat map's and a globe's alike).
+pub(crate) fn layout(settings: &HexMinimapSettings, size: Vec2) -> (Node, Outline, BackgroundColor) {
+    let m = settings.margin;
+    let (top, bottom) = match settings.corner {
+        MinimapCorner::TopLeft | MinimapCorner::TopRight => (Val::Px(m.y), Val::Auto),
+        _ => (Val::Auto, Val::Px(m.y)),
+    };
+    let (left, right) = match settings.corner {
+        MinimapCorner::TopLeft | MinimapCorner::BottomLeft => (Val::Px(m.x), Val::Auto),
+        _ => (Val::Auto, Val::Px(m.x)),
+    };
+    let node = Node {
+        position_type: PositionType::Absolute,
+        top,
+        bottom,
+        left,
+        right,
+        width: Val::Px(size.x),
+        height: Val::Px(size.y),
+        display: if settings.visible && size.x > 0.0 { Display::Flex } else { Display::None },
+        ..default()
+    };
+    // A frame outside the node (a border would shrink the picture inside the node, whose whole
+    // rectangle the pointer positions are relative to).
+    let outline = Outline::new(Val::Px(2.0), Val::ZERO, settings.outline_color.with_alpha(0.6));
+    (node, outline, BackgroundColor(settings.background))
 }

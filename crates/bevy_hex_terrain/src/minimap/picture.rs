@@ -77,7 +77,7 @@ impl MinimapPicture {
     }
 }
 
-pub(super) fn new_image([w, h]: [u32; 2], data: Vec<u8>) -> Image {
+pub(crate) fn new_image([w, h]: [u32; 2], data: Vec<u8>) -> Image {
     let size = Extent3d { width: w, height: h, depth_or_array_layers: 1 };
     let mut image =
         Image::new(size, TextureDimension::D2, data, TextureFormat::Rgba8UnormSrgb, RenderAssetUsages::default());

@@ -1,0 +1,253 @@
+//! The globe's minimap (the `minimap` feature): the core's equirectangular
+//! [`GlobeMinimap`] of the shown globe in a Bevy UI node, built on the async compute pool when
+//! the globe or the look changes, with the [`GlobeCamera`]'s view outlined (the circle of the
+//! ground in its sight); pressing or dragging on it turns the cameras to look down on that spot
+//! and sends a [`GlobeMinimapNavigate`].
+
+use std::sync::Arc;
+
+use bevy::picking::events::{Drag, Pointer, Press};
+use bevy::prelude::*;
+use bevy::tasks::futures::check_ready;
+use bevy::tasks::{AsyncComputeTaskPool, Task};
+use hex_terrain::minimap::{GlobeMinimap, TileLook};
+use hex_terrain::{GlobeTerrain, GlobeTile};
+
+use super::{GlobeCamera, HexGlobe, globe_horizon};
+use crate::minimap::{HexMinimapSettings, layout, new_image};
+
+/// The globe's minimap picture and what it was built for (the core's picture and the building
+/// task are not reflected).
+#[derive(Resource, Default, Reflect)]
+#[reflect(Resource, Default)]
+pub struct GlobeMinimapPicture {
+    #[reflect(ignore)]
+    picture: Option<Arc<GlobeMinimap>>,
+    /// The painted picture without the outline (RGBA8 sRGB).
+    painted: Vec<u8>,
+    /// The outline's pixels drawn over it.
+    outline: Vec<u32>,
+    image: Handle<Image>,
+    #[reflect(ignore)]
+    task: Option<Task<Option<GlobeMinimap>>>,
+    /// The globe generation and the style the shown (or building) picture is for.
+    #[reflect(ignore)]
+    made_for: Option<(u64, u32, MinimapStyleKey)>,
+    /// Where on the node the pointer last pressed (`-0.5..0.5`), for drags.
+    pressed_at: Option<Vec2>,
+}
+
+/// What of the style a picture is built with (a change rebuilds it).
+type MinimapStyleKey = ([[u8; 3]; 3], [u8; 4]);
+
+impl GlobeMinimapPicture {
+    /// The picture shown, with its pixels' tiles; `None` until the first is built.
+    #[must_use]
+    pub fn minimap(&self) -> Option<&GlobeMinimap> {
+        self.picture.as_deref()
+    }
+
+    /// The image the node shows.
+    #[must_use]
+    pub fn image(&self) -> &Handle<Image> {
+        &self.image
+    }
+
+    /// The pixels (row-major) of the camera's view outline drawn now.
+    #[must_use]
+    pub fn outline(&self) -> &[u32] {
+        &self.outline
+    }
+}
+
+/// Sent when the player presses or drags on the globe's minimap: the spot under the pointer,
+/// which every [`GlobeCamera`] now looks down on.
+#[derive(Message, Debug, Clone, Copy, PartialEq, Reflect)]
+pub struct GlobeMinimapNavigate {
+    /// The tile under the pointer.
+    pub tile: GlobeTile,
+    /// Its longitude and latitude under the pointer, radians (east and north positive).
+    pub at: Vec2,
+}
+
+/// The globe minimap's UI node (spawned by [`HexGlobeMinimapPlugin`], placed by
+/// [`HexMinimapSettings`]).
+#[derive(Component, Debug, Clone, Copy, Default, Reflect)]
+#[reflect(Component, Default)]
+#[require(Node, ImageNode, Outline, BackgroundColor)]
+pub struct HexGlobeMinimap;
+
+/// The globe's minimap: [`GlobeMinimapPicture`], the [`HexGlobeMinimap`] node and the
+/// [`GlobeMinimapNavigate`] message, placed and colored by the [`HexMinimapSettings`] resource
+/// (its `size.x` the picture's width, its height half that; a value inserted before the plugin
+/// is added is kept). Add it after [`HexGlobePlugin`](super::HexGlobePlugin); it needs a UI
+/// camera to be seen. Tiles show their terrain's minimap color (their type's on a globe without
+/// a climate).
+#[derive(Debug, Clone, Copy, Default)]
+pub struct HexGlobeMinimapPlugin;
+
+impl Plugin for HexGlobeMinimapPlugin {
+    fn build(&self, app: &mut App) {
+        if !app.is_plugin_added::<super::HexGlobePlugin>() {
+            panic!("HexGlobeMinimapPlugin needs HexGlobePlugin: add it before");
+        }
+        app.init_resource::<HexMinimapSettings>()
+            .init_resource::<GlobeMinimapPicture>()
+            .add_message::<GlobeMinimapNavigate>()
+            .register_type::<GlobeMinimapPicture>()
+            .register_type::<HexGlobeMinimap>()
+            .register_type::<GlobeMinimapNavigate>()
+            .add_systems(Startup, spawn_node)
+            .add_systems(
+                PostUpdate,
+                (place_node, build, finish, draw_outline).chain().after(bevy::transform::TransformSystems::Propagate),
+            );
+    }
+}
+
+fn spawn_node(mut commands: Commands, mut images: ResMut<Assets<Image>>, mut picture: ResMut<GlobeMinimapPicture>) {
+    picture.image = images.add(new_image([1, 1], vec![0, 0, 0, 0]));
+    commands
+        .spawn((Name::new("hex globe minimap"), HexGlobeMinimap, ImageNode::new(picture.image.clone())))
+        .observe(press)
+        .observe(drag);
+}
+
+fn place_node(
+    settings: Res<HexMinimapSettings>,
+    picture: Res<GlobeMinimapPicture>,
+    mut nodes: Query<(&mut Node, &mut Outline, &mut BackgroundColor), With<HexGlobeMinimap>>,
+) {
+    if !settings.is_changed() && !picture.is_changed() {
+        return;
+    }
+    let size = picture.picture.as_ref().map_or(Vec2::ZERO, |p| UVec2::from(p.size()).as_vec2());
+    for (mut node, mut outline, mut background) in &mut nodes {
+        (*node, *outline, *background) = layout(&settings, size);
+    }
+}
+
+/// The picture's width for the settings: `size.x`, even, at least 8.
+fn width(settings: &HexMinimapSettings) -> u32 {
+    (settings.size.x.clamp(8, hex_terrain::minimap::MAX_GLOBE_MINIMAP_WIDTH) / 2) * 2
+}
+
+/// Starts building a picture when the globe, the width or the colors changed.
+fn build(globe: Res<HexGlobe>, settings: Res<HexMinimapSettings>, mut picture: ResMut<GlobeMinimapPicture>) {
+    let Some(terrain) = globe.globe() else { return };
+    let style = settings.style();
+    let key = (globe.generation(), width(&settings), (style.kind_colors, style.background));
+    if picture.made_for == Some(key) {
+        return;
+    }
+    picture.made_for = Some(key);
+    let terrain: Arc<GlobeTerrain> = terrain.clone();
+    let w = key.1;
+    picture.task = Some(AsyncComputeTaskPool::get().spawn(async move { GlobeMinimap::new(&terrain, w, style) }));
+}
+
+/// Shows a finished picture, every tile as generated.
+fn finish(mut picture: ResMut<GlobeMinimapPicture>, mut images: ResMut<Assets<Image>>) {
+    let Some(task) = picture.task.as_mut() else { return };
+    let Some(built) = check_ready(task) else { return };
+    picture.task = None;
+    let Some(built) = built else { return };
+    picture.painted = built.paint(|_| TileLook::VISIBLE);
+    picture.outline.clear();
+    let _ = images.insert(&picture.image, new_image(built.size(), picture.painted.clone()));
+    picture.picture = Some(Arc::new(built));
+}
+
+/// Draws the cameras' view over the picture: around the direction each [`GlobeCamera`] lies
+/// in, out to its horizon (the chunks streamed for it), restoring the pixels under the last
+/// outline.
+fn draw_outline(
+    mut picture: ResMut<GlobeMinimapPicture>,
+    settings: Res<HexMinimapSettings>,
+    globe: Res<HexGlobe>,
+    cameras: Query<&GlobalTransform, With<GlobeCamera>>,
+    mut images: ResMut<Assets<Image>>,
+) {
+    let (Some(shown), Some(terrain)) = (picture.picture.clone(), globe.globe()) else { return };
+    let (radius, max_elevation) = (terrain.radius() as f32, terrain.config().terrain.max_elevation);
+    let mut outline: Vec<u32> = cameras
+        .iter()
+        .flat_map(|t| {
+            let p = t.translation();
+            let angle = globe_horizon(radius, max_elevation, p.length());
+            shown.view_outline(p.as_dvec3().to_array(), f64::from(angle))
+        })
+        .collect();
+    outline.sort_unstable();
+    outline.dedup();
+    if outline == picture.outline && !picture.is_changed() {
+        return;
+    }
+    let Some(mut image) = images.get_mut(&picture.image) else { return };
+    let Some(data) = image.data.as_mut() else { return };
+    if data.len() != picture.painted.len() {
+        return;
+    }
+    for &i in &picture.outline {
+        let i = i as usize * 4;
+        data[i..i + 4].copy_from_slice(&picture.painted[i..i + 4]);
+    }
+    let color = settings.outline_color.to_srgba().to_u8_array();
+    for &i in &outline {
+        let i = i as usize * 4;
+        data[i..i + 4].copy_from_slice(&color);
+    }
+    picture.outline = outline;
+}
+
+fn press(
+    press: On<Pointer<Press>>,
+    mut picture: ResMut<GlobeMinimapPicture>,
+    mut cameras: Query<&mut GlobeCamera>,
+    mut go: MessageWriter<GlobeMinimapNavigate>,
+) {
+    let Some(at) = press.hit.position.map(|p| p.truncate()) else { return };
+    picture.pressed_at = Some(at);
+    navigate(&picture, at, &mut cameras, &mut go);
+}
+
+fn drag(
+    drag: On<Pointer<Drag>>,
+    picture: Res<GlobeMinimapPicture>,
+    nodes: Query<&ComputedNode, With<HexGlobeMinimap>>,
+    mut cameras: Query<&mut GlobeCamera>,
+    mut go: MessageWriter<GlobeMinimapNavigate>,
+) {
+    let (Some(start), Ok(node)) = (picture.pressed_at, nodes.get(drag.entity)) else { return };
+    let size = node.size() * node.inverse_scale_factor();
+    if size.min_element() > 0.0 {
+        navigate(&picture, start + drag.distance / size, &mut cameras, &mut go);
+    }
+}
+
+/// Turns the cameras to look down on the spot at a position on the node (`-0.5..0.5` on each
+/// axis, as Bevy's UI picking reports it), keeping their altitude, and says so.
+fn navigate(
+    picture: &GlobeMinimapPicture,
+    at: Vec2,
+    cameras: &mut Query<&mut GlobeCamera>,
+    go: &mut MessageWriter<GlobeMinimapNavigate>,
+) {
+    let Some(shown) = picture.picture.as_ref() else { return };
+    if let Some(message) = spot(shown, at) {
+        for mut camera in cameras.iter_mut() {
+            camera.orientation = GlobeCamera::above(message.at.x, message.at.y).orientation;
+        }
+        go.write(message);
+    }
+}
+
+/// The spot at a position on the node (`-0.5..0.5`, clamped to the picture).
+fn spot(shown: &GlobeMinimap, at: Vec2) -> Option<GlobeMinimapNavigate> {
+    let [w, h] = shown.size().map(|v| v as f32);
+    let (x, y) = ((at.x + 0.5).clamp(0.0, 1.0) * w, (at.y + 0.5).clamp(0.0, 1.0) * h);
+    let tile = shown.tile_at_pixel((x as u32).min(shown.size()[0] - 1), (y as u32).min(shown.size()[1] - 1))?;
+    let longitude = (x / w * 2.0 - 1.0) * std::f32::consts::PI;
+    let latitude = (0.5 - y / h) * std::f32::consts::PI;
+    Some(GlobeMinimapNavigate { tile, at: Vec2::new(longitude, latitude) })
+}
