@@ -24,7 +24,8 @@
 //! states do not reach it yet);
 //! with the `picking` feature `HexPickingPlugin`, a `bevy_picking` backend whose
 //! hits carry the tile (`HexPick`);
-//! with `minimap` `HexMinimapPlugin`; with `big_space` `HexBigSpacePlugin` (floating origin).
+//! with `minimap` `HexMinimapPlugin` (and `HexGlobeMinimapPlugin`, a globe's equirectangular
+//! minimap); with `big_space` `HexBigSpacePlugin` (floating origin).
 //!
 //! ```no_run
 //! use bevy::prelude::*;
