@@ -334,6 +334,36 @@ fn a_globes_picture() {
             }
         }
         assert!(map.view_outline(d, 0.0).is_empty() && map.view_outline(d, 4.0).is_empty());
+        // A polygon: every pixel within a pixel's angle of one of its great-circle edges, and
+        // each corner's pixel on it.
+        let corners = [[0.9, 0.3, 0.1], [0.5, 0.6, -0.5], [-0.2, 0.4, -0.9], [0.3, -0.5, -0.6]];
+        let unit = |a: [f64; 3]| {
+            let l = (a[0] * a[0] + a[1] * a[1] + a[2] * a[2]).sqrt();
+            a.map(|c| c / l)
+        };
+        let dot = |a: [f64; 3], b: [f64; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+        let polygon = map.polygon_outline(&corners);
+        let pixel = std::f64::consts::TAU / f64::from(w);
+        for &i in &polygon {
+            let p = map.direction_at(f64::from(i % w) + 0.5, f64::from(i / w) + 0.5);
+            // The angle from p to the arc a-b: to the great circle through them when p projects
+            // between them, else to the nearer corner.
+            let near = (0..corners.len()).any(|k| {
+                let (a, b) = (unit(corners[k]), unit(corners[(k + 1) % corners.len()]));
+                let n = unit([a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]);
+                let off_plane = dot(p, n).asin().abs();
+                let ends = dot(p, a).clamp(-1.0, 1.0).acos().min(dot(p, b).clamp(-1.0, 1.0).acos());
+                let between = dot(p, a) >= dot(a, b) - 1e-9 && dot(p, b) >= dot(a, b) - 1e-9;
+                (if between { off_plane } else { ends }) <= 1.5 * pixel
+            });
+            assert!(near, "pixel {i} off the polygon");
+        }
+        for c in corners {
+            let [x, y] = map.point_of(unit(c));
+            let i = (y as u32).min(h - 1) * w + (x as u32).min(w - 1);
+            assert!(polygon.contains(&i), "corner {c:?}");
+        }
+        assert!(map.polygon_outline(&corners[..1]).is_empty());
     }
     let globe = GlobeTerrain::new(MapConfig::from_ron("(size: Globe(frequency: 3))").unwrap()).unwrap();
     for bad in [0, 3, 8192] {

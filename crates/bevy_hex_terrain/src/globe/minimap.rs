@@ -1,7 +1,7 @@
 //! The globe's minimap (the `minimap` feature): the core's equirectangular
 //! [`GlobeMinimap`] of the shown globe in a Bevy UI node, built on the async compute pool when
-//! the globe or the look changes, with the [`GlobeCamera`]'s view outlined (the circle of the
-//! ground in its sight); pressing or dragging on it turns the cameras to look down on that spot
+//! the globe or the look changes, with the [`GlobeCamera`]'s view outlined (where the rays along
+//! the border of its view meet the globe, joined by great-circle arcs); pressing or dragging on it turns the cameras to look down on that spot
 //! and sends a [`GlobeMinimapNavigate`].
 
 use std::sync::Arc;
@@ -158,24 +158,28 @@ fn finish(mut picture: ResMut<GlobeMinimapPicture>, mut images: ResMut<Assets<Im
     picture.picture = Some(Arc::new(built));
 }
 
-/// Draws the cameras' view over the picture: around the direction each [`GlobeCamera`] lies
-/// in, out to its horizon (the chunks streamed for it), restoring the pixels under the last
-/// outline.
+/// Draws the cameras' view over the picture, restoring the pixels under the last outline: for
+/// each [`GlobeCamera`], where the rays along the border of its view meet the globe (the limb,
+/// where they pass it), joined by great-circle arcs; before its projection is known (no
+/// render target yet), the circle of its horizon (the ground streamed for it).
 fn draw_outline(
     mut picture: ResMut<GlobeMinimapPicture>,
     settings: Res<HexMinimapSettings>,
     globe: Res<HexGlobe>,
-    cameras: Query<&GlobalTransform, With<GlobeCamera>>,
+    cameras: Query<(&GlobalTransform, Option<&Camera>), With<GlobeCamera>>,
     mut images: ResMut<Assets<Image>>,
 ) {
     let (Some(shown), Some(terrain)) = (picture.picture.clone(), globe.globe()) else { return };
     let (radius, max_elevation) = (terrain.radius() as f32, terrain.config().terrain.max_elevation);
     let mut outline: Vec<u32> = cameras
         .iter()
-        .flat_map(|t| {
-            let p = t.translation();
-            let angle = globe_horizon(radius, max_elevation, p.length());
-            shown.view_outline(p.as_dvec3().to_array(), f64::from(angle))
+        .flat_map(|(t, camera)| match camera.and_then(|c| view_on_globe(c, t, f64::from(radius))) {
+            Some(corners) => shown.polygon_outline(&corners),
+            None => {
+                let p = t.translation();
+                let angle = globe_horizon(radius, max_elevation, p.length());
+                shown.view_outline(p.as_dvec3().to_array(), f64::from(angle))
+            }
         })
         .collect();
     outline.sort_unstable();
@@ -250,4 +254,67 @@ fn spot(shown: &GlobeMinimap, at: Vec2) -> Option<GlobeMinimapNavigate> {
     let longitude = (x / w * 2.0 - 1.0) * std::f32::consts::PI;
     let latitude = (0.5 - y / h) * std::f32::consts::PI;
     Some(GlobeMinimapNavigate { tile, at: Vec2::new(longitude, latitude) })
+}
+
+/// Where the rays along the border of a camera's view meet a globe of `radius` centered at the
+/// origin, going round the view (four points an edge); a ray that passes the globe gives the
+/// limb point in its direction. `None` while the camera has no projection.
+fn view_on_globe(camera: &Camera, transform: &GlobalTransform, radius: f64) -> Option<Vec<[f64; 3]>> {
+    const STEPS: usize = 4;
+    let border = (0..4 * STEPS).map(|k| {
+        let (edge, t) = (k / STEPS, (k % STEPS) as f32 / STEPS as f32 * 2.0 - 1.0);
+        match edge {
+            0 => Vec2::new(t, 1.0),
+            1 => Vec2::new(1.0, -t),
+            2 => Vec2::new(-t, -1.0),
+            _ => Vec2::new(-1.0, t),
+        }
+    });
+    border
+        .map(|ndc| {
+            // Reverse-z: 1 is the near plane; a point a little farther gives the direction.
+            let near = camera.ndc_to_world(transform, bevy::math::Vec3A::from(ndc.extend(1.0)))?.as_dvec3();
+            let farther = camera.ndc_to_world(transform, bevy::math::Vec3A::from(ndc.extend(0.5)))?.as_dvec3();
+            let d = (farther - near).try_normalize()?;
+            near.is_finite().then(|| ground_or_limb(near, d, radius).to_array())
+        })
+        .collect()
+}
+
+/// The direction from the globe's center of where a ray from `origin` along unit `d` first
+/// meets the sphere of `radius`, or, when it passes it, of the sphere's limb seen from
+/// `origin` in the ray's direction.
+fn ground_or_limb(origin: bevy::math::DVec3, d: bevy::math::DVec3, radius: f64) -> bevy::math::DVec3 {
+    let b = origin.dot(d);
+    let disc = b * b - (origin.length_squared() - radius * radius);
+    if disc >= 0.0 {
+        let t = -b - disc.sqrt();
+        if t >= 0.0 {
+            return (origin + d * t).normalize();
+        }
+    }
+    let out = origin.normalize();
+    let across = (d - out * d.dot(out)).normalize_or_zero();
+    let angle = (radius / origin.length()).clamp(-1.0, 1.0).acos();
+    (out * angle.cos() + across * angle.sin()).normalize()
+}
+
+#[cfg(test)]
+mod tests {
+    use bevy::math::DVec3;
+
+    use super::ground_or_limb;
+
+    #[test]
+    fn rays_meet_the_ground_or_the_limb() {
+        let origin = DVec3::new(0.0, 0.0, 10.0);
+        // Straight down: the point under the camera.
+        assert!((ground_or_limb(origin, DVec3::NEG_Z, 5.0) - DVec3::Z).length() < 1e-12);
+        // Past the globe: the limb point, whose ray from the camera grazes the sphere.
+        let d = DVec3::new(0.8, 0.0, -0.6).normalize();
+        let limb = ground_or_limb(origin, d, 5.0) * 5.0;
+        assert!((limb.length() - 5.0).abs() < 1e-9);
+        assert!((limb - origin).dot(limb).abs() < 1e-9, "the ray to the limb is tangent");
+        assert!(limb.x > 0.0, "on the ray's side");
+    }
 }

@@ -169,14 +169,55 @@ impl GlobeMinimap {
             let t = f64::from(k) / f64::from(steps) * std::f64::consts::TAU;
             let (st, ct) = t.sin_cos();
             let p = [0, 1, 2].map(|i| d[i] * ca + (u[i] * ct + v[i] * st) * sa);
-            let [x, y] = self.point_of(p);
-            let px = (x.floor() as i64).rem_euclid(i64::from(self.size[0])) as u32;
-            let py = (y.floor() as i64).clamp(0, i64::from(self.size[1]) - 1) as u32;
-            out.push(py * self.size[0] + px);
+            out.push(self.pixel_index(p));
         }
         out.sort_unstable();
         out.dedup();
         out
+    }
+
+    /// The pixels (row-major indices) of a closed polygon on the sphere: its corners are unit
+    /// directions (any length is normalized), each edge the shorter great-circle arc from a
+    /// corner to the next (the last back to the first). The outline of a camera's view when the
+    /// corners are where the rays along its view's border meet the globe. Each pixel once; none
+    /// for fewer than two corners.
+    #[must_use]
+    pub fn polygon_outline(&self, corners: &[[f64; 3]]) -> Vec<u32> {
+        if corners.len() < 2 {
+            return Vec::new();
+        }
+        let pixel = std::f64::consts::TAU / f64::from(self.size[0]);
+        let mut out = Vec::new();
+        for (k, &a) in corners.iter().enumerate() {
+            let (a, b) = (normalize(a), normalize(corners[(k + 1) % corners.len()]));
+            let dot = (a[0] * b[0] + a[1] * b[1] + a[2] * b[2]).clamp(-1.0, 1.0);
+            let angle = dot.acos();
+            let steps = (4.0 * angle / pixel).ceil().max(1.0) as u32;
+            let sin = angle.sin();
+            for s in 0..steps {
+                let t = f64::from(s) / f64::from(steps);
+                // Spherical interpolation; a degenerate edge (its corners equal or opposite)
+                // is drawn as its first corner.
+                let p = if sin < 1e-9 {
+                    a
+                } else {
+                    let (wa, wb) = (((1.0 - t) * angle).sin() / sin, (t * angle).sin() / sin);
+                    [0, 1, 2].map(|i| a[i] * wa + b[i] * wb)
+                };
+                out.push(self.pixel_index(p));
+            }
+        }
+        out.sort_unstable();
+        out.dedup();
+        out
+    }
+
+    /// The row-major index of the pixel a direction falls in.
+    fn pixel_index(&self, direction: [f64; 3]) -> u32 {
+        let [x, y] = self.point_of(direction);
+        let px = (x.floor() as i64).rem_euclid(i64::from(self.size[0])) as u32;
+        let py = (y.floor() as i64).clamp(0, i64::from(self.size[1]) - 1) as u32;
+        py * self.size[0] + px
     }
 
     /// The color of pixel `i`: its tile's look; an owned pixel beside one of another owner (or
