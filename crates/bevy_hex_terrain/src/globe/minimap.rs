@@ -14,7 +14,7 @@ use hex_terrain::minimap::{GlobeMinimap, TileLook};
 use hex_terrain::{GlobeTerrain, GlobeTile};
 
 use super::{GlobeCamera, HexGlobe, globe_horizon};
-use crate::minimap::{HexMinimapSettings, layout, new_image};
+use crate::minimap::{HexMinimapSettings, layout, new_image, redraw_outline};
 
 /// The globe's minimap picture and what it was built for (the core's picture and the building
 /// task are not reflected).
@@ -189,19 +189,9 @@ fn draw_outline(
     }
     let Some(mut image) = images.get_mut(&picture.image) else { return };
     let Some(data) = image.data.as_mut() else { return };
-    if data.len() != picture.painted.len() {
-        return;
+    if redraw_outline(data, &picture.painted, &picture.outline, &outline, settings.outline_color) {
+        picture.outline = outline;
     }
-    for &i in &picture.outline {
-        let i = i as usize * 4;
-        data[i..i + 4].copy_from_slice(&picture.painted[i..i + 4]);
-    }
-    let color = settings.outline_color.to_srgba().to_u8_array();
-    for &i in &outline {
-        let i = i as usize * 4;
-        data[i..i + 4].copy_from_slice(&color);
-    }
-    picture.outline = outline;
 }
 
 fn press(

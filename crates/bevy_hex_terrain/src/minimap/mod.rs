@@ -260,3 +260,23 @@ pub(crate) fn layout(settings: &HexMinimapSettings, size: Vec2) -> (Node, Outlin
     let outline = Outline::new(Val::Px(2.0), Val::ZERO, settings.outline_color.with_alpha(0.6));
     (node, outline, BackgroundColor(settings.background))
 }
+
+/// Draws an outline (`new`, row-major pixels) over a minimap's image `data` in `color`, first
+/// giving the pixels of the last one (`old`) back their `painted` colors (the picture without
+/// an outline); `false`, drawing nothing, when `data` is not the painted picture's size. A flat
+/// map's minimap and a globe's alike.
+pub(crate) fn redraw_outline(data: &mut [u8], painted: &[u8], old: &[u32], new: &[u32], color: Color) -> bool {
+    if data.len() != painted.len() {
+        return false;
+    }
+    for &i in old {
+        let i = i as usize * 4;
+        data[i..i + 4].copy_from_slice(&painted[i..i + 4]);
+    }
+    let color = color.to_srgba().to_u8_array();
+    for &i in new {
+        let i = i as usize * 4;
+        data[i..i + 4].copy_from_slice(&color);
+    }
+    true
+}

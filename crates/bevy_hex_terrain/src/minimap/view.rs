@@ -5,7 +5,7 @@ use bevy::ecs::system::SystemParam;
 use bevy::math::{DVec2, DVec3, Vec3A};
 use bevy::prelude::*;
 
-use super::{HexMinimapSettings, MinimapPicture};
+use super::{HexMinimapSettings, MinimapPicture, redraw_outline};
 use crate::HexMap;
 use crate::picking::FrameOrigin;
 
@@ -91,17 +91,7 @@ pub(super) fn draw_outline(
     }
     let Some(mut image) = images.get_mut(&picture.image) else { return };
     let Some(data) = image.data.as_mut() else { return };
-    if data.len() != picture.painted.len() {
-        return;
+    if redraw_outline(data, &picture.painted, &picture.outline, &outline, settings.outline_color) {
+        picture.outline = outline;
     }
-    for &i in &picture.outline {
-        let i = i as usize * 4;
-        data[i..i + 4].copy_from_slice(&picture.painted[i..i + 4]);
-    }
-    let color = settings.outline_color.to_srgba().to_u8_array();
-    for &i in &outline {
-        let i = i as usize * 4;
-        data[i..i + 4].copy_from_slice(&color);
-    }
-    picture.outline = outline;
 }
