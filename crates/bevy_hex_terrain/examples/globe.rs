@@ -5,16 +5,20 @@
 //! the ground the view tilts toward the horizon. The line at the top names the tile under the
 //! mouse (picked on the globe's surface; its biome, latitude and longitude, and whether it is a
 //! pentagon), or, with no mouse over the globe, the tile at the center of the view.
-//! Two scouts walk back and forth across a pentagon on land (of the twelve, the one nearest the
-//! camera's first place whose neighbors are all land: from the default place, a desert at 144
-//! west, 26.6 north), each between two of its neighbors (`OnGlobeTile`, `GlobeTileWalk`). `HEXTERRAIN_GLOBE_ALTITUDE` sets the camera's
+//! Two players, red and blue, each have a city four tiles from a pentagon on land (of the twelve,
+//! the one nearest the camera's first place whose neighbors are all land: from the default place,
+//! a desert at 144 west, 26.6 north), owning the tiles within two of it (`GlobeTileStates`: their
+//! borders and tint), and a scout walking back and forth across the pentagon between two of its
+//! neighbors (`OnGlobeTile`, `GlobeTileWalk`). The globe is drawn in red's fog of war
+//! (`GlobeFog`): what its city and scout see now, what red has explored (it starts knowing the
+//! land within ten tiles of its city) greyed, the rest dark. `HEXTERRAIN_GLOBE_ALTITUDE` sets the camera's
 //! first altitude and `HEXTERRAIN_GLOBE_AT=LON,LAT` its first place in degrees (the screenshots
 //! use them: `-144,26.6` looks down on that pentagon). The minimap (bottom right) is the whole
 //! globe drawn equirectangular, the camera's view outlined; a click or a drag there flies the
 //! camera over that spot.
 
 use bevy::prelude::*;
-use bevy_hex_terrain::hex_terrain::GlobeTile;
+use bevy_hex_terrain::hex_terrain::{GlobeFog, GlobeTerrain, GlobeTile};
 use bevy_hex_terrain::prelude::*;
 use bevy_hex_terrain::{GlobeTileWalk, GlobeWalkEnded, HexGlobe, HexGlobeMinimapPlugin, HoveredGlobeTile, OnGlobeTile};
 
@@ -27,6 +31,20 @@ struct TileLabel;
 struct Scout {
     path: [GlobeTile; 3],
 }
+
+/// A player's unit: the player and how far it sees.
+#[derive(Component)]
+struct Unit {
+    player: u32,
+    sight: u32,
+}
+
+/// Both players' fog of war, kept by the game; the screen shows red's (player 0).
+#[derive(Resource)]
+struct Fogs(GlobeFog);
+
+/// The players' colors: red, blue.
+const PLAYERS: [Color; 2] = [Color::srgb(0.85, 0.15, 0.1), Color::srgb(0.15, 0.35, 0.9)];
 
 fn main() {
     let altitude = std::env::var("HEXTERRAIN_GLOBE_ALTITUDE").ok().and_then(|a| a.parse().ok()).unwrap_or(60.0);
@@ -49,6 +67,8 @@ fn main() {
             HexScreenshotPlugin::default(),
         ))
         .insert_resource(HexMinimapSettings { size: UVec2::new(320, 160), ..default() })
+        // Fog of war drawn; the owners' colors are the players'.
+        .insert_resource(HexTileStateStyle { fog_of_war: true, owner_colors: PLAYERS.to_vec(), ..default() })
         .add_systems(Startup, move |mut commands: Commands| {
             // The orbit camera, which keeps the globe streamed to its horizon, with the sun over
             // its shoulder (from the top left of the view, wherever it flies).
@@ -69,49 +89,103 @@ fn main() {
                 TileLabel,
             ));
         })
-        .add_systems(Update, (name_the_tile, send_the_scouts))
+        .add_systems(Update, (name_the_tile, (found_the_players, see).chain().after(HexTerrainSystems::Map)))
         .add_observer(turn_back)
         .run();
 }
 
-/// Once the globe is in: two scouts (red and blue), each on a neighbor of the pentagon on land
-/// nearest the camera, walking across it to the neighbor across.
-fn send_the_scouts(
+/// Once the globe is in: for each player (red, blue) a city four tiles from the pentagon on land
+/// nearest the camera, on the far sides of it, owning the tiles within two, and a scout on a
+/// neighbor of the pentagon walking across it to the neighbor across; red knows the land within
+/// ten tiles of its city.
+fn found_the_players(
     mut commands: Commands,
     globe: Res<HexGlobe>,
     cameras: Query<&GlobalTransform, With<GlobeCamera>>,
+    mut states: ResMut<GlobeTileStates>,
     mut meshes: ResMut<Assets<Mesh>>,
     mut materials: ResMut<Assets<StandardMaterial>>,
-    mut sent: Local<bool>,
+    mut founded: Local<bool>,
 ) {
-    let (Some(globe), Ok(camera)) = (globe.globe().filter(|_| !*sent), cameras.single()) else { return };
-    *sent = true;
+    let (Some(globe), Ok(camera)) = (globe.globe().filter(|_| !*founded), cameras.single()) else { return };
+    *founded = true;
     let grid = globe.grid();
     let land = |t: GlobeTile| globe.tile_kind(t) == Some(TileKind::Land);
+    let center = |t: GlobeTile| bevy::math::DVec3::from_array(grid.center(t).expect("a tile of the globe"));
     let toward = camera.translation().normalize_or_zero().as_dvec3();
-    let nearness = |t: GlobeTile| grid.center(t).map_or(-2.0, |c| toward.dot(bevy::math::DVec3::from_array(c)));
     let Some(pentagon) = grid
         .tiles()
         .filter(|&t| {
             grid.is_pentagon(t) && land(t) && grid.neighbors(t).is_some_and(|n| n.as_slice().iter().all(|&n| land(n)))
         })
-        .max_by(|&a, &b| nearness(a).total_cmp(&nearness(b)))
+        .max_by(|&a, &b| toward.dot(center(a)).total_cmp(&toward.dot(center(b))))
     else {
         return;
     };
     let around = grid.neighbors(pentagon).expect("a tile of the globe");
     let around = around.as_slice();
-    let mesh = meshes.add(Capsule3d::new(0.18, 0.45));
-    for (k, color) in [(0, Color::srgb(0.85, 0.15, 0.1)), (1, Color::srgb(0.15, 0.35, 0.9))] {
-        let path = [around[k], pentagon, around[k + 2]];
+    let ring: Vec<GlobeTile> = grid.within(pentagon, 4).into_iter().filter(|&(_, d)| d == 4).map(|(t, _)| t).collect();
+    let (scout, city) = (meshes.add(Capsule3d::new(0.18, 0.45)), meshes.add(Cylinder::new(0.45, 0.5)));
+    let mut fog = GlobeFog::new(globe, 2).expect("two players");
+    for (player, color) in PLAYERS.into_iter().enumerate() {
+        let player = player as u32;
+        // The city: the tile four steps away farthest along the scout's side of the pentagon.
+        let side = center(around[2 * player as usize]) - center(pentagon);
+        let Some(&home) = ring.iter().max_by(|&&a, &&b| side.dot(center(a)).total_cmp(&side.dot(center(b)))) else {
+            continue;
+        };
+        for (tile, _) in grid.within(home, 2) {
+            states.set_owner(tile, Some(player)).expect("a player of the palette, a tile of the globe");
+        }
+        let material = materials.add(color);
+        commands.spawn((
+            OnGlobeTile::new(home),
+            Unit { player, sight: 3 },
+            Mesh3d(city.clone()),
+            MeshMaterial3d(material.clone()),
+        ));
+        let k = 2 * player as usize;
+        let path = [around[k], pentagon, around[(k + 2) % around.len()]];
         commands.spawn((
             OnGlobeTile { lift: 0.4, ..OnGlobeTile::new(path[0]) },
             GlobeTileWalk::new(path, 1.0),
             Scout { path },
-            Mesh3d(mesh.clone()),
-            MeshMaterial3d(materials.add(color)),
+            Unit { player, sight: 2 },
+            Mesh3d(scout.clone()),
+            MeshMaterial3d(material),
         ));
+        if player == 0 {
+            // What red knows before the first turn: explored, not in sight.
+            explore(&mut fog, globe, home, 10);
+        }
     }
+    commands.insert_resource(Fogs(fog));
+}
+
+/// Red has explored the land within `radius` of `home` (and the sea it saw from there).
+fn explore(fog: &mut GlobeFog, globe: &GlobeTerrain, home: GlobeTile, radius: u32) {
+    fog.update(globe, 0, [(home, radius)]).expect("a fog of this globe");
+    fog.update(globe, 0, []).expect("a fog of this globe");
+}
+
+/// When a unit reaches a tile: each player's fog sees what its units see now, and the screen
+/// shows red's.
+fn see(
+    globe: Res<HexGlobe>,
+    fogs: Option<ResMut<Fogs>>,
+    units: Query<(&Unit, &OnGlobeTile)>,
+    moved: Query<(), (With<Unit>, Changed<OnGlobeTile>)>,
+    mut states: ResMut<GlobeTileStates>,
+) {
+    let (Some(globe), Some(mut fogs)) = (globe.globe(), fogs) else { return };
+    if moved.is_empty() && !fogs.is_added() {
+        return;
+    }
+    for player in 0..2 {
+        let sighted = units.iter().filter(|(u, _)| u.player == player).map(|(u, at)| (at.tile, u.sight));
+        fogs.0.update(globe, player, sighted).expect("a fog of this globe");
+    }
+    states.show_fog(&fogs.0, 0).expect("the fog of this globe");
 }
 
 /// A scout at the end of its walk turns back.

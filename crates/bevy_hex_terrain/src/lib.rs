@@ -93,11 +93,13 @@ pub use crate::editor::{
 #[cfg(feature = "big_space")]
 pub use crate::far::{HexBigSpacePlugin, HexTerrainGrid};
 pub use crate::globe::{
-    GlobeCamera, GlobeStreamer, GlobeTileWalk, GlobeWalkEnded, HexGlobe, HexGlobeChunk, HexGlobePlugin, NEAR_ANGLE,
-    OnGlobeTile, globe_horizon,
+    GLOBE_ROW, GlobeCamera, GlobeStreamer, GlobeTileStates, GlobeTileWalk, GlobeWalkEnded, HexGlobe, HexGlobeChunk,
+    HexGlobePlugin, NEAR_ANGLE, OnGlobeTile, globe_horizon,
 };
 #[cfg(feature = "minimap")]
 pub use crate::globe::{GlobeMinimapNavigate, GlobeMinimapPicture, HexGlobeMinimap, HexGlobeMinimapPlugin};
+#[cfg(feature = "render")]
+pub use crate::globe::{GlobeParams, HexGlobeExtension, HexGlobeMaterial};
 #[cfg(feature = "picking")]
 pub use crate::globe::{HexGlobePick, HoveredGlobeTile};
 #[cfg(feature = "render")]
@@ -149,8 +151,8 @@ pub mod prelude {
     #[cfg(feature = "render")]
     pub use crate::screenshot::HexScreenshotPlugin;
     pub use crate::{
-        ChunkContent, ChunkDespawned, ChunkSpawned, ChunkStreamer, FogState, GameSetUp, GlobeCamera, HexChunk,
-        HexEditor, HexGlobe, HexGlobeChunk, HexGlobePlugin, HexMap, HexMapEdit, HexMapEdited, HexMapError,
+        ChunkContent, ChunkDespawned, ChunkSpawned, ChunkStreamer, FogState, GameSetUp, GlobeCamera, GlobeTileStates,
+        HexChunk, HexEditor, HexGlobe, HexGlobeChunk, HexGlobePlugin, HexMap, HexMapEdit, HexMapEdited, HexMapError,
         HexMapPlugin, HexMapUnchanged, HexProp, HexPropSettings, HexPropsPlugin, HexStreamingPlugin,
         HexStreamingSettings, HexStreamingStats, HexTerrainAgent, HexTerrainPlugins, HexTerrainSystems,
         HexTileStatePlugin, HexTileStateSettings, HexTileStateStyle, HexWater, HexWaterPlugin, HexWaterSettings,

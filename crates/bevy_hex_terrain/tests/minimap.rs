@@ -227,6 +227,7 @@ fn minimap_settings_inserted_first_are_kept() {
 /// the camera to look down on that pixel's tile, saying so with `GlobeMinimapNavigate`.
 #[test]
 fn the_globes_minimap_shows_the_globe_outlines_the_view_and_flies_the_camera() {
+    use bevy_hex_terrain::hex_terrain::GlobeTile;
     use bevy_hex_terrain::hex_terrain::minimap::GlobeMinimap;
     use bevy_hex_terrain::{
         GlobeCamera, GlobeMinimapNavigate, GlobeMinimapPicture, HexGlobe, HexGlobeMinimap, HexGlobeMinimapPlugin,
@@ -303,4 +304,52 @@ fn the_globes_minimap_shows_the_globe_outlines_the_view_and_flies_the_camera() {
         let near = under == went[0].tile || globe.grid().neighbors(went[0].tile).unwrap().as_slice().contains(&under);
         assert!(near, "the camera over {under:?}, the press on {:?}", went[0].tile);
     }
+    // Tile states: an owner's tiles and the fog of war, painted as the states say once written.
+    let grid = globe.grid();
+    let home = grid.tile_at([0.0, 0.6, 0.8]).unwrap();
+    let owned: Vec<GlobeTile> = grid.within(home, 2).into_iter().map(|(t, _)| t).collect();
+    let seen: Vec<GlobeTile> = grid.within(home, 4).into_iter().map(|(t, _)| t).collect();
+    app.insert_resource(HexTileStateStyle { fog_of_war: true, ..default() });
+    {
+        let mut states = app.world_mut().resource_mut::<GlobeTileStates>();
+        for &t in &seen {
+            states.set_visibility(t, FogState::Explored).unwrap();
+        }
+        for &t in &owned {
+            states.set_owner(t, Some(1)).unwrap();
+            states.set_visibility(t, FogState::Visible).unwrap();
+        }
+    }
+    for _ in 0..3 {
+        app.update();
+    }
+    let picture = app.world().resource::<GlobeMinimapPicture>();
+    let outline: Vec<u32> = picture.outline().to_vec();
+    let data = app.world().resource::<Assets<Image>>().get(picture.image()).unwrap().data.clone().unwrap();
+    let style = app.world().resource::<HexMinimapSettings>().style();
+    let mut counted = [0; 3];
+    for i in (0..w * h).filter(|i| !outline.contains(i)) {
+        let tile = shown.tile_at_pixel(i % w, i / w).unwrap();
+        let pixel = &data[i as usize * 4..i as usize * 4 + 3];
+        if !seen.contains(&tile) {
+            assert_eq!(pixel, &style.unexplored[..3], "pixel {i} of unexplored tile {tile:?}");
+            counted[0] += 1;
+        } else if owned.contains(&tile) {
+            // Visible and owned: its terrain's color tinted toward the owner's, or on its border.
+            let [r, g, b] = globe.ruleset().terrain(globe.tile_info(tile).unwrap().terrain.terrain).look.color;
+            assert_ne!(pixel, &[r, g, b], "pixel {i} of owned tile {tile:?} not tinted");
+            counted[1] += 1;
+        } else {
+            // Explored: dimmer than its terrain's color.
+            let [r, g, b] = globe.ruleset().terrain(globe.tile_info(tile).unwrap().terrain.terrain).look.color;
+            let sum = |p: &[u8]| p.iter().map(|&c| u32::from(c)).sum::<u32>();
+            assert!(
+                sum(pixel) < sum(&[r, g, b]),
+                "pixel {i} of explored tile {tile:?}: {pixel:?} against {:?}",
+                [r, g, b]
+            );
+            counted[2] += 1;
+        }
+    }
+    assert!(counted.iter().all(|&c| c > 10), "{counted:?}");
 }

@@ -122,6 +122,36 @@ fn tiles_hold_six_or_five_times_n_squared_triangles_and_chunks_partition_them() 
     }
 }
 
+/// Every triangle of a chunk's mesh and of the whole mesh is named with the tile it lies in: the
+/// grid's own `tile_at` of the triangle's centroid, each tile naming `6 n^2` triangles (a
+/// pentagon `5 n^2`).
+#[test]
+fn each_triangle_is_named_with_the_tile_it_lies_in() {
+    for (f, rings) in CASES {
+        let g = globe(f, rings, 5, 3);
+        let n = rings + 1;
+        let meshes: Vec<GlobeMesh> =
+            g.chunks().into_iter().map(|c| g.generate(c)).chain([g.generate_whole()]).collect();
+        for mesh in &meshes {
+            assert_eq!(mesh.triangle_tiles.len(), mesh.buffers.indices.len() / 3);
+            let mut count: HashMap<u32, u32> = HashMap::new();
+            for (k, (triangle, tile)) in mesh.buffers.indices.chunks(3).zip(&mesh.triangle_tiles).enumerate() {
+                let c = triangle
+                    .iter()
+                    .map(|&v| position(mesh, v as usize))
+                    .fold([0.0; 3], |a, p| [a[0] + p[0], a[1] + p[1], a[2] + p[2]]);
+                assert_eq!(g.grid().tile_at(c), Some(*tile), "f = {f}, n = {n}: triangle {k}");
+                *count.entry(tile.0).or_default() += 1;
+            }
+            assert!(mesh.tiles.iter().all(|t| count.contains_key(&t.0)), "f = {f}: a tile without triangles");
+            for (&t, &c) in &count {
+                let per = if g.grid().is_pentagon(hex_terrain::GlobeTile(t)) { 5 } else { 6 };
+                assert_eq!(c, per * n * n, "f = {f}: tile {t}");
+            }
+        }
+    }
+}
+
 #[test]
 fn chunks_are_the_whole_globe_bit_for_bit() {
     for (f, rings, kind) in [(3, 1, None), (5, 2, None), (8, 1, None), (6, 2, Some(MapType::Pangaea))] {

@@ -13,8 +13,9 @@ use bevy::tasks::{AsyncComputeTaskPool, Task};
 use hex_terrain::minimap::{GlobeMinimap, TileLook};
 use hex_terrain::{GlobeTerrain, GlobeTile};
 
-use super::{GlobeCamera, HexGlobe, globe_horizon};
+use super::{GlobeCamera, GlobeTileStates, HexGlobe, globe_horizon};
 use crate::minimap::{HexMinimapSettings, layout, new_image, redraw_outline};
+use crate::tiles::{FogState, HexTileStateStyle};
 
 /// The globe's minimap picture and what it was built for (the core's picture and the building
 /// task are not reflected).
@@ -82,7 +83,8 @@ pub struct HexGlobeMinimap;
 /// (its `size.x` the picture's width, its height half that; a value inserted before the plugin
 /// is added is kept). Add it after [`HexGlobePlugin`](super::HexGlobePlugin); it needs a UI
 /// camera to be seen. Tiles show their terrain's minimap color (their type's on a globe without
-/// a climate).
+/// a climate), with the [`GlobeTileStates`]: owners' tint and borders, and the fog of war when
+/// the [`HexTileStateStyle`] draws it.
 #[derive(Debug, Clone, Copy, Default)]
 pub struct HexGlobeMinimapPlugin;
 
@@ -100,7 +102,10 @@ impl Plugin for HexGlobeMinimapPlugin {
             .add_systems(Startup, spawn_node)
             .add_systems(
                 PostUpdate,
-                (place_node, build, finish, draw_outline).chain().after(bevy::transform::TransformSystems::Propagate),
+                (place_node, build, finish, repaint, draw_outline)
+                    .chain()
+                    .after(bevy::transform::TransformSystems::Propagate)
+                    .before(crate::HexTileStateSystems::Pack),
             );
     }
 }
@@ -146,16 +151,54 @@ fn build(globe: Res<HexGlobe>, settings: Res<HexMinimapSettings>, mut picture: R
     picture.task = Some(AsyncComputeTaskPool::get().spawn(async move { GlobeMinimap::new(&terrain, w, style) }));
 }
 
-/// Shows a finished picture, every tile as generated.
-fn finish(mut picture: ResMut<GlobeMinimapPicture>, mut images: ResMut<Assets<Image>>) {
+/// A tile's look from the tile states: every tile visible while the fog of war is not drawn.
+fn look(states: &GlobeTileStates, style: &HexTileStateStyle, tile: GlobeTile) -> TileLook {
+    let fog = if style.fog_of_war { states.visibility(tile) } else { FogState::Visible };
+    TileLook { fog, owner: states.owner(tile) }
+}
+
+/// Shows a finished picture, painted with the tile states.
+fn finish(
+    mut picture: ResMut<GlobeMinimapPicture>,
+    states: Res<GlobeTileStates>,
+    style: Res<HexTileStateStyle>,
+    mut images: ResMut<Assets<Image>>,
+) {
     let Some(task) = picture.task.as_mut() else { return };
     let Some(built) = check_ready(task) else { return };
     picture.task = None;
     let Some(built) = built else { return };
-    picture.painted = built.paint(|_| TileLook::VISIBLE);
+    picture.painted = built.paint(|t| look(&states, &style, t));
     picture.outline.clear();
     let _ = images.insert(&picture.image, new_image(built.size(), picture.painted.clone()));
     picture.picture = Some(Arc::new(built));
+}
+
+/// Paints the shown picture again when the tile states or their style changed (the whole
+/// picture: a pixel a read of its tile's state).
+fn repaint(
+    mut picture: ResMut<GlobeMinimapPicture>,
+    states: Res<GlobeTileStates>,
+    style: Res<HexTileStateStyle>,
+    mut images: ResMut<Assets<Image>>,
+) {
+    if !(states.is_changed() || style.is_changed()) {
+        return;
+    }
+    let picture = &mut *picture;
+    let Some(shown) = &picture.picture else { return };
+    let painted = shown.paint(|t| look(&states, &style, t));
+    if painted == picture.painted {
+        return;
+    }
+    picture.painted = painted;
+    if let Some(mut image) = images.get_mut(&picture.image)
+        && let Some(data) = image.data.as_mut()
+    {
+        data.copy_from_slice(&picture.painted);
+        // The outline is drawn again over the repainted picture.
+        picture.outline.clear();
+    }
 }
 
 /// Draws the cameras' view over the picture, restoring the pixels under the last outline: for

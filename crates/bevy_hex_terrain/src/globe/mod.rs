@@ -17,12 +17,15 @@
 //! climate, else the kinds').
 
 mod camera;
+#[cfg(feature = "render")]
+mod material;
 #[cfg(feature = "minimap")]
 mod minimap;
 #[cfg(feature = "picking")]
 mod picking;
 mod placement;
 mod stream;
+mod tiles;
 
 use std::sync::Arc;
 
@@ -30,15 +33,19 @@ use bevy::prelude::*;
 use hex_terrain::{GlobeChunk, GlobeTerrain, MapConfig};
 
 pub use camera::GlobeCamera;
+#[cfg(feature = "render")]
+pub use material::{GlobeParams, HexGlobeExtension, HexGlobeMaterial};
 #[cfg(feature = "minimap")]
 pub use minimap::{GlobeMinimapNavigate, GlobeMinimapPicture, HexGlobeMinimap, HexGlobeMinimapPlugin};
 #[cfg(feature = "picking")]
 pub use picking::{HexGlobePick, HoveredGlobeTile};
 pub use placement::{GlobeTileWalk, GlobeWalkEnded, OnGlobeTile};
-pub use stream::{GlobeStreamer, HexGlobeChunk, NEAR_ANGLE, globe_horizon};
+pub use stream::{GLOBE_ROW, GlobeStreamer, HexGlobeChunk, NEAR_ANGLE, globe_horizon};
+pub use tiles::GlobeTileStates;
 
 use crate::asset::{HexMapAsset, HexMapLoader};
 use crate::map::{HexMapError, load_failure};
+use crate::tiles::{HexTileStateStyle, HexTileStateSystems};
 use crate::{HexTerrainSystems, MapSource};
 
 /// The globe shown: its compiled terrain and a generation that grows with each config applied.
@@ -131,6 +138,10 @@ impl Plugin for HexGlobePlugin {
         }
         app.init_resource::<HexGlobe>()
             .init_resource::<GlobeStreamer>()
+            .init_resource::<GlobeTileStates>()
+            .init_resource::<HexTileStateStyle>()
+            .register_type::<GlobeTileStates>()
+            .register_type::<HexTileStateStyle>()
             .add_message::<HexMapError>()
             .register_type::<HexGlobe>()
             .register_type::<GlobeCamera>()
@@ -145,12 +156,17 @@ impl Plugin for HexGlobePlugin {
             .add_systems(
                 Update,
                 (
-                    (apply_asset, camera::place).chain().in_set(HexTerrainSystems::Map),
+                    (apply_asset, tiles::follow_globe, camera::place).chain().in_set(HexTerrainSystems::Map),
                     stream::stream.in_set(HexTerrainSystems::Stream),
                     stream::insert.in_set(HexTerrainSystems::Insert),
                     (placement::walk, placement::place).chain().in_set(HexTerrainSystems::Place),
                 ),
-            );
+            )
+            .add_systems(PostUpdate, tiles::clear_journal.in_set(HexTileStateSystems::Pack));
+        #[cfg(feature = "render")]
+        if app.is_plugin_added::<bevy::pbr::PbrPlugin>() {
+            material::build(app);
+        }
         #[cfg(feature = "picking")]
         {
             app.add_systems(Update, camera::orbit.before(camera::place).in_set(HexTerrainSystems::Map));

@@ -139,12 +139,11 @@ pub(super) fn stream(
     streamer.current = current;
 }
 
-/// Gives each chunk whose task finished its mesh (and, with the renderer, the globe's material).
+/// Gives each chunk whose task finished its mesh (the globe's material comes with the renderer,
+/// `material.rs`).
 pub(super) fn insert(
     mut commands: Commands,
     mut meshes: ResMut<Assets<Mesh>>,
-    #[cfg(feature = "render")] mut materials: Option<ResMut<Assets<StandardMaterial>>>,
-    #[cfg(feature = "render")] mut material: Local<Option<Handle<StandardMaterial>>>,
     mut tasks: Query<(Entity, &mut HexGlobeChunk, &mut GlobeChunkTask, Option<&Mesh3d>)>,
 ) {
     for (entity, mut chunk, mut task, old) in &mut tasks {
@@ -153,15 +152,10 @@ pub(super) fn insert(
             meshes.remove(&old.0);
         }
         chunk.generation = Some(task.generation);
-        let mut e = commands.entity(entity);
-        e.remove::<GlobeChunkTask>().insert((Mesh3d(meshes.add(mesh)), Transform::from_translation(origin)));
-        #[cfg(feature = "render")]
-        if let Some(materials) = materials.as_mut() {
-            let handle = material.get_or_insert_with(|| {
-                materials.add(StandardMaterial { perceptual_roughness: 0.9, reflectance: 0.2, ..default() })
-            });
-            e.insert(MeshMaterial3d(handle.clone()));
-        }
+        commands
+            .entity(entity)
+            .remove::<GlobeChunkTask>()
+            .insert((Mesh3d(meshes.add(mesh)), Transform::from_translation(origin)));
     }
 }
 
@@ -169,9 +163,12 @@ pub(super) fn insert(
 /// each tile, pentagons too.
 const OUTLINE: f32 = 0.78;
 
-/// A globe chunk's Bevy mesh: positions, normals, u32 indices and vertex colors (the biome
-/// colors with a climate, else each vertex's kind's; darker on tile borders), sRGB to linear.
-fn globe_mesh(mesh: GlobeMesh) -> Mesh {
+/// A globe chunk's Bevy mesh: positions, normals, u32 indices, vertex colors (the biome colors
+/// with a climate, else each vertex's kind's; darker on tile borders; sRGB to linear) and in the
+/// first UV each vertex's tile (`id % GLOBE_ROW`, `id / GLOBE_ROW`) for the material's tile
+/// states. A point on a tile border is one vertex for each tile holding it (the same position,
+/// normal and color), so every corner of a triangle names the triangle's tile.
+pub(crate) fn globe_mesh(mesh: GlobeMesh) -> Mesh {
     let b = mesh.buffers;
     let srgb: Vec<[u8; 3]> = if b.colors.is_empty() {
         let kinds = [TileKind::Sea, TileKind::Land, TileKind::Mountain];
@@ -188,9 +185,40 @@ fn globe_mesh(mesh: GlobeMesh) -> Mesh {
             [c.red * shade, c.green * shade, c.blue * shade, 1.0]
         })
         .collect();
+    // A tile's triangles come one after the other: a vertex is copied when a tile other than the
+    // last one to use it takes it.
+    let count = b.positions.len();
+    let mut copy_of = vec![(u32::MAX, 0u32); count];
+    let capacity = count + count / 2;
+    let (mut positions, mut normals, mut vertex_colors, mut uvs) = (
+        Vec::with_capacity(capacity),
+        Vec::with_capacity(capacity),
+        Vec::with_capacity(capacity),
+        Vec::with_capacity(capacity),
+    );
+    let mut indices = Vec::with_capacity(b.indices.len());
+    for (triangle, tile) in b.indices.chunks_exact(3).zip(&mesh.triangle_tiles) {
+        for &v in triangle {
+            let (last, copy) = &mut copy_of[v as usize];
+            if *last != tile.0 {
+                *last = tile.0;
+                *copy = positions.len() as u32;
+                positions.push(b.positions[v as usize]);
+                normals.push(b.normals[v as usize]);
+                vertex_colors.push(colors[v as usize]);
+                uvs.push([(tile.0 % GLOBE_ROW) as f32, (tile.0 / GLOBE_ROW) as f32]);
+            }
+            indices.push(*copy);
+        }
+    }
     Mesh::new(PrimitiveTopology::TriangleList, RenderAssetUsages::default())
-        .with_inserted_attribute(Mesh::ATTRIBUTE_POSITION, b.positions)
-        .with_inserted_attribute(Mesh::ATTRIBUTE_NORMAL, b.normals)
-        .with_inserted_attribute(Mesh::ATTRIBUTE_COLOR, colors)
-        .with_inserted_indices(Indices::U32(b.indices))
+        .with_inserted_attribute(Mesh::ATTRIBUTE_POSITION, positions)
+        .with_inserted_attribute(Mesh::ATTRIBUTE_NORMAL, normals)
+        .with_inserted_attribute(Mesh::ATTRIBUTE_COLOR, vertex_colors)
+        .with_inserted_attribute(Mesh::ATTRIBUTE_UV_0, uvs)
+        .with_inserted_indices(Indices::U32(indices))
 }
+
+/// Tiles a row of the globe's textures holds, and of the first UV's tile ids: a tile's id is
+/// `u + v * GLOBE_ROW`.
+pub const GLOBE_ROW: u32 = 1024;

@@ -14,8 +14,9 @@ use bevy::render::render_resource::{AsBindGroup, RenderPipelineDescriptor, Speci
 use bevy::shader::{ShaderDefVal, ShaderRef, load_shader_library};
 pub use layers::MAX_TEXTURE_LAYERS;
 use layers::TextureLayers;
-use params::{Look, SHADER_DEFS, owner_colors, params, window_param};
+use params::{Look, params, window_param};
 pub use params::{OwnerColors, RenderOrigin, TerrainParams};
+pub(crate) use params::{SHADER_DEFS, flags, linear, owner_colors};
 pub use settings::HexTerrainMaterialSettings;
 use tile_texture::TileStateTexture;
 

@@ -31,7 +31,7 @@ pub mod flags {
 
 /// The shader defs every terrain pipeline gets: the flag bits, the owner palette size and the
 /// tile state texel's layout (`tiles/window.rs`), so Rust and WGSL share one definition of each.
-pub(super) const SHADER_DEFS: [(&str, u32); 15] = [
+pub(crate) const SHADER_DEFS: [(&str, u32); 15] = [
     ("HEX_FLAG_OUTLINES", flags::OUTLINES),
     ("HEX_FLAG_TEXTURES", flags::TEXTURES),
     ("HEX_FLAG_POINTY", flags::POINTY),
@@ -156,7 +156,7 @@ impl Default for OwnerColors {
     }
 }
 
-fn linear(c: Color) -> Vec4 {
+pub(crate) fn linear(c: Color) -> Vec4 {
     Vec4::from_array(c.to_linear().to_f32_array())
 }
 

@@ -4,9 +4,11 @@
 //! [`TileStateUpload`], which the material plugin copies into the texture the shader reads
 //! (`material/tile_texture.rs`). No mesh is touched.
 
+mod error;
 mod state;
 mod store;
 mod style;
+pub(crate) mod texel;
 mod window;
 
 #[cfg(test)]
@@ -15,10 +17,10 @@ mod tests;
 use bevy::prelude::*;
 
 pub use hex_terrain::save::{SaveError, TileStateSave};
-#[cfg(feature = "render")]
-pub(crate) use state::{FOG_MASK, bit as highlight_bit};
 pub use state::{FogState, Highlight, MAX_OWNERS, TileStateError, TileStates};
 pub use style::HexTileStateStyle;
+#[cfg(feature = "render")]
+pub(crate) use texel::{FOG_MASK, bit as highlight_bit};
 #[cfg(feature = "render")]
 pub(crate) use window::TEXEL_BYTES;
 pub use window::{Texel, TileStateUpload};

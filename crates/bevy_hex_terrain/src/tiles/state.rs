@@ -10,49 +10,11 @@ mod fog;
 mod save;
 
 use super::store::TileStore;
+use super::texel::{self, FOG_MASK, bit};
 use super::window::{Texel, TexelWindow, TileStateUpload};
 
+pub use super::error::TileStateError;
 pub use hex_terrain::save::{FogState, Highlight, MAX_OWNERS};
-
-/// A highlight's bit in a texel's first word (the shader takes these as shader defs).
-pub(crate) const fn bit(highlight: Highlight) -> u16 {
-    1 << (2 + highlight as u16)
-}
-
-/// A write [`TileStates`] refused; the state is unchanged.
-#[derive(Debug, Clone, PartialEq, thiserror::Error)]
-pub enum TileStateError {
-    /// The tile is not on the (bounded) map.
-    #[error("tile ({}, {}) is outside the map: columns {}..{} and rows {}..{} (offset coordinates) are allowed, it is at column {} row {}", .tile.x, .tile.y, .bounds.min[0], .bounds.max[0], .bounds.min[1], .bounds.max[1], .offset[0], .offset[1])]
-    OutsideMap {
-        /// The tile.
-        tile: Hex,
-        /// Its offset coordinate.
-        offset: [i32; 2],
-        /// The map's tiles.
-        bounds: TileRect,
-    },
-    /// An owner past the last player [`MAX_OWNERS`] allows.
-    #[error("owner {owner} is out of range: owners are players 0..{MAX_OWNERS} (None for nobody)")]
-    OwnerOutOfRange {
-        /// The player given.
-        owner: u32,
-    },
-    /// A player the fog of war shown ([`TileStates::show_fog`]) does not have.
-    #[error("player {player}: the fog has players 0..{players}")]
-    NoSuchPlayer {
-        /// The player given.
-        player: u32,
-        /// How many players the fog has.
-        players: u32,
-    },
-    /// An overlay color with a NaN or infinite component.
-    #[error("overlay color {color:?} is not finite: every component must be a number in 0..=1")]
-    OverlayNotFinite {
-        /// The color given.
-        color: [f32; 4],
-    },
-}
 
 /// Per-tile game state the terrain material draws without rebuilding a mesh: fog of war
 /// ([`FogState`]), territory ([`set_owner`](Self::set_owner)), a lens overlay color and any
@@ -138,36 +100,30 @@ impl Default for TileStates {
     }
 }
 
-/// The fog state's bits in a texel's first word (the shader takes it as a shader def).
-pub(crate) const FOG_MASK: u16 = 0b11;
-
 impl TileStates {
     /// What the player knows of a tile.
     #[must_use]
     pub fn visibility(&self, tile: Hex) -> FogState {
-        // The two fog bits hold 0, 1 or 2: any other value is never written.
-        FogState::from_bits((self.texel(tile)[0] & FOG_MASK) as u8).unwrap_or(FogState::Visible)
+        texel::fog(self.texel(tile))
     }
 
     /// The owner of a tile, a player `0..MAX_OWNERS` numbered as a game setup numbers its starts
     /// ([`HexMap::start`](crate::HexMap::start)), if any.
     #[must_use]
     pub fn owner(&self, tile: Hex) -> Option<u32> {
-        // The texel holds the player + 1; 0 is nobody.
-        u32::from(self.texel(tile)[1]).checked_sub(1)
+        texel::owner(self.texel(tile))
     }
 
     /// The overlay color of a tile, if any (drawn while the lens is on).
     #[must_use]
     pub fn overlay(&self, tile: Hex) -> Option<Color> {
-        let [_, _, rg, ba] = self.texel(tile);
-        (ba >> 8 != 0).then(|| Color::srgba_u8(rg as u8, (rg >> 8) as u8, ba as u8, (ba >> 8) as u8))
+        texel::overlay(self.texel(tile))
     }
 
     /// Whether a tile carries a highlight.
     #[must_use]
     pub fn is_highlighted(&self, tile: Hex, highlight: Highlight) -> bool {
-        self.texel(tile)[0] & bit(highlight) != 0
+        texel::is_highlighted(self.texel(tile), highlight)
     }
 
     /// The tiles carrying a highlight.
@@ -181,7 +137,7 @@ impl TileStates {
     /// [`TileStateError::OutsideMap`]; nothing changes.
     pub fn set_visibility(&mut self, tile: Hex, fog: FogState) -> Result<(), TileStateError> {
         let oc = self.check(tile)?;
-        self.update(oc, |t| t[0] = (t[0] & !FOG_MASK) | fog as u16);
+        self.update(oc, |t| *t = texel::with_fog(*t, fog));
         Ok(())
     }
 
@@ -191,9 +147,7 @@ impl TileStates {
     pub fn hide_visible(&mut self) {
         for oc in std::mem::take(&mut self.visible) {
             let old = self.tiles.get(oc);
-            let mut texel = old;
-            texel[0] = (texel[0] & !FOG_MASK) | FogState::Explored as u16;
-            self.store(oc, old, texel);
+            self.store(oc, old, texel::with_fog(old, FogState::Explored));
         }
     }
 
@@ -204,12 +158,8 @@ impl TileStates {
     /// [`TileStateError::OutsideMap`], [`TileStateError::OwnerOutOfRange`]; nothing changes.
     pub fn set_owner(&mut self, tile: Hex, owner: Option<u32>) -> Result<(), TileStateError> {
         let oc = self.check(tile)?;
-        if let Some(owner) = owner.filter(|&o| o >= MAX_OWNERS) {
-            return Err(TileStateError::OwnerOutOfRange { owner });
-        }
-        // The texel holds the player + 1 (below 65); 0 is nobody.
-        let texel = owner.map_or(0, |o| o as u16 + 1);
-        self.update(oc, |t| t[1] = texel);
+        let word = texel::owner_word(owner)?;
+        self.update(oc, |t| t[1] = word);
         Ok(())
     }
 
@@ -220,21 +170,8 @@ impl TileStates {
     /// [`TileStateError::OutsideMap`], [`TileStateError::OverlayNotFinite`]; nothing changes.
     pub fn set_overlay(&mut self, tile: Hex, color: Option<Color>) -> Result<(), TileStateError> {
         let oc = self.check(tile)?;
-        let [r, g, b, a] = match color {
-            None => [0; 4],
-            Some(c) => {
-                let s = c.to_srgba();
-                let f = [s.red, s.green, s.blue, s.alpha];
-                if f.iter().any(|v| !v.is_finite()) {
-                    return Err(TileStateError::OverlayNotFinite { color: f });
-                }
-                s.to_u8_array()
-            }
-        };
-        self.update(oc, |t| {
-            t[2] = u16::from(r) | u16::from(g) << 8;
-            t[3] = u16::from(b) | u16::from(a) << 8;
-        });
+        let [rg, ba] = texel::overlay_words(color)?;
+        self.update(oc, |t| [t[2], t[3]] = [rg, ba]);
         Ok(())
     }
 
@@ -248,8 +185,7 @@ impl TileStates {
         let set = &mut self.highlighted[highlight as usize];
         let changed = if on { set.insert(tile) } else { set.remove(&tile) };
         if changed {
-            let bit = bit(highlight);
-            self.update(oc, |t| t[0] = if on { t[0] | bit } else { t[0] & !bit });
+            self.update(oc, |t| *t = texel::with_highlight(*t, highlight, on));
         }
         Ok(())
     }
@@ -268,12 +204,11 @@ impl TileStates {
             }
         }
         let old = std::mem::take(&mut self.highlighted[highlight as usize]);
-        let bit = bit(highlight);
         for &tile in old.difference(&new) {
-            self.update(self.offset_of(tile), |t| t[0] &= !bit);
+            self.update(self.offset_of(tile), |t| *t = texel::with_highlight(*t, highlight, false));
         }
         for &tile in new.difference(&old) {
-            self.update(self.offset_of(tile), |t| t[0] |= bit);
+            self.update(self.offset_of(tile), |t| *t = texel::with_highlight(*t, highlight, true));
         }
         self.highlighted[highlight as usize] = new;
         skipped
@@ -362,9 +297,9 @@ impl TileStates {
             return;
         }
         self.writes += 1;
-        if texel[0] & FOG_MASK == FogState::Visible as u16 {
+        if texel::is_visible(texel) {
             self.visible.insert(oc);
-        } else if old[0] & FOG_MASK == FogState::Visible as u16 {
+        } else if texel::is_visible(old) {
             self.visible.remove(&oc);
         }
         self.tiles.set(oc, texel);
@@ -434,7 +369,7 @@ impl TileStates {
             let tile = old_geometry.tile_from_offset(oc.to_array());
             if let Ok(oc) = self.check(tile) {
                 self.tiles.set(oc, texel);
-                if texel[0] & FOG_MASK == FogState::Visible as u16 {
+                if texel::is_visible(texel) {
                     self.visible.insert(oc);
                 }
             }

@@ -316,6 +316,7 @@ impl GlobeTerrain {
             points: Vec::with_capacity(self.vertex_count() as usize),
             heights: Vec::with_capacity(self.vertex_count() as usize),
             tiles: Vec::with_capacity(self.grid.tile_count() as usize),
+            triangle_tiles: Vec::with_capacity(self.triangle_count() as usize),
         };
         let mut slot = vec![u32::MAX; self.fine.id_space() as usize];
         for part in parts {
@@ -344,6 +345,7 @@ impl GlobeTerrain {
                 .collect();
             whole.buffers.indices.extend(b.indices.iter().map(|&i| map[i as usize]));
             whole.tiles.extend(part.tiles);
+            whole.triangle_tiles.extend(part.triangle_tiles);
         }
         whole
     }

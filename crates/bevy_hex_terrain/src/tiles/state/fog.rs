@@ -5,7 +5,7 @@ use bevy::platform::collections::HashMap;
 use bevy::prelude::*;
 use hex_terrain::FogOfWar;
 
-use super::{FOG_MASK, FogState, TileStateError, TileStates};
+use super::{FOG_MASK, FogState, TileStateError, TileStates, texel};
 
 impl TileStates {
     /// Shows `player`'s fog: each tile's visibility becomes what the fog says `player` knows of
@@ -49,11 +49,11 @@ impl TileStates {
         // What another view showed and this player has not seen goes dark again.
         for (oc, texel) in self.tiles.stored() {
             if texel[0] & FOG_MASK != 0 && !seen.contains_key(&oc) {
-                self.update(oc, |t| t[0] &= !FOG_MASK);
+                self.update(oc, |t| *t = texel::with_fog(*t, FogState::Unexplored));
             }
         }
         for (oc, state) in seen {
-            self.update(oc, |t| t[0] = (t[0] & !FOG_MASK) | state as u16);
+            self.update(oc, |t| *t = texel::with_fog(*t, state));
         }
         Ok(())
     }

@@ -36,6 +36,10 @@ pub struct GlobeMesh {
     pub heights: Vec<f32>,
     /// Its tiles.
     pub tiles: Vec<GlobeTile>,
+    /// The tile each triangle lies in (triangle `k` is `indices[3 k..3 k + 3]`): a tile's
+    /// triangles are all in it, so a point on a border is in the triangles of every tile holding
+    /// it.
+    pub triangle_tiles: Vec<GlobeTile>,
 }
 
 impl GlobeTerrain {
@@ -61,6 +65,7 @@ impl GlobeTerrain {
             .collect();
         let mut slots = Slots::new(fine, tiles.len() * per + tiles.len() * per / 4);
         let mut indices = Vec::with_capacity(tiles.len() * cell_triangles.len() * 3);
+        let mut triangle_tiles = Vec::with_capacity(tiles.len() * cell_triangles.len());
         // Each tile's points' slots, cell by cell, and where each mesh point's ring is found: in
         // its hexagon's template (the index of its cell in `locals`), or `NOT_INSIDE`.
         let mut locals: Vec<u32> = Vec::with_capacity(tiles.len() * per);
@@ -80,10 +85,12 @@ impl GlobeTerrain {
                 }
                 let local = &locals[base..];
                 indices.extend(cell_triangles.iter().flat_map(|t| t.map(|k| local[usize::from(k)])));
+                triangle_tiles.extend(std::iter::repeat_n(t, cell_triangles.len()));
             } else {
                 locals.extend(std::iter::repeat_n(NOT_INSIDE, per));
                 for triangle in fine.triangles(self.spot(t)) {
                     indices.extend(triangle.map(|p| slots.intern(p, None)));
+                    triangle_tiles.push(t);
                 }
                 home.resize(slots.points.len(), NOT_INSIDE);
             }
@@ -159,6 +166,7 @@ impl GlobeTerrain {
             points: slots.points[..count].iter().map(|&p| GlobePoint(fine.id(p))).collect(),
             heights: finished.iter().map(|f| f.height).collect(),
             tiles,
+            triangle_tiles,
         }
     }
 }

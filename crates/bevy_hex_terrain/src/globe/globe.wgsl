@@ -1,0 +1,170 @@
+// The globe's material: StandardMaterial's lighting over the mesh's vertex colors, with the
+// per-tile game state of GlobeTileStates drawn per fragment. Each vertex carries its tile's id in
+// its first UV (id mod row, id / row: every corner of a triangle the same tile, so the value is
+// exact); the tile state texture holds each tile's texel, the topology texture its center and
+// neighbors. Fog and borders measure the fragment's distance to each edge as the distance to the
+// plane halfway between the two tiles' centers, so the three tiles at a corner (a pentagon's
+// five neighbors too) agree.
+
+#import bevy_pbr::{
+    pbr_fragment::pbr_input_from_standard_material,
+    pbr_functions::{alpha_discard, apply_pbr_lighting, main_pass_post_lighting_processing},
+    forward_io::{VertexOutput, FragmentOutput},
+}
+
+struct GlobeParams {
+    hover_color: vec4<f32>,
+    selected_color: vec4<f32>,
+    reachable_color: vec4<f32>,
+    unexplored_color: vec4<f32>,
+    // Fractions of a tile's radius (center to corner).
+    border_width: f32,
+    border_inset: f32,
+    fog_softness: f32,
+    tint_strength: f32,
+    // Bits HEX_FLAG_* (material/params.rs's `flags`).
+    flags: u32,
+}
+
+struct OwnerColors {
+    colors: array<vec4<f32>, #{HEX_MAX_OWNERS}>,
+}
+
+@group(#{MATERIAL_BIND_GROUP}) @binding(100) var<uniform> params: GlobeParams;
+@group(#{MATERIAL_BIND_GROUP}) @binding(101) var tile_state: texture_2d<u32>;
+@group(#{MATERIAL_BIND_GROUP}) @binding(102) var topology: texture_2d<u32>;
+@group(#{MATERIAL_BIND_GROUP}) @binding(103) var<uniform> owners: OwnerColors;
+
+// Tiles a texture row holds.
+const ROW: u32 = #{HEX_GLOBE_ROW}u;
+const FLAG_FOG: u32 = #{HEX_FLAG_FOG}u;
+const FLAG_BORDERS: u32 = #{HEX_FLAG_BORDERS}u;
+const FLAG_TERRITORY_TINT: u32 = #{HEX_FLAG_TERRITORY_TINT}u;
+const FLAG_LENS: u32 = #{HEX_FLAG_LENS}u;
+const FOG_MASK: u32 = #{HEX_TEXEL_FOG_MASK}u;
+const HOVERED: u32 = #{HEX_TEXEL_HOVERED}u;
+const SELECTED: u32 = #{HEX_TEXEL_SELECTED}u;
+const REACHABLE: u32 = #{HEX_TEXEL_REACHABLE}u;
+const FOG_EXPLORED: u32 = #{HEX_FOG_EXPLORED}u;
+const FOG_VISIBLE: u32 = #{HEX_FOG_VISIBLE}u;
+// A hexagon's inner radius over its outer one: the distance from an edge to the center.
+const INNER: f32 = 0.8660254;
+
+fn has_flag(flag: u32) -> bool {
+    return (params.flags & flag) != 0u;
+}
+
+fn texel_of(tile: u32) -> vec4<u32> {
+    return textureLoad(tile_state, vec2<u32>(tile % ROW, tile / ROW), 0);
+}
+
+// Texel `k` of a tile's three in the topology texture: its center (x, y, z as bits) and neighbor
+// count, then its neighbors, four and two.
+fn topology_of(tile: u32, k: u32) -> vec4<u32> {
+    return textureLoad(topology, vec2<u32>(3u * (tile % ROW) + k, tile / ROW), 0);
+}
+
+fn center_of(tile: u32) -> vec3<f32> {
+    return bitcast<vec3<f32>>(topology_of(tile, 0u).xyz);
+}
+
+fn srgb_to_linear(c: vec3<f32>) -> vec3<f32> {
+    return select(pow((c + 0.055) / 1.055, vec3<f32>(2.4)), c / 12.92, c <= vec3<f32>(0.04045));
+}
+
+fn tint(color: vec4<f32>, t: vec4<f32>) -> vec4<f32> {
+    return vec4<f32>(mix(color.rgb, t.rgb, t.a), color.a);
+}
+
+@fragment
+fn fragment(in: VertexOutput, @builtin(front_facing) is_front: bool) -> FragmentOutput {
+    var pbr_input = pbr_input_from_standard_material(in, is_front);
+    var color = pbr_input.material.base_color;
+    var explored = 1.0;
+    var visible = 1.0;
+    var border = vec4<f32>(0.0);
+#ifdef VERTEX_UVS_A
+    let tile = u32(round(in.uv.x)) + u32(round(in.uv.y)) * ROW;
+    let texel = texel_of(tile);
+    let owner = texel.y;
+    if owner != 0u && has_flag(FLAG_TERRITORY_TINT) {
+        color = tint(color, vec4<f32>(owners.colors[owner - 1u].rgb, params.tint_strength));
+    }
+    let overlay = vec4<f32>(
+        f32(texel.z & 255u), f32(texel.z >> 8u), f32(texel.w & 255u), f32(texel.w >> 8u),
+    ) / 255.0;
+    if has_flag(FLAG_LENS) && overlay.a > 0.0 {
+        color = tint(color, vec4<f32>(srgb_to_linear(overlay.rgb), overlay.a));
+    }
+    if (texel.x & REACHABLE) != 0u { color = tint(color, params.reachable_color); }
+    if (texel.x & SELECTED) != 0u { color = tint(color, params.selected_color); }
+    if (texel.x & HOVERED) != 0u { color = tint(color, params.hover_color); }
+
+    // Fog weights: own tile 1, each neighbor from 1 at the shared edge to 0 at `fog_softness`
+    // inside; the owner's border where the neighbor across is not the owner's.
+    let fog = texel.x & FOG_MASK;
+    explored = f32(fog >= FOG_EXPLORED);
+    visible = f32(fog == FOG_VISIBLE);
+    var total = 1.0;
+    let p = normalize(in.world_position.xyz);
+    let c = center_of(tile);
+    let head = topology_of(tile, 0u);
+    let neighbors = array<u32, 6>(
+        topology_of(tile, 1u).x, topology_of(tile, 1u).y, topology_of(tile, 1u).z, topology_of(tile, 1u).w,
+        topology_of(tile, 2u).x, topology_of(tile, 2u).y,
+    );
+    let soft = max(params.fog_softness, 1e-4);
+    let band = vec2<f32>(params.border_inset, params.border_inset + params.border_width);
+    // The nearest edge toward another owner (a fragment of the mesh's tile past the halfway
+    // plane, where the mesh's border zigzags, is nearer than 0 and draws no line).
+    var nearest_other = 2.0;
+    for (var i = 0u; i < head.w; i++) {
+        let n = neighbors[i];
+        let across = c - center_of(n);
+        // 0 on the plane halfway between the centers, INNER at this tile's center.
+        let d = dot(p, across) / (0.5 * dot(across, across)) * INNER;
+        let near_fog = d < soft;
+        let near_border = owner != 0u && d < band.y;
+        if !(near_fog || near_border) {
+            continue;
+        }
+        let other = texel_of(n);
+        if near_fog {
+            let k = 1.0 - smoothstep(0.0, soft, max(d, 0.0));
+            let nf = other.x & FOG_MASK;
+            explored += k * f32(nf >= FOG_EXPLORED);
+            visible += k * f32(nf == FOG_VISIBLE);
+            total += k;
+        }
+        if near_border && other.y != owner {
+            nearest_other = min(nearest_other, d);
+        }
+    }
+    // Antialiased edges of the band, a hundredth of the radius wide.
+    let aa = 0.01;
+    let line = smoothstep(band.x - aa, band.x + aa, nearest_other) * (1.0 - smoothstep(band.y - aa, band.y + aa, nearest_other));
+    explored /= total;
+    visible /= total;
+    if !has_flag(FLAG_FOG) {
+        explored = 1.0;
+        visible = 1.0;
+    }
+    if has_flag(FLAG_BORDERS) && owner != 0u {
+        border = vec4<f32>(owners.colors[owner - 1u].rgb, 0.95 * line);
+    }
+#endif
+    pbr_input.material.base_color = alpha_discard(pbr_input.material, color);
+    var out: FragmentOutput;
+    out.color = apply_pbr_lighting(pbr_input);
+    // The border over the lit color, so lighting never washes it out; the fog over everything:
+    // desaturated and darker where explored, the unexplored color (faintly mottled) where never seen.
+    var lit = mix(out.color.rgb, border.rgb, border.a);
+    let grey = vec3<f32>(dot(lit, vec3<f32>(0.2126, 0.7152, 0.0722)));
+    let remembered = mix(grey, lit, 0.2) * 0.6;
+    let seen = mix(remembered, lit, visible);
+    let q = in.world_position.xyz;
+    let mottle = 0.85 + 0.15 * sin(q.x * 0.37 + sin(q.z * 0.23)) * sin(q.y * 0.31 + sin(q.x * 0.19));
+    lit = mix(params.unexplored_color.rgb * mottle, seen, explored);
+    out.color = main_pass_post_lighting_processing(pbr_input, vec4<f32>(lit, out.color.a));
+    return out;
+}
