@@ -94,10 +94,11 @@ if [ "${1:-}" = "--screens" ]; then
   shot minimal.png minimal
   shot streaming.png streaming HEXTERRAIN_STILL=1
   shot far_example.png far
-  # The globe example at three zooms: the planet, a region, the ground tilted to the horizon.
-  shot globe_planet.png globe HEXTERRAIN_GLOBE_ALTITUDE=60
-  shot globe_region.png globe HEXTERRAIN_GLOBE_ALTITUDE=14
-  shot globe_ground.png globe HEXTERRAIN_GLOBE_ALTITUDE=3
+  # The globe example at three zooms: the planet (without the fog), the players' region in red's
+  # fog, the ground tilted to the horizon beside red's city.
+  shot globe_planet.png globe HEXTERRAIN_GLOBE_ALTITUDE=60 HEXTERRAIN_FOG=off
+  shot globe_region.png globe HEXTERRAIN_GLOBE_AT=-144,26.6 HEXTERRAIN_GLOBE_ALTITUDE=14
+  shot globe_ground.png globe HEXTERRAIN_GLOBE_AT=-147,25 HEXTERRAIN_GLOBE_ALTITUDE=3
   # Straight down on a pentagon on land, picked (under Xvfb the pointer rests at the middle of
   # the screen, and the example names the tile under it), two scouts walking across it.
   shot globe_pentagon.png globe HEXTERRAIN_GLOBE_AT=-144,26.6 HEXTERRAIN_GLOBE_ALTITUDE=25

@@ -11,7 +11,8 @@
 //! borders and tint), and a scout walking back and forth across the pentagon between two of its
 //! neighbors (`OnGlobeTile`, `GlobeTileWalk`). The globe is drawn in red's fog of war
 //! (`GlobeFog`): what its city and scout see now, what red has explored (it starts knowing the
-//! land within ten tiles of its city) greyed, the rest dark. `HEXTERRAIN_GLOBE_ALTITUDE` sets the camera's
+//! land within ten tiles of its city) greyed, the rest dark (`HEXTERRAIN_FOG=off` draws every
+//! tile as generated). `HEXTERRAIN_GLOBE_ALTITUDE` sets the camera's
 //! first altitude and `HEXTERRAIN_GLOBE_AT=LON,LAT` its first place in degrees (the screenshots
 //! use them: `-144,26.6` looks down on that pentagon). The minimap (bottom right) is the whole
 //! globe drawn equirectangular, the camera's view outlined; a click or a drag there flies the
@@ -67,8 +68,13 @@ fn main() {
             HexScreenshotPlugin::default(),
         ))
         .insert_resource(HexMinimapSettings { size: UVec2::new(320, 160), ..default() })
-        // Fog of war drawn; the owners' colors are the players'.
-        .insert_resource(HexTileStateStyle { fog_of_war: true, owner_colors: PLAYERS.to_vec(), ..default() })
+        // Fog of war drawn (HEXTERRAIN_FOG=off: every tile as generated); the owners' colors are
+        // the players'.
+        .insert_resource(HexTileStateStyle {
+            fog_of_war: std::env::var("HEXTERRAIN_FOG").as_deref() != Ok("off"),
+            owner_colors: PLAYERS.to_vec(),
+            ..default()
+        })
         .add_systems(Startup, move |mut commands: Commands| {
             // The orbit camera, which keeps the globe streamed to its horizon, with the sun over
             // its shoulder (from the top left of the view, wherever it flies).
@@ -101,7 +107,7 @@ fn main() {
 fn found_the_players(
     mut commands: Commands,
     globe: Res<HexGlobe>,
-    cameras: Query<&GlobalTransform, With<GlobeCamera>>,
+    cameras: Query<&GlobeCamera>,
     mut states: ResMut<GlobeTileStates>,
     mut meshes: ResMut<Assets<Mesh>>,
     mut materials: ResMut<Assets<StandardMaterial>>,
@@ -112,7 +118,8 @@ fn found_the_players(
     let grid = globe.grid();
     let land = |t: GlobeTile| globe.tile_kind(t) == Some(TileKind::Land);
     let center = |t: GlobeTile| bevy::math::DVec3::from_array(grid.center(t).expect("a tile of the globe"));
-    let toward = camera.translation().normalize_or_zero().as_dvec3();
+    // Under the camera: its orientation, set before its transform is.
+    let toward = (camera.orientation * Vec3::Z).as_dvec3();
     let Some(pentagon) = grid
         .tiles()
         .filter(|&t| {

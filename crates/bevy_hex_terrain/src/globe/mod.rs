@@ -12,9 +12,11 @@
 //! chunks carry a [`HexGlobePick`] (the tile, pentagons as any other), and [`HoveredGlobeTile`]
 //! holds the tile under the mouse.
 //!
-//! The flat map's material, tile states, props, minimap and editor do not reach a globe yet: its
-//! chunks are drawn with a `StandardMaterial` in their vertex colors (the biome colors with a
-//! climate, else the kinds').
+//! [`GlobeTileStates`] holds the game's per-tile state (fog of war, owners, the lens,
+//! highlights), which the globe's material ([`HexGlobeMaterial`], with the `render` feature)
+//! draws over the vertex colors (the biome colors with a climate, else the kinds') with
+//! `StandardMaterial`'s lighting, styled by [`HexTileStateStyle`]. The flat map's textures, water,
+//! props and editor do not reach a globe yet.
 
 mod camera;
 #[cfg(feature = "render")]
@@ -89,9 +91,12 @@ impl HexGlobe {
 
 /// Shows a hex globe: the [`HexGlobe`] resource from a map file or a config, its chunks streamed
 /// around every [`HexTerrainAgent`](crate::HexTerrainAgent) to the agent's horizon
-/// ([`GlobeStreamer`], [`HexGlobeChunk`]), and the [`GlobeCamera`] orbit controls. Its systems
-/// run in [`HexTerrainSystems`]: applying the file in `Map` (the camera moves there too, before
-/// streaming), streaming in `Stream`, inserting meshes in `Insert`. Not a part of
+/// ([`GlobeStreamer`], [`HexGlobeChunk`]), the [`GlobeCamera`] orbit controls, and the
+/// [`GlobeTileStates`] drawn by the globe's material (when Bevy's `PbrPlugin` is there) in the
+/// [`HexTileStateStyle`] (settings resources a game may insert first). Its systems run in
+/// [`HexTerrainSystems`]: applying the file and following it with the tile states in `Map` (the
+/// camera moves there too, before streaming), streaming in `Stream`, inserting meshes in
+/// `Insert`, the material in `Render`. Not a part of
 /// [`HexTerrainPlugins`](crate::HexTerrainPlugins): a globe game adds it instead.
 ///
 /// ```no_run
