@@ -20,9 +20,10 @@ use bevy::render::{Extract, ExtractSchedule, Render, RenderApp, RenderSystems};
 use bevy::shader::{ShaderDefVal, ShaderRef};
 use hex_terrain::{GlobeGrid, GlobeTile};
 
+use super::tiles::{GlobeStateUpload, state_bytes};
 use super::{GLOBE_ROW, GlobeTileStates, HexGlobe, HexGlobeChunk};
 use crate::material::{OwnerColors, SHADER_DEFS, flags, linear, owner_colors};
-use crate::tiles::{HexTileStateStyle, Texel};
+use crate::tiles::HexTileStateStyle;
 
 /// The globe's chunk material.
 pub type HexGlobeMaterial = ExtendedMaterial<StandardMaterial, HexGlobeExtension>;
@@ -125,6 +126,8 @@ impl MaterialExtension for HexGlobeExtension {
 #[derive(Resource, Debug)]
 pub(super) struct GlobeMaterialHandle {
     handle: Handle<HexGlobeMaterial>,
+    /// Its tile state texture, which the render world writes the uploads into.
+    state: AssetId<Image>,
     frequency: u32,
 }
 
@@ -132,7 +135,6 @@ pub(super) struct GlobeMaterialHandle {
 pub(super) fn build(app: &mut App) {
     embedded_asset!(app, "globe.wgsl");
     app.add_plugins(MaterialPlugin::<HexGlobeMaterial>::default())
-        .init_resource::<GlobeStateUpload>()
         .register_type::<GlobeParams>()
         .configure_sets(Update, crate::HexTerrainSystems::Render.after(crate::HexTerrainSystems::Insert))
         .add_systems(
@@ -150,18 +152,6 @@ pub(super) fn build(app: &mut App) {
 /// The rows of a texture holding `tiles` tiles, `GLOBE_ROW` a row.
 fn rows(tiles: u32) -> u32 {
     tiles.div_ceil(GLOBE_ROW).max(1)
-}
-
-/// The tile state texture's bytes for `texels` from the start of a row: each tile's texel at
-/// its id, the last row filled with zeros.
-pub(super) fn state_bytes(texels: &[Texel]) -> Vec<u8> {
-    let mut bytes = vec![0; (rows(texels.len() as u32) * GLOBE_ROW) as usize * 8];
-    for (texel, out) in texels.iter().zip(bytes.chunks_exact_mut(8)) {
-        for (word, b) in texel.iter().zip(out.chunks_exact_mut(2)) {
-            b.copy_from_slice(&word.to_le_bytes());
-        }
-    }
-    bytes
 }
 
 /// The topology texture's words, four a texel and three texels a tile: the center's `x, y, z`
@@ -219,9 +209,10 @@ fn make_material(
     if handle.is_some_and(|h| h.frequency == frequency) {
         return;
     }
+    let state = images.add(state_image(&states));
     let extension = HexGlobeExtension {
         params: GlobeParams::of(&style),
-        tile_state: images.add(state_image(&states)),
+        tile_state: state.clone(),
         topology: images.add(topology_image(terrain.grid())),
         owners: owner_colors(&style),
     };
@@ -229,17 +220,14 @@ fn make_material(
     states.bypass_change_detection().take_dirty_rows();
     let base = StandardMaterial { perceptual_roughness: 0.9, reflectance: 0.2, ..default() };
     let handle = materials.add(ExtendedMaterial { base, extension });
-    commands.insert_resource(GlobeMaterialHandle { handle, frequency });
+    commands.insert_resource(GlobeMaterialHandle { handle, state: state.id(), frequency });
 }
 
-/// Keeps the material in step with the style (its parameters rewritten when they change) and
-/// the tile states (the rows with writes copied into the texture in place).
+/// Keeps the material's parameters in step with the style (rewritten when they change).
 fn update_material(
     style: Res<HexTileStateStyle>,
-    mut states: ResMut<GlobeTileStates>,
     mut materials: ResMut<Assets<HexGlobeMaterial>>,
     handle: Option<Res<GlobeMaterialHandle>>,
-    mut upload: ResMut<GlobeStateUpload>,
 ) {
     let Some(handle) = handle else { return };
     if style.is_changed() {
@@ -252,55 +240,36 @@ fn update_material(
             material.extension.owners = owners;
         }
     }
-    let rows = states.bypass_change_detection().take_dirty_rows();
-    if !rows.is_empty()
-        && let Some(material) = materials.get(&handle.handle)
-    {
-        // The rows with writes, written into the texture in place in the render world.
-        let texels = states.texels();
-        upload.image = Some(material.extension.tile_state.id());
-        upload.rows = rows
-            .into_iter()
-            .map(|row| {
-                let start = (row * GLOBE_ROW) as usize;
-                (row, state_bytes(&texels[start.min(texels.len())..(start + GLOBE_ROW as usize).min(texels.len())]))
-            })
-            .collect();
-        upload.serial += 1;
-    }
 }
 
-/// The tile state texture's rows written in a frame, for the render world to copy into the
-/// texture in place (an image asset modified would be uploaded whole, and the material bound
-/// again).
-#[derive(Resource, Debug, Clone, Default)]
-pub(super) struct GlobeStateUpload {
-    image: Option<AssetId<Image>>,
-    /// Each row written, and its bytes (`GLOBE_ROW` texels).
-    rows: Vec<(u32, Vec<u8>)>,
-    serial: u64,
-}
-
-/// The uploads the render world has not written yet (their texture not on the GPU yet).
+/// The uploads the render world has not written yet (their texture not on the GPU yet), each
+/// with the texture it is for.
 #[derive(Resource, Default)]
 struct PendingRows {
     serial: u64,
-    uploads: Vec<GlobeStateUpload>,
+    uploads: Vec<(AssetId<Image>, GlobeStateUpload)>,
 }
 
-fn extract_upload(upload: Extract<Res<GlobeStateUpload>>, mut pending: ResMut<PendingRows>) {
-    if upload.serial != pending.serial {
-        pending.serial = upload.serial;
-        pending.uploads.push(upload.clone());
+/// Takes a new upload for the material's texture (one packed before there is a material is
+/// dropped: the texture is made with every tile's state).
+fn extract_upload(
+    upload: Extract<Res<GlobeStateUpload>>,
+    handle: Extract<Option<Res<GlobeMaterialHandle>>>,
+    mut pending: ResMut<PendingRows>,
+) {
+    if upload.serial() != pending.serial {
+        pending.serial = upload.serial();
+        if let Some(handle) = handle.as_ref() {
+            pending.uploads.push((handle.state, upload.clone()));
+        }
     }
 }
 
 /// Writes the pending rows into their texture once it is on the GPU, in order.
 fn write_rows(mut pending: ResMut<PendingRows>, images: Res<RenderAssets<GpuImage>>, queue: Res<RenderQueue>) {
-    pending.uploads.retain(|upload| {
-        let Some(image) = upload.image else { return false };
-        let Some(gpu) = images.get(image) else { return true };
-        for (row, bytes) in &upload.rows {
+    pending.uploads.retain(|(image, upload)| {
+        let Some(gpu) = images.get(*image) else { return true };
+        for (row, bytes) in upload.rows() {
             if *row >= gpu.texture_descriptor.size.height {
                 continue;
             }
@@ -338,6 +307,7 @@ fn attach_material(mut commands: Commands, handle: Option<Res<GlobeMaterialHandl
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::tiles::Texel;
 
     /// What the shader reads (`globe.wgsl`: a tile's state texel at column `id % GLOBE_ROW` and
     /// row `id / GLOBE_ROW`, its topology at columns `3 (id % GLOBE_ROW) + k`) is the tile's:

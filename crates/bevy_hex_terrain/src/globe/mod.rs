@@ -167,7 +167,8 @@ impl Plugin for HexGlobePlugin {
                     (placement::walk, placement::place).chain().in_set(HexTerrainSystems::Place),
                 ),
             )
-            .add_systems(PostUpdate, tiles::clear_journal.in_set(HexTileStateSystems::Pack));
+            .init_resource::<tiles::GlobeStateUpload>()
+            .add_systems(PostUpdate, (tiles::pack_upload, tiles::clear_journal).in_set(HexTileStateSystems::Pack));
         #[cfg(feature = "render")]
         if app.is_plugin_added::<bevy::pbr::PbrPlugin>() {
             material::build(app);

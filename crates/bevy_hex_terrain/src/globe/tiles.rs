@@ -320,3 +320,55 @@ pub(super) fn follow_globe(globe: Res<HexGlobe>, mut states: ResMut<GlobeTileSta
 pub(super) fn clear_journal(mut states: ResMut<GlobeTileStates>) {
     states.bypass_change_detection().clear_journal();
 }
+
+/// The tile state texture's bytes for `texels` from the start of a row: each tile's texel at
+/// its id, the last row filled with zeros.
+pub(crate) fn state_bytes(texels: &[Texel]) -> Vec<u8> {
+    let mut bytes = vec![0; texels.len().div_ceil(GLOBE_ROW as usize).max(1) * GLOBE_ROW as usize * 8];
+    for (texel, out) in texels.iter().zip(bytes.chunks_exact_mut(8)) {
+        for (word, b) in texel.iter().zip(out.chunks_exact_mut(2)) {
+            b.copy_from_slice(&word.to_le_bytes());
+        }
+    }
+    bytes
+}
+
+/// The tile state texture's rows written in a frame (after `Update`), which the globe's material
+/// copies into its texture in place in the render world (an image asset modified would be
+/// uploaded whole and the material bound again).
+#[derive(Resource, Debug, Clone, Default)]
+pub(crate) struct GlobeStateUpload {
+    /// Each row written, and its bytes (`GLOBE_ROW` texels).
+    rows: Vec<(u32, Vec<u8>)>,
+    /// Grows with each upload.
+    serial: u64,
+}
+
+impl GlobeStateUpload {
+    /// The rows and their bytes.
+    pub(crate) fn rows(&self) -> &[(u32, Vec<u8>)] {
+        &self.rows
+    }
+
+    /// Grows with each upload: a new one to take.
+    pub(crate) fn serial(&self) -> u64 {
+        self.serial
+    }
+}
+
+/// Packs the rows written this frame for the GPU (a frame without writes packs nothing).
+pub(super) fn pack_upload(mut states: ResMut<GlobeTileStates>, mut upload: ResMut<GlobeStateUpload>) {
+    let rows = states.bypass_change_detection().take_dirty_rows();
+    if rows.is_empty() {
+        return;
+    }
+    let texels = states.texels();
+    upload.rows = rows
+        .into_iter()
+        .map(|row| {
+            let start = (row * GLOBE_ROW) as usize;
+            (row, state_bytes(&texels[start.min(texels.len())..(start + GLOBE_ROW as usize).min(texels.len())]))
+        })
+        .collect();
+    upload.serial += 1;
+}
