@@ -11,6 +11,9 @@
     pbr_functions::{alpha_discard, apply_pbr_lighting, main_pass_post_lighting_processing},
     forward_io::{VertexOutput, FragmentOutput},
 }
+#import hex_terrain::texel::{
+    FOG_MASK, HOVERED, SELECTED, REACHABLE, FOG_EXPLORED, FOG_VISIBLE, overlay_of, srgb_to_linear, tint,
+}
 
 struct GlobeParams {
     hover_color: vec4<f32>,
@@ -41,12 +44,6 @@ const FLAG_FOG: u32 = #{HEX_FLAG_FOG}u;
 const FLAG_BORDERS: u32 = #{HEX_FLAG_BORDERS}u;
 const FLAG_TERRITORY_TINT: u32 = #{HEX_FLAG_TERRITORY_TINT}u;
 const FLAG_LENS: u32 = #{HEX_FLAG_LENS}u;
-const FOG_MASK: u32 = #{HEX_TEXEL_FOG_MASK}u;
-const HOVERED: u32 = #{HEX_TEXEL_HOVERED}u;
-const SELECTED: u32 = #{HEX_TEXEL_SELECTED}u;
-const REACHABLE: u32 = #{HEX_TEXEL_REACHABLE}u;
-const FOG_EXPLORED: u32 = #{HEX_FOG_EXPLORED}u;
-const FOG_VISIBLE: u32 = #{HEX_FOG_VISIBLE}u;
 // A hexagon's inner radius over its outer one: the distance from an edge to the center.
 const INNER: f32 = 0.8660254;
 
@@ -68,14 +65,6 @@ fn center_of(tile: u32) -> vec3<f32> {
     return bitcast<vec3<f32>>(topology_of(tile, 0u).xyz);
 }
 
-fn srgb_to_linear(c: vec3<f32>) -> vec3<f32> {
-    return select(pow((c + 0.055) / 1.055, vec3<f32>(2.4)), c / 12.92, c <= vec3<f32>(0.04045));
-}
-
-fn tint(color: vec4<f32>, t: vec4<f32>) -> vec4<f32> {
-    return vec4<f32>(mix(color.rgb, t.rgb, t.a), color.a);
-}
-
 @fragment
 fn fragment(in: VertexOutput, @builtin(front_facing) is_front: bool) -> FragmentOutput {
     var pbr_input = pbr_input_from_standard_material(in, is_front);
@@ -90,9 +79,7 @@ fn fragment(in: VertexOutput, @builtin(front_facing) is_front: bool) -> Fragment
     if owner != 0u && has_flag(FLAG_TERRITORY_TINT) {
         color = tint(color, vec4<f32>(owners.colors[owner - 1u].rgb, params.tint_strength));
     }
-    let overlay = vec4<f32>(
-        f32(texel.z & 255u), f32(texel.z >> 8u), f32(texel.w & 255u), f32(texel.w >> 8u),
-    ) / 255.0;
+    let overlay = overlay_of(texel);
     if has_flag(FLAG_LENS) && overlay.a > 0.0 {
         color = tint(color, vec4<f32>(srgb_to_linear(overlay.rgb), overlay.a));
     }

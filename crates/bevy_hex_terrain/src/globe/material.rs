@@ -134,6 +134,7 @@ pub(super) struct GlobeMaterialHandle {
 /// Registers the material; its systems run in [`HexTerrainSystems::Render`](crate::HexTerrainSystems::Render).
 pub(super) fn build(app: &mut App) {
     embedded_asset!(app, "globe.wgsl");
+    crate::material::load_texel_library(app);
     app.add_plugins(MaterialPlugin::<HexGlobeMaterial>::default())
         .register_type::<GlobeParams>()
         .configure_sets(Update, crate::HexTerrainSystems::Render.after(crate::HexTerrainSystems::Insert))
@@ -343,10 +344,11 @@ mod tests {
         }
     }
 
-    /// Every value the globe shader takes from Rust (`#{HEX_...}`) is a shader def it is given.
+    /// Every value the globe shader and the texel module it imports take from Rust
+    /// (`#{HEX_...}`) is a shader def they are given.
     #[test]
     fn the_globe_shader_reads_its_layout_from_the_shader_defs() {
-        let source = include_str!("globe.wgsl");
+        let source = [include_str!("globe.wgsl"), include_str!("../material/shaders/texel.wgsl")].concat();
         let given: Vec<&str> = SHADER_DEFS.iter().map(|(name, _)| *name).chain(["HEX_GLOBE_ROW"]).collect();
         let mut used = 0;
         for (i, _) in source.match_indices("#{HEX_") {

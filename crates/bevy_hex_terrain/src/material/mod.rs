@@ -132,6 +132,7 @@ impl Plugin for HexTerrainMaterialPlugin {
         load_shader_library!(app, "shaders/ground.wgsl");
         load_shader_library!(app, "shaders/water.wgsl");
         load_shader_library!(app, "shaders/tile_state.wgsl");
+        load_texel_library(app);
         app.add_plugins((MaterialPlugin::<HexTerrainMaterial>::default(), tile_texture::TileTexturePlugin))
             .init_resource::<HexTerrainMaterialSettings>()
             .init_resource::<TextureLayers>()
@@ -149,6 +150,12 @@ impl Plugin for HexTerrainMaterialPlugin {
                     .run_if(resource_exists::<HexTerrainMaterialHandle>),
             );
     }
+}
+
+/// Loads the import module of the tile state texel (`hex_terrain::texel`), which the flat map's
+/// material and the globe's both read.
+pub(crate) fn load_texel_library(app: &mut App) {
+    load_shader_library!(app, "shaders/texel.wgsl");
 }
 
 /// The ground and the water instances of the material share everything but the water key and

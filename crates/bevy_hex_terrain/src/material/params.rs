@@ -309,6 +309,7 @@ mod tests {
             include_str!("shaders/ground.wgsl"),
             include_str!("shaders/water.wgsl"),
             include_str!("shaders/tile_state.wgsl"),
+            include_str!("shaders/texel.wgsl"),
         ];
         let mut used = std::collections::BTreeSet::new();
         for source in sources {

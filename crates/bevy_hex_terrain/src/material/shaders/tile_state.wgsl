@@ -1,4 +1,4 @@
-// The per-tile game state in the shader: a hex's texel in the tile state texture (the window
+// The per-tile game state in the flat map's shader: a hex's texel in the tile state texture (the window
 // and the map's wrap come in the parameters), and what it does to a fragment: highlights, the
 // lens, territory tint and borders, fog of war blended across tile borders, outlines. The
 // texel's bit layout (tiles/window.rs) comes from Rust as shader defs.
@@ -8,15 +8,9 @@
     params, owners, tile_state, has_flag, FLAG_TERRITORY_TINT, FLAG_LENS, FLAG_FOG, FLAG_BORDERS, FLAG_OUTLINES,
 }
 #import hex_terrain::hex::{pointy, hex_at, hex_center, NEIGHBORS, edge_distance}
-
-// Bits of a texel's first channel: the fog state, then the highlights.
-const FOG_MASK: u32 = #{HEX_TEXEL_FOG_MASK}u;
-const HOVERED: u32 = #{HEX_TEXEL_HOVERED}u;
-const SELECTED: u32 = #{HEX_TEXEL_SELECTED}u;
-const REACHABLE: u32 = #{HEX_TEXEL_REACHABLE}u;
-// The fog states (`FogState` in Rust).
-const FOG_EXPLORED: u32 = #{HEX_FOG_EXPLORED}u;
-const FOG_VISIBLE: u32 = #{HEX_FOG_VISIBLE}u;
+#import hex_terrain::texel::{
+    FOG_MASK, HOVERED, SELECTED, REACHABLE, FOG_EXPLORED, FOG_VISIBLE, overlay_of, srgb_to_linear, tint,
+}
 
 // The offset coordinate of a hex on the map (hexx's odd mode, as the core's): a wrapping map's
 // tiles east or west of it are its own.
@@ -58,20 +52,6 @@ fn tile_texel(h: vec2<i32>) -> vec4<u32> {
     }
     let t = ((oc % w.zw) + w.zw) % w.zw;
     return textureLoad(tile_state, t, 0);
-}
-
-fn overlay_of(texel: vec4<u32>) -> vec4<f32> {
-    return vec4<f32>(
-        f32(texel.z & 255u), f32(texel.z >> 8u), f32(texel.w & 255u), f32(texel.w >> 8u),
-    ) / 255.0;
-}
-
-fn srgb_to_linear(c: vec3<f32>) -> vec3<f32> {
-    return select(pow((c + 0.055) / 1.055, vec3<f32>(2.4)), c / 12.92, c <= vec3<f32>(0.04045));
-}
-
-fn tint(color: vec4<f32>, t: vec4<f32>) -> vec4<f32> {
-    return vec4<f32>(mix(color.rgb, t.rgb, t.a), color.a);
 }
 
 // What the per-tile state does to a fragment: albedo tints before lighting, and after lighting
