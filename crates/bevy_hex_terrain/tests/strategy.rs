@@ -1,8 +1,9 @@
 //! Runs the strategy example the way a player would, under Xvfb: its scripted mode selects a
 //! unit, moves it along an A* path, ends the turn, toggles outlines and regenerates, checking
 //! the game state at each step (movement points spent, turn advanced, units on land on the new
-//! surface), then saves a screenshot. Here we check it succeeded, logged no warning but the
-//! software renderer's, and the picture is not blank. Under `xvfb-run` when there is no display.
+//! surface), then saves a screenshot; the globe example's checks territories, fog across a
+//! pentagon and picking. Here we check each succeeded, logged no warning but the software
+//! renderer's, and the picture is not blank. Under `xvfb-run` when there is no display.
 
 mod support;
 
@@ -74,7 +75,15 @@ fn the_other_examples_show_terrain_and_log_no_warnings() {
 
 #[test]
 fn strategy_demo_plays_a_scripted_turn() {
-    scripted_turn("strategy", &[("HEXTERRAIN_SCRIPT", "1")]);
+    scripted_turn("strategy", "strategy", &[("HEXTERRAIN_SCRIPT", "1")]);
+}
+
+/// The globe example's scripted turn: the territories, red's fog before and after its scout
+/// crosses a pentagon, the tile picked under the pointer.
+#[test]
+fn globe_example_plays_a_scripted_turn() {
+    let out = scripted_turn("globe", "globe_script", &[("HEXTERRAIN_SCRIPT", "1")]);
+    assert!(out.contains("across the pentagon"), "{out}");
 }
 
 /// On the wrapping Civ6 Standard preset with the camera on the seam (84 columns of 1.5 units:
@@ -82,16 +91,17 @@ fn strategy_demo_plays_a_scripted_turn() {
 #[test]
 fn strategy_demo_crosses_the_seam_of_a_wrapping_map() {
     let out = scripted_turn(
+        "strategy",
         "strategy_seam",
         &[("HEXTERRAIN_SCRIPT", "seam"), ("HEXTERRAIN_PRESET", "6"), ("HEXTERRAIN_FOCUS", "125.25,40")],
     );
     assert!(out.contains("across the seam"), "{out}");
 }
 
-/// Runs the demo's scripted turn with `env`, checks it succeeded without warnings and its
+/// Runs an example's scripted turn with `env`, checks it succeeded without warnings and its
 /// screenshot (`name`.png) is not blank; returns what it printed.
-fn scripted_turn(name: &str, env: &[(&str, &str)]) -> String {
-    let example = example("strategy");
+fn scripted_turn(example_name: &str, name: &str, env: &[(&str, &str)]) -> String {
+    let example = example(example_name);
     let shot = Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("{name}.png"));
     let _ = std::fs::remove_file(&shot);
     let mut command = support::with_display(&example);

@@ -16,7 +16,10 @@
 //! first altitude and `HEXTERRAIN_GLOBE_AT=LON,LAT` its first place in degrees (the screenshots
 //! use them: `-144,26.6` looks down on that pentagon). The minimap (bottom right) is the whole
 //! globe drawn equirectangular, the camera's view outlined; a click or a drag there flies the
-//! camera over that spot.
+//! camera over that spot. `HEXTERRAIN_SCRIPT=1` plays a scripted turn that checks the game
+//! (`script.rs`; `tests/strategy.rs` runs it).
+
+mod script;
 
 use bevy::prelude::*;
 use bevy_hex_terrain::hex_terrain::{GlobeFog, GlobeTerrain, GlobeTile};
@@ -33,6 +36,10 @@ struct Scout {
     path: [GlobeTile; 3],
 }
 
+/// A player's city.
+#[derive(Component)]
+struct City;
+
 /// A player's unit: the player and how far it sees.
 #[derive(Component)]
 struct Unit {
@@ -47,7 +54,8 @@ struct Fogs(GlobeFog);
 /// The players' colors: red, blue.
 const PLAYERS: [Color; 2] = [Color::srgb(0.85, 0.15, 0.1), Color::srgb(0.15, 0.35, 0.9)];
 
-fn main() {
+fn main() -> AppExit {
+    let scripted = std::env::var_os("HEXTERRAIN_SCRIPT").is_some();
     let altitude = std::env::var("HEXTERRAIN_GLOBE_ALTITUDE").ok().and_then(|a| a.parse().ok()).unwrap_or(60.0);
     // Above the first continent, 130 degrees west and 20 north, unless told otherwise.
     let at = std::env::var("HEXTERRAIN_GLOBE_AT")
@@ -56,16 +64,14 @@ fn main() {
             at.split_once(',').and_then(|(lon, lat)| Some((lon.trim().parse().ok()?, lat.trim().parse().ok()?)))
         })
         .unwrap_or((-130f32, 20f32));
-    App::new()
-        .insert_resource(ClearColor(Color::srgb(0.02, 0.02, 0.05)))
-        // With HEXTERRAIN_SCREENSHOT=out.png set, the screenshot plugin saves a picture and exits.
+    let mut app = App::new();
+    app.insert_resource(ClearColor(Color::srgb(0.02, 0.02, 0.05)))
         .add_plugins((
             DefaultPlugins,
             HexGlobePlugin::from_asset("maps/globe/continents.map.ron"),
             // The equirectangular minimap with the camera's view outlined; a click there flies
             // the camera over that spot.
             HexGlobeMinimapPlugin,
-            HexScreenshotPlugin::default(),
         ))
         .insert_resource(HexMinimapSettings { size: UVec2::new(320, 160), ..default() })
         // Fog of war drawn (HEXTERRAIN_FOG=off: every tile as generated); the owners' colors are
@@ -96,8 +102,15 @@ fn main() {
             ));
         })
         .add_systems(Update, (name_the_tile, (found_the_players, see).chain().after(HexTerrainSystems::Map)))
-        .add_observer(turn_back)
-        .run();
+        .add_observer(turn_back);
+    if scripted {
+        // The scripted turn checks the game, saves its screenshot and exits.
+        app.init_resource::<script::Script>().add_systems(Update, script::script.after(see));
+    } else {
+        // With HEXTERRAIN_SCREENSHOT=out.png set, the screenshot plugin saves a picture and exits.
+        app.add_plugins(HexScreenshotPlugin::default());
+    }
+    app.run()
 }
 
 /// Once the globe is in: for each player (red, blue) a city four tiles from the pentagon on land
@@ -148,6 +161,7 @@ fn found_the_players(
         commands.spawn((
             OnGlobeTile::new(home),
             Unit { player, sight: 3 },
+            City,
             Mesh3d(city.clone()),
             MeshMaterial3d(material.clone()),
         ));
