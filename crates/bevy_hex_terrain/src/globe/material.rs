@@ -20,10 +20,9 @@ use bevy::render::{Extract, ExtractSchedule, Render, RenderApp, RenderSystems};
 use bevy::shader::{ShaderDefVal, ShaderRef};
 use hex_terrain::{GlobeGrid, GlobeTile};
 
-use super::tiles::{GlobeStateUpload, state_bytes};
 use super::{GLOBE_ROW, GlobeTileStates, HexGlobe, HexGlobeChunk};
 use crate::material::{OwnerColors, SHADER_DEFS, flags, linear, owner_colors};
-use crate::tiles::HexTileStateStyle;
+use crate::tiles::{HexTileStateStyle, Texel};
 
 /// The globe's chunk material.
 pub type HexGlobeMaterial = ExtendedMaterial<StandardMaterial, HexGlobeExtension>;
@@ -153,6 +152,58 @@ pub(super) fn build(app: &mut App) {
 /// The rows of a texture holding `tiles` tiles, `GLOBE_ROW` a row.
 fn rows(tiles: u32) -> u32 {
     tiles.div_ceil(GLOBE_ROW).max(1)
+}
+
+/// The tile state texture's bytes for `texels` from the start of a row: each tile's texel at
+/// its id, the last row filled with zeros.
+pub(crate) fn state_bytes(texels: &[Texel]) -> Vec<u8> {
+    let mut bytes = vec![0; texels.len().div_ceil(GLOBE_ROW as usize).max(1) * GLOBE_ROW as usize * 8];
+    for (texel, out) in texels.iter().zip(bytes.chunks_exact_mut(8)) {
+        for (word, b) in texel.iter().zip(out.chunks_exact_mut(2)) {
+            b.copy_from_slice(&word.to_le_bytes());
+        }
+    }
+    bytes
+}
+
+/// The tile state texture's rows written in a frame (after `Update`), which the globe's material
+/// copies into its texture in place in the render world (an image asset modified would be
+/// uploaded whole and the material bound again).
+#[derive(Resource, Debug, Clone, Default)]
+pub(crate) struct GlobeStateUpload {
+    /// Each row written, and its bytes (`GLOBE_ROW` texels).
+    rows: Vec<(u32, Vec<u8>)>,
+    /// Grows with each upload.
+    serial: u64,
+}
+
+impl GlobeStateUpload {
+    /// The rows and their bytes.
+    pub(crate) fn rows(&self) -> &[(u32, Vec<u8>)] {
+        &self.rows
+    }
+
+    /// Grows with each upload: a new one to take.
+    pub(crate) fn serial(&self) -> u64 {
+        self.serial
+    }
+}
+
+/// Packs the rows written this frame for the GPU (a frame without writes packs nothing).
+pub(super) fn pack_upload(mut states: ResMut<GlobeTileStates>, mut upload: ResMut<GlobeStateUpload>) {
+    let rows = states.bypass_change_detection().take_dirty_rows();
+    if rows.is_empty() {
+        return;
+    }
+    let texels = states.texels();
+    upload.rows = rows
+        .into_iter()
+        .map(|row| {
+            let start = (row * GLOBE_ROW) as usize;
+            (row, state_bytes(&texels[start.min(texels.len())..(start + GLOBE_ROW as usize).min(texels.len())]))
+        })
+        .collect();
+    upload.serial += 1;
 }
 
 /// The topology texture's words, four a texel and three texels a tile: the center's `x, y, z`
@@ -308,7 +359,6 @@ fn attach_material(mut commands: Commands, handle: Option<Res<GlobeMaterialHandl
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::tiles::Texel;
 
     /// What the shader reads (`globe.wgsl`: a tile's state texel at column `id % GLOBE_ROW` and
     /// row `id / GLOBE_ROW`, its topology at columns `3 (id % GLOBE_ROW) + k`) is the tile's:

@@ -14,7 +14,7 @@ use hex_terrain::minimap::{GlobeMinimap, TileLook};
 use hex_terrain::{GlobeTerrain, GlobeTile};
 
 use super::{GlobeCamera, GlobeTileStates, HexGlobe, globe_horizon};
-use crate::minimap::{HexMinimapSettings, layout, new_image, redraw_outline};
+use crate::minimap::{HexMinimapSettings, layout, match_terrain, new_image, redraw_outline};
 use crate::tiles::{FogState, HexTileStateStyle};
 
 /// The globe's minimap picture and what it was built for (the core's picture and the building
@@ -38,8 +38,9 @@ pub struct GlobeMinimapPicture {
     pressed_at: Option<Vec2>,
 }
 
-/// What of the style a picture is built with (a change rebuilds it).
-type MinimapStyleKey = ([[u8; 3]; 3], [u8; 4]);
+/// What of the style a picture is built with (a change rebuilds it): the kinds' colors, the
+/// background and the owners' colors.
+type MinimapStyleKey = ([[u8; 3]; 3], [u8; 4], Vec<[u8; 3]>);
 
 impl GlobeMinimapPicture {
     /// The picture shown, with its pixels' tiles; `None` until the first is built.
@@ -137,17 +138,28 @@ fn width(settings: &HexMinimapSettings) -> u32 {
     (settings.size.x.clamp(8, hex_terrain::minimap::MAX_GLOBE_MINIMAP_WIDTH) / 2) * 2
 }
 
-/// Starts building a picture when the globe, the width or the colors changed.
-fn build(globe: Res<HexGlobe>, settings: Res<HexMinimapSettings>, mut picture: ResMut<GlobeMinimapPicture>) {
+/// Starts building a picture when the globe, the width or the colors changed (the owners'
+/// colors are the tile states' style's, as on the globe).
+fn build(
+    globe: Res<HexGlobe>,
+    settings: Res<HexMinimapSettings>,
+    tiles: Res<HexTileStateStyle>,
+    mut picture: ResMut<GlobeMinimapPicture>,
+) {
     let Some(terrain) = globe.globe() else { return };
-    let style = settings.style();
-    let key = (globe.generation(), width(&settings), (style.kind_colors, style.background));
-    if picture.made_for == Some(key) {
+    let mut style = settings.style();
+    // The owners' colors; whether the fog is drawn is each paint's (`look`), as the style says
+    // then, not the picture's.
+    let fog = style.fog_of_war;
+    match_terrain(&mut style, None, &tiles);
+    style.fog_of_war = fog;
+    let key = (globe.generation(), width(&settings), (style.kind_colors, style.background, style.owner_colors.clone()));
+    if picture.made_for.as_ref() == Some(&key) {
         return;
     }
+    let w = key.1;
     picture.made_for = Some(key);
     let terrain: Arc<GlobeTerrain> = terrain.clone();
-    let w = key.1;
     picture.task = Some(AsyncComputeTaskPool::get().spawn(async move { GlobeMinimap::new(&terrain, w, style) }));
 }
 

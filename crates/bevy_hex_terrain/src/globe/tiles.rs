@@ -3,13 +3,16 @@
 //! [`TileStates`](crate::TileStates) has, and drawn by the globe's material without touching a
 //! mesh.
 
+#[cfg(feature = "render")]
 use std::collections::BTreeSet;
 
 use bevy::platform::collections::HashSet;
 use bevy::prelude::*;
 use hex_terrain::{GlobeFog, GlobeTile};
 
-use super::{GLOBE_ROW, HexGlobe};
+#[cfg(feature = "render")]
+use super::GLOBE_ROW;
+use super::HexGlobe;
 use crate::tiles::texel;
 use crate::tiles::{FogState, Highlight, Texel, TileStateError};
 
@@ -56,6 +59,7 @@ pub struct GlobeTileStates {
     #[reflect(ignore)]
     journal: Option<Vec<GlobeTile>>,
     /// The texture rows (`GLOBE_ROW` tiles each) the GPU's copy has behind.
+    #[cfg(feature = "render")]
     #[reflect(ignore)]
     dirty: BTreeSet<u32>,
     writes: u64,
@@ -238,11 +242,13 @@ impl GlobeTileStates {
     }
 
     /// Every tile's texel, by id, as the GPU reads them.
+    #[cfg(feature = "render")]
     pub(crate) fn texels(&self) -> &[Texel] {
         &self.texels
     }
 
     /// The texture rows the GPU's copy has behind, in order; clears the marks.
+    #[cfg(feature = "render")]
     pub(crate) fn take_dirty_rows(&mut self) -> BTreeSet<u32> {
         std::mem::take(&mut self.dirty)
     }
@@ -267,7 +273,10 @@ impl GlobeTileStates {
 
     fn changed_everything(&mut self) {
         self.journal = None;
-        self.dirty = (0..self.tile_count().div_ceil(GLOBE_ROW)).collect();
+        #[cfg(feature = "render")]
+        {
+            self.dirty = (0..self.tile_count().div_ceil(GLOBE_ROW)).collect();
+        }
     }
 
     fn check(&self, tile: GlobeTile) -> Result<(), TileStateError> {
@@ -290,6 +299,7 @@ impl GlobeTileStates {
             return;
         }
         self.writes += 1;
+        #[cfg(feature = "render")]
         self.dirty.insert(tile.0 / GLOBE_ROW);
         if texel::is_visible(new) {
             self.visible.insert(tile);
@@ -319,56 +329,4 @@ pub(super) fn follow_globe(globe: Res<HexGlobe>, mut states: ResMut<GlobeTileSta
 /// Starts the next frame's list of changed tiles (after `Update`, with the flat map's packing).
 pub(super) fn clear_journal(mut states: ResMut<GlobeTileStates>) {
     states.bypass_change_detection().clear_journal();
-}
-
-/// The tile state texture's bytes for `texels` from the start of a row: each tile's texel at
-/// its id, the last row filled with zeros.
-pub(crate) fn state_bytes(texels: &[Texel]) -> Vec<u8> {
-    let mut bytes = vec![0; texels.len().div_ceil(GLOBE_ROW as usize).max(1) * GLOBE_ROW as usize * 8];
-    for (texel, out) in texels.iter().zip(bytes.chunks_exact_mut(8)) {
-        for (word, b) in texel.iter().zip(out.chunks_exact_mut(2)) {
-            b.copy_from_slice(&word.to_le_bytes());
-        }
-    }
-    bytes
-}
-
-/// The tile state texture's rows written in a frame (after `Update`), which the globe's material
-/// copies into its texture in place in the render world (an image asset modified would be
-/// uploaded whole and the material bound again).
-#[derive(Resource, Debug, Clone, Default)]
-pub(crate) struct GlobeStateUpload {
-    /// Each row written, and its bytes (`GLOBE_ROW` texels).
-    rows: Vec<(u32, Vec<u8>)>,
-    /// Grows with each upload.
-    serial: u64,
-}
-
-impl GlobeStateUpload {
-    /// The rows and their bytes.
-    pub(crate) fn rows(&self) -> &[(u32, Vec<u8>)] {
-        &self.rows
-    }
-
-    /// Grows with each upload: a new one to take.
-    pub(crate) fn serial(&self) -> u64 {
-        self.serial
-    }
-}
-
-/// Packs the rows written this frame for the GPU (a frame without writes packs nothing).
-pub(super) fn pack_upload(mut states: ResMut<GlobeTileStates>, mut upload: ResMut<GlobeStateUpload>) {
-    let rows = states.bypass_change_detection().take_dirty_rows();
-    if rows.is_empty() {
-        return;
-    }
-    let texels = states.texels();
-    upload.rows = rows
-        .into_iter()
-        .map(|row| {
-            let start = (row * GLOBE_ROW) as usize;
-            (row, state_bytes(&texels[start.min(texels.len())..(start + GLOBE_ROW as usize).min(texels.len())]))
-        })
-        .collect();
-    upload.serial += 1;
 }

@@ -25,7 +25,7 @@ use hex_terrain::minimap::MinimapStyle;
 use crate::tiles::HexTileStateSystems;
 
 pub use picture::MinimapPicture;
-pub(crate) use picture::new_image;
+pub(crate) use picture::{match_terrain, new_image};
 pub use view::HexMinimapCamera;
 
 /// Which corner of the window the minimap sits in.

@@ -139,7 +139,7 @@ pub(super) fn build_picture(
 
 /// The terrain's colors (the material's palette, when it is there) and the tile states' style
 /// (fog on or off, owner colors), so the minimap matches the terrain.
-fn match_terrain(
+pub(crate) fn match_terrain(
     style: &mut MinimapStyle,
     palette: Option<&crate::HexTerrainMaterialSettings>,
     tiles: &HexTileStateStyle,
