@@ -12,7 +12,7 @@
     forward_io::{VertexOutput, FragmentOutput},
 }
 #import hex_terrain::texel::{
-    FOG_MASK, HOVERED, SELECTED, REACHABLE, FOG_EXPLORED, FOG_VISIBLE, overlay_of, srgb_to_linear, tint,
+    FOG_MASK, FOG_EXPLORED, FOG_VISIBLE, overlay_of, srgb_to_linear, tint, tint_highlights,
 }
 
 struct GlobeParams {
@@ -83,9 +83,7 @@ fn fragment(in: VertexOutput, @builtin(front_facing) is_front: bool) -> Fragment
     if has_flag(FLAG_LENS) && overlay.a > 0.0 {
         color = tint(color, vec4<f32>(srgb_to_linear(overlay.rgb), overlay.a));
     }
-    if (texel.x & REACHABLE) != 0u { color = tint(color, params.reachable_color); }
-    if (texel.x & SELECTED) != 0u { color = tint(color, params.selected_color); }
-    if (texel.x & HOVERED) != 0u { color = tint(color, params.hover_color); }
+    color = tint_highlights(color, texel, params.reachable_color, params.selected_color, params.hover_color);
 
     // Fog weights: own tile 1, each neighbor from 1 at the shared edge to 0 at `fog_softness`
     // inside; the owner's border where the neighbor across is not the owner's.
@@ -96,10 +94,9 @@ fn fragment(in: VertexOutput, @builtin(front_facing) is_front: bool) -> Fragment
     let p = normalize(in.world_position.xyz);
     let c = center_of(tile);
     let head = topology_of(tile, 0u);
-    let neighbors = array<u32, 6>(
-        topology_of(tile, 1u).x, topology_of(tile, 1u).y, topology_of(tile, 1u).z, topology_of(tile, 1u).w,
-        topology_of(tile, 2u).x, topology_of(tile, 2u).y,
-    );
+    let first = topology_of(tile, 1u);
+    let rest = topology_of(tile, 2u);
+    let neighbors = array<u32, 6>(first.x, first.y, first.z, first.w, rest.x, rest.y);
     let soft = max(params.fog_softness, 1e-4);
     let band = vec2<f32>(params.border_inset, params.border_inset + params.border_width);
     // The nearest edge toward another owner (a fragment of the mesh's tile past the halfway

@@ -27,3 +27,13 @@ fn srgb_to_linear(c: vec3<f32>) -> vec3<f32> {
 fn tint(color: vec4<f32>, t: vec4<f32>) -> vec4<f32> {
     return vec4<f32>(mix(color.rgb, t.rgb, t.a), color.a);
 }
+
+// A color with the texel's highlights' tints over it (reachable, then selected, then hovered),
+// each tint's alpha its strength.
+fn tint_highlights(color: vec4<f32>, texel: vec4<u32>, reachable: vec4<f32>, selected: vec4<f32>, hovered: vec4<f32>) -> vec4<f32> {
+    var c = color;
+    if (texel.x & REACHABLE) != 0u { c = tint(c, reachable); }
+    if (texel.x & SELECTED) != 0u { c = tint(c, selected); }
+    if (texel.x & HOVERED) != 0u { c = tint(c, hovered); }
+    return c;
+}

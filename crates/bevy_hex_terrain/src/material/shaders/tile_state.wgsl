@@ -9,7 +9,7 @@
 }
 #import hex_terrain::hex::{pointy, hex_at, hex_center, NEIGHBORS, edge_distance}
 #import hex_terrain::texel::{
-    FOG_MASK, HOVERED, SELECTED, REACHABLE, FOG_EXPLORED, FOG_VISIBLE, overlay_of, srgb_to_linear, tint,
+    FOG_MASK, FOG_EXPLORED, FOG_VISIBLE, overlay_of, srgb_to_linear, tint, tint_highlights,
 }
 
 // The offset coordinate of a hex on the map (hexx's odd mode, as the core's): a wrapping map's
@@ -84,9 +84,7 @@ fn tile_look(render_p: vec2<f32>, albedo: vec4<f32>, tint_owned: bool) -> TileLo
     if has_flag(FLAG_LENS) && overlay.a > 0.0 {
         color = tint(color, vec4<f32>(srgb_to_linear(overlay.rgb), overlay.a));
     }
-    if (texel.x & REACHABLE) != 0u { color = tint(color, params.reachable_color); }
-    if (texel.x & SELECTED) != 0u { color = tint(color, params.selected_color); }
-    if (texel.x & HOVERED) != 0u { color = tint(color, params.hover_color); }
+    color = tint_highlights(color, texel, params.reachable_color, params.selected_color, params.hover_color);
     look.albedo = color;
 
     // Fog weights: own tile 1, each neighbor from 1 at the shared edge to 0 at `fog_softness`
