@@ -352,4 +352,30 @@ fn the_globes_minimap_shows_the_globe_outlines_the_view_and_flies_the_camera() {
         }
     }
     assert!(counted.iter().all(|&c| c > 10), "{counted:?}");
+    // Later writes repaint only what they change: a highlight (the hovered tile) no pixel; an
+    // owner lost on one tile its pixels and those beside them, and the picture is then what a
+    // full paint of the states gives.
+    let counts = |app: &App| {
+        let p = app.world().resource::<GlobeMinimapPicture>();
+        (p.repainted_pixels(), p.full_paints())
+    };
+    let (repainted, full) = counts(&app);
+    app.world_mut().resource_mut::<GlobeTileStates>().set_highlight(home, Highlight::Hovered, true).unwrap();
+    app.update();
+    assert_eq!(counts(&app), (repainted, full), "a highlight repaints no pixel");
+    let lost = owned[owned.len() - 1];
+    app.world_mut().resource_mut::<GlobeTileStates>().set_owner(lost, None).unwrap();
+    app.update();
+    let (after, full_after) = counts(&app);
+    assert_eq!(full_after, full, "one write is not a full paint");
+    let near = shown.pixels_of(lost).len() as u64 * 5;
+    assert!(after > repainted && after - repainted <= near, "{} pixels repainted for one tile", after - repainted);
+    let picture = app.world().resource::<GlobeMinimapPicture>();
+    let outline: Vec<u32> = picture.outline().to_vec();
+    let data = app.world().resource::<Assets<Image>>().get(picture.image()).unwrap().data.clone().unwrap();
+    let states = app.world().resource::<GlobeTileStates>();
+    let whole = shown.paint(|t| TileLook { fog: states.visibility(t), owner: states.owner(t) });
+    for i in (0..(w * h) as usize).filter(|&i| !outline.contains(&(i as u32))) {
+        assert_eq!(&data[i * 4..i * 4 + 4], &whole[i * 4..i * 4 + 4], "pixel {i}");
+    }
 }

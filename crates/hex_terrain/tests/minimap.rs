@@ -153,6 +153,53 @@ proptest! {
         }
     }
 
+    /// A globe's picture the same: after each write a repaint of the written tile equals a full
+    /// paint, the pixels that changed are the tile's or touch one (east, west, north, south),
+    /// and the count it returns is the pixels that changed.
+    #[test]
+    fn a_globes_repaint_equals_a_full_paint_and_stays_local(
+        frequency in 2u32..12,
+        half_width in 4u32..200,
+        fog_drawn in any::<bool>(),
+        writes in prop::collection::vec((0u32..10_000, 0u8..3, prop::option::of(0u32..5)), 1..16),
+    ) {
+        use hex_terrain::minimap::GlobeMinimap;
+        use hex_terrain::{GlobeTerrain, GlobeTile};
+        let config = MapConfig::from_ron(&format!("(seed: {frequency}, size: Globe(frequency: {frequency}))")).unwrap();
+        let globe = GlobeTerrain::new(config).unwrap();
+        let style = MinimapStyle { fog_of_war: fog_drawn, ..MinimapStyle::default() };
+        let map = GlobeMinimap::new(&globe, half_width * 2, style).unwrap();
+        let [w, h] = map.size();
+        let tiles = globe.grid().tile_count();
+        let mut table: HashMap<GlobeTile, TileLook> = HashMap::new();
+        let look = |table: &HashMap<GlobeTile, TileLook>| {
+            let table = table.clone();
+            move |t: GlobeTile| table.get(&t).copied().unwrap_or(TileLook::VISIBLE)
+        };
+        let mut rgba = map.paint(look(&table));
+        for (pick, fog, owner) in writes {
+            let tile = GlobeTile(pick % tiles);
+            let fog = [FogState::Unexplored, FogState::Explored, FogState::Visible][fog as usize];
+            table.insert(tile, TileLook { fog, owner });
+            let before = rgba.clone();
+            let changed = map.repaint([tile, GlobeTile(tiles + pick)], look(&table), &mut rgba);
+            prop_assert_eq!(&rgba, &map.paint(look(&table)));
+            let mut count = 0;
+            for (i, (a, b)) in before.chunks_exact(4).zip(rgba.chunks_exact(4)).enumerate() {
+                if a == b {
+                    continue;
+                }
+                count += 1;
+                let (x, y) = (i as u32 % w, i as u32 / w);
+                let touching = [(x, y), ((x + 1) % w, y), ((x + w - 1) % w, y), (x, y.saturating_sub(1)), (x, (y + 1).min(h - 1))]
+                    .iter()
+                    .any(|&(x, y)| map.tile_at_pixel(x, y) == Some(tile));
+                prop_assert!(touching, "pixel {} changed, away from {:?}", i, tile);
+            }
+            prop_assert_eq!(changed, count);
+        }
+    }
+
     /// An owned tile's pixels next to an edge with nobody are the owner's color; its inner
     /// pixels are tinted, not replaced.
     #[test]

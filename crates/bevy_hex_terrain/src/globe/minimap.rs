@@ -36,6 +36,11 @@ pub struct GlobeMinimapPicture {
     made_for: Option<(u64, u32, MinimapStyleKey)>,
     /// Where on the node the pointer last pressed (`-0.5..0.5`), for drags.
     pressed_at: Option<Vec2>,
+    /// Pixels whose color a tile state change changed, since the start.
+    repainted: u64,
+    /// Full paints of the picture since the start (a built picture, a change of style, the
+    /// tile states reset).
+    full_paints: u64,
 }
 
 /// What of the style a picture is built with (a change rebuilds it): the kinds' colors, the
@@ -59,6 +64,21 @@ impl GlobeMinimapPicture {
     #[must_use]
     pub fn outline(&self) -> &[u32] {
         &self.outline
+    }
+
+    /// Pixels whose color tile state writes changed, since the start (a full paint counts
+    /// those it changed too). Only the written tiles' pixels and those beside them are painted
+    /// again, so a write that changes no look (a highlight) changes none.
+    #[must_use]
+    pub fn repainted_pixels(&self) -> u64 {
+        self.repainted
+    }
+
+    /// Whole-picture paints since the start: each picture built, and a repaint after a change of
+    /// the tile states' style or after more writes in a frame than the states keep a list of.
+    #[must_use]
+    pub fn full_paints(&self) -> u64 {
+        self.full_paints
     }
 }
 
@@ -181,13 +201,15 @@ fn finish(
     picture.task = None;
     let Some(built) = built else { return };
     picture.painted = built.paint(|t| look(&states, &style, t));
+    picture.full_paints += 1;
     picture.outline.clear();
     let _ = images.insert(&picture.image, new_image(built.size(), picture.painted.clone()));
     picture.picture = Some(Arc::new(built));
 }
 
-/// Paints the shown picture again when the tile states or their style changed (the whole
-/// picture: a pixel a read of its tile's state).
+/// Paints the shown picture again where the tile states changed: the tiles written this frame
+/// (and the pixels beside them); the whole picture when the style changed or the states list no
+/// tiles (more writes than they keep a list of, or reset).
 fn repaint(
     mut picture: ResMut<GlobeMinimapPicture>,
     states: Res<GlobeTileStates>,
@@ -199,11 +221,20 @@ fn repaint(
     }
     let picture = &mut *picture;
     let Some(shown) = &picture.picture else { return };
-    let painted = shown.paint(|t| look(&states, &style, t));
-    if painted == picture.painted {
+    let changed = match states.changed_tiles().filter(|_| !style.is_changed()) {
+        Some(tiles) => shown.repaint(tiles.iter().copied(), |t| look(&states, &style, t), &mut picture.painted),
+        None => {
+            let painted = shown.paint(|t| look(&states, &style, t));
+            picture.full_paints += 1;
+            let changed = painted.chunks_exact(4).zip(picture.painted.chunks_exact(4)).filter(|(a, b)| a != b).count();
+            picture.painted = painted;
+            changed
+        }
+    };
+    if changed == 0 {
         return;
     }
-    picture.painted = painted;
+    picture.repainted += changed as u64;
     if let Some(mut image) = images.get_mut(&picture.image)
         && let Some(data) = image.data.as_mut()
     {

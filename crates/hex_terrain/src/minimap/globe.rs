@@ -144,9 +144,45 @@ impl GlobeMinimap {
         let looks: Vec<TileLook> = (0..self.tile_start.len() as u32 - 1).map(|t| look(GlobeTile(t))).collect();
         let mut rgba = vec![0u8; self.base.len() * 4];
         for (i, px) in rgba.chunks_exact_mut(4).enumerate() {
-            px.copy_from_slice(&self.pixel(i, &looks));
+            px.copy_from_slice(&self.pixel(i, |t| looks[t as usize]));
         }
         rgba
+    }
+
+    /// Repaints in `rgba` (a picture from [`paint`](Self::paint)) the pixels whose color may
+    /// depend on `tiles`: their pixels and the pixels beside them (east, west, north, south: a
+    /// border reads them), each with its tile's look; returns how many pixels changed color.
+    /// The result equals a full [`paint`](Self::paint) with the same looks when only the looks
+    /// of `tiles` changed since `rgba` was painted. Tiles not of the globe are skipped.
+    ///
+    /// # Panics
+    /// If `rgba` is not the picture's size (width × height × 4 bytes).
+    pub fn repaint(
+        &self,
+        tiles: impl IntoIterator<Item = GlobeTile>,
+        look: impl Fn(GlobeTile) -> TileLook,
+        rgba: &mut [u8],
+    ) -> usize {
+        assert_eq!(rgba.len(), self.base.len() * 4, "the picture is {}x{} RGBA8", self.size[0], self.size[1]);
+        let mut dirty: Vec<u32> = Vec::new();
+        for tile in tiles {
+            for &i in self.pixels_of(tile) {
+                dirty.push(i);
+                dirty.extend(self.around(i));
+            }
+        }
+        dirty.sort_unstable();
+        dirty.dedup();
+        let mut changed = 0;
+        for i in dirty {
+            let i = i as usize;
+            let color = self.pixel(i, |t| look(GlobeTile(t)));
+            if rgba[i * 4..i * 4 + 4] != color {
+                rgba[i * 4..i * 4 + 4].copy_from_slice(&color);
+                changed += 1;
+            }
+        }
+        changed
     }
 
     /// The pixels (row-major indices) of the circle `angle` radians around `direction`: the
@@ -222,20 +258,24 @@ impl GlobeMinimap {
 
     /// The color of pixel `i`: its tile's look; an owned pixel beside one of another owner (or
     /// none), east, west, north or south, is its border.
-    fn pixel(&self, i: usize, looks: &[TileLook]) -> [u8; 4] {
-        let look = looks[self.pixel_tile[i] as usize];
+    fn pixel(&self, i: usize, look_of: impl Fn(u32) -> TileLook) -> [u8; 4] {
+        let look = look_of(self.pixel_tile[i]);
         let style = &self.style;
         if style.fog_of_war && look.fog == FogState::Unexplored {
             return style.unexplored;
         }
         let border = look.owner.is_some_and(|owner| {
-            let [w, h] = self.size;
-            let (x, y) = (i as u32 % w, i as u32 / w);
-            let around =
-                [y * w + (x + 1) % w, y * w + (x + w - 1) % w, y.saturating_sub(1) * w + x, (y + 1).min(h - 1) * w + x];
-            around.iter().any(|&j| looks[self.pixel_tile[j as usize] as usize].owner != Some(owner))
+            self.around(i as u32).iter().any(|&j| look_of(self.pixel_tile[j as usize]).owner != Some(owner))
         });
         shade(style, self.base[i], look, border)
+    }
+
+    /// The pixels east, west, north and south of pixel `i` (across the date line east and west;
+    /// at the top and bottom rows, the pixel itself north or south).
+    fn around(&self, i: u32) -> [u32; 4] {
+        let [w, h] = self.size;
+        let (x, y) = (i % w, i / w);
+        [y * w + (x + 1) % w, y * w + (x + w - 1) % w, y.saturating_sub(1) * w + x, (y + 1).min(h - 1) * w + x]
     }
 }
 
