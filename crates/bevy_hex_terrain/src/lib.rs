@@ -94,7 +94,7 @@ pub use crate::editor::{
 pub use crate::far::{HexBigSpacePlugin, HexTerrainGrid};
 pub use crate::globe::{
     GLOBE_ROW, GlobeCamera, GlobeStreamer, GlobeTileStates, GlobeTileWalk, GlobeWalkEnded, HexGlobe, HexGlobeChunk,
-    HexGlobePlugin, NEAR_ANGLE, OnGlobeTile, globe_horizon,
+    HexGlobeEditor, HexGlobeEditorPlugin, HexGlobePlugin, NEAR_ANGLE, OnGlobeTile, globe_horizon,
 };
 #[cfg(feature = "minimap")]
 pub use crate::globe::{GlobeMinimapNavigate, GlobeMinimapPicture, HexGlobeMinimap, HexGlobeMinimapPlugin};
@@ -152,12 +152,12 @@ pub mod prelude {
     pub use crate::screenshot::HexScreenshotPlugin;
     pub use crate::{
         ChunkContent, ChunkDespawned, ChunkSpawned, ChunkStreamer, FogState, GameSetUp, GlobeCamera, GlobeTileStates,
-        HexChunk, HexEditor, HexGlobe, HexGlobeChunk, HexGlobePlugin, HexMap, HexMapEdit, HexMapEdited, HexMapError,
-        HexMapPlugin, HexMapUnchanged, HexProp, HexPropSettings, HexPropsPlugin, HexStreamingPlugin,
-        HexStreamingSettings, HexStreamingStats, HexTerrainAgent, HexTerrainPlugins, HexTerrainSystems,
-        HexTileStatePlugin, HexTileStateSettings, HexTileStateStyle, HexWater, HexWaterPlugin, HexWaterSettings,
-        HexWorldPosition, Highlight, LoadHexMap, MapSource, OnTile, SaveError, SetUpGame, TerrainReady, TerrainSettled,
-        TileHit, TileStateSave, TileStates, TileWalk, WalkEnded,
+        HexChunk, HexEditor, HexGlobe, HexGlobeChunk, HexGlobeEditor, HexGlobeEditorPlugin, HexGlobePlugin, HexMap,
+        HexMapEdit, HexMapEdited, HexMapError, HexMapPlugin, HexMapUnchanged, HexProp, HexPropSettings, HexPropsPlugin,
+        HexStreamingPlugin, HexStreamingSettings, HexStreamingStats, HexTerrainAgent, HexTerrainPlugins,
+        HexTerrainSystems, HexTileStatePlugin, HexTileStateSettings, HexTileStateStyle, HexWater, HexWaterPlugin,
+        HexWaterSettings, HexWorldPosition, Highlight, LoadHexMap, MapSource, OnTile, SaveError, SetUpGame,
+        TerrainReady, TerrainSettled, TileHit, TileStateSave, TileStates, TileWalk, WalkEnded,
     };
     pub use hex_terrain::hexx::Hex;
     pub use hex_terrain::{

@@ -16,13 +16,15 @@
 //! first altitude and `HEXTERRAIN_GLOBE_AT=LON,LAT` its first place in degrees (the screenshots
 //! use them: `-144,26.6` looks down on that pentagon). The minimap (bottom right) is the whole
 //! globe drawn equirectangular, the camera's view outlined; a click or a drag there flies the
-//! camera over that spot. `HEXTERRAIN_SCRIPT=1` plays a scripted turn that checks the game
+//! camera over that spot. R raises the tiles round the one under the mouse (Shift+R lowers
+//! them), Ctrl+Z undoes, Ctrl+Y redoes (`HexGlobeEditorPlugin`: only the chunks an edit changed
+//! are built again). `HEXTERRAIN_SCRIPT=1` plays a scripted turn that checks the game
 //! (`script.rs`; `tests/strategy.rs` runs it).
 
 mod script;
 
 use bevy::prelude::*;
-use bevy_hex_terrain::hex_terrain::{GlobeFog, GlobeTerrain, GlobeTile};
+use bevy_hex_terrain::hex_terrain::{GlobeFog, GlobeStroke, GlobeTerrain, GlobeTile};
 use bevy_hex_terrain::prelude::*;
 use bevy_hex_terrain::{GlobeTileWalk, GlobeWalkEnded, HexGlobe, HexGlobeMinimapPlugin, HoveredGlobeTile, OnGlobeTile};
 
@@ -72,6 +74,8 @@ fn main() -> AppExit {
             // The equirectangular minimap with the camera's view outlined; a click there flies
             // the camera over that spot.
             HexGlobeMinimapPlugin,
+            // The world builder: keys raise and lower the tiles under the mouse (`edit`).
+            HexGlobeEditorPlugin,
         ))
         .insert_resource(HexMinimapSettings { size: UVec2::new(320, 160), ..default() })
         // Fog of war drawn (HEXTERRAIN_FOG=off: every tile as generated); the owners' colors are
@@ -101,7 +105,7 @@ fn main() -> AppExit {
                 TileLabel,
             ));
         })
-        .add_systems(Update, (name_the_tile, (found_the_players, see).chain().after(HexTerrainSystems::Map)))
+        .add_systems(Update, (name_the_tile, edit, (found_the_players, see).chain().after(HexTerrainSystems::Map)))
         .add_observer(turn_back);
     if scripted {
         // The scripted turn checks the game, saves its screenshot and exits.
@@ -217,6 +221,27 @@ fn turn_back(ended: On<GlobeWalkEnded>, mut commands: Commands, scouts: Query<&S
         path.reverse();
     }
     commands.entity(ended.entity).insert(GlobeTileWalk::new(path, 1.0));
+}
+
+/// R raises the tile under the mouse and its neighbors (Shift+R lowers them); Ctrl+Z undoes,
+/// Ctrl+Y redoes.
+fn edit(
+    keys: Res<ButtonInput<KeyCode>>,
+    hovered: Res<HoveredGlobeTile>,
+    mut edits: MessageWriter<HexMapEdit<GlobeStroke>>,
+) {
+    let ctrl = keys.any_pressed([KeyCode::ControlLeft, KeyCode::ControlRight]);
+    let shift = keys.any_pressed([KeyCode::ShiftLeft, KeyCode::ShiftRight]);
+    if ctrl && keys.just_pressed(KeyCode::KeyZ) {
+        edits.write(HexMapEdit::Undo);
+    } else if ctrl && keys.just_pressed(KeyCode::KeyY) {
+        edits.write(HexMapEdit::Redo);
+    } else if keys.just_pressed(KeyCode::KeyR)
+        && let Some(tile) = hovered.tile()
+    {
+        let tool = if shift { Tool::Lower(0.1) } else { Tool::Raise(0.1) };
+        edits.write(HexMapEdit::Stroke(GlobeStroke { tool, brush: Brush::Range(1), tile }));
+    }
 }
 
 /// Names the tile under the mouse, else the one at the center of the view.

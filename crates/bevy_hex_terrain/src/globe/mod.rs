@@ -19,6 +19,7 @@
 //! props and editor do not reach a globe yet.
 
 mod camera;
+mod editor;
 #[cfg(feature = "render")]
 mod material;
 #[cfg(feature = "minimap")]
@@ -31,10 +32,12 @@ mod tiles;
 
 use std::sync::Arc;
 
+use bevy::platform::collections::HashMap;
 use bevy::prelude::*;
 use hex_terrain::{GlobeChunk, GlobeTerrain, MapConfig};
 
 pub use camera::GlobeCamera;
+pub use editor::{HexGlobeEditor, HexGlobeEditorPlugin};
 #[cfg(feature = "render")]
 pub use material::{GlobeParams, HexGlobeExtension, HexGlobeMaterial};
 #[cfg(feature = "minimap")]
@@ -59,6 +62,11 @@ pub struct HexGlobe {
     #[reflect(ignore)]
     globe: Option<Arc<GlobeTerrain>>,
     generation: u64,
+    /// The generation of the config applied last: every chunk's mesh is out of date before it.
+    base_generation: u64,
+    /// The chunks edits changed since, with the generation of the last edit that changed each.
+    #[reflect(ignore)]
+    edited_chunks: HashMap<GlobeChunk, u64>,
     /// The file the globe comes from, if any.
     #[reflect(ignore)]
     handle: Option<Handle<HexMapAsset>>,
@@ -71,21 +79,46 @@ impl HexGlobe {
         self.globe.as_ref()
     }
 
-    /// Grows by one each time a config is applied (the first, a hot reload): a chunk built for
-    /// an older generation is built again.
+    /// Grows by one each time a config is applied (the first, a hot reload) and each time the
+    /// globe is edited ([`HexGlobeEditorPlugin`]).
     #[must_use]
     pub fn generation(&self) -> u64 {
         self.generation
     }
 
-    /// Applies a config: compiles it and makes it the globe, or keeps the globe as it was.
+    /// The generation since which `chunk` looks as it does now: the last config applied, or the
+    /// last edit that changed the chunk after it. A mesh built for it or later shows the globe.
+    #[must_use]
+    pub fn chunk_generation(&self, chunk: GlobeChunk) -> u64 {
+        self.edited_chunks.get(&chunk).map_or(self.base_generation, |&g| g.max(self.base_generation))
+    }
+
+    /// Whether a mesh of `chunk` built for globe generation `built` shows the globe now.
+    #[must_use]
+    pub fn is_current(&self, chunk: GlobeChunk, built: Option<u64>) -> bool {
+        built.is_some_and(|g| g >= self.chunk_generation(chunk) && g <= self.generation)
+    }
+
+    /// Applies a config: compiles it and makes it the globe (every chunk out of date), or keeps
+    /// the globe as it was.
     ///
     /// # Errors
     /// The config's first invalid field (`size` for a flat map's config).
     pub fn apply(&mut self, config: MapConfig) -> Result<(), hex_terrain::ConfigError> {
         self.globe = Some(Arc::new(GlobeTerrain::new(config)?));
         self.generation += 1;
+        self.base_generation = self.generation;
+        self.edited_chunks.clear();
         Ok(())
+    }
+
+    /// Shows an edit of the globe: a new generation in which only `chunks` are out of date.
+    pub(crate) fn edit(&mut self, globe: GlobeTerrain, chunks: &[GlobeChunk]) {
+        self.globe = Some(Arc::new(globe));
+        self.generation += 1;
+        for &chunk in chunks {
+            self.edited_chunks.insert(chunk, self.generation);
+        }
     }
 }
 

@@ -115,8 +115,11 @@ pub(super) fn stream(
         let entity = match streamer.chunks.get(&chunk) {
             Some(&entity) => {
                 let Ok((shown, task)) = chunks.get(entity) else { continue };
-                current += usize::from(shown.generation == Some(generation));
-                if shown.generation == Some(generation) || task.is_some_and(|t| t.generation == generation) {
+                let shows = globe.is_current(chunk, shown.generation);
+                current += usize::from(shows);
+                // A chunk an edit left alone keeps its mesh; a task for the globe as it is now
+                // is left to finish.
+                if shows || task.is_some_and(|t| globe.is_current(chunk, Some(t.generation))) {
                     continue;
                 }
                 entity

@@ -134,6 +134,12 @@ impl GlobeEditor {
         MapConfig { edits: self.edits(), ..self.globe.config().clone() }
     }
 
+    /// How many tiles carry an edit.
+    #[must_use]
+    pub fn edited_tiles(&self) -> usize {
+        self.edits.len()
+    }
+
     /// Operations that [`GlobeEditor::undo`] can take back.
     #[must_use]
     pub fn undo_len(&self) -> usize {
