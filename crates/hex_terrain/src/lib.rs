@@ -112,8 +112,8 @@ pub use fog::{FOG_MAGIC, FOG_VERSION, FogError, FogOfWar};
 pub use geometry::Geometry;
 pub use globe::{
     GLOBE_FOG_MAGIC, GLOBE_FOG_VERSION, GLOBE_SIGHT_SAMPLES, GlobeChange, GlobeChunk, GlobeEditor, GlobeFog, GlobeGrid,
-    GlobeLandmass, GlobeMesh, GlobeNeighbors, GlobePath, GlobePoint, GlobeRayHit, GlobeSize, GlobeStats, GlobeStroke,
-    GlobeTerrain, GlobeTile, GlobeTileInfo, MAX_GLOBE_FREQUENCY, POLAR_LATITUDE,
+    GlobeLandmass, GlobeMesh, GlobeNeighbors, GlobePath, GlobePoint, GlobeProp, GlobeRayHit, GlobeSize, GlobeStats,
+    GlobeStroke, GlobeTerrain, GlobeTile, GlobeTileInfo, MAX_GLOBE_FREQUENCY, POLAR_LATITUDE,
 };
 /// The stable hash the core places props with, for the plugin's prop meshes. Hidden from the
 /// docs: an internal the two crates share, not an API.

@@ -28,6 +28,7 @@ use hexx::Hex;
 use crate::config::{PropDensity, ResourceClass};
 use crate::hash;
 use crate::info::TileInfo;
+use crate::kind::Thresholds;
 use crate::mesh::coarse::fan_border;
 use crate::mesh::{ChunkMesh, Detail};
 use crate::pipeline::Pipeline;
@@ -57,10 +58,7 @@ pub struct Prop {
 /// What a tile grows: the kind, how many, and their size in hex radii (a density set by hand
 /// first).
 fn rule(pipeline: &Pipeline, info: &TileInfo, h: u64) -> Option<(PropKind, u32, f32)> {
-    let t = pipeline.thresholds();
-    let max = pipeline.max_elevation().max(f32::MIN_POSITIVE);
-    // Where the tile's center lies in the land range, 0 at the sea threshold, 1 at the mountains.
-    let land = ((info.elevation / max - t.sea) / (t.mountain - t.sea).max(f32::EPSILON)).clamp(0.0, 1.0);
+    let land = land_share(info.elevation, pipeline.max_elevation(), pipeline.thresholds());
     let pick = hash::unit(h);
     let extra = (h >> 8) as u32 % 3;
     let tree = if land > 0.62 { PropKind::Pine } else { PropKind::Broadleaf };
@@ -87,24 +85,64 @@ fn rule(pipeline: &Pipeline, info: &TileInfo, h: u64) -> Option<(PropKind, u32, 
     }
     // The default ruleset's terrain `i` is biome `i`.
     let biome = Biome::ALL[usize::from(info.terrain.terrain.0)];
-    let grows = match (info.kind, biome) {
+    let coastal =
+        || geometry.wrapped_neighbors(info.hex).iter().any(|&n| pipeline.map_tile_kind(n) == Some(TileKind::Sea));
+    biome_rule(info.kind, biome, land, h, pipeline.climate().is_enabled(), coastal)
+}
+
+/// Where a tile's center elevation lies in the land range: 0 at the sea threshold, 1 at the
+/// mountains'.
+pub(crate) fn land_share(elevation: f32, max_elevation: f32, t: &Thresholds) -> f32 {
+    let max = max_elevation.max(f32::MIN_POSITIVE);
+    ((elevation / max - t.sea) / (t.mountain - t.sea).max(f32::EPSILON)).clamp(0.0, 1.0)
+}
+
+/// What a tile of the 13 biomes grows (a flat map's or a globe's): rocks on mountains, trees by
+/// biome (pines on high ground, at `land` past 0.62 of the land range), on a map without a
+/// climate a band of trees in the middle of the land range, and reeds on half the open land
+/// tiles by the sea (`coastal`, asked only then). `h` is the tile's hash.
+pub(crate) fn biome_rule(
+    kind: TileKind,
+    biome: Biome,
+    land: f32,
+    h: u64,
+    climate: bool,
+    coastal: impl FnOnce() -> bool,
+) -> Option<(PropKind, u32, f32)> {
+    let pick = hash::unit(h);
+    let extra = (h >> 8) as u32 % 3;
+    let tree = if land > 0.62 { PropKind::Pine } else { PropKind::Broadleaf };
+    let grows = match (kind, biome) {
         (TileKind::Sea, _) | (_, Biome::Ocean | Biome::Lake | Biome::Desert | Biome::Snow) => None,
         (TileKind::Mountain, _) | (_, Biome::Rock | Biome::SnowPeak) => Some((PropKind::Rock, 1 + extra, 0.2)),
         (_, Biome::Forest) => Some((tree, 5 + extra, 0.3)),
         (_, Biome::Rainforest) => Some((PropKind::Broadleaf, 7 + extra, 0.32)),
         (_, Biome::Tundra) => (pick < 0.5).then_some((PropKind::Pine, 1 + extra, 0.24)),
         (_, Biome::Hills) => (pick < 0.6).then_some((tree, 2 + extra, 0.27)),
-        (_, Biome::Grassland) if !pipeline.climate().is_enabled() => {
+        (_, Biome::Grassland) if !climate => {
             ((0.25..0.75).contains(&land) && pick < 0.5).then_some((tree, 4 + extra, 0.3))
         }
         _ => None,
     };
-    if grows.is_some() || info.kind != TileKind::Land || pick < 0.5 {
+    if grows.is_some() || kind != TileKind::Land || pick < 0.5 {
         return grows;
     }
-    let coastal =
-        geometry.wrapped_neighbors(info.hex).iter().any(|&n| pipeline.map_tile_kind(n) == Some(TileKind::Sea));
-    coastal.then_some((PropKind::Reed, 2 + extra, 0.16))
+    coastal().then_some((PropKind::Reed, 2 + extra, 0.16))
+}
+
+/// Keeps the `max` items of the lowest priority (ties by index), in their order.
+pub(crate) fn keep_first<T>(items: &mut Vec<T>, priority: &[f32], max: usize) {
+    if items.len() <= max {
+        return;
+    }
+    let mut order: Vec<usize> = (0..items.len()).collect();
+    order.sort_by(|&a, &b| priority[a].total_cmp(&priority[b]).then(a.cmp(&b)));
+    let mut keep = vec![false; items.len()];
+    for &i in &order[..max] {
+        keep[i] = true;
+    }
+    let mut k = keep.iter();
+    items.retain(|_| k.next().copied().unwrap_or(false));
 }
 
 /// The props of a generated chunk (see the module docs), at most `max_per_chunk`, with
@@ -175,16 +213,7 @@ pub fn props(pipeline: &Pipeline, chunk: &ChunkMesh, max_per_chunk: usize, densi
             priority.push(hash::unit(r));
         }
     }
-    if props.len() > max_per_chunk {
-        let mut order: Vec<usize> = (0..props.len()).collect();
-        order.sort_by(|&a, &b| priority[a].total_cmp(&priority[b]).then(a.cmp(&b)));
-        let mut keep = vec![false; props.len()];
-        for &i in &order[..max_per_chunk] {
-            keep[i] = true;
-        }
-        let mut k = keep.iter();
-        props.retain(|_| k.next().copied().unwrap_or(false));
-    }
+    keep_first(&mut props, &priority, max_per_chunk);
     props
 }
 

@@ -103,7 +103,7 @@ fn shell(o: Dir, d: Dir, inner: f64, outer: f64) -> Option<(f64, f64)> {
 
 /// Möller-Trumbore: the distance along unit `d` from `o` to triangle `a b c`, hit from either
 /// side; `None` when the ray misses it or runs along its plane.
-fn hit(o: Dir, d: Dir, a: Dir, b: Dir, c: Dir) -> Option<f64> {
+pub(super) fn hit(o: Dir, d: Dir, a: Dir, b: Dir, c: Dir) -> Option<f64> {
     let (e1, e2) = (sub(b, a), sub(c, a));
     let p = cross(d, e2);
     let det = project::dot(e1, p);
