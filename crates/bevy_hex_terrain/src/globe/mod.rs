@@ -27,6 +27,7 @@ mod minimap;
 #[cfg(feature = "picking")]
 mod picking;
 mod placement;
+mod props;
 mod stream;
 mod tiles;
 
@@ -45,13 +46,14 @@ pub use minimap::{GlobeMinimapNavigate, GlobeMinimapPicture, HexGlobeMinimap, He
 #[cfg(feature = "picking")]
 pub use picking::{HexGlobePick, HoveredGlobeTile};
 pub use placement::{GlobeTileWalk, GlobeWalkEnded, OnGlobeTile};
+pub use props::HexGlobeProp;
 pub use stream::{GLOBE_ROW, GlobeStreamer, HexGlobeChunk, NEAR_ANGLE, globe_horizon};
 pub use tiles::GlobeTileStates;
 
 use crate::asset::{HexMapAsset, HexMapLoader};
 use crate::map::{HexMapError, load_failure};
 use crate::tiles::{HexTileStateStyle, HexTileStateSystems};
-use crate::{HexTerrainSystems, MapSource};
+use crate::{HexPropSettings, HexTerrainSystems, MapSource};
 
 /// The globe shown: its compiled terrain and a generation that grows with each config applied.
 /// While its file loads, no globe (nothing is streamed).
@@ -178,7 +180,10 @@ impl Plugin for HexGlobePlugin {
             .init_resource::<GlobeStreamer>()
             .init_resource::<GlobeTileStates>()
             .init_resource::<HexTileStateStyle>()
+            .init_resource::<HexPropSettings>()
             .register_type::<GlobeTileStates>()
+            .register_type::<HexPropSettings>()
+            .register_type::<HexGlobeProp>()
             .register_type::<HexTileStateStyle>()
             .add_message::<HexMapError>()
             .register_type::<HexGlobe>()
@@ -196,7 +201,7 @@ impl Plugin for HexGlobePlugin {
                 (
                     (apply_asset, tiles::follow_globe, camera::place).chain().in_set(HexTerrainSystems::Map),
                     stream::stream.in_set(HexTerrainSystems::Stream),
-                    stream::insert.in_set(HexTerrainSystems::Insert),
+                    (stream::insert, props::sync_props).chain().in_set(HexTerrainSystems::Insert),
                     (placement::walk, placement::place).chain().in_set(HexTerrainSystems::Place),
                 ),
             )
@@ -206,9 +211,13 @@ impl Plugin for HexGlobePlugin {
         #[cfg(feature = "render")]
         app.init_resource::<material::GlobeStateUpload>()
             .add_systems(PostUpdate, material::pack_upload.in_set(HexTileStateSystems::Pack));
+        // Props on unexplored tiles hidden after every game system's writes of the frame.
+        #[cfg(feature = "render")]
+        app.add_systems(PostUpdate, props::hide_unexplored.before(HexTileStateSystems::Pack));
         #[cfg(feature = "render")]
         if app.is_plugin_added::<bevy::pbr::PbrPlugin>() {
             material::build(app);
+            app.add_systems(Startup, crate::props::create_assets);
         }
         #[cfg(feature = "picking")]
         {

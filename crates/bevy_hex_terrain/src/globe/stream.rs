@@ -10,10 +10,11 @@ use bevy::platform::collections::HashMap;
 use bevy::prelude::*;
 use bevy::tasks::futures::check_ready;
 use bevy::tasks::{AsyncComputeTaskPool, Task};
-use hex_terrain::{Biome, GlobeChunk, GlobeMesh, TileKind};
+use hex_terrain::{Biome, GlobeChunk, GlobeMesh, GlobeProp, TileKind};
 
+use super::props::GlobeChunkProps;
 use super::{HexGlobe, chunks_within};
-use crate::HexTerrainAgent;
+use crate::{HexPropSettings, HexTerrainAgent};
 
 /// A chunk of the globe on screen (or on its way): which one, and the globe generation its mesh
 /// shows (`None` until its first mesh arrives).
@@ -28,10 +29,10 @@ pub struct HexGlobeChunk {
     pub generation: Option<u64>,
 }
 
-/// A chunk's mesh being built, for a globe generation.
+/// A chunk's mesh (with its origin and props) being built, for a globe generation.
 #[derive(Component)]
 pub(super) struct GlobeChunkTask {
-    task: Task<(Mesh, Vec3)>,
+    task: Task<(Mesh, Vec3, Vec<GlobeProp>)>,
     generation: u64,
 }
 
@@ -84,6 +85,7 @@ pub const NEAR_ANGLE: f32 = 0.2;
 pub(super) fn stream(
     mut commands: Commands,
     globe: Res<HexGlobe>,
+    settings: Res<HexPropSettings>,
     mut streamer: ResMut<GlobeStreamer>,
     agents: Query<&GlobalTransform, With<HexTerrainAgent>>,
     chunks: Query<(&HexGlobeChunk, Option<&GlobeChunkTask>)>,
@@ -131,10 +133,12 @@ pub(super) fn stream(
             }
         };
         let terrain = terrain.clone();
+        let (cap, density) = (settings.max_per_chunk, settings.density);
         let task = AsyncComputeTaskPool::get().spawn(async move {
             let mesh = terrain.generate(chunk);
             let origin = Vec3::from_array(mesh.origin.map(|c| c as f32));
-            (globe_mesh(mesh), origin)
+            let props = terrain.props(&mesh, cap, density);
+            (globe_mesh(mesh), origin, props)
         });
         commands.entity(entity).insert(GlobeChunkTask { task, generation });
     }
@@ -142,23 +146,24 @@ pub(super) fn stream(
     streamer.current = current;
 }
 
-/// Gives each chunk whose task finished its mesh (the globe's material comes with the renderer,
-/// `material.rs`).
+/// Gives each chunk whose task finished its mesh and props (the globe's material comes with the
+/// renderer, `material.rs`; the props' entities, `props.rs`).
 pub(super) fn insert(
     mut commands: Commands,
     mut meshes: ResMut<Assets<Mesh>>,
     mut tasks: Query<(Entity, &mut HexGlobeChunk, &mut GlobeChunkTask, Option<&Mesh3d>)>,
 ) {
     for (entity, mut chunk, mut task, old) in &mut tasks {
-        let Some((mesh, origin)) = check_ready(&mut task.task) else { continue };
+        let Some((mesh, origin, props)) = check_ready(&mut task.task) else { continue };
         if let Some(old) = old {
             meshes.remove(&old.0);
         }
         chunk.generation = Some(task.generation);
-        commands
-            .entity(entity)
-            .remove::<GlobeChunkTask>()
-            .insert((Mesh3d(meshes.add(mesh)), Transform::from_translation(origin)));
+        commands.entity(entity).remove::<GlobeChunkTask>().insert((
+            Mesh3d(meshes.add(mesh)),
+            Transform::from_translation(origin),
+            GlobeChunkProps::new(props),
+        ));
     }
 }
 

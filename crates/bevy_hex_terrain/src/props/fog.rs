@@ -1,6 +1,10 @@
 //! Fog of war over props: props on unexplored tiles are hidden while the terrain draws fog of
-//! war (with Bevy's renderer; headless there is no fog to draw).
+//! war (with Bevy's renderer; headless there is no fog to draw). A flat map's props and a
+//! globe's alike ([`PropsByTile::hide`]).
 
+use std::hash::Hash;
+
+use bevy::ecs::query::QueryFilter;
 use bevy::platform::collections::HashMap;
 use bevy::prelude::*;
 use hex_terrain::hexx::Hex;
@@ -8,13 +12,108 @@ use hex_terrain::hexx::Hex;
 use super::{HexProp, HexPropStats};
 use crate::TileStates;
 
-/// The props standing on each tile (the map's own tile), for the fog to find them, and whether
-/// the fog last hid that tile's props.
-#[derive(Default)]
-pub(super) struct PropsByTile {
-    tiles: HashMap<Hex, Vec<Entity>>,
-    of: HashMap<Entity, Hex>,
-    hidden: HashMap<Hex, bool>,
+/// The props standing on each tile (`K`: a flat map's own tile or a globe's), for the fog to
+/// find them, and whether the fog last hid that tile's props.
+pub(crate) struct PropsByTile<K> {
+    tiles: HashMap<K, Vec<Entity>>,
+    of: HashMap<Entity, K>,
+    hidden: HashMap<K, bool>,
+}
+
+impl<K> Default for PropsByTile<K> {
+    fn default() -> Self {
+        Self { tiles: HashMap::default(), of: HashMap::default(), hidden: HashMap::default() }
+    }
+}
+
+/// What changed for the fog this frame.
+pub(crate) enum FogChange<I> {
+    /// Nothing.
+    None,
+    /// The fog of these tiles may have changed (written this frame).
+    Tiles(I),
+    /// Any tile's (the fog switched, the states reset, more writes than listed).
+    All,
+}
+
+impl<K: Copy + Eq + Hash> PropsByTile<K> {
+    /// Indexes the props `added`, forgets the `removed`, and sets the visibility of the new props
+    /// and of those on tiles whose fog changed (`hidden_on` says whether a tile's props are
+    /// hidden now) with `show`; returns how many props it set.
+    pub(crate) fn hide(
+        &mut self,
+        added: impl IntoIterator<Item = (Entity, K)>,
+        removed: impl IntoIterator<Item = Entity>,
+        change: FogChange<impl IntoIterator<Item = K>>,
+        hidden_on: impl Fn(K) -> bool,
+        mut show: impl FnMut(Entity, bool) -> bool,
+    ) -> u64 {
+        for e in removed {
+            if let Some(tile) = self.of.remove(&e)
+                && let Some(list) = self.tiles.get_mut(&tile)
+            {
+                list.retain(|&p| p != e);
+                if list.is_empty() {
+                    self.tiles.remove(&tile);
+                    self.hidden.remove(&tile);
+                }
+            }
+        }
+        let mut checks = 0u64;
+        let mut set = |e: Entity, hidden: bool| checks += u64::from(show(e, hidden));
+        for (e, tile) in added {
+            self.tiles.entry(tile).or_default().push(e);
+            self.of.insert(e, tile);
+            let hidden = hidden_on(tile);
+            self.hidden.insert(tile, hidden);
+            set(e, hidden);
+        }
+        match change {
+            FogChange::None => {}
+            FogChange::All => {
+                for (&tile, props) in &self.tiles {
+                    let now = hidden_on(tile);
+                    self.hidden.insert(tile, now);
+                    for &e in props {
+                        set(e, now);
+                    }
+                }
+            }
+            FogChange::Tiles(changed) => {
+                for tile in changed {
+                    let Some(props) = self.tiles.get(&tile) else { continue };
+                    // A write that left the tile's fog as it was (a highlight, an owner) changes
+                    // nothing here.
+                    let now = hidden_on(tile);
+                    if self.hidden.insert(tile, now) == Some(now) {
+                        continue;
+                    }
+                    for &e in props {
+                        set(e, now);
+                    }
+                }
+            }
+        }
+        checks
+    }
+}
+
+/// What changed for the fog: the tiles written this frame, every tile when the fog was switched
+/// or the states list no tiles, nothing when the states did not change.
+pub(crate) fn fog_change<I>(fog_switched: bool, states_changed: bool, changed_tiles: Option<I>) -> FogChange<I> {
+    match (fog_switched, changed_tiles) {
+        (true, _) => FogChange::All,
+        (false, Some(tiles)) => FogChange::Tiles(tiles),
+        (false, None) if states_changed => FogChange::All,
+        (false, None) => FogChange::None,
+    }
+}
+
+/// Sets a prop's visibility: hidden, or inherited from its chunk; whether it was found.
+pub(crate) fn show<F: QueryFilter>(visibilities: &mut Query<&mut Visibility, F>, e: Entity, hidden: bool) -> bool {
+    let Ok(mut visibility) = visibilities.get_mut(e) else { return false };
+    visibility.set_if_neq(if hidden { Visibility::Hidden } else { Visibility::Inherited });
+    true
 }
 
 /// Hides props on unexplored tiles while the terrain draws fog of war, so the fog does not show
@@ -26,65 +125,18 @@ pub(super) fn hide_unexplored(
     style: Res<crate::tiles::HexTileStateStyle>,
     added: Query<(Entity, &HexProp), Added<HexProp>>,
     mut removed: RemovedComponents<HexProp>,
-    mut visibilities: Query<(&HexProp, &mut Visibility)>,
-    mut index: Local<PropsByTile>,
+    mut visibilities: Query<&mut Visibility, With<HexProp>>,
+    mut index: Local<PropsByTile<Hex>>,
     mut stats: ResMut<HexPropStats>,
 ) {
-    let (fog, fog_changed) = (style.fog_of_war, style.is_changed());
-    let index = &mut *index;
-    for e in removed.read() {
-        if let Some(tile) = index.of.remove(&e)
-            && let Some(list) = index.tiles.get_mut(&tile)
-        {
-            list.retain(|&p| p != e);
-            if list.is_empty() {
-                index.tiles.remove(&tile);
-                index.hidden.remove(&tile);
-            }
-        }
-    }
-    let hidden_on = |tile: Hex| fog && states.visibility(tile) == crate::FogState::Unexplored;
-    let mut checks = 0u64;
-    let mut show = |e: Entity, hidden: bool, visibilities: &mut Query<(&HexProp, &mut Visibility)>| {
-        let Ok((_, mut visibility)) = visibilities.get_mut(e) else { return };
-        checks += 1;
-        visibility.set_if_neq(if hidden { Visibility::Hidden } else { Visibility::Inherited });
-    };
-    for (e, prop) in &added {
-        let tile = states.wrap_tile(prop.tile);
-        index.tiles.entry(tile).or_default().push(e);
-        index.of.insert(e, tile);
-        let hidden = hidden_on(tile);
-        index.hidden.insert(tile, hidden);
-        show(e, hidden, &mut visibilities);
-    }
-    let changed = if fog_changed { None } else { states.changed_tiles() };
-    match changed {
-        None if fog_changed || states.is_changed() => {
-            let PropsByTile { tiles, hidden, .. } = index;
-            for (&tile, props) in tiles.iter() {
-                let now = hidden_on(tile);
-                hidden.insert(tile, now);
-                for &e in props {
-                    show(e, now, &mut visibilities);
-                }
-            }
-        }
-        None => {}
-        Some(changed) => {
-            for tile in changed {
-                let Some(props) = index.tiles.get(&tile) else { continue };
-                // A write that left the tile's fog as it was (a highlight, an owner) changes
-                // nothing here.
-                let now = hidden_on(tile);
-                if index.hidden.insert(tile, now) == Some(now) {
-                    continue;
-                }
-                for &e in props {
-                    show(e, now, &mut visibilities);
-                }
-            }
-        }
-    }
+    let fog = style.fog_of_war;
+    let change = fog_change(style.is_changed(), states.is_changed(), states.changed_tiles());
+    let checks = index.hide(
+        added.iter().map(|(e, prop)| (e, states.wrap_tile(prop.tile))),
+        removed.read(),
+        change,
+        |tile| fog && states.visibility(tile) == crate::FogState::Unexplored,
+        |e, hidden| show(&mut visibilities, e, hidden),
+    );
     stats.fog_checks += checks;
 }

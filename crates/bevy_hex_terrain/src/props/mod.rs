@@ -28,6 +28,8 @@ use bevy::prelude::*;
 use hex_terrain::PROP_VARIANTS;
 use hex_terrain::{Detail, Prop, PropKind};
 
+#[cfg(feature = "render")]
+pub(crate) use fog::{PropsByTile, fog_change, show};
 pub use settings::HexPropSettings;
 
 use crate::HexTerrainSystems;
@@ -107,8 +109,18 @@ impl Plugin for HexPropsPlugin {
     }
 }
 
+/// Makes the [`PropAssets`] once (the flat map's props plugin and the globe's plugin both ask).
 #[cfg(feature = "render")]
-fn create_assets(
+pub(crate) fn create_assets(mut commands: Commands) {
+    commands.queue(|world: &mut World| {
+        if !world.contains_resource::<PropAssets>() {
+            world.run_system_cached(make_assets).expect("the prop assets' system runs");
+        }
+    });
+}
+
+#[cfg(feature = "render")]
+fn make_assets(
     mut commands: Commands,
     mut meshes: ResMut<Assets<Mesh>>,
     mut materials: ResMut<Assets<StandardMaterial>>,
@@ -154,18 +166,32 @@ fn spawn_props(
         let transform = Transform::from_translation(Vec3::from_array(p.position))
             .with_rotation(Quat::from_rotation_y(p.yaw))
             .with_scale(Vec3::splat(p.scale * size));
-        (HexProp { kind: p.kind, variant: p.variant, tile: p.tile }, transform, ChildOf(chunk))
+        (HexProp { kind: p.kind, variant: p.variant, tile: p.tile }, transform, p.kind, p.variant)
     };
+    spawn_batch(commands, chunk, props.iter().map(bare).collect(), assets, far);
+}
+
+/// Spawns props as children of `chunk`, each its component, transform, kind and variant: with
+/// Bevy's renderer and the prop assets, with its kind's mesh (the far one when `far`), the one
+/// material and its box; headless, bare. One batch, every prop spawned whole. A flat map's props
+/// and a globe's alike.
+pub(crate) fn spawn_batch<C: Component>(
+    commands: &mut Commands,
+    chunk: Entity,
+    props: Vec<(C, Transform, PropKind, u8)>,
+    assets: Option<&PropAssets>,
+    far: bool,
+) {
     #[cfg(feature = "render")]
     if let Some(assets) = assets {
         let meshes = if far { &assets.far_meshes } else { &assets.meshes };
-        let drawn: Vec<DrawnProp> = props
-            .iter()
-            .map(|p| {
-                let (prop, transform, parent) = bare(p);
-                let (kind, variant) = (p.kind as usize, usize::from(p.variant % PROP_VARIANTS));
+        let drawn: Vec<_> = props
+            .into_iter()
+            .map(|(prop, transform, kind, variant)| {
+                let (kind, variant) = (kind as usize, usize::from(variant % PROP_VARIANTS));
                 let mesh = Mesh3d(meshes[kind][variant].clone());
-                (prop, transform, mesh, MeshMaterial3d(assets.material.clone()), assets.aabbs[kind][variant], parent)
+                let material = MeshMaterial3d(assets.material.clone());
+                (prop, transform, mesh, material, assets.aabbs[kind][variant], ChildOf(chunk))
             })
             .collect();
         commands.spawn_batch(drawn);
@@ -173,7 +199,9 @@ fn spawn_props(
     }
     #[cfg(not(feature = "render"))]
     let _ = (assets, far);
-    commands.spawn_batch(props.iter().map(bare).collect::<Vec<BareProp>>());
+    commands.spawn_batch(
+        props.into_iter().map(|(prop, transform, ..)| (prop, transform, ChildOf(chunk))).collect::<Vec<_>>(),
+    );
 }
 
 /// The most props [`sync_props`] makes room for ahead (a few hundred bytes of address space a

@@ -2,7 +2,8 @@
 
 use bevy::prelude::*;
 
-/// The props' settings, owned by [`HexPropsPlugin`](crate::HexPropsPlugin). Insert it (before or
+/// The props' settings, owned by [`HexPropsPlugin`](crate::HexPropsPlugin) on a flat map and by
+/// [`HexGlobePlugin`](crate::HexGlobePlugin) on a globe. Insert it (before or
 /// after the plugins) to change the defaults.
 #[derive(Resource, Debug, Clone, Copy, PartialEq, Reflect)]
 #[reflect(Resource, Default)]
