@@ -61,16 +61,9 @@ fn rule(pipeline: &Pipeline, info: &TileInfo, h: u64) -> Option<(PropKind, u32, 
     let land = land_share(info.elevation, pipeline.max_elevation(), pipeline.thresholds());
     let pick = hash::unit(h);
     let extra = (h >> 8) as u32 % 3;
-    let tree = if land > 0.62 { PropKind::Pine } else { PropKind::Broadleaf };
     let geometry = pipeline.geometry();
     if let Some(density) = pipeline.heights().edits().and_then(|e| e.props(geometry, info.hex)) {
-        return match (density, info.kind) {
-            (PropDensity::None, _) | (_, TileKind::Sea) => None,
-            (PropDensity::Sparse, TileKind::Mountain) => Some((PropKind::Rock, 1, 0.2)),
-            (PropDensity::Dense, TileKind::Mountain) => Some((PropKind::Rock, 4 + extra, 0.2)),
-            (PropDensity::Sparse, TileKind::Land) => Some((tree, 2 + extra % 2, 0.28)),
-            (PropDensity::Dense, TileKind::Land) => Some((tree, 7 + extra, 0.3)),
-        };
+        return hand_rule(density, info.kind, land, h);
     }
     // Under the map's own terrain ruleset: what its feature (else its terrain) grows, on the
     // share of tiles its `chance` says, a variety of one to three more.
@@ -88,6 +81,20 @@ fn rule(pipeline: &Pipeline, info: &TileInfo, h: u64) -> Option<(PropKind, u32, 
     let coastal =
         || geometry.wrapped_neighbors(info.hex).iter().any(|&n| pipeline.map_tile_kind(n) == Some(TileKind::Sea));
     biome_rule(info.kind, biome, land, h, pipeline.climate().is_enabled(), coastal)
+}
+
+/// What a tile whose prop density is set by hand grows (a flat map's or a globe's): none, a few
+/// or a wood of trees on land (pines on high ground), rocks on a mountain, nothing at sea.
+pub(crate) fn hand_rule(density: PropDensity, kind: TileKind, land: f32, h: u64) -> Option<(PropKind, u32, f32)> {
+    let extra = (h >> 8) as u32 % 3;
+    let tree = if land > 0.62 { PropKind::Pine } else { PropKind::Broadleaf };
+    match (density, kind) {
+        (PropDensity::None, _) | (_, TileKind::Sea) => None,
+        (PropDensity::Sparse, TileKind::Mountain) => Some((PropKind::Rock, 1, 0.2)),
+        (PropDensity::Dense, TileKind::Mountain) => Some((PropKind::Rock, 4 + extra, 0.2)),
+        (PropDensity::Sparse, TileKind::Land) => Some((tree, 2 + extra % 2, 0.28)),
+        (PropDensity::Dense, TileKind::Land) => Some((tree, 7 + extra, 0.3)),
+    }
 }
 
 /// Where a tile's center elevation lies in the land range: 0 at the sea threshold, 1 at the

@@ -235,15 +235,16 @@ fn bad_globe_strokes_edits_and_saves_are_refused_by_name() {
     let stroke = |tool, tile| GlobeStroke { tool, brush: Brush::Range(1), tile: GlobeTile(tile) };
     assert!(matches!(editor.apply(stroke(Tool::AddRiver, 3)), Err(EditError::Unsupported { tool: "AddRiver", .. })));
     assert!(matches!(editor.apply(stroke(Tool::FillLake, 3)), Err(EditError::Unsupported { .. })));
-    assert!(matches!(
-        editor.apply(stroke(Tool::SetProps(hex_terrain::PropDensity::Dense), 3)),
-        Err(EditError::Unsupported { .. })
-    ));
     assert_eq!(editor.apply(stroke(Tool::Raise(0.1), tiles)), Err(EditError::OffGlobe { tile: tiles, tiles }));
     assert!(matches!(editor.apply(stroke(Tool::Raise(f32::NAN), 3)), Err(EditError::Amount { .. })));
     let far = GlobeStroke { tool: Tool::Smooth, brush: Brush::Range(17), tile: GlobeTile(3) };
     assert_eq!(editor.apply(far), Err(EditError::Range { radius: 17 }));
     assert_eq!(editor.undo_len(), 0, "nothing was applied");
+    // Props by hand are a stroke like any other on a globe: the tiles' edits hold the density.
+    let change = editor.apply(stroke(Tool::SetProps(hex_terrain::PropDensity::Dense), 3)).unwrap();
+    assert_eq!(change.edited.len(), editor.brush_tiles(Brush::Range(1), GlobeTile(3)).len());
+    assert!(editor.edits().iter().all(|e| e.props == Some(hex_terrain::PropDensity::Dense)));
+    editor.undo().unwrap();
 
     let refused = |edit: TileEdit, field: &str| {
         let e = GlobeTerrain::new(MapConfig { edits: vec![edit], ..base.clone() }).unwrap_err();
@@ -252,7 +253,6 @@ fn bad_globe_strokes_edits_and_saves_are_refused_by_name() {
     refused(TileEdit { height: Some(0.5), ..TileEdit::at((tiles as i32, 0)) }, "edits[0].at");
     refused(TileEdit { height: Some(0.5), ..TileEdit::at((3, 1)) }, "edits[0].at");
     refused(TileEdit { height: Some(1.5), ..TileEdit::at((3, 0)) }, "edits[0].height");
-    refused(TileEdit { props: Some(hex_terrain::PropDensity::None), ..TileEdit::at((3, 0)) }, "edits[0].props");
     refused(TileEdit { river: Some(hex_terrain::RiverEdit::Source), ..TileEdit::at((3, 0)) }, "edits[0].river");
     assert!(GlobeTerrain::new(MapConfig { edits: vec![TileEdit::at((tiles as i32 - 1, 0))], ..base.clone() }).is_ok());
 

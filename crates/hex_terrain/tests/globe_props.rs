@@ -2,7 +2,8 @@
 //! each prop stands where a ray from outside the globe (the core's `raycast`, over the whole
 //! shell) meets the surface, on the tile it names, upright along the globe's up; chunk by chunk
 //! gives the props of the whole mesh; what a tile grows follows its biome (a table of the test's
-//! own); a lower density keeps a part of the props of a higher one; the cap keeps that many.
+//! own), or the density set by hand; a lower density keeps a part of the props of a higher one;
+//! the cap keeps that many.
 
 use std::collections::HashMap;
 
@@ -148,5 +149,41 @@ fn a_globe_with_a_climate_grows_every_kind() {
     let all = chunked(&globe, usize::MAX, 1.0);
     for kind in [PropKind::Pine, PropKind::Broadleaf, PropKind::Rock, PropKind::Reed] {
         assert!(all.iter().any(|(p, _)| p.kind == kind), "no {kind:?} among {} props", all.len());
+    }
+}
+
+/// A density set by hand replaces the biome's rule: a wood (seven to nine trees) or a few trees
+/// on land, a few rocks or one on a mountain, nothing at sea or with `None`.
+#[test]
+fn densities_set_by_hand_replace_the_rule() {
+    use hex_terrain::{PropDensity, TileEdit};
+    let base = config(8, 2, 3, true, true);
+    let globe = GlobeTerrain::new(base.clone()).unwrap();
+    let of_kind = |kind: TileKind| -> Vec<GlobeTile> {
+        globe.grid().tiles().filter(|&t| globe.tile_kind(t) == Some(kind)).step_by(7).take(6).collect()
+    };
+    let (land, mountains, sea) = (of_kind(TileKind::Land), of_kind(TileKind::Mountain), of_kind(TileKind::Sea));
+    assert!(land.len() == 6 && !mountains.is_empty() && sea.len() == 6);
+    let mut edits = Vec::new();
+    let set = |edits: &mut Vec<TileEdit>, tiles: &[GlobeTile], density| {
+        edits.extend(tiles.iter().map(|t| TileEdit { props: Some(density), ..TileEdit::at((t.0 as i32, 0)) }));
+    };
+    set(&mut edits, &land[..3], PropDensity::Dense);
+    set(&mut edits, &land[3..], PropDensity::None);
+    set(&mut edits, &mountains, PropDensity::Sparse);
+    set(&mut edits, &sea, PropDensity::Dense);
+    let edited = GlobeTerrain::new(MapConfig { edits, ..base }).unwrap();
+    let props = chunked(&edited, usize::MAX, 1.0);
+    let on = |t: GlobeTile| props.iter().filter(|(p, _)| p.tile == t).map(|(p, _)| p.kind).collect::<Vec<_>>();
+    for &t in &land[..3] {
+        let kinds = on(t);
+        assert!((7..=9).contains(&kinds.len()), "{t:?}: {kinds:?}");
+        assert!(kinds.iter().all(|k| matches!(k, PropKind::Pine | PropKind::Broadleaf)), "{t:?}: {kinds:?}");
+    }
+    for &t in land[3..].iter().chain(&sea) {
+        assert!(on(t).is_empty(), "{t:?}: {:?}", on(t));
+    }
+    for &t in &mountains {
+        assert!(on(t).len() <= 1 && on(t).iter().all(|&k| k == PropKind::Rock), "{t:?}: {:?}", on(t));
     }
 }

@@ -148,14 +148,6 @@ pub(super) fn validate(
                     format!("({col}, {row})"),
                     format!("a tile of the globe: (id, 0) with an id in 0..{tiles}"),
                 )?;
-                if let Some(density) = edit.props {
-                    check(
-                        false,
-                        &format!("edits[{i}].props"),
-                        format!("{density:?} on a globe"),
-                        "none on a globe: props are not on globes yet",
-                    )?;
-                }
             }
             (_, Some((x, z))) => check(
                 (0..x as i64).contains(&i64::from(col)) && (0..z as i64).contains(&i64::from(row)),

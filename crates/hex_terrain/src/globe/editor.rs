@@ -18,7 +18,7 @@ use crate::error::ConfigError;
 #[cfg_attr(feature = "bevy_reflect", derive(bevy_reflect::Reflect))]
 pub struct GlobeStroke {
     /// What it does: every [`Tool`] but the water tools (rivers and lakes are not on globes
-    /// yet), props and a ruleset's terrains and features.
+    /// yet) and a ruleset's terrains and features.
     pub tool: Tool,
     /// Which tiles around `tile` it covers: a range in steps over the tile graph (pentagons
     /// included), or a flood fill of the tile's type or biome.
@@ -176,8 +176,8 @@ impl GlobeEditor {
     ///
     /// # Errors
     /// Checked in this order, the first that fails is answered and nothing changes:
-    /// [`EditError::Amount`], [`EditError::Range`], [`EditError::Unsupported`] (a water tool,
-    /// props, or a ruleset's terrain or feature: not on globes yet), [`EditError::OffGlobe`],
+    /// [`EditError::Amount`], [`EditError::Range`], [`EditError::Unsupported`] (a water tool or
+    /// a ruleset's terrain or feature: not on globes yet), [`EditError::OffGlobe`],
     /// [`EditError::Invalid`] (the edited globe would not be valid).
     pub fn apply(&mut self, stroke: GlobeStroke) -> Result<GlobeChange, EditError> {
         check_amount(stroke.tool)?;
@@ -193,7 +193,6 @@ impl GlobeEditor {
             Tool::RemoveRiver => return unsupported("RemoveRiver", RIVERS),
             Tool::FillLake => return unsupported("FillLake", RIVERS),
             Tool::DrainLake => return unsupported("DrainLake", RIVERS),
-            Tool::SetProps(_) => return unsupported("SetProps", "a flat map (props are not on globes yet)"),
             Tool::SetTerrain(_) | Tool::SetFeature(_) => {
                 return unsupported(
                     "SetTerrain and SetFeature",

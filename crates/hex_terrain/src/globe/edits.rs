@@ -1,6 +1,6 @@
 //! A globe's edits, as a flat map's (`crate::edits`): a designer's changes to tiles (the config's
 //! `edits`, each naming its tile `(id, 0)`) turned into a change of the raw height of every fine
-//! point they touch, and the biomes set by hand. An edited tile moves by the difference between
+//! point they touch, and the biomes and prop densities set by hand. An edited tile moves by the difference between
 //! its target center height and the generated one, its inner points kept in its type's range; a
 //! point two or three tiles share moves by the mean of their moves (an unedited tile counts zero,
 //! summed in ascending order), so every copy of a point gets the same bits and chunks still meet
@@ -10,7 +10,7 @@
 use std::collections::HashMap;
 
 use super::GlobeTile;
-use crate::config::TileEdit;
+use crate::config::{PropDensity, TileEdit};
 use crate::edits::{TileShift, shared};
 use crate::vocab::Biome;
 
@@ -21,6 +21,8 @@ pub(super) struct GlobeEdits {
     shifts: HashMap<u32, TileShift>,
     /// The biomes set by hand, by id.
     biomes: HashMap<u32, Biome>,
+    /// The prop densities set by hand, by id.
+    props: HashMap<u32, PropDensity>,
 }
 
 impl GlobeEdits {
@@ -33,6 +35,9 @@ impl GlobeEdits {
             let tile = GlobeTile::from_at(edit.at).expect("validated: (id, 0)");
             if let Some(biome) = edit.biome {
                 out.biomes.insert(tile.0, biome);
+            }
+            if let Some(density) = edit.props {
+                out.props.insert(tile.0, density);
             }
             if let Some(shift) = TileShift::of(edit, thresholds, generated[tile.0 as usize]) {
                 out.shifts.insert(tile.0, shift);
@@ -47,6 +52,11 @@ impl GlobeEdits {
             return None;
         }
         self.biomes.get(&tile.0).copied()
+    }
+
+    /// The prop density set by hand on a tile, if any.
+    pub(super) fn props(&self, tile: GlobeTile) -> Option<PropDensity> {
+        self.props.get(&tile.0).copied()
     }
 
     /// The edited raw height of a point held by `holders`, whose generated raw height is `raw`.

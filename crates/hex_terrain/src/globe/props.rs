@@ -1,4 +1,5 @@
-//! Props on a globe: the flat map's trees, rocks and reeds by the same rule (a tile's kind,
+//! Props on a globe: the flat map's trees, rocks and reeds by the same rule (a density set by
+//! hand on the tile first, [`TileEdit::props`](crate::TileEdit::props); else the tile's kind,
 //! biome and place in the land range; reeds on half the open land tiles by the sea), each at a
 //! point drawn inside its tile from a hash of the seed and the tile's id, standing on the
 //! chunk's meshed surface (the ray from the globe's center through the point, met on the tile's
@@ -10,7 +11,7 @@ use super::project::{self, Dir};
 use super::raycast::hit;
 use super::{GlobeMesh, GlobeTerrain, GlobeTile};
 use crate::hash;
-use crate::props::{biome_rule, keep_first, land_share};
+use crate::props::{biome_rule, hand_rule, keep_first, land_share};
 use crate::vocab::{PROP_VARIANTS, PropKind};
 
 /// One prop on a globe chunk ([`GlobeTerrain::props`]).
@@ -72,10 +73,11 @@ impl GlobeTerrain {
                 let neighbors = self.grid().neighbors(tile).expect("a tile of the globe");
                 neighbors.as_slice().iter().any(|&n| self.tile_kind(n) == Some(crate::TileKind::Sea))
             };
-            let Some((kind, count, scale)) = biome_rule(info.kind, biome, land, h, config.climate.enabled, coastal)
-            else {
-                continue;
+            let grows = match self.tile_props(tile) {
+                Some(density) => hand_rule(density, info.kind, land, h),
+                None => biome_rule(info.kind, biome, land, h, config.climate.enabled, coastal),
             };
+            let Some((kind, count, scale)) = grows else { continue };
             let (center, reach) = self.tile_disk(tile);
             // Two unit vectors across the center, from its longitude's east and north.
             let east = project::normalize(project::cross([0.0, 1.0, 0.0], center));

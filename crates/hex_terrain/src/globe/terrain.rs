@@ -243,6 +243,11 @@ impl GlobeTerrain {
         Some(TileTerrain { terrain, landform, feature: None, traits: self.ruleset.traits(terrain, landform, None) })
     }
 
+    /// The prop density set by hand on a tile ([`TileEdit::props`]), if any.
+    pub(super) fn tile_props(&self, tile: GlobeTile) -> Option<crate::config::PropDensity> {
+        self.edits.props(tile)
+    }
+
     /// The globe's terrain ruleset: its config's biome table as the 13 biomes
     /// ([`TerrainRuleset::biomes`]; a ruleset of a game's own is for flat maps yet).
     #[must_use]
