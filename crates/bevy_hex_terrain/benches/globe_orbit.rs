@@ -1,9 +1,10 @@
 //! Orbit benchmark on a headless App: a `GlobeCamera` (the streaming agent) flies round the Huge
 //! Continents globe (frequency 26, 6,762 tiles) over both poles at a region's altitude, 20
 //! degrees a second for 60 simulated seconds at 60 frames a second (paced in real time, so the
-//! chunk tasks get the time a game would give them). Every frame the hovered tile moves (a tile
-//! state write), and every half second a scout's sight under the camera is revealed (a fog
-//! change over a hundred tiles). Prints the main thread's time in the globe's systems per frame
+//! chunk tasks get the time a game would give them), with props (`HexPropSettings`' defaults:
+//! up to 384 a chunk, 64 spawned a frame) and fog of war drawn. Every frame the hovered tile moves
+//! (a tile state write), and every half second a scout's sight under the camera is revealed (a
+//! fog change over a hundred tiles, whose props are shown). Prints the main thread's time in the globe's systems per frame
 //! (on a core, and wall time), its split by set, the chunk latency (spawned to mesh inserted) and
 //! the chunks kept, beside a control (the same fixed work every frame on the same thread and
 //! clock: what the machine alone does to a frame's time).
@@ -18,7 +19,7 @@ use std::time::{Duration, Instant};
 use bevy::prelude::*;
 use bevy_hex_terrain::hex_terrain::{GlobeSize, GlobeTile};
 use bevy_hex_terrain::prelude::*;
-use bevy_hex_terrain::{GlobeStreamer, HexTileStateSystems, Highlight};
+use bevy_hex_terrain::{GlobeStreamer, HexGlobeProp, HexTileStateSystems, Highlight};
 
 #[path = "support/clocks.rs"]
 mod clocks;
@@ -146,7 +147,7 @@ fn main() {
     let frame = Duration::from_secs_f64(1.0 / 60.0);
     // Round an axis through the equator: over both poles.
     let axis = Vec3::new(0.3, 0.0, 1.0).normalize();
-    let mut kept = Vec::new();
+    let (mut kept, mut props) = (Vec::new(), Vec::new());
     for f in 0..seconds * 60 {
         let begun = Instant::now();
         let turn = Quat::from_axis_angle(axis, (20.0 * f as f32 / 60.0).to_radians());
@@ -164,6 +165,7 @@ fn main() {
         }
         app.update();
         kept.push(app.world().resource::<GlobeStreamer>().chunks().count() as f64);
+        props.push(app.world_mut().query::<&HexGlobeProp>().iter(app.world()).count() as f64);
         if let Some(rest) = frame.checked_sub(begun.elapsed()) {
             std::thread::sleep(rest);
         }
@@ -181,12 +183,14 @@ fn main() {
         let v: Vec<f64> = t.sets.iter().map(|s| s[k]).collect();
         println!("| set {name} on a core | {} |", spread(&v));
     }
-    println!("| packing the tile states for the GPU on a core | {} |", spread(&t.pack));
+    println!("| packing the tile states for the GPU (and the props' fog) on a core | {} |", spread(&t.pack));
     println!("| the control (the same work each frame) on a core | {} |", spread(&t.control));
     println!("| chunk latency (spawned to mesh inserted) | {} |", spread(&t.latencies));
-    println!("| chunks kept | {} |", {
-        let v = sorted(&kept);
+    let counts = |v: &[f64]| {
+        let v = sorted(v);
         format!("{:.0} / {:.0} / {:.0}", percentile(&v, 0.5), percentile(&v, 0.99), v.last().copied().unwrap_or(0.0))
-    });
+    };
+    println!("| chunks kept | {} |", counts(&kept));
+    println!("| props standing | {} |", counts(&props));
     println!("chunks meshed: {}", t.latencies.len());
 }

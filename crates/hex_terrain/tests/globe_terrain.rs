@@ -331,3 +331,91 @@ fn chunks_within_an_angle_hold_every_point_that_close_and_no_far_chunk() {
     assert!(g.chunks_within([0.0, 1.0, 0.0], -1.0).is_empty());
     assert_eq!(g.chunks_within([0.0, 1.0, 0.0], 4.0), g.chunks());
 }
+
+/// A mesh's directed edges as their points' ids.
+fn directed_edges(mesh: &GlobeMesh) -> HashMap<(u64, u64), u32> {
+    let mut out = HashMap::new();
+    for t in mesh.buffers.indices.chunks(3) {
+        for k in 0..3 {
+            let (a, b) = (mesh.points[t[k] as usize].0, mesh.points[t[(k + 1) % 3] as usize].0);
+            *out.entry((a, b)).or_default() += 1;
+        }
+    }
+    out
+}
+
+/// The far level of detail: the whole globe's coarse mesh is a closed, outward surface of six
+/// triangles a hexagon and five a pentagon, each named with the tile it lies in; every vertex it
+/// keeps is the full mesh's, bit for bit; a coarse chunk's outline is its full mesh's, edge for
+/// edge (so any two levels meet without a crack), and inside it the tiles are the whole coarse
+/// mesh's; props moved onto a coarse chunk lie on a triangle of their tile.
+#[test]
+fn coarse_meshes_are_closed_fans_with_the_full_meshes_outline() {
+    for (f, rings) in CASES {
+        let g = globe(f, rings, 9, 3);
+        let full = g.generate_whole();
+        let coarse = full.coarse();
+        let b = &coarse.buffers;
+        let tiles = g.grid().tile_count() as usize;
+        assert_eq!(b.indices.len() / 3, 6 * tiles - 12, "f = {f}: six triangles a hexagon, five a pentagon");
+        let directed = directed_edges(&coarse);
+        for (&(a, c), &count) in &directed {
+            assert_eq!(count, 1, "f = {f}: edge {a}-{c} twice the same way");
+            assert_eq!(directed.get(&(c, a)), Some(&1), "f = {f}: edge {a}-{c} on one triangle");
+        }
+        assert_eq!(b.positions.len() + b.indices.len() / 3, directed.len() / 2 + 2, "f = {f}: Euler's formula");
+        let full_vertex: HashMap<u64, usize> = full.points.iter().enumerate().map(|(i, p)| (p.0, i)).collect();
+        for (i, p) in coarse.points.iter().enumerate() {
+            let j = full_vertex[&p.0];
+            assert_eq!(b.positions[i].map(f32::to_bits), full.buffers.positions[j].map(f32::to_bits));
+            assert_eq!(b.normals[i].map(f32::to_bits), full.buffers.normals[j].map(f32::to_bits));
+            assert_eq!(b.center_distances[i].to_bits(), full.buffers.center_distances[j].to_bits());
+        }
+        for (k, (t, tile)) in b.indices.chunks(3).zip(&coarse.triangle_tiles).enumerate() {
+            let [a, bb, c] = [0, 1, 2].map(|i| position(&coarse, t[i] as usize));
+            let face = cross(sub(bb, a), sub(c, a));
+            let middle = [0, 1, 2].map(|i| (a[i] + bb[i] + c[i]) / 3.0);
+            assert!(dot(face, middle) > 0.0, "f = {f}: coarse triangle {k} faces inward");
+            assert_eq!(g.grid().tile_at(middle), Some(*tile), "f = {f}: coarse triangle {k}");
+        }
+        // Chunk by chunk: the outline kept, the inner tiles the whole coarse mesh's.
+        let whole: std::collections::HashSet<[u64; 3]> = triangles(&coarse).into_iter().collect();
+        for chunk in g.chunks() {
+            let mesh = g.generate(chunk);
+            let small = mesh.coarse();
+            let outline = |m: &GlobeMesh| {
+                let d = directed_edges(m);
+                let mut o: Vec<(u64, u64)> = d.keys().filter(|&&(a, c)| !d.contains_key(&(c, a))).copied().collect();
+                o.sort_unstable();
+                o
+            };
+            assert_eq!(outline(&small), outline(&mesh), "f = {f}: {chunk:?}'s outline");
+            let inner: Vec<hex_terrain::GlobeTile> = mesh
+                .tiles
+                .iter()
+                .copied()
+                .filter(|&t| g.grid().neighbors(t).unwrap().as_slice().iter().all(|&nb| g.chunk_of(nb) == Some(chunk)))
+                .collect();
+            for (tri, tile) in triangles(&small).into_iter().zip(&small.triangle_tiles) {
+                if inner.contains(tile) {
+                    assert!(whole.contains(&tri), "f = {f}: {chunk:?}: a triangle of {tile:?} not the whole mesh's");
+                }
+            }
+            assert!(small.buffers.indices.len() <= mesh.buffers.indices.len());
+            // Props from the full mesh, stood on the coarse one: on a triangle of their tile.
+            let mut props = g.props(&mesh, usize::MAX, 1.0);
+            small.stand_on(&mut props);
+            for p in &props {
+                let at = [0, 1, 2].map(|k| small.origin[k] + f64::from(p.position[k]));
+                let on = small.buffers.indices.chunks(3).zip(&small.triangle_tiles).any(|(t, &tile)| {
+                    let [a, bb, c] = [0, 1, 2].map(|i| position(&small, t[i] as usize));
+                    let n = normalize(cross(sub(bb, a), sub(c, a)));
+                    let inside =
+                        [(a, bb), (bb, c), (c, a)].iter().all(|&(u, v)| dot(cross(sub(v, u), sub(at, u)), n) > -1e-4);
+                    tile == p.tile && dot(sub(at, a), n).abs() < 1e-4 && inside
+                });
+                assert!(on, "f = {f}: a prop of {:?} off its tile's coarse triangles", p.tile);
+            }
+        }
+    }
+}

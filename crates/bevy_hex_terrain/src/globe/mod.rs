@@ -211,9 +211,13 @@ impl Plugin for HexGlobePlugin {
         #[cfg(feature = "render")]
         app.init_resource::<material::GlobeStateUpload>()
             .add_systems(PostUpdate, material::pack_upload.in_set(HexTileStateSystems::Pack));
-        // Props on unexplored tiles hidden after every game system's writes of the frame.
+        // Props on unexplored tiles hidden after every game system's writes of the frame, before
+        // their list starts again.
         #[cfg(feature = "render")]
-        app.add_systems(PostUpdate, props::hide_unexplored.before(HexTileStateSystems::Pack));
+        app.add_systems(
+            PostUpdate,
+            props::hide_unexplored.in_set(HexTileStateSystems::Pack).before(tiles::clear_journal),
+        );
         #[cfg(feature = "render")]
         if app.is_plugin_added::<bevy::pbr::PbrPlugin>() {
             material::build(app);

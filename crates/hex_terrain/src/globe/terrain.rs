@@ -18,6 +18,7 @@ pub use chunks::GlobeChunk;
 pub use mesh::{GlobeMesh, GlobePoint};
 
 mod chunks;
+mod coarse;
 mod mesh;
 use super::climate::Ground;
 use super::edits::GlobeEdits;
