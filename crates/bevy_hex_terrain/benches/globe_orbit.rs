@@ -4,7 +4,8 @@
 //! chunk tasks get the time a game would give them), with props (`HexPropSettings`' defaults:
 //! up to 384 a chunk, 64 spawned a frame) and fog of war drawn. Every frame the hovered tile moves
 //! (a tile state write), and every half second a scout's sight under the camera is revealed (a
-//! fog change over a hundred tiles, whose props are shown). Prints the main thread's time in the globe's systems per frame
+//! fog change over a hundred tiles, whose props are shown). Chunks far from the camera are drawn
+//! coarse (`HexGlobeSettings`' default distance); the triangles drawn are counted. Prints the main thread's time in the globe's systems per frame
 //! (on a core, and wall time), its split by set, the chunk latency (spawned to mesh inserted) and
 //! the chunks kept, beside a control (the same fixed work every frame on the same thread and
 //! clock: what the machine alone does to a frame's time).
@@ -147,7 +148,7 @@ fn main() {
     let frame = Duration::from_secs_f64(1.0 / 60.0);
     // Round an axis through the equator: over both poles.
     let axis = Vec3::new(0.3, 0.0, 1.0).normalize();
-    let (mut kept, mut props) = (Vec::new(), Vec::new());
+    let (mut kept, mut props, mut triangles) = (Vec::new(), Vec::new(), Vec::new());
     for f in 0..seconds * 60 {
         let begun = Instant::now();
         let turn = Quat::from_axis_angle(axis, (20.0 * f as f32 / 60.0).to_radians());
@@ -166,6 +167,13 @@ fn main() {
         app.update();
         kept.push(app.world().resource::<GlobeStreamer>().chunks().count() as f64);
         props.push(app.world_mut().query::<&HexGlobeProp>().iter(app.world()).count() as f64);
+        let mut chunks = app.world_mut().query::<(&HexGlobeChunk, &Mesh3d)>();
+        let meshes = app.world().resource::<Assets<Mesh>>();
+        let (drawn, coarse): (usize, usize) = chunks.iter(app.world()).fold((0, 0), |(n, c), (chunk, mesh)| {
+            let count = meshes.get(&mesh.0).and_then(Mesh::indices).map_or(0, |i| i.len() / 3);
+            (n + count, c + usize::from(chunk.detail == Detail::Coarse))
+        });
+        triangles.push((drawn as f64, coarse as f64));
         if let Some(rest) = frame.checked_sub(begun.elapsed()) {
             std::thread::sleep(rest);
         }
@@ -192,5 +200,7 @@ fn main() {
     };
     println!("| chunks kept | {} |", counts(&kept));
     println!("| props standing | {} |", counts(&props));
+    println!("| chunks drawn coarse | {} |", counts(&triangles.iter().map(|t| t.1).collect::<Vec<_>>()));
+    println!("| triangles drawn | {} |", counts(&triangles.iter().map(|t| t.0).collect::<Vec<_>>()));
     println!("chunks meshed: {}", t.latencies.len());
 }

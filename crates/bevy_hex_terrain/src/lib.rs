@@ -94,7 +94,8 @@ pub use crate::editor::{
 pub use crate::far::{HexBigSpacePlugin, HexTerrainGrid};
 pub use crate::globe::{
     GLOBE_ROW, GlobeCamera, GlobeStreamer, GlobeTileStates, GlobeTileWalk, GlobeWalkEnded, HexGlobe, HexGlobeChunk,
-    HexGlobeEditor, HexGlobeEditorPlugin, HexGlobePlugin, HexGlobeProp, NEAR_ANGLE, OnGlobeTile, globe_horizon,
+    HexGlobeEditor, HexGlobeEditorPlugin, HexGlobePlugin, HexGlobeProp, HexGlobeSettings, NEAR_ANGLE, OnGlobeTile,
+    globe_horizon,
 };
 #[cfg(feature = "minimap")]
 pub use crate::globe::{GlobeMinimapNavigate, GlobeMinimapPicture, HexGlobeMinimap, HexGlobeMinimapPlugin};

@@ -1,6 +1,6 @@
 //! Headless `App` tests of the globe plugin: chunks stream to an agent's horizon as it flies over
 //! a pole, with no gap (every chunk with a vertex in sight, measured from the chunk's own mesh)
-//! and no duplicate, the far side left out; the orbit camera crosses a pole without a jump,
+//! and no duplicate, the far side left out; far chunks are drawn coarse; the orbit camera crosses a pole without a jump,
 //! zooms with the wheel, turns with a drag and tilts toward the horizon near the ground; a flat
 //! map's config is refused by name.
 
@@ -14,12 +14,13 @@ use bevy::input::InputPlugin;
 use bevy::input::mouse::{MouseMotion, MouseScrollUnit, MouseWheel};
 #[cfg(feature = "picking")]
 use bevy::input::touch::TouchPhase;
+use bevy::mesh::VertexAttributeValues;
 use bevy::prelude::*;
 #[cfg(feature = "picking")]
 use bevy::time::TimeUpdateStrategy;
-use bevy_hex_terrain::hex_terrain::{GlobeChunk, GlobeTerrain};
+use bevy_hex_terrain::hex_terrain::{GlobeChunk, GlobeMesh, GlobeTerrain};
 use bevy_hex_terrain::prelude::*;
-use bevy_hex_terrain::{GlobeStreamer, HexMapAsset, globe_horizon};
+use bevy_hex_terrain::{GlobeStreamer, HexGlobeSettings, HexMapAsset, globe_horizon};
 
 mod common;
 
@@ -112,6 +113,86 @@ fn chunks_stream_to_the_horizon_over_a_pole_with_no_gap_and_no_duplicate() {
         );
         let kept: BTreeSet<GlobeChunk> = app.world().resource::<GlobeStreamer>().chunks().collect();
         assert_eq!(kept, chunks.keys().copied().collect(), "the streamer's chunks are the entities'");
+    }
+}
+
+/// Every shown chunk's mesh positions (as bits, a border point once) and level, by chunk.
+fn shown_meshes(app: &mut App) -> HashMap<GlobeChunk, (Detail, BTreeSet<[u32; 3]>, usize)> {
+    let mut q = app.world_mut().query::<(&HexGlobeChunk, &Mesh3d)>();
+    let meshes = app.world().resource::<Assets<Mesh>>();
+    q.iter(app.world())
+        .map(|(c, m)| {
+            let mesh = meshes.get(&m.0).unwrap();
+            let Some(VertexAttributeValues::Float32x3(p)) = mesh.attribute(Mesh::ATTRIBUTE_POSITION) else {
+                panic!("a chunk without positions")
+            };
+            (c.chunk, (c.detail, p.iter().map(|v| v.map(f32::to_bits)).collect(), mesh.indices().unwrap().len() / 3))
+        })
+        .collect()
+}
+
+/// Levels of detail: with ground of a chunk nearer the agent than the coarse distance less the
+/// hysteresis (measured here from the chunk's full mesh, on the sphere of height 0) the chunk is
+/// full, with none within the distance and a tile more it is coarse, and each mesh is the core's
+/// full or coarse mesh; at a planet's distance every chunk is coarse and draws a fraction of the
+/// triangles; back near the ground the chunks under the agent are full again.
+#[test]
+fn chunks_far_from_the_agent_are_drawn_coarse() {
+    let mut app = app(globe_config(8));
+    let coarse_distance = 8.0;
+    app.insert_resource(HexGlobeSettings { coarse_distance: Some(coarse_distance) });
+    let agent = app.world_mut().spawn((HexTerrainAgent::default(), Transform::default())).id();
+    app.update();
+    let globe = app.world().resource::<HexGlobe>().globe().unwrap().clone();
+    let (radius, hex) = (globe.radius() as f32, globe.config().layout.hex_size);
+    let full_meshes: HashMap<GlobeChunk, GlobeMesh> =
+        globe.chunks().into_iter().map(|c| (c, globe.generate(c))).collect();
+    let bits = |m: &GlobeMesh| m.buffers.positions.iter().map(|v| v.map(f32::to_bits)).collect::<BTreeSet<_>>();
+    let settle_at = |app: &mut App, at: Vec3| {
+        app.world_mut().entity_mut(agent).insert(Transform::from_translation(at));
+        app.update();
+        run_until(app, "the levels", |app| app.world().resource::<GlobeStreamer>().is_settled());
+        shown_meshes(app)
+    };
+    // Near the ground: some chunks full, some coarse.
+    let at = direction(30.0, 20.0) * (radius + 3.0);
+    let near = settle_at(&mut app, at);
+    let mut levels = [0; 2];
+    for (chunk, (detail, positions, _)) in &near {
+        let full = &full_meshes[chunk];
+        let nearest = full
+            .buffers
+            .positions
+            .iter()
+            .map(|&p| {
+                let ground =
+                    (Vec3::from_array(full.origin.map(|c| c as f32)) + Vec3::from_array(p)).normalize() * radius;
+                ground.distance(at)
+            })
+            .fold(f32::INFINITY, f32::min);
+        if nearest < coarse_distance * hex * 0.9 - 1e-3 {
+            assert_eq!(*detail, Detail::Full, "{chunk:?}: ground {nearest} from the agent");
+        } else if nearest > coarse_distance * hex + 2.0 * hex {
+            assert_eq!(*detail, Detail::Coarse, "{chunk:?}: ground {nearest} from the agent");
+        }
+        let want = match detail {
+            Detail::Full => bits(full),
+            Detail::Coarse => bits(&full.coarse()),
+        };
+        assert!(*positions == want, "{chunk:?}: the mesh is not the core's {detail:?} mesh");
+        levels[usize::from(*detail == Detail::Coarse)] += 1;
+    }
+    assert!(levels.iter().all(|&n| n > 0), "full and coarse chunks near the ground: {levels:?}");
+    // A planet's distance: every chunk coarse, a fraction of the triangles.
+    let far = settle_at(&mut app, direction(30.0, 20.0) * radius * 6.0);
+    assert!(far.values().all(|(d, ..)| *d == Detail::Coarse), "a full chunk seen from afar");
+    let drawn: usize = far.values().map(|(.., triangles)| triangles).sum();
+    let full_triangles: usize = far.keys().map(|c| full_meshes[c].buffers.indices.len() / 3).sum();
+    assert!(drawn * 2 < full_triangles, "{drawn} triangles drawn of {full_triangles}");
+    // Back near the ground.
+    let again = settle_at(&mut app, at);
+    for (chunk, (detail, ..)) in &again {
+        assert_eq!(detail, &near[chunk].0, "{chunk:?} at another level on coming back");
     }
 }
 

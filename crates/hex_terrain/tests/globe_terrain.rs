@@ -376,6 +376,7 @@ fn coarse_meshes_are_closed_fans_with_the_full_meshes_outline() {
             let face = cross(sub(bb, a), sub(c, a));
             let middle = [0, 1, 2].map(|i| (a[i] + bb[i] + c[i]) / 3.0);
             assert!(dot(face, middle) > 0.0, "f = {f}: coarse triangle {k} faces inward");
+            assert_eq!(b.center_distances[t[0] as usize], 0.0, "f = {f}: coarse triangle {k} starts off its center");
             assert_eq!(g.grid().tile_at(middle), Some(*tile), "f = {f}: coarse triangle {k}");
         }
         // Chunk by chunk: the outline kept, the inner tiles the whole coarse mesh's.

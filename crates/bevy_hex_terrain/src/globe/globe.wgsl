@@ -46,6 +46,10 @@ const FLAG_TERRITORY_TINT: u32 = #{HEX_FLAG_TERRITORY_TINT}u;
 const FLAG_LENS: u32 = #{HEX_FLAG_LENS}u;
 // A hexagon's inner radius over its outer one: the distance from an edge to the center.
 const INNER: f32 = 0.8660254;
+// The tiles' outline: the color's share at a tile's edge, and how far in (in the measure of
+// `INNER` at the center) it fades out.
+const OUTLINE_SHADE: f32 = 0.78;
+const OUTLINE_WIDTH: f32 = 0.25;
 
 fn has_flag(flag: u32) -> bool {
     return (params.flags & flag) != 0u;
@@ -102,11 +106,13 @@ fn fragment(in: VertexOutput, @builtin(front_facing) is_front: bool) -> Fragment
     // The nearest edge toward another owner (a fragment of the mesh's tile past the halfway
     // plane, where the mesh's border zigzags, is nearer than 0 and draws no line).
     var nearest_other = 2.0;
+    var nearest = 2.0;
     for (var i = 0u; i < head.w; i++) {
         let n = neighbors[i];
         let across = c - center_of(n);
         // 0 on the plane halfway between the centers, INNER at this tile's center.
         let d = dot(p, across) / (0.5 * dot(across, across)) * INNER;
+        nearest = min(nearest, d);
         let near_fog = d < soft;
         let near_border = owner != 0u && d < band.y;
         if !(near_fog || near_border) {
@@ -127,6 +133,9 @@ fn fragment(in: VertexOutput, @builtin(front_facing) is_front: bool) -> Fragment
     // Antialiased edges of the band, a hundredth of the radius wide.
     let aa = 0.01;
     let line = smoothstep(band.x - aa, band.x + aa, nearest_other) * (1.0 - smoothstep(band.y - aa, band.y + aa, nearest_other));
+    // Every tile's outline, darker toward its edges: drawn here, so a coarse chunk (a fan a
+    // tile) shows it as a full one does.
+    color = vec4<f32>(color.rgb * mix(OUTLINE_SHADE, 1.0, clamp(nearest / OUTLINE_WIDTH, 0.0, 1.0)), color.a);
     explored /= total;
     visible /= total;
     if !has_flag(FLAG_FOG) {

@@ -47,7 +47,7 @@ pub use minimap::{GlobeMinimapNavigate, GlobeMinimapPicture, HexGlobeMinimap, He
 pub use picking::{HexGlobePick, HoveredGlobeTile};
 pub use placement::{GlobeTileWalk, GlobeWalkEnded, OnGlobeTile};
 pub use props::HexGlobeProp;
-pub use stream::{GLOBE_ROW, GlobeStreamer, HexGlobeChunk, NEAR_ANGLE, globe_horizon};
+pub use stream::{GLOBE_ROW, GlobeStreamer, HexGlobeChunk, HexGlobeSettings, NEAR_ANGLE, globe_horizon};
 pub use tiles::GlobeTileStates;
 
 use crate::asset::{HexMapAsset, HexMapLoader};
@@ -178,6 +178,8 @@ impl Plugin for HexGlobePlugin {
         }
         app.init_resource::<HexGlobe>()
             .init_resource::<GlobeStreamer>()
+            .init_resource::<HexGlobeSettings>()
+            .register_type::<HexGlobeSettings>()
             .init_resource::<GlobeTileStates>()
             .init_resource::<HexTileStateStyle>()
             .init_resource::<HexPropSettings>()

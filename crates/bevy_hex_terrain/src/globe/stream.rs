@@ -1,6 +1,8 @@
 //! Streaming a globe: the chunks with ground in sight of an agent (within its horizon, and the
 //! peaks beyond it) are kept, each meshed on Bevy's async compute pool; the others are despawned,
-//! so the far side of the globe is neither built nor drawn.
+//! so the far side of the globe is neither built nor drawn. A chunk far from every agent is drawn
+//! coarse ([`HexGlobeSettings::coarse_distance`]), so the whole planet in view does not draw
+//! every inner vertex.
 
 use std::collections::BTreeSet;
 
@@ -10,14 +12,14 @@ use bevy::platform::collections::HashMap;
 use bevy::prelude::*;
 use bevy::tasks::futures::check_ready;
 use bevy::tasks::{AsyncComputeTaskPool, Task};
-use hex_terrain::{Biome, GlobeChunk, GlobeMesh, GlobeProp, TileKind};
+use hex_terrain::{Biome, Detail, GlobeChunk, GlobeMesh, GlobeProp, TileKind};
 
 use super::props::GlobeChunkProps;
 use super::{HexGlobe, chunks_within};
 use crate::{HexPropSettings, HexTerrainAgent};
 
-/// A chunk of the globe on screen (or on its way): which one, and the globe generation its mesh
-/// shows (`None` until its first mesh arrives).
+/// A chunk of the globe on screen (or on its way): which one, the globe generation its mesh
+/// shows (`None` until its first mesh arrives) and how finely.
 #[derive(Component, Debug, Clone, Copy, PartialEq, Eq, Reflect)]
 #[reflect(Component)]
 #[require(Transform)]
@@ -27,13 +29,37 @@ pub struct HexGlobeChunk {
     pub chunk: GlobeChunk,
     /// The [`HexGlobe::generation`] its mesh was built for.
     pub generation: Option<u64>,
+    /// The level of detail of its mesh ([`GlobeMesh::coarse`] when coarse).
+    pub detail: Detail,
 }
 
-/// A chunk's mesh (with its origin and props) being built, for a globe generation.
+/// A chunk's mesh (with its origin and props) being built, for a globe generation and a level
+/// of detail.
 #[derive(Component)]
 pub(super) struct GlobeChunkTask {
     task: Task<(Mesh, Vec3, Vec<GlobeProp>)>,
     generation: u64,
+    detail: Detail,
+}
+
+/// The globe streaming's settings (a game may insert it before or after the plugin).
+#[derive(Resource, Debug, Clone, Copy, PartialEq, Reflect)]
+#[reflect(Resource, Default)]
+pub struct HexGlobeSettings {
+    /// Level of detail: a chunk with no ground within this many hex sizes (multiples of the
+    /// map's `layout.hex_size`) of every agent, measured in 3D on the sphere of height 0, is
+    /// drawn coarse ([`Detail::Coarse`]: a fan a tile from its center to its corners, the
+    /// chunk's outline kept whole, so levels meet without a crack), and full again once ground
+    /// of it is nearer than `1 -` [`DETAIL_HYSTERESIS`](crate::DETAIL_HYSTERESIS) of it. So a
+    /// camera at a planet's distance draws every chunk coarse. Its props stand on the coarse
+    /// surface. Without an agent every chunk is full; `None`: every chunk full.
+    pub coarse_distance: Option<f32>,
+}
+
+impl Default for HexGlobeSettings {
+    fn default() -> Self {
+        Self { coarse_distance: Some(crate::DEFAULT_COARSE_DISTANCE) }
+    }
 }
 
 /// The chunks the globe streaming keeps, by chunk.
@@ -77,6 +103,14 @@ pub fn globe_horizon(radius: f32, max_elevation: f32, distance: f32) -> f32 {
     ((radius / distance).acos() + beyond).max(NEAR_ANGLE)
 }
 
+/// The angle from the direction of an agent `distance` from a globe's center within which the
+/// sphere of `radius` lies nearer than `within` to it (the law of cosines); `None` when none of
+/// it does.
+fn near_angle(radius: f32, distance: f32, within: f32) -> Option<f32> {
+    let cos = (distance * distance + radius * radius - within * within) / (2.0 * distance * radius);
+    (distance > 0.0 && cos <= 1.0).then(|| cos.max(-1.0).acos())
+}
+
 /// The angle kept around an agent on or under the ground, radians.
 pub const NEAR_ANGLE: f32 = 0.2;
 
@@ -85,13 +119,35 @@ pub const NEAR_ANGLE: f32 = 0.2;
 pub(super) fn stream(
     mut commands: Commands,
     globe: Res<HexGlobe>,
-    settings: Res<HexPropSettings>,
+    (settings, props): (Res<HexGlobeSettings>, Res<HexPropSettings>),
     mut streamer: ResMut<GlobeStreamer>,
     agents: Query<&GlobalTransform, With<HexTerrainAgent>>,
     chunks: Query<(&HexGlobeChunk, Option<&GlobeChunkTask>)>,
 ) {
     let Some(terrain) = globe.globe() else { return };
     let (radius, max_elevation) = (terrain.radius() as f32, terrain.config().terrain.max_elevation);
+    // The chunks with ground within the coarse distance of an agent (`keep`), and within the
+    // nearer distance at which a coarse chunk turns full (`enter`).
+    let full_within = |distance: f32| -> BTreeSet<GlobeChunk> {
+        agents
+            .iter()
+            .flat_map(|t| {
+                let p = t.translation();
+                let direction = p.try_normalize().unwrap_or(Vec3::Y);
+                match near_angle(radius, p.length(), distance) {
+                    Some(angle) => chunks_within(terrain, direction, angle),
+                    None => Vec::new(),
+                }
+            })
+            .collect()
+    };
+    let hex = terrain.config().layout.hex_size;
+    let (keep, enter) = match settings.coarse_distance {
+        Some(d) if !agents.is_empty() => {
+            (Some(full_within(d * hex)), Some(full_within(d * hex * (1.0 - crate::DETAIL_HYSTERESIS as f32))))
+        }
+        _ => (None, None),
+    };
     let wanted: BTreeSet<GlobeChunk> = if agents.is_empty() {
         terrain.chunks().into_iter().collect()
     } else {
@@ -114,33 +170,51 @@ pub(super) fn stream(
     let generation = globe.generation();
     let mut current = 0;
     for &chunk in &wanted {
+        let shown = streamer.chunks.get(&chunk).and_then(|&e| chunks.get(e).ok());
+        // Full near an agent (kept full out to the coarse distance), else coarse.
+        let full_now = shown.is_some_and(|(c, _)| c.generation.is_some() && c.detail == Detail::Full);
+        let detail = match (&keep, &enter) {
+            (Some(keep), Some(enter)) if !(enter.contains(&chunk) || full_now && keep.contains(&chunk)) => {
+                Detail::Coarse
+            }
+            _ => Detail::Full,
+        };
         let entity = match streamer.chunks.get(&chunk) {
             Some(&entity) => {
-                let Ok((shown, task)) = chunks.get(entity) else { continue };
-                let shows = globe.is_current(chunk, shown.generation);
+                let Some((shown, task)) = shown else { continue };
+                let shows = globe.is_current(chunk, shown.generation) && shown.detail == detail;
                 current += usize::from(shows);
-                // A chunk an edit left alone keeps its mesh; a task for the globe as it is now
-                // is left to finish.
-                if shows || task.is_some_and(|t| globe.is_current(chunk, Some(t.generation))) {
+                // A chunk an edit left alone keeps its mesh; a task for the globe as it is now,
+                // at the level wanted, is left to finish.
+                if shows || task.is_some_and(|t| globe.is_current(chunk, Some(t.generation)) && t.detail == detail) {
                     continue;
                 }
                 entity
             }
             None => {
-                let entity = commands.spawn(HexGlobeChunk { chunk, generation: None }).id();
+                let entity = commands.spawn(HexGlobeChunk { chunk, generation: None, detail }).id();
                 streamer.chunks.insert(chunk, entity);
                 entity
             }
         };
         let terrain = terrain.clone();
-        let (cap, density) = (settings.max_per_chunk, settings.density);
+        let (cap, density) = (props.max_per_chunk, props.density);
         let task = AsyncComputeTaskPool::get().spawn(async move {
-            let mesh = terrain.generate(chunk);
-            let origin = Vec3::from_array(mesh.origin.map(|c| c as f32));
-            let props = terrain.props(&mesh, cap, density);
-            (globe_mesh(mesh), origin, props)
+            let full = terrain.generate(chunk);
+            let origin = Vec3::from_array(full.origin.map(|c| c as f32));
+            // Which props stand is decided on the full surface, whatever the level.
+            let mut props = terrain.props(&full, cap, density);
+            let mesh = match detail {
+                Detail::Full => full,
+                Detail::Coarse => {
+                    let coarse = full.coarse();
+                    coarse.stand_on(&mut props);
+                    coarse
+                }
+            };
+            (globe_mesh(mesh, detail), origin, props)
         });
-        commands.entity(entity).insert(GlobeChunkTask { task, generation });
+        commands.entity(entity).insert(GlobeChunkTask { task, generation, detail });
     }
     streamer.wanted = wanted.len();
     streamer.current = current;
@@ -159,6 +233,7 @@ pub(super) fn insert(
             meshes.remove(&old.0);
         }
         chunk.generation = Some(task.generation);
+        chunk.detail = task.detail;
         commands.entity(entity).remove::<GlobeChunkTask>().insert((
             Mesh3d(meshes.add(mesh)),
             Transform::from_translation(origin),
@@ -167,16 +242,13 @@ pub(super) fn insert(
     }
 }
 
-/// How dark a tile's border ring is drawn, a share of its color: the soft outline that shows
-/// each tile, pentagons too.
-const OUTLINE: f32 = 0.78;
-
 /// A globe chunk's Bevy mesh: positions, normals, u32 indices, vertex colors (the biome colors
-/// with a climate, else each vertex's kind's; darker on tile borders; sRGB to linear) and in the
-/// first UV each vertex's tile (`id % GLOBE_ROW`, `id / GLOBE_ROW`) for the material's tile
-/// states. A point on a tile border is one vertex for each tile holding it (the same position,
-/// normal and color), so every corner of a triangle names the triangle's tile.
-pub(crate) fn globe_mesh(mesh: GlobeMesh) -> Mesh {
+/// with a climate, else each vertex's kind's; sRGB to linear; on a coarse mesh each tile in its
+/// center's color, as a fan a tile would smear its corners' across it) and in the first UV each
+/// vertex's tile (`id % GLOBE_ROW`, `id / GLOBE_ROW`) for the material's tile states and
+/// outlines. A point on a tile border is one vertex for each tile holding it (the same position
+/// and normal), so every corner of a triangle names the triangle's tile.
+pub(crate) fn globe_mesh(mesh: GlobeMesh, detail: Detail) -> Mesh {
     let b = mesh.buffers;
     let srgb: Vec<[u8; 3]> = if b.colors.is_empty() {
         let kinds = [TileKind::Sea, TileKind::Land, TileKind::Mountain];
@@ -186,11 +258,9 @@ pub(crate) fn globe_mesh(mesh: GlobeMesh) -> Mesh {
     };
     let colors: Vec<[f32; 4]> = srgb
         .iter()
-        .zip(&b.center_distances)
-        .map(|(&[r, g, bl], &ring)| {
+        .map(|&[r, g, bl]| {
             let c = Color::srgb_u8(r, g, bl).to_linear();
-            let shade = if ring >= 1.0 { OUTLINE } else { 1.0 };
-            [c.red * shade, c.green * shade, c.blue * shade, 1.0]
+            [c.red, c.green, c.blue, 1.0]
         })
         .collect();
     // A tile's triangles come one after the other: a vertex is copied when a tile other than the
@@ -206,6 +276,8 @@ pub(crate) fn globe_mesh(mesh: GlobeMesh) -> Mesh {
     );
     let mut indices = Vec::with_capacity(b.indices.len());
     for (triangle, tile) in b.indices.chunks_exact(3).zip(&mesh.triangle_tiles) {
+        // A coarse mesh's triangles start at their tile's center.
+        let tile_color = (detail == Detail::Coarse).then(|| colors[triangle[0] as usize]);
         for &v in triangle {
             let (last, copy) = &mut copy_of[v as usize];
             if *last != tile.0 {
@@ -213,7 +285,7 @@ pub(crate) fn globe_mesh(mesh: GlobeMesh) -> Mesh {
                 *copy = positions.len() as u32;
                 positions.push(b.positions[v as usize]);
                 normals.push(b.normals[v as usize]);
-                vertex_colors.push(colors[v as usize]);
+                vertex_colors.push(tile_color.unwrap_or(colors[v as usize]));
                 uvs.push([(tile.0 % GLOBE_ROW) as f32, (tile.0 / GLOBE_ROW) as f32]);
             }
             indices.push(*copy);

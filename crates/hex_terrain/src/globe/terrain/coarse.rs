@@ -15,7 +15,8 @@ impl GlobeMesh {
     /// The mesh drawn far away (see the module docs): `6` triangles a hexagon and `5` a pentagon
     /// inside the mesh (a tile on its outline keeps the points of its outer edges), its vertices
     /// the full mesh's centers, corners and outline points with all their attributes, the
-    /// triangles counterclockwise seen from outside, [`GlobeMesh::triangle_tiles`] named.
+    /// triangles counterclockwise seen from outside, each starting at its tile's center,
+    /// [`GlobeMesh::triangle_tiles`] named.
     #[must_use]
     pub fn coarse(&self) -> GlobeMesh {
         let b = &self.buffers;
