@@ -71,6 +71,8 @@ fn scenario_globe_states() {
         HexGlobePlugin::from_config(config.clone()),
     ))
     .insert_resource(HexTileStateStyle { fog_of_war: true, borders: false, ..default() })
+    // No trees over the tile centers read below.
+    .insert_resource(HexPropSettings { enabled: false, ..default() })
     .insert_resource(GlobalAmbientLight { brightness: 600.0, ..default() });
     let terrain = GlobeTerrain::new(config.clone()).unwrap();
     let radius = terrain.radius() as f32;
