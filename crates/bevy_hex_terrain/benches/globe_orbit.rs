@@ -173,7 +173,16 @@ fn main() {
             let count = meshes.get(&mesh.0).and_then(Mesh::indices).map_or(0, |i| i.len() / 3);
             (n + count, c + usize::from(chunk.detail == Detail::Coarse))
         });
-        triangles.push((drawn as f64, coarse as f64));
+        // The same chunks' triangles at full detail: 6 n^2 a hexagon, 5 n^2 a pentagon.
+        let n = globe.config().subdivisions() as usize;
+        let full: usize = app
+            .world()
+            .resource::<GlobeStreamer>()
+            .chunks()
+            .flat_map(|c| globe.chunk_tiles(c))
+            .map(|t| if globe.grid().is_pentagon(t) { 5 * n * n } else { 6 * n * n })
+            .sum();
+        triangles.push((drawn as f64, coarse as f64, full as f64));
         if let Some(rest) = frame.checked_sub(begun.elapsed()) {
             std::thread::sleep(rest);
         }
@@ -202,5 +211,9 @@ fn main() {
     println!("| props standing | {} |", counts(&props));
     println!("| chunks drawn coarse | {} |", counts(&triangles.iter().map(|t| t.1).collect::<Vec<_>>()));
     println!("| triangles drawn | {} |", counts(&triangles.iter().map(|t| t.0).collect::<Vec<_>>()));
+    println!(
+        "| the same chunks' triangles at full detail | {} |",
+        counts(&triangles.iter().map(|t| t.2).collect::<Vec<_>>())
+    );
     println!("chunks meshed: {}", t.latencies.len());
 }

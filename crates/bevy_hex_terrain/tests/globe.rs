@@ -318,6 +318,8 @@ fn a_globe_file_loads_hot_reloads_and_a_broken_reload_keeps_the_globe() {
         AssetPlugin { file_path: dir.display().to_string(), watch_for_changes_override: Some(false), ..default() };
     app.add_plugins((MinimalPlugins, assets, TransformPlugin, HexGlobePlugin::from_asset("globe.map.ron")));
     keep::<HexMapError>(&mut app);
+    keep::<TerrainReady>(&mut app);
+    keep::<TerrainSettled>(&mut app);
     settled_at(&mut app, 1);
     let globe = app.world().resource::<HexGlobe>().globe().unwrap().clone();
     assert_eq!(shown(&mut app).len(), globe.chunks().len(), "no agent: the whole globe");
@@ -352,6 +354,44 @@ fn a_globe_file_loads_hot_reloads_and_a_broken_reload_keeps_the_globe() {
     assert_eq!(malformed(&app), 1, "said once: {:?}", seen::<HexMapError>(&app));
     assert_eq!(app.world().resource::<HexGlobe>().generation(), 2);
     assert!(app.world().resource::<GlobeStreamer>().is_settled());
+    // One globe so far: ready once, settled after the load and after the hot reload.
+    assert_eq!(app.world().resource::<HexGlobe>().map_id(), 1);
+    assert_eq!(seen::<TerrainReady>(&app), vec![TerrainReady { map_id: 1, generation: 1 }]);
+    assert_eq!(seen::<TerrainSettled>(&app), vec![TerrainSettled { generation: 1 }, TerrainSettled { generation: 2 }]);
+
+    // Another globe's file (`LoadHexMap`): another map id, ready when its chunks are in, the
+    // tile states started afresh on its tiles.
+    std::fs::write(
+        dir.join("other.map.ron"),
+        "(seed: 5, size: Globe(frequency: 5), chunk_size: (2, 2), terrain: (inner_rings: 1))",
+    )
+    .unwrap();
+    app.world_mut().write_message(LoadHexMap(MapSource::Asset("other.map.ron".into())));
+    settled_at(&mut app, 3);
+    assert_eq!(app.world().resource::<HexGlobe>().map_id(), 2);
+    assert_eq!(app.world().resource::<HexGlobe>().globe().unwrap().grid().frequency(), 5);
+    assert_eq!(seen::<TerrainReady>(&app).last(), Some(&TerrainReady { map_id: 2, generation: 3 }));
+    assert_eq!(app.world().resource::<GlobeTileStates>().tile_count(), 252);
+    // The same file again: already loaded, applied at once as another globe.
+    app.world_mut().write_message(LoadHexMap(MapSource::Asset("globe.map.ron".into())));
+    std::fs::write(&file, "(seed: 2, size: Globe(frequency: 4), chunk_size: (2, 2), terrain: (inner_rings: 1))")
+        .unwrap();
+    app.world().resource::<AssetServer>().reload("globe.map.ron");
+    settled_at(&mut app, 4);
+    assert_eq!(app.world().resource::<HexGlobe>().map_id(), 3);
+    // A config in code that is no globe: refused by name, the globe and its id kept.
+    let flat = MapConfig { size: MapSize::Bounded { x: 8, z: 8 }, ..MapConfig::default() };
+    app.world_mut().write_message(LoadHexMap(MapSource::Config(Box::new(flat))));
+    app.update();
+    assert_eq!(app.world().resource::<HexGlobe>().map_id(), 3);
+    assert_eq!(app.world().resource::<HexGlobe>().generation(), 4);
+    let refused = seen::<HexMapError>(&app);
+    assert!(matches!(refused.last(), Some(HexMapError::Invalid { field, .. }) if field == "size"), "{refused:?}");
+    // A globe config in code: another globe at once.
+    app.world_mut().write_message(LoadHexMap(MapSource::Config(Box::new(globe_config(3)))));
+    settled_at(&mut app, 5);
+    assert_eq!(app.world().resource::<HexGlobe>().map_id(), 4);
+    assert_eq!(seen::<TerrainReady>(&app).last(), Some(&TerrainReady { map_id: 4, generation: 5 }));
 }
 
 /// The ray the test's pointer casts this frame.

@@ -1,6 +1,8 @@
-//! A hex globe in Bevy, first step: [`HexGlobePlugin`] loads a globe map file (a `*.map.ron` of
-//! size `Globe`, hot-reloaded; a broken reload keeps the old globe and says why in a
-//! [`HexMapError`]) into the [`HexGlobe`] resource, streams its chunks around every
+//! A hex globe in Bevy: [`HexGlobePlugin`] loads a globe map file (a `*.map.ron` of size
+//! `Globe`, hot-reloaded; a broken reload keeps the old globe and says why in a
+//! [`HexMapError`]; another globe with [`LoadHexMap`]; [`TerrainReady`] once a globe's chunks are
+//! in, [`TerrainSettled`] each time they all show it) into the [`HexGlobe`] resource, streams its
+//! chunks around every
 //! [`HexTerrainAgent`] by angle, to the agent's horizon (the far side is neither built nor
 //! drawn), meshes on Bevy's async compute pool; and [`GlobeCamera`] orbits it. The globe's center
 //! is the world's origin, its axis the world's `y`.
@@ -53,7 +55,7 @@ pub use tiles::GlobeTileStates;
 use crate::asset::{HexMapAsset, HexMapLoader};
 use crate::map::{HexMapError, load_failure};
 use crate::tiles::{HexTileStateStyle, HexTileStateSystems};
-use crate::{HexPropSettings, HexTerrainSystems, MapSource};
+use crate::{HexPropSettings, HexTerrainSystems, LoadHexMap, MapSource, TerrainReady, TerrainSettled};
 
 /// The globe shown: its compiled terrain and a generation that grows with each config applied.
 /// While its file loads, no globe (nothing is streamed).
@@ -64,6 +66,8 @@ pub struct HexGlobe {
     #[reflect(ignore)]
     globe: Option<Arc<GlobeTerrain>>,
     generation: u64,
+    /// Grows when another globe takes effect (not over hot reloads and edits).
+    map_id: u64,
     /// The generation of the config applied last: every chunk's mesh is out of date before it.
     base_generation: u64,
     /// The chunks edits changed since, with the generation of the last edit that changed each.
@@ -72,6 +76,10 @@ pub struct HexGlobe {
     /// The file the globe comes from, if any.
     #[reflect(ignore)]
     handle: Option<Handle<HexMapAsset>>,
+    /// Whether the file followed is new (its first config takes effect as another globe).
+    followed_anew: bool,
+    /// Whether the file was followed this frame (it may be loaded already: no event comes).
+    just_followed: bool,
 }
 
 impl HexGlobe {
@@ -101,14 +109,27 @@ impl HexGlobe {
         built.is_some_and(|g| g >= self.chunk_generation(chunk) && g <= self.generation)
     }
 
-    /// Applies a config: compiles it and makes it the globe (every chunk out of date), or keeps
-    /// the globe as it was.
+    /// Changes each time another globe takes effect (the plugin's first, [`LoadHexMap`]); stays
+    /// the same over edits and hot reloads of the same file. 0 before the first.
+    #[must_use]
+    pub fn map_id(&self) -> u64 {
+        self.map_id
+    }
+
+    /// Applies a config as another globe (a new [`HexGlobe::map_id`]): compiles it and makes it
+    /// the globe (every chunk out of date), or keeps the globe as it was.
     ///
     /// # Errors
     /// The config's first invalid field (`size` for a flat map's config).
     pub fn apply(&mut self, config: MapConfig) -> Result<(), hex_terrain::ConfigError> {
+        self.set(config, true)
+    }
+
+    /// Applies a config, as another globe or as a hot reload of this one.
+    fn set(&mut self, config: MapConfig, another: bool) -> Result<(), hex_terrain::ConfigError> {
         self.globe = Some(Arc::new(GlobeTerrain::new(config)?));
         self.generation += 1;
+        self.map_id += u64::from(another);
         self.base_generation = self.generation;
         self.edited_chunks.clear();
         Ok(())
@@ -132,7 +153,11 @@ impl HexGlobe {
 /// [`HexTerrainSystems`]: applying the file and following it with the tile states in `Map` (the
 /// camera moves there too, before streaming), streaming in `Stream`, inserting meshes in
 /// `Insert`, the material in `Render`. Not a part of
-/// [`HexTerrainPlugins`](crate::HexTerrainPlugins): a globe game adds it instead.
+/// [`HexTerrainPlugins`](crate::HexTerrainPlugins): a globe game adds it instead. Like the flat
+/// map's plugin it answers [`LoadHexMap`] (another globe; the globe shown stays until the new
+/// one is valid) and sends [`TerrainReady`] (per [`HexGlobe::map_id`]) and [`TerrainSettled`];
+/// while the first file loads there is no globe and nothing is streamed (the flat map's
+/// placeholder streams nothing either).
 ///
 /// ```no_run
 /// use bevy::prelude::*;
@@ -188,6 +213,9 @@ impl Plugin for HexGlobePlugin {
             .register_type::<HexGlobeProp>()
             .register_type::<HexTileStateStyle>()
             .add_message::<HexMapError>()
+            .add_message::<LoadHexMap>()
+            .add_message::<TerrainReady>()
+            .add_message::<TerrainSettled>()
             .register_type::<HexGlobe>()
             .register_type::<GlobeCamera>()
             .register_type::<HexGlobeChunk>()
@@ -201,7 +229,9 @@ impl Plugin for HexGlobePlugin {
             .add_systems(
                 Update,
                 (
-                    (apply_asset, tiles::follow_globe, camera::place).chain().in_set(HexTerrainSystems::Map),
+                    (load_requested, apply_asset, tiles::follow_globe, camera::place)
+                        .chain()
+                        .in_set(HexTerrainSystems::Map),
                     stream::stream.in_set(HexTerrainSystems::Stream),
                     (stream::insert, props::sync_props).chain().in_set(HexTerrainSystems::Insert),
                     (placement::walk, placement::place).chain().in_set(HexTerrainSystems::Place),
@@ -245,7 +275,7 @@ impl Plugin for HexGlobePlugin {
             MapSource::Asset(path) => {
                 let path = path.clone();
                 app.add_systems(PreStartup, move |server: Res<AssetServer>, mut globe: ResMut<HexGlobe>| {
-                    globe.handle = Some(server.load(path.clone()));
+                    globe.follow(server.load(path.clone()));
                 });
             }
         }
@@ -258,8 +288,37 @@ fn refuse(errors: &mut MessageWriter<HexMapError>, error: HexMapError) {
     errors.write(error);
 }
 
-/// Applies the globe's map file when it loads or changes; a file that does not load or is not a
-/// valid globe is reported and the globe kept.
+impl HexGlobe {
+    /// Follows a map file: its first config applied takes effect as another globe.
+    fn follow(&mut self, handle: Handle<HexMapAsset>) {
+        self.handle = Some(handle);
+        self.followed_anew = true;
+        self.just_followed = true;
+    }
+}
+
+/// Handles [`LoadHexMap`] (the last of a frame): a config applies at once as another globe, a
+/// file is followed and applied by [`apply_asset`] once loaded. The globe shown stays until the
+/// new one is valid; a bad one is a [`HexMapError`].
+fn load_requested(
+    mut requests: MessageReader<LoadHexMap>,
+    server: Res<AssetServer>,
+    mut globe: ResMut<HexGlobe>,
+    mut errors: MessageWriter<HexMapError>,
+) {
+    let Some(LoadHexMap(source)) = requests.read().last() else { return };
+    match source {
+        MapSource::Asset(path) => globe.follow(server.load(path.clone())),
+        MapSource::Config(config) => match globe.apply((**config).clone()) {
+            Ok(()) => globe.handle = None,
+            Err(e) => refuse(&mut errors, HexMapError::invalid("globe config", &e)),
+        },
+    }
+}
+
+/// Applies the globe's map file when it loads or changes (a file newly followed as another
+/// globe, its changes as hot reloads); a file that does not load or is not a valid globe is
+/// reported and the globe kept.
 fn apply_asset(
     mut globe: ResMut<HexGlobe>,
     assets: Res<Assets<HexMapAsset>>,
@@ -287,17 +346,30 @@ fn apply_asset(
         AssetEvent::LoadedWithDependencies { id } | AssetEvent::Modified { id } => *id == handle.id(),
         _ => false,
     });
-    if !changed {
+    // A file newly followed may be loaded already (no event comes): applied at once.
+    let just_followed = globe.just_followed;
+    if just_followed {
+        globe.just_followed = false;
+    }
+    if !changed && !just_followed {
         return;
     }
     let Some(asset) = assets.get(&handle) else { return };
     *last_failure = None;
-    if globe.globe.as_ref().is_some_and(|g| *g.config() == asset.config) {
+    let another = globe.followed_anew;
+    if !another && globe.globe.as_ref().is_some_and(|g| *g.config() == asset.config) {
         return;
     }
-    match globe.apply(asset.config.clone()) {
-        Ok(()) => info!("hex terrain: globe {:?} applied", asset.config.name),
-        Err(e) => refuse(&mut errors, HexMapError::invalid(&name, &e)),
+    match globe.set(asset.config.clone(), another) {
+        Ok(()) => {
+            globe.followed_anew = false;
+            info!("hex terrain: globe {:?} applied", asset.config.name);
+        }
+        Err(e) => {
+            // A new file that is no globe: the globe shown stays, and the file is still followed
+            // (a fixed file takes effect as another globe).
+            refuse(&mut errors, HexMapError::invalid(&name, &e));
+        }
     }
 }
 

@@ -16,7 +16,7 @@ use hex_terrain::{Biome, Detail, GlobeChunk, GlobeMesh, GlobeProp, TileKind};
 
 use super::props::GlobeChunkProps;
 use super::{HexGlobe, chunks_within};
-use crate::{HexPropSettings, HexTerrainAgent};
+use crate::{HexPropSettings, HexTerrainAgent, TerrainReady, TerrainSettled};
 
 /// A chunk of the globe on screen (or on its way): which one, the globe generation its mesh
 /// shows (`None` until its first mesh arrives) and how finely.
@@ -69,6 +69,10 @@ pub struct GlobeStreamer {
     /// How many chunks the agents want, and how many of them show the current globe.
     wanted: usize,
     current: usize,
+    /// Whether every wanted chunk showed the globe last frame, and the globe whose
+    /// [`TerrainReady`] was sent.
+    was_settled: bool,
+    ready_map: Option<u64>,
 }
 
 impl GlobeStreamer {
@@ -115,7 +119,9 @@ fn near_angle(radius: f32, distance: f32, within: f32) -> Option<f32> {
 pub const NEAR_ANGLE: f32 = 0.2;
 
 /// Keeps the chunks in sight of the agents (the whole globe without an agent), despawning the
-/// others and starting a task for each new or outdated one.
+/// others and starting a task for each new or outdated one (or at another level of detail);
+/// reports [`TerrainSettled`] when every wanted chunk shows the globe, with [`TerrainReady`] the
+/// first time for a globe.
 pub(super) fn stream(
     mut commands: Commands,
     globe: Res<HexGlobe>,
@@ -123,6 +129,7 @@ pub(super) fn stream(
     mut streamer: ResMut<GlobeStreamer>,
     agents: Query<&GlobalTransform, With<HexTerrainAgent>>,
     chunks: Query<(&HexGlobeChunk, Option<&GlobeChunkTask>)>,
+    mut reports: (MessageWriter<TerrainReady>, MessageWriter<TerrainSettled>),
 ) {
     let Some(terrain) = globe.globe() else { return };
     let (radius, max_elevation) = (terrain.radius() as f32, terrain.config().terrain.max_elevation);
@@ -218,6 +225,17 @@ pub(super) fn stream(
     }
     streamer.wanted = wanted.len();
     streamer.current = current;
+    // Settled: every wanted chunk shows the globe (the frame after the last mesh came in).
+    let settled = streamer.is_settled();
+    if settled && !streamer.was_settled {
+        let (ready, done) = &mut reports;
+        done.write(TerrainSettled { generation });
+        if streamer.ready_map != Some(globe.map_id()) {
+            streamer.ready_map = Some(globe.map_id());
+            ready.write(TerrainReady { map_id: globe.map_id(), generation });
+        }
+    }
+    streamer.was_settled = settled;
 }
 
 /// Gives each chunk whose task finished its mesh and props (the globe's material comes with the

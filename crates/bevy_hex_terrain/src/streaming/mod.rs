@@ -163,7 +163,9 @@ pub struct ChunkDespawned {
 /// once per map taking effect (per [`HexMap::map_id`](crate::HexMap::map_id): the plugin's
 /// first map, [`LoadHexMap`](crate::LoadHexMap)), never for the placeholder shown while a map
 /// file loads (it streams nothing), never again for the same map's edits, hot reloads or newly
-/// streamed chunks (those are [`TerrainSettled`]). The place to put the players on the map.
+/// streamed chunks (those are [`TerrainSettled`]). The place to put the players on the map. On
+/// a globe ([`HexGlobePlugin`](crate::HexGlobePlugin)) the same per
+/// [`HexGlobe::map_id`](crate::HexGlobe::map_id), the frame after the last chunk's mesh is in.
 #[derive(Message, Debug, Clone, Copy, PartialEq, Eq, Reflect)]
 pub struct TerrainReady {
     /// The map now on screen.
