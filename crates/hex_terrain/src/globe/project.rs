@@ -217,3 +217,21 @@ pub(crate) fn spot_uv(f: u32, spot: Spot) -> (u8, f64, f64) {
         Spot::Diamond { d, i, j } => (d, f64::from(i) / n, f64::from(j) / n),
     }
 }
+
+/// Möller-Trumbore: the distance along unit `d` from `o` to triangle `a b c`, hit from either
+/// side; `None` when the ray misses it or runs along its plane.
+pub(crate) fn hit(o: Dir, d: Dir, a: Dir, b: Dir, c: Dir) -> Option<f64> {
+    let (e1, e2) = (sub(b, a), sub(c, a));
+    let p = cross(d, e2);
+    let det = dot(e1, p);
+    if det.abs() < 1e-18 {
+        return None;
+    }
+    let inv = 1.0 / det;
+    let s = sub(o, a);
+    let u = dot(s, p) * inv;
+    let q = cross(s, e1);
+    let v = dot(d, q) * inv;
+    let eps = 1e-12;
+    ((-eps..=1.0 + eps).contains(&u) && v >= -eps && u + v <= 1.0 + eps).then(|| dot(e2, q) * inv)
+}

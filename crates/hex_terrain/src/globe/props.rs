@@ -7,8 +7,7 @@
 //! globe and the tile, so every chunk, thread and order gives the same; a chunk keeps at most
 //! its cap, those of lowest hash priority, as on a flat map.
 
-use super::project::{self, Dir};
-use super::raycast::hit;
+use super::project::{self, Dir, hit};
 use super::{GlobeMesh, GlobeTerrain, GlobeTile};
 use crate::hash;
 use crate::props::{biome_rule, hand_rule, keep_first, land_share};

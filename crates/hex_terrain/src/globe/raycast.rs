@@ -10,7 +10,7 @@
 use std::collections::HashSet;
 
 use super::GlobeTile;
-use super::project::{self, Dir, cross, sub};
+use super::project::{self, Dir, hit};
 use super::terrain::GlobeTerrain;
 
 /// A ray hitting a globe's surface ([`GlobeTerrain::raycast`]).
@@ -99,22 +99,4 @@ fn shell(o: Dir, d: Dir, inner: f64, outer: f64) -> Option<(f64, f64)> {
         _ => far,
     };
     Some((start, stop))
-}
-
-/// Möller-Trumbore: the distance along unit `d` from `o` to triangle `a b c`, hit from either
-/// side; `None` when the ray misses it or runs along its plane.
-pub(super) fn hit(o: Dir, d: Dir, a: Dir, b: Dir, c: Dir) -> Option<f64> {
-    let (e1, e2) = (sub(b, a), sub(c, a));
-    let p = cross(d, e2);
-    let det = project::dot(e1, p);
-    if det.abs() < 1e-18 {
-        return None;
-    }
-    let inv = 1.0 / det;
-    let s = sub(o, a);
-    let u = project::dot(s, p) * inv;
-    let q = cross(s, e1);
-    let v = project::dot(d, q) * inv;
-    let eps = 1e-12;
-    ((-eps..=1.0 + eps).contains(&u) && v >= -eps && u + v <= 1.0 + eps).then(|| project::dot(e2, q) * inv)
 }

@@ -7,8 +7,7 @@ use std::collections::HashMap;
 
 use super::mesh::GlobeMesh;
 use crate::globe::GlobeProp;
-use crate::globe::project::{self, Dir};
-use crate::globe::raycast::hit;
+use crate::globe::project::{self, Dir, hit};
 use crate::mesh::MeshBuffers;
 
 impl GlobeMesh {
