@@ -20,6 +20,7 @@ pub use mesh::{GlobeMesh, GlobePoint};
 mod chunks;
 mod coarse;
 mod mesh;
+mod tiles;
 use super::climate::Ground;
 use super::edits::GlobeEdits;
 use super::map_type::{GlobeMapType, TypeGround};
@@ -32,7 +33,7 @@ use crate::heights::fbm::{LANES, SolidFbm};
 use crate::kind::{Thresholds, TileKind};
 use crate::manipulate::{manipulate, span};
 use crate::mesh::{MeshBuffers, vertex_color};
-use crate::ruleset::{Landform, TerrainId, TerrainRuleset, TileTerrain};
+use crate::ruleset::{Landform, TerrainRuleset};
 use crate::vocab::Biome;
 
 /// A point of a globe finished: its height after manipulation, its ring, the highest kind of
@@ -215,52 +216,11 @@ impl GlobeTerrain {
         self.radius * f64::from(self.config.layout.hex_size)
     }
 
-    /// A tile's kind, by its center's height; `None` for a tile not of this globe.
-    #[must_use]
-    pub fn tile_kind(&self, tile: GlobeTile) -> Option<TileKind> {
-        self.kinds.get(tile.0 as usize).copied()
-    }
-
-    /// A tile's center height (normalised, edited, before manipulation); `None` for a tile not
-    /// of this globe.
-    #[must_use]
-    pub fn tile_height(&self, tile: GlobeTile) -> Option<f32> {
-        self.centers.get(tile.0 as usize).copied()
-    }
-
-    /// A tile's biome: the one set by hand ([`TileEdit::biome`]) first; else by its climate and
-    /// the config's biome table on a globe with a climate (coast or ocean at sea), else by its
-    /// kind; `None` for a tile not of this globe.
-    pub(crate) fn tile_biome(&self, tile: GlobeTile) -> Option<Biome> {
-        self.biomes.get(tile.0 as usize).copied()
-    }
-
-    /// What a tile is under the globe's terrain ruleset (its config's default,
-    /// [`GlobeTerrain::ruleset`]): its biome's terrain on its landform, with the traits the
-    /// config gives the biome; `None` for a tile not of this globe.
-    pub(crate) fn tile_terrain(&self, tile: GlobeTile) -> Option<TileTerrain> {
-        let (biome, landform) = (self.tile_biome(tile)?, self.landforms[tile.0 as usize]);
-        let terrain = TerrainId(biome as u8);
-        Some(TileTerrain { terrain, landform, feature: None, traits: self.ruleset.traits(terrain, landform, None) })
-    }
-
-    /// The prop density set by hand on a tile ([`TileEdit::props`]), if any.
-    pub(super) fn tile_props(&self, tile: GlobeTile) -> Option<crate::config::PropDensity> {
-        self.edits.props(tile)
-    }
-
     /// The globe's terrain ruleset: its config's biome table as the 13 biomes
     /// ([`TerrainRuleset::biomes`]; a ruleset of a game's own is for flat maps yet).
     #[must_use]
     pub fn ruleset(&self) -> &TerrainRuleset {
         &self.ruleset
-    }
-
-    /// A tile's temperature and moisture; `None` when the globe has no climate or for a tile not
-    /// of this globe.
-    #[must_use]
-    pub fn tile_climate(&self, tile: GlobeTile) -> Option<Climate> {
-        self.climates.get(tile.0 as usize).copied().flatten()
     }
 
     /// What came of the config's map type: its targets measured on the globe's tiles, and the
@@ -289,13 +249,6 @@ impl GlobeTerrain {
     pub fn triangle_count(&self) -> u64 {
         let (f, n) = (u64::from(self.grid.frequency()), u64::from(self.config.subdivisions()));
         60 * f * f * n * n
-    }
-
-    /// The tile a direction from the globe's center falls in (any length but zero); `None` for
-    /// a zero or non-finite vector.
-    #[must_use]
-    pub fn tile_at(&self, direction: [f64; 3]) -> Option<GlobeTile> {
-        self.grid.tile_at(direction)
     }
 
     /// The mesh of a chunk (empty for a chunk not of this globe).
@@ -354,12 +307,6 @@ impl GlobeTerrain {
             whole.triangle_tiles.extend(part.triangle_tiles);
         }
         whole
-    }
-
-    /// A tile's center height after manipulation (normalised).
-    pub(super) fn center_height(&self, tile: GlobeTile) -> f32 {
-        let p = self.fine.center(self.spot(tile));
-        self.finish_batch(&[p], &[Some((0, tile))])[0].height
     }
 
     /// A tile's fine triangles as meshed, in world units from the globe's center.
