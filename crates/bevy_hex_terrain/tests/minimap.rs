@@ -378,4 +378,30 @@ fn the_globes_minimap_shows_the_globe_outlines_the_view_and_flies_the_camera() {
     for i in (0..(w * h) as usize).filter(|&i| !outline.contains(&(i as u32))) {
         assert_eq!(&data[i * 4..i * 4 + 4], &whole[i * 4..i * 4 + 4], "pixel {i}");
     }
+    // An edited globe of the same size (mountains round the home tile): recolored in place, no
+    // picture built, and the picture is then a fresh picture of the edited globe, painted.
+    let edits: Vec<hex_terrain::TileEdit> = seen
+        .iter()
+        .take(7)
+        .map(|t| hex_terrain::TileEdit { kind: Some(TileKind::Mountain), ..hex_terrain::TileEdit::at((t.0 as i32, 0)) })
+        .collect();
+    let edited = hex_terrain::MapConfig { edits, ..globe.config().clone() };
+    app.world_mut().resource_mut::<HexGlobe>().apply(edited.clone()).unwrap();
+    app.update();
+    app.update();
+    let picture = app.world().resource::<GlobeMinimapPicture>();
+    assert_eq!((picture.recolors(), picture.full_paints()), (1, full), "an edit is recolored, not built again");
+    let outline: Vec<u32> = picture.outline().to_vec();
+    let data = app.world().resource::<Assets<Image>>().get(picture.image()).unwrap().data.clone().unwrap();
+    let states = app.world().resource::<GlobeTileStates>();
+    let looks = |t: GlobeTile| TileLook { fog: states.visibility(t), owner: states.owner(t) };
+    let fresh = GlobeMinimap::new(&hex_terrain::GlobeTerrain::new(edited).unwrap(), w, shown.style().clone()).unwrap();
+    let whole = fresh.paint(looks);
+    let before = shown.paint(looks);
+    let mut differ = 0;
+    for i in (0..(w * h) as usize).filter(|&i| !outline.contains(&(i as u32))) {
+        assert_eq!(&data[i * 4..i * 4 + 4], &whole[i * 4..i * 4 + 4], "pixel {i} after the edit");
+        differ += usize::from(whole[i * 4..i * 4 + 4] != before[i * 4..i * 4 + 4]);
+    }
+    assert!(differ > 0, "the edit changed no pixel");
 }

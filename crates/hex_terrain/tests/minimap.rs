@@ -417,3 +417,48 @@ fn a_globes_picture() {
         assert!(GlobeMinimap::new(&globe, bad, MinimapStyle::default()).is_none(), "{bad}");
     }
 }
+
+/// A globe's picture takes an edited globe of its size in place: the tiles it recolors are
+/// exactly those whose color differs between the two globes (compared here from their tile
+/// infos), and repainting them gives the picture built afresh from the edited globe; a globe of
+/// another size is refused.
+#[test]
+fn a_globes_picture_recolors_an_edited_globe() {
+    use hex_terrain::minimap::GlobeMinimap;
+    use hex_terrain::{Brush, GlobeEditor, GlobeStroke, GlobeTerrain, GlobeTile, Tool};
+    for climate in [false, true] {
+        let config =
+            MapConfig::from_ron(&format!("(seed: 4, size: Globe(frequency: 9), climate: (enabled: {climate}))"))
+                .unwrap();
+        let mut editor = GlobeEditor::new(config).unwrap();
+        let before = editor.globe().clone();
+        let style = MinimapStyle::default();
+        let mut map = GlobeMinimap::new(&before, 360, style.clone()).unwrap();
+        let look = |t: GlobeTile| TileLook { fog: FogState::Visible, owner: t.0.is_multiple_of(11).then_some(1) };
+        let mut rgba = map.paint(look);
+        for (tool, tile) in
+            [(Tool::SetKind(TileKind::Mountain), 40), (Tool::SetKind(TileKind::Sea), 300), (Tool::Raise(0.2), 500)]
+        {
+            editor.apply(GlobeStroke { tool, brush: Brush::Range(2), tile: GlobeTile(tile) }).unwrap();
+        }
+        let after = editor.globe();
+        let color = |g: &GlobeTerrain, t: GlobeTile| {
+            let info = g.tile_info(t).unwrap();
+            if climate {
+                let l = &g.ruleset().terrain(info.terrain.terrain).look;
+                l.minimap.unwrap_or(l.color)
+            } else {
+                style.kind_colors[info.kind as usize]
+            }
+        };
+        let differ: Vec<GlobeTile> = after.grid().tiles().filter(|&t| color(&before, t) != color(after, t)).collect();
+        assert!(!differ.is_empty(), "climate {climate}: the strokes changed no tile's color");
+        let changed = map.recolor(after).unwrap();
+        assert_eq!(changed, differ, "climate {climate}");
+        map.repaint(changed, look, &mut rgba);
+        assert!(rgba == GlobeMinimap::new(after, 360, style.clone()).unwrap().paint(look), "climate {climate}");
+        assert_eq!(map.recolor(after), Some(Vec::new()), "nothing more to recolor");
+        let other = GlobeTerrain::new(MapConfig::from_ron("(size: Globe(frequency: 8))").unwrap()).unwrap();
+        assert!(map.recolor(&other).is_none());
+    }
+}

@@ -1,8 +1,9 @@
 //! The globe's minimap (the `minimap` feature): the core's equirectangular
 //! [`GlobeMinimap`] of the shown globe in a Bevy UI node, built on the async compute pool when
-//! the globe or the look changes, with the [`GlobeCamera`]'s view outlined (where the rays along
-//! the border of its view meet the globe, joined by great-circle arcs); pressing or dragging on it turns the cameras to look down on that spot
-//! and sends a [`GlobeMinimapNavigate`].
+//! the look or the globe's size changes (an edit or a hot reload is recolored in place), with
+//! the [`GlobeCamera`]'s view outlined (where the rays along the border of its view meet the
+//! globe, joined by great-circle arcs); pressing or dragging on it turns the cameras to look down
+//! on that spot and sends a [`GlobeMinimapNavigate`].
 
 use std::sync::Arc;
 
@@ -41,6 +42,8 @@ pub struct GlobeMinimapPicture {
     /// Full paints of the picture since the start (a built picture, a change of style, the
     /// tile states reset).
     full_paints: u64,
+    /// Globes of the picture's size taken in place (edits, hot reloads).
+    recolors: u64,
 }
 
 /// What of the style a picture is built with (a change rebuilds it): the kinds' colors, the
@@ -72,6 +75,13 @@ impl GlobeMinimapPicture {
     #[must_use]
     pub fn repainted_pixels(&self) -> u64 {
         self.repainted
+    }
+
+    /// Globes of the picture's size (an edit, a hot reload) taken into the shown picture since
+    /// the start, in place: only the tiles whose color changed painted again, no picture built.
+    #[must_use]
+    pub fn recolors(&self) -> u64 {
+        self.recolors
     }
 
     /// Whole-picture paints since the start: each picture built, and a repaint after a change of
@@ -159,12 +169,15 @@ fn width(settings: &HexMinimapSettings) -> u32 {
 }
 
 /// Starts building a picture when the globe, the width or the colors changed (the owners'
-/// colors are the tile states' style's, as on the globe).
+/// colors are the tile states' style's, as on the globe). A new globe of the same size (an
+/// edit, a hot reload) is recolored in place instead: only its tiles whose color changed are
+/// painted again.
 fn build(
     globe: Res<HexGlobe>,
     settings: Res<HexMinimapSettings>,
-    tiles: Res<HexTileStateStyle>,
+    (tiles, states): (Res<HexTileStateStyle>, Res<GlobeTileStates>),
     mut picture: ResMut<GlobeMinimapPicture>,
+    mut images: ResMut<Assets<Image>>,
 ) {
     let Some(terrain) = globe.globe() else { return };
     let mut style = settings.style();
@@ -175,6 +188,26 @@ fn build(
     style.fog_of_war = fog;
     let key = (globe.generation(), width(&settings), (style.kind_colors, style.background, style.owner_colors.clone()));
     if picture.made_for.as_ref() == Some(&key) {
+        return;
+    }
+    let picture = &mut *picture;
+    let same_look = picture.made_for.as_ref().is_some_and(|(_, w, s)| (w, s) == (&key.1, &key.2));
+    if same_look
+        && picture.task.is_none()
+        && let Some(shown) = picture.picture.as_mut()
+        && let Some(changed) = Arc::make_mut(shown).recolor(terrain)
+    {
+        picture.made_for = Some(key);
+        picture.recolors += 1;
+        let changed = shown.repaint(changed, |t| look(&states, &tiles, t), &mut picture.painted);
+        picture.repainted += changed as u64;
+        if changed > 0
+            && let Some(mut image) = images.get_mut(&picture.image)
+            && let Some(data) = image.data.as_mut()
+        {
+            data.copy_from_slice(&picture.painted);
+            picture.outline.clear();
+        }
         return;
     }
     let w = key.1;

@@ -21,6 +21,8 @@ pub struct GlobeMinimap {
     pixel_tile: Vec<u32>,
     /// Per pixel: its color before any tile state.
     base: Vec<[u8; 4]>,
+    /// Per tile: its color.
+    colors: Vec<[u8; 4]>,
     /// Per tile: where its pixels start in `tile_pixels` (one more entry at the end).
     tile_start: Vec<u32>,
     /// The pixels of every tile, tile after tile.
@@ -37,26 +39,13 @@ impl GlobeMinimap {
             return None;
         }
         let size = [width, width / 2];
-        let ruleset = globe.ruleset();
-        let colors: Vec<[u8; 4]> = globe
-            .grid()
-            .tiles()
-            .map(|t| {
-                let info = globe.tile_info(t).expect("a tile of the globe");
-                let [r, g, b] = if globe.config().climate.enabled {
-                    let look = &ruleset.terrain(info.terrain.terrain).look;
-                    look.minimap.unwrap_or(look.color)
-                } else {
-                    style.kind_colors[info.kind as usize]
-                };
-                [r, g, b, 255]
-            })
-            .collect();
+        let colors = tile_colors(globe, &style);
         let mut picture = Self {
             style,
             size,
             pixel_tile: Vec::with_capacity((size[0] * size[1]) as usize),
             base: Vec::new(),
+            colors: Vec::new(),
             tile_start: Vec::new(),
             tile_pixels: Vec::new(),
         };
@@ -67,6 +56,7 @@ impl GlobeMinimap {
             }
         }
         picture.base = picture.pixel_tile.iter().map(|&t| colors[t as usize]).collect();
+        picture.colors = colors;
         // Each tile's pixels, by a counting sort of the pixels by tile.
         let tiles = globe.grid().tile_count() as usize;
         let mut start = vec![0u32; tiles + 1];
@@ -84,6 +74,30 @@ impl GlobeMinimap {
         }
         picture.tile_start = start;
         Some(picture)
+    }
+
+    /// Takes the colors of `globe`, an edit or a reload of the globe pictured (the same
+    /// frequency): the tiles whose color changed get it, and are returned (by id) for a
+    /// [`repaint`](Self::repaint); `None`, and nothing changed, for a globe of another size.
+    /// Reads the globe's tables only, so it is cheap enough for a frame.
+    pub fn recolor(&mut self, globe: &GlobeTerrain) -> Option<Vec<GlobeTile>> {
+        if globe.grid().tile_count() as usize != self.colors.len() {
+            return None;
+        }
+        let colors = tile_colors(globe, &self.style);
+        let mut changed = Vec::new();
+        for (t, (&new, old)) in colors.iter().zip(&mut self.colors).enumerate() {
+            if new == *old {
+                continue;
+            }
+            *old = new;
+            changed.push(GlobeTile(t as u32));
+            let (start, end) = (self.tile_start[t] as usize, self.tile_start[t + 1] as usize);
+            for &i in &self.tile_pixels[start..end] {
+                self.base[i as usize] = new;
+            }
+        }
+        Some(changed)
     }
 
     /// The picture's size in pixels, `[width, width / 2]`.
@@ -277,6 +291,25 @@ impl GlobeMinimap {
         let (x, y) = (i % w, i / w);
         [y * w + (x + 1) % w, y * w + (x + w - 1) % w, y.saturating_sub(1) * w + x, (y + 1).min(h - 1) * w + x]
     }
+}
+
+/// Each tile's color: its terrain's minimap color (else its color) on a globe with a climate,
+/// else its type's in `style`.
+fn tile_colors(globe: &GlobeTerrain, style: &MinimapStyle) -> Vec<[u8; 4]> {
+    let ruleset = globe.ruleset();
+    globe
+        .grid()
+        .tiles()
+        .map(|t| {
+            let [r, g, b] = if globe.config().climate.enabled {
+                let look = &ruleset.terrain(globe.tile_terrain(t).expect("a tile of the globe").terrain).look;
+                look.minimap.unwrap_or(look.color)
+            } else {
+                style.kind_colors[globe.tile_kind(t).expect("a tile of the globe") as usize]
+            };
+            [r, g, b, 255]
+        })
+        .collect()
 }
 
 fn normalize(a: [f64; 3]) -> [f64; 3] {
