@@ -2,10 +2,10 @@
 //! `Globe`, hot-reloaded; a broken reload keeps the old globe and says why in a
 //! [`HexMapError`]; another globe with [`LoadHexMap`]; [`TerrainReady`] once a globe's chunks are
 //! in, [`TerrainSettled`] each time they all show it) into the [`HexGlobe`] resource, streams its
-//! chunks around every
-//! [`HexTerrainAgent`] by angle, to the agent's horizon (the far side is neither built nor
-//! drawn), meshes on Bevy's async compute pool; and [`GlobeCamera`] orbits it. The globe's center
-//! is the world's origin, its axis the world's `y`.
+//! chunks around every [`HexTerrainAgent`] by angle, to the agent's horizon (the far side is
+//! neither built nor drawn; chunks far from every agent coarse, [`HexGlobeSettings`]), meshes on
+//! Bevy's async compute pool; and [`GlobeCamera`] orbits it. The globe's center is the world's
+//! origin, its axis the world's `y`.
 //!
 //! [`OnGlobeTile`] keeps units and cities standing on their tiles (their up the globe's up there)
 //! and [`GlobeTileWalk`] walks them along a path over the sphere, pentagons included.
@@ -17,8 +17,14 @@
 //! [`GlobeTileStates`] holds the game's per-tile state (fog of war, owners, the lens,
 //! highlights), which the globe's material ([`HexGlobeMaterial`], with the `render` feature)
 //! draws over the vertex colors (the biome colors with a climate, else the kinds') with
-//! `StandardMaterial`'s lighting, styled by [`HexTileStateStyle`]. The flat map's textures, water,
-//! props and editor do not reach a globe yet.
+//! `StandardMaterial`'s lighting and the tiles' outlines, styled by [`HexTileStateStyle`].
+//!
+//! Trees, rocks and reeds stand on the globe's tiles as [`HexGlobeProp`]s (the flat map's rule
+//! and meshes, [`HexPropSettings`]), hidden on unexplored tiles under fog of war.
+//! [`HexGlobeEditorPlugin`] is the world builder on a globe: `HexMapEdit<GlobeStroke>` messages
+//! edit, undo, redo and save it, and only the chunks an operation changed are built again.
+//!
+//! The flat map's texture layers and water surface do not reach a globe yet.
 
 mod camera;
 mod editor;
