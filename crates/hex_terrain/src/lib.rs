@@ -141,8 +141,8 @@ pub use ruleset::{
 };
 pub use save::{FogState, Highlight, MAX_OWNERS, MAX_SAVED_TILES, SAVE_VERSION, SaveError, TileStateSave};
 pub use setup::{
-    MAX_START_SEARCH_CHECKS, PlacedResource, PlacedWonder, Setup, SetupNote, SetupReport, SetupTimings, Shortfall,
-    Stages, StartReport, TileSetup,
+    GlobeRegion, GlobeSetup, MAX_START_SEARCH_CHECKS, PlacedResource, PlacedWonder, Setup, SetupNote, SetupReport,
+    SetupTimings, Shortfall, Stages, StartReport, TileSetup,
 };
 pub use sight::{MAX_UNBOUNDED_SIGHT, SightError};
 pub use stats::{

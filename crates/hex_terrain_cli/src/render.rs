@@ -185,20 +185,26 @@ pub fn render(terrain: &Terrain, mesh: &ChunkMesh, options: &Options) -> CliResu
     let origin = mesh.origin;
     for mark in &options.marks {
         let [cx, cy] = project([(mark.at[0] - origin[0]) as f32, 0.0, (mark.at[1] - origin[2]) as f32]);
-        let r = (mark.radius * config.layout.hex_size * scale).max(2.0);
-        let (x0, x1) = ((cx - r - 1.0).floor().max(0.0) as u32, ((cx + r + 1.0).ceil() as u32).min(img.width() - 1));
-        let (y0, y1) = ((cy - r - 1.0).floor().max(0.0) as u32, ((cy + r + 1.0).ceil() as u32).min(img.height() - 1));
-        for py in y0..=y1 {
-            for px in x0..=x1 {
-                let d = ((px as f32 - cx).powi(2) + (py as f32 - cy).powi(2)).sqrt();
-                if d <= r {
-                    let rim = d > r - (r * 0.3).max(1.0);
-                    img.put_pixel(px, py, Rgb(if rim { [16, 16, 16] } else { mark.color }));
-                }
+        disc(&mut img, [cx, cy], (mark.radius * config.layout.hex_size * scale).max(2.0), mark.color);
+    }
+    Ok(img)
+}
+
+/// Draws a disc of radius `r` pixels centered at `[cx, cy]` with a dark rim.
+pub fn disc(img: &mut RgbImage, [cx, cy]: [f32; 2], r: f32, color: [u8; 3]) {
+    let (x0, x1) =
+        ((cx - r - 1.0).floor().max(0.0) as u32, ((cx + r + 1.0).ceil().max(0.0) as u32).min(img.width() - 1));
+    let (y0, y1) =
+        ((cy - r - 1.0).floor().max(0.0) as u32, ((cy + r + 1.0).ceil().max(0.0) as u32).min(img.height() - 1));
+    for py in y0..=y1 {
+        for px in x0..=x1 {
+            let d = ((px as f32 - cx).powi(2) + (py as f32 - cy).powi(2)).sqrt();
+            if d <= r {
+                let rim = d > r - (r * 0.3).max(1.0);
+                img.put_pixel(px, py, Rgb(if rim { [16, 16, 16] } else { color }));
             }
         }
     }
-    Ok(img)
 }
 
 /// Writes a PNG.

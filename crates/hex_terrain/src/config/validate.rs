@@ -279,7 +279,13 @@ impl MapConfig {
             check(bonus <= MAX_SIGHT_BONUS, field, bonus, format!("0..={MAX_SIGHT_BONUS}"))?;
         }
         if let Some(setup) = &self.setup {
-            setup.validate(self.size.bounds())?;
+            // A globe's setup covers it whole (its `area` is refused above): its tiles count as
+            // one row for the setup's limit on tiles.
+            let bounds = match self.size {
+                MapSize::Globe { frequency } => Some((10 * frequency * frequency + 2, 1)),
+                _ => self.size.bounds(),
+            };
+            setup.validate(bounds)?;
         }
         super::edits::validate(&self.edits, self.size, self.terrain.sea_threshold, &self.rivers, self.ruleset.is_some())
     }
@@ -288,7 +294,7 @@ impl MapConfig {
 impl MapConfig {
     /// A globe's own checks: its frequency and mesh size, and the parts of a flat map a globe
     /// does not have (an edge to wrap, a shape or map type drawn on the map's rectangle, a
-    /// heightmap) or has not yet (winds, rivers, ranges, a ruleset, a game setup).
+    /// heightmap, a setup's area) or has not yet (winds, rivers, ranges, a ruleset).
     fn validate_globe(&self, frequency: u32, per_hex: u64) -> Result<(), ConfigError> {
         let max = crate::MAX_GLOBE_FREQUENCY;
         check((1..=max).contains(&frequency), "size.Globe.frequency", frequency, format!("1..={max}"))?;
@@ -335,7 +341,13 @@ impl MapConfig {
         )?;
         check(!self.rivers.enabled, "rivers.enabled", true, "false on a globe: rivers are not on globes yet")?;
         check(self.ruleset.is_none(), "ruleset", format!("{:?}", self.ruleset), not_yet("terrain rulesets"))?;
-        check(self.setup.is_none(), "setup", "a game setup on a globe", not_yet("game setups"))
+        let area = self.setup.as_ref().and_then(|s| s.area);
+        check(
+            area.is_none(),
+            "setup.area",
+            format!("{area:?} on a globe"),
+            "None on a globe (its setup covers the whole globe)",
+        )
     }
 }
 

@@ -26,7 +26,7 @@ use super::edits::GlobeEdits;
 use super::map_type::{GlobeMapType, TypeGround};
 use crate::climate::Climate;
 use crate::climate::landform;
-use crate::config::{MapConfig, MapSize, TileEdit};
+use crate::config::{MapConfig, MapSize, SetupConfig, TileEdit};
 use crate::error::ConfigError;
 use crate::heights::MapTypeReport;
 use crate::heights::fbm::{LANES, SolidFbm};
@@ -34,6 +34,8 @@ use crate::kind::{Thresholds, TileKind};
 use crate::manipulate::{manipulate, span};
 use crate::mesh::{MeshBuffers, vertex_color};
 use crate::ruleset::{Landform, TerrainRuleset};
+use crate::setup::survey::GlobeStages;
+use crate::setup::{GlobeSetup, TileSetup};
 use crate::vocab::Biome;
 
 /// A point of a globe finished: its height after manipulation, its ring, the highest kind of
@@ -77,6 +79,8 @@ pub struct GlobeTerrain {
     /// Each chunk's cap: the direction of its middle and the angle from it that holds all of
     /// its ground; found at the first [`GlobeTerrain::chunks_within`].
     caps: std::sync::OnceLock<Vec<(GlobeChunk, Dir, f64)>>,
+    /// The game setup, when the config has one.
+    setup: Option<Arc<GlobeSetup>>,
 }
 
 impl std::fmt::Debug for GlobeTerrain {
@@ -126,6 +130,7 @@ impl GlobeTerrain {
             landforms: Vec::new(),
             ruleset: Arc::new(TerrainRuleset::biomes(&config)),
             caps: std::sync::OnceLock::new(),
+            setup: None,
             grid,
             config,
         };
@@ -145,6 +150,7 @@ impl GlobeTerrain {
         }
         globe.generated = centers.iter().zip(&fbm).map(|(&p, &(dir, fbm))| globe.shape(p, dir, fbm)).collect();
         globe.compile_tiles();
+        globe.setup = globe.place_setup()?;
         Ok(globe)
     }
 
@@ -160,7 +166,50 @@ impl GlobeTerrain {
         config.validate()?;
         let mut globe = Self { config, caps: std::sync::OnceLock::new(), ..self.clone() };
         globe.compile_tiles();
+        globe.setup = globe.place_setup()?;
         Ok(globe)
+    }
+
+    /// The same globe with another game setup (`None`: none), validated like any config: the
+    /// tiles are reused, so this costs the setup's placement alone.
+    ///
+    /// # Errors
+    /// The first invalid field of the setup (`setup.players`, ...), or `setup.players` or
+    /// `setup.min_distance` when its starts do not fit the globe.
+    pub fn with_setup(&self, setup: Option<SetupConfig>) -> Result<Self, ConfigError> {
+        let config = MapConfig { setup, ..self.config.clone() };
+        config.validate()?;
+        let mut globe = Self { config, ..self.clone() };
+        globe.setup = globe.place_setup()?;
+        Ok(globe)
+    }
+
+    /// The game setup of the config's `setup`, placed on the compiled tiles.
+    fn place_setup(&self) -> Result<Option<Arc<GlobeSetup>>, ConfigError> {
+        let Some(config) = &self.config.setup else { return Ok(None) };
+        let stages = GlobeStages {
+            grid: &self.grid,
+            kinds: &self.kinds,
+            biomes: &self.biomes,
+            terrains: self.grid.tiles().map(|t| self.tile_terrain(t).expect("a tile of the globe")).collect(),
+            costs: self.grid.tiles().map(|t| self.move_cost(t)).collect(),
+            ruleset: &self.ruleset,
+            movement: &self.config.movement,
+        };
+        GlobeSetup::build(stages, config, self.config.seed).map(|setup| Some(Arc::new(setup)))
+    }
+
+    /// The game setup (start positions, resources, natural wonders, the fairness report), when
+    /// the config has a `setup`.
+    #[must_use]
+    pub fn setup(&self) -> Option<&GlobeSetup> {
+        self.setup.as_deref()
+    }
+
+    /// What the setup placed on a tile; `None` without a setup or for a tile not of the globe.
+    #[must_use]
+    pub fn tile_setup(&self, tile: GlobeTile) -> Option<TileSetup<'_, GlobeTile>> {
+        self.setup()?.at(tile)
     }
 
     /// Each tile's edited center height, kind, climate and biome from the generated centers and

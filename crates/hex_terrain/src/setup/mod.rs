@@ -1,13 +1,15 @@
 //! Game setup, a stage after the terrain: the players' start positions, resources and natural
 //! wonders, and a fairness report, from the map's [`SetupConfig`], computed once for the whole
-//! map (or the `area` of an unbounded one) when the map is compiled, so every chunk and every
-//! query reads the same placement whatever the chunk order or thread count.
+//! map (or the `area` of an unbounded one; a whole globe, [`GlobeSetup`]) when the map is
+//! compiled, so every chunk and every query reads the same placement whatever the chunk order
+//! or thread count.
 //!
 //! In the order data flows through it:
 //!
 //! | module | step |
 //! | --- | --- |
 //! | [`survey`] | every tile's type, biome, river, coast, yields, movement cost, neighbors |
+//! | `board` | where the tiles lie: steps between them, the tiles within a radius (flat or globe) |
 //! | `regions` | regions of equal fertility, one a player (Civilization V's and Unciv's division) |
 //! | `starts` | the best start of each region at the minimum distance, then moves that narrow the spread |
 //! | `paths` | path costs over land, the land each start reaches first, land masses |
@@ -26,6 +28,8 @@ use crate::config::{Place, ResourceClass, SetupConfig};
 use crate::error::ConfigError;
 use crate::geometry::Geometry;
 
+mod board;
+mod globe;
 mod paths;
 mod placement;
 mod regions;
@@ -33,19 +37,23 @@ pub mod report;
 mod starts;
 pub mod survey;
 
+pub use globe::{GlobeRegion, GlobeSetup};
 pub use placement::{SetupNote, Shortfall};
 pub use report::{SetupReport, StartReport};
 pub use starts::MAX_START_SEARCH_CHECKS;
 pub use survey::Stages;
 
+use board::Board;
+use regions::Division;
 use survey::{NONE, Survey};
 
-/// A resource on the map.
+/// A resource on the map (`T`: a flat map's [`Hex`], a globe's
+/// [`GlobeTile`](crate::GlobeTile)).
 #[derive(Debug, Clone, PartialEq)]
 #[cfg_attr(feature = "bevy_reflect", derive(bevy_reflect::Reflect))]
-pub struct PlacedResource {
-    /// Its tile (map-local axial).
-    pub tile: Hex,
+pub struct PlacedResource<T = Hex> {
+    /// Its tile (map-local axial on a flat map).
+    pub tile: T,
     /// Its rule's index in `setup.resources`.
     pub rule: u32,
     /// Its rule's name.
@@ -56,12 +64,13 @@ pub struct PlacedResource {
     pub added: bool,
 }
 
-/// A natural wonder on the map.
+/// A natural wonder on the map (`T`: a flat map's [`Hex`], a globe's
+/// [`GlobeTile`](crate::GlobeTile)).
 #[derive(Debug, Clone, PartialEq)]
 #[cfg_attr(feature = "bevy_reflect", derive(bevy_reflect::Reflect))]
-pub struct PlacedWonder {
-    /// Its tile (map-local axial).
-    pub tile: Hex,
+pub struct PlacedWonder<T = Hex> {
+    /// Its tile (map-local axial on a flat map).
+    pub tile: T,
     /// Its rule's index in `setup.wonders.list`.
     pub rule: u32,
     /// Its name.
@@ -82,18 +91,27 @@ pub struct SetupRegion {
     pub fertility: f32,
 }
 
-/// What the setup placed on one tile.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct TileSetup<'a> {
+/// What the setup placed on one tile (`T`: a flat map's [`Hex`], a globe's
+/// [`GlobeTile`](crate::GlobeTile)).
+#[derive(Debug, PartialEq)]
+pub struct TileSetup<'a, T = Hex> {
     /// The player starting here.
     pub start: Option<u32>,
     /// The resource on it.
-    pub resource: Option<&'a PlacedResource>,
+    pub resource: Option<&'a PlacedResource<T>>,
     /// The natural wonder on it.
-    pub wonder: Option<&'a PlacedWonder>,
+    pub wonder: Option<&'a PlacedWonder<T>>,
     /// Its region.
     pub region: u32,
 }
+
+impl<T> Clone for TileSetup<'_, T> {
+    fn clone(&self) -> Self {
+        *self
+    }
+}
+
+impl<T> Copy for TileSetup<'_, T> {}
 
 /// How long each part of the setup took.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
@@ -124,15 +142,35 @@ impl SetupTimings {
 #[derive(Debug, Clone, PartialEq)]
 pub struct Setup {
     rect: TileRect,
-    starts: Vec<Hex>,
     regions: Vec<SetupRegion>,
+    placed: Placed<Hex>,
+}
+
+/// What a setup placed, by the survey's tile order: the part a flat map's and a globe's setup
+/// share.
+#[derive(Debug, Clone, PartialEq)]
+struct Placed<T> {
+    starts: Vec<T>,
     region_of: Vec<u32>,
-    resources: Vec<PlacedResource>,
-    wonders: Vec<PlacedWonder>,
+    resources: Vec<PlacedResource<T>>,
+    wonders: Vec<PlacedWonder<T>>,
     resource_at: Vec<u32>,
     wonder_at: Vec<u32>,
     start_at: Vec<u32>,
-    report: SetupReport,
+    report: SetupReport<T>,
+}
+
+impl<T> Placed<T> {
+    /// What lies on tile `i` of the survey.
+    fn at(&self, i: usize) -> TileSetup<'_, T> {
+        let get = |at: &[u32]| (at[i] != NONE).then_some(at[i] as usize);
+        TileSetup {
+            start: get(&self.start_at).map(|p| p as u32),
+            resource: get(&self.resource_at).map(|k| &self.resources[k]),
+            wonder: get(&self.wonder_at).map(|k| &self.wonders[k]),
+            region: self.region_of[i],
+        }
+    }
 }
 
 impl Setup {
@@ -152,171 +190,21 @@ impl Setup {
     pub fn build_timed(stages: Stages, config: &SetupConfig, seed: u32) -> Result<(Self, SetupTimings), ConfigError> {
         let geometry = stages.geometry;
         let mut timings = SetupTimings::default();
-        let mut clock = Instant::now();
-        let mut lap = |slot: &mut Duration| {
-            let now = Instant::now();
-            *slot = now - clock;
-            clock = now;
-        };
+        let clock = Instant::now();
         let rect = config.area.or(geometry.bounds()).ok_or_else(|| {
             ConfigError::new("setup.area", "None".into(), "a rectangle of tiles on an unbounded map".into())
         })?;
         check_places(stages.ruleset, config)?;
         let survey = Survey::new(stages, config, rect);
-        lap(&mut timings.survey);
-
-        let weights = config.value;
-        let value: Vec<f32> = survey.yields.iter().map(|&y| weights.of(y)).collect();
-        let mut ring = Vec::new();
-        let scores: Vec<f32> = (0..survey.len())
-            .map(|i| {
-                survey.range(geometry, i, config.rings, &mut ring);
-                ring.iter().map(|&j| value[j as usize]).sum()
-            })
-            .collect();
-        let fertility: Vec<f32> = (0..survey.len())
-            .map(|i| if survey.biomes[i] == crate::vocab::Biome::Ocean { 0.0 } else { value[i] })
-            .collect();
-        let division = regions::divide(&survey, &fertility, config.players as usize);
-        lap(&mut timings.regions);
-
-        let guaranteed: Vec<&crate::config::ResourceRule> =
-            config.resources.iter().filter(|r| r.per_player > 0).take(64).collect();
-        // Which guaranteed rules each tile may hold, one bit a rule (at most 64 rules).
-        let fits: Vec<u64> = (0..survey.len())
-            .map(|i| {
-                guaranteed
-                    .iter()
-                    .enumerate()
-                    .fold(0, |m, (k, r)| if placement::allowed(&survey, i, &r.on) { m | 1 << k } else { m })
-            })
-            .collect();
-        let missing: Vec<u32> = (0..survey.len())
-            .map(|i| {
-                if !survey.eligible[i] || guaranteed.is_empty() {
-                    return 0;
-                }
-                survey.range(geometry, i, config.rings, &mut ring);
-                ring.retain(|&j| j as usize != i && fits[j as usize] != 0);
-                unmet(&ring, &fits, &guaranteed)
-            })
-            .collect();
-        let chooser = starts::Chooser {
-            survey: &survey,
-            geometry,
-            config,
-            scores: &scores,
-            division: &division,
-            missing: &missing,
+        let Board::Flat(flat) = &survey.board else { unreachable!("a flat map's survey") };
+        let (cols, wraps) = (flat.cols, flat.wraps);
+        let divide = |fertility: &[f32]| regions::divide(cols, wraps, fertility, config.players as usize);
+        let tile = |i: usize| match &survey.board {
+            Board::Flat(flat) => flat.tiles[i],
+            Board::Globe(_) => unreachable!("a flat map's survey"),
         };
-        let mut starts = chooser.place()?;
-        chooser.refine(&mut starts);
-        lap(&mut timings.starts);
-
-        let rings: Vec<Vec<u32>> = starts
-            .iter()
-            .map(|&s| {
-                let mut r = Vec::new();
-                survey.range(geometry, s, config.rings, &mut r);
-                r
-            })
-            .collect();
-        let reach = paths::reach(&survey, &starts);
-        let extra: Vec<f32> = reach.iter().map(|&r| weights.reach * r as f32).collect();
-        let placer = placement::Placer { survey: &survey, geometry, config, seed, starts: &starts, rings: &rings };
-        let mut placed = placer.place();
-        lap(&mut timings.placement);
-        if config.normalize {
-            placer.normalize(&mut placed, &extra);
-        }
-        lap(&mut timings.normalize);
-
-        let values = placer.values(&placed, &extra);
-        let (mass, sizes) = paths::land_masses(&survey);
-        let costs: Vec<Vec<Option<u32>>> = starts
-            .iter()
-            .map(|&s| {
-                let c = paths::costs(&survey, &[s]);
-                starts.iter().map(|&t| (c.dist[t] != paths::FAR).then_some(c.dist[t])).collect()
-            })
-            .collect();
-        let n = starts.len();
-        let mut reports = Vec::with_capacity(n);
-        for (p, &s) in starts.iter().enumerate() {
-            let mut yields = crate::config::Yields::default();
-            for &j in &rings[p] {
-                yields += placer.yields(&placed, j as usize);
-            }
-            let near = |j: &&u32| placed.resource[**j as usize] != NONE;
-            let nearest_rival = (0..n)
-                .filter(|&q| q != p)
-                .filter_map(|q| costs[p][q].map(|c| (q as u32, c)))
-                .min_by_key(|&(q, c)| (c, q));
-            reports.push(StartReport {
-                player: p as u32,
-                tile: survey.tiles[s],
-                offset: survey.offset(s),
-                region: division.region_of[s],
-                value: values[p],
-                yields,
-                resources: rings[p].iter().filter(near).count() as u32,
-                added: rings[p].iter().filter(near).filter(|&&j| placed.added[j as usize]).count() as u32,
-                reach: reach[p],
-                land_area: if mass[s] == NONE { 0 } else { sizes[mass[s] as usize] },
-                nearest_rival,
-            });
-        }
-        let unreachable = (0..n)
-            .flat_map(|a| (a + 1..n).map(move |b| (a, b)))
-            .filter(|&(a, b)| costs[a][b].is_none())
-            .map(|(a, b)| (a as u32, b as u32))
-            .collect();
-        let spread = starts::spread(&values);
-
-        let mut resources = Vec::new();
-        let mut resource_at = vec![NONE; survey.len()];
-        let mut wonders = Vec::new();
-        let mut wonder_at = vec![NONE; survey.len()];
-        for i in 0..survey.len() {
-            if placed.resource[i] != NONE {
-                let rule = placed.resource[i];
-                let r = &config.resources[rule as usize];
-                resource_at[i] = resources.len() as u32;
-                resources.push(PlacedResource {
-                    tile: survey.tiles[i],
-                    rule,
-                    name: r.name.clone(),
-                    class: r.class,
-                    added: placed.added[i],
-                });
-            }
-            if placed.wonder[i] != NONE {
-                let rule = placed.wonder[i];
-                wonder_at[i] = wonders.len() as u32;
-                wonders.push(PlacedWonder {
-                    tile: survey.tiles[i],
-                    rule,
-                    name: config.wonders.list[rule as usize].name.clone(),
-                });
-            }
-        }
-        let mut start_at = vec![NONE; survey.len()];
-        for (p, &s) in starts.iter().enumerate() {
-            start_at[s] = p as u32;
-        }
-        let report = SetupReport {
-            starts: reports,
-            spread,
-            bound: config.fairness,
-            within_bound: spread <= config.fairness,
-            costs,
-            unreachable,
-            shortfalls: placed.shortfalls,
-            notes: placed.notes,
-            resources: resources.len() as u32,
-            wonders: wonders.len() as u32,
-        };
-        let cols = survey.cols as i32;
+        let (placed, division) = place(&survey, config, seed, tile, divide, clock, &mut timings)?;
+        let cols = cols as i32;
         let regions = division
             .regions
             .iter()
@@ -329,26 +217,13 @@ impl Setup {
                 }
             })
             .collect();
-        let setup = Self {
-            rect,
-            starts: starts.iter().map(|&s| survey.tiles[s]).collect(),
-            regions,
-            region_of: division.region_of,
-            resources,
-            wonders,
-            resource_at,
-            wonder_at,
-            start_at,
-            report,
-        };
-        lap(&mut timings.report);
-        Ok((setup, timings))
+        Ok((Self { rect, regions, placed }, timings))
     }
 
     /// Index of a tile of the area (any copy of it on a wrapping map).
     #[inline]
     fn index(&self, geometry: &Geometry, tile: Hex) -> Option<usize> {
-        survey::area_index(self.rect, geometry, tile)
+        board::area_index(self.rect, geometry, tile)
     }
 
     /// The tiles the setup placed on.
@@ -360,7 +235,7 @@ impl Setup {
     /// The start tiles, in player order.
     #[must_use]
     pub fn starts(&self) -> &[Hex] {
-        &self.starts
+        &self.placed.starts
     }
 
     /// The regions, in order (region `k` is where player `k` was first placed).
@@ -372,32 +247,25 @@ impl Setup {
     /// Every resource, in tile order (row by row).
     #[must_use]
     pub fn resources(&self) -> &[PlacedResource] {
-        &self.resources
+        &self.placed.resources
     }
 
     /// Every natural wonder, in tile order.
     #[must_use]
     pub fn wonders(&self) -> &[PlacedWonder] {
-        &self.wonders
+        &self.placed.wonders
     }
 
     /// The fairness report.
     #[must_use]
     pub fn report(&self) -> &SetupReport {
-        &self.report
+        &self.placed.report
     }
 
     /// What lies on a tile (any copy of it on a wrapping map); `None` outside the area.
     #[must_use]
     pub fn at(&self, geometry: &Geometry, tile: Hex) -> Option<TileSetup<'_>> {
-        let i = self.index(geometry, tile)?;
-        let get = |at: &[u32]| (at[i] != NONE).then_some(at[i] as usize);
-        Some(TileSetup {
-            start: get(&self.start_at).map(|p| p as u32),
-            resource: get(&self.resource_at).map(|k| &self.resources[k]),
-            wonder: get(&self.wonder_at).map(|k| &self.wonders[k]),
-            region: self.region_of[i],
-        })
+        Some(self.placed.at(self.index(geometry, tile)?))
     }
 
     /// The resource on a tile.
@@ -423,6 +291,177 @@ impl Setup {
     pub fn region(&self, geometry: &Geometry, tile: Hex) -> Option<u32> {
         self.at(geometry, tile).map(|t| t.region)
     }
+}
+
+/// The setup's steps after the survey, the same on a flat map and a globe: ring values, the
+/// regions (`divide` cuts them by each tile's fertility), the starts, wonders and resources,
+/// normalisation and the report, each tile named by `tile`. Laps into `timings` from `clock`
+/// (the survey's start).
+fn place<T: Copy>(
+    survey: &Survey,
+    config: &SetupConfig,
+    seed: u32,
+    tile: impl Fn(usize) -> T,
+    divide: impl FnOnce(&[f32]) -> Division,
+    mut clock: Instant,
+    timings: &mut SetupTimings,
+) -> Result<(Placed<T>, Division), ConfigError> {
+    let mut lap = |slot: &mut Duration| {
+        let now = Instant::now();
+        *slot = now - clock;
+        clock = now;
+    };
+    lap(&mut timings.survey);
+    let weights = config.value;
+    let value: Vec<f32> = survey.yields.iter().map(|&y| weights.of(y)).collect();
+    let mut ring = Vec::new();
+    let scores: Vec<f32> = (0..survey.len())
+        .map(|i| {
+            survey.range(i, config.rings, &mut ring);
+            ring.iter().map(|&j| value[j as usize]).sum()
+        })
+        .collect();
+    let fertility: Vec<f32> = (0..survey.len())
+        .map(|i| if survey.biomes[i] == crate::vocab::Biome::Ocean { 0.0 } else { value[i] })
+        .collect();
+    let division = divide(&fertility);
+    lap(&mut timings.regions);
+
+    let guaranteed: Vec<&crate::config::ResourceRule> =
+        config.resources.iter().filter(|r| r.per_player > 0).take(64).collect();
+    // Which guaranteed rules each tile may hold, one bit a rule (at most 64 rules).
+    let fits: Vec<u64> = (0..survey.len())
+        .map(|i| {
+            guaranteed
+                .iter()
+                .enumerate()
+                .fold(0, |m, (k, r)| if placement::allowed(survey, i, &r.on) { m | 1 << k } else { m })
+        })
+        .collect();
+    let missing: Vec<u32> = (0..survey.len())
+        .map(|i| {
+            if !survey.eligible[i] || guaranteed.is_empty() {
+                return 0;
+            }
+            survey.range(i, config.rings, &mut ring);
+            ring.retain(|&j| j as usize != i && fits[j as usize] != 0);
+            unmet(&ring, &fits, &guaranteed)
+        })
+        .collect();
+    let chooser = starts::Chooser { survey, config, scores: &scores, division: &division, missing: &missing };
+    let mut starts = chooser.place()?;
+    chooser.refine(&mut starts);
+    lap(&mut timings.starts);
+
+    let rings: Vec<Vec<u32>> = starts
+        .iter()
+        .map(|&s| {
+            let mut r = Vec::new();
+            survey.range(s, config.rings, &mut r);
+            r
+        })
+        .collect();
+    let reach = paths::reach(survey, &starts);
+    let extra: Vec<f32> = reach.iter().map(|&r| weights.reach * r as f32).collect();
+    let placer = placement::Placer { survey, config, seed, starts: &starts, rings: &rings };
+    let mut placed = placer.place();
+    lap(&mut timings.placement);
+    if config.normalize {
+        placer.normalize(&mut placed, &extra);
+    }
+    lap(&mut timings.normalize);
+
+    let values = placer.values(&placed, &extra);
+    let (mass, sizes) = paths::land_masses(survey);
+    let costs: Vec<Vec<Option<u32>>> = starts
+        .iter()
+        .map(|&s| {
+            let c = paths::costs(survey, &[s]);
+            starts.iter().map(|&t| (c.dist[t] != paths::FAR).then_some(c.dist[t])).collect()
+        })
+        .collect();
+    let n = starts.len();
+    let mut reports = Vec::with_capacity(n);
+    for (p, &s) in starts.iter().enumerate() {
+        let mut yields = crate::config::Yields::default();
+        for &j in &rings[p] {
+            yields += placer.yields(&placed, j as usize);
+        }
+        let near = |j: &&u32| placed.resource[**j as usize] != NONE;
+        let nearest_rival =
+            (0..n).filter(|&q| q != p).filter_map(|q| costs[p][q].map(|c| (q as u32, c))).min_by_key(|&(q, c)| (c, q));
+        reports.push(StartReport {
+            player: p as u32,
+            tile: tile(s),
+            coords: survey.board.coords(s),
+            region: division.region_of[s],
+            value: values[p],
+            yields,
+            resources: rings[p].iter().filter(near).count() as u32,
+            added: rings[p].iter().filter(near).filter(|&&j| placed.added[j as usize]).count() as u32,
+            reach: reach[p],
+            land_area: if mass[s] == NONE { 0 } else { sizes[mass[s] as usize] },
+            nearest_rival,
+        });
+    }
+    let unreachable = (0..n)
+        .flat_map(|a| (a + 1..n).map(move |b| (a, b)))
+        .filter(|&(a, b)| costs[a][b].is_none())
+        .map(|(a, b)| (a as u32, b as u32))
+        .collect();
+    let spread = starts::spread(&values);
+
+    let mut resources = Vec::new();
+    let mut resource_at = vec![NONE; survey.len()];
+    let mut wonders = Vec::new();
+    let mut wonder_at = vec![NONE; survey.len()];
+    for i in 0..survey.len() {
+        if placed.resource[i] != NONE {
+            let rule = placed.resource[i];
+            let r = &config.resources[rule as usize];
+            resource_at[i] = resources.len() as u32;
+            resources.push(PlacedResource {
+                tile: tile(i),
+                rule,
+                name: r.name.clone(),
+                class: r.class,
+                added: placed.added[i],
+            });
+        }
+        if placed.wonder[i] != NONE {
+            let rule = placed.wonder[i];
+            wonder_at[i] = wonders.len() as u32;
+            wonders.push(PlacedWonder { tile: tile(i), rule, name: config.wonders.list[rule as usize].name.clone() });
+        }
+    }
+    let mut start_at = vec![NONE; survey.len()];
+    for (p, &s) in starts.iter().enumerate() {
+        start_at[s] = p as u32;
+    }
+    let report = SetupReport {
+        starts: reports,
+        spread,
+        bound: config.fairness,
+        within_bound: spread <= config.fairness,
+        costs,
+        unreachable,
+        shortfalls: placed.shortfalls,
+        notes: placed.notes,
+        resources: resources.len() as u32,
+        wonders: wonders.len() as u32,
+    };
+    let placed = Placed {
+        starts: starts.iter().map(|&s| tile(s)).collect(),
+        region_of: division.region_of.clone(),
+        resources,
+        wonders,
+        resource_at,
+        wonder_at,
+        start_at,
+        report,
+    };
+    lap(&mut timings.report);
+    Ok((placed, division))
 }
 
 /// How many of the guaranteed resources could not be given tiles of `ring`, one a tile: the

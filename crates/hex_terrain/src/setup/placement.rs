@@ -14,7 +14,6 @@
 
 use super::survey::{NONE, Survey};
 use crate::config::{Place, ResourceClass, SetupConfig, Yields};
-use crate::geometry::Geometry;
 use crate::hash;
 
 /// Something the setup could not do as asked, with the field of the config it concerns.
@@ -68,8 +67,7 @@ pub(crate) fn allowed(survey: &Survey, i: usize, on: &[Place]) -> bool {
 
 /// What chooses and places.
 pub(crate) struct Placer<'a> {
-    pub survey: &'a Survey,
-    pub geometry: &'a Geometry,
+    pub survey: &'a Survey<'a>,
     pub config: &'a SetupConfig,
     pub seed: u32,
     pub starts: &'a [usize],
@@ -80,13 +78,13 @@ pub(crate) struct Placer<'a> {
 impl Placer<'_> {
     /// A tile's draw for `salt`: lower picks first.
     fn draw(&self, i: usize, salt: i64) -> u64 {
-        let t = self.survey.tiles[i];
-        hash::hash(self.seed, &[i64::from(t.x), i64::from(t.y), salt])
+        let [x, y] = self.survey.board.key(i);
+        hash::hash(self.seed, &[x, y, salt])
     }
 
     /// Marks the tiles within `radius` of `i`.
     fn mark(&self, marks: &mut [bool], i: usize, radius: u32, scratch: &mut Vec<u32>) {
-        self.survey.range(self.geometry, i, radius, scratch);
+        self.survey.range(i, radius, scratch);
         for &j in scratch.iter() {
             marks[j as usize] = true;
         }

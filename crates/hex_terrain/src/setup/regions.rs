@@ -1,13 +1,12 @@
 //! Regions of equal fertility, one a player, as Civilization V's and Unciv's map scripts divide
-//! the map: the area's rectangle is cut in two along its longer side where the fertility on
-//! each side is in proportion to the players each side gets, and so on until every part has
-//! one player. On a wrapping map the rectangle starts at the column with the least fertility, so
-//! no region is cut by the seam where the land is richest.
+//! the map: a grid of cells (a flat area's tiles; a globe's cells of longitude and latitude) is
+//! cut in two along its longer side where the fertility on each side is in proportion to the
+//! players each side gets, and so on until every part has one player. On a grid that wraps (a
+//! wrapping map, a globe) the grid starts at the column with the least fertility, so no region
+//! is cut by the seam where the land is richest.
 
-use super::survey::Survey;
-
-/// One region: a rectangle of the area (columns counted from the area's first column, or from
-/// the wrapping map's cut column) and its fertility.
+/// One region: a rectangle of the grid (columns counted from the grid's first column, or from
+/// the cut column of a grid that wraps) and its fertility.
 #[derive(Debug, Clone, PartialEq)]
 pub(crate) struct Region {
     /// Columns `[first, end)`, shifted by the cut column.
@@ -18,22 +17,23 @@ pub(crate) struct Region {
     pub fertility: f32,
 }
 
-/// The division of an area into regions.
+/// The division of a grid into regions.
 #[derive(Debug, Clone)]
 pub(crate) struct Division {
     /// The regions, one a player (some may be empty on a tiny area).
     pub regions: Vec<Region>,
-    /// The region of each tile of the area.
+    /// The region of each tile (of each cell of the grid, until the globe's setup maps its
+    /// tiles to them).
     pub region_of: Vec<u32>,
-    /// The column of the area the regions' column 0 is.
+    /// The column of the grid the regions' column 0 is.
     pub cut: usize,
 }
 
-/// Divides the survey's area into `players` regions of about equal `fertility` (a value a tile).
-pub(crate) fn divide(survey: &Survey, fertility: &[f32], players: usize) -> Division {
-    let cols = survey.cols;
-    let rows = survey.len() / cols.max(1);
-    let cut = if survey.wraps {
+/// Divides a grid of `cols` columns (row by row: `fertility.len() / cols` rows), wrapping
+/// east to west or not, into `players` regions of about equal `fertility` (a value a cell).
+pub(crate) fn divide(cols: usize, wraps: bool, fertility: &[f32], players: usize) -> Division {
+    let rows = fertility.len() / cols.max(1);
+    let cut = if wraps {
         // The poorest column, the first of them on a tie.
         let column = |c: usize| (0..rows).map(|r| fertility[r * cols + c]).sum::<f32>();
         (0..cols).map(|c| (c, column(c))).fold((0, f32::INFINITY), |best, x| if x.1 < best.1 { x } else { best }).0
@@ -43,7 +43,7 @@ pub(crate) fn divide(survey: &Survey, fertility: &[f32], players: usize) -> Divi
     let at = |c: usize, r: usize| fertility[r * cols + (c + cut) % cols];
     let mut regions = Vec::with_capacity(players);
     split(&at, Region { cols: [0, cols], rows: [0, rows], fertility: 0.0 }, players, &mut regions);
-    let mut region_of = vec![0; survey.len()];
+    let mut region_of = vec![0; fertility.len()];
     for (k, region) in regions.iter().enumerate() {
         for r in region.rows[0]..region.rows[1] {
             for c in region.cols[0]..region.cols[1] {

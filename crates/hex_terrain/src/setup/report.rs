@@ -7,16 +7,19 @@ use hexx::Hex;
 use super::placement::{SetupNote, Shortfall};
 use crate::config::Yields;
 
-/// One start in the report.
+/// One start in the report (`T`: a flat map's [`Hex`], a globe's
+/// [`GlobeTile`](crate::GlobeTile)).
 #[derive(Debug, Clone, PartialEq)]
 #[cfg_attr(feature = "bevy_reflect", derive(bevy_reflect::Reflect))]
-pub struct StartReport {
+pub struct StartReport<T = Hex> {
     /// The player (0 is the first; the printed table counts from 1).
     pub player: u32,
-    /// Its start tile (map-local axial).
-    pub tile: Hex,
-    /// The start tile's offset coordinate `[col, row]`.
-    pub offset: [i32; 2],
+    /// Its start tile (map-local axial on a flat map).
+    pub tile: T,
+    /// Where the start tile is, as the printed table shows it: on a flat map its offset
+    /// coordinate `[col, row]`, on a globe its longitude and latitude in whole degrees (east
+    /// and north positive).
+    pub coords: [i32; 2],
     /// Its region.
     pub region: u32,
     /// Its value: the value of the yields within its rings (resources and wonders included)
@@ -36,12 +39,12 @@ pub struct StartReport {
     pub nearest_rival: Option<(u32, u32)>,
 }
 
-/// The whole report.
+/// The whole report (`T`: a flat map's [`Hex`], a globe's [`GlobeTile`](crate::GlobeTile)).
 #[derive(Debug, Clone, PartialEq)]
 #[cfg_attr(feature = "bevy_reflect", derive(bevy_reflect::Reflect))]
-pub struct SetupReport {
+pub struct SetupReport<T = Hex> {
     /// One row a start, in player order.
-    pub starts: Vec<StartReport>,
+    pub starts: Vec<StartReport<T>>,
     /// `max / min - 1` of the starts' values: 0 for one start or equal values (and when no
     /// value is above 0), infinite when the smallest value is at most 0 and another is above
     /// it (no ratio bounds them: such a setup is never within a bound).
@@ -66,7 +69,7 @@ pub struct SetupReport {
     pub wonders: u32,
 }
 
-impl std::fmt::Display for SetupReport {
+impl<T> std::fmt::Display for SetupReport<T> {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         writeln!(
             f,
@@ -84,7 +87,7 @@ impl std::fmt::Display for SetupReport {
                 f,
                 "{:>6}  {:>10}  {:>7.1}  {:>5.0}  {:>5.0}  {:>5.0}  {:>9}  {:>5}  {:>5}  {:>13}",
                 s.player,
-                format!("({}, {})", s.offset[0], s.offset[1]),
+                format!("({}, {})", s.coords[0], s.coords[1]),
                 s.value,
                 s.yields.food,
                 s.yields.production,

@@ -7,12 +7,12 @@
 
 use std::collections::BTreeSet;
 
+use super::board::Board;
 use super::paths;
 use super::regions::Division;
 use super::survey::Survey;
 use crate::config::SetupConfig;
 use crate::error::ConfigError;
-use crate::geometry::Geometry;
 
 /// How much a start's rank falls from a region's fertile middle to its farthest corner.
 const CENTER_BIAS: f32 = 0.3;
@@ -36,8 +36,7 @@ enum Search {
 
 /// What choosing starts reads.
 pub(crate) struct Chooser<'a> {
-    pub survey: &'a Survey,
-    pub geometry: &'a Geometry,
+    pub survey: &'a Survey<'a>,
     pub config: &'a SetupConfig,
     /// Each tile's ring value (the value of the tiles within the rings), for eligible tiles.
     pub scores: &'a [f32],
@@ -50,10 +49,11 @@ pub(crate) struct Chooser<'a> {
 impl Chooser<'_> {
     /// Whether tile `i` is at least the minimum distance from every start but `skip`.
     fn far_enough(&self, i: usize, starts: &[usize], skip: Option<usize>) -> bool {
-        let tile = self.survey.tiles[i];
-        starts.iter().enumerate().filter(|&(k, _)| Some(k) != skip).all(|(_, &s)| {
-            self.geometry.distance(tile, self.survey.tiles[s]).is_some_and(|d| d >= self.config.min_distance)
-        })
+        starts
+            .iter()
+            .enumerate()
+            .filter(|&(k, _)| Some(k) != skip)
+            .all(|(_, &s)| self.survey.distance(s, i).is_some_and(|d| d >= self.config.min_distance))
     }
 
     /// The starts, one a region where the region has room, in region order.
@@ -102,9 +102,9 @@ impl Chooser<'_> {
         let mut spread = vec![best(eligible.iter().copied(), self.scores).unwrap_or(eligible[0])];
         let mut nearest: Vec<u32> = vec![u32::MAX; survey.len()];
         while spread.len() < n {
-            let last = survey.tiles[spread[spread.len() - 1]];
+            let last = spread[spread.len() - 1];
             for &i in &eligible {
-                let d = self.geometry.distance(last, survey.tiles[i]).unwrap_or(0);
+                let d = survey.distance(last, i).unwrap_or(0);
                 nearest[i] = nearest[i].min(d);
             }
             let next = eligible.iter().copied().max_by(|&a, &b| {
@@ -114,7 +114,7 @@ impl Chooser<'_> {
         }
         let apart = (0..n)
             .flat_map(|a| (a + 1..n).map(move |b| (a, b)))
-            .map(|(a, b)| self.geometry.distance(survey.tiles[spread[a]], survey.tiles[spread[b]]).unwrap_or(0))
+            .map(|(a, b)| survey.distance(spread[a], spread[b]).unwrap_or(0))
             .min()
             .unwrap_or(u32::MAX);
         let min = self.config.min_distance;
@@ -196,18 +196,14 @@ impl Chooser<'_> {
             chosen.push(candidates[0]);
             return Some(true);
         }
-        let tiles = &self.survey.tiles;
         for (k, &c) in candidates.iter().enumerate() {
             if candidates.len() - k < need {
                 break;
             }
             let rest = &candidates[k + 1..];
             *budget = budget.checked_sub(rest.len() as u64)?;
-            let next: Vec<usize> = rest
-                .iter()
-                .copied()
-                .filter(|&o| self.geometry.distance(tiles[c], tiles[o]).is_some_and(|e| e >= d))
-                .collect();
+            let next: Vec<usize> =
+                rest.iter().copied().filter(|&o| self.survey.distance(c, o).is_some_and(|e| e >= d)).collect();
             chosen.push(c);
             match self.extend(&next, n, d, chosen, budget) {
                 Some(false) => {
@@ -229,11 +225,25 @@ impl Chooser<'_> {
     }
 
     /// Each eligible tile's rank: its score, less up to [`CENTER_BIAS`] of it by its distance
-    /// from its region's fertility-weighted middle.
+    /// from its region's fertility-weighted middle (on a flat map in columns and rows over the
+    /// region's longer side; on a globe the angle over the region's widest angle from it).
     fn ranks(&self) -> Vec<f32> {
+        let off = match &self.survey.board {
+            Board::Flat(flat) => self.flat_offsets(flat.cols),
+            Board::Globe(sphere) => self.globe_offsets(&sphere.centers),
+        };
+        (0..self.survey.len())
+            .map(|i| {
+                let missing = 1.0 - MISSING_PENALTY * self.missing[i] as f32;
+                self.scores[i] * (1.0 - CENTER_BIAS * off[i].min(1.0) as f32) * missing.max(0.0)
+            })
+            .collect()
+    }
+
+    /// Each tile's distance from its region's middle over half the region's longer side.
+    fn flat_offsets(&self, cols: usize) -> Vec<f64> {
         let survey = self.survey;
         let d = self.division;
-        let cols = survey.cols;
         let local = |i: usize| ((i % cols + cols - d.cut) % cols, i / cols);
         let mut middle = vec![[0.0f64; 3]; d.regions.len()];
         for i in 0..survey.len() {
@@ -257,11 +267,43 @@ impl Chooser<'_> {
                 };
                 let half =
                     ((region.cols[1] - region.cols[0]).max(region.rows[1] - region.rows[0]) as f64 / 2.0).max(1.0);
-                let off = ((c as f64 - mc).powi(2) + (r as f64 - mr).powi(2)).sqrt() / half;
-                let missing = 1.0 - MISSING_PENALTY * self.missing[i] as f32;
-                self.scores[i] * (1.0 - CENTER_BIAS * off.min(1.0) as f32) * missing.max(0.0)
+                ((c as f64 - mc).powi(2) + (r as f64 - mr).powi(2)).sqrt() / half
             })
             .collect()
+    }
+
+    /// Each tile's angle from its region's middle (the fertility-weighted mean direction, the
+    /// plain mean where the region has no fertility) over the widest such angle of the region.
+    fn globe_offsets(&self, centers: &[[f64; 3]]) -> Vec<f64> {
+        let d = self.division;
+        let mut weighted = vec![[0.0f64; 3]; d.regions.len()];
+        let mut plain = vec![[0.0f64; 3]; d.regions.len()];
+        for (i, c) in centers.iter().enumerate() {
+            let k = d.region_of[i] as usize;
+            let w = f64::from(self.scores[i].max(0.0));
+            for a in 0..3 {
+                weighted[k][a] += w * c[a];
+                plain[k][a] += c[a];
+            }
+        }
+        let middle: Vec<[f64; 3]> = weighted
+            .iter()
+            .zip(&plain)
+            .map(|(w, p)| {
+                let m = if w.iter().any(|&x| x != 0.0) { w } else { p };
+                let len = m.iter().map(|x| x * x).sum::<f64>().sqrt();
+                if len > 0.0 { m.map(|x| x / len) } else { [0.0, 1.0, 0.0] }
+            })
+            .collect();
+        let angle = |a: [f64; 3], b: [f64; 3]| (a[0] * b[0] + a[1] * b[1] + a[2] * b[2]).clamp(-1.0, 1.0).acos();
+        let angles: Vec<f64> =
+            centers.iter().enumerate().map(|(i, &c)| angle(c, middle[d.region_of[i] as usize])).collect();
+        let mut widest = vec![0.0f64; d.regions.len()];
+        for (i, &a) in angles.iter().enumerate() {
+            let w = &mut widest[d.region_of[i] as usize];
+            *w = w.max(a);
+        }
+        angles.iter().enumerate().map(|(i, &a)| a / widest[d.region_of[i] as usize].max(1e-9)).collect()
     }
 
     /// The starts' values from their ring scores and the land each reaches first.

@@ -1,13 +1,16 @@
 //! The survey: what the setup needs to know of every tile of its area, read once from the
-//! terrain's stages (type, biome, river, coast, yields, value, movement cost, neighbors).
+//! terrain's stages or a globe's tiles (type, biome, river, coast, yields, value, movement cost,
+//! neighbors).
 
 use hexx::Hex;
 use rayon::prelude::*;
 
+use super::board::{Board, Flat, Sphere};
 use crate::chunk::TileRect;
 use crate::climate::{ClimateModel, TileSample};
 use crate::config::{MovementConfig, SetupConfig, StartOn, Yields};
 use crate::geometry::Geometry;
+use crate::globe::grid::GlobeGrid;
 use crate::heights::HeightField;
 use crate::kind::Thresholds;
 use crate::ruleset::{TerrainRuleset, TileTerrain, TileTerrains, Traits};
@@ -57,22 +60,32 @@ impl Stages<'_> {
     }
 }
 
-/// Every tile of the setup's area, row by row.
-#[derive(Debug, Clone)]
-pub(crate) struct Survey {
-    /// The area, offset coordinates.
-    pub rect: TileRect,
-    /// Columns of the area.
-    pub cols: usize,
-    /// Whether the area is a whole wrapping map (its columns continue across the seam).
-    pub wraps: bool,
-    /// Each tile (map-local axial).
-    pub tiles: Vec<Hex>,
+/// What the setup reads of a globe: its tiles' kinds, biomes, terrains and costs of entering,
+/// by id (the globe has them compiled).
+pub(crate) struct GlobeStages<'a> {
+    /// The globe's grid.
+    pub grid: &'a GlobeGrid,
+    pub kinds: &'a [TileKind],
+    pub biomes: &'a [Biome],
+    /// Each tile's terrain and feature under the globe's ruleset.
+    pub terrains: Vec<TileTerrain>,
+    /// Each tile's cost of entering by the globe's movement rule (`None`: impassable).
+    pub costs: Vec<Option<u32>>,
+    /// The globe's terrain ruleset.
+    pub ruleset: &'a TerrainRuleset,
+    /// The movement model (the map config's).
+    pub movement: &'a MovementConfig,
+}
+
+/// Every tile of the setup's area, by the board's order (a flat area row by row, a globe by id).
+pub(crate) struct Survey<'a> {
+    /// Where the tiles lie.
+    pub board: Board<'a>,
     pub kinds: Vec<TileKind>,
     pub biomes: Vec<Biome>,
     /// A river through it or on one of its edges.
     pub river: Vec<bool>,
-    /// Which of its edges carry a river (bit `d`: toward `all_neighbors()[d]`), each crossed for
+    /// Which of its edges carry a river (bit `d`: toward `neighbors[d]`), each crossed for
     /// `river_cost` more.
     pub crossing: Vec<u8>,
     /// The movement model's cost of crossing a river.
@@ -85,7 +98,7 @@ pub(crate) struct Survey {
     pub cost: Vec<u32>,
     /// Whether a start may stand on it.
     pub eligible: Vec<bool>,
-    /// The six neighbors' indices ([`NONE`] past the edge).
+    /// The neighbors' indices ([`NONE`] past the edge, and a pentagon's sixth).
     pub neighbors: Vec<[u32; 6]>,
     /// Each tile's terrain (an index into `terrain_ids`).
     pub terrain: Vec<u8>,
@@ -100,9 +113,9 @@ pub(crate) struct Survey {
 /// [`Survey::feature`] of a tile without a feature.
 pub(crate) const NO_FEATURE: u8 = u8::MAX;
 
-impl Survey {
+impl<'a> Survey<'a> {
     /// Surveys `rect` (in the map) with the setup's tables.
-    pub fn new(stages: Stages, config: &SetupConfig, rect: TileRect) -> Self {
+    pub fn new(stages: Stages<'a>, config: &SetupConfig, rect: TileRect) -> Self {
         let geometry = stages.geometry;
         let cols = (rect.max[0] - rect.min[0]) as usize;
         let wraps = geometry.wrap().is_some() && geometry.bounds() == Some(rect);
@@ -119,40 +132,17 @@ impl Survey {
         let crossing: Vec<u8> =
             tiles.iter().map(|&t| stages.table.map_or(0, |table| table.river_edge_mask(geometry, t))).collect();
         let river: Vec<bool> = center_river.iter().zip(&crossing).map(|(&c, &e)| c || e != 0).collect();
-        let mut survey = Self {
-            rect,
-            cols,
-            wraps,
-            tiles,
-            kinds,
-            biomes,
-            river,
-            crossing,
-            river_cost: stages.movement.river,
-            coast: Vec::new(),
-            yields: Vec::new(),
-            cost: Vec::new(),
-            eligible: Vec::new(),
-            neighbors: Vec::new(),
-            terrain: Vec::new(),
-            feature: Vec::new(),
-            terrain_ids: Vec::new(),
-            feature_ids: Vec::new(),
-        };
-        survey.neighbors = survey
-            .tiles
-            .iter()
-            .map(|&t| t.all_neighbors().map(|n| survey.index(geometry, n).map_or(NONE, |j| j as u32)))
-            .collect();
+        let flat = Flat { geometry, rect, cols, wraps, tiles };
+        let neighbors: Vec<[u32; 6]> =
+            flat.tiles.iter().map(|&t| t.all_neighbors().map(|n| flat.index(n).map_or(NONE, |j| j as u32))).collect();
         // A land tile next to the sea, wherever the sea lies: a neighbor on the map outside
         // the area counts too (read from the stages: only the area's edge tiles have one).
-        let sea = |kind: TileKind, biome: Biome| kind == TileKind::Sea && biome != Biome::Lake;
-        survey.coast = (0..survey.len())
+        let coast = (0..flat.tiles.len())
             .map(|i| {
-                survey.kinds[i] != TileKind::Sea
-                    && survey.neighbors[i].iter().zip(survey.tiles[i].all_neighbors()).any(|(&j, n)| {
+                kinds[i] != TileKind::Sea
+                    && neighbors[i].iter().zip(flat.tiles[i].all_neighbors()).any(|(&j, n)| {
                         if j != NONE {
-                            return sea(survey.kinds[j as usize], survey.biomes[j as usize]);
+                            return sea(kinds[j as usize], biomes[j as usize]);
                         }
                         stages
                             .thresholds
@@ -161,57 +151,123 @@ impl Survey {
                     })
             })
             .collect();
-        let table = &config.yields;
         let ruled: Option<Vec<TileTerrain>> =
-            stages.terrains.map(|terrains| survey.tiles.par_iter().map(|&t| terrains.tile_terrain(t)).collect());
+            stages.terrains.map(|terrains| flat.tiles.par_iter().map(|&t| terrains.tile_terrain(t)).collect());
         // Without its own ruleset a map's terrains are its biomes (the biome table's ruleset
         // lists them in their order).
-        (survey.terrain, survey.feature) = match &ruled {
+        let (terrain, feature) = match &ruled {
             Some(ruled) => ruled.iter().map(|t| (t.terrain.0, t.feature.map_or(NO_FEATURE, |f| f.0))).unzip(),
-            None => survey.biomes.iter().map(|&b| (b as u8, NO_FEATURE)).unzip(),
+            None => biomes.iter().map(|&b| (b as u8, NO_FEATURE)).unzip(),
         };
-        survey.terrain_ids = stages.ruleset.terrains.iter().map(|t| t.id.clone()).collect();
-        survey.feature_ids = stages.ruleset.features.iter().map(|f| f.id.clone()).collect();
         let traits: Option<Vec<Traits>> = ruled.map(|ruled| ruled.into_iter().map(|t| t.traits).collect());
-        survey.yields = (0..survey.len())
+        let cost = (0..flat.tiles.len())
             .map(|i| {
-                let mut y = traits.as_ref().map_or_else(|| table.biome(survey.biomes[i]), |traits| traits[i].yields);
-                if let Some(k) = table.kinds.get(&survey.kinds[i]) {
+                let cost = match &traits {
+                    Some(traits) => {
+                        let sea = kinds[i] == TileKind::Sea && biomes[i] != Biome::Lake;
+                        stages.movement.enter_with(traits[i].movement, sea, center_river[i])
+                    }
+                    None => stages.movement.enter(biomes[i], center_river[i]),
+                };
+                cost.unwrap_or(0)
+            })
+            .collect();
+        let survey = Self {
+            board: Board::Flat(flat),
+            kinds,
+            biomes,
+            river,
+            crossing,
+            river_cost: stages.movement.river,
+            coast,
+            yields: Vec::new(),
+            cost,
+            eligible: Vec::new(),
+            neighbors,
+            terrain,
+            feature,
+            terrain_ids: Vec::new(),
+            feature_ids: Vec::new(),
+        };
+        survey.finish(config, stages.ruleset, traits.as_deref())
+    }
+
+    /// Surveys a whole globe with the setup's tables.
+    pub fn globe(stages: GlobeStages<'a>, config: &SetupConfig) -> Self {
+        let n = stages.kinds.len();
+        let neighbors: Vec<[u32; 6]> = stages
+            .grid
+            .tiles()
+            .map(|t| {
+                let mut out = [NONE; 6];
+                for (slot, n) in out.iter_mut().zip(&stages.grid.neighbors(t).expect("a tile of the grid")) {
+                    *slot = n.0;
+                }
+                out
+            })
+            .collect();
+        let (kinds, biomes) = (stages.kinds, stages.biomes);
+        let coast = (0..n)
+            .map(|i| {
+                kinds[i] != TileKind::Sea
+                    && neighbors[i].iter().any(|&j| j != NONE && sea(kinds[j as usize], biomes[j as usize]))
+            })
+            .collect();
+        let survey = Self {
+            board: Board::Globe(Sphere::new(stages.grid)),
+            kinds: kinds.to_vec(),
+            biomes: biomes.to_vec(),
+            // A globe has no rivers yet.
+            river: vec![false; n],
+            crossing: vec![0; n],
+            river_cost: stages.movement.river,
+            coast,
+            yields: Vec::new(),
+            cost: stages.costs.iter().map(|c| c.unwrap_or(0)).collect(),
+            eligible: Vec::new(),
+            neighbors,
+            terrain: stages.terrains.iter().map(|t| t.terrain.0).collect(),
+            feature: stages.terrains.iter().map(|t| t.feature.map_or(NO_FEATURE, |f| f.0)).collect(),
+            terrain_ids: Vec::new(),
+            feature_ids: Vec::new(),
+        };
+        // A globe's terrains are its biomes (the biome table's ruleset): yields by the table.
+        survey.finish(config, stages.ruleset, None)
+    }
+
+    /// The ruleset's ids, each tile's yields (its traits', or the setup's table by biome, with
+    /// the kind's, river's and coast's bonus) and whether a start may stand on it.
+    fn finish(mut self, config: &SetupConfig, ruleset: &TerrainRuleset, traits: Option<&[Traits]>) -> Self {
+        self.terrain_ids = ruleset.terrains.iter().map(|t| t.id.clone()).collect();
+        self.feature_ids = ruleset.features.iter().map(|f| f.id.clone()).collect();
+        let table = &config.yields;
+        self.yields = (0..self.len())
+            .map(|i| {
+                let mut y = traits.map_or_else(|| table.biome(self.biomes[i]), |traits| traits[i].yields);
+                if let Some(k) = table.kinds.get(&self.kinds[i]) {
                     y += *k;
                 }
-                if survey.river[i] {
+                if self.river[i] {
                     y += table.river;
                 }
-                if survey.coast[i] {
+                if self.coast[i] {
                     y += table.coast;
                 }
                 y
             })
             .collect();
-        survey.cost = (0..survey.len())
+        self.eligible = (0..self.len())
             .map(|i| {
-                let cost = match &traits {
-                    Some(traits) => {
-                        let sea = survey.kinds[i] == TileKind::Sea && survey.biomes[i] != Biome::Lake;
-                        stages.movement.enter_with(traits[i].movement, sea, center_river[i])
-                    }
-                    None => stages.movement.enter(survey.biomes[i], center_river[i]),
-                };
-                cost.unwrap_or(0)
-            })
-            .collect();
-        survey.eligible = (0..survey.len())
-            .map(|i| {
-                let land = survey.kinds[i] == TileKind::Land && !survey.biomes[i].is_water() && survey.cost[i] > 0;
+                let land = self.kinds[i] == TileKind::Land && !self.biomes[i].is_water() && self.cost[i] > 0;
                 land && match config.start_on {
                     StartOn::Land => true,
-                    StartOn::Coast => survey.coast[i],
-                    StartOn::River => survey.river[i],
-                    StartOn::CoastOrRiver => survey.coast[i] || survey.river[i],
+                    StartOn::Coast => self.coast[i],
+                    StartOn::River => self.river[i],
+                    StartOn::CoastOrRiver => self.coast[i] || self.river[i],
                 }
             })
             .collect();
-        survey
+        self
     }
 
     /// Whether tile `i`'s terrain has this id.
@@ -226,37 +282,21 @@ impl Survey {
 
     /// Number of tiles.
     pub fn len(&self) -> usize {
-        self.tiles.len()
-    }
-
-    /// Index of a tile of the area (any copy of it on a wrapping map).
-    pub fn index(&self, geometry: &Geometry, tile: Hex) -> Option<usize> {
-        area_index(self.rect, geometry, tile)
-    }
-
-    /// Offset coordinate of tile `i`.
-    pub fn offset(&self, i: usize) -> [i32; 2] {
-        [self.rect.min[0] + (i % self.cols) as i32, self.rect.min[1] + (i / self.cols) as i32]
+        self.kinds.len()
     }
 
     /// The tiles within `radius` of tile `i` (itself included), each once, in a fixed order.
-    pub fn range(&self, geometry: &Geometry, i: usize, radius: u32, out: &mut Vec<u32>) {
-        out.clear();
-        out.extend(self.tiles[i].range(radius).filter_map(|t| self.index(geometry, t)).map(|j| j as u32));
-        // On a wrapping map narrower than the range, two copies of a tile fall in it.
-        if self.wraps && self.cols < 2 * radius as usize + 1 {
-            out.sort_unstable();
-            out.dedup();
-        }
+    pub fn range(&self, i: usize, radius: u32, out: &mut Vec<u32>) {
+        self.board.range(i, radius, out);
+    }
+
+    /// Steps between tiles `a` and `b`; `None` when no path of tiles joins them.
+    pub fn distance(&self, a: usize, b: usize) -> Option<u32> {
+        self.board.distance(a, b)
     }
 }
 
-/// Row-major index in `rect` of a tile (any copy of it on a wrapping map); `None` outside it or
-/// past the world. The survey and the placed setup both address tiles by it.
-pub(crate) fn area_index(rect: TileRect, geometry: &Geometry, tile: Hex) -> Option<usize> {
-    if !geometry.in_world(tile) {
-        return None;
-    }
-    let [c, r] = geometry.offset_of(geometry.wrap_tile(tile));
-    rect.index([c, r])
+/// Sea a coast is next to: sea tiles but lakes.
+fn sea(kind: TileKind, biome: Biome) -> bool {
+    kind == TileKind::Sea && biome != Biome::Lake
 }
