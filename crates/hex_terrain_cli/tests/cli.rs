@@ -788,6 +788,36 @@ fn layer_of(p: [u8; 3]) -> TileKind {
 }
 
 #[test]
+fn setup_prints_a_globes_report_and_marks_its_starts() {
+    let map = repo().join("assets/maps/globe/continents.map.ron");
+    let map = map.to_str().unwrap();
+    let out = ok(&["setup", map, "--players", "3"]);
+    let rows: Vec<&str> =
+        out.lines().filter(|l| l.trim_start().chars().next().is_some_and(|c| c.is_ascii_digit())).collect();
+    assert_eq!(rows.len(), 3, "{out}");
+    assert!(out.contains("on a globe") && out.contains("spread"), "{out}");
+    // The same starts as the library's, at their longitude and latitude.
+    let mut config = MapConfig::load(map).unwrap();
+    config.setup = Some(hex_terrain::SetupConfig { players: 3, ..Default::default() });
+    let globe = hex_terrain::GlobeTerrain::new(config).unwrap();
+    let setup = globe.setup().unwrap();
+    let width = 720;
+    let png = tmp("globe_setup.png");
+    ok(&["setup", map, "--players", "3", "-o", png.to_str().unwrap(), "--width", &width.to_string()]);
+    let img = image::open(&png).unwrap().to_rgb8();
+    assert_eq!((img.width(), img.height()), (width, width / 2));
+    for (row, &start) in rows.iter().zip(setup.starts()) {
+        let info = globe.tile_info(start).unwrap();
+        let (lon, lat) = (info.longitude.round() as i32, info.latitude.round() as i32);
+        assert!(row.contains(&format!("({lon}, {lat})")), "{row} is not at ({lon}, {lat})");
+        // A white start marker at the start's place on the equirectangular picture.
+        let x = (((info.longitude + 180.0) / 360.0 * f64::from(width)) as u32).min(width - 1);
+        let y = (((90.0 - info.latitude) / 180.0 * f64::from(width / 2)) as u32).min(width / 2 - 1);
+        assert_eq!(img.get_pixel(x, y).0, [250, 250, 250], "no start marker at {start:?}");
+    }
+}
+
+#[test]
 fn stats_and_survey_measure_a_globe() {
     let map = repo().join("assets/maps/globe/continents.map.ron");
     let map = map.to_str().unwrap();
