@@ -1,7 +1,7 @@
 //! Headless `App` tests of a globe's tile states: every vertex of the chunk meshes names the tile
 //! its triangles lie in (checked against the grid's own `tile_at` of each triangle's centroid,
 //! and each tile's count of triangles against the formula), which the material reads the states
-//! of; [`GlobeTileStates`] follows the globe (refusing writes before it loads, keeping the states
+//! of, and carries its tile's texture layer (against the default ruleset's rule written here); [`GlobeTileStates`] follows the globe (refusing writes before it loads, keeping the states
 //! through a hot reload of the same frequency, starting afresh on another), refuses bad writes by
 //! name, and shows a player's [`GlobeFog`] tile by tile.
 
@@ -34,19 +34,17 @@ fn settled(app: &mut App, generation: u64) {
 
 #[test]
 fn every_vertex_names_the_tile_its_triangles_lie_in() {
-    for (frequency, rings) in [(3, 1), (5, 2)] {
+    for (frequency, rings, climate) in [(3, 1, false), (5, 2, true)] {
         let mut app = App::new();
         let assets = AssetPlugin { watch_for_changes_override: Some(false), ..default() };
-        app.add_plugins((
-            MinimalPlugins,
-            assets,
-            TransformPlugin,
-            HexGlobePlugin::from_config(globe_config(frequency, rings)),
-        ));
+        let mut config = globe_config(frequency, rings);
+        config.climate.enabled = climate;
+        app.add_plugins((MinimalPlugins, assets, TransformPlugin, HexGlobePlugin::from_config(config)));
         settled(&mut app, 1);
         let globe = app.world().resource::<HexGlobe>().globe().unwrap().clone();
         let n = rings + 1;
         let mut triangles: HashMap<u32, u32> = HashMap::new();
+        let mut kinds: HashMap<u32, u32> = HashMap::new();
         let mut q = app.world_mut().query::<(&Mesh3d, &Transform)>();
         let meshes = app.world().resource::<Assets<Mesh>>();
         for (mesh, transform) in q.iter(app.world()) {
@@ -56,6 +54,9 @@ fn every_vertex_names_the_tile_its_triangles_lie_in() {
             };
             let Some(VertexAttributeValues::Float32x2(uvs)) = mesh.attribute(Mesh::ATTRIBUTE_UV_0) else {
                 panic!("the tiles in the first UV")
+            };
+            let Some(VertexAttributeValues::Float32x2(layers)) = mesh.attribute(Mesh::ATTRIBUTE_UV_1) else {
+                panic!("the texture layers in the second UV")
             };
             let indices: Vec<usize> = mesh.indices().unwrap().iter().collect();
             for triangle in indices.chunks(3) {
@@ -68,6 +69,17 @@ fn every_vertex_names_the_tile_its_triangles_lie_in() {
                     })
                     .collect();
                 assert!(tiles.iter().all(|&t| t == tiles[0]), "a triangle's corners name {tiles:?}");
+                // The default ruleset's layers: the sea's 0, the mountains' 2, the land's 1.
+                let terrain = globe.tile_info(GlobeTile(tiles[0])).unwrap().terrain.terrain;
+                let layer = match globe.ruleset().biome(terrain).unwrap() {
+                    Biome::Ocean | Biome::Coast | Biome::Lake => 0.0,
+                    Biome::Rock | Biome::SnowPeak => 2.0,
+                    _ => 1.0,
+                };
+                for &v in triangle {
+                    assert_eq!(layers[v], [layer, 0.0], "tile {}'s texture layer", tiles[0]);
+                }
+                *kinds.entry(layer as u32).or_default() += 1;
                 let centroid = triangle
                     .iter()
                     .map(|&v| transform.translation + Vec3::from_array(positions[v]))
@@ -84,6 +96,7 @@ fn every_vertex_names_the_tile_its_triangles_lie_in() {
             }
         }
         assert_eq!(triangles.len() as u32, globe.grid().tile_count());
+        assert!(kinds.len() >= 2, "f = {frequency}: triangles of each layer {kinds:?}");
         for (t, count) in triangles {
             let sides = if globe.grid().is_pentagon(GlobeTile(t)) { 5 } else { 6 };
             assert_eq!(count, sides * n * n, "f = {frequency}: tile {t}");

@@ -1,7 +1,9 @@
-//! A globe's tile states in a real renderer (Mesa's software Vulkan under Xvfb in CI): the fog of
-//! war and an owner's tint land on the tiles [`GlobeTileStates`] gives them, pentagons included,
+//! A globe in a real renderer (Mesa's software Vulkan under Xvfb in CI): the fog of war and an
+//! owner's tint land on the tiles [`GlobeTileStates`] gives them, pentagons included, and the
+//! water's look ([`HexWaterSettings`]) on exactly the tiles whose center lies under the sea,
 //! checked on a screenshot at each tile's center (found by casting the ray from the camera to
-//! it, so a tile behind the limb or a hill is not read). The scenario runs in a process of its own.
+//! it, so a tile behind the limb or a hill is not read). Each scenario runs in a process of its
+//! own.
 
 #[macro_use]
 mod support;
@@ -45,19 +47,142 @@ fn spread(c: [f32; 3]) -> f32 {
 
 in_own_process! {
     globe_tiles_show_their_fog_and_owner => scenario_globe_states,
+    the_sea_is_drawn_as_water_on_the_submerged_tiles => scenario_globe_water,
 }
 
 /// Each tile seen at its center: the tile and the pixel.
 type Seen = Vec<(GlobeTile, (u32, u32))>;
 
+/// The scenarios' globe: low relief, so the globe is a ball in the view and no tile hides
+/// another's center.
+fn scenario_config() -> MapConfig {
+    let mut config = MapConfig { size: MapSize::Globe { frequency: 6 }, seed: 3, ..MapConfig::default() };
+    config.terrain.inner_rings = 2;
+    config.terrain.max_elevation = 0.6;
+    config
+}
+
 #[test]
 #[ignore = "a scenario: run by its #[test] in a process of its own"]
 fn scenario_globe_states() {
-    let mut config = MapConfig { size: MapSize::Globe { frequency: 6 }, seed: 3, ..MapConfig::default() };
-    config.terrain.inner_rings = 2;
-    // Low relief: the globe a ball in the view, no tile hiding another's center.
-    config.terrain.max_elevation = 0.6;
-    let out = Path::new(env!("CARGO_TARGET_TMPDIR")).join("globe_states.png");
+    let config = scenario_config();
+    let (img, tiles) = shoot(
+        &config,
+        "globe_states.png",
+        |app| {
+            app.insert_resource(HexTileStateStyle { fog_of_war: true, borders: false, ..default() });
+        },
+        |globe, states| {
+            let grid = globe.grid();
+            for tile in grid.tiles() {
+                states.set_visibility(tile, fog_of(grid, tile)).unwrap();
+                states.set_owner(tile, owned(grid, tile).then_some(1)).unwrap();
+            }
+        },
+    );
+    let terrain = GlobeTerrain::new(config).unwrap();
+    let grid = GlobeGrid::new(6).unwrap();
+    // Tiles whose neighbors share their fog and owner: the blend across borders stays clear of
+    // their centers.
+    let inner = |t: GlobeTile| {
+        grid.neighbors(t)
+            .unwrap()
+            .as_slice()
+            .iter()
+            .all(|&n| fog_of(&grid, n) == fog_of(&grid, t) && owned(&grid, n) == owned(&grid, t))
+    };
+    let mut counted = [0; 4];
+    for &(tile, px) in tiles.iter().filter(|(t, _)| inner(*t)) {
+        let c = rgb(&img, px);
+        let brightness = (c[0] + c[1] + c[2]) / 3.0;
+        match (fog_of(&grid, tile), owned(&grid, tile)) {
+            (FogState::Unexplored, _) => {
+                assert!(brightness < 0.16 && spread(c) < 0.08, "unexplored {tile:?} drawn {c:?}");
+                counted[0] += 1;
+            }
+            (FogState::Explored, _) => {
+                assert!(spread(c) < 0.2 && brightness > 0.08, "explored {tile:?} drawn {c:?}");
+                counted[1] += 1;
+            }
+            (FogState::Visible, false) => {
+                // In its kind's color: sea and land in color (mountains are grey when seen too).
+                if terrain.tile_kind(tile) != Some(TileKind::Mountain) {
+                    assert!(spread(c) > 0.1, "visible {tile:?} drawn grey {c:?}");
+                    counted[2] += 1;
+                }
+            }
+            (FogState::Visible, true) => {
+                // Player 1's color is blue: tinted toward it.
+                assert!(c[2] > c[0], "owned {tile:?} drawn {c:?}");
+                counted[3] += 1;
+            }
+        }
+    }
+    assert!(counted.iter().all(|&n| n >= 2), "tiles read in each state: {counted:?}");
+    println!("tiles read: {counted:?}");
+}
+
+#[test]
+#[ignore = "a scenario: run by its #[test] in a process of its own"]
+fn scenario_globe_water() {
+    // Half of it sea.
+    let mut config = scenario_config();
+    config.terrain.sea_threshold = 0.5;
+    config.terrain.mountain_threshold = 0.8;
+    // A water of one vivid red, still, over no sea floor: every fragment under the sea is at
+    // least 62 % of it, whatever its depth.
+    let red = Color::srgb(0.85, 0.08, 0.06);
+    let water = HexWaterSettings {
+        shallow_color: red,
+        deep_color: red,
+        foam_color: red,
+        sea_floor: false,
+        waves: 0.0,
+        ..default()
+    };
+    let (img, tiles) = shoot(
+        &config,
+        "globe_water.png",
+        move |app| {
+            app.insert_resource(water);
+        },
+        |_, _| {},
+    );
+    let terrain = GlobeTerrain::new(config.clone()).unwrap();
+    let sea_level = f64::from(config.terrain.sea_threshold * config.terrain.max_elevation);
+    let grid = terrain.grid();
+    // A tile whose center lies under the sea (its neighbors too, so the shore's band is away)
+    // is red; one whose center is above it, with its neighbors, is not.
+    let depth = |t: GlobeTile| sea_level - f64::from(terrain.tile_info(t).unwrap().elevation);
+    let all = |t: GlobeTile, f: &dyn Fn(GlobeTile) -> bool| {
+        f(t) && grid.neighbors(t).unwrap().as_slice().iter().all(|&n| f(n))
+    };
+    let (mut sea, mut land) = (0, 0);
+    for &(tile, px) in &tiles {
+        let c = rgb(&img, px);
+        if all(tile, &|t| depth(t) > 0.02) {
+            assert!(c[0] > 2.0 * c[1] && c[0] > 2.0 * c[2], "sea {tile:?} drawn {c:?}, not as the water");
+            sea += 1;
+        } else if all(tile, &|t| depth(t) < -0.02) {
+            assert!(c[0] < c[1].max(c[2]) + 0.05, "land {tile:?} drawn {c:?}, as the water");
+            land += 1;
+        }
+    }
+    assert!(sea >= 3 && land >= 3, "tiles read: {sea} at sea, {land} on land");
+    println!("tiles read: {sea} at sea, {land} on land");
+}
+
+/// Renders `config`'s globe from the front (the app set up further by `setup`, the tile states
+/// written by `write` once the globe is in), and returns the first screenshot showing the globe
+/// (saved as `name`) with each tile seen at its center.
+fn shoot(
+    config: &MapConfig,
+    name: &str,
+    setup: impl FnOnce(&mut App),
+    write: impl Fn(&GlobeTerrain, &mut GlobeTileStates) + Send + Sync + 'static,
+) -> (image::RgbImage, Seen) {
+    let config = config.clone();
+    let out = Path::new(env!("CARGO_TARGET_TMPDIR")).join(name);
     let _ = std::fs::remove_file(&out);
     let seen: Arc<Mutex<Option<Seen>>> = Arc::default();
     let mut app = App::new();
@@ -70,10 +195,10 @@ fn scenario_globe_states() {
             .set(WinitPlugin { run_on_any_thread: true }),
         HexGlobePlugin::from_config(config.clone()),
     ))
-    .insert_resource(HexTileStateStyle { fog_of_war: true, borders: false, ..default() })
     // No trees over the tile centers read below.
     .insert_resource(HexPropSettings { enabled: false, ..default() })
     .insert_resource(GlobalAmbientLight { brightness: 600.0, ..default() });
+    setup(&mut app);
     let terrain = GlobeTerrain::new(config.clone()).unwrap();
     let radius = terrain.radius() as f32;
     app.world_mut()
@@ -84,14 +209,10 @@ fn scenario_globe_states() {
     ));
     app.add_systems(
         Update,
-        (|globe: Res<HexGlobe>, mut states: ResMut<GlobeTileStates>, mut written: Local<bool>| {
+        (move |globe: Res<HexGlobe>, mut states: ResMut<GlobeTileStates>, mut written: Local<bool>| {
             let Some(globe) = globe.globe().filter(|_| !*written) else { return };
             *written = true;
-            let grid = globe.grid();
-            for tile in grid.tiles() {
-                states.set_visibility(tile, fog_of(grid, tile)).unwrap();
-                states.set_owner(tile, owned(grid, tile).then_some(1)).unwrap();
-            }
+            write(globe, &mut states);
         })
         .after(HexTerrainSystems::Map),
     );
@@ -147,44 +268,5 @@ fn scenario_globe_states() {
     );
     app.run();
     let tiles = seen.lock().unwrap().take().expect("a picture of the globe");
-    let img = image::open(&out).unwrap().to_rgb8();
-    let grid = GlobeGrid::new(6).unwrap();
-    // Tiles whose neighbors share their fog and owner: the blend across borders stays clear of
-    // their centers.
-    let inner = |t: GlobeTile| {
-        grid.neighbors(t)
-            .unwrap()
-            .as_slice()
-            .iter()
-            .all(|&n| fog_of(&grid, n) == fog_of(&grid, t) && owned(&grid, n) == owned(&grid, t))
-    };
-    let mut counted = [0; 4];
-    for &(tile, px) in tiles.iter().filter(|(t, _)| inner(*t)) {
-        let c = rgb(&img, px);
-        let brightness = (c[0] + c[1] + c[2]) / 3.0;
-        match (fog_of(&grid, tile), owned(&grid, tile)) {
-            (FogState::Unexplored, _) => {
-                assert!(brightness < 0.16 && spread(c) < 0.08, "unexplored {tile:?} drawn {c:?}");
-                counted[0] += 1;
-            }
-            (FogState::Explored, _) => {
-                assert!(spread(c) < 0.2 && brightness > 0.08, "explored {tile:?} drawn {c:?}");
-                counted[1] += 1;
-            }
-            (FogState::Visible, false) => {
-                // In its kind's color: sea and land in color (mountains are grey when seen too).
-                if terrain.tile_kind(tile) != Some(TileKind::Mountain) {
-                    assert!(spread(c) > 0.1, "visible {tile:?} drawn grey {c:?}");
-                    counted[2] += 1;
-                }
-            }
-            (FogState::Visible, true) => {
-                // Player 1's color is blue: tinted toward it.
-                assert!(c[2] > c[0], "owned {tile:?} drawn {c:?}");
-                counted[3] += 1;
-            }
-        }
-    }
-    assert!(counted.iter().all(|&n| n >= 2), "tiles read in each state: {counted:?}");
-    println!("tiles read: {counted:?}");
+    (image::open(&out).unwrap().to_rgb8(), tiles)
 }

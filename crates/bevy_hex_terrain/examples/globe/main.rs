@@ -5,20 +5,23 @@
 //! the ground the view tilts toward the horizon. The line at the top names the tile under the
 //! mouse (picked on the globe's surface; its biome, latitude and longitude, and whether it is a
 //! pentagon), or, with no mouse over the globe, the tile at the center of the view.
-//! Two players, red and blue, each have a city four tiles from a pentagon on land (of the twelve,
-//! the one nearest the camera's first place whose neighbors are all land: from the default place,
-//! a desert at 144 west, 26.6 north), owning the tiles within two of it (`GlobeTileStates`: their
-//! borders and tint), and a scout walking back and forth across the pentagon between two of its
-//! neighbors (`OnGlobeTile`, `GlobeTileWalk`). The globe is drawn in red's fog of war
+//! Two players, red and blue, each found a city on the map's game setup's start (the map file's
+//! `setup`: the best start of each region of equal fertility, `GlobeTerrain::setup`), owning the
+//! tiles within two of it (`GlobeTileStates`: their borders and tint), and send a scout walking
+//! back and forth across the pentagon on land nearest the city (of the twelve, those whose
+//! neighbors are all land) between two of its neighbors (`OnGlobeTile`, `GlobeTileWalk`). The
+//! camera starts over red's city. The globe is drawn in red's fog of war
 //! (`GlobeFog`): what its city and scout see now, what red has explored (it starts knowing the
 //! land within ten tiles of its city) greyed, the rest dark (`HEXTERRAIN_FOG=off` draws every
 //! tile as generated). `HEXTERRAIN_GLOBE_ALTITUDE` sets the camera's
-//! first altitude and `HEXTERRAIN_GLOBE_AT=LON,LAT` its first place in degrees (the screenshots
-//! use them: `-144,26.6` looks down on that pentagon). The minimap (bottom right) is the whole
+//! first altitude and `HEXTERRAIN_GLOBE_AT=LON,LAT` its first place in degrees instead of red's
+//! city (the screenshots use them: `36,-26.6` looks down on red's scout's pentagon). The minimap (bottom right) is the whole
 //! globe drawn equirectangular, the camera's view outlined; a click or a drag there flies the
 //! camera over that spot. R raises the tiles round the one under the mouse (Shift+R lowers
 //! them), Ctrl+Z undoes, Ctrl+Y redoes (`HexGlobeEditorPlugin`: only the chunks an edit changed
-//! are built again). `HEXTERRAIN_SCRIPT=1` plays a scripted turn that checks the game
+//! are built again). The sea is drawn as water (`HexWaterSettings`: depth colors over the sea
+//! floor, foam along the shore, waves catching the sun); N turns its look off and on, X the
+//! terrain textures (`HEXTERRAIN_TEXTURES=on` starts with them). `HEXTERRAIN_SCRIPT=1` plays a scripted turn that checks the game
 //! (`script.rs`; `tests/strategy.rs` runs it).
 
 mod script;
@@ -53,19 +56,21 @@ struct Unit {
 #[derive(Resource)]
 struct Fogs(GlobeFog);
 
+/// Whether the camera flies over red's city once it is founded (no `HEXTERRAIN_GLOBE_AT`).
+#[derive(Resource)]
+struct FlyToCity(bool);
+
 /// The players' colors: red, blue.
 const PLAYERS: [Color; 2] = [Color::srgb(0.85, 0.15, 0.1), Color::srgb(0.15, 0.35, 0.9)];
 
 fn main() -> AppExit {
     let scripted = std::env::var_os("HEXTERRAIN_SCRIPT").is_some();
     let altitude = std::env::var("HEXTERRAIN_GLOBE_ALTITUDE").ok().and_then(|a| a.parse().ok()).unwrap_or(60.0);
-    // Above the first continent, 130 degrees west and 20 north, unless told otherwise.
-    let at = std::env::var("HEXTERRAIN_GLOBE_AT")
-        .ok()
-        .and_then(|at| {
-            at.split_once(',').and_then(|(lon, lat)| Some((lon.trim().parse().ok()?, lat.trim().parse().ok()?)))
-        })
-        .unwrap_or((-130f32, 20f32));
+    // Where the camera starts: over red's city once it is founded, unless told otherwise.
+    let at: Option<(f32, f32)> = std::env::var("HEXTERRAIN_GLOBE_AT").ok().and_then(|at| {
+        at.split_once(',').and_then(|(lon, lat)| Some((lon.trim().parse().ok()?, lat.trim().parse().ok()?)))
+    });
+    let (lon, lat) = at.unwrap_or_default();
     let mut app = App::new();
     app.insert_resource(ClearColor(Color::srgb(0.02, 0.02, 0.05)))
         .add_plugins((
@@ -90,7 +95,7 @@ fn main() -> AppExit {
             // its shoulder (from the top left of the view, wherever it flies).
             commands.spawn((
                 Camera3d::default(),
-                GlobeCamera { altitude, ..GlobeCamera::above(at.0.to_radians(), at.1.to_radians()) },
+                GlobeCamera { altitude, ..GlobeCamera::above(lon.to_radians(), lat.to_radians()) },
                 HexTerrainAgent::default(),
                 children![(
                     DirectionalLight { illuminance: 9_000.0, ..default() },
@@ -105,7 +110,15 @@ fn main() -> AppExit {
                 TileLabel,
             ));
         })
-        .add_systems(Update, (name_the_tile, edit, (found_the_players, see).chain().after(HexTerrainSystems::Map)))
+        .insert_resource(FlyToCity(at.is_none()))
+        .insert_resource(HexTerrainMaterialSettings {
+            textures: std::env::var("HEXTERRAIN_TEXTURES").is_ok_and(|v| v == "on"),
+            ..default()
+        })
+        .add_systems(
+            Update,
+            (name_the_tile, edit, switch_look, (found_the_players, see).chain().after(HexTerrainSystems::Map)),
+        )
         .add_observer(turn_back);
     if scripted {
         // The scripted turn checks the game, saves its screenshot and exits.
@@ -117,47 +130,38 @@ fn main() -> AppExit {
     app.run()
 }
 
-/// Once the globe is in: for each player (red, blue) a city four tiles from the pentagon on land
-/// nearest the camera, on the far sides of it, owning the tiles within two, and a scout on a
-/// neighbor of the pentagon walking across it to the neighbor across; red knows the land within
-/// ten tiles of its city.
+/// Once the globe is in: for each player (red, blue) a city on its start of the game setup,
+/// owning the tiles within two, and a scout on a neighbor of the land pentagon nearest the city,
+/// walking across it to the neighbor across; red knows the land within ten tiles of its city.
 fn found_the_players(
     mut commands: Commands,
     globe: Res<HexGlobe>,
-    cameras: Query<&GlobeCamera>,
+    fly: Res<FlyToCity>,
+    mut cameras: Query<&mut GlobeCamera>,
     mut states: ResMut<GlobeTileStates>,
-    mut meshes: ResMut<Assets<Mesh>>,
-    mut materials: ResMut<Assets<StandardMaterial>>,
+    (mut meshes, mut materials): (ResMut<Assets<Mesh>>, ResMut<Assets<StandardMaterial>>),
     mut founded: Local<bool>,
 ) {
-    let (Some(globe), Ok(camera)) = (globe.globe().filter(|_| !*founded), cameras.single()) else { return };
+    let Some(globe) = globe.globe().filter(|_| !*founded) else { return };
     *founded = true;
+    let Some(starts) = globe.setup().map(|s| s.starts().to_vec()).filter(|s| s.len() >= PLAYERS.len()) else {
+        warn!("the globe's map file has no game setup for {} players: no players founded", PLAYERS.len());
+        return;
+    };
     let grid = globe.grid();
     let land = |t: GlobeTile| globe.tile_kind(t) == Some(TileKind::Land);
     let center = |t: GlobeTile| bevy::math::DVec3::from_array(grid.center(t).expect("a tile of the globe"));
-    // Under the camera: its orientation, set before its transform is.
-    let toward = (camera.orientation * Vec3::Z).as_dvec3();
-    let Some(pentagon) = grid
+    let pentagons: Vec<GlobeTile> = grid
         .tiles()
         .filter(|&t| {
             grid.is_pentagon(t) && land(t) && grid.neighbors(t).is_some_and(|n| n.as_slice().iter().all(|&n| land(n)))
         })
-        .max_by(|&a, &b| toward.dot(center(a)).total_cmp(&toward.dot(center(b))))
-    else {
-        return;
-    };
-    let around = grid.neighbors(pentagon).expect("a tile of the globe");
-    let around = around.as_slice();
-    let ring: Vec<GlobeTile> = grid.within(pentagon, 4).into_iter().filter(|&(_, d)| d == 4).map(|(t, _)| t).collect();
+        .collect();
     let (scout, city) = (meshes.add(Capsule3d::new(0.18, 0.45)), meshes.add(Cylinder::new(0.45, 0.5)));
     let mut fog = GlobeFog::new(globe, 2).expect("two players");
     for (player, color) in PLAYERS.into_iter().enumerate() {
+        let home = starts[player];
         let player = player as u32;
-        // The city: the tile four steps away farthest along the scout's side of the pentagon.
-        let side = center(around[2 * player as usize]) - center(pentagon);
-        let Some(&home) = ring.iter().max_by(|&&a, &&b| side.dot(center(a)).total_cmp(&side.dot(center(b)))) else {
-            continue;
-        };
         for (tile, _) in grid.within(home, 2) {
             states.set_owner(tile, Some(player)).expect("a player of the palette, a tile of the globe");
         }
@@ -169,19 +173,31 @@ fn found_the_players(
             Mesh3d(city.clone()),
             MeshMaterial3d(material.clone()),
         ));
-        let k = 2 * player as usize;
-        let path = [around[k], pentagon, around[(k + 2) % around.len()]];
-        commands.spawn((
-            OnGlobeTile { lift: 0.4, ..OnGlobeTile::new(path[0]) },
-            GlobeTileWalk::new(path, 1.0),
-            Scout { path },
-            Unit { player, sight: 2 },
-            Mesh3d(scout.clone()),
-            MeshMaterial3d(material),
-        ));
+        if let Some(&pentagon) = pentagons
+            .iter()
+            .max_by(|&&a, &&b| center(home).dot(center(a)).total_cmp(&center(home).dot(center(b))).then(b.cmp(&a)))
+        {
+            let around = grid.neighbors(pentagon).expect("a tile of the globe");
+            let around = around.as_slice();
+            let path = [around[0], pentagon, around[2]];
+            commands.spawn((
+                OnGlobeTile { lift: 0.4, ..OnGlobeTile::new(path[0]) },
+                GlobeTileWalk::new(path, 1.0),
+                Scout { path },
+                Unit { player, sight: 2 },
+                Mesh3d(scout.clone()),
+                MeshMaterial3d(material),
+            ));
+        }
         if player == 0 {
             // What red knows before the first turn: explored, not in sight.
             explore(&mut fog, globe, home, 10);
+            if fly.0
+                && let (Ok(mut camera), Some(info)) = (cameras.single_mut(), globe.tile_info(home))
+            {
+                let (lon, lat) = (info.longitude as f32, info.latitude as f32);
+                camera.orientation = GlobeCamera::above(lon.to_radians(), lat.to_radians()).orientation;
+            }
         }
     }
     commands.insert_resource(Fogs(fog));
@@ -241,6 +257,20 @@ fn edit(
     {
         let tool = if shift { Tool::Lower(0.1) } else { Tool::Raise(0.1) };
         edits.write(HexMapEdit::Stroke(GlobeStroke { tool, brush: Brush::Range(1), tile }));
+    }
+}
+
+/// N turns the water's look off and on, X the terrain textures.
+fn switch_look(
+    keys: Res<ButtonInput<KeyCode>>,
+    mut water: ResMut<HexWaterSettings>,
+    mut material: ResMut<HexTerrainMaterialSettings>,
+) {
+    if keys.just_pressed(KeyCode::KeyN) {
+        water.enabled = !water.enabled;
+    }
+    if keys.just_pressed(KeyCode::KeyX) {
+        material.textures = !material.textures;
     }
 }
 

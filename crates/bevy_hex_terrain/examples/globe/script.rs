@@ -1,5 +1,6 @@
 //! The scripted turn (`HEXTERRAIN_SCRIPT=1`): once the players are founded and the globe is on
-//! screen, checks each player's territory (the tiles within two of its city, against the tile
+//! screen, checks that each city stands on its player's start of the game setup, each player's
+//! territory (the tiles within two of its city, against the tile
 //! states), red's fog (in sight: what its units see, by the core's sight rule; explored: the
 //! land it started knowing), follows red's scout across the pentagon to the neighbor beyond and
 //! checks red's fog there again, checks the tile picked under the pointer (at the middle of the
@@ -81,7 +82,14 @@ pub fn script(
             s.step = 1;
         }
         1 if s.frame >= 10 => {
+            let starts = globe.setup().map(|setup| setup.starts().to_vec()).unwrap_or_default();
             for (unit, city) in &cities {
+                if starts.get(unit.player as usize) != Some(&city.tile) {
+                    return fail(
+                        format!("player {}'s city stands on {:?}, not its start of {starts:?}", unit.player, city.tile),
+                        &mut exit,
+                    );
+                }
                 let owned: HashSet<GlobeTile> =
                     globe.grid().tiles().filter(|&t| states.owner(t) == Some(unit.player)).collect();
                 let expected: HashSet<GlobeTile> =
@@ -107,7 +115,11 @@ pub fn script(
             if let Some(t) = known.iter().find(|&&t| states.visibility(t) == FogState::Unexplored) {
                 return fail(format!("{t:?}, which red knew from the start, is unexplored"), &mut exit);
             }
-            println!("SCRIPT: territories of 19 tiles each; red sees {seen} tiles and knows {}", known.len());
+            println!(
+                "SCRIPT: cities on the setup's starts {starts:?}, their territories the tiles within two; red sees \
+                 {seen} tiles and knows {}",
+                known.len()
+            );
             s.visited = vec![red_scout.tile];
             s.step = 2;
         }

@@ -1,7 +1,9 @@
 //! The globe's material: `StandardMaterial` (PBR lighting and shadows, lit by whatever lights the
-//! game places: a sun it can move) extended with a fragment shader (`globe.wgsl`) that draws
-//! [`GlobeTileStates`] on each tile: fog of war, owners' borders and tint, the lens and the
-//! highlights, styled by [`HexTileStateStyle`]. No mesh is touched when a state changes: the
+//! game places: a sun it can move) extended with a fragment shader (`globe.wgsl`) that draws the
+//! sea as water where the ground lies below the sea's sphere (the flat map's water look from
+//! [`HexWaterSettings`]: shallow to deep colors over the sea floor, foam along the shore, waves
+//! that catch the sun) and [`GlobeTileStates`] on each tile: fog of war, owners' borders and
+//! tint, the lens and the highlights, styled by [`HexTileStateStyle`]. No mesh is touched when a state changes: the
 //! states live in a texture of a texel a tile, the chunks carry each vertex's tile in their
 //! first UV (`stream.rs`), and a topology texture holds each tile's center and neighbors.
 
@@ -18,11 +20,14 @@ use bevy::render::renderer::RenderQueue;
 use bevy::render::texture::GpuImage;
 use bevy::render::{Extract, ExtractSchedule, Render, RenderApp, RenderSystems};
 use bevy::shader::{ShaderDefVal, ShaderRef};
-use hex_terrain::{GlobeGrid, GlobeTile};
+use hex_terrain::{GlobeGrid, GlobeTerrain, GlobeTile};
 
 use super::{GLOBE_ROW, GlobeTileStates, HexGlobe, HexGlobeChunk};
-use crate::material::{OwnerColors, SHADER_DEFS, flags, linear, owner_colors};
+use crate::material::{
+    HexTerrainMaterialSettings, OwnerColors, SHADER_DEFS, TextureLayers, flags, linear, owner_colors,
+};
 use crate::tiles::{HexTileStateStyle, Texel};
+use crate::water::HexWaterSettings;
 
 /// The globe's chunk material.
 pub type HexGlobeMaterial = ExtendedMaterial<StandardMaterial, HexGlobeExtension>;
@@ -42,9 +47,16 @@ pub struct HexGlobeExtension {
     /// Owner colors.
     #[uniform(103)]
     pub owners: OwnerColors,
+    /// The texture array of the layers
+    /// ([`HexTerrainMaterialSettings::texture_paths`](crate::HexTerrainMaterialSettings::texture_paths)),
+    /// with textures on once its images have loaded: each tile's layer (the chunk mesh's second
+    /// UV) modulates its color.
+    #[texture(104, dimension = "2d_array")]
+    #[sampler(105)]
+    pub layer_textures: Option<Handle<Image>>,
 }
 
-/// The globe shader's parameters: the style of the tile states.
+/// The globe shader's parameters: the style of the tile states and the water's look.
 #[derive(Debug, Clone, Copy, PartialEq, ShaderType, Reflect)]
 pub struct GlobeParams {
     /// Tint of the hovered tile (linear; alpha is the strength).
@@ -63,27 +75,60 @@ pub struct GlobeParams {
     pub fog_softness: f32,
     /// How strongly owned tiles are tinted.
     pub tint_strength: f32,
-    /// Which states are drawn: the flat material's `FOG`, `BORDERS`, `TERRITORY_TINT`, `LENS`
-    /// bits.
+    /// Which states are drawn and how the sea is: the flat material's `FOG`, `BORDERS`,
+    /// `TERRITORY_TINT`, `LENS`, `WATER` and `SEA_FLOOR` bits.
     pub flags: u32,
+    /// Water color over the shallows (linear).
+    pub shallow_water_color: Vec4,
+    /// Water color over the deep sea.
+    pub deep_water_color: Vec4,
+    /// Foam color at the shore.
+    pub foam_color: Vec4,
+    /// Sea floor color at the coast (darkening with depth).
+    pub sea_floor_color: Vec4,
+    /// The sea's surface: its distance from the globe's center, in world units.
+    pub sea_radius: f32,
+    /// Depth of water at which it is fully deep, in world units.
+    pub deep_water: f32,
+    /// Width of the shore foam, in depth of water (world units).
+    pub foam_width: f32,
+    /// Strength of the waves' normals, 0 for a still sea.
+    pub waves: f32,
+    /// The globe's hex size (the waves' length).
+    pub hex_size: f32,
+    /// Texture repeats per world unit.
+    pub texture_scale: f32,
+    /// Layers in the texture array (0 without one: flat colors).
+    pub texture_layers: u32,
 }
 
 impl GlobeParams {
-    /// The parameters drawing the tile states in `style`.
+    /// The parameters drawing the tile states in `style`, the sea of `globe` as `water` says
+    /// and the ground with `layers` layers of textures (0: flat colors) at `material`'s scale.
     #[must_use]
-    pub fn of(style: &HexTileStateStyle) -> Self {
+    pub fn of(
+        style: &HexTileStateStyle,
+        water: &HexWaterSettings,
+        material: &HexTerrainMaterialSettings,
+        layers: u32,
+        globe: &GlobeTerrain,
+    ) -> Self {
         let mut bits = 0;
         for (on, bit) in [
             (style.fog_of_war, flags::FOG),
             (style.borders, flags::BORDERS),
             (style.territory_tint, flags::TERRITORY_TINT),
             (style.lens, flags::LENS),
+            (water.enabled, flags::WATER),
+            (water.sea_floor, flags::SEA_FLOOR),
+            (layers > 0, flags::TEXTURES),
         ] {
             if on {
                 bits |= bit;
             }
         }
         let finite = |v: f32| if v.is_finite() { v.clamp(0.0, 1.0) } else { 0.0 };
+        let terrain = &globe.config().terrain;
         Self {
             hover_color: linear(style.hover_color),
             selected_color: linear(style.selected_color),
@@ -94,6 +139,17 @@ impl GlobeParams {
             fog_softness: finite(style.fog_softness),
             tint_strength: 0.22,
             flags: bits,
+            shallow_water_color: linear(water.shallow_color),
+            deep_water_color: linear(water.deep_color),
+            foam_color: linear(water.foam_color),
+            sea_floor_color: linear(water.sea_floor_color),
+            sea_radius: (globe.radius() + f64::from(terrain.sea_threshold * terrain.max_elevation)) as f32,
+            deep_water: finite(water.deep_water) * terrain.sea_threshold * terrain.max_elevation,
+            foam_width: water.foam_width.max(0.0),
+            waves: water.waves.max(0.0),
+            hex_size: globe.config().layout.hex_size,
+            texture_scale: if material.texture_scale.is_finite() { material.texture_scale.max(0.0) } else { 0.0 },
+            texture_layers: layers,
         }
     }
 }
@@ -134,6 +190,7 @@ pub(super) struct GlobeMaterialHandle {
 pub(super) fn build(app: &mut App) {
     embedded_asset!(app, "globe.wgsl");
     crate::material::load_texel_library(app);
+    crate::material::add_texture_layers(app);
     app.add_plugins(MaterialPlugin::<HexGlobeMaterial>::default())
         .register_type::<GlobeParams>()
         .configure_sets(Update, crate::HexTerrainSystems::Render.after(crate::HexTerrainSystems::Insert))
@@ -250,7 +307,7 @@ fn state_image(states: &GlobeTileStates) -> Image {
 fn make_material(
     mut commands: Commands,
     globe: Res<HexGlobe>,
-    style: Res<HexTileStateStyle>,
+    look: GlobeLook,
     mut states: ResMut<GlobeTileStates>,
     mut images: ResMut<Assets<Image>>,
     mut materials: ResMut<Assets<HexGlobeMaterial>>,
@@ -263,10 +320,11 @@ fn make_material(
     }
     let state = images.add(state_image(&states));
     let extension = HexGlobeExtension {
-        params: GlobeParams::of(&style),
+        params: look.params(terrain),
         tile_state: state.clone(),
         topology: images.add(topology_image(terrain.grid())),
-        owners: owner_colors(&style),
+        owners: owner_colors(&look.style),
+        layer_textures: look.array(),
     };
     // The new texture holds every tile's state already.
     states.bypass_change_detection().take_dirty_rows();
@@ -275,21 +333,54 @@ fn make_material(
     commands.insert_resource(GlobeMaterialHandle { handle, state: state.id(), frequency });
 }
 
-/// Keeps the material's parameters in step with the style (rewritten when they change).
+/// What the material's look is made of: the tile states' style, the water's and the material's
+/// settings, and the texture array.
+#[derive(bevy::ecs::system::SystemParam)]
+struct GlobeLook<'w> {
+    style: Res<'w, HexTileStateStyle>,
+    water: Res<'w, HexWaterSettings>,
+    settings: Res<'w, HexTerrainMaterialSettings>,
+    layers: Res<'w, TextureLayers>,
+}
+
+impl GlobeLook<'_> {
+    /// The texture array, with textures on once it is stacked.
+    fn array(&self) -> Option<Handle<Image>> {
+        self.layers.array.clone().filter(|_| self.settings.textures)
+    }
+
+    /// The shader's parameters for `globe`.
+    fn params(&self, globe: &GlobeTerrain) -> GlobeParams {
+        let layers = self.array().map_or(0, |_| self.layers.count);
+        GlobeParams::of(&self.style, &self.water, &self.settings, layers, globe)
+    }
+
+    /// Whether any of it changed since the system last ran.
+    fn is_changed(&self) -> bool {
+        self.style.is_changed() || self.water.is_changed() || self.settings.is_changed() || self.layers.is_changed()
+    }
+}
+
+/// Keeps the material's parameters in step with its look and the globe (a hot reload may move
+/// its sea), rewritten when they change.
 fn update_material(
-    style: Res<HexTileStateStyle>,
+    look: GlobeLook,
+    globe: Res<HexGlobe>,
     mut materials: ResMut<Assets<HexGlobeMaterial>>,
     handle: Option<Res<GlobeMaterialHandle>>,
 ) {
-    let Some(handle) = handle else { return };
-    if style.is_changed() {
-        let (params, owners) = (GlobeParams::of(&style), owner_colors(&style));
+    let (Some(handle), Some(terrain)) = (handle, globe.globe()) else { return };
+    if look.is_changed() || globe.is_changed() {
+        let (params, owners, array) = (look.params(terrain), owner_colors(&look.style), look.array());
         if let Some(material) = materials.get(&handle.handle)
-            && (material.extension.params != params || material.extension.owners != owners)
+            && (material.extension.params != params
+                || material.extension.owners != owners
+                || material.extension.layer_textures != array)
             && let Some(mut material) = materials.get_mut(&handle.handle)
         {
             material.extension.params = params;
             material.extension.owners = owners;
+            material.extension.layer_textures = array;
         }
     }
 }

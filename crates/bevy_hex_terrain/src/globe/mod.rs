@@ -17,14 +17,17 @@
 //! [`GlobeTileStates`] holds the game's per-tile state (fog of war, owners, the lens,
 //! highlights), which the globe's material ([`HexGlobeMaterial`], with the `render` feature)
 //! draws over the vertex colors (the biome colors with a climate, else the kinds') with
-//! `StandardMaterial`'s lighting and the tiles' outlines, styled by [`HexTileStateStyle`].
+//! `StandardMaterial`'s lighting and the tiles' outlines, styled by [`HexTileStateStyle`]. The
+//! same material draws the sea as water where the ground lies below the sea's sphere (the flat
+//! map's [`HexWaterSettings`](crate::HexWaterSettings): depth colors over the sea floor, foam
+//! along the shore, waves that catch the sun) and, with
+//! [`HexTerrainMaterialSettings::textures`](crate::HexTerrainMaterialSettings::textures) on,
+//! each tile's terrain texture layer over its color.
 //!
 //! Trees, rocks and reeds stand on the globe's tiles as [`HexGlobeProp`]s (the flat map's rule
 //! and meshes, [`HexPropSettings`]), hidden on unexplored tiles under fog of war.
 //! [`HexGlobeEditorPlugin`] is the world builder on a globe: `HexMapEdit<GlobeStroke>` messages
 //! edit, undo, redo and save it, and only the chunks an operation changed are built again.
-//!
-//! The flat map's texture layers and water surface do not reach a globe yet.
 
 mod camera;
 mod editor;
@@ -214,6 +217,8 @@ impl Plugin for HexGlobePlugin {
             .init_resource::<GlobeTileStates>()
             .init_resource::<HexTileStateStyle>()
             .init_resource::<HexPropSettings>()
+            .init_resource::<crate::water::HexWaterSettings>()
+            .register_type::<crate::water::HexWaterSettings>()
             .register_type::<GlobeTileStates>()
             .register_type::<HexPropSettings>()
             .register_type::<HexGlobeProp>()

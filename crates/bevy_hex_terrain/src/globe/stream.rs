@@ -12,7 +12,7 @@ use bevy::platform::collections::HashMap;
 use bevy::prelude::*;
 use bevy::tasks::futures::check_ready;
 use bevy::tasks::{AsyncComputeTaskPool, Task};
-use hex_terrain::{Biome, Detail, GlobeChunk, GlobeMesh, GlobeProp, TileKind};
+use hex_terrain::{Biome, Detail, GlobeChunk, GlobeMesh, GlobeProp, GlobeTerrain, GlobeTile, TileKind};
 
 use super::props::GlobeChunkProps;
 use super::{HexGlobe, chunks_within};
@@ -219,7 +219,7 @@ pub(super) fn stream(
                     coarse
                 }
             };
-            (globe_mesh(mesh, detail), origin, props)
+            (globe_mesh(mesh, detail, |tile| texture_layer(&terrain, tile)), origin, props)
         });
         commands.entity(entity).insert(GlobeChunkTask { task, generation, detail });
     }
@@ -260,13 +260,23 @@ pub(super) fn insert(
     }
 }
 
+/// A tile's layer of the material's texture array: its terrain's (or feature's) look.
+fn texture_layer(terrain: &GlobeTerrain, tile: GlobeTile) -> u32 {
+    terrain.tile_info(tile).map_or(0, |info| {
+        let ruleset = terrain.ruleset();
+        let t = info.terrain;
+        u32::from(t.feature.map_or(&ruleset.terrain(t.terrain).look, |f| &ruleset.feature(f).look).texture)
+    })
+}
+
 /// A globe chunk's Bevy mesh: positions, normals, u32 indices, vertex colors (the biome colors
 /// with a climate, else each vertex's kind's; sRGB to linear; on a coarse mesh each tile in its
-/// center's color, as a fan a tile would smear its corners' across it) and in the first UV each
+/// center's color, as a fan a tile would smear its corners' across it), in the first UV each
 /// vertex's tile (`id % GLOBE_ROW`, `id / GLOBE_ROW`) for the material's tile states and
-/// outlines. A point on a tile border is one vertex for each tile holding it (the same position
-/// and normal), so every corner of a triangle names the triangle's tile.
-pub(crate) fn globe_mesh(mesh: GlobeMesh, detail: Detail) -> Mesh {
+/// outlines, and in the second UV's first component its tile's texture layer (`layer`). A point
+/// on a tile border is one vertex for each tile holding it (the same position and normal), so
+/// every corner of a triangle names the triangle's tile.
+pub(crate) fn globe_mesh(mesh: GlobeMesh, detail: Detail, layer: impl Fn(GlobeTile) -> u32) -> Mesh {
     let b = mesh.buffers;
     let srgb: Vec<[u8; 3]> = if b.colors.is_empty() {
         let kinds = [TileKind::Sea, TileKind::Land, TileKind::Mountain];
@@ -286,16 +296,22 @@ pub(crate) fn globe_mesh(mesh: GlobeMesh, detail: Detail) -> Mesh {
     let count = b.positions.len();
     let mut copy_of = vec![(u32::MAX, 0u32); count];
     let capacity = count + count / 2;
-    let (mut positions, mut normals, mut vertex_colors, mut uvs) = (
+    let (mut positions, mut normals, mut vertex_colors, mut uvs, mut layers) = (
+        Vec::with_capacity(capacity),
         Vec::with_capacity(capacity),
         Vec::with_capacity(capacity),
         Vec::with_capacity(capacity),
         Vec::with_capacity(capacity),
     );
     let mut indices = Vec::with_capacity(b.indices.len());
+    // A tile's triangles come together: its layer is asked once a run.
+    let mut tile_layer = (u32::MAX, 0.0);
     for (triangle, tile) in b.indices.chunks_exact(3).zip(&mesh.triangle_tiles) {
         // A coarse mesh's triangles start at their tile's center.
         let tile_color = (detail == Detail::Coarse).then(|| colors[triangle[0] as usize]);
+        if tile_layer.0 != tile.0 {
+            tile_layer = (tile.0, layer(*tile) as f32);
+        }
         for &v in triangle {
             let (last, copy) = &mut copy_of[v as usize];
             if *last != tile.0 {
@@ -305,6 +321,7 @@ pub(crate) fn globe_mesh(mesh: GlobeMesh, detail: Detail) -> Mesh {
                 normals.push(b.normals[v as usize]);
                 vertex_colors.push(tile_color.unwrap_or(colors[v as usize]));
                 uvs.push([(tile.0 % GLOBE_ROW) as f32, (tile.0 / GLOBE_ROW) as f32]);
+                layers.push([tile_layer.1, 0.0]);
             }
             indices.push(*copy);
         }
@@ -314,6 +331,7 @@ pub(crate) fn globe_mesh(mesh: GlobeMesh, detail: Detail) -> Mesh {
         .with_inserted_attribute(Mesh::ATTRIBUTE_NORMAL, normals)
         .with_inserted_attribute(Mesh::ATTRIBUTE_COLOR, vertex_colors)
         .with_inserted_attribute(Mesh::ATTRIBUTE_UV_0, uvs)
+        .with_inserted_attribute(Mesh::ATTRIBUTE_UV_1, layers)
         .with_inserted_indices(Indices::U32(indices))
 }
 

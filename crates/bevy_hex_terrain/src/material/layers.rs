@@ -17,14 +17,14 @@ pub const MAX_TEXTURE_LAYERS: usize = hex_terrain::MAX_TERRAINS;
 
 /// The layers' images and, once they have all loaded, their array.
 #[derive(Resource, Debug, Default)]
-pub(super) struct TextureLayers {
+pub(crate) struct TextureLayers {
     /// The paths the images were loaded from (none with the textures off).
     paths: Vec<String>,
     images: Vec<Handle<Image>>,
     /// The array of the images, in order.
-    pub(super) array: Option<Handle<Image>>,
+    pub(crate) array: Option<Handle<Image>>,
     /// Its layers.
-    pub(super) count: u32,
+    pub(crate) count: u32,
 }
 
 /// Loads the images of the settings' paths when the textures are turned on or the paths change

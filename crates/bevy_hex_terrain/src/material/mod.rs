@@ -13,7 +13,7 @@ use bevy::prelude::*;
 use bevy::render::render_resource::{AsBindGroup, RenderPipelineDescriptor, SpecializedMeshPipelineError};
 use bevy::shader::{ShaderDefVal, ShaderRef, load_shader_library};
 pub use layers::MAX_TEXTURE_LAYERS;
-use layers::TextureLayers;
+pub(crate) use layers::TextureLayers;
 use params::{Look, params, window_param};
 pub use params::{OwnerColors, RenderOrigin, TerrainParams};
 pub(crate) use params::{SHADER_DEFS, flags, linear, owner_colors};
@@ -133,23 +133,37 @@ impl Plugin for HexTerrainMaterialPlugin {
         load_shader_library!(app, "shaders/water.wgsl");
         load_shader_library!(app, "shaders/tile_state.wgsl");
         load_texel_library(app);
+        add_texture_layers(app);
         app.add_plugins((MaterialPlugin::<HexTerrainMaterial>::default(), tile_texture::TileTexturePlugin))
-            .init_resource::<HexTerrainMaterialSettings>()
-            .init_resource::<TextureLayers>()
             .init_resource::<RenderOrigin>()
-            .register_type::<HexTerrainMaterialSettings>()
             .register_type::<RenderOrigin>()
             .register_type::<HexTerrainMaterialHandle>()
             .register_type::<HexWaterMaterialHandle>()
             .add_systems(Startup, create_material.after(tile_texture::create_texture))
             .add_systems(
                 Update,
-                (layers::load_layers, layers::stack_layers, update_material, attach_material)
+                (update_material, attach_material)
                     .chain()
+                    .after(layers::stack_layers)
                     .in_set(crate::HexTerrainSystems::Render)
                     .run_if(resource_exists::<HexTerrainMaterialHandle>),
             );
     }
+}
+
+/// The material settings and the loading of their texture array, which the flat map's material
+/// and the globe's both draw with: added by the first of them.
+pub(crate) fn add_texture_layers(app: &mut App) {
+    if app.world().contains_resource::<TextureLayers>() {
+        return;
+    }
+    app.init_resource::<HexTerrainMaterialSettings>()
+        .init_resource::<TextureLayers>()
+        .register_type::<HexTerrainMaterialSettings>()
+        .add_systems(
+            Update,
+            (layers::load_layers, layers::stack_layers).chain().in_set(crate::HexTerrainSystems::Render),
+        );
 }
 
 /// Loads the import module of the tile state texel (`hex_terrain::texel`), which the flat map's

@@ -27,11 +27,14 @@ pub mod flags {
     pub const LENS: u32 = 64;
     /// Color the sea floor as a floor under a water surface, not as the sea.
     pub const SEA_FLOOR: u32 = 128;
+    /// Draw the sea as water in the ground's own pass (the globe's material, which has no water
+    /// surface of its own).
+    pub const WATER: u32 = 256;
 }
 
 /// The shader defs every terrain pipeline gets: the flag bits, the owner palette size and the
 /// tile state texel's layout (`tiles/window.rs`), so Rust and WGSL share one definition of each.
-pub(crate) const SHADER_DEFS: [(&str, u32); 15] = [
+pub(crate) const SHADER_DEFS: [(&str, u32); 16] = [
     ("HEX_FLAG_OUTLINES", flags::OUTLINES),
     ("HEX_FLAG_TEXTURES", flags::TEXTURES),
     ("HEX_FLAG_POINTY", flags::POINTY),
@@ -40,6 +43,7 @@ pub(crate) const SHADER_DEFS: [(&str, u32); 15] = [
     ("HEX_FLAG_TERRITORY_TINT", flags::TERRITORY_TINT),
     ("HEX_FLAG_LENS", flags::LENS),
     ("HEX_FLAG_SEA_FLOOR", flags::SEA_FLOOR),
+    ("HEX_FLAG_WATER", flags::WATER),
     ("HEX_MAX_OWNERS", MAX_OWNERS),
     ("HEX_TEXEL_FOG_MASK", FOG_MASK as u32),
     ("HEX_TEXEL_HOVERED", highlight_bit(Highlight::Hovered) as u32),
