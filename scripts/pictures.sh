@@ -94,14 +94,17 @@ if [ "${1:-}" = "--screens" ]; then
   shot minimal.png minimal
   shot streaming.png streaming HEXTERRAIN_STILL=1
   shot far_example.png far
-  # The globe example at three zooms: the planet (without the fog), the players' region in red's
-  # fog, the ground tilted to the horizon beside red's city.
+  # The globe example at three zooms: the planet (without the fog) over red's city (its start of
+  # the map's game setup), red's region in its fog, the ground tilted to the horizon beside red's
+  # city; then the sea as water along the coast east of it with the terrain textures on.
   shot globe_planet.png globe HEXTERRAIN_GLOBE_ALTITUDE=60 HEXTERRAIN_FOG=off
-  shot globe_region.png globe HEXTERRAIN_GLOBE_AT=-144,26.6 HEXTERRAIN_GLOBE_ALTITUDE=14
-  shot globe_ground.png globe HEXTERRAIN_GLOBE_AT=-147,25 HEXTERRAIN_GLOBE_ALTITUDE=3
+  shot globe_region.png globe HEXTERRAIN_GLOBE_ALTITUDE=14
+  shot globe_ground.png globe HEXTERRAIN_GLOBE_AT=66,-43 HEXTERRAIN_GLOBE_ALTITUDE=3
+  shot globe_water.png globe HEXTERRAIN_GLOBE_AT=86,-36 HEXTERRAIN_GLOBE_ALTITUDE=8 HEXTERRAIN_FOG=off \
+    HEXTERRAIN_TEXTURES=on
   # Straight down on a pentagon on land, picked (under Xvfb the pointer rests at the middle of
-  # the screen, and the example names the tile under it), two scouts walking across it.
-  shot globe_pentagon.png globe HEXTERRAIN_GLOBE_AT=-144,26.6 HEXTERRAIN_GLOBE_ALTITUDE=25
+  # the screen, and the example names the tile under it), red's scout walking across it.
+  shot globe_pentagon.png globe HEXTERRAIN_GLOBE_AT=36,-26.565 HEXTERRAIN_GLOBE_ALTITUDE=25
   # The rendering tests' pictures: each test writes its frame where the tests keep files.
   "${xvfb[@]}" cargo test -q -p bevy_hex_terrain --features "$HEXTERRAIN_FEATURES" \
     --test render --test render_tile_state --test render_far > /dev/null

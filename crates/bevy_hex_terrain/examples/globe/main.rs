@@ -6,8 +6,8 @@
 //! mouse (picked on the globe's surface; its biome, latitude and longitude, and whether it is a
 //! pentagon), or, with no mouse over the globe, the tile at the center of the view.
 //! Two players, red and blue, each found a city on the map's game setup's start (the map file's
-//! `setup`: the best start of each region of equal fertility, `GlobeTerrain::setup`), owning the
-//! tiles within two of it (`GlobeTileStates`: their borders and tint), and send a scout walking
+//! `setup`: the best start of each region of equal fertility, `GlobeTerrain::setup`), clearing
+//! its tile of trees (an edit, `Tool::SetProps`), owning the tiles within two of it (`GlobeTileStates`: their borders and tint), and send a scout walking
 //! back and forth across the pentagon on land nearest the city (of the twelve, those whose
 //! neighbors are all land) between two of its neighbors (`OnGlobeTile`, `GlobeTileWalk`). The
 //! camera starts over red's city. The globe is drawn in red's fog of war
@@ -27,7 +27,7 @@
 mod script;
 
 use bevy::prelude::*;
-use bevy_hex_terrain::hex_terrain::{GlobeFog, GlobeStroke, GlobeTerrain, GlobeTile};
+use bevy_hex_terrain::hex_terrain::{GlobeFog, GlobeStroke, GlobeTerrain, GlobeTile, PropDensity};
 use bevy_hex_terrain::prelude::*;
 use bevy_hex_terrain::{GlobeTileWalk, GlobeWalkEnded, HexGlobe, HexGlobeMinimapPlugin, HoveredGlobeTile, OnGlobeTile};
 
@@ -140,6 +140,7 @@ fn found_the_players(
     mut cameras: Query<&mut GlobeCamera>,
     mut states: ResMut<GlobeTileStates>,
     (mut meshes, mut materials): (ResMut<Assets<Mesh>>, ResMut<Assets<StandardMaterial>>),
+    mut edits: MessageWriter<HexMapEdit<GlobeStroke>>,
     mut founded: Local<bool>,
 ) {
     let Some(globe) = globe.globe().filter(|_| !*founded) else { return };
@@ -165,6 +166,9 @@ fn found_the_players(
         for (tile, _) in grid.within(home, 2) {
             states.set_owner(tile, Some(player)).expect("a player of the palette, a tile of the globe");
         }
+        // A city clears its tile of trees (an edit of the map, as the world builder's brush).
+        let clear = Tool::SetProps(PropDensity::None);
+        edits.write(HexMapEdit::Stroke(GlobeStroke { tool: clear, brush: Brush::Range(0), tile: home }));
         let material = materials.add(color);
         commands.spawn((
             OnGlobeTile::new(home),
