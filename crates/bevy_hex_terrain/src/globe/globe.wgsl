@@ -14,6 +14,7 @@
     forward_io::{VertexOutput, FragmentOutput},
     mesh_view_bindings::{globals, view},
 }
+#import hex_terrain::triplanar::triplanar_layer
 #import hex_terrain::texel::{
     FOG_MASK, FOG_EXPLORED, FOG_VISIBLE, overlay_of, srgb_to_linear, tint, tint_highlights,
 }
@@ -90,18 +91,6 @@ fn center_of(tile: u32) -> vec3<f32> {
     return bitcast<vec3<f32>>(topology_of(tile, 0u).xyz);
 }
 
-// A layer of the texture array (the last one for a layer past it), projected on the three world
-// planes and weighted by the normal, as on a flat map.
-fn triplanar(layer: u32, p: vec3<f32>, n: vec3<f32>) -> vec4<f32> {
-    var w = abs(n);
-    w = w / (w.x + w.y + w.z);
-    let k = params.texture_scale;
-    let l = i32(min(layer, max(params.texture_layers, 1u) - 1u));
-    return textureSample(layer_textures, layer_sampler, p.zx * k, l) * w.y
-        + textureSample(layer_textures, layer_sampler, p.zy * k, l) * w.x
-        + textureSample(layer_textures, layer_sampler, p.xy * k, l) * w.z;
-}
-
 // The water over `depth` (world units) of sea at `p` at time `t`, seen over the ground's color
 // `ground`: shallow to deep colors and opacity, the sea floor through the shallows (sand
 // darkening with depth, with the sea floor flag; else the ground's own color), and foam in a
@@ -145,7 +134,11 @@ fn fragment(in: VertexOutput, @builtin(front_facing) is_front: bool) -> Fragment
 #ifdef VERTEX_UVS_B
     // Textures: the tile's layer (the second UV) modulates its color, as on a flat map. Sampled
     // in uniform control flow, so the derivatives hold.
-    let detail = triplanar(u32(round(in.uv_b.x)), in.world_position.xyz, normalize(in.world_normal)).rgb;
+    let layer = u32(round(in.uv_b.x));
+    let detail = triplanar_layer(
+        layer_textures, layer_sampler, params.texture_layers, layer, params.texture_scale,
+        in.world_position.xyz, normalize(in.world_normal),
+    ).rgb;
     if has_flag(FLAG_TEXTURES) {
         color = vec4<f32>(color.rgb * (0.6 + 0.8 * detail), color.a);
     }

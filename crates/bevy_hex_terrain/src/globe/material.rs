@@ -189,7 +189,7 @@ pub(super) struct GlobeMaterialHandle {
 /// Registers the material; its systems run in [`HexTerrainSystems::Render`](crate::HexTerrainSystems::Render).
 pub(super) fn build(app: &mut App) {
     embedded_asset!(app, "globe.wgsl");
-    crate::material::load_texel_library(app);
+    crate::material::load_shared_libraries(app);
     crate::material::add_texture_layers(app);
     app.add_plugins(MaterialPlugin::<HexGlobeMaterial>::default())
         .register_type::<GlobeParams>()

@@ -132,7 +132,7 @@ impl Plugin for HexTerrainMaterialPlugin {
         load_shader_library!(app, "shaders/ground.wgsl");
         load_shader_library!(app, "shaders/water.wgsl");
         load_shader_library!(app, "shaders/tile_state.wgsl");
-        load_texel_library(app);
+        load_shared_libraries(app);
         add_texture_layers(app);
         app.add_plugins((MaterialPlugin::<HexTerrainMaterial>::default(), tile_texture::TileTexturePlugin))
             .init_resource::<RenderOrigin>()
@@ -166,10 +166,12 @@ pub(crate) fn add_texture_layers(app: &mut App) {
         );
 }
 
-/// Loads the import module of the tile state texel (`hex_terrain::texel`), which the flat map's
-/// material and the globe's both read.
-pub(crate) fn load_texel_library(app: &mut App) {
+/// Loads the import modules the flat map's material and the globe's both read: the tile state
+/// texel (`hex_terrain::texel`) and the triplanar sampling of the texture array
+/// (`hex_terrain::triplanar`).
+pub(crate) fn load_shared_libraries(app: &mut App) {
     load_shader_library!(app, "shaders/texel.wgsl");
+    load_shader_library!(app, "shaders/triplanar.wgsl");
 }
 
 /// The ground and the water instances of the material share everything but the water key and

@@ -5,17 +5,12 @@
 #define_import_path hex_terrain::ground
 
 #import hex_terrain::bindings::{params, layer_textures, layer_sampler, has_flag, FLAG_TEXTURES, FLAG_SEA_FLOOR}
+#import hex_terrain::triplanar::triplanar_layer
 
 // A layer of the texture array (the last one for a layer past it), projected on the three world
 // planes and weighted by the normal.
 fn triplanar(layer: u32, p: vec3<f32>, n: vec3<f32>) -> vec4<f32> {
-    var w = abs(n);
-    w = w / (w.x + w.y + w.z);
-    let k = params.texture_scale;
-    let l = i32(min(layer, max(params.texture_layers, 1u) - 1u));
-    return textureSample(layer_textures, layer_sampler, p.zx * k, l) * w.y
-        + textureSample(layer_textures, layer_sampler, p.zy * k, l) * w.x
-        + textureSample(layer_textures, layer_sampler, p.xy * k, l) * w.z;
+    return triplanar_layer(layer_textures, layer_sampler, params.texture_layers, layer, params.texture_scale, p, n);
 }
 
 // Under a water surface the sea layer is the sea floor: sand at the coast, darker with depth.
