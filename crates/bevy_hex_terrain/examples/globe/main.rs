@@ -136,8 +136,7 @@ fn main() -> AppExit {
 fn found_the_players(
     mut commands: Commands,
     globe: Res<HexGlobe>,
-    fly: Res<FlyToCity>,
-    mut cameras: Query<&mut GlobeCamera>,
+    (fly, mut cameras): (Res<FlyToCity>, Query<&mut GlobeCamera>),
     mut states: ResMut<GlobeTileStates>,
     (mut meshes, mut materials): (ResMut<Assets<Mesh>>, ResMut<Assets<StandardMaterial>>),
     mut edits: MessageWriter<HexMapEdit<GlobeStroke>>,
