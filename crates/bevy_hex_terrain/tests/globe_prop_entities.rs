@@ -1,5 +1,6 @@
 //! Props on a globe in a headless `App`: every chunk's prop children are the core's props of
-//! its mesh (what, on which tile, where, upright along the globe's up, how big), spawned at most
+//! its mesh (what, on which tile, where, upright along the globe's up, how big), then the game
+//! setup's resource and wonder markers of its mesh, spawned at most
 //! a budget a frame; an edit makes its chunks' props again from the edited globe; turning props
 //! off and on despawns and spawns them; under fog of war the props of unexplored tiles are
 //! hidden, and shown when their tile is explored.
@@ -22,6 +23,7 @@ fn app() -> App {
         MapConfig { size: MapSize::Globe { frequency: 8 }, chunk_size: (2, 2), seed: 5, ..MapConfig::default() };
     config.terrain.inner_rings = 1;
     config.climate.enabled = true;
+    config.setup = Some(SetupConfig { players: 2, ..SetupConfig::default() });
     let mut app = App::new();
     let assets = AssetPlugin { watch_for_changes_override: Some(false), ..default() };
     app.add_plugins((
@@ -64,7 +66,9 @@ fn matches_core(app: &mut App, globe: &GlobeTerrain) -> Result<(), String> {
     let size = globe.config().layout.hex_size;
     let spawned = spawned(app);
     for (chunk, props) in &spawned {
-        let want: Vec<GlobeProp> = globe.props(&globe.generate(*chunk), settings.max_per_chunk, settings.density);
+        let mesh = globe.generate(*chunk);
+        let mut want: Vec<GlobeProp> = globe.props(&mesh, settings.max_per_chunk, settings.density);
+        want.extend(globe.marker_props(&mesh));
         if props.len() != want.len() {
             return Err(format!("{chunk:?}: {} props spawned, {} placed", props.len(), want.len()));
         }
@@ -108,9 +112,14 @@ fn globe_props_are_the_cores_spawned_a_budget_a_frame_and_follow_edits_and_fog()
     let spawned_now = spawned(&mut app);
     let kinds: Vec<PropKind> = spawned_now.values().flatten().map(|(p, _)| p.kind).collect();
     assert!(total > 200 && kinds.contains(&PropKind::Rock) && kinds.contains(&PropKind::Pine), "{total} props");
+    // The setup's resources (and wonders) stand among them, one on each tile the setup put one.
+    let setup = generated.setup().unwrap();
+    let markers = kinds.iter().filter(|&&k| matches!(k, PropKind::Resource | PropKind::Wonder)).count();
+    assert_eq!(markers, setup.resources().len() + setup.wonders().len(), "the setup's markers");
+    let marker = |p: &HexGlobeProp| matches!(p.kind, PropKind::Resource | PropKind::Wonder);
 
     // An edit on a wooded tile: its chunks' props made again from the edited globe.
-    let (forest, _) = spawned_now.values().flatten().find(|(p, _)| p.kind != PropKind::Rock).unwrap();
+    let (forest, _) = spawned_now.values().flatten().find(|(p, _)| p.kind != PropKind::Rock && !marker(p)).unwrap();
     let tile = forest.tile;
     app.world_mut().write_message(HexMapEdit::Stroke(GlobeStroke {
         tool: Tool::SetKind(TileKind::Sea),
@@ -120,7 +129,11 @@ fn globe_props_are_the_cores_spawned_a_budget_a_frame_and_follow_edits_and_fog()
     run_until(&mut app, "the edit", |app| !seen::<HexMapEdited<GlobeChange>>(app).is_empty() && settled(app));
     let edited = globe(&app);
     matches_core(&mut app, &edited).unwrap();
-    assert!(spawned(&mut app).values().flatten().all(|(p, _)| p.tile != tile), "props on a tile sunk into the sea");
+    let on_land = |(p, _): &&(HexGlobeProp, Transform)| !marker(p);
+    assert!(
+        spawned(&mut app).values().flatten().filter(on_land).all(|(p, _)| p.tile != tile),
+        "trees on a tile sunk into the sea"
+    );
 
     // Off and on again.
     app.world_mut().resource_mut::<HexPropSettings>().enabled = false;

@@ -296,3 +296,81 @@ fn a_globe_refuses_a_setup_it_cannot_hold_by_the_field() {
     assert_eq!(e.field, "setup.min_distance");
     assert!(e.allowed.contains("fits on this map"), "{e}");
 }
+
+#[test]
+fn the_setups_resources_and_wonders_stand_on_their_tiles_in_every_chunk() {
+    let mut setup = SetupConfig { players: 3, ..SetupConfig::default() };
+    setup.wonders.count = 3;
+    let g = globe(9, 11, setup).unwrap();
+    let placed = g.setup().unwrap();
+    let sea = g.radius() + f64::from(g.config().terrain.sea_threshold * g.config().terrain.max_elevation);
+    // What the setup placed, off the starts: each a marker, once over all chunks, at both levels.
+    let mut wanted: Vec<(GlobeTile, hex_terrain::PropKind, u8)> = placed
+        .resources()
+        .iter()
+        .map(|r| (r.tile, hex_terrain::PropKind::Resource, r.class as u8))
+        .filter(|(t, ..)| g.tile_setup(*t).unwrap().wonder.is_none())
+        .chain(placed.wonders().iter().map(|w| (w.tile, hex_terrain::PropKind::Wonder, 0)))
+        .collect();
+    wanted.sort_by_key(|w| w.0);
+    assert!(!wanted.is_empty());
+    for coarse in [false, true] {
+        let mut got = Vec::new();
+        for chunk in g.chunks() {
+            let full = g.generate(chunk);
+            let mesh = if coarse { full.coarse() } else { full };
+            for m in g.marker_props(&mesh) {
+                let foot: Vec<f64> = (0..3).map(|k| mesh.origin[k] + f64::from(m.position[k])).collect();
+                let r = foot.iter().map(|c| c * c).sum::<f64>().sqrt();
+                let center = g.grid().center(m.tile).unwrap();
+                // At its tile's center, upright.
+                let dir: Vec<f64> = foot.iter().map(|c| c / r).collect();
+                assert!((0..3).all(|k| (dir[k] - center[k]).abs() < 1e-5), "{:?} not at its center", m.tile);
+                assert!((0..3).all(|k| (f64::from(m.up[k]) - center[k]).abs() < 1e-5));
+                // On the surface as meshed, or on the sea over it: a ray from outside down to
+                // the center meets the ground there.
+                let outside: Vec<f64> = center.iter().map(|c| c * 2.0 * g.radius()).collect();
+                let down = center.map(|c| -c);
+                let hit = g.raycast([outside[0], outside[1], outside[2]], down, f64::MAX).unwrap();
+                let ground = hit.point.iter().map(|c| c * c).sum::<f64>().sqrt();
+                if !coarse {
+                    assert_eq!(hit.tile, m.tile);
+                    assert!((r - ground.max(sea)).abs() < 1e-3, "{:?}: foot at {r}, ground {ground}", m.tile);
+                }
+                got.push((m.tile, m.kind, m.variant));
+            }
+        }
+        got.sort_by_key(|w| w.0);
+        assert_eq!(got, wanted, "coarse: {coarse}");
+    }
+}
+
+#[test]
+fn an_edit_reports_every_tile_whose_setup_changed() {
+    let mut config = MapConfig { seed: 21, size: MapSize::Globe { frequency: 8 }, ..Default::default() };
+    config.noise.scale = 60.0;
+    config.terrain.sea_threshold = 0.45;
+    config.climate.enabled = true;
+    config.setup = Some(SetupConfig { players: 2, min_distance: 3, ..SetupConfig::default() });
+    let mut editor = hex_terrain::GlobeEditor::new(config).unwrap();
+    let before = editor.globe().clone();
+    let start = before.setup().unwrap().starts()[0];
+    // Sink the first start and its neighbors: the setup moves, and resources with it.
+    let stroke = hex_terrain::GlobeStroke {
+        tool: hex_terrain::Tool::SetKind(TileKind::Sea),
+        brush: hex_terrain::Brush::Range(1),
+        tile: start,
+    };
+    let change = editor.apply(stroke).unwrap();
+    let after = editor.globe();
+    let placed = |g: &GlobeTerrain, t: GlobeTile| {
+        let s = g.tile_setup(t).unwrap();
+        (s.start, s.resource.cloned(), s.wonder.cloned())
+    };
+    let moved: Vec<GlobeTile> = before.grid().tiles().filter(|&t| placed(&before, t) != placed(after, t)).collect();
+    assert!(!moved.is_empty(), "the setup did not move");
+    for t in moved {
+        assert!(change.tiles.contains(&t), "{t:?}'s setup changed, not reported");
+        assert!(change.chunks.contains(&after.chunk_of(t).unwrap()), "{t:?}'s chunk not rebuilt");
+    }
+}

@@ -3,9 +3,13 @@
 //! children of the chunk, upright along the globe's up, a budget a frame
 //! ([`HexPropSettings::max_spawns_per_frame`]), made again when the chunk's mesh is (an edit, a
 //! hot reload) and despawned with it. With Bevy's renderer they share the flat map's prop meshes
-//! and material ([`PropAssets`]), and under fog of war those on unexplored tiles are hidden.
+//! and material ([`PropAssets`]), and under fog of war those on unexplored tiles are hidden. The
+//! game setup's resources and natural wonders ([`GlobeTerrain::marker_props`]) are props too
+//! ([`PropKind::Resource`], [`PropKind::Wonder`]), never thinned by the cap: drawn and hidden by
+//! fog the same way.
 //!
 //! [`GlobeTerrain::props`]: hex_terrain::GlobeTerrain::props
+//! [`GlobeTerrain::marker_props`]: hex_terrain::GlobeTerrain::marker_props
 
 use bevy::prelude::*;
 use hex_terrain::{GlobeProp, GlobeTile, PropKind};

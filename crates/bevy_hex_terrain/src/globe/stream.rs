@@ -219,6 +219,8 @@ pub(super) fn stream(
                     coarse
                 }
             };
+            // The game setup's resources and wonders, never thinned, on the level's own surface.
+            props.extend(terrain.marker_props(&mesh));
             (globe_mesh(mesh, detail, |tile| texture_layer(&terrain, tile)), origin, props)
         });
         commands.entity(entity).insert(GlobeChunkTask { task, generation, detail });

@@ -33,8 +33,9 @@ pub struct GlobeStroke {
 pub struct GlobeChange {
     /// The tiles that changed: the edited tiles and their neighbors (whose shared border points
     /// moved), and every tile whose center height, type, climate or biome changed as a
-    /// consequence (a coast's moisture follows its neighbors' types), with their neighbors. By
-    /// id, each once.
+    /// consequence (a coast's moisture follows its neighbors' types), or on which the game
+    /// setup (placed again on the edited globe) starts a player or puts another resource or
+    /// wonder, with their neighbors. By id, each once.
     pub tiles: Vec<GlobeTile>,
     /// The tiles whose edits the operation changed, a part of `tiles`. By id, each once.
     pub edited: Vec<GlobeTile>,
@@ -56,12 +57,17 @@ impl GlobeChange {
     fn between(old: &GlobeTerrain, new: &GlobeTerrain, touched: &[GlobeTile]) -> Self {
         let grid = new.grid();
         let around = |t: GlobeTile| grid.neighbors(t).expect("a tile of the globe");
+        // What the setup placed on a tile, its region aside (a region's bounds move no marker).
+        fn placed(g: &GlobeTerrain, t: GlobeTile) -> Option<SetupMarks<'_>> {
+            g.tile_setup(t).map(|s| (s.start, s.resource, s.wonder))
+        }
         let mut tiles = BTreeSet::new();
         for t in grid.tiles() {
             let changed = old.tile_height(t).map(f32::to_bits) != new.tile_height(t).map(f32::to_bits)
                 || old.tile_kind(t) != new.tile_kind(t)
                 || old.tile_biome(t) != new.tile_biome(t)
-                || old.tile_climate(t) != new.tile_climate(t);
+                || old.tile_climate(t) != new.tile_climate(t)
+                || placed(old, t) != placed(new, t);
             if changed {
                 tiles.insert(t);
                 tiles.extend(around(t).as_slice());
@@ -83,6 +89,10 @@ impl GlobeChange {
         }
     }
 }
+
+/// What the setup put on a tile: the player starting there, its resource and its wonder.
+type SetupMarks<'a> =
+    (Option<u32>, Option<&'a crate::PlacedResource<GlobeTile>>, Option<&'a crate::PlacedWonder<GlobeTile>>);
 
 /// One operation: each tile it touched, with its edit before and after.
 type Operation = Vec<(GlobeTile, Option<TileEdit>, Option<TileEdit>)>;

@@ -6,6 +6,10 @@
 //! own triangles), upright along the globe's up there. A tile's props depend on nothing but the
 //! globe and the tile, so every chunk, thread and order gives the same; a chunk keeps at most
 //! its cap, those of lowest hash priority, as on a flat map.
+//!
+//! The game setup's resources and natural wonders stand on their tiles as props too
+//! ([`GlobeTerrain::marker_props`]: [`PropKind::Resource`], [`PropKind::Wonder`]), at the
+//! tile's center, as on a flat map.
 
 use super::project::{self, Dir, hit};
 use super::{GlobeMesh, GlobeTerrain, GlobeTile};
@@ -115,6 +119,69 @@ impl GlobeTerrain {
         }
         keep_first(&mut props, &priority, max_per_chunk);
         props
+    }
+
+    /// The game setup's resources and natural wonders on a chunk's mesh (from
+    /// [`GlobeTerrain::generate`] or [`GlobeMesh::coarse`]) as props, in tile order: each at its
+    /// tile's center on the surface as meshed (on the sea's surface over water), upright, a
+    /// resource as [`PropKind::Resource`] of its class's variant, a wonder as
+    /// [`PropKind::Wonder`], their yaw from a hash of the tile. None without a setup; starts are
+    /// left to the game. Never thinned by a cap: a player reads them at every zoom.
+    #[must_use]
+    pub fn marker_props(&self, mesh: &GlobeMesh) -> Vec<GlobeProp> {
+        let Some(setup) = self.setup() else { return Vec::new() };
+        let config = self.config();
+        let sea = self.radius() + f64::from(self.thresholds().sea * config.terrain.max_elevation);
+        let b = &mesh.buffers;
+        let from = mesh.origin.map(|c| -c);
+        let corner = |v: u32| b.positions[v as usize].map(f64::from);
+        let mut out = Vec::new();
+        let mut start = 0;
+        while start < mesh.triangle_tiles.len() {
+            let tile = mesh.triangle_tiles[start];
+            let mut end = start;
+            while end < mesh.triangle_tiles.len() && mesh.triangle_tiles[end] == tile {
+                end += 1;
+            }
+            let triangles = &b.indices[3 * start..3 * end];
+            start = end;
+            let Some(at) = setup.at(tile).filter(|at| at.start.is_none()) else { continue };
+            let (kind, variant, scale) = match (at.wonder, at.resource) {
+                (Some(_), _) => (PropKind::Wonder, 0, 0.7),
+                (None, Some(r)) => (PropKind::Resource, r.class as u8, 0.4),
+                (None, None) => continue,
+            };
+            let d = self.grid().center(tile).expect("a tile of the globe");
+            // The center is a vertex of the tile's triangles at both levels: the ray through it
+            // may graze their edges, so the vertex nearest its direction answers when no
+            // triangle does.
+            let ground = triangles
+                .chunks_exact(3)
+                .find_map(|t| hit(from, d, corner(t[0]), corner(t[1]), corner(t[2])).filter(|&t| t > 0.0))
+                .or_else(|| {
+                    let radius = |v: u32| {
+                        let p = corner(v);
+                        let r = [0, 1, 2].map(|k| p[k] - from[k]);
+                        project::dot(r, r).sqrt()
+                    };
+                    let toward =
+                        |v: u32| project::dot(project::normalize([0, 1, 2].map(|k| corner(v)[k] - from[k])), d);
+                    triangles.iter().copied().max_by(|&a, &b| toward(a).total_cmp(&toward(b))).map(radius)
+                });
+            let Some(ground) = ground else { continue };
+            let t = ground.max(sea);
+            let h = hash::hash(config.seed, &[i64::from(tile.0), 0, 0x3a4]);
+            out.push(GlobeProp {
+                kind,
+                variant,
+                position: [0, 1, 2].map(|k| (from[k] + d[k] * t) as f32),
+                up: d.map(|c| c as f32),
+                yaw: (std::f64::consts::TAU * f64::from(hash::unit(h))) as f32,
+                scale,
+                tile,
+            });
+        }
+        out
     }
 
     /// A tile's center direction and the angle, radians, of the disk about it inside the tile:
