@@ -387,26 +387,26 @@ impl GlobeTerrain {
         self.grid.projection.direction(d, u, v)
     }
 
-    /// Up to `LANES` points' raw heights: 3D fBm at their directions on the sphere of the
-    /// globe's radius in hex radii, normalised like the flat map's; with their directions.
-    fn directions_and_raw(&self, points: &[Point]) -> Vec<(Dir, f32)> {
-        self.directions_and_fbm(points)
-            .into_iter()
-            .zip(points)
-            .map(|((dir, fbm), &p)| (dir, self.shape(p, dir, fbm)))
-            .collect()
-    }
-
     /// Up to `LANES` points' directions and fBm, before a map type shapes it.
     fn directions_and_fbm(&self, points: &[Point]) -> Vec<(Dir, f64)> {
-        let dirs: Vec<Dir> = points.iter().map(|&p| self.direction(p)).collect();
-        let mut at = [[0.0; 3]; LANES];
-        for (a, d) in at.iter_mut().zip(dirs.iter().cycle()) {
-            *a = d.map(|c| c * self.radius);
+        self.directions_and_fbm_lanes(points)[..points.len()].to_vec()
+    }
+
+    /// Up to `LANES` points' directions and fBm, in the first `points.len()` lanes.
+    fn directions_and_fbm_lanes(&self, points: &[Point]) -> [(Dir, f64); LANES] {
+        debug_assert!(!points.is_empty() && points.len() <= LANES);
+        let mut dirs = [[0.0; 3]; LANES];
+        for (d, &p) in dirs.iter_mut().zip(points) {
+            *d = self.direction(p);
         }
+        // The lanes beyond the points repeat them (the batch is always full).
+        for l in points.len()..LANES {
+            dirs[l] = dirs[l % points.len()];
+        }
+        let at = dirs.map(|d| d.map(|c| c * self.radius));
         let mut fbm = [0.0; LANES];
         self.fbm.sample_batch(&at, &mut fbm);
-        dirs.into_iter().zip(fbm).collect()
+        std::array::from_fn(|l| (dirs[l], fbm[l]))
     }
 
     /// A point's raw height from its fBm: the map type's, if the globe has one.
@@ -423,11 +423,20 @@ impl GlobeTerrain {
         }
     }
 
-    /// Up to `LANES` points finished ([`Finished`]). `known` is a point's ring and tile when
-    /// that tile alone holds it, if the caller knows them.
-    pub(super) fn finish_batch(&self, points: &[Point], known: &[Option<(u32, GlobeTile)>]) -> Vec<Finished> {
-        let raw = self.directions_and_raw(points);
-        points.iter().zip(known).zip(raw).map(|((&p, &known), (dir, raw))| self.finish(p, known, dir, raw)).collect()
+    /// Up to `LANES` points finished ([`Finished`]), in order. `known` is a point's ring and
+    /// tile when that tile alone holds it, if the caller knows them.
+    pub(super) fn finish_batch(
+        &self,
+        points: &[Point],
+        known: &[Option<(u32, GlobeTile)>],
+    ) -> impl Iterator<Item = Finished> + use<> {
+        let raw = self.directions_and_fbm_lanes(points);
+        let mut out = [Finished { height: 0.0, ring: 0, kind: TileKind::Sea, position: [0.0; 3], color: None }; LANES];
+        for (l, ((&p, &known), o)) in points.iter().zip(known).zip(&mut out).enumerate() {
+            let (dir, fbm) = raw[l];
+            *o = self.finish(p, known, dir, self.shape(p, dir, fbm));
+        }
+        out.into_iter().take(points.len())
     }
 
     fn finish(&self, p: Point, known: Option<(u32, GlobeTile)>, dir: Dir, raw: f32) -> Finished {

@@ -182,18 +182,45 @@ struct Slots<'a> {
     known: Vec<Option<(u32, GlobeTile)>>,
 }
 
-/// Slots by point: a table over every point when the mesh holds a good part of the globe (one
-/// read a point), else a hash map of the few the mesh holds.
+/// Slots by point: a table over every point of the globe, reused by the meshes a thread makes
+/// (an entry is this mesh's when it bears the mesh's stamp, so nothing is cleared between
+/// meshes), or for a globe of more points than [`DENSE_POINTS`] a hash map of the mesh's.
 enum Index {
-    Dense(Vec<u32>),
+    Dense(Stamped),
     Sparse(HashMap<u64, u32, foldhash::fast::FixedState>),
+}
+
+/// At most this many points of a globe are indexed by a table a thread keeps (8 bytes a point:
+/// 8 MiB); a Standard globe with 3 inner rings has 211,682.
+const DENSE_POINTS: u64 = 1 << 20;
+
+/// A thread's table of slots by dense point, each entry `(stamp, slot)`.
+#[derive(Default)]
+struct Stamped {
+    stamp: u32,
+    entries: Vec<(u32, u32)>,
+}
+
+thread_local! {
+    /// The table the thread's last mesh used, lent to the next one.
+    static TABLE: std::cell::Cell<Stamped> = std::cell::Cell::new(Stamped::default());
 }
 
 impl<'a> Slots<'a> {
     fn new(fine: &'a Fine, capacity: usize) -> Self {
         let points = fine.point_count();
-        let index = if capacity as u64 * 4 >= points {
-            Index::Dense(vec![u32::MAX; points as usize])
+        let index = if points <= DENSE_POINTS {
+            let mut table = TABLE.with(std::cell::Cell::take);
+            if table.entries.len() < points as usize {
+                table.entries.resize(points as usize, (0, 0));
+            }
+            table.stamp = table.stamp.wrapping_add(1);
+            if table.stamp == 0 {
+                // After 2^32 meshes on a thread, stamps come round again: forget the old ones.
+                table.entries.fill((0, 0));
+                table.stamp = 1;
+            }
+            Index::Dense(table)
         } else {
             Index::Sparse(HashMap::with_capacity_and_hasher(capacity, Default::default()))
         };
@@ -205,11 +232,11 @@ impl<'a> Slots<'a> {
         let next = self.points.len() as u32;
         let slot = match &mut self.index {
             Index::Dense(table) => {
-                let slot = &mut table[self.fine.dense(p)];
-                if *slot == u32::MAX {
-                    *slot = next;
+                let entry = &mut table.entries[self.fine.dense(p)];
+                if entry.0 != table.stamp {
+                    *entry = (table.stamp, next);
                 }
-                *slot
+                entry.1
             }
             Index::Sparse(map) => *map.entry(self.fine.id(p)).or_insert(next),
         };
@@ -218,5 +245,13 @@ impl<'a> Slots<'a> {
             self.known.push(known);
         }
         slot
+    }
+}
+
+impl Drop for Slots<'_> {
+    fn drop(&mut self) {
+        if let Index::Dense(table) = &mut self.index {
+            TABLE.with(|t| t.set(std::mem::take(table)));
+        }
     }
 }

@@ -61,6 +61,6 @@ impl GlobeTerrain {
     /// A tile's center height after manipulation (normalised).
     pub(in crate::globe) fn center_height(&self, tile: GlobeTile) -> f32 {
         let p = self.fine.center(self.spot(tile));
-        self.finish_batch(&[p], &[Some((0, tile))])[0].height
+        self.finish_batch(&[p], &[Some((0, tile))]).next().expect("one point finished").height
     }
 }
