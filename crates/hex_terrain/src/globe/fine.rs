@@ -190,12 +190,6 @@ impl Fine {
         }
     }
 
-    /// How many ids there are, points or not: `10 F^2 + 2`.
-    pub(crate) fn id_space(&self) -> u64 {
-        let big = u64::from(self.big());
-        10 * big * big + 2
-    }
-
     /// How many points there are: `10 F^2 / 3 + 2`.
     pub(crate) fn point_count(&self) -> u64 {
         let big = u64::from(self.big());
@@ -212,6 +206,17 @@ impl Fine {
             Spot::South => 10 * big * big / 3 + 1,
             Spot::Diamond { d, i, j } => 1 + usize::from(d) * big * big / 3 + (i as usize * big) / 3 + j as usize / 3,
         }
+    }
+
+    /// [`Fine::dense`] of the point whose [`Fine::id`] is `id`.
+    pub(crate) fn dense_of_id(&self, id: u64) -> usize {
+        let big = u64::from(self.big());
+        let area = big * big;
+        if id == 0 || id > 10 * area {
+            return if id == 0 { 0 } else { (10 * area / 3 + 1) as usize };
+        }
+        let (d, within) = ((id - 1) / area, (id - 1) % area);
+        (1 + d * area / 3 + (within / big) * big / 3 + (within % big) / 3) as usize
     }
 
     /// The center of the tile at `spot` (of the tile atlas) as a point.
@@ -335,6 +340,34 @@ fn charts(spot: Spot, big: i64) -> Vec<(u8, (i64, i64))> {
         Spot::Diamond { d, .. } => {
             let k = d - 5;
             vec![(d, (0, 0)), (k, (0, big)), (5 + (k + 4) % 5, (big, big))]
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Every fine point's dense index is its own, below the count, and found again from its
+    /// id (the whole globe's mesh merges its chunks by it).
+    #[test]
+    fn dense_indices_are_a_bijection_found_again_from_ids() {
+        for (f, n) in [(1, 1), (2, 3), (5, 2), (7, 4)] {
+            let fine = Fine::new(f, n);
+            let big = fine.big();
+            let mut points = vec![Spot::North, Spot::South];
+            for d in 0..10 {
+                for i in 0..big {
+                    points.extend((0..big).filter(|j| (i + j) % 3 == 0).map(|j| Spot::Diamond { d, i, j }));
+                }
+            }
+            assert_eq!(points.len() as u64, fine.point_count());
+            let mut seen = vec![false; points.len()];
+            for p in points {
+                let k = fine.dense(p);
+                assert!(!std::mem::replace(&mut seen[k], true), "{p:?} shares {k} (f {f}, n {n})");
+                assert_eq!(fine.dense_of_id(fine.id(p)), k, "{p:?} (f {f}, n {n})");
+            }
         }
     }
 }

@@ -50,6 +50,11 @@ pub(super) struct Finished {
     pub(super) color: Option<[u8; 4]>,
 }
 
+impl Finished {
+    /// A point not finished yet: what a buffer of them starts as.
+    pub(super) const UNSET: Self = Self { height: 0.0, ring: 0, kind: TileKind::Sea, position: [0.0; 3], color: None };
+}
+
 /// A hex globe's terrain, compiled from a [`MapConfig`] of size [`MapSize::Globe`].
 #[derive(Clone)]
 pub struct GlobeTerrain {
@@ -318,15 +323,25 @@ impl GlobeTerrain {
         // once: every point is the same bits in every chunk that holds it.
         let parts: Vec<GlobeMesh> =
             self.chunks().into_par_iter().map(|chunk| self.mesh(self.chunk_tiles(chunk), [0.0; 3])).collect();
+        let (vertices, triangles) = (self.vertex_count() as usize, self.triangle_count() as usize);
         let mut whole = GlobeMesh {
             origin: [0.0; 3],
-            buffers: MeshBuffers::default(),
+            // Every buffer made at its final size at once: growing them moved megabytes.
+            buffers: MeshBuffers {
+                positions: Vec::with_capacity(vertices),
+                normals: Vec::with_capacity(vertices),
+                tile_kinds: Vec::with_capacity(vertices),
+                center_distances: Vec::with_capacity(vertices),
+                colors: Vec::with_capacity(if self.config.climate.enabled { vertices } else { 0 }),
+                indices: Vec::with_capacity(3 * triangles),
+                ..MeshBuffers::default()
+            },
             points: Vec::with_capacity(self.vertex_count() as usize),
             heights: Vec::with_capacity(self.vertex_count() as usize),
             tiles: Vec::with_capacity(self.grid.tile_count() as usize),
             triangle_tiles: Vec::with_capacity(self.triangle_count() as usize),
         };
-        let mut slot = vec![u32::MAX; self.fine.id_space() as usize];
+        let mut slot = vec![u32::MAX; self.fine.point_count() as usize];
         for part in parts {
             let b = &part.buffers;
             let map: Vec<u32> = part
@@ -334,7 +349,7 @@ impl GlobeTerrain {
                 .iter()
                 .enumerate()
                 .map(|(v, p)| {
-                    let s = &mut slot[p.0 as usize];
+                    let s = &mut slot[self.fine.dense_of_id(p.0)];
                     if *s == u32::MAX {
                         *s = whole.points.len() as u32;
                         whole.points.push(*p);
@@ -431,7 +446,7 @@ impl GlobeTerrain {
         known: &[Option<(u32, GlobeTile)>],
     ) -> impl Iterator<Item = Finished> + use<> {
         let raw = self.directions_and_fbm_lanes(points);
-        let mut out = [Finished { height: 0.0, ring: 0, kind: TileKind::Sea, position: [0.0; 3], color: None }; LANES];
+        let mut out = [Finished::UNSET; LANES];
         for (l, ((&p, &known), o)) in points.iter().zip(known).zip(&mut out).enumerate() {
             let (dir, fbm) = raw[l];
             *o = self.finish(p, known, dir, self.shape(p, dir, fbm));

@@ -53,16 +53,6 @@ impl GlobeTerrain {
         let (cells, cell_triangles) = fine.template();
         let n = self.config.subdivisions();
         let per = cells.len();
-        // Every hexagon's points, found in parallel (a pentagon's are gathered below).
-        let hexagon_points: Vec<Option<Point>> = tiles
-            .par_iter()
-            .flat_map_iter(|&t| {
-                let hexagon = fine.hexagon(self.spot(t));
-                cells
-                    .iter()
-                    .map(move |c| hexagon.map(|(d, ci, cj)| fine.hexagon_point(d, ci + c.offset.0, cj + c.offset.1)))
-            })
-            .collect();
         let mut slots = Slots::new(fine, tiles.len() * per + tiles.len() * per / 4);
         let mut indices = Vec::with_capacity(tiles.len() * cell_triangles.len() * 3);
         let mut triangle_tiles = Vec::with_capacity(tiles.len() * cell_triangles.len());
@@ -70,26 +60,28 @@ impl GlobeTerrain {
         // its hexagon's template (the index of its cell in `locals`), or `NOT_INSIDE`.
         let mut locals: Vec<u32> = Vec::with_capacity(tiles.len() * per);
         let mut home: Vec<u32> = Vec::with_capacity(tiles.len() * per);
-        for (k, &t) in tiles.iter().enumerate() {
-            let points = &hexagon_points[k * per..(k + 1) * per];
-            if points[0].is_some() {
+        for &t in &tiles {
+            if let Some((d, ci, cj)) = fine.hexagon(self.spot(t)) {
                 let base = locals.len();
-                for (c, p) in cells.iter().zip(points.iter().flatten()) {
+                for c in cells {
+                    let p = fine.hexagon_point(d, ci + c.offset.0, cj + c.offset.1);
                     // A point inside the hexagon is its alone: its ring and tile are known.
                     let known = (c.ring < n).then_some((c.ring, t));
-                    let slot = slots.intern(*p, known);
+                    let slot = slots.intern(p, known);
                     if slot as usize == home.len() {
-                        home.push(if c.fan.is_some() { (base + locals.len() - base) as u32 } else { NOT_INSIDE });
+                        home.push(if c.fan.is_some() { locals.len() as u32 } else { NOT_INSIDE });
                     }
                     locals.push(slot);
                 }
                 let local = &locals[base..];
-                indices.extend(cell_triangles.iter().flat_map(|t| t.map(|k| local[usize::from(k)])));
+                for triangle in cell_triangles {
+                    indices.extend_from_slice(&triangle.map(|k| local[usize::from(k)]));
+                }
                 triangle_tiles.extend(std::iter::repeat_n(t, cell_triangles.len()));
             } else {
                 locals.extend(std::iter::repeat_n(NOT_INSIDE, per));
                 for triangle in fine.triangles(self.spot(t)) {
-                    indices.extend(triangle.map(|p| slots.intern(p, None)));
+                    indices.extend_from_slice(&triangle.map(|p| slots.intern(p, None)));
                     triangle_tiles.push(t);
                 }
                 home.resize(slots.points.len(), NOT_INSIDE);
@@ -110,12 +102,14 @@ impl GlobeTerrain {
             rings.push((ring, fan.points().len() as u8));
         }
         // Each point is a pure function of the config and the point: the threads change no bit.
-        let finished: Vec<Finished> = slots
-            .points
-            .par_chunks(LANES)
-            .zip(slots.known.par_chunks(LANES))
-            .flat_map_iter(|(points, known)| self.finish_batch(points, known))
-            .collect();
+        let mut finished = vec![Finished::UNSET; slots.points.len()];
+        finished.par_chunks_mut(LANES).zip(slots.points.par_chunks(LANES)).zip(slots.known.par_chunks(LANES)).for_each(
+            |((out, points), known)| {
+                for (o, f) in out.iter_mut().zip(self.finish_batch(points, known)) {
+                    *o = f;
+                }
+            },
+        );
         let rings_per = n as f32;
         let vertices: Vec<([f32; 3], [f32; 3])> = (0..count)
             .into_par_iter()
