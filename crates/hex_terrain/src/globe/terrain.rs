@@ -373,6 +373,27 @@ impl GlobeTerrain {
         whole
     }
 
+    /// The 3D fBm at the direction of every point of the whole globe's mesh (each point once,
+    /// batched and on all cores as meshing samples them), and nothing else: the noise floor of
+    /// generating the globe. Returns the sum of the samples so the work cannot be elided.
+    #[cfg(feature = "bench")]
+    #[must_use]
+    pub fn noise_floor(&self) -> f64 {
+        let big = self.fine.big();
+        let mut points = vec![Spot::North, Spot::South];
+        for d in 0..10 {
+            for i in 0..big {
+                // The points of a row are every third `j` with `i + j` a multiple of 3.
+                points.extend(((3 - i % 3) % 3..big).step_by(3).map(|j| Spot::Diamond { d, i, j }));
+            }
+        }
+        debug_assert_eq!(points.len() as u64, self.fine.point_count());
+        points
+            .par_chunks(LANES)
+            .map(|batch| self.directions_and_fbm_lanes(batch)[..batch.len()].iter().map(|l| l.1).sum::<f64>())
+            .sum()
+    }
+
     /// A tile's fine triangles as meshed, in world units from the globe's center.
     pub(super) fn tile_triangles(&self, tile: GlobeTile) -> Vec<[Dir; 3]> {
         let spot = self.spot(tile);
