@@ -58,16 +58,7 @@ impl GlobeTerrain {
         // The ray's start, the globe's center, from the mesh's origin.
         let from = origin.map(|c| -c);
         let corner = |v: u32| b.positions[v as usize].map(f64::from);
-        // A tile's triangles come one after the other.
-        let mut start = 0;
-        while start < mesh.triangle_tiles.len() {
-            let tile = mesh.triangle_tiles[start];
-            let mut end = start;
-            while end < mesh.triangle_tiles.len() && mesh.triangle_tiles[end] == tile {
-                end += 1;
-            }
-            let triangles = &b.indices[3 * start..3 * end];
-            start = end;
+        for (tile, triangles) in tile_triangles(mesh) {
             let Some(info) = self.tile_info(tile) else { continue };
             let h = hash::hash(seed, &[i64::from(tile.0), 0, 0x9e0]);
             let land = land_share(info.elevation, max_elevation, self.thresholds());
@@ -136,15 +127,7 @@ impl GlobeTerrain {
         let from = mesh.origin.map(|c| -c);
         let corner = |v: u32| b.positions[v as usize].map(f64::from);
         let mut out = Vec::new();
-        let mut start = 0;
-        while start < mesh.triangle_tiles.len() {
-            let tile = mesh.triangle_tiles[start];
-            let mut end = start;
-            while end < mesh.triangle_tiles.len() && mesh.triangle_tiles[end] == tile {
-                end += 1;
-            }
-            let triangles = &b.indices[3 * start..3 * end];
-            start = end;
+        for (tile, triangles) in tile_triangles(mesh) {
             let Some(at) = setup.at(tile).filter(|at| at.start.is_none()) else { continue };
             let (kind, variant, scale) = match (at.wonder, at.resource) {
                 (Some(_), _) => (PropKind::Wonder, 0, 0.7),
@@ -198,4 +181,13 @@ impl GlobeTerrain {
             .fold(f64::INFINITY, f64::min);
         (center, nearest / 2.0)
     }
+}
+
+/// Each tile of a mesh with its triangles' indices (a tile's triangles come one after the other).
+fn tile_triangles(mesh: &GlobeMesh) -> impl Iterator<Item = (GlobeTile, &[u32])> {
+    mesh.triangle_tiles.chunk_by(|a, b| a == b).scan(0, |start, run| {
+        let triangles = &mesh.buffers.indices[3 * *start..3 * (*start + run.len())];
+        *start += run.len();
+        Some((run[0], triangles))
+    })
 }
