@@ -208,15 +208,20 @@ impl Fine {
         }
     }
 
-    /// [`Fine::dense`] of the point whose [`Fine::id`] is `id`.
-    pub(crate) fn dense_of_id(&self, id: u64) -> usize {
-        let big = u64::from(self.big());
-        let area = big * big;
-        if id == 0 || id > 10 * area {
-            return if id == 0 { 0 } else { (10 * area / 3 + 1) as usize };
+    /// Every point, in [`Fine::dense`]'s order.
+    #[cfg(any(test, feature = "bench"))]
+    pub(crate) fn points(&self) -> Vec<Point> {
+        let big = self.big();
+        let mut points = Vec::with_capacity(self.point_count() as usize);
+        points.push(Spot::North);
+        for d in 0..10 {
+            for i in 0..big {
+                // The points of a row are every third `j` with `i + j` a multiple of 3.
+                points.extend(((3 - i % 3) % 3..big).step_by(3).map(|j| Spot::Diamond { d, i, j }));
+            }
         }
-        let (d, within) = ((id - 1) / area, (id - 1) % area);
-        (1 + d * area / 3 + (within / big) * big / 3 + (within % big) / 3) as usize
+        points.push(Spot::South);
+        points
     }
 
     /// The center of the tile at `spot` (of the tile atlas) as a point.
@@ -348,10 +353,11 @@ fn charts(spot: Spot, big: i64) -> Vec<(u8, (i64, i64))> {
 mod tests {
     use super::*;
 
-    /// Every fine point's dense index is its own, below the count, and found again from its
-    /// id (the whole globe's mesh merges its chunks by it).
+    /// Every fine point (each frame position with `i + j` a multiple of 3, found here by
+    /// filtering the whole frame) has its own dense index, below the count, and is the point
+    /// `Fine::points` lists at that index (the whole globe's mesh merges its chunks by it).
     #[test]
-    fn dense_indices_are_a_bijection_found_again_from_ids() {
+    fn dense_indices_are_a_bijection_in_the_order_points_lists() {
         for (f, n) in [(1, 1), (2, 3), (5, 2), (7, 4)] {
             let fine = Fine::new(f, n);
             let big = fine.big();
@@ -362,11 +368,13 @@ mod tests {
                 }
             }
             assert_eq!(points.len() as u64, fine.point_count());
+            let listed = fine.points();
+            assert_eq!(listed.len(), points.len());
             let mut seen = vec![false; points.len()];
             for p in points {
                 let k = fine.dense(p);
                 assert!(!std::mem::replace(&mut seen[k], true), "{p:?} shares {k} (f {f}, n {n})");
-                assert_eq!(fine.dense_of_id(fine.id(p)), k, "{p:?} (f {f}, n {n})");
+                assert_eq!(listed[k], p, "dense index {k} (f {f}, n {n})");
             }
         }
     }

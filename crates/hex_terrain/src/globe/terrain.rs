@@ -21,6 +21,7 @@ mod chunks;
 mod coarse;
 mod mesh;
 mod tiles;
+mod whole;
 use super::climate::Ground;
 use super::edits::GlobeEdits;
 use super::map_type::{GlobeMapType, TypeGround};
@@ -32,7 +33,7 @@ use crate::heights::MapTypeReport;
 use crate::heights::fbm::{LANES, SolidFbm};
 use crate::kind::{Thresholds, TileKind};
 use crate::manipulate::{manipulate, span};
-use crate::mesh::{MeshBuffers, vertex_color};
+use crate::mesh::vertex_color;
 use crate::ruleset::{Landform, TerrainRuleset};
 use crate::setup::survey::GlobeStages;
 use crate::setup::{GlobeSetup, TileSetup};
@@ -313,85 +314,7 @@ impl GlobeTerrain {
             let c = self.direction(self.fine.center(self.spot(t)));
             [c[0] * self.radius(), c[1] * self.radius(), c[2] * self.radius()]
         });
-        self.mesh(tiles, origin)
-    }
-
-    /// The whole globe's mesh, measured from the globe's center.
-    #[must_use]
-    pub fn generate_whole(&self) -> GlobeMesh {
-        // Chunk by chunk in parallel, measured from the globe's center, then each point kept
-        // once: every point is the same bits in every chunk that holds it.
-        let parts: Vec<GlobeMesh> =
-            self.chunks().into_par_iter().map(|chunk| self.mesh(self.chunk_tiles(chunk), [0.0; 3])).collect();
-        let (vertices, triangles) = (self.vertex_count() as usize, self.triangle_count() as usize);
-        let mut whole = GlobeMesh {
-            origin: [0.0; 3],
-            // Every buffer made at its final size at once: growing them moved megabytes.
-            buffers: MeshBuffers {
-                positions: Vec::with_capacity(vertices),
-                normals: Vec::with_capacity(vertices),
-                tile_kinds: Vec::with_capacity(vertices),
-                center_distances: Vec::with_capacity(vertices),
-                colors: Vec::with_capacity(if self.config.climate.enabled { vertices } else { 0 }),
-                indices: Vec::with_capacity(3 * triangles),
-                ..MeshBuffers::default()
-            },
-            points: Vec::with_capacity(self.vertex_count() as usize),
-            heights: Vec::with_capacity(self.vertex_count() as usize),
-            tiles: Vec::with_capacity(self.grid.tile_count() as usize),
-            triangle_tiles: Vec::with_capacity(self.triangle_count() as usize),
-        };
-        let mut slot = vec![u32::MAX; self.fine.point_count() as usize];
-        for part in parts {
-            let b = &part.buffers;
-            let map: Vec<u32> = part
-                .points
-                .iter()
-                .enumerate()
-                .map(|(v, p)| {
-                    let s = &mut slot[self.fine.dense_of_id(p.0)];
-                    if *s == u32::MAX {
-                        *s = whole.points.len() as u32;
-                        whole.points.push(*p);
-                        whole.heights.push(part.heights[v]);
-                        let w = &mut whole.buffers;
-                        w.positions.push(b.positions[v]);
-                        w.normals.push(b.normals[v]);
-                        w.tile_kinds.push(b.tile_kinds[v]);
-                        w.center_distances.push(b.center_distances[v]);
-                        if let Some(&c) = b.colors.get(v) {
-                            w.colors.push(c);
-                        }
-                    }
-                    *s
-                })
-                .collect();
-            whole.buffers.indices.extend(b.indices.iter().map(|&i| map[i as usize]));
-            whole.tiles.extend(part.tiles);
-            whole.triangle_tiles.extend(part.triangle_tiles);
-        }
-        whole
-    }
-
-    /// The 3D fBm at the direction of every point of the whole globe's mesh (each point once,
-    /// batched and on all cores as meshing samples them), and nothing else: the noise floor of
-    /// generating the globe. Returns the sum of the samples so the work cannot be elided.
-    #[cfg(feature = "bench")]
-    #[must_use]
-    pub fn noise_floor(&self) -> f64 {
-        let big = self.fine.big();
-        let mut points = vec![Spot::North, Spot::South];
-        for d in 0..10 {
-            for i in 0..big {
-                // The points of a row are every third `j` with `i + j` a multiple of 3.
-                points.extend(((3 - i % 3) % 3..big).step_by(3).map(|j| Spot::Diamond { d, i, j }));
-            }
-        }
-        debug_assert_eq!(points.len() as u64, self.fine.point_count());
-        points
-            .par_chunks(LANES)
-            .map(|batch| self.directions_and_fbm_lanes(batch)[..batch.len()].iter().map(|l| l.1).sum::<f64>())
-            .sum()
+        self.mesh(tiles, origin).0
     }
 
     /// A tile's fine triangles as meshed, in world units from the globe's center.

@@ -47,8 +47,9 @@ impl GlobeTerrain {
     /// finished once (in parallel), each normal the sum of the faces round its point going round
     /// it from its first step (in its hexagon's template for a point inside a hexagon, else in
     /// its owner's frame: the same bits in any chunk). The faces of the tiles beyond `tiles` come
-    /// from the ring of points around the mesh.
-    pub(super) fn mesh(&self, tiles: Vec<GlobeTile>, origin: [f64; 3]) -> GlobeMesh {
+    /// from the ring of points around the mesh. Beside the mesh, each vertex's place among all
+    /// the globe's points ([`Fine::dense`]), by which the whole globe merges its chunks.
+    pub(super) fn mesh(&self, tiles: Vec<GlobeTile>, origin: [f64; 3]) -> (GlobeMesh, Vec<u32>) {
         let fine = &self.fine;
         let (cells, cell_triangles) = fine.template();
         let n = self.config.subdivisions();
@@ -154,14 +155,16 @@ impl GlobeTerrain {
             indices,
             ..MeshBuffers::default()
         };
-        GlobeMesh {
+        let points = &slots.points[..count];
+        let mesh = GlobeMesh {
             origin,
             buffers,
-            points: slots.points[..count].iter().map(|&p| GlobePoint(fine.id(p))).collect(),
+            points: points.iter().map(|&p| GlobePoint(fine.id(p))).collect(),
             heights: finished.iter().map(|f| f.height).collect(),
             tiles,
             triangle_tiles,
-        }
+        };
+        (mesh, points.iter().map(|&p| fine.dense(p) as u32).collect())
     }
 }
 
