@@ -21,6 +21,8 @@ mod avx2;
 mod avx512;
 mod periodic;
 mod solid;
+#[cfg(target_arch = "x86_64")]
+mod solid_vbmi;
 
 use periodic::{PeriodicCells, reduce};
 pub(crate) use solid::SolidFbm;
