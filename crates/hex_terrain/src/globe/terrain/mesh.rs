@@ -103,8 +103,8 @@ impl GlobeTerrain {
             rings.push((ring, fan.points().len() as u8));
         }
         // Each point is a pure function of the config and the point: the threads change no bit.
-        let mut finished = vec![Finished::UNSET; slots.points.len()];
-        finished.par_chunks_mut(LANES).zip(slots.points.par_chunks(LANES)).zip(slots.known.par_chunks(LANES)).for_each(
+        let mut all = vec![Finished::UNSET; slots.points.len()];
+        all.par_chunks_mut(LANES).zip(slots.points.par_chunks(LANES)).zip(slots.known.par_chunks(LANES)).for_each(
             |((out, points), known)| {
                 for (o, f) in out.iter_mut().zip(self.finish_batch(points, known)) {
                     *o = f;
@@ -112,43 +112,41 @@ impl GlobeTerrain {
             },
         );
         let rings_per = n as f32;
-        let vertices: Vec<([f32; 3], [f32; 3])> = (0..count)
-            .into_par_iter()
-            .map(|i| {
-                let mut ring = [0; 6];
-                let len = match home[i] {
-                    at if at < NOT_INSIDE - rings.len() as u32 => {
-                        let (tile, cell) = (at as usize / per, at as usize % per);
-                        let fan = cells[cell].fan.expect("a point inside its hexagon");
-                        for (r, k) in ring.iter_mut().zip(fan) {
-                            *r = locals[tile * per + usize::from(k)];
-                        }
-                        6
+        let finished = &all[..count];
+        let mut positions = vec![[0.0; 3]; count];
+        let mut normals = vec![[0.0; 3]; count];
+        positions.par_iter_mut().zip(normals.par_iter_mut()).enumerate().for_each(|(i, (position, out))| {
+            let mut ring = [0; 6];
+            let len = match home[i] {
+                at if at < NOT_INSIDE - rings.len() as u32 => {
+                    let (tile, cell) = (at as usize / per, at as usize % per);
+                    let fan = cells[cell].fan.expect("a point inside its hexagon");
+                    for (r, k) in ring.iter_mut().zip(fan) {
+                        *r = locals[tile * per + usize::from(k)];
                     }
-                    at => {
-                        let (r, len) = rings[(NOT_INSIDE - 1 - at) as usize];
-                        ring = r;
-                        usize::from(len)
-                    }
-                };
-                let a = finished[i].position;
-                let mut normal = [0.0f64; 3];
-                for k in 0..len {
-                    // The ring goes round clockwise seen from outside: (a, next, this) is
-                    // counterclockwise.
-                    let (this, next) = (ring[k], ring[(k + 1) % len]);
-                    let face =
-                        cross(sub(finished[next as usize].position, a), sub(finished[this as usize].position, a));
-                    normal = [normal[0] + face[0], normal[1] + face[1], normal[2] + face[2]];
+                    6
                 }
-                let position = [(a[0] - origin[0]) as f32, (a[1] - origin[1]) as f32, (a[2] - origin[2]) as f32];
-                (position, project::normalize(normal).map(|c| c as f32))
-            })
-            .collect();
-        let finished = &finished[..count];
+                at => {
+                    let (r, len) = rings[(NOT_INSIDE - 1 - at) as usize];
+                    ring = r;
+                    usize::from(len)
+                }
+            };
+            let a = all[i].position;
+            let mut normal = [0.0f64; 3];
+            for k in 0..len {
+                // The ring goes round clockwise seen from outside: (a, next, this) is
+                // counterclockwise.
+                let (this, next) = (ring[k], ring[(k + 1) % len]);
+                let face = cross(sub(all[next as usize].position, a), sub(all[this as usize].position, a));
+                normal = [normal[0] + face[0], normal[1] + face[1], normal[2] + face[2]];
+            }
+            *position = [(a[0] - origin[0]) as f32, (a[1] - origin[1]) as f32, (a[2] - origin[2]) as f32];
+            *out = project::normalize(normal).map(|c| c as f32);
+        });
         let buffers = MeshBuffers {
-            positions: vertices.iter().map(|v| v.0).collect(),
-            normals: vertices.iter().map(|v| v.1).collect(),
+            positions,
+            normals,
             tile_kinds: finished.iter().map(|f| f.kind as u32).collect(),
             center_distances: finished.iter().map(|f| f.ring as f32 / rings_per).collect(),
             colors: finished.iter().filter_map(|f| f.color).collect(),

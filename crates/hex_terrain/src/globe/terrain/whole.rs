@@ -6,6 +6,7 @@ use std::sync::atomic::{AtomicU32, Ordering};
 use rayon::prelude::*;
 
 use super::{GlobeMesh, GlobePoint, GlobeTerrain};
+use crate::globe::GlobeTile;
 use crate::mesh::MeshBuffers;
 
 impl GlobeTerrain {
@@ -63,11 +64,12 @@ impl GlobeTerrain {
             points: vec![GlobePoint(0); vertices],
             heights: vec![0.0; vertices],
             tiles: parts.iter().flat_map(|(mesh, _)| mesh.tiles.iter().copied()).collect(),
-            triangle_tiles: Vec::new(),
+            triangle_tiles: vec![GlobeTile(0); parts.iter().map(|(mesh, _)| mesh.triangle_tiles.len()).sum()],
         };
         let lens: Vec<usize> = first.iter().map(Vec::len).collect();
         let colors: Vec<usize> = lens.iter().map(|&len| if colored { len } else { 0 }).collect();
-        let triangles: Vec<usize> = parts.iter().map(|(mesh, _)| mesh.buffers.indices.len()).collect();
+        let corners: Vec<usize> = parts.iter().map(|(mesh, _)| mesh.buffers.indices.len()).collect();
+        let triangles: Vec<usize> = parts.iter().map(|(mesh, _)| mesh.triangle_tiles.len()).collect();
         let b = &mut whole.buffers;
         let mut positions = split(&mut b.positions, &lens).into_iter();
         let mut normals = split(&mut b.normals, &lens).into_iter();
@@ -76,7 +78,8 @@ impl GlobeTerrain {
         let mut colors = split(&mut b.colors, &colors).into_iter();
         let mut points = split(&mut whole.points, &lens).into_iter();
         let mut heights = split(&mut whole.heights, &lens).into_iter();
-        let mut indices = split(&mut b.indices, &triangles).into_iter();
+        let mut indices = split(&mut b.indices, &corners).into_iter();
+        let mut triangle_tiles = split(&mut whole.triangle_tiles, &triangles).into_iter();
         let pieces: Vec<Piece<'_>> = (0..parts.len())
             .map(|_| Piece {
                 positions: positions.next().unwrap_or_default(),
@@ -87,6 +90,7 @@ impl GlobeTerrain {
                 points: points.next().unwrap_or_default(),
                 heights: heights.next().unwrap_or_default(),
                 indices: indices.next().unwrap_or_default(),
+                triangle_tiles: triangle_tiles.next().unwrap_or_default(),
             })
             .collect();
         pieces.into_par_iter().zip(&parts).zip(&first).for_each(|((out, (part, dense)), owned)| {
@@ -106,8 +110,10 @@ impl GlobeTerrain {
             for (o, &i) in out.indices.iter_mut().zip(&from.indices) {
                 *o = slot[dense[i as usize] as usize].load(Ordering::Relaxed);
             }
+            out.triangle_tiles.copy_from_slice(&part.triangle_tiles);
         });
-        whole.triangle_tiles = parts.into_iter().flat_map(|(mesh, _)| mesh.triangle_tiles).collect();
+        // Each chunk's buffers given back on the core that made them.
+        parts.into_par_iter().for_each(drop);
         whole
     }
 
@@ -138,6 +144,7 @@ struct Piece<'a> {
     points: &'a mut [GlobePoint],
     heights: &'a mut [f32],
     indices: &'a mut [u32],
+    triangle_tiles: &'a mut [GlobeTile],
 }
 
 /// `buffer` cut into consecutive pieces of the given lengths (which sum to its length).
