@@ -3,7 +3,7 @@
 //!
 //! A point `(u, v)` of a diamond (in units of its side) lies on one of its two faces, `O B D`
 //! where `u >= v` and `O D C` where `v >= u`; its place on the face's plane is the affine mix of
-//! the face's corners, `warp`ed toward the corners so that the tiles come out of nearly equal
+//! the face's corners, warped toward the corners so that the tiles come out of nearly equal
 //! area, and its direction is that place from the globe's center (a central projection). The
 //! way back finds the face a direction passes through (the one whose plane it meets first, as
 //! every face is at the same distance from the center), where it meets the plane, undoes the
@@ -116,7 +116,8 @@ impl Projection {
         let [o, b, c, dd] = self.diamonds[usize::from(d)];
         // Barycentric weights on the face: the two steps along it, then the warp.
         let (corners, s, t) = if u >= v { ([o, b, dd], u - v, v) } else { ([o, c, dd], v - u, u) };
-        let [w0, w1, w2] = warp([1.0 - s - t, s, t]);
+        // The warped weights' sum is left out: the direction is the same at any scale.
+        let [w0, w1, w2] = [1.0 - s - t, s, t].map(bend);
         normalize(add(add(scale(corners[0], w0), scale(corners[1], w1)), scale(corners[2], w2)))
     }
 
@@ -159,7 +160,9 @@ impl Projection {
     }
 }
 
-/// The warp of a face's barycentric weights that evens out the tiles' areas.
+/// The warp of a face's barycentric weights that evens out the tiles' areas: each weight bent,
+/// then all renormalised (a direction takes the bent weights as they are: its length is
+/// normalised anyway).
 ///
 /// A central projection magnifies a face's middle more than its corners (by the cube of the
 /// inradius, 0.50 on an icosahedron: corner tiles would be half the area of middle ones); the
@@ -167,12 +170,6 @@ impl Projection {
 /// `w (1 + WARP (1 - w))` (its slope `1 + WARP` at 0, 1 at the face's corner), renormalised.
 /// A weight of 0 stays 0, so a face's edges stay its edges, and an edge's points depend only on
 /// the two weights along it: the faces on either side agree, and the seams hold.
-fn warp(w: [f64; 3]) -> [f64; 3] {
-    let p = w.map(bend);
-    let sum = p[0] + p[1] + p[2];
-    p.map(|x| x / sum)
-}
-
 fn bend(w: f64) -> f64 {
     w * (1.0 + WARP * (1.0 - w))
 }
@@ -187,8 +184,8 @@ fn unbend(y: f64) -> f64 {
     }
 }
 
-/// The inverse of `warp`: the weights `w`, summing to 1, with `bend(w) = s p` for the scale `s`
-/// Newton's method finds (the sum of the bent weights, between 1 and `1 + WARP`; five steps
+/// The inverse of the warp (see [`bend`]): the weights `w`, summing to 1, with `bend(w) = s p`
+/// for the scale `s` Newton's method finds (the sum of the bent weights, between 1 and `1 + WARP`; five steps
 /// reach the last bit).
 fn unwarp(p: [f64; 3]) -> [f64; 3] {
     let mut s = 1.0 + WARP / 2.0;
