@@ -314,7 +314,7 @@ impl GlobeTerrain {
             let c = self.direction(self.fine.center(self.spot(t)));
             [c[0] * self.radius(), c[1] * self.radius(), c[2] * self.radius()]
         });
-        self.mesh(tiles, origin).0
+        self.mesh(tiles, origin)
     }
 
     /// A tile's fine triangles as meshed, in world units from the globe's center.

@@ -34,24 +34,43 @@ const SCALE_2D: f64 = 2.0 / std::f64::consts::SQRT_2;
 /// every kernel (an `i64` here, an f64 floor in the AVX2 kernel), so all kernels agree on every input,
 /// infinities and NaN included (NaN clamps to `2^52`).
 const LIMIT: f64 = 4_503_599_627_370_496.0;
+/// The solid (f32) noise's [`LIMIT`]: beyond `2^23` an f32 has no fraction left, and inside it
+/// the cell fits an `i32` exactly.
+const SOLID_LIMIT: f32 = 8_388_608.0;
+/// `2 / sqrt(3)`: `noise`'s scale from the 3D gradient sum's range to `[-1, 1]`.
+const SCALE_3D: f32 = 1.154_700_5;
+
+/// The floats the noise is computed in: f64 on flat maps, f32 on the globe.
+trait Float:
+    Copy
+    + PartialOrd
+    + From<u8>
+    + std::ops::Add<Output = Self>
+    + std::ops::Sub<Output = Self>
+    + std::ops::Mul<Output = Self>
+{
+}
+
+impl Float for f32 {}
+impl Float for f64 {}
 
 /// `a < b ? a : b`: x86's `minpd` (the second operand when either is NaN), written out so that
 /// the portable loops and the SIMD kernels treat NaN alike.
 #[inline(always)]
-fn min_x86(a: f64, b: f64) -> f64 {
+fn min_x86<T: Float>(a: T, b: T) -> T {
     if a < b { a } else { b }
 }
 
 /// `a > b ? a : b`: x86's `maxpd`.
 #[inline(always)]
-fn max_x86(a: f64, b: f64) -> f64 {
+fn max_x86<T: Float>(a: T, b: T) -> T {
     if a > b { a } else { b }
 }
 
 /// `v` clamped to `[0, 1]` (NaN gives 1).
 #[inline(always)]
-fn clamp01(v: f64) -> f64 {
-    max_x86(min_x86(v, 1.0), 0.0)
+fn clamp01<T: Float>(v: T) -> T {
+    max_x86(min_x86(v, T::from(1)), T::from(0))
 }
 
 /// The noise cell of a coordinate and the offset in it. `noise` floors with "truncate, minus one
@@ -154,13 +173,13 @@ fn interpolate(cell: u8, dx: f64, dy: f64) -> f64 {
 }
 
 #[inline(always)]
-fn quintic(x: f64) -> f64 {
-    x * x * x * (x * (x * 6.0 - 15.0) + 10.0)
+fn quintic<T: Float>(x: T) -> T {
+    x * x * x * (x * (x * T::from(6) - T::from(15)) + T::from(10))
 }
 
 #[inline(always)]
-fn lerp(a: f64, b: f64, t: f64) -> f64 {
-    b * t + a * (1.0 - t)
+fn lerp<T: Float>(a: T, b: T, t: T) -> T {
+    b * t + a * (T::from(1) - t)
 }
 
 /// Points sampled together by [`Fbm::sample_batch`].

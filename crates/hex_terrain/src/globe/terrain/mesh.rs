@@ -42,14 +42,77 @@ pub struct GlobeMesh {
     pub triangle_tiles: Vec<GlobeTile>,
 }
 
+/// A mesh before its points are finished: its points once each, the order they were met in
+/// (the mesh's own first, then the ring of points just beyond it that their fans reach), what is
+/// known of each, where each point's fan is found, and the triangles.
+pub(super) struct Layout {
+    pub(super) tiles: Vec<GlobeTile>,
+    points: Vec<Point>,
+    known: Vec<Option<(u32, GlobeTile)>>,
+    /// Each of the mesh's points' place among all the globe's points ([`Fine::dense`]).
+    pub(super) dense: Vec<u32>,
+    /// Each tile's points' slots, cell by cell (a pentagon's `NOT_INSIDE`).
+    locals: Vec<u32>,
+    /// Where each mesh point's fan is found: its cell in `locals` (a point inside a hexagon),
+    /// or `NOT_INSIDE - 1 - k` for `rings[k]`.
+    home: Vec<u32>,
+    rings: Vec<([u32; 6], u8)>,
+    pub(super) indices: Vec<u32>,
+    pub(super) triangle_tiles: Vec<GlobeTile>,
+}
+
+impl Layout {
+    /// The mesh's own points (the ring beyond them left out).
+    pub(super) fn len(&self) -> usize {
+        self.dense.len()
+    }
+
+    /// Its point `v`.
+    pub(super) fn point(&self, v: usize) -> Point {
+        self.points[v]
+    }
+}
+
 impl GlobeTerrain {
     /// The mesh of `tiles`: their fine triangles and their points once each, every point
     /// finished once (in parallel), each normal the sum of the faces round its point going round
     /// it from its first step (in its hexagon's template for a point inside a hexagon, else in
     /// its owner's frame: the same bits in any chunk). The faces of the tiles beyond `tiles` come
-    /// from the ring of points around the mesh. Beside the mesh, each vertex's place among all
-    /// the globe's points ([`Fine::dense`]), by which the whole globe merges its chunks.
-    pub(super) fn mesh(&self, tiles: Vec<GlobeTile>, origin: [f64; 3]) -> (GlobeMesh, Vec<u32>) {
+    /// from the ring of points around the mesh.
+    pub(super) fn mesh(&self, tiles: Vec<GlobeTile>, origin: [f64; 3]) -> GlobeMesh {
+        let layout = self.layout(tiles);
+        let all = self.finish_layout(&layout);
+        let count = layout.len();
+        let mut positions = vec![[0.0; 3]; count];
+        let mut normals = vec![[0.0; 3]; count];
+        positions.par_iter_mut().zip(normals.par_iter_mut()).enumerate().for_each(|(i, (position, normal))| {
+            let a = all[i].position;
+            *position = [(a[0] - origin[0]) as f32, (a[1] - origin[1]) as f32, (a[2] - origin[2]) as f32];
+            *normal = self.normal(&layout, &all, i);
+        });
+        let finished = &all[..count];
+        let rings_per = self.config.subdivisions() as f32;
+        let buffers = MeshBuffers {
+            positions,
+            normals,
+            tile_kinds: finished.iter().map(|f| f.kind as u32).collect(),
+            center_distances: finished.iter().map(|f| f.ring as f32 / rings_per).collect(),
+            colors: finished.iter().filter_map(|f| f.color).collect(),
+            indices: layout.indices,
+            ..MeshBuffers::default()
+        };
+        GlobeMesh {
+            origin,
+            buffers,
+            points: layout.points[..count].iter().map(|&p| GlobePoint(self.fine.id(p))).collect(),
+            heights: finished.iter().map(|f| f.height).collect(),
+            tiles: layout.tiles,
+            triangle_tiles: layout.triangle_tiles,
+        }
+    }
+
+    /// The points and triangles of `tiles`, each point once, and where each point's fan is.
+    pub(super) fn layout(&self, tiles: Vec<GlobeTile>) -> Layout {
         let fine = &self.fine;
         let (cells, cell_triangles) = fine.template();
         let n = self.config.subdivisions();
@@ -57,8 +120,6 @@ impl GlobeTerrain {
         let mut slots = Slots::new(fine, tiles.len() * per + tiles.len() * per / 4);
         let mut indices = Vec::with_capacity(tiles.len() * cell_triangles.len() * 3);
         let mut triangle_tiles = Vec::with_capacity(tiles.len() * cell_triangles.len());
-        // Each tile's points' slots, cell by cell, and where each mesh point's ring is found: in
-        // its hexagon's template (the index of its cell in `locals`), or `NOT_INSIDE`.
         let mut locals: Vec<u32> = Vec::with_capacity(tiles.len() * per);
         let mut home: Vec<u32> = Vec::with_capacity(tiles.len() * per);
         for &t in &tiles {
@@ -102,67 +163,55 @@ impl GlobeTerrain {
             home[i] = NOT_INSIDE - 1 - rings.len() as u32;
             rings.push((ring, fan.points().len() as u8));
         }
-        // Each point is a pure function of the config and the point: the threads change no bit.
-        let mut all = vec![Finished::UNSET; slots.points.len()];
-        all.par_chunks_mut(LANES).zip(slots.points.par_chunks(LANES)).zip(slots.known.par_chunks(LANES)).for_each(
+        let dense = slots.points[..count].iter().map(|&p| fine.dense(p) as u32).collect();
+        let (points, known) = slots.into_points();
+        Layout { tiles, points, known, dense, locals, home, rings, indices, triangle_tiles }
+    }
+
+    /// Every point of a layout finished, the ring beyond its own points too. Each is a pure
+    /// function of the config and the point: the threads change no bit.
+    pub(super) fn finish_layout(&self, layout: &Layout) -> Vec<Finished> {
+        let mut all = vec![Finished::UNSET; layout.points.len()];
+        all.par_chunks_mut(LANES).zip(layout.points.par_chunks(LANES)).zip(layout.known.par_chunks(LANES)).for_each(
             |((out, points), known)| {
                 for (o, f) in out.iter_mut().zip(self.finish_batch(points, known)) {
                     *o = f;
                 }
             },
         );
-        let rings_per = n as f32;
-        let finished = &all[..count];
-        let mut positions = vec![[0.0; 3]; count];
-        let mut normals = vec![[0.0; 3]; count];
-        positions.par_iter_mut().zip(normals.par_iter_mut()).enumerate().for_each(|(i, (position, out))| {
-            let mut ring = [0; 6];
-            let len = match home[i] {
-                at if at < NOT_INSIDE - rings.len() as u32 => {
-                    let (tile, cell) = (at as usize / per, at as usize % per);
-                    let fan = cells[cell].fan.expect("a point inside its hexagon");
-                    for (r, k) in ring.iter_mut().zip(fan) {
-                        *r = locals[tile * per + usize::from(k)];
-                    }
-                    6
+        all
+    }
+
+    /// The normal at the layout's point `i`: the faces round it summed going round its fan.
+    pub(super) fn normal(&self, layout: &Layout, all: &[Finished], i: usize) -> [f32; 3] {
+        let (cells, _) = self.fine.template();
+        let per = cells.len();
+        let mut ring = [0; 6];
+        let len = match layout.home[i] {
+            at if at < NOT_INSIDE - layout.rings.len() as u32 => {
+                let (tile, cell) = (at as usize / per, at as usize % per);
+                let fan = cells[cell].fan.expect("a point inside its hexagon");
+                for (r, k) in ring.iter_mut().zip(fan) {
+                    *r = layout.locals[tile * per + usize::from(k)];
                 }
-                at => {
-                    let (r, len) = rings[(NOT_INSIDE - 1 - at) as usize];
-                    ring = r;
-                    usize::from(len)
-                }
-            };
-            let a = all[i].position;
-            let mut normal = [0.0f64; 3];
-            for k in 0..len {
-                // The ring goes round clockwise seen from outside: (a, next, this) is
-                // counterclockwise.
-                let (this, next) = (ring[k], ring[(k + 1) % len]);
-                let face = cross(sub(all[next as usize].position, a), sub(all[this as usize].position, a));
-                normal = [normal[0] + face[0], normal[1] + face[1], normal[2] + face[2]];
+                6
             }
-            *position = [(a[0] - origin[0]) as f32, (a[1] - origin[1]) as f32, (a[2] - origin[2]) as f32];
-            *out = project::normalize(normal).map(|c| c as f32);
-        });
-        let buffers = MeshBuffers {
-            positions,
-            normals,
-            tile_kinds: finished.iter().map(|f| f.kind as u32).collect(),
-            center_distances: finished.iter().map(|f| f.ring as f32 / rings_per).collect(),
-            colors: finished.iter().filter_map(|f| f.color).collect(),
-            indices,
-            ..MeshBuffers::default()
+            at => {
+                let (r, len) = layout.rings[(NOT_INSIDE - 1 - at) as usize];
+                ring = r;
+                usize::from(len)
+            }
         };
-        let points = &slots.points[..count];
-        let mesh = GlobeMesh {
-            origin,
-            buffers,
-            points: points.iter().map(|&p| GlobePoint(fine.id(p))).collect(),
-            heights: finished.iter().map(|f| f.height).collect(),
-            tiles,
-            triangle_tiles,
-        };
-        (mesh, points.iter().map(|&p| fine.dense(p) as u32).collect())
+        let a = all[i].position;
+        let mut normal = [0.0f64; 3];
+        for k in 0..len {
+            // The ring goes round clockwise seen from outside: (a, next, this) is
+            // counterclockwise.
+            let (this, next) = (ring[k], ring[(k + 1) % len]);
+            let face = cross(sub(all[next as usize].position, a), sub(all[this as usize].position, a));
+            normal = [normal[0] + face[0], normal[1] + face[1], normal[2] + face[2]];
+        }
+        project::normalize(normal).map(|c| c as f32)
     }
 }
 
@@ -220,6 +269,11 @@ impl<'a> Slots<'a> {
             Index::Sparse(HashMap::with_capacity_and_hasher(capacity, Default::default()))
         };
         Self { fine, index, points: Vec::with_capacity(capacity), known: Vec::with_capacity(capacity) }
+    }
+
+    /// The points in slot order, and what is known of them.
+    fn into_points(mut self) -> (Vec<Point>, Vec<Option<(u32, GlobeTile)>>) {
+        (std::mem::take(&mut self.points), std::mem::take(&mut self.known))
     }
 
     /// The point's slot, given it now if it has none.

@@ -5,6 +5,7 @@ use std::sync::atomic::{AtomicU32, Ordering};
 
 use rayon::prelude::*;
 
+use super::mesh::Layout;
 use super::{GlobeMesh, GlobePoint, GlobeTerrain};
 use crate::globe::GlobeTile;
 use crate::mesh::MeshBuffers;
@@ -16,40 +17,42 @@ impl GlobeTerrain {
     /// order), in the order the chunk meets them; its triangles each chunk's in turn.
     #[must_use]
     pub fn generate_whole(&self) -> GlobeMesh {
-        // Every point is the same bits in every chunk that holds it: the chunk it is first met
-        // in writes it.
-        let parts: Vec<(GlobeMesh, Vec<u32>)> =
-            self.chunks().into_par_iter().map(|chunk| self.mesh(self.chunk_tiles(chunk), [0.0; 3])).collect();
+        // Every chunk's points and triangles, before any point is finished.
+        let layouts: Vec<Layout> =
+            self.chunks().into_par_iter().map(|chunk| self.layout(self.chunk_tiles(chunk))).collect();
         // Each point's first chunk, then (once every chunk has read it) its whole vertex.
         let slot: Vec<AtomicU32> = (0..self.fine.point_count()).map(|_| AtomicU32::new(u32::MAX)).collect();
-        parts.par_iter().enumerate().for_each(|(c, (_, dense))| {
-            for &k in dense {
+        layouts.par_iter().enumerate().for_each(|(c, layout)| {
+            for &k in &layout.dense {
                 slot[k as usize].fetch_min(c as u32, Ordering::Relaxed);
             }
         });
-        let first: Vec<Vec<u32>> = parts
+        let first: Vec<Vec<u32>> = layouts
             .par_iter()
             .enumerate()
-            .map(|(c, (_, dense))| {
-                (0..dense.len() as u32)
-                    .filter(|&v| slot[dense[v as usize] as usize].load(Ordering::Relaxed) == c as u32)
+            .map(|(c, layout)| {
+                (0..layout.len() as u32)
+                    .filter(|&v| slot[layout.dense[v as usize] as usize].load(Ordering::Relaxed) == c as u32)
                     .collect()
             })
             .collect();
-        let mut starts = Vec::with_capacity(parts.len());
+        let mut starts = Vec::with_capacity(layouts.len());
         let mut vertices = 0;
         for owned in &first {
             starts.push(vertices);
             vertices += owned.len();
         }
         debug_assert_eq!(vertices as u64, self.vertex_count());
-        parts.par_iter().zip(&first).zip(&starts).for_each(|(((_, dense), owned), &start)| {
+        layouts.par_iter().zip(&first).zip(&starts).for_each(|((layout, owned), &start)| {
             for (w, &v) in owned.iter().enumerate() {
-                slot[dense[v as usize] as usize].store((start + w) as u32, Ordering::Relaxed);
+                slot[layout.dense[v as usize] as usize].store((start + w) as u32, Ordering::Relaxed);
             }
         });
 
-        let colored = parts.first().is_some_and(|(mesh, _)| !mesh.buffers.colors.is_empty());
+        // Each chunk finishes its points (and the ring beyond them its fans reach) and writes
+        // the ones it is first to hold, and its triangles, into its own piece of the buffers.
+        let colored = self.config.climate.enabled;
+        let corners: usize = layouts.iter().map(|l| l.indices.len()).sum();
         let mut whole = GlobeMesh {
             origin: [0.0; 3],
             buffers: MeshBuffers {
@@ -58,18 +61,18 @@ impl GlobeTerrain {
                 tile_kinds: vec![0; vertices],
                 center_distances: vec![0.0; vertices],
                 colors: vec![[0; 4]; if colored { vertices } else { 0 }],
-                indices: vec![0; parts.iter().map(|(mesh, _)| mesh.buffers.indices.len()).sum()],
+                indices: vec![0; corners],
                 ..MeshBuffers::default()
             },
             points: vec![GlobePoint(0); vertices],
             heights: vec![0.0; vertices],
-            tiles: parts.iter().flat_map(|(mesh, _)| mesh.tiles.iter().copied()).collect(),
-            triangle_tiles: vec![GlobeTile(0); parts.iter().map(|(mesh, _)| mesh.triangle_tiles.len()).sum()],
+            tiles: layouts.iter().flat_map(|l| l.tiles.iter().copied()).collect(),
+            triangle_tiles: vec![GlobeTile(0); corners / 3],
         };
         let lens: Vec<usize> = first.iter().map(Vec::len).collect();
         let colors: Vec<usize> = lens.iter().map(|&len| if colored { len } else { 0 }).collect();
-        let corners: Vec<usize> = parts.iter().map(|(mesh, _)| mesh.buffers.indices.len()).collect();
-        let triangles: Vec<usize> = parts.iter().map(|(mesh, _)| mesh.triangle_tiles.len()).collect();
+        let corners: Vec<usize> = layouts.iter().map(|l| l.indices.len()).collect();
+        let triangles: Vec<usize> = layouts.iter().map(|l| l.triangle_tiles.len()).collect();
         let b = &mut whole.buffers;
         let mut positions = split(&mut b.positions, &lens).into_iter();
         let mut normals = split(&mut b.normals, &lens).into_iter();
@@ -80,7 +83,7 @@ impl GlobeTerrain {
         let mut heights = split(&mut whole.heights, &lens).into_iter();
         let mut indices = split(&mut b.indices, &corners).into_iter();
         let mut triangle_tiles = split(&mut whole.triangle_tiles, &triangles).into_iter();
-        let pieces: Vec<Piece<'_>> = (0..parts.len())
+        let pieces: Vec<Piece<'_>> = (0..layouts.len())
             .map(|_| Piece {
                 positions: positions.next().unwrap_or_default(),
                 normals: normals.next().unwrap_or_default(),
@@ -93,27 +96,29 @@ impl GlobeTerrain {
                 triangle_tiles: triangle_tiles.next().unwrap_or_default(),
             })
             .collect();
-        pieces.into_par_iter().zip(&parts).zip(&first).for_each(|((out, (part, dense)), owned)| {
-            let from = &part.buffers;
+        let rings_per = self.config.subdivisions() as f32;
+        pieces.into_par_iter().zip(&layouts).zip(&first).for_each(|((out, layout), owned)| {
+            let all = self.finish_layout(layout);
             for (w, &v) in owned.iter().enumerate() {
                 let v = v as usize;
-                out.positions[w] = from.positions[v];
-                out.normals[w] = from.normals[v];
-                out.kinds[w] = from.tile_kinds[v];
-                out.distances[w] = from.center_distances[v];
-                if let Some(c) = out.colors.get_mut(w) {
-                    *c = from.colors[v];
+                let f = &all[v];
+                out.positions[w] = f.position.map(|c| c as f32);
+                out.normals[w] = self.normal(layout, &all, v);
+                out.kinds[w] = f.kind as u32;
+                out.distances[w] = f.ring as f32 / rings_per;
+                if let (Some(c), Some(color)) = (out.colors.get_mut(w), f.color) {
+                    *c = color;
                 }
-                out.points[w] = part.points[v];
-                out.heights[w] = part.heights[v];
+                out.points[w] = GlobePoint(self.fine.id(layout.point(v)));
+                out.heights[w] = f.height;
             }
-            for (o, &i) in out.indices.iter_mut().zip(&from.indices) {
-                *o = slot[dense[i as usize] as usize].load(Ordering::Relaxed);
+            for (o, &i) in out.indices.iter_mut().zip(&layout.indices) {
+                *o = slot[layout.dense[i as usize] as usize].load(Ordering::Relaxed);
             }
-            out.triangle_tiles.copy_from_slice(&part.triangle_tiles);
+            out.triangle_tiles.copy_from_slice(&layout.triangle_tiles);
         });
-        // Each chunk's buffers given back on the core that made them.
-        parts.into_par_iter().for_each(drop);
+        // Each chunk's layout given back on the core that made it.
+        layouts.into_par_iter().for_each(drop);
         whole
     }
 

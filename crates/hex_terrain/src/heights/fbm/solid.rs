@@ -8,15 +8,8 @@
 //! IEEE operations in the same order (Rust never fuses a multiply and an add), so each gives
 //! the same bits for the same point; a test compares them.
 
-use super::{LANES, TABLE, permutation};
+use super::{LANES, SCALE_3D, SOLID_LIMIT, TABLE, clamp01, lerp, max_x86, min_x86, permutation, quintic};
 use crate::config::NoiseConfig;
-
-/// `2 / sqrt(3)`: `noise`'s scale from the 3D gradient sum's range to `[-1, 1]`.
-pub(super) const SCALE_3D: f32 = 1.154_700_5;
-
-/// Coordinates are clamped to `[-2^23, 2^23]` before they are split into a cell and an offset:
-/// beyond it an f32 has no fraction left, and inside it the cell fits an `i32` exactly.
-pub(super) const LIMIT: f32 = 8_388_608.0;
 
 /// `noise`'s gradient of each hash `h & 15` as one of the twelve cube edges: hashes 12 to 15
 /// repeat the edges 0, 1, 9 and 11. Edge `e`'s sum is `u + v`, `u` the point's `x` for `e < 8`
@@ -30,41 +23,13 @@ const fn code(edge: u8) -> u8 {
     (edge & 3) | ((edge >= 8) as u8) << 2 | ((edge >= 4) as u8) << 3
 }
 
-/// `a < b ? a : b`: x86's `minps` (the second operand when either is NaN).
-#[inline(always)]
-fn min_x86(a: f32, b: f32) -> f32 {
-    if a < b { a } else { b }
-}
-
-/// `a > b ? a : b`: x86's `maxps`.
-#[inline(always)]
-fn max_x86(a: f32, b: f32) -> f32 {
-    if a > b { a } else { b }
-}
-
-/// `v` clamped to `[0, 1]` (NaN gives 1).
-#[inline(always)]
-fn clamp01(v: f32) -> f32 {
-    max_x86(min_x86(v, 1.0), 0.0)
-}
-
 /// The noise cell of a coordinate and the offset in it, floored as `noise` floors ("truncate,
 /// minus one at or below zero": an exact integer at or below zero lands in the cell below).
 #[inline(always)]
 fn split(v: f32) -> (i32, f32) {
-    let v = max_x86(min_x86(v, LIMIT), -LIMIT);
+    let v = max_x86(min_x86(v, SOLID_LIMIT), -SOLID_LIMIT);
     let c = if v <= 0.0 { v as i32 - 1 } else { v as i32 };
     (c, clamp01(v - c as f32))
-}
-
-#[inline(always)]
-fn quintic(x: f32) -> f32 {
-    x * x * x * (x * (x * 6.0 - 15.0) + 10.0)
-}
-
-#[inline(always)]
-fn lerp(a: f32, b: f32, t: f32) -> f32 {
-    b * t + a * (1.0 - t)
 }
 
 /// fBm over 3D Perlin noise, normalised to `[0, 1]` like the flat map's [`super::Fbm`]:
@@ -79,10 +44,10 @@ pub(crate) struct SolidFbm {
     /// The last step of the hash, `permutation[i] & 15`, as its edge's [`code`].
     codes: [u32; TABLE],
     /// The same two tables as bytes, for the VBMI kernel.
-    pub(super) permutation_bytes: [u8; TABLE],
-    pub(super) code_bytes: [u8; TABLE],
+    permutation_bytes: [u8; TABLE],
+    code_bytes: [u8; TABLE],
     /// `(frequency, amplitude)` per octave.
-    pub(super) octaves: Vec<(f32, f32)>,
+    octaves: Vec<(f32, f32)>,
     kernel: SolidKernel,
 }
 
@@ -154,7 +119,9 @@ impl SolidFbm {
     fn batch(&self, points: &[[f32; 3]; LANES], out: &mut [f32; LANES]) {
         match self.kernel {
             #[cfg(target_arch = "x86_64")]
-            SolidKernel::Vbmi => super::solid_vbmi::batch(self, points, out),
+            SolidKernel::Vbmi => {
+                super::solid_vbmi::batch(&self.permutation_bytes, &self.code_bytes, &self.octaves, points, out);
+            }
             #[cfg(target_arch = "x86_64")]
             SolidKernel::Avx512 => wide::batch(self, points, out),
             _ => self.lanes(points, out),

@@ -28,8 +28,7 @@ use std::arch::x86_64::{
     _mm512_mask_blend_epi8, _mm512_movepi8_mask, _mm512_permutex2var_epi8, _mm512_set1_epi8, _mm512_test_epi8_mask,
 };
 
-use super::solid::{LIMIT, SCALE_3D, SolidFbm};
-use super::{LANES, TABLE};
+use super::{LANES, SCALE_3D, SOLID_LIMIT, TABLE};
 
 /// Whether this CPU has AVX-512F, BW, DQ, VL and VBMI (std caches the answer).
 pub(super) fn supported() -> bool {
@@ -40,11 +39,18 @@ pub(super) fn supported() -> bool {
         && std::arch::is_x86_feature_detected!("avx512vbmi")
 }
 
-/// The batch on this kernel. The fbm picks it only after [`supported`] said yes.
-pub(super) fn batch(fbm: &SolidFbm, points: &[[f32; 3]; LANES], out: &mut [f32; LANES]) {
+/// The batch on this kernel, from the fbm's permutation table, its edges' codes as bytes and its
+/// octaves. The fbm picks it only after [`supported`] said yes.
+pub(super) fn batch(
+    permutation: &[u8; TABLE],
+    codes: &[u8; TABLE],
+    octaves: &[(f32, f32)],
+    points: &[[f32; 3]; LANES],
+    out: &mut [f32; LANES],
+) {
     debug_assert!(supported());
     // SAFETY: the CPU has every feature the kernel is compiled for: checked before it was picked.
-    unsafe { kernel(fbm, points, out) }
+    unsafe { kernel(permutation, codes, octaves, points, out) }
 }
 
 /// A table of 256 bytes in four registers.
@@ -78,8 +84,14 @@ impl Table {
 }
 
 #[target_feature(enable = "avx512f,avx512bw,avx512dq,avx512vl,avx512vbmi")]
-fn kernel(fbm: &SolidFbm, points: &[[f32; 3]; LANES], out: &mut [f32; LANES]) {
-    let (permutation, codes) = (Table::load(&fbm.permutation_bytes), Table::load(&fbm.code_bytes));
+fn kernel(
+    permutation: &[u8; TABLE],
+    codes: &[u8; TABLE],
+    octaves: &[(f32, f32)],
+    points: &[[f32; 3]; LANES],
+    out: &mut [f32; LANES],
+) {
+    let (permutation, codes) = (Table::load(permutation), Table::load(codes));
     let lane = |c: usize| -> __m256 {
         let v: [f32; LANES] = std::array::from_fn(|l| points[l][c]);
         // SAFETY: `v` is eight readable f32.
@@ -87,7 +99,7 @@ fn kernel(fbm: &SolidFbm, points: &[[f32; 3]; LANES], out: &mut [f32; LANES]) {
     };
     let (x, y, z) = (lane(0), lane(1), lane(2));
     let mut total = _mm256_setzero_ps();
-    for &(freq, amp) in &fbm.octaves {
+    for &(freq, amp) in octaves {
         let freq = _mm256_set1_ps(freq);
         let noise =
             octave(&permutation, &codes, _mm256_mul_ps(x, freq), _mm256_mul_ps(y, freq), _mm256_mul_ps(z, freq));
@@ -107,7 +119,7 @@ fn clamp01(v: __m256) -> __m256 {
 /// `solid.rs`' `split`: the cell (as bytes, the hash's coordinates mod 256) and the offset.
 #[target_feature(enable = "avx512f,avx512bw,avx512dq,avx512vl")]
 fn split(v: __m256) -> (__m128i, __m256) {
-    let v = _mm256_max_ps(_mm256_min_ps(v, _mm256_set1_ps(LIMIT)), _mm256_set1_ps(-LIMIT));
+    let v = _mm256_max_ps(_mm256_min_ps(v, _mm256_set1_ps(SOLID_LIMIT)), _mm256_set1_ps(-SOLID_LIMIT));
     let truncated = _mm256_cvttps_epi32(v);
     let at_or_below_zero = _mm256_cmp_ps_mask::<_CMP_LE_OQ>(v, _mm256_setzero_ps());
     let cell = _mm256_mask_sub_epi32(truncated, at_or_below_zero, truncated, _mm256_set1_epi32(1));
