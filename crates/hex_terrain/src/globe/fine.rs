@@ -175,6 +175,11 @@ impl Fine {
         out
     }
 
+    /// `n`: the fine steps from a tile's center to its corner.
+    pub(crate) fn n(&self) -> u32 {
+        self.n
+    }
+
     /// `F = 3 n f`: the frequency of the atlas that holds the fine points.
     pub(crate) fn big(&self) -> u32 {
         3 * self.n * self.f

@@ -5,6 +5,7 @@ use std::collections::HashMap;
 
 use rayon::prelude::*;
 
+use super::super::atlas::Spot;
 use super::super::fine::{Fan, Fine, Point};
 use super::super::project::{self, cross, sub};
 use super::{Finished, GlobeTerrain};
@@ -117,7 +118,8 @@ impl GlobeTerrain {
         let (cells, cell_triangles) = fine.template();
         let n = self.config.subdivisions();
         let per = cells.len();
-        let mut slots = Slots::new(fine, tiles.len() * per + tiles.len() * per / 4);
+        let spots = tiles.iter().map(|&t| self.spot(t));
+        let mut slots = Slots::new(fine, spots, tiles.len() * per + tiles.len() * per / 4);
         let mut indices = Vec::with_capacity(tiles.len() * cell_triangles.len() * 3);
         let mut triangle_tiles = Vec::with_capacity(tiles.len() * cell_triangles.len());
         let mut locals: Vec<u32> = Vec::with_capacity(tiles.len() * per);
@@ -221,24 +223,34 @@ const NOT_INSIDE: u32 = u32::MAX;
 /// Points by id, each once, in the order first met, with what is known of them beforehand.
 struct Slots<'a> {
     fine: &'a Fine,
-    index: Index,
+    /// The mesh's box in its diamond's frame, if it has one, and its points' slots.
+    frame: Option<Frame>,
+    table: Stamped,
+    /// The slots of the points beyond the box (across a diamond edge, or all a pole's).
+    others: HashMap<u64, u32, foldhash::fast::FixedState>,
     points: Vec<Point>,
     known: Vec<Option<(u32, GlobeTile)>>,
 }
 
-/// Slots by point: a table over every point of the globe, reused by the meshes a thread makes
-/// (an entry is this mesh's when it bears the mesh's stamp, so nothing is cleared between
-/// meshes), or for a globe of more points than [`DENSE_POINTS`] a hash map of the mesh's.
-enum Index {
-    Dense(Stamped),
-    Sparse(HashMap<u64, u32, foldhash::fast::FixedState>),
+/// The rectangle of a diamond's frame that holds a mesh's points there and the ring beyond them,
+/// each point at `(i - i0) row + (j - j0) / 3` (a row's points are every third `j`).
+#[derive(Debug, Clone, Copy)]
+struct Frame {
+    d: u8,
+    i0: u32,
+    j0: u32,
+    rows: u32,
+    columns: u32,
+    row: usize,
 }
 
-/// At most this many points of a globe are indexed by a table a thread keeps (8 bytes a point:
-/// 8 MiB); a Standard globe with 3 inner rings has 211,682.
-const DENSE_POINTS: u64 = 1 << 20;
+/// At most this many entries in a mesh's box (8 bytes each: 32 MiB); a bigger mesh's points
+/// all go to the hash map.
+const MAX_BOX: usize = 1 << 22;
 
-/// A thread's table of slots by dense point, each entry `(stamp, slot)`.
+/// A thread's table of slots by place in a mesh's box, each entry `(stamp, slot)`: reused by
+/// the meshes the thread makes (an entry is this mesh's when it bears the mesh's stamp, so
+/// nothing is cleared between meshes), so it stays in the core's cache.
 #[derive(Default)]
 struct Stamped {
     stamp: u32,
@@ -251,24 +263,56 @@ thread_local! {
 }
 
 impl<'a> Slots<'a> {
-    fn new(fine: &'a Fine, capacity: usize) -> Self {
-        let points = fine.point_count();
-        let index = if points <= DENSE_POINTS {
-            let mut table = TABLE.with(std::cell::Cell::take);
-            if table.entries.len() < points as usize {
-                table.entries.resize(points as usize, (0, 0));
+    /// Slots for the points of `tiles` (and the ring beyond them), about `capacity` of them.
+    fn new(fine: &'a Fine, tiles: impl Iterator<Item = Spot>, capacity: usize) -> Self {
+        let frame = Self::frame(fine, tiles);
+        let mut table = TABLE.with(std::cell::Cell::take);
+        if let Some(f) = frame {
+            let len = f.rows as usize * f.row;
+            if table.entries.len() < len {
+                table.entries.resize(len, (0, 0));
             }
-            table.stamp = table.stamp.wrapping_add(1);
-            if table.stamp == 0 {
-                // After 2^32 meshes on a thread, stamps come round again: forget the old ones.
-                table.entries.fill((0, 0));
-                table.stamp = 1;
+        }
+        table.stamp = table.stamp.wrapping_add(1);
+        if table.stamp == 0 {
+            // After 2^32 meshes on a thread, stamps come round again: forget the old ones.
+            table.entries.fill((0, 0));
+            table.stamp = 1;
+        }
+        Self {
+            fine,
+            frame,
+            table,
+            others: HashMap::with_capacity_and_hasher(
+                if frame.is_some() { capacity / 8 } else { capacity },
+                Default::default(),
+            ),
+            points: Vec::with_capacity(capacity),
+            known: Vec::with_capacity(capacity),
+        }
+    }
+
+    /// The box of the tiles' diamond that holds their points and the fans' ring beyond them,
+    /// clipped to the diamond; `None` for tiles of several diamonds or a pole.
+    fn frame(fine: &Fine, mut tiles: impl Iterator<Item = Spot>) -> Option<Frame> {
+        let Some(Spot::Diamond { d, i, j }) = tiles.next() else { return None };
+        let (mut lo, mut hi) = ((i, j), (i, j));
+        for spot in tiles {
+            let Spot::Diamond { d: e, i, j } = spot else { return None };
+            if e != d {
+                return None;
             }
-            Index::Dense(table)
-        } else {
-            Index::Sparse(HashMap::with_capacity_and_hasher(capacity, Default::default()))
-        };
-        Self { fine, index, points: Vec::with_capacity(capacity), known: Vec::with_capacity(capacity) }
+            lo = (lo.0.min(i), lo.1.min(j));
+            hi = (hi.0.max(i), hi.1.max(j));
+        }
+        // A tile's points lie within 2 n of its center in the frame, the fans' ring 2 further.
+        let (m, reach, big) = (i64::from(3 * fine.n()), i64::from(2 * fine.n() + 2), i64::from(fine.big()));
+        let clip = |v: i64| v.clamp(0, big - 1) as u32;
+        let (i0, i1) = (clip(i64::from(lo.0) * m - reach), clip(i64::from(hi.0) * m + reach));
+        let (j0, j1) = (clip(i64::from(lo.1) * m - reach), clip(i64::from(hi.1) * m + reach));
+        let (rows, columns) = (i1 - i0 + 1, j1 - j0 + 1);
+        let row = columns as usize / 3 + 1;
+        (rows as usize * row <= MAX_BOX).then_some(Frame { d, i0, j0, rows, columns, row })
     }
 
     /// The points in slot order, and what is known of them.
@@ -279,15 +323,23 @@ impl<'a> Slots<'a> {
     /// The point's slot, given it now if it has none.
     fn intern(&mut self, p: Point, known: Option<(u32, GlobeTile)>) -> u32 {
         let next = self.points.len() as u32;
-        let slot = match &mut self.index {
-            Index::Dense(table) => {
-                let entry = &mut table.entries[self.fine.dense(p)];
-                if entry.0 != table.stamp {
-                    *entry = (table.stamp, next);
+        let boxed = match (p, self.frame) {
+            (Spot::Diamond { d, i, j }, Some(f))
+                if d == f.d && i.wrapping_sub(f.i0) < f.rows && j.wrapping_sub(f.j0) < f.columns =>
+            {
+                Some((i - f.i0) as usize * f.row + (j - f.j0) as usize / 3)
+            }
+            _ => None,
+        };
+        let slot = match boxed {
+            Some(at) => {
+                let entry = &mut self.table.entries[at];
+                if entry.0 != self.table.stamp {
+                    *entry = (self.table.stamp, next);
                 }
                 entry.1
             }
-            Index::Sparse(map) => *map.entry(self.fine.id(p)).or_insert(next),
+            None => *self.others.entry(self.fine.id(p)).or_insert(next),
         };
         if slot == next {
             self.points.push(p);
@@ -299,8 +351,6 @@ impl<'a> Slots<'a> {
 
 impl Drop for Slots<'_> {
     fn drop(&mut self) {
-        if let Index::Dense(table) = &mut self.index {
-            TABLE.with(|t| t.set(std::mem::take(table)));
-        }
+        TABLE.with(|t| t.set(std::mem::take(&mut self.table)));
     }
 }
