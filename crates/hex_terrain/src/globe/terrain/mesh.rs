@@ -50,8 +50,8 @@ pub(super) struct Layout {
     pub(super) tiles: Vec<GlobeTile>,
     points: Vec<Point>,
     known: Vec<Option<(u32, GlobeTile)>>,
-    /// Each of the mesh's points' place among all the globe's points ([`Fine::dense`]).
-    pub(super) dense: Vec<u32>,
+    /// How many of `points` are the mesh's own (the rest are the ring beyond them).
+    count: usize,
     /// Each tile's points' slots, cell by cell (a pentagon's `NOT_INSIDE`).
     locals: Vec<u32>,
     /// Where each mesh point's fan is found: its cell in `locals` (a point inside a hexagon),
@@ -65,7 +65,7 @@ pub(super) struct Layout {
 impl Layout {
     /// The mesh's own points (the ring beyond them left out).
     pub(super) fn len(&self) -> usize {
-        self.dense.len()
+        self.count
     }
 
     /// Its point `v`.
@@ -165,9 +165,8 @@ impl GlobeTerrain {
             home[i] = NOT_INSIDE - 1 - rings.len() as u32;
             rings.push((ring, fan.points().len() as u8));
         }
-        let dense = slots.points[..count].iter().map(|&p| fine.dense(p) as u32).collect();
         let (points, known) = slots.into_points();
-        Layout { tiles, points, known, dense, locals, home, rings, indices, triangle_tiles }
+        Layout { tiles, points, known, count, locals, home, rings, indices, triangle_tiles }
     }
 
     /// Every point of a layout finished, the ring beyond its own points too. Each is a pure

@@ -1,5 +1,6 @@
-//! The whole globe's mesh: its chunks meshed in parallel and merged, each point kept once, by
-//! work that runs on every core too (no step walks all the points on one thread).
+//! The whole globe's mesh: its chunks laid out in parallel, each point given to the first chunk
+//! holding it, then each chunk finishing its points and writing those it holds first, by work
+//! that runs on every core (no step walks all the points on one thread).
 
 use std::sync::atomic::{AtomicU32, Ordering};
 
@@ -20,19 +21,24 @@ impl GlobeTerrain {
         // Every chunk's points and triangles, before any point is finished.
         let layouts: Vec<Layout> =
             self.chunks().into_par_iter().map(|chunk| self.layout(self.chunk_tiles(chunk))).collect();
+        // Each of a chunk's points' place among all the globe's points.
+        let denses: Vec<Vec<u32>> = layouts
+            .par_iter()
+            .map(|layout| (0..layout.len()).map(|v| self.fine.dense(layout.point(v)) as u32).collect())
+            .collect();
         // Each point's first chunk, then (once every chunk has read it) its whole vertex.
         let slot: Vec<AtomicU32> = (0..self.fine.point_count()).map(|_| AtomicU32::new(u32::MAX)).collect();
-        layouts.par_iter().enumerate().for_each(|(c, layout)| {
-            for &k in &layout.dense {
+        denses.par_iter().enumerate().for_each(|(c, dense)| {
+            for &k in dense {
                 slot[k as usize].fetch_min(c as u32, Ordering::Relaxed);
             }
         });
-        let first: Vec<Vec<u32>> = layouts
+        let first: Vec<Vec<u32>> = denses
             .par_iter()
             .enumerate()
-            .map(|(c, layout)| {
-                (0..layout.len() as u32)
-                    .filter(|&v| slot[layout.dense[v as usize] as usize].load(Ordering::Relaxed) == c as u32)
+            .map(|(c, dense)| {
+                (0..dense.len() as u32)
+                    .filter(|&v| slot[dense[v as usize] as usize].load(Ordering::Relaxed) == c as u32)
                     .collect()
             })
             .collect();
@@ -43,9 +49,9 @@ impl GlobeTerrain {
             vertices += owned.len();
         }
         debug_assert_eq!(vertices as u64, self.vertex_count());
-        layouts.par_iter().zip(&first).zip(&starts).for_each(|((layout, owned), &start)| {
+        denses.par_iter().zip(&first).zip(&starts).for_each(|((dense, owned), &start)| {
             for (w, &v) in owned.iter().enumerate() {
-                slot[layout.dense[v as usize] as usize].store((start + w) as u32, Ordering::Relaxed);
+                slot[dense[v as usize] as usize].store((start + w) as u32, Ordering::Relaxed);
             }
         });
 
@@ -97,7 +103,7 @@ impl GlobeTerrain {
             })
             .collect();
         let rings_per = self.config.subdivisions() as f32;
-        pieces.into_par_iter().zip(&layouts).zip(&first).for_each(|((out, layout), owned)| {
+        pieces.into_par_iter().zip(&layouts).zip(&denses).zip(&first).for_each(|(((out, layout), dense), owned)| {
             let all = self.finish_layout(layout);
             for (w, &v) in owned.iter().enumerate() {
                 let v = v as usize;
@@ -113,7 +119,7 @@ impl GlobeTerrain {
                 out.heights[w] = f.height;
             }
             for (o, &i) in out.indices.iter_mut().zip(&layout.indices) {
-                *o = slot[layout.dense[i as usize] as usize].load(Ordering::Relaxed);
+                *o = slot[dense[i as usize] as usize].load(Ordering::Relaxed);
             }
             out.triangle_tiles.copy_from_slice(&layout.triangle_tiles);
         });
