@@ -113,12 +113,18 @@ impl Projection {
 
     /// The direction of the point `(u, v)` of diamond `d`, both in `[0, 1]`.
     pub(crate) fn direction(&self, d: u8, u: f64, v: f64) -> Dir {
+        normalize(self.toward(d, u, v))
+    }
+
+    /// A vector toward the point `(u, v)` of diamond `d` (its direction before it is
+    /// normalised: [`normalize`] of it is [`Projection::direction`], bit for bit).
+    pub(crate) fn toward(&self, d: u8, u: f64, v: f64) -> Dir {
         let [o, b, c, dd] = self.diamonds[usize::from(d)];
         // Barycentric weights on the face: the two steps along it, then the warp.
         let (corners, s, t) = if u >= v { ([o, b, dd], u - v, v) } else { ([o, c, dd], v - u, u) };
         // The warped weights' sum is left out: the direction is the same at any scale.
         let [w0, w1, w2] = [1.0 - s - t, s, t].map(bend);
-        normalize(add(add(scale(corners[0], w0), scale(corners[1], w1)), scale(corners[2], w2)))
+        add(add(scale(corners[0], w0), scale(corners[1], w1)), scale(corners[2], w2))
     }
 
     /// Each diamond's cap: the direction of its middle and the angle from it that holds the

@@ -86,11 +86,18 @@ impl GlobeTerrain {
         let count = layout.len();
         let mut positions = vec![[0.0; 3]; count];
         let mut normals = vec![[0.0; 3]; count];
-        positions.par_iter_mut().zip(normals.par_iter_mut()).enumerate().for_each(|(i, (position, normal))| {
-            let a = all[i].position;
-            *position = [(a[0] - origin[0]) as f32, (a[1] - origin[1]) as f32, (a[2] - origin[2]) as f32];
-            *normal = self.normal(&layout, &all, i);
-        });
+        positions.par_chunks_mut(LANES).zip(normals.par_chunks_mut(LANES)).enumerate().for_each(
+            |(k, (positions, normals))| {
+                let start = k * LANES;
+                let mut sums = [[0.0; 3]; LANES];
+                for (v, (position, sum)) in positions.iter_mut().zip(&mut sums).enumerate() {
+                    let a = all[start + v].position;
+                    *position = [(a[0] - origin[0]) as f32, (a[1] - origin[1]) as f32, (a[2] - origin[2]) as f32];
+                    *sum = self.face_sum(&layout, &all, start + v);
+                }
+                normalize_all(&sums, normals);
+            },
+        );
         let finished = &all[..count];
         let rings_per = self.config.subdivisions() as f32;
         let buffers = MeshBuffers {
@@ -183,8 +190,9 @@ impl GlobeTerrain {
         all
     }
 
-    /// The normal at the layout's point `i`: the faces round it summed going round its fan.
-    pub(super) fn normal(&self, layout: &Layout, all: &[Finished], i: usize) -> [f32; 3] {
+    /// The faces round the layout's point `i` summed going round its fan: its normal before
+    /// [`normalize_all`].
+    pub(super) fn face_sum(&self, layout: &Layout, all: &[Finished], i: usize) -> [f64; 3] {
         let (cells, _) = self.fine.template();
         let per = cells.len();
         let mut ring = [0; 6];
@@ -212,7 +220,15 @@ impl GlobeTerrain {
             let face = cross(sub(all[next as usize].position, a), sub(all[this as usize].position, a));
             normal = [normal[0] + face[0], normal[1] + face[1], normal[2] + face[2]];
         }
-        project::normalize(normal).map(|c| c as f32)
+        normal
+    }
+}
+
+/// Each sum of faces normalised into `normals`: one loop over many, which the compiler
+/// vectorizes, where a normal at a time waits on each square root and division.
+pub(super) fn normalize_all(sums: &[[f64; 3]], normals: &mut [[f32; 3]]) {
+    for (n, &s) in normals.iter_mut().zip(sums) {
+        *n = project::normalize(s).map(|c| c as f32);
     }
 }
 

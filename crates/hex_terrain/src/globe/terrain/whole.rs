@@ -6,7 +6,7 @@ use std::sync::atomic::{AtomicU32, Ordering};
 
 use rayon::prelude::*;
 
-use super::mesh::Layout;
+use super::mesh::{Layout, normalize_all};
 use super::{GlobeMesh, GlobePoint, GlobeTerrain};
 use crate::globe::GlobeTile;
 use crate::mesh::MeshBuffers;
@@ -105,11 +105,12 @@ impl GlobeTerrain {
         let rings_per = self.config.subdivisions() as f32;
         pieces.into_par_iter().zip(&layouts).zip(&denses).zip(&first).for_each(|(((out, layout), dense), owned)| {
             let all = self.finish_layout(layout);
+            let mut sums = Vec::with_capacity(owned.len());
             for (w, &v) in owned.iter().enumerate() {
                 let v = v as usize;
                 let f = &all[v];
                 out.positions[w] = f.position.map(|c| c as f32);
-                out.normals[w] = self.normal(layout, &all, v);
+                sums.push(self.face_sum(layout, &all, v));
                 out.kinds[w] = f.kind as u32;
                 out.distances[w] = f.ring as f32 / rings_per;
                 if let (Some(c), Some(color)) = (out.colors.get_mut(w), f.color) {
@@ -118,8 +119,11 @@ impl GlobeTerrain {
                 out.points[w] = GlobePoint(self.fine.id(layout.point(v)));
                 out.heights[w] = f.height;
             }
+            normalize_all(&sums, out.normals);
+            // Each of the chunk's points' whole vertex, then its triangles' corners.
+            let vertex: Vec<u32> = dense.iter().map(|&k| slot[k as usize].load(Ordering::Relaxed)).collect();
             for (o, &i) in out.indices.iter_mut().zip(&layout.indices) {
-                *o = slot[dense[i as usize] as usize].load(Ordering::Relaxed);
+                *o = vertex[i as usize];
             }
             out.triangle_tiles.copy_from_slice(&layout.triangle_tiles);
         });
