@@ -166,6 +166,13 @@ impl Fine {
             Spot::Diamond { d, i, j } => (d, i64::from(i), i64::from(j)),
         };
         let mut out = Fan { points: [p; 6], len: 0 };
+        if i >= 2 && j >= 2 && i + 2 < big && j + 2 < big {
+            // Well inside the diamond (a step is at most 2 along either axis): every neighbor is
+            // in its frame, as `canonical` would find.
+            out.points = FINE_STEPS.map(|(di, dj)| Spot::Diamond { d, i: (i + di) as u32, j: (j + dj) as u32 });
+            out.len = 6;
+            return out;
+        }
         for (di, dj) in FINE_STEPS {
             if let Some(q) = canonical(self.big(), d, i + di, j + dj) {
                 out.points[usize::from(out.len)] = q;
