@@ -74,6 +74,18 @@ impl Layout {
     }
 }
 
+/// Where some of a layout's points go as vertices: a slice of each vertex buffer, as long as the
+/// points written (the colors empty on a globe without a climate).
+pub(super) struct Vertices<'a> {
+    pub(super) positions: &'a mut [[f32; 3]],
+    pub(super) normals: &'a mut [[f32; 3]],
+    pub(super) kinds: &'a mut [u32],
+    pub(super) distances: &'a mut [f32],
+    pub(super) colors: &'a mut [[u8; 4]],
+    pub(super) points: &'a mut [GlobePoint],
+    pub(super) heights: &'a mut [f32],
+}
+
 impl GlobeTerrain {
     /// The mesh of `tiles`: their fine triangles and their points once each, every point
     /// finished once (in parallel), each normal the sum of the faces round its point going round
@@ -84,39 +96,63 @@ impl GlobeTerrain {
         let layout = self.layout(tiles);
         let all = self.finish_layout(&layout);
         let count = layout.len();
-        let mut positions = vec![[0.0; 3]; count];
-        let mut normals = vec![[0.0; 3]; count];
-        positions.par_chunks_mut(LANES).zip(normals.par_chunks_mut(LANES)).enumerate().for_each(
-            |(k, (positions, normals))| {
-                let start = k * LANES;
-                let mut sums = [[0.0; 3]; LANES];
-                for (v, (position, sum)) in positions.iter_mut().zip(&mut sums).enumerate() {
-                    let a = all[start + v].position;
-                    *position = [(a[0] - origin[0]) as f32, (a[1] - origin[1]) as f32, (a[2] - origin[2]) as f32];
-                    *sum = self.face_sum(&layout, &all, start + v);
-                }
-                normalize_all(&sums, normals);
-            },
-        );
-        let finished = &all[..count];
-        let rings_per = self.config.subdivisions() as f32;
-        let buffers = MeshBuffers {
-            positions,
-            normals,
-            tile_kinds: finished.iter().map(|f| f.kind as u32).collect(),
-            center_distances: finished.iter().map(|f| f.ring as f32 / rings_per).collect(),
-            colors: finished.iter().filter_map(|f| f.color).collect(),
-            indices: layout.indices,
+        let mut buffers = MeshBuffers {
+            positions: vec![[0.0; 3]; count],
+            normals: vec![[0.0; 3]; count],
+            tile_kinds: vec![0; count],
+            center_distances: vec![0.0; count],
+            colors: vec![[0; 4]; if self.config.climate.enabled { count } else { 0 }],
             ..MeshBuffers::default()
         };
-        GlobeMesh {
-            origin,
-            buffers,
-            points: layout.points[..count].iter().map(|&p| GlobePoint(self.fine.id(p))).collect(),
-            heights: finished.iter().map(|f| f.height).collect(),
-            tiles: layout.tiles,
-            triangle_tiles: layout.triangle_tiles,
+        let mut points = vec![GlobePoint(0); count];
+        let mut heights = vec![0.0; count];
+        let every: Vec<u32> = (0..count as u32).collect();
+        let out = Vertices {
+            positions: &mut buffers.positions,
+            normals: &mut buffers.normals,
+            kinds: &mut buffers.tile_kinds,
+            distances: &mut buffers.center_distances,
+            colors: &mut buffers.colors,
+            points: &mut points,
+            heights: &mut heights,
+        };
+        self.write_vertices(&layout, &all, &every, origin, out);
+        buffers.indices = layout.indices;
+        GlobeMesh { origin, buffers, points, heights, tiles: layout.tiles, triangle_tiles: layout.triangle_tiles }
+    }
+
+    /// Writes the layout's points `which` (finished in `all`, with the ring beyond them) into
+    /// `out` as vertices, in that order, their positions measured from `origin`: what a chunk's
+    /// mesh and the whole globe's both hold of a point.
+    pub(super) fn write_vertices(
+        &self,
+        layout: &Layout,
+        all: &[Finished],
+        which: &[u32],
+        origin: [f64; 3],
+        out: Vertices<'_>,
+    ) {
+        let rings_per = self.config.subdivisions() as f32;
+        let len = which.len();
+        let (positions, kinds, distances) =
+            (&mut out.positions[..len], &mut out.kinds[..len], &mut out.distances[..len]);
+        let (points, heights) = (&mut out.points[..len], &mut out.heights[..len]);
+        let mut sums = Vec::with_capacity(len);
+        for (w, &v) in which.iter().enumerate() {
+            let v = v as usize;
+            let f = &all[v];
+            let a = f.position;
+            positions[w] = [(a[0] - origin[0]) as f32, (a[1] - origin[1]) as f32, (a[2] - origin[2]) as f32];
+            sums.push(self.face_sum(layout, all, v));
+            kinds[w] = f.kind as u32;
+            distances[w] = f.ring as f32 / rings_per;
+            if let (Some(c), Some(color)) = (out.colors.get_mut(w), f.color) {
+                *c = color;
+            }
+            points[w] = GlobePoint(self.fine.id(layout.points[v]));
+            heights[w] = f.height;
         }
+        normalize_all(&sums, out.normals);
     }
 
     /// The points and triangles of `tiles`, each point once, and where each point's fan is.
@@ -226,7 +262,7 @@ impl GlobeTerrain {
 
 /// Each sum of faces normalised into `normals`: one loop over many, which the compiler
 /// vectorizes, where a normal at a time waits on each square root and division.
-pub(super) fn normalize_all(sums: &[[f64; 3]], normals: &mut [[f32; 3]]) {
+fn normalize_all(sums: &[[f64; 3]], normals: &mut [[f32; 3]]) {
     for (n, &s) in normals.iter_mut().zip(sums) {
         *n = project::normalize(s).map(|c| c as f32);
     }

@@ -6,7 +6,7 @@ use std::sync::atomic::{AtomicU32, Ordering};
 
 use rayon::prelude::*;
 
-use super::mesh::{Layout, normalize_all};
+use super::mesh::{Layout, Vertices};
 use super::{GlobeMesh, GlobePoint, GlobeTerrain};
 use crate::globe::GlobeTile;
 use crate::mesh::MeshBuffers;
@@ -91,35 +91,22 @@ impl GlobeTerrain {
         let mut triangle_tiles = split(&mut whole.triangle_tiles, &triangles).into_iter();
         let pieces: Vec<Piece<'_>> = (0..layouts.len())
             .map(|_| Piece {
-                positions: positions.next().unwrap_or_default(),
-                normals: normals.next().unwrap_or_default(),
-                kinds: kinds.next().unwrap_or_default(),
-                distances: distances.next().unwrap_or_default(),
-                colors: colors.next().unwrap_or_default(),
-                points: points.next().unwrap_or_default(),
-                heights: heights.next().unwrap_or_default(),
+                vertices: Vertices {
+                    positions: positions.next().unwrap_or_default(),
+                    normals: normals.next().unwrap_or_default(),
+                    kinds: kinds.next().unwrap_or_default(),
+                    distances: distances.next().unwrap_or_default(),
+                    colors: colors.next().unwrap_or_default(),
+                    points: points.next().unwrap_or_default(),
+                    heights: heights.next().unwrap_or_default(),
+                },
                 indices: indices.next().unwrap_or_default(),
                 triangle_tiles: triangle_tiles.next().unwrap_or_default(),
             })
             .collect();
-        let rings_per = self.config.subdivisions() as f32;
         pieces.into_par_iter().zip(&layouts).zip(&denses).zip(&first).for_each(|(((out, layout), dense), owned)| {
             let all = self.finish_layout(layout);
-            let mut sums = Vec::with_capacity(owned.len());
-            for (w, &v) in owned.iter().enumerate() {
-                let v = v as usize;
-                let f = &all[v];
-                out.positions[w] = f.position.map(|c| c as f32);
-                sums.push(self.face_sum(layout, &all, v));
-                out.kinds[w] = f.kind as u32;
-                out.distances[w] = f.ring as f32 / rings_per;
-                if let (Some(c), Some(color)) = (out.colors.get_mut(w), f.color) {
-                    *c = color;
-                }
-                out.points[w] = GlobePoint(self.fine.id(layout.point(v)));
-                out.heights[w] = f.height;
-            }
-            normalize_all(&sums, out.normals);
+            self.write_vertices(layout, &all, owned, [0.0; 3], out.vertices);
             // Each of the chunk's points' whole vertex, then its triangles' corners.
             let vertex: Vec<u32> = dense.iter().map(|&k| slot[k as usize].load(Ordering::Relaxed)).collect();
             for (o, &i) in out.indices.iter_mut().zip(&layout.indices) {
@@ -151,13 +138,7 @@ impl GlobeTerrain {
 /// The part of the whole globe's buffers one chunk writes: its first points' vertices, and its
 /// triangles.
 struct Piece<'a> {
-    positions: &'a mut [[f32; 3]],
-    normals: &'a mut [[f32; 3]],
-    kinds: &'a mut [u32],
-    distances: &'a mut [f32],
-    colors: &'a mut [[u8; 4]],
-    points: &'a mut [GlobePoint],
-    heights: &'a mut [f32],
+    vertices: Vertices<'a>,
     indices: &'a mut [u32],
     triangle_tiles: &'a mut [GlobeTile],
 }
