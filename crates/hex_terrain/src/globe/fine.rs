@@ -60,6 +60,14 @@ pub(crate) struct Cell {
     pub(crate) fan: Option<[u16; 6]>,
 }
 
+/// A run of points one after another in [`Fine::dense`]'s order: a pole, or row `i` of diamond
+/// `d`'s frame.
+#[derive(Debug, Clone, Copy)]
+pub(crate) enum Row {
+    Pole(Spot),
+    Frame { d: u8, i: u32 },
+}
+
 /// A fine point's neighbors going round it clockwise seen from outside: six, or five at the
 /// icosahedron's twelve vertices.
 #[derive(Debug, Clone, Copy)]
@@ -203,6 +211,7 @@ impl Fine {
     }
 
     /// How many points there are: `10 F^2 / 3 + 2`.
+    #[cfg(test)]
     pub(crate) fn point_count(&self) -> u64 {
         let big = u64::from(self.big());
         10 * big * big / 3 + 2
@@ -223,17 +232,91 @@ impl Fine {
     /// Every point, in [`Fine::dense`]'s order.
     #[cfg(any(test, feature = "bench"))]
     pub(crate) fn points(&self) -> Vec<Point> {
-        let big = self.big();
-        let mut points = Vec::with_capacity(self.point_count() as usize);
-        points.push(Spot::North);
-        for d in 0..10 {
-            for i in 0..big {
-                // The points of a row are every third `j` with `i + j` a multiple of 3.
-                points.extend(((3 - i % 3) % 3..big).step_by(3).map(|j| Spot::Diamond { d, i, j }));
-            }
+        self.rows().into_iter().flat_map(|row| self.row_points(row)).collect()
+    }
+
+    /// The runs of points one after another in [`Fine::dense`]'s order: the north pole, each
+    /// diamond's rows of its frame, the south pole.
+    pub(crate) fn rows(&self) -> Vec<Row> {
+        let mut rows = Vec::with_capacity(10 * self.big() as usize + 2);
+        rows.push(Row::Pole(Spot::North));
+        rows.extend((0..10).flat_map(|d| (0..self.big()).map(move |i| Row::Frame { d, i })));
+        rows.push(Row::Pole(Spot::South));
+        rows
+    }
+
+    /// A row's points, in order.
+    pub(crate) fn row_points(&self, row: Row) -> impl Iterator<Item = Point> + use<> {
+        let (columns, d, i, pole) = match row {
+            Row::Pole(pole) => (0..1, 0, 0, Some(pole)),
+            // The points of a row are every third `j` with `i + j` a multiple of 3.
+            Row::Frame { d, i } => ((3 - i % 3) % 3..self.big(), d, i, None),
+        };
+        columns.step_by(3).map(move |j| pole.unwrap_or(Spot::Diamond { d, i, j }))
+    }
+
+    /// How many points a row has.
+    pub(crate) fn row_len(&self, row: Row) -> usize {
+        match row {
+            Row::Pole(_) => 1,
+            Row::Frame { i, .. } => (self.big() - (3 - i % 3) % 3).div_ceil(3) as usize,
         }
-        points.push(Spot::South);
-        points
+    }
+
+    /// The offsets in [`Fine::dense`]'s order from a row's points to their six neighbors, in
+    /// [`Fine::walk`]'s order, and the columns of the row whose points they hold for (those well
+    /// inside the diamond, where the walk is the six steps in the frame); `None` for a pole or a
+    /// row near the diamond's edges.
+    pub(crate) fn row_steps(&self, row: Row) -> Option<([isize; 6], std::ops::Range<u32>)> {
+        let (big, reach) = (self.big(), self.reach());
+        let Row::Frame { i, .. } = row else { return None };
+        if i < reach || i + reach >= big {
+            return None;
+        }
+        // A row's points are `j = r + 3 k` (`r` the row's first column), `(i F + j) / 3` apart
+        // from the diamond's first point: a step `(di, dj)` moves that by `di F / 3` and the
+        // `k` of `r + dj`.
+        let r = i64::from((3 - i % 3) % 3);
+        let third = i64::from(big / 3);
+        let steps = FINE_STEPS.map(|(di, dj)| (di * third + (r + dj).div_euclid(3)) as isize);
+        Some((steps, reach..big - reach))
+    }
+
+    /// How near a diamond's edges a point may lie and still have a walk and a fan of the six
+    /// steps in its frame: a hexagon's points lie within `2 n` of its center in the frame, and a
+    /// step is at most 2 along either axis.
+    fn reach(&self) -> u32 {
+        2 * self.n + 2
+    }
+
+    /// The point's neighbors in the order its normal goes round them (a chunk's mesh and the
+    /// whole globe's alike): a point inside a hexagon in its hexagon's frame (its template's
+    /// order), any other in its owner's ([`Fine::fan`]). The two differ only for a point inside
+    /// a hexagon whose center lies in another diamond, which only a point within `2 n` of its
+    /// diamond's edges can be.
+    pub(crate) fn walk(&self, p: Point) -> Fan {
+        let (big, reach) = (self.big(), self.reach());
+        let Spot::Diamond { d, i, j } = p else { return self.fan(p) };
+        if i >= reach && j >= reach && i + reach < big && j + reach < big {
+            return self.fan(p);
+        }
+        let holders = self.holders(p);
+        let &[tile] = holders.tiles() else { return self.fan(p) };
+        match self.hexagon(tile) {
+            Some((e, ci, cj)) if e != d && holders.ring < self.n => {
+                // The point's place in its hexagon's frame: a cell beyond the hexagon's diamond.
+                let outside = |v: i64| !(0..i64::from(big)).contains(&v);
+                let (qi, qj) = self
+                    .cells
+                    .iter()
+                    .filter(|c| c.ring < self.n)
+                    .map(|c| (ci + c.offset.0, cj + c.offset.1))
+                    .find(|&(qi, qj)| (outside(qi) || outside(qj)) && self.hexagon_point(e, qi, qj) == p)
+                    .expect("a point inside a hexagon is one of its cells");
+                Fan { points: FINE_STEPS.map(|(di, dj)| self.hexagon_point(e, qi + di, qj + dj)), len: 6 }
+            }
+            _ => self.fan(p),
+        }
     }
 
     /// The center of the tile at `spot` (of the tile atlas) as a point.
@@ -261,6 +344,10 @@ impl Fine {
             let s = steps(i - ta * m, j - tb * m);
             if s <= self.n {
                 let tile = locate(self.f, d, ta, tb).expect("a corner of the diamond's closure");
+                if s < self.n {
+                    // Inside the tile: every other center is at least `2 n - s` away.
+                    return Holders { ring: s, tiles: [tile; 3], len: 1 };
+                }
                 if !out.tiles().contains(&tile) {
                     out.tiles[usize::from(out.len)] = tile;
                     out.len += 1;
@@ -367,7 +454,8 @@ mod tests {
 
     /// Every fine point (each frame position with `i + j` a multiple of 3, found here by
     /// filtering the whole frame) has its own dense index, below the count, and is the point
-    /// `Fine::points` lists at that index (the whole globe's mesh merges its chunks by it).
+    /// `Fine::points` lists at that index (the whole globe's mesh has its vertices in that
+    /// order, row by row: each row as long as `row_len` says).
     #[test]
     fn dense_indices_are_a_bijection_in_the_order_points_lists() {
         for (f, n) in [(1, 1), (2, 3), (5, 2), (7, 4)] {
@@ -388,6 +476,55 @@ mod tests {
                 assert!(!std::mem::replace(&mut seen[k], true), "{p:?} shares {k} (f {f}, n {n})");
                 assert_eq!(listed[k], p, "dense index {k} (f {f}, n {n})");
             }
+            for row in fine.rows() {
+                assert_eq!(fine.row_points(row).count(), fine.row_len(row), "{row:?} (f {f}, n {n})");
+            }
+        }
+    }
+
+    /// The walk round a point inside a hexagon is its hexagon's template order (the six steps in
+    /// the hexagon's frame, found here by going through every hexagon's points), and round any
+    /// other point its fan in its owner's frame; the two differ for some points (those inside a
+    /// hexagon across its diamond's edge), so the test tells them apart.
+    #[test]
+    fn the_walk_round_a_point_inside_a_hexagon_is_its_hexagons() {
+        for (f, n) in [(2, 3), (3, 2), (5, 2), (4, 4)] {
+            let fine = Fine::new(f, n);
+            let mut inside: std::collections::HashMap<u64, [Point; 6]> = std::collections::HashMap::new();
+            for d in 0..10 {
+                for (i, j) in (0..f).flat_map(|i| (0..f).map(move |j| (i, j))) {
+                    let Some((e, ci, cj)) = fine.hexagon(Spot::Diamond { d, i, j }) else { continue };
+                    for c in fine.cells.iter().filter(|c| c.ring < n) {
+                        let (qi, qj) = (ci + c.offset.0, cj + c.offset.1);
+                        let around = FINE_STEPS.map(|(di, dj)| fine.hexagon_point(e, qi + di, qj + dj));
+                        let p = fine.hexagon_point(e, qi, qj);
+                        assert!(inside.insert(fine.id(p), around).is_none(), "{p:?} in two hexagons");
+                    }
+                }
+            }
+            for row in fine.rows() {
+                let Some((steps, columns)) = fine.row_steps(row) else { continue };
+                for p in fine.row_points(row) {
+                    let Spot::Diamond { j, .. } = p else { unreachable!("a pole has no row steps") };
+                    if columns.contains(&j) {
+                        let dense = fine.walk(p).points().iter().map(|&q| fine.dense(q) as isize).collect::<Vec<_>>();
+                        let stepped = steps.map(|s| fine.dense(p) as isize + s);
+                        assert_eq!(dense, stepped, "{p:?} (f {f}, n {n})");
+                    }
+                }
+            }
+            let mut turned = 0;
+            for p in fine.points() {
+                let walk = fine.walk(p);
+                match inside.get(&fine.id(p)) {
+                    Some(around) => {
+                        assert_eq!(walk.points(), around, "{p:?} (f {f}, n {n})");
+                        turned += usize::from(fine.fan(p).points() != around);
+                    }
+                    None => assert_eq!(walk.points(), fine.fan(p).points(), "{p:?} (f {f}, n {n})"),
+                }
+            }
+            assert!(turned > 0, "f {f}, n {n}: no hexagon's order differs from its points' owners'");
         }
     }
 }

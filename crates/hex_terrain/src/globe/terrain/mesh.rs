@@ -7,7 +7,7 @@ use rayon::prelude::*;
 
 use super::super::atlas::Spot;
 use super::super::fine::{Fan, Fine, Point};
-use super::super::project::{self, cross, sub};
+use super::super::project::{self, Dir, cross, sub};
 use super::{Finished, GlobeTerrain};
 use crate::globe::GlobeTile;
 use crate::heights::fbm::LANES;
@@ -67,23 +67,33 @@ impl Layout {
     pub(super) fn len(&self) -> usize {
         self.count
     }
-
-    /// Its point `v`.
-    pub(super) fn point(&self, v: usize) -> Point {
-        self.points[v]
-    }
 }
 
-/// Where some of a layout's points go as vertices: a slice of each vertex buffer, as long as the
-/// points written (the colors empty on a globe without a climate).
+/// Where some finished points go as vertices: a slice of each vertex buffer but the normals, as
+/// long as the points written (the colors empty on a globe without a climate).
 pub(super) struct Vertices<'a> {
     pub(super) positions: &'a mut [[f32; 3]],
-    pub(super) normals: &'a mut [[f32; 3]],
     pub(super) kinds: &'a mut [u32],
     pub(super) distances: &'a mut [f32],
     pub(super) colors: &'a mut [[u8; 4]],
     pub(super) points: &'a mut [GlobePoint],
     pub(super) heights: &'a mut [f32],
+}
+
+impl Vertices<'_> {
+    /// Vertex `w`: the finished point `f`, its position measured from `origin`, its ring over
+    /// the `n` steps from a tile's center to its corner.
+    pub(super) fn set(&mut self, w: usize, f: &Finished, point: GlobePoint, origin: [f64; 3], n: u32) {
+        let a = f.position;
+        self.positions[w] = [(a[0] - origin[0]) as f32, (a[1] - origin[1]) as f32, (a[2] - origin[2]) as f32];
+        self.kinds[w] = f.kind as u32;
+        self.distances[w] = f.ring as f32 / n as f32;
+        if let (Some(c), Some(color)) = (self.colors.get_mut(w), f.color) {
+            *c = color;
+        }
+        self.points[w] = point;
+        self.heights[w] = f.height;
+    }
 }
 
 impl GlobeTerrain {
@@ -109,50 +119,35 @@ impl GlobeTerrain {
         let every: Vec<u32> = (0..count as u32).collect();
         let out = Vertices {
             positions: &mut buffers.positions,
-            normals: &mut buffers.normals,
             kinds: &mut buffers.tile_kinds,
             distances: &mut buffers.center_distances,
             colors: &mut buffers.colors,
             points: &mut points,
             heights: &mut heights,
         };
-        self.write_vertices(&layout, &all, &every, origin, out);
+        self.write_vertices(&layout, &all, &every, origin, out, &mut buffers.normals);
         buffers.indices = layout.indices;
         GlobeMesh { origin, buffers, points, heights, tiles: layout.tiles, triangle_tiles: layout.triangle_tiles }
     }
 
     /// Writes the layout's points `which` (finished in `all`, with the ring beyond them) into
-    /// `out` as vertices, in that order, their positions measured from `origin`: what a chunk's
-    /// mesh and the whole globe's both hold of a point.
+    /// `out` and `normals` as vertices, in that order, their positions measured from `origin`.
     pub(super) fn write_vertices(
         &self,
         layout: &Layout,
         all: &[Finished],
         which: &[u32],
         origin: [f64; 3],
-        out: Vertices<'_>,
+        mut out: Vertices<'_>,
+        normals: &mut [[f32; 3]],
     ) {
-        let rings_per = self.config.subdivisions() as f32;
-        let len = which.len();
-        let (positions, kinds, distances) =
-            (&mut out.positions[..len], &mut out.kinds[..len], &mut out.distances[..len]);
-        let (points, heights) = (&mut out.points[..len], &mut out.heights[..len]);
-        let mut sums = Vec::with_capacity(len);
+        let mut sums = Vec::with_capacity(which.len());
         for (w, &v) in which.iter().enumerate() {
             let v = v as usize;
-            let f = &all[v];
-            let a = f.position;
-            positions[w] = [(a[0] - origin[0]) as f32, (a[1] - origin[1]) as f32, (a[2] - origin[2]) as f32];
+            out.set(w, &all[v], GlobePoint(self.fine.id(layout.points[v])), origin, self.config.subdivisions());
             sums.push(self.face_sum(layout, all, v));
-            kinds[w] = f.kind as u32;
-            distances[w] = f.ring as f32 / rings_per;
-            if let (Some(c), Some(color)) = (out.colors.get_mut(w), f.color) {
-                *c = color;
-            }
-            points[w] = GlobePoint(self.fine.id(layout.points[v]));
-            heights[w] = f.height;
         }
-        normalize_all(&sums, out.normals);
+        normalize_all(&sums, normals);
     }
 
     /// The points and triangles of `tiles`, each point once, and where each point's fan is.
@@ -247,22 +242,28 @@ impl GlobeTerrain {
                 usize::from(len)
             }
         };
-        let a = all[i].position;
-        let mut normal = [0.0f64; 3];
-        for k in 0..len {
-            // The ring goes round clockwise seen from outside: (a, next, this) is
-            // counterclockwise.
-            let (this, next) = (ring[k], ring[(k + 1) % len]);
-            let face = cross(sub(all[next as usize].position, a), sub(all[this as usize].position, a));
-            normal = [normal[0] + face[0], normal[1] + face[1], normal[2] + face[2]];
-        }
-        normal
+        let around = ring.map(|r| all[r as usize].position);
+        sum_faces(all[i].position, &around[..len])
     }
+}
+
+/// The faces between a point at `center` and each two points after each other of its ring
+/// (going round it clockwise seen from outside, from its first step) summed: its normal before
+/// [`normalize_all`].
+pub(super) fn sum_faces(center: Dir, ring: &[Dir]) -> Dir {
+    let mut normal = [0.0f64; 3];
+    for (k, &this) in ring.iter().enumerate() {
+        // (center, next, this) is counterclockwise.
+        let next = ring[(k + 1) % ring.len()];
+        let face = cross(sub(next, center), sub(this, center));
+        normal = [normal[0] + face[0], normal[1] + face[1], normal[2] + face[2]];
+    }
+    normal
 }
 
 /// Each sum of faces normalised into `normals`: one loop over many, which the compiler
 /// vectorizes, where a normal at a time waits on each square root and division.
-fn normalize_all(sums: &[[f64; 3]], normals: &mut [[f32; 3]]) {
+pub(super) fn normalize_all(sums: &[[f64; 3]], normals: &mut [[f32; 3]]) {
     for (n, &s) in normals.iter_mut().zip(sums) {
         *n = project::normalize(s).map(|c| c as f32);
     }

@@ -1,64 +1,39 @@
-//! The whole globe's mesh: its chunks laid out in parallel, each point given to the first chunk
-//! holding it, then each chunk finishing its points and writing those it holds first, by work
-//! that runs on every core (no step walks all the points on one thread).
-
-use std::sync::atomic::{AtomicU32, Ordering};
+//! The whole globe's mesh: every fine point once, in the lattice's own order, so a point's vertex
+//! is its place in it ([`Fine::dense`](super::super::fine::Fine::dense)) and nothing is looked
+//! up. The points are finished row by row of the diamonds' frames, their normals summed round
+//! each point as a chunk's mesh sums them (the same bits), and each tile's triangles written
+//! straight into its own piece of the buffers: all on every core, no step on one thread.
 
 use rayon::prelude::*;
 
-use super::mesh::{Layout, Vertices};
+use super::super::atlas::Spot;
+
+use super::mesh::{Vertices, normalize_all, sum_faces};
 use super::{GlobeMesh, GlobePoint, GlobeTerrain};
 use crate::globe::GlobeTile;
+use crate::heights::fbm::LANES;
 use crate::mesh::MeshBuffers;
 
 impl GlobeTerrain {
     /// The whole globe's mesh, measured from the globe's center.
     ///
-    /// Its vertices are each chunk's points not in an earlier chunk (in [`GlobeTerrain::chunks`]'
-    /// order), in the order the chunk meets them; its triangles each chunk's in turn.
+    /// Its vertices are every point of the globe's fine lattice once: the north pole, each
+    /// diamond's rows of points, the south pole. Its tiles are [`GlobeTerrain::chunks`]' tiles
+    /// in turn, and its triangles each tile's in that order (a tile's triangles one after
+    /// another, as in a chunk's mesh).
     #[must_use]
     pub fn generate_whole(&self) -> GlobeMesh {
-        // Every chunk's points and triangles, before any point is finished.
-        let layouts: Vec<Layout> =
-            self.chunks().into_par_iter().map(|chunk| self.layout(self.chunk_tiles(chunk))).collect();
-        // Each of a chunk's points' place among all the globe's points.
-        let denses: Vec<Vec<u32>> = layouts
-            .par_iter()
-            .map(|layout| (0..layout.len()).map(|v| self.fine.dense(layout.point(v)) as u32).collect())
-            .collect();
-        // Each point's first chunk, then (once every chunk has read it) its whole vertex.
-        let slot: Vec<AtomicU32> = (0..self.fine.point_count()).map(|_| AtomicU32::new(u32::MAX)).collect();
-        denses.par_iter().enumerate().for_each(|(c, dense)| {
-            for &k in dense {
-                slot[k as usize].fetch_min(c as u32, Ordering::Relaxed);
-            }
-        });
-        let first: Vec<Vec<u32>> = denses
-            .par_iter()
-            .enumerate()
-            .map(|(c, dense)| {
-                (0..dense.len() as u32)
-                    .filter(|&v| slot[dense[v as usize] as usize].load(Ordering::Relaxed) == c as u32)
-                    .collect()
-            })
-            .collect();
-        let mut starts = Vec::with_capacity(layouts.len());
-        let mut vertices = 0;
-        for owned in &first {
-            starts.push(vertices);
-            vertices += owned.len();
-        }
+        let fine = &self.fine;
+        let rows = fine.rows();
+        let lens: Vec<usize> = rows.iter().map(|&row| fine.row_len(row)).collect();
+        let vertices: usize = lens.iter().sum();
         debug_assert_eq!(vertices as u64, self.vertex_count());
-        denses.par_iter().zip(&first).zip(&starts).for_each(|((dense, owned), &start)| {
-            for (w, &v) in owned.iter().enumerate() {
-                slot[dense[v as usize] as usize].store((start + w) as u32, Ordering::Relaxed);
-            }
-        });
-
-        // Each chunk finishes its points (and the ring beyond them its fans reach) and writes
-        // the ones it is first to hold, and its triangles, into its own piece of the buffers.
+        let tiles: Vec<GlobeTile> = self.chunks().into_iter().flat_map(|chunk| self.chunk_tiles(chunk)).collect();
+        let n = self.config.subdivisions() as usize;
+        let triangles: Vec<usize> =
+            tiles.iter().map(|&t| if self.grid.is_pentagon(t) { 5 } else { 6 } * n * n).collect();
+        let corners: Vec<usize> = triangles.iter().map(|&t| 3 * t).collect();
         let colored = self.config.climate.enabled;
-        let corners: usize = layouts.iter().map(|l| l.indices.len()).sum();
         let mut whole = GlobeMesh {
             origin: [0.0; 3],
             buffers: MeshBuffers {
@@ -67,55 +42,109 @@ impl GlobeTerrain {
                 tile_kinds: vec![0; vertices],
                 center_distances: vec![0.0; vertices],
                 colors: vec![[0; 4]; if colored { vertices } else { 0 }],
-                indices: vec![0; corners],
+                indices: vec![0; corners.iter().sum()],
                 ..MeshBuffers::default()
             },
             points: vec![GlobePoint(0); vertices],
             heights: vec![0.0; vertices],
-            tiles: layouts.iter().flat_map(|l| l.tiles.iter().copied()).collect(),
-            triangle_tiles: vec![GlobeTile(0); corners / 3],
+            tiles,
+            triangle_tiles: vec![GlobeTile(0); triangles.iter().sum()],
         };
-        let lens: Vec<usize> = first.iter().map(Vec::len).collect();
-        let colors: Vec<usize> = lens.iter().map(|&len| if colored { len } else { 0 }).collect();
-        let corners: Vec<usize> = layouts.iter().map(|l| l.indices.len()).collect();
-        let triangles: Vec<usize> = layouts.iter().map(|l| l.triangle_tiles.len()).collect();
-        let b = &mut whole.buffers;
-        let mut positions = split(&mut b.positions, &lens).into_iter();
-        let mut normals = split(&mut b.normals, &lens).into_iter();
-        let mut kinds = split(&mut b.tile_kinds, &lens).into_iter();
-        let mut distances = split(&mut b.center_distances, &lens).into_iter();
-        let mut colors = split(&mut b.colors, &colors).into_iter();
-        let mut points = split(&mut whole.points, &lens).into_iter();
-        let mut heights = split(&mut whole.heights, &lens).into_iter();
-        let mut indices = split(&mut b.indices, &corners).into_iter();
-        let mut triangle_tiles = split(&mut whole.triangle_tiles, &triangles).into_iter();
-        let pieces: Vec<Piece<'_>> = (0..layouts.len())
-            .map(|_| Piece {
-                vertices: Vertices {
+
+        // Every point finished, row by row; its position kept in f64 for the normals.
+        let mut at = vec![[0.0f64; 3]; vertices];
+        {
+            let b = &mut whole.buffers;
+            let colors: Vec<usize> = lens.iter().map(|&len| if colored { len } else { 0 }).collect();
+            let mut positions = split(&mut b.positions, &lens).into_iter();
+            let mut kinds = split(&mut b.tile_kinds, &lens).into_iter();
+            let mut distances = split(&mut b.center_distances, &lens).into_iter();
+            let mut colors = split(&mut b.colors, &colors).into_iter();
+            let mut points = split(&mut whole.points, &lens).into_iter();
+            let mut heights = split(&mut whole.heights, &lens).into_iter();
+            let pieces: Vec<Vertices<'_>> = (0..rows.len())
+                .map(|_| Vertices {
                     positions: positions.next().unwrap_or_default(),
-                    normals: normals.next().unwrap_or_default(),
                     kinds: kinds.next().unwrap_or_default(),
                     distances: distances.next().unwrap_or_default(),
                     colors: colors.next().unwrap_or_default(),
                     points: points.next().unwrap_or_default(),
                     heights: heights.next().unwrap_or_default(),
-                },
-                indices: indices.next().unwrap_or_default(),
-                triangle_tiles: triangle_tiles.next().unwrap_or_default(),
-            })
-            .collect();
-        pieces.into_par_iter().zip(&layouts).zip(&denses).zip(&first).for_each(|(((out, layout), dense), owned)| {
-            let all = self.finish_layout(layout);
-            self.write_vertices(layout, &all, owned, [0.0; 3], out.vertices);
-            // Each of the chunk's points' whole vertex, then its triangles' corners.
-            let vertex: Vec<u32> = dense.iter().map(|&k| slot[k as usize].load(Ordering::Relaxed)).collect();
-            for (o, &i) in out.indices.iter_mut().zip(&layout.indices) {
-                *o = vertex[i as usize];
-            }
-            out.triangle_tiles.copy_from_slice(&layout.triangle_tiles);
+                })
+                .collect();
+            let subdivisions = self.config.subdivisions();
+            pieces.into_par_iter().zip(split(&mut at, &lens)).zip(&rows).for_each(|((mut out, at), &row)| {
+                let points: Vec<_> = fine.row_points(row).collect();
+                for (k, batch) in points.chunks(LANES).enumerate() {
+                    for (l, f) in self.finish_batch(batch, &[None; LANES]).enumerate() {
+                        let w = k * LANES + l;
+                        at[w] = f.position;
+                        out.set(w, &f, GlobePoint(fine.id(batch[l])), [0.0; 3], subdivisions);
+                    }
+                }
+            });
+        }
+
+        // Each point's normal: the faces round it, going round it as a chunk's mesh does.
+        // Well inside a diamond, the neighbors are the same offsets away in the lattice's order
+        // from every point of a row.
+        let starts: Vec<usize> =
+            lens.iter().scan(0, |start, &len| Some(std::mem::replace(start, *start + len))).collect();
+        let normals = split(&mut whole.buffers.normals, &lens);
+        normals.into_par_iter().zip(&rows).zip(&starts).for_each(|((normals, &row), &start)| {
+            let steps = fine.row_steps(row);
+            let sums: Vec<[f64; 3]> = fine
+                .row_points(row)
+                .enumerate()
+                .map(|(w, p)| {
+                    let v = start + w;
+                    let mut around = [[0.0; 3]; 6];
+                    match (&steps, p) {
+                        (Some((steps, columns)), Spot::Diamond { j, .. }) if columns.contains(&j) => {
+                            for (a, &s) in around.iter_mut().zip(steps) {
+                                *a = at[v.wrapping_add_signed(s)];
+                            }
+                            sum_faces(at[v], &around)
+                        }
+                        _ => {
+                            let fan = fine.walk(p);
+                            for (a, &q) in around.iter_mut().zip(fan.points()) {
+                                *a = at[fine.dense(q)];
+                            }
+                            sum_faces(at[v], &around[..fan.points().len()])
+                        }
+                    }
+                })
+                .collect();
+            normalize_all(&sums, normals);
         });
-        // Each chunk's layout given back on the core that made it.
-        layouts.into_par_iter().for_each(drop);
+
+        // Each tile's triangles, its points' vertices their places in the lattice.
+        let (cells, cell_triangles) = fine.template();
+        let b = &mut whole.buffers;
+        split(&mut b.indices, &corners)
+            .into_par_iter()
+            .zip(split(&mut whole.triangle_tiles, &triangles))
+            .zip(&whole.tiles)
+            .for_each_init(Vec::new, |local, ((indices, triangle_tiles), &t)| {
+                let spot = self.spot(t);
+                if let Some((d, ci, cj)) = fine.hexagon(spot) {
+                    local.clear();
+                    local.extend(
+                        cells
+                            .iter()
+                            .map(|c| fine.dense(fine.hexagon_point(d, ci + c.offset.0, cj + c.offset.1)) as u32),
+                    );
+                    for (out, triangle) in indices.chunks_exact_mut(3).zip(cell_triangles) {
+                        out.copy_from_slice(&triangle.map(|k| local[usize::from(k)]));
+                    }
+                } else {
+                    for (out, triangle) in indices.chunks_exact_mut(3).zip(fine.triangles(spot)) {
+                        out.copy_from_slice(&triangle.map(|p| fine.dense(p) as u32));
+                    }
+                }
+                triangle_tiles.fill(t);
+            });
         whole
     }
 
@@ -125,22 +154,12 @@ impl GlobeTerrain {
     #[cfg(feature = "bench")]
     #[must_use]
     pub fn noise_floor(&self) -> f64 {
-        use crate::heights::fbm::LANES;
-
         self.fine
             .points()
             .par_chunks(LANES)
             .map(|batch| self.directions_and_fbm_lanes(batch)[..batch.len()].iter().map(|l| l.1).sum::<f64>())
             .sum()
     }
-}
-
-/// The part of the whole globe's buffers one chunk writes: its first points' vertices, and its
-/// triangles.
-struct Piece<'a> {
-    vertices: Vertices<'a>,
-    indices: &'a mut [u32],
-    triangle_tiles: &'a mut [GlobeTile],
 }
 
 /// `buffer` cut into consecutive pieces of the given lengths (which sum to its length).
