@@ -151,6 +151,25 @@ impl Fine {
         }
     }
 
+    /// The places in [`Fine::dense`]'s order of the points of the hexagon centered at `(ci, cj)`
+    /// of diamond `d`'s frame ([`Fine::hexagon`]), in its template's order, into `out`. A
+    /// hexagon inside its diamond has them at the same offsets from its center's as every such
+    /// hexagon (its center's `j` is a multiple of 3, so a cell's `(di, dj)` moves the place by
+    /// `di F / 3` and the `k` of `dj`).
+    pub(crate) fn hexagon_dense(&self, (d, ci, cj): (u8, i64, i64), out: &mut Vec<u32>) {
+        let (big, reach) = (i64::from(self.big()), i64::from(2 * self.n));
+        out.clear();
+        if ci >= reach && cj >= reach && ci + reach < big && cj + reach < big {
+            let center = self.dense(Spot::Diamond { d, i: ci as u32, j: cj as u32 }) as i64;
+            let third = big / 3;
+            out.extend(self.cells.iter().map(|c| (center + c.offset.0 * third + c.offset.1.div_euclid(3)) as u32));
+        } else {
+            out.extend(
+                self.cells.iter().map(|c| self.dense(self.hexagon_point(d, ci + c.offset.0, cj + c.offset.1)) as u32),
+            );
+        }
+    }
+
     /// A hexagon's points as frame offsets from its center ([`Fine::hexagon`]), and its
     /// triangles as indices into them.
     pub(crate) fn template(&self) -> (&[Cell], &[[u16; 3]]) {
@@ -511,6 +530,19 @@ mod tests {
                         let stepped = steps.map(|s| fine.dense(p) as isize + s);
                         assert_eq!(dense, stepped, "{p:?} (f {f}, n {n})");
                     }
+                }
+            }
+            let mut dense = Vec::new();
+            for d in 0..10 {
+                for (i, j) in (0..f).flat_map(|i| (0..f).map(move |j| (i, j))) {
+                    let Some((e, ci, cj)) = fine.hexagon(Spot::Diamond { d, i, j }) else { continue };
+                    fine.hexagon_dense((e, ci, cj), &mut dense);
+                    let expected: Vec<u32> = fine
+                        .cells
+                        .iter()
+                        .map(|c| fine.dense(fine.hexagon_point(e, ci + c.offset.0, cj + c.offset.1)) as u32)
+                        .collect();
+                    assert_eq!(dense, expected, "tile ({d}, {i}, {j}) (f {f}, n {n})");
                 }
             }
             let mut turned = 0;

@@ -104,14 +104,14 @@ impl GlobeTerrain {
                             for (a, &s) in around.iter_mut().zip(steps) {
                                 *a = at[v.wrapping_add_signed(s)];
                             }
-                            sum_faces(at[v], &around)
+                            sum_faces(&around)
                         }
                         _ => {
                             let fan = fine.walk(p);
                             for (a, &q) in around.iter_mut().zip(fan.points()) {
                                 *a = at[fine.dense(q)];
                             }
-                            sum_faces(at[v], &around[..fan.points().len()])
+                            sum_faces(&around[..fan.points().len()])
                         }
                     }
                 })
@@ -120,7 +120,7 @@ impl GlobeTerrain {
         });
 
         // Each tile's triangles, its points' vertices their places in the lattice.
-        let (cells, cell_triangles) = fine.template();
+        let (_, cell_triangles) = fine.template();
         let b = &mut whole.buffers;
         split(&mut b.indices, &corners)
             .into_par_iter()
@@ -128,13 +128,8 @@ impl GlobeTerrain {
             .zip(&whole.tiles)
             .for_each_init(Vec::new, |local, ((indices, triangle_tiles), &t)| {
                 let spot = self.spot(t);
-                if let Some((d, ci, cj)) = fine.hexagon(spot) {
-                    local.clear();
-                    local.extend(
-                        cells
-                            .iter()
-                            .map(|c| fine.dense(fine.hexagon_point(d, ci + c.offset.0, cj + c.offset.1)) as u32),
-                    );
+                if let Some(hexagon) = fine.hexagon(spot) {
+                    fine.hexagon_dense(hexagon, local);
                     for (out, triangle) in indices.chunks_exact_mut(3).zip(cell_triangles) {
                         out.copy_from_slice(&triangle.map(|k| local[usize::from(k)]));
                     }
