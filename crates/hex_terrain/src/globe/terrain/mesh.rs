@@ -242,21 +242,25 @@ impl GlobeTerrain {
                 usize::from(len)
             }
         };
-        let around = ring.map(|r| all[r as usize].position);
+        let around = ring.map(|r| all[r as usize].position.map(|c| c as f32));
         sum_faces(&around[..len])
     }
 }
 
 /// The faces between a point and each two points after each other of its ring (going round it
 /// clockwise seen from outside, from its first step) summed: its normal before
-/// [`normalize_all`]. A face `(center, next, this)` is `(next - center) x (this - center)`; round
-/// a closed ring the terms with the center cancel, so the sum is that of `next x this` alone
-/// (fewer operations; in f64 the cancellation between terms about the globe's radius times a
-/// fine step long leaves the sum exact far beyond an f32 normal's bits).
-pub(super) fn sum_faces(ring: &[Dir]) -> Dir {
+/// [`normalize_all`]. The ring's positions are the whole globe's vertices (the world positions
+/// rounded to f32, which the whole mesh holds and a chunk's mesh rounds the same way), so the
+/// normal is that of the surface drawn, and the whole globe's mesh needs no other copy of them.
+/// A face `(center, next, this)` is `(next - center) x (this - center)`; round a closed ring the
+/// terms with the center cancel, so the sum is that of `next x this` alone, in f64 (the
+/// cancellation between terms about the globe's radius times a fine step long leaves it exact
+/// far beyond an f32 normal's bits).
+pub(super) fn sum_faces(ring: &[[f32; 3]]) -> Dir {
     let mut normal = [0.0f64; 3];
     for (k, &this) in ring.iter().enumerate() {
-        let face = cross(ring[(k + 1) % ring.len()], this);
+        let next = ring[(k + 1) % ring.len()];
+        let face = cross(next.map(f64::from), this.map(f64::from));
         normal = [normal[0] + face[0], normal[1] + face[1], normal[2] + face[2]];
     }
     normal

@@ -51,8 +51,7 @@ impl GlobeTerrain {
             triangle_tiles: vec![GlobeTile(0); triangles.iter().sum()],
         };
 
-        // Every point finished, row by row; its position kept in f64 for the normals.
-        let mut at = vec![[0.0f64; 3]; vertices];
+        // Every point finished, row by row.
         {
             let b = &mut whole.buffers;
             let colors: Vec<usize> = lens.iter().map(|&len| if colored { len } else { 0 }).collect();
@@ -73,23 +72,23 @@ impl GlobeTerrain {
                 })
                 .collect();
             let subdivisions = self.config.subdivisions();
-            pieces.into_par_iter().zip(split(&mut at, &lens)).zip(&rows).for_each(|((mut out, at), &row)| {
+            pieces.into_par_iter().zip(&rows).for_each(|(mut out, &row)| {
                 let points: Vec<_> = fine.row_points(row).collect();
                 for (k, batch) in points.chunks(LANES).enumerate() {
                     for (l, f) in self.finish_batch(batch, &[None; LANES]).enumerate() {
                         let w = k * LANES + l;
-                        at[w] = f.position;
                         out.set(w, &f, GlobePoint(fine.id(batch[l])), [0.0; 3], subdivisions);
                     }
                 }
             });
         }
 
-        // Each point's normal: the faces round it, going round it as a chunk's mesh does.
-        // Well inside a diamond, the neighbors are the same offsets away in the lattice's order
-        // from every point of a row.
+        // Each point's normal: the faces round it (between the vertices just written), going
+        // round it as a chunk's mesh does. Well inside a diamond, the neighbors are the same
+        // offsets away in the lattice's order from every point of a row.
         let starts: Vec<usize> =
             lens.iter().scan(0, |start, &len| Some(std::mem::replace(start, *start + len))).collect();
+        let positions = &whole.buffers.positions;
         let normals = split(&mut whole.buffers.normals, &lens);
         normals.into_par_iter().zip(&rows).zip(&starts).for_each(|((normals, &row), &start)| {
             let steps = fine.row_steps(row);
@@ -102,14 +101,14 @@ impl GlobeTerrain {
                     match (&steps, p) {
                         (Some((steps, columns)), Spot::Diamond { j, .. }) if columns.contains(&j) => {
                             for (a, &s) in around.iter_mut().zip(steps) {
-                                *a = at[v.wrapping_add_signed(s)];
+                                *a = positions[v.wrapping_add_signed(s)];
                             }
                             sum_faces(&around)
                         }
                         _ => {
                             let fan = fine.walk(p);
                             for (a, &q) in around.iter_mut().zip(fan.points()) {
-                                *a = at[fine.dense(q)];
+                                *a = positions[fine.dense(q)];
                             }
                             sum_faces(&around[..fan.points().len()])
                         }
