@@ -503,48 +503,32 @@ mod tests {
         }
     }
 
+    /// Every hexagon of a globe as [`Fine::hexagon`] gives it: its diamond and center.
+    fn hexagons(fine: &Fine) -> Vec<(u8, i64, i64)> {
+        let f = fine.f;
+        (0..10)
+            .flat_map(|d| (0..f).flat_map(move |i| (0..f).map(move |j| Spot::Diamond { d, i, j })))
+            .filter_map(|spot| fine.hexagon(spot))
+            .collect()
+    }
+
+    const SIZES: [(u32, u32); 4] = [(2, 3), (3, 2), (5, 2), (4, 4)];
+
     /// The walk round a point inside a hexagon is its hexagon's template order (the six steps in
     /// the hexagon's frame, found here by going through every hexagon's points), and round any
     /// other point its fan in its owner's frame; the two differ for some points (those inside a
     /// hexagon across its diamond's edge), so the test tells them apart.
     #[test]
     fn the_walk_round_a_point_inside_a_hexagon_is_its_hexagons() {
-        for (f, n) in [(2, 3), (3, 2), (5, 2), (4, 4)] {
+        for (f, n) in SIZES {
             let fine = Fine::new(f, n);
             let mut inside: std::collections::HashMap<u64, [Point; 6]> = std::collections::HashMap::new();
-            for d in 0..10 {
-                for (i, j) in (0..f).flat_map(|i| (0..f).map(move |j| (i, j))) {
-                    let Some((e, ci, cj)) = fine.hexagon(Spot::Diamond { d, i, j }) else { continue };
-                    for c in fine.cells.iter().filter(|c| c.ring < n) {
-                        let (qi, qj) = (ci + c.offset.0, cj + c.offset.1);
-                        let around = FINE_STEPS.map(|(di, dj)| fine.hexagon_point(e, qi + di, qj + dj));
-                        let p = fine.hexagon_point(e, qi, qj);
-                        assert!(inside.insert(fine.id(p), around).is_none(), "{p:?} in two hexagons");
-                    }
-                }
-            }
-            for row in fine.rows() {
-                let Some((steps, columns)) = fine.row_steps(row) else { continue };
-                for p in fine.row_points(row) {
-                    let Spot::Diamond { j, .. } = p else { unreachable!("a pole has no row steps") };
-                    if columns.contains(&j) {
-                        let dense = fine.walk(p).points().iter().map(|&q| fine.dense(q) as isize).collect::<Vec<_>>();
-                        let stepped = steps.map(|s| fine.dense(p) as isize + s);
-                        assert_eq!(dense, stepped, "{p:?} (f {f}, n {n})");
-                    }
-                }
-            }
-            let mut dense = Vec::new();
-            for d in 0..10 {
-                for (i, j) in (0..f).flat_map(|i| (0..f).map(move |j| (i, j))) {
-                    let Some((e, ci, cj)) = fine.hexagon(Spot::Diamond { d, i, j }) else { continue };
-                    fine.hexagon_dense((e, ci, cj), &mut dense);
-                    let expected: Vec<u32> = fine
-                        .cells
-                        .iter()
-                        .map(|c| fine.dense(fine.hexagon_point(e, ci + c.offset.0, cj + c.offset.1)) as u32)
-                        .collect();
-                    assert_eq!(dense, expected, "tile ({d}, {i}, {j}) (f {f}, n {n})");
+            for (e, ci, cj) in hexagons(&fine) {
+                for c in fine.cells.iter().filter(|c| c.ring < n) {
+                    let (qi, qj) = (ci + c.offset.0, cj + c.offset.1);
+                    let around = FINE_STEPS.map(|(di, dj)| fine.hexagon_point(e, qi + di, qj + dj));
+                    let p = fine.hexagon_point(e, qi, qj);
+                    assert!(inside.insert(fine.id(p), around).is_none(), "{p:?} in two hexagons");
                 }
             }
             let mut turned = 0;
@@ -559,6 +543,45 @@ mod tests {
                 }
             }
             assert!(turned > 0, "f {f}, n {n}: no hexagon's order differs from its points' owners'");
+        }
+    }
+
+    /// A row's constant offsets reach, from each point of the columns they are for, the places
+    /// of its walk's points in order.
+    #[test]
+    fn a_rows_steps_reach_its_points_walks() {
+        for (f, n) in SIZES {
+            let fine = Fine::new(f, n);
+            for row in fine.rows() {
+                let Some((steps, columns)) = fine.row_steps(row) else { continue };
+                for p in fine.row_points(row) {
+                    let Spot::Diamond { j, .. } = p else { unreachable!("a pole has no row steps") };
+                    if columns.contains(&j) {
+                        let dense = fine.walk(p).points().iter().map(|&q| fine.dense(q) as isize).collect::<Vec<_>>();
+                        let stepped = steps.map(|s| fine.dense(p) as isize + s);
+                        assert_eq!(dense, stepped, "{p:?} (f {f}, n {n})");
+                    }
+                }
+            }
+        }
+    }
+
+    /// A hexagon's places are its cells' own places, whether found by the constant offsets or
+    /// point by point.
+    #[test]
+    fn a_hexagons_places_are_its_cells_places() {
+        for (f, n) in SIZES {
+            let fine = Fine::new(f, n);
+            let mut dense = Vec::new();
+            for (e, ci, cj) in hexagons(&fine) {
+                fine.hexagon_dense((e, ci, cj), &mut dense);
+                let expected: Vec<u32> = fine
+                    .cells
+                    .iter()
+                    .map(|c| fine.dense(fine.hexagon_point(e, ci + c.offset.0, cj + c.offset.1)) as u32)
+                    .collect();
+                assert_eq!(dense, expected, "hexagon ({e}, {ci}, {cj}) (f {f}, n {n})");
+            }
         }
     }
 }

@@ -7,7 +7,6 @@
 use rayon::prelude::*;
 
 use super::super::atlas::Spot;
-
 use super::mesh::{Vertices, normalize_all, sum_faces};
 use super::{GlobeMesh, GlobePoint, GlobeTerrain};
 use crate::globe::GlobeTile;
