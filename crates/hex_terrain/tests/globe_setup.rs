@@ -119,7 +119,10 @@ fn spread(values: &[f32]) -> f32 {
 
 /// Whether a longitude (degrees) lies in `[west, east)`, the box running east from `west`.
 fn in_longitudes(lon: f64, [west, east]: [f64; 2]) -> bool {
+    // A longitude a hair west of `west` (-5e-15 against 0, say) wraps to a hair under 360: it is
+    // on the box's western edge, not across the world.
     let east_of = (lon - west).rem_euclid(360.0);
+    let east_of = if east_of >= 360.0 - 1e-9 { east_of - 360.0 } else { east_of };
     east_of >= -1e-9 && east_of <= east - west + 1e-9 || east - west >= 360.0 - 1e-9
 }
 
